@@ -1,0 +1,89 @@
+#pragma once
+/// @file key.hpp
+/// Octree keys: one unsigned integer per axis, as wide as the tree is deep (paper §5.1).
+///
+/// A key addresses a voxel at the finest level of a tree of depth `Depth`. Each axis uses the
+/// smallest unsigned integer with at least `Depth` bits: 8, 16, 32 or 64 bits, and an unsigned
+/// 128-bit integer (the "wide key") for depths 65…128. Bit (Depth-1-level) of each component
+/// selects the child at `level` below the root, with x in bit 0, y in bit 1 and z in bit 2 of the
+/// child index — OctoMap's layout, so a depth-16 tree is interchangeable with OctoMap's.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <type_traits>
+
+namespace sonarmap {
+
+/// Deepest tree the library supports (keys of 128 bits per axis).
+inline constexpr int kMaxDepth = 128;
+
+namespace detail {
+template <int Depth>
+struct KeyIndexFor {
+  static_assert(Depth >= 1 && Depth <= kMaxDepth, "tree depth must be within 1..128");
+  using type = std::conditional_t<
+      (Depth <= 8), std::uint8_t,
+      std::conditional_t<(Depth <= 16), std::uint16_t,
+                         std::conditional_t<(Depth <= 32), std::uint32_t,
+                                            std::conditional_t<(Depth <= 64), std::uint64_t,
+                                                               unsigned __int128>>>>;
+};
+}  // namespace detail
+
+/// Integer type of one key component for a tree of `Depth` levels.
+template <int Depth>
+using KeyIndex = typename detail::KeyIndexFor<Depth>::type;
+
+/// A voxel key: three integer indices (x, y, z) at the finest level of a tree of depth `Depth`.
+template <int Depth>
+struct Key {
+  using Index = KeyIndex<Depth>;
+  static constexpr int kDepth = Depth;
+
+  std::array<Index, 3> k{};
+
+  constexpr Index& operator[](std::size_t axis) { return k[axis]; }
+  constexpr const Index& operator[](std::size_t axis) const { return k[axis]; }
+  friend constexpr bool operator==(const Key& a, const Key& b) = default;
+};
+
+/// Index 0…7 of the child that contains `key` at `level` levels below the root (0 = root's
+/// children). Bit 0 is x, bit 1 is y, bit 2 is z (OctoMap's `computeChildIdx`).
+template <int Depth>
+constexpr unsigned childIndex(const Key<Depth>& key, int level) {
+  const int bit = Depth - 1 - level;
+  return static_cast<unsigned>((key[0] >> bit) & 1U) |
+         (static_cast<unsigned>((key[1] >> bit) & 1U) << 1) |
+         (static_cast<unsigned>((key[2] >> bit) & 1U) << 2);
+}
+
+/// Hash of a key, for unordered sets of keys. For depth ≤ 21 the three components pack without
+/// loss into one 64-bit word (48 bits for OctoMap's depth 16, paper §5.1).
+template <int Depth>
+struct KeyHash {
+  std::size_t operator()(const Key<Depth>& key) const noexcept {
+    if constexpr (Depth <= 21) {
+      const std::uint64_t packed = static_cast<std::uint64_t>(key[0]) |
+                                   (static_cast<std::uint64_t>(key[1]) << Depth) |
+                                   (static_cast<std::uint64_t>(key[2]) << (2 * Depth));
+      return static_cast<std::size_t>(packed * 0x9E3779B97F4A7C15ULL);
+    } else {
+      std::size_t h = 0;
+      for (int axis = 0; axis < 3; ++axis) {
+        const auto lo = static_cast<std::uint64_t>(key[axis]);
+        std::uint64_t hi = 0;
+        if constexpr (Depth > 64) hi = static_cast<std::uint64_t>(key[axis] >> 64);
+        h ^= std::hash<std::uint64_t>{}(lo ^ (hi * 0xC2B2AE3D27D4EB4FULL)) + 0x9E3779B97F4A7C15ULL +
+             (h << 6) + (h >> 2);
+      }
+      return h;
+    }
+  }
+};
+
+/// The key OctoMap uses: depth 16, uint16 per axis.
+using Key16 = Key<16>;
+
+}  // namespace sonarmap

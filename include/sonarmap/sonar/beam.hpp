@@ -1,0 +1,36 @@
+#pragma once
+/// @file beam.hpp
+/// One MSIS beam and a log of beams (paper §2.1).
+///
+/// Sonar frame: x forward along the head's zero bearing, y to the left, z up; bearing is measured
+/// from +x, counter-clockwise seen from above, in radians within [0, 2π). Bin i covers ranges
+/// [i, i+1) × bin_length_m from the transducer.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sonarmap {
+
+/// One beam: the echo intensities along one bearing at one time.
+struct Beam {
+  double time_s = 0.0;        ///< time of the beam in seconds (the log's own clock)
+  double bearing_rad = 0.0;   ///< bearing in the sonar frame, radians in [0, 2π)
+  double bin_length_m = 0.0;  ///< length of one bin along the beam, metres (> 0)
+  std::vector<std::uint8_t> intensities;  ///< echo intensity per bin, 0…255, bin 0 nearest
+
+  /// Range in metres to the centre of bin `bin`.
+  double rangeOfBin(std::size_t bin) const { return (static_cast<double>(bin) + 0.5) * bin_length_m; }
+  /// Range in metres covered by all bins.
+  double maxRange_m() const { return static_cast<double>(intensities.size()) * bin_length_m; }
+};
+
+/// Beams read from a file, in recording order, with the count of beams the reader rejected.
+struct SonarLog {
+  std::vector<Beam> beams;
+  std::size_t skipped_beams = 0;         ///< malformed beams that were dropped (not in `beams`)
+  std::vector<std::string> skip_reasons;  ///< one line per skipped beam, for the user
+};
+
+}  // namespace sonarmap

@@ -1,0 +1,17 @@
+#pragma once
+/// @file detection.hpp
+/// The result of obstacle detection along a beam (paper §6, §8.2).
+
+#include <cstdint>
+#include <vector>
+
+namespace sonarmap {
+
+/// First obstacle along one beam (one row of a PolarImage).
+struct BeamDetection {
+  int obstacle_bin = -1;         ///< bin of the first obstacle, −1 when the beam saw none
+  std::uint8_t intensity = 0;    ///< intensity at that bin (0…255), for the hit's confidence
+  bool hasObstacle() const { return obstacle_bin >= 0; }
+};
+
+}  // namespace sonarmap
