@@ -19,6 +19,9 @@ namespace sonarmap {
 /// Deepest tree the library supports (keys of 128 bits per axis).
 inline constexpr int kMaxDepth = 128;
 
+/// The 128-bit "wide key" index for depths 65…128 (a GCC/Clang extension).
+__extension__ typedef unsigned __int128 WideKeyIndex;
+
 namespace detail {
 template <int Depth>
 struct KeyIndexFor {
@@ -28,7 +31,7 @@ struct KeyIndexFor {
       std::conditional_t<(Depth <= 16), std::uint16_t,
                          std::conditional_t<(Depth <= 32), std::uint32_t,
                                             std::conditional_t<(Depth <= 64), std::uint64_t,
-                                                               unsigned __int128>>>>;
+                                                               WideKeyIndex>>>>;
 };
 }  // namespace detail
 

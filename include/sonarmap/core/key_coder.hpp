@@ -6,7 +6,8 @@
 /// `(key - 2^(Depth-1) + 0.5) * resolution_m`: OctoMap's convention for depth 16
 /// (`../shared/docs/formats.md`). The tree addresses coordinates in
 /// [-2^(Depth-1) * res, 2^(Depth-1) * res) on each axis; anything outside is rejected
-/// (std::nullopt or OutOfMapError), never wrapped.
+/// (std::nullopt or OutOfMapError), never wrapped. Coordinates are doubles, so beyond 2^53 voxels
+/// from the origin (depths above 53) keys are exact but coordinates round to the nearest double.
 
 #include <cmath>
 #include <optional>
@@ -67,7 +68,7 @@ class KeyCoder {
   }
 
   /// Centre in metres of the voxel with key index `index` (finest level).
-  double centerOf(Index index) const { return (toDouble(index) - offset() + 0.5) * resolution_m_; }
+  double centerOf(Index index) const { return (cellOf(index) + 0.5) * resolution_m_; }
 
   /// Centre in metres of the finest-level voxel `key`.
   Eigen::Vector3d centerOf(const KeyType& key) const {
@@ -75,7 +76,14 @@ class KeyCoder {
   }
 
   /// Lower corner in metres of the voxel with key index `index`.
-  double lowerCornerOf(Index index) const { return (toDouble(index) - offset()) * resolution_m_; }
+  double lowerCornerOf(Index index) const { return cellOf(index) * resolution_m_; }
+
+  /// Signed voxel count from the origin, `index − 2^(Depth−1)`, computed in integers first.
+  static double cellOf(Index index) {
+    const Index half = Index{1} << (Depth - 1);
+    if (index >= half) return toDouble(static_cast<Index>(index - half));
+    return -toDouble(static_cast<Index>(half - index));
+  }
 
   static double toDouble(Index index) {
     if constexpr (Depth > 64) {

@@ -35,7 +35,7 @@ struct OccupancyParams {
   double prob_hit = 0.7;        ///< P(occupied | hit), OctoMap's default
   double prob_miss = 0.4;       ///< P(occupied | miss)
   double clamp_min = 0.1192;    ///< lower clamping probability (log-odds −2)
-  double clamp_max = 0.971;     ///< upper clamping probability (log-odds +3.5)
+  double clamp_max = 0.971;     ///< upper clamping probability (log-odds +3.511)
   double occupied_above = 0.5;  ///< a node is occupied when its probability is above this
   double free_below = 0.5;      ///< a node is free when its probability is at or below this
                                 ///< (equal thresholds: nothing is unknown once observed)

@@ -1,0 +1,140 @@
+#pragma once
+/// @file occupancy_octree.hpp
+/// Probabilistic occupancy octree (paper §3.3, §5; Hornung et al. 2013, "OctoMap").
+///
+/// A tree of depth `Depth` over cubic voxels of `resolution_m`. Leaves carry clamped log-odds
+/// updated with eq. (1) of the paper; inner nodes hold the max (default) or mean of their
+/// children. Identical leaf siblings are pruned into their parent. With `lazy` set, updates touch
+/// leaves only and `updateInnerOccupancy()` fixes every inner value and prunes in one pass (§5.5).
+/// Depth 16 uses OctoMap's key layout, so `.bt`/`.ot` files interoperate.
+
+#include <cstddef>
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "sonarmap/core/key.hpp"
+#include "sonarmap/core/key_coder.hpp"
+#include "sonarmap/core/log_odds.hpp"
+#include "sonarmap/octree/node_pool.hpp"
+
+namespace sonarmap {
+
+/// Behaviour of an OccupancyOctree; defaults are OctoMap's.
+struct OctreeOptions {
+  OccupancyParams occupancy{};                             ///< sensor model and thresholds (§5.2)
+  InnerAggregation aggregation = InnerAggregation::kMax;  ///< inner-node value (§5.3.1)
+  bool prune = true;             ///< collapse 8 equal leaf siblings into their parent (§5.4)
+  bool lazy = false;             ///< leaves only until updateInnerOccupancy() (§5.5)
+  bool stability_check = true;   ///< skip updates of leaves clamped in the update's direction (§5.3)
+};
+
+/// Number of nodes of each kind.
+struct NodeCounts {
+  std::size_t nodes = 0;
+  std::size_t inner = 0;
+  std::size_t leaves = 0;
+};
+
+/// One leaf as seen by forEachLeaf: a finest voxel (depth == Depth) or a pruned node above it.
+template <int Depth>
+struct LeafView {
+  Key<Depth> key;   ///< key of the leaf's lowest corner voxel
+  int depth;        ///< 0 (root) … Depth (finest)
+  float log_odds;   ///< the leaf's log-odds
+  /// Number of finest voxels along one edge of the leaf: 2^(Depth − depth).
+  double edgeVoxels() const { return std::ldexp(1.0, Depth - depth); }
+};
+
+template <int Depth = 16>
+class OccupancyOctree {
+ public:
+  using KeyType = Key<Depth>;
+  static constexpr int kDepth = Depth;
+
+  /// @param resolution_m edge of a finest voxel in metres.
+  /// @throws ValueError if the resolution is not finite and positive or the occupancy parameters
+  ///         are invalid (see OccupancyParams::validate).
+  explicit OccupancyOctree(double resolution_m, const OctreeOptions& options = {})
+      : coder_(resolution_m), options_(options), model_(LogOddsModel::from(options.occupancy)) {}
+
+  // --- updates -------------------------------------------------------------------------------
+
+  /// Adds `delta_log_odds` to the leaf at `key` (creating it, or expanding a pruned parent),
+  /// clamps it, and — unless lazy — updates the inner nodes above it and prunes.
+  /// @return false when the update was skipped: zero, or the leaf already clamped in the
+  ///         update's direction and `stability_check` is on (§5.3); true otherwise.
+  bool updateNode(const KeyType& key, float delta_log_odds);
+
+  /// A hit (`occupied`) or miss at `key`, with the sensor model's log-odds.
+  bool integrate(const KeyType& key, bool occupied) { return updateNode(key, occupied ? model_.hit : model_.miss); }
+
+  /// Recomputes every inner node from its children and prunes (when enabled), in one post-order
+  /// pass: the synchronisation of lazy evaluation (§5.5). Cheap to call on a clean tree.
+  void updateInnerOccupancy();
+
+  /// Removes every node.
+  void clear() { pool_.clear(); }
+
+  // --- queries -------------------------------------------------------------------------------
+
+  /// Log-odds of the node containing `key` at `depth` (or of the pruned leaf above it), or
+  /// nullopt when that space is unknown. @param depth 0 … Depth.
+  std::optional<float> search(const KeyType& key, int depth = Depth) const;
+
+  /// Occupancy of the finest voxel `key`, kUnknown when never observed.
+  Occupancy occupancyOf(const KeyType& key) const;
+
+  /// Occupancy at a point in metres (map frame).
+  /// @throws OutOfMapError when the point is outside the map or not finite.
+  Occupancy occupancyAt(const Eigen::Vector3d& point_m) const { return occupancyOf(coder_.keyOfChecked(point_m)); }
+
+  /// Calls `visit(const LeafView<Depth>&)` for every leaf, in depth-first order (child 0 … 7).
+  template <class Visitor>
+  void forEachLeaf(Visitor&& visit) const;
+
+  /// Nodes, inner nodes and leaves, counted by one traversal.
+  NodeCounts counts() const;
+
+  /// Bytes the tree's nodes occupy (blocks in use, 64 bytes per block of 8 siblings).
+  std::size_t memoryBytes() const { return pool_.bytesInUse() + sizeof(*this); }
+  /// Bytes allocated by the tree, including capacity kept for growth and freed blocks.
+  std::size_t memoryBytesAllocated() const { return pool_.bytesAllocated() + sizeof(*this); }
+
+  bool empty() const { return !pool_.at(kRootRef).exists(); }
+  double resolution_m() const { return coder_.resolution_m(); }
+  const KeyCoder<Depth>& coder() const { return coder_; }
+  const LogOddsModel& model() const { return model_; }
+  const OctreeOptions& options() const { return options_; }
+
+  // --- raw node access, for file readers and writers ----------------------------------------
+
+  const OcTreeNode& node(NodeRef ref) const { return pool_.at(ref); }
+  /// Reference of child `index` of a node that has children.
+  static NodeRef childRef(const OcTreeNode& parent, unsigned index) { return NodePool::childRef(parent.children, index); }
+  /// Sets a node's log-odds (NaN removes nothing: use only on existing nodes or to create one).
+  void setLogOdds(NodeRef ref, float log_odds) { pool_.at(ref).log_odds = log_odds; }
+  /// Gives a childless node a block of 8 not-yet-existing children. Invalidates node references.
+  void createChildren(NodeRef ref);
+  /// Inner value of a node from its existing children, by the configured aggregation.
+  float aggregateChildren(const OcTreeNode& parent) const;
+
+ private:
+  bool tryPrune(NodeRef ref);
+  void syncSubtree(NodeRef ref);
+  template <class Visitor>
+  void visitLeaves(NodeRef ref, const KeyType& key, int depth, Visitor& visit) const;
+  void countSubtree(NodeRef ref, NodeCounts& counts) const;
+
+  KeyCoder<Depth> coder_;
+  OctreeOptions options_;
+  LogOddsModel model_;
+  NodePool pool_;
+};
+
+using OcTree16 = OccupancyOctree<16>;
+extern template class OccupancyOctree<16>;  // instantiated once, in src/octree/occupancy_octree.cpp
+
+}  // namespace sonarmap
+
+#include "sonarmap/octree/occupancy_octree_impl.hpp"

@@ -1,0 +1,40 @@
+#pragma once
+/// @file mat_reader.hpp
+/// Reader for the CRAS Micron logs published with the paper (paper §2.1; JoaoCostaIFG/slam,
+/// `datasets/dataset_static.mat`), through libmatio.
+
+#include <string>
+
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap {
+
+/// Reads a CRAS MSIS log: a MAT-file (MATLAB 5, as written by the authors; any version libmatio
+/// reads is accepted) with a struct array variable `parsedData`, one element per beam, fields
+///   - `time`        1×1 single (double accepted), seconds;
+///   - `angle`       1×1 single (double accepted), head angle in degrees;
+///   - `step_dist`   1×1 single (double accepted), bin length in metres, > 0;
+///   - `intensities` 1×N or N×1 uint8, echo intensity per bin, bin 0 nearest.
+///
+/// Bearing convention: the authors draw a beam in the plane at `theta = radians(angle + 180)`,
+/// `x = r cos(theta)`, `y = r sin(theta)`. We follow them so our maps match their figures:
+/// `Beam::bearing_rad = radians(angle + 180)` wrapped to [0, 2π), counter-clockwise from +x of
+/// the sonar frame (beam.hpp). On the CRAS data the first beam (angle 180°) has bearing 0.
+///
+/// A malformed beam is not an error of the file: it is left out of `SonarLog::beams`, counted in
+/// `skipped_beams` and described in `skip_reasons` (element index, field, what was expected).
+/// A beam is malformed when a field is missing, empty, complex, of the wrong class or size, when
+/// a value is not finite, when `step_dist` ≤ 0, or when its bin count differs from the log's
+/// dominant bin count (the most common one; the last beam of the CRAS log has 186 bins instead
+/// of 399). Beams keep the file's order; times and bearings are not required to be monotonic.
+///
+/// libmatio's own log messages are captured (never printed) and appended to the exception text.
+///
+/// @param path  MAT-file to read.
+/// @return      the beams in recording order, with the skipped-beam count and reasons.
+/// @throws FileError  when the file cannot be opened or is not a MAT-file, when `parsedData` is
+///   missing, not a struct array, empty, or lacks one of the four fields, or when no beam of the
+///   file is valid (the message then quotes the first beam's problem). The message names the file.
+SonarLog readCrasMat(const std::string& path);
+
+}  // namespace sonarmap

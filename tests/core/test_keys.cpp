@@ -1,0 +1,116 @@
+// Keys sized by depth, coordinate/key conversion and the log-odds model (paper §5.1, §5.2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "sonarmap/core/key_coder.hpp"
+#include "sonarmap/core/log_odds.hpp"
+
+namespace sonarmap {
+namespace {
+
+TEST(Key, IndexWidthFollowsDepth) {
+  static_assert(sizeof(Key<8>::Index) == 1);
+  static_assert(sizeof(Key<9>::Index) == 2);
+  static_assert(sizeof(Key<16>::Index) == 2);
+  static_assert(sizeof(Key<17>::Index) == 4);
+  static_assert(sizeof(Key<33>::Index) == 8);
+  static_assert(sizeof(Key<64>::Index) == 8);
+  static_assert(sizeof(Key<65>::Index) == 16);
+  static_assert(sizeof(Key<16>) == 6, "OctoMap's 48-bit key");
+  SUCCEED();
+}
+
+TEST(KeyCoder, MatchesOctoMapConventionAtDepth16) {
+  const KeyCoder<16> coder(0.02);
+  EXPECT_EQ(*coder.indexOf(0.0), 32768);
+  EXPECT_EQ(*coder.indexOf(0.0199), 32768);
+  EXPECT_EQ(*coder.indexOf(-0.0001), 32767);
+  EXPECT_EQ(*coder.indexOf(1.0), 32768 + 50);
+  EXPECT_DOUBLE_EQ(coder.centerOf(Key16::Index{32768}), 0.01);
+  EXPECT_DOUBLE_EQ(coder.centerOf(Key16::Index{32767}), -0.01);
+}
+
+TEST(KeyCoder, RejectsOutsideExtentInsteadOfWrapping) {
+  const KeyCoder<16> coder(0.1);  // extent ±3276.8 m
+  EXPECT_TRUE(coder.indexOf(3276.7).has_value());
+  EXPECT_FALSE(coder.indexOf(3276.8).has_value());
+  EXPECT_TRUE(coder.indexOf(-3276.8).has_value());
+  EXPECT_FALSE(coder.indexOf(-3276.81).has_value());
+  EXPECT_FALSE(coder.indexOf(std::numeric_limits<double>::quiet_NaN()).has_value());
+  EXPECT_FALSE(coder.indexOf(std::numeric_limits<double>::infinity()).has_value());
+  EXPECT_THROW(coder.keyOfChecked({0.0, 5000.0, 0.0}), OutOfMapError);
+}
+
+TEST(KeyCoder, InvalidResolutionThrows) {
+  EXPECT_THROW(KeyCoder<16>(0.0), ValueError);
+  EXPECT_THROW(KeyCoder<16>(-0.1), ValueError);
+  EXPECT_THROW(KeyCoder<16>(std::nan("")), ValueError);
+}
+
+template <int Depth>
+void expectRoundTrip(double resolution_m, double coord_m) {
+  const KeyCoder<Depth> coder(resolution_m);
+  const auto key = coder.keyOf({coord_m, -coord_m, 0.5 * coord_m});
+  ASSERT_TRUE(key.has_value()) << "depth " << Depth;
+  const Eigen::Vector3d center = coder.centerOf(*key);
+  EXPECT_NEAR(center.x(), coord_m, resolution_m) << "depth " << Depth;
+  EXPECT_NEAR(center.y(), -coord_m, resolution_m) << "depth " << Depth;
+  EXPECT_EQ(coder.keyOf(center), key) << "depth " << Depth;
+}
+
+TEST(KeyCoder, DeepTreesAddressFarBeyondDepth16) {
+  expectRoundTrip<8>(0.1, 12.3);          // extent ±12.8 m
+  expectRoundTrip<16>(0.01, 300.0);
+  expectRoundTrip<32>(0.01, 1.0e6);       // a 1000 km map at 1 cm
+  expectRoundTrip<64>(0.001, 1.0e12);
+  expectRoundTrip<100>(0.001, 1.0e12);    // wide (128-bit) keys; doubles limit exact coordinates to 2^53 voxels
+  EXPECT_FALSE(KeyCoder<8>(0.1).indexOf(12.9).has_value());
+}
+
+TEST(ChildIndex, XIsBit0YBit1ZBit2) {
+  Key16 key{{0x8000, 0x0000, 0x8000}};
+  EXPECT_EQ(childIndex(key, 0), 5U);
+  key = Key16{{0x0001, 0x0001, 0x0000}};
+  EXPECT_EQ(childIndex(key, 15), 3U);
+  EXPECT_EQ(childIndex(key, 14), 0U);
+}
+
+TEST(LogOdds, OctoMapDefaults) {
+  const LogOddsModel model = LogOddsModel::from({});
+  EXPECT_NEAR(model.hit, 0.8473, 1e-4);
+  EXPECT_NEAR(model.miss, -0.4055, 1e-4);
+  EXPECT_NEAR(model.clamp_min, -2.0, 1e-3);
+  EXPECT_NEAR(model.clamp_max, 3.511, 1e-3);  // logit(0.971), OctoMap's value
+  EXPECT_FLOAT_EQ(model.update(3.4F, 1.0F), model.clamp_max);
+  EXPECT_FLOAT_EQ(model.update(-1.9F, -1.0F), model.clamp_min);
+  EXPECT_TRUE(model.isStable(model.clamp_max, 0.5F));
+  EXPECT_FALSE(model.isStable(model.clamp_max, -0.5F));
+  EXPECT_TRUE(model.isStable(0.3F, 0.0F));
+}
+
+TEST(LogOdds, TwoThresholdsLeaveAnUnknownBand) {
+  OccupancyParams params;
+  params.free_below = 0.4;
+  params.occupied_above = 0.6;
+  const LogOddsModel model = LogOddsModel::from(params);
+  EXPECT_EQ(model.classify(logOdds(0.7)), Occupancy::kOccupied);
+  EXPECT_EQ(model.classify(logOdds(0.5)), Occupancy::kUnknown);
+  EXPECT_EQ(model.classify(logOdds(0.3)), Occupancy::kFree);
+}
+
+TEST(LogOdds, InvalidParamsThrow) {
+  OccupancyParams params;
+  params.prob_hit = 0.4;
+  EXPECT_THROW(LogOddsModel::from(params), ValueError);
+  params = {};
+  params.clamp_min = 1.2;
+  EXPECT_THROW(LogOddsModel::from(params), ValueError);
+  params = {};
+  params.free_below = 0.7;  // above occupied_above
+  EXPECT_THROW(LogOddsModel::from(params), ValueError);
+}
+
+}  // namespace
+}  // namespace sonarmap
