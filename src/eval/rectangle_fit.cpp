@@ -227,8 +227,14 @@ void placeUnseenSides(State& st, const std::vector<double>& u, const std::vector
     if (st.seen[2 * other]) lines.push_back(st.lo[other]);
     if (st.seen[2 * other + 1]) lines.push_back(st.hi[other]);
     const auto [lo, hi] = extentNearLines(axis == 0 ? u : v, axis == 0 ? v : u, lines, tol);
-    if (!st.seen[2 * axis]) st.lo[axis] = std::min(lo, st.hi[axis]);
-    if (!st.seen[2 * axis + 1]) st.hi[axis] = std::max(hi, st.lo[axis]);
+    if (!st.seen[2 * axis] && !st.seen[2 * axis + 1]) {
+      st.lo[axis] = lo;
+      st.hi[axis] = hi;
+    } else if (!st.seen[2 * axis]) {
+      st.lo[axis] = std::min(lo, st.hi[axis]);
+    } else {
+      st.hi[axis] = std::max(hi, st.lo[axis]);
+    }
   }
 }
 
@@ -253,14 +259,26 @@ void initialiseSides(State& st, const std::array<AxisWalls, 2>& walls, const std
   placeUnseenSides(st, u, v, tol);
 }
 
-// Step 3: one refinement round (inliers → shared direction by total least squares → side positions).
+// Step 3: one refinement round (inliers → demotion of empty sides → shared direction by total least
+// squares → side positions).
 void refine(State& st, const std::vector<Eigen::Vector2d>& rel, std::vector<double>& u, std::vector<double>& v,
-            double tol) {
+            double tol, double peak_fraction) {
   project(rel, st.theta, u, v);
   std::array<std::vector<std::size_t>, 4> inliers;
   for (std::size_t i = 0; i < rel.size(); ++i) {
     const NearestSide n = nearestSide(u[i], v[i], st.lo[0], st.hi[0], st.lo[1], st.hi[1]);
     if (n.distance_m <= tol) inliers[static_cast<std::size_t>(n.side)].push_back(i);
+  }
+  // A seen side holding fewer than peak_fraction of the best side's points was no wall (e.g. the
+  // ends of a flat histogram when only two opposite walls exist): from now on it is placed at the
+  // end of the perpendicular walls.
+  std::size_t most = 0;
+  for (int side = 0; side < 4; ++side) {
+    if (st.seen[static_cast<std::size_t>(side)]) most = std::max(most, inliers[static_cast<std::size_t>(side)].size());
+  }
+  for (int side = 0; side < 4; ++side) {
+    const double held = static_cast<double>(inliers[static_cast<std::size_t>(side)].size());
+    if (held < peak_fraction * static_cast<double>(most)) st.seen[static_cast<std::size_t>(side)] = false;
   }
   // Shared direction: sides along u (kVLow, kVHigh) as they are, sides along v turned by −90° so
   // that they run along u too; the principal axis of the pooled scatter is the new u.
@@ -345,7 +363,7 @@ RectangleFit fitRectangle(const std::vector<Eigen::Vector2d>& points_m, const Wa
   initialiseSides(st, {findWalls(hu, options), findWalls(hv, options)}, u, v, options.wall_tolerance_m);
 
   // 3. Refinement.
-  for (int it = 0; it < options.refine_iterations; ++it) refine(st, rel, u, v, options.wall_tolerance_m);
+  for (int it = 0; it < options.refine_iterations; ++it) refine(st, rel, u, v, options.wall_tolerance_m, options.peak_fraction);
 
   // Canonical form: angle in [0, π/2), width along it.
   double theta = st.theta;

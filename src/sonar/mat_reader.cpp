@@ -95,6 +95,50 @@ std::optional<double> readScalar(const matvar_t* var, std::string_view field, st
   return value;
 }
 
+/// Converts stored intensities to 0…255 bytes; `false` when a value is not an integer in range.
+template <typename T>
+bool toBytes(const T* values, std::size_t count, std::vector<std::uint8_t>& out) {
+  out.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double v = static_cast<double>(values[i]);
+    if (!(v >= 0.0 && v <= 255.0) || v != std::floor(v)) return false;
+    out[i] = static_cast<std::uint8_t>(v);
+  }
+  return true;
+}
+
+/// Reads the `intensities` field: a real vector, uint8 or (as in the published CRAS file, despite
+/// its description) double or single holding integers 0…255.
+std::optional<std::vector<std::uint8_t>> readIntensities(const matvar_t* var, std::string& reason) {
+  if (var == nullptr || var->data == nullptr || elementCount(*var) == 0) {
+    reason = "field 'intensities' is missing, empty or unreadable";
+    return std::nullopt;
+  }
+  const std::size_t count = elementCount(*var);
+  if (var->isComplex != 0 || var->rank != 2 || (var->dims[0] != 1 && var->dims[1] != 1)) {
+    reason = "field 'intensities' is not a real 1×N vector";
+    return std::nullopt;
+  }
+  std::vector<std::uint8_t> bytes;
+  bool ok = false;
+  if (var->class_type == MAT_C_UINT8 && var->nbytes >= count) {
+    ok = toBytes(static_cast<const std::uint8_t*>(var->data), count, bytes);
+  } else if (var->class_type == MAT_C_DOUBLE && var->nbytes >= count * sizeof(double)) {
+    ok = toBytes(static_cast<const double*>(var->data), count, bytes);
+  } else if (var->class_type == MAT_C_SINGLE && var->nbytes >= count * sizeof(float)) {
+    ok = toBytes(static_cast<const float*>(var->data), count, bytes);
+  } else {
+    reason = "field 'intensities' has MATLAB class " + std::to_string(static_cast<int>(var->class_type)) +
+             ", expected uint8 (or double/single integers)";
+    return std::nullopt;
+  }
+  if (!ok) {
+    reason = "field 'intensities' holds a value that is not an integer in [0, 255]";
+    return std::nullopt;
+  }
+  return bytes;
+}
+
 /// Bearing in [0, 2π) from the CRAS head angle in degrees: radians(angle + 180), the authors'
 /// plane convention.
 double bearingFromCrasAngle(double angle_deg) {
@@ -117,20 +161,9 @@ BeamOrReason readBeam(matvar_t* data, std::size_t index) {
     out.reason = "field 'step_dist' is " + std::to_string(*bin_length_m) + ", expected > 0 m";
     return out;
   }
-  const matvar_t* bins = field("intensities");
-  if (bins == nullptr || bins->data == nullptr || elementCount(*bins) == 0) {
-    out.reason = "field 'intensities' is missing, empty or unreadable";
-    return out;
-  }
-  const std::size_t count = elementCount(*bins);
-  if (bins->class_type != MAT_C_UINT8 || bins->isComplex != 0 || bins->rank != 2 ||
-      (bins->dims[0] != 1 && bins->dims[1] != 1) || bins->nbytes < count) {
-    out.reason = "field 'intensities' is not a real uint8 vector";
-    return out;
-  }
-  const auto* first = static_cast<const std::uint8_t*>(bins->data);
-  out.beam = Beam{*time_s, bearingFromCrasAngle(*angle_deg), *bin_length_m,
-                  std::vector<std::uint8_t>(first, first + count)};
+  auto intensities = readIntensities(field("intensities"), out.reason);
+  if (!intensities) return out;
+  out.beam = Beam{*time_s, bearingFromCrasAngle(*angle_deg), *bin_length_m, std::move(*intensities)};
   return out;
 }
 

@@ -84,9 +84,17 @@ struct WallFitReport {
 ///     and stays below the threshold. If the two candidates of an axis are closer than min_side_m
 ///     only one wall is visible and the other is placed at the far end of the perpendicular walls.
 ///  3. Refinement, refine_iterations times: assign every point within wall_tolerance_m of the
-///     outline to its nearest side; re-estimate θ by a joint total-least-squares fit of the four
-///     sides' point sets with a shared direction (sides two by two perpendicular); set each seen
-///     side's position to the mean of its points' perpendicular coordinates.
+///     outline to its nearest side; a side holding fewer than peak_fraction of the best side's
+///     points is no wall and is from then on placed like a missing one (two opposite walls give a
+///     flat histogram on the other axis); re-estimate θ by a joint total-least-squares fit of the
+///     four sides' point sets with a shared direction (sides two by two perpendicular); set each
+///     seen side's position to the mean of its points' perpendicular coordinates.
+///
+/// Accuracy on synthetic outlines (σ 2 cm, with 25 % floater and 10 % multipath): sides within
+/// 1 cm, angle within 0.1°. A missing wall lies at the last perpendicular wall point, a few
+/// centimetres outside (noise at the wall's end). Limits: a ghost wall behind a real one that is
+/// as dense and straight as a wall is taken for the wall; so is a straight line of clutter when it
+/// is the outermost strong line on its axis.
 ///
 /// @param points_m  occupied cells, metres, any planar frame; at least 8, all finite.
 /// @param options   see WallFitOptions.

@@ -14,7 +14,8 @@ namespace sonarmap {
 ///   - `time`        1×1 single (double accepted), seconds;
 ///   - `angle`       1×1 single (double accepted), head angle in degrees;
 ///   - `step_dist`   1×1 single (double accepted), bin length in metres, > 0;
-///   - `intensities` 1×N or N×1 uint8, echo intensity per bin, bin 0 nearest.
+///   - `intensities` 1×N or N×1, echo intensity per bin, bin 0 nearest: uint8, or double/single
+///                   holding integers 0…255 (the published CRAS file stores double).
 ///
 /// Bearing convention: the authors draw a beam in the plane at `theta = radians(angle + 180)`,
 /// `x = r cos(theta)`, `y = r sin(theta)`. We follow them so our maps match their figures:

@@ -1,0 +1,34 @@
+#pragma once
+/// @file octomap_header.hpp
+/// The ASCII header shared by OctoMap's `.bt` and `.ot` files (`../shared/docs/formats.md`):
+/// a fixed first line, `#` comment lines, then `id`, `size`, `res` in any order and `data`.
+
+#include <cstddef>
+#include <istream>
+#include <ostream>
+#include <string>
+
+namespace sonarmap {
+
+/// First line of a `.bt` file.
+inline constexpr const char* kBinaryFileFirstLine = "# Octomap OcTree binary file";
+/// First line of a `.ot` file.
+inline constexpr const char* kFullFileFirstLine = "# Octomap OcTree file";
+
+struct OctomapHeader {
+  std::string id;          ///< tree type, `OcTree` for occupancy trees
+  std::size_t size = 0;    ///< number of nodes in the tree
+  double resolution_m = 0; ///< finest voxel edge in metres
+};
+
+/// Writes the header lines up to and including `data`.
+void writeOctomapHeader(std::ostream& out, const std::string& first_line, const OctomapHeader& header);
+
+/// Reads the header up to and including the `data` line; the stream is left at the first data byte.
+/// @param source file name for messages.
+/// @throws FileError when the first line differs, a line is unknown, a value does not parse,
+///         `id`/`res` is missing, or the stream ends before `data`.
+/// @throws ValueError when the resolution is not finite and positive.
+OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line, const std::string& source);
+
+}  // namespace sonarmap

@@ -1,0 +1,95 @@
+#pragma once
+/// @file detectors.hpp
+/// Finding the first obstacle along each beam of a polar image (paper §6, §8.2, §9).
+///
+/// Every detector returns one BeamDetection per row of the polar image: the first bin, at or beyond
+/// `min_range_m` and below the row's `valid_bins`, that the detector calls an obstacle, with the
+/// image's intensity at that bin; −1 when the beam has none. Bins nearer than `min_range_m` are
+/// never reported (paper §8.2: "measurements that are close to the sonar ... are self-reflections").
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "sonarmap/sonar/detection.hpp"
+#include "sonarmap/sonar/polar_image.hpp"
+
+namespace sonarmap {
+
+/// Obstacle detector.
+enum class Detector {
+  kThreshold,             ///< paper §8.2: first rise between consecutive bins above a threshold
+  kCanny,                 ///< paper §9: first Canny edge pixel along the row
+  kBackgroundSubtracted,  ///< ours: first run above a per-sweep, per-range background (see below)
+};
+
+/// Paper §8.2: an obstacle starts at the first bin c with I[c] − I[c−1] > min_rise (both bins at
+/// or beyond the minimum range). Rising edges only: a drop in intensity is not an obstacle.
+struct ThresholdOptions {
+  int min_rise = 70;  ///< intensity step, 0…255; "the threshold that produced the best results is around 70"
+};
+
+/// Paper §9: Gaussian blur (kernel 11, σ 2.3), then cv::Canny(low 0, high 113, aperture 3) on the
+/// polar image; the obstacle is the first edge pixel along the row.
+struct CannyOptions {
+  int blur_kernel_size = 11;  ///< odd ≥ 1; 1 skips the blur (e.g. when the image is already smoothed)
+  double blur_sigma = 2.3;    ///< Gaussian σ in pixels, ≥ 0 (0: derived from the kernel size)
+  double low_threshold = 0.0;
+  double high_threshold = 113.0;
+  int aperture_size = 3;      ///< Sobel aperture: 3, 5 or 7
+};
+
+/// Ours, for MSIS data where something returns at the same range in every bearing (the floor or
+/// surface entering the vertical aperture: the ≈1.56 m ring of the CRAS tank data), which the
+/// paper's threshold reports as the first obstacle of every beam.
+///   1. Background: for each bin (range) c, the `background_percentile` of column c over the rows
+///      of the image (one sweep: all bearings at that range). A return at constant range is in
+///      most rows and becomes background; a wall is at a given range in few bearings and is not.
+///   2. Residual: I[r][c] − background[c].
+///   3. The obstacle is the first bin c ≥ min range where the residual is ≥ `min_excess` in
+///      `min_run_bins` consecutive bins (a run rejects single-bin speckle).
+/// Limits: anything at one range in more than (100 − percentile)% of the rows is background, so a
+/// round tank centred on the sonar would vanish; the image should hold a sweep of many bearings
+/// (with fewer than `min_beams` rows the background is not estimated and no obstacle is reported;
+/// for a partial sweep, build the polar image over the last full turn instead).
+struct BackgroundOptions {
+  double background_percentile = 50.0;  ///< percentile in [0, 100] of each bin across the rows
+  int min_excess = 30;                  ///< residual intensity above background, 1…255
+  int min_run_bins = 3;                 ///< consecutive bins above min_excess, ≥ 1
+  int min_beams = 20;                   ///< fewest rows to estimate a background, ≥ 1
+};
+
+/// Options of detectObstacles(); each detector reads its own part.
+struct DetectorOptions {
+  Detector kind = Detector::kBackgroundSubtracted;
+  double min_range_m = 0.5;  ///< bins whose centre is nearer are ignored (self-reflection), ≥ 0
+  ThresholdOptions threshold;
+  CannyOptions canny;
+  BackgroundOptions background;
+};
+
+/// Finds the first obstacle of each row of `polar` with the detector `options.kind`.
+///
+/// @param polar    CV_8UC1 polar image, beams × bins (e.g. one sweep after removeSelfReflection
+///                 and smooth), with bin_length_m > 0 and valid_bins for every row.
+/// @param options  detector choice and parameters.
+/// @return         polar.rows() detections, in row order.
+/// @throws ValueError  when the image is not CV_8UC1, lacks valid_bins, has bin_length_m ≤ 0, or an
+///   option is out of its documented range.
+std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const DetectorOptions& options);
+
+/// The per-bin background of kBackgroundSubtracted: CV_32F, 1 × cols, the `percentile` of each column
+/// over the rows whose valid_bins cover it (0 where no row does).
+/// @throws ValueError  when percentile is outside [0, 100] or the image is not CV_8UC1.
+cv::Mat estimateRangeBackground(const PolarImage& polar, double percentile);
+
+/// Parses a detector name: "threshold", "canny" or "background" (as the CLI writes them).
+/// @throws ValueError  naming the accepted values, for any other text.
+Detector parseDetector(std::string_view name);
+
+/// The name parseDetector() accepts for `kind`.
+std::string detectorName(Detector kind);
+
+}  // namespace sonarmap

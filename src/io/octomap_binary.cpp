@@ -1,0 +1,120 @@
+#include "sonarmap/io/octomap_binary.hpp"
+
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/io/octomap_header.hpp"
+
+namespace sonarmap {
+namespace {
+
+// Two-bit child codes of the .bt format.
+constexpr unsigned kUnknown = 0, kFreeLeaf = 1, kOccupiedLeaf = 2, kInner = 3;
+
+unsigned childCode(const OcTree16& tree, const OcTreeNode& child) {
+  if (!child.exists()) return kUnknown;
+  if (child.hasChildren()) return kInner;
+  return tree.model().isOccupied(child.log_odds) ? kOccupiedLeaf : kFreeLeaf;
+}
+
+void writeNode(const OcTree16& tree, const OcTreeNode& node, std::string& out) {
+  unsigned codes[8];
+  unsigned char bytes[2] = {0, 0};
+  for (unsigned i = 0; i < 8; ++i) {
+    codes[i] = childCode(tree, tree.node(OcTree16::childRef(node, i)));
+    bytes[i / 4] = static_cast<unsigned char>(bytes[i / 4] | (codes[i] << (2 * (i % 4))));
+  }
+  out.push_back(static_cast<char>(bytes[0]));
+  out.push_back(static_cast<char>(bytes[1]));
+  for (unsigned i = 0; i < 8; ++i) {
+    if (codes[i] == kInner) writeNode(tree, tree.node(OcTree16::childRef(node, i)), out);
+  }
+}
+
+/// Rebuilds the tree from the pre-order stream of 2-byte child codes.
+class BinaryReader {
+ public:
+  BinaryReader(OcTree16& tree, const std::vector<unsigned char>& data, const std::string& source)
+      : tree_(tree), data_(data), source_(source) {}
+
+  std::size_t read() {
+    tree_.setLogOdds(kRootRef, 0.0F);
+    readNode(kRootRef, 0);
+    return nodes_;
+  }
+
+ private:
+  void readNode(NodeRef ref, int depth) {
+    ++nodes_;
+    if (offset_ + 2 > data_.size()) {
+      throw FileError(source_ + ": data ends at byte " + std::to_string(offset_) + " inside node " + std::to_string(nodes_));
+    }
+    if (depth >= OcTree16::kDepth) {
+      throw FileError(source_ + ": inner node below the finest level (depth 16) at data byte " + std::to_string(offset_));
+    }
+    const unsigned bits = data_[offset_] | (static_cast<unsigned>(data_[offset_ + 1]) << 8);
+    offset_ += 2;
+    tree_.createChildren(ref);
+    for (unsigned i = 0; i < 8; ++i) {
+      const unsigned code = (bits >> (2 * i)) & 3U;
+      const NodeRef child = OcTree16::childRef(tree_.node(ref), i);
+      if (code == kFreeLeaf) tree_.setLogOdds(child, tree_.model().clamp_min);
+      if (code == kOccupiedLeaf) tree_.setLogOdds(child, tree_.model().clamp_max);
+      if (code == kInner) {
+        tree_.setLogOdds(child, 0.0F);
+        readNode(child, depth + 1);
+      }
+      if (code == kFreeLeaf || code == kOccupiedLeaf) ++nodes_;
+    }
+    tree_.setLogOdds(ref, tree_.aggregateChildren(tree_.node(ref)));
+  }
+
+  OcTree16& tree_;
+  const std::vector<unsigned char>& data_;
+  const std::string& source_;
+  std::size_t offset_ = 0;
+  std::size_t nodes_ = 0;
+};
+
+}  // namespace
+
+void writeBinary(const OcTree16& tree, std::ostream& out) {
+  const NodeCounts counts = tree.counts();
+  writeOctomapHeader(out, kBinaryFileFirstLine, {"OcTree", counts.nodes, tree.resolution_m()});
+  std::string data;
+  data.reserve(2 * counts.inner);
+  const OcTreeNode& root = tree.node(kRootRef);
+  if (root.hasChildren()) writeNode(tree, root, data);
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+  if (!out) throw FileError("writing the .bt stream failed");
+}
+
+void writeBinaryFile(const OcTree16& tree, const std::string& path) {
+  writeFileAtomically(path, [&](std::ostream& out) { writeBinary(tree, out); });
+}
+
+OcTree16 readBinary(std::istream& in, const OctreeOptions& options, const std::string& source) {
+  const OctomapHeader header = readOctomapHeader(in, kBinaryFileFirstLine, source);
+  if (header.id != "OcTree") throw FileError(source + ": tree type '" + header.id + "' is not OcTree");
+  OcTree16 tree(header.resolution_m, options);
+  if (header.size == 0) return tree;
+  const std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Each inner node takes 2 bytes and has at least one child: a tree of `size` nodes has at most
+  // size/2 inner nodes, so fewer than 2 bytes cannot describe it; check before building.
+  if (data.size() < 2) throw FileError(source + ": header says " + std::to_string(header.size) + " nodes but no data follows");
+  const std::size_t nodes = BinaryReader(tree, data, source).read();
+  if (nodes != header.size) {
+    throw FileError(source + ": header says " + std::to_string(header.size) + " nodes, data holds " + std::to_string(nodes));
+  }
+  return tree;
+}
+
+OcTree16 readBinaryFile(const std::string& path, const OctreeOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError("cannot open '" + path + "' for reading");
+  return readBinary(in, options, path);
+}
+
+}  // namespace sonarmap
