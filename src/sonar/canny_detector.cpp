@@ -13,10 +13,12 @@ namespace sonarmap::detail {
 std::vector<BeamDetection> detectCanny(const PolarImage& polar, int min_bin, const CannyOptions& options) {
   std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
   if (polar.intensities.empty()) return detections;
-  cv::Mat blurred = polar.intensities;
+  cv::Mat blurred;  // a fresh buffer: blurring into a header of the input would change the caller's image
   if (options.blur_kernel_size > 1) {
     const cv::Size kernel(options.blur_kernel_size, options.blur_kernel_size);
     cv::GaussianBlur(polar.intensities, blurred, kernel, options.blur_sigma, options.blur_sigma);
+  } else {
+    blurred = polar.intensities;
   }
   cv::Mat edges;
   cv::Canny(blurred, edges, options.low_threshold, options.high_threshold, options.aperture_size);

@@ -68,6 +68,26 @@ std::size_t elementCount(const matvar_t& var) {
   return var.rank > 0 ? count : 0;
 }
 
+/// MATLAB's name of a class, for messages.
+std::string className(matio_classes cls) {
+  switch (cls) {
+    case MAT_C_DOUBLE: return "double";
+    case MAT_C_SINGLE: return "single";
+    case MAT_C_INT8: return "int8";
+    case MAT_C_UINT8: return "uint8";
+    case MAT_C_INT16: return "int16";
+    case MAT_C_UINT16: return "uint16";
+    case MAT_C_INT32: return "int32";
+    case MAT_C_UINT32: return "uint32";
+    case MAT_C_INT64: return "int64";
+    case MAT_C_UINT64: return "uint64";
+    case MAT_C_CHAR: return "char";
+    case MAT_C_STRUCT: return "struct";
+    case MAT_C_CELL: return "cell";
+    default: return "class #" + std::to_string(static_cast<int>(cls));
+  }
+}
+
 /// Checks that `var` holds a real single or double scalar and returns it, or the problem.
 std::optional<double> readScalar(const matvar_t* var, std::string_view field, std::string& reason) {
   if (var == nullptr || var->data == nullptr) {
@@ -84,8 +104,7 @@ std::optional<double> readScalar(const matvar_t* var, std::string_view field, st
   } else if (var->class_type == MAT_C_DOUBLE && var->nbytes >= sizeof(double)) {
     value = *static_cast<const double*>(var->data);
   } else {
-    reason = "field '" + std::string(field) + "' has MATLAB class " +
-             std::to_string(static_cast<int>(var->class_type)) + ", expected single (or double)";
+    reason = "field '" + std::string(field) + "' is " + className(var->class_type) + ", expected single (or double)";
     return std::nullopt;
   }
   if (!std::isfinite(value)) {
@@ -128,8 +147,7 @@ std::optional<std::vector<std::uint8_t>> readIntensities(const matvar_t* var, st
   } else if (var->class_type == MAT_C_SINGLE && var->nbytes >= count * sizeof(float)) {
     ok = toBytes(static_cast<const float*>(var->data), count, bytes);
   } else {
-    reason = "field 'intensities' has MATLAB class " + std::to_string(static_cast<int>(var->class_type)) +
-             ", expected uint8 (or double/single integers)";
+    reason = "field 'intensities' is " + className(var->class_type) + ", expected uint8 (or double/single integers)";
     return std::nullopt;
   }
   if (!ok) {
@@ -171,7 +189,7 @@ BeamOrReason readBeam(matvar_t* data, std::size_t index) {
 
 MatFile openMat(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throwFileError(path, "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throwFileError(path, "no such file (or not a regular file)");
   MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throwFileError(path, "cannot be opened as a MATLAB MAT-file");
   return mat;
@@ -181,7 +199,8 @@ MatVar readParsedData(mat_t* mat, const std::string& path) {
   MatVar data(Mat_VarRead(mat, kVariable));
   if (!data) throwFileError(path, std::string("no readable variable '") + kVariable + "'");
   if (data->class_type != MAT_C_STRUCT) {
-    throwFileError(path, std::string("variable '") + kVariable + "' is not a struct array");
+    throwFileError(path, std::string("variable '") + kVariable + "' is " + className(data->class_type) +
+                             ", expected a struct array");
   }
   if (elementCount(*data) == 0) throwFileError(path, std::string("'") + kVariable + "' is empty");
   const unsigned field_count = Mat_VarGetNumberOfFields(data.get());

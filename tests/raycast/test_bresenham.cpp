@@ -16,7 +16,7 @@ namespace sonarmap {
 namespace {
 
 template <class DepthConstant>
-class BresenhamTest : public ::testing::Test {
+class raycastBresenham : public ::testing::Test {
  protected:
   static constexpr int kDepth = DepthConstant::value;
   using KeyT = Key<kDepth>;
@@ -54,7 +54,9 @@ class BresenhamTest : public ::testing::Test {
       std::int64_t chebyshev = 0;
       for (int axis = 0; axis < 3; ++axis) {
         chebyshev = std::max(chebyshev, std::abs(b[axis] - a[axis]));
-        if (b[axis] != a[axis]) EXPECT_EQ(b[axis] > a[axis], to[axis] > from[axis]);
+        if (b[axis] != a[axis]) {
+          EXPECT_EQ(b[axis] > a[axis], to[axis] > from[axis]);
+        }
       }
       EXPECT_EQ(chebyshev, 1);
     }
@@ -64,9 +66,9 @@ class BresenhamTest : public ::testing::Test {
 using Depths = ::testing::Types<std::integral_constant<int, 8>, std::integral_constant<int, 16>,
                                 std::integral_constant<int, 32>, std::integral_constant<int, 64>,
                                 std::integral_constant<int, 100>>;
-TYPED_TEST_SUITE(BresenhamTest, Depths);
+TYPED_TEST_SUITE(raycastBresenham, Depths);
 
-TYPED_TEST(BresenhamTest, AxisAlignedRays) {
+TYPED_TEST(raycastBresenham, AxisAlignedRays) {
   for (int axis = 0; axis < 3; ++axis) {
     for (const std::int64_t sign : {1, -1}) {
       Eigen::Vector3d origin(0.05, -0.15, 0.25);
@@ -83,13 +85,13 @@ TYPED_TEST(BresenhamTest, AxisAlignedRays) {
   }
 }
 
-TYPED_TEST(BresenhamTest, DiagonalMovesAllAxesAtOnce) {
-  const auto cells = this->relativeCells({0.05, 0.05, 0.05}, {0.35, -0.35, 0.35});
+TYPED_TEST(raycastBresenham, DiagonalMovesAllAxesAtOnce) {
+  const auto cells = this->relativeCells({0.05, 0.05, 0.05}, {0.35, -0.25, 0.35});  // y cells 0 … -3
   const std::vector<test::Cell> expected{{0, 0, 0}, {1, -1, 1}, {2, -2, 2}, {3, -3, 3}};
   EXPECT_EQ(cells, expected);
 }
 
-TYPED_TEST(BresenhamTest, MinorAxesFollowTheCentreLineRoundedHalfUp) {
+TYPED_TEST(raycastBresenham, MinorAxesFollowTheCentreLineRoundedHalfUp) {
   // Δ = (4, 2, 0): y = round_half_up(i / 2).
   EXPECT_EQ(this->relativeCells({0.05, 0.05, 0.05}, {0.45, 0.25, 0.05}),
             (std::vector<test::Cell>{{0, 0, 0}, {1, 1, 0}, {2, 1, 0}, {3, 2, 0}, {4, 2, 0}}));
@@ -98,7 +100,7 @@ TYPED_TEST(BresenhamTest, MinorAxesFollowTheCentreLineRoundedHalfUp) {
             (std::vector<test::Cell>{{0, 0, 0}, {1, -1, 0}, {1, -2, -1}, {2, -3, -1}, {2, -4, -2}, {3, -5, -2}}));
 }
 
-TYPED_TEST(BresenhamTest, WellFormedInEveryDirection) {
+TYPED_TEST(raycastBresenham, WellFormedInEveryDirection) {
   this->expectWellFormed({0.35, 0.25, -0.15}, {-0.42, -0.31, 0.18});
   this->expectWellFormed({0.01, 0.02, 0.03}, {0.93, 0.51, 0.27});
   this->expectWellFormed({0.0, 0.0, 0.0}, {-0.3, -0.3, -0.3});
@@ -106,13 +108,13 @@ TYPED_TEST(BresenhamTest, WellFormedInEveryDirection) {
   for (int i = -12; i <= 12; ++i) this->expectWellFormed({0.05, 0.05, 0.05}, {i * 0.1, 0.05 - i * 0.07, 0.3});
 }
 
-TYPED_TEST(BresenhamTest, ZeroLengthAndSameVoxelVisitOneKey) {
+TYPED_TEST(raycastBresenham, ZeroLengthAndSameVoxelVisitOneKey) {
   const Eigen::Vector3d p(0.123, -0.456, 0.789);
   EXPECT_EQ(this->relativeCells(p, p), (std::vector<test::Cell>{{0, 0, 0}}));
   EXPECT_EQ(this->relativeCells({0.11, 0.12, 0.13}, {0.19, 0.11, 0.18}).size(), 1U);
 }
 
-TYPED_TEST(BresenhamTest, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
+TYPED_TEST(raycastBresenham, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
   const double edge_m = KeyCoder<TestFixture::kDepth>::offset() * 0.1;
   const Eigen::Vector3d inside(0.05, 0.05, 0.05);
   for (const Eigen::Vector3d& outside :
@@ -129,7 +131,7 @@ TYPED_TEST(BresenhamTest, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
   }
 }
 
-TEST(Bresenham, CrossesTheWholeDepth8MapWithoutWrapping) {
+TEST(raycastBresenhamWholeMap, CrossesTheWholeDepth8MapWithoutWrapping) {
   const KeyCoder<8> coder(0.5);  // [-64, 64) m
   std::vector<Key<8>> ray;
   ASSERT_TRUE(rayKeysBresenham(coder, {63.9, -64.0, 10.0}, {-64.0, 63.9, -10.0}, ray));
@@ -163,8 +165,8 @@ void expectExactAtFullSpan() {
   }
 }
 
-TEST(Bresenham, ExactAtFullSpanDepth64) { expectExactAtFullSpan<64>(); }
-TEST(Bresenham, ExactAtFullSpanDepth128) { expectExactAtFullSpan<128>(); }
+TEST(raycastBresenhamWholeMap, ExactAtFullSpanDepth64) { expectExactAtFullSpan<64>(); }
+TEST(raycastBresenhamWholeMap, ExactAtFullSpanDepth128) { expectExactAtFullSpan<128>(); }
 
 }  // namespace
 }  // namespace sonarmap

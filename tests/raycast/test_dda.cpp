@@ -14,7 +14,7 @@ namespace sonarmap {
 namespace {
 
 template <class DepthConstant>
-class DdaTest : public ::testing::Test {
+class raycastDda : public ::testing::Test {
  protected:
   static constexpr int kDepth = DepthConstant::value;
   using KeyT = Key<kDepth>;
@@ -57,9 +57,9 @@ class DdaTest : public ::testing::Test {
 using Depths = ::testing::Types<std::integral_constant<int, 8>, std::integral_constant<int, 16>,
                                 std::integral_constant<int, 32>, std::integral_constant<int, 64>,
                                 std::integral_constant<int, 100>>;
-TYPED_TEST_SUITE(DdaTest, Depths);
+TYPED_TEST_SUITE(raycastDda, Depths);
 
-TYPED_TEST(DdaTest, AxisAlignedRaysVisitEveryVoxelInOrder) {
+TYPED_TEST(raycastDda, AxisAlignedRaysVisitEveryVoxelInOrder) {
   for (int axis = 0; axis < 3; ++axis) {
     for (const double sign : {1.0, -1.0}) {
       Eigen::Vector3d origin(0.05, -0.15, 0.25);
@@ -78,7 +78,7 @@ TYPED_TEST(DdaTest, AxisAlignedRaysVisitEveryVoxelInOrder) {
   }
 }
 
-TYPED_TEST(DdaTest, DiagonalAndObliqueRays) {
+TYPED_TEST(raycastDda, DiagonalAndObliqueRays) {
   this->expectWellFormed({0.05, 0.05, 0.05}, {0.35, 0.35, 0.35});  // through voxel corners
   this->expectWellFormed({0.01, 0.02, 0.03}, {0.93, 0.51, 0.27});
   this->expectWellFormed({-0.77, 0.41, -0.13}, {0.66, -0.58, 0.92});
@@ -92,7 +92,7 @@ TYPED_TEST(DdaTest, DiagonalAndObliqueRays) {
   EXPECT_EQ(this->cell(ray[3]), (test::Cell{c0[0] + 2, c0[1] + 1, c0[2]}));
 }
 
-TYPED_TEST(DdaTest, NegativeDirections) {
+TYPED_TEST(raycastDda, NegativeDirections) {
   this->expectWellFormed({0.35, 0.25, -0.15}, {-0.42, -0.31, 0.18});
   this->expectWellFormed({0.99, 0.99, 0.99}, {-0.99, -0.99, -0.99});
   const auto ray = this->keys({0.35, 0.0, 0.0}, {-0.05, 0.0, 0.0});
@@ -101,7 +101,7 @@ TYPED_TEST(DdaTest, NegativeDirections) {
   EXPECT_EQ(this->cell(ray.back())[0], -1);
 }
 
-TYPED_TEST(DdaTest, ZeroLengthAndSameVoxelVisitOneKey) {
+TYPED_TEST(raycastDda, ZeroLengthAndSameVoxelVisitOneKey) {
   const Eigen::Vector3d p(0.123, -0.456, 0.789);
   const auto ray = this->keys(p, p);
   ASSERT_EQ(ray.size(), 1U);
@@ -109,7 +109,7 @@ TYPED_TEST(DdaTest, ZeroLengthAndSameVoxelVisitOneKey) {
   EXPECT_EQ(this->keys({0.11, 0.12, 0.13}, {0.19, 0.11, 0.18}).size(), 1U);
 }
 
-TYPED_TEST(DdaTest, RaysStartingAndEndingOnBoundaries) {
+TYPED_TEST(raycastDda, RaysStartingAndEndingOnBoundaries) {
   // Origin exactly on the boundary x = 0 (cell 0 by floor): forward and backward.
   auto ray = this->keys({0.0, 0.05, 0.05}, {0.25, 0.05, 0.05});
   ASSERT_EQ(ray.size(), 3U);
@@ -130,7 +130,7 @@ TYPED_TEST(DdaTest, RaysStartingAndEndingOnBoundaries) {
   }
 }
 
-TYPED_TEST(DdaTest, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
+TYPED_TEST(raycastDda, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
   const double edge_m = KeyCoder<TestFixture::kDepth>::offset() * 0.1;  // map spans [-edge, edge)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
@@ -148,7 +148,7 @@ TYPED_TEST(DdaTest, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
   }
 }
 
-TYPED_TEST(DdaTest, VisitorSeesTheSameKeysAsRayKeys) {
+TYPED_TEST(raycastDda, VisitorSeesTheSameKeysAsRayKeys) {
   const Eigen::Vector3d origin(-0.31, 0.72, 0.05);
   const Eigen::Vector3d end(0.44, -0.18, -0.6);
   std::vector<typename TestFixture::KeyT> visited;
@@ -159,7 +159,7 @@ TYPED_TEST(DdaTest, VisitorSeesTheSameKeysAsRayKeys) {
 }
 
 // The whole map along one axis, corner to corner: no wrap-around at either border.
-TEST(Dda, CrossesTheWholeMapWithoutWrapping) {
+TEST(raycastDdaWholeMap, CrossesTheWholeMapWithoutWrapping) {
   const KeyCoder<8> coder(0.5);  // [-64, 64) m, 256 voxels per axis
   std::vector<Key<8>> ray;
   ASSERT_TRUE(rayKeysDDA(coder, {-64.0, -63.9, 63.99}, {63.99, 63.9, -64.0}, ray));
@@ -172,7 +172,7 @@ TEST(Dda, CrossesTheWholeMapWithoutWrapping) {
 }
 
 // Keys of 128 bits across the whole map: the first steps of a ray spanning ~2^128 voxels.
-TEST(Dda, WideKeysAcrossTheWholeMap) {
+TEST(raycastDdaWholeMap, WideKeysAcrossTheWholeMap) {
   const KeyCoder<128> coder(1.0);
   const double edge = std::ldexp(1.0, 127);
   struct Stop {};
@@ -187,7 +187,7 @@ TEST(Dda, WideKeysAcrossTheWholeMap) {
   ASSERT_EQ(ray.size(), 1000U);
   EXPECT_EQ(ray.front(), (Key<128>{{0, 0, 0}}));
   for (std::size_t i = 1; i < ray.size(); ++i) {
-    unsigned __int128 l1 = 0;
+    Key<128>::Index l1 = 0;
     for (int axis = 0; axis < 3; ++axis) l1 += ray[i][axis] - ray[i - 1][axis];  // monotone increasing
     EXPECT_EQ(static_cast<std::uint64_t>(l1), 1U);
   }

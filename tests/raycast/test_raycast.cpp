@@ -75,6 +75,7 @@ struct Tally {
   std::int64_t ambiguous = 0;  // visited voxels the reference calls ambiguous
   std::int64_t misses = 0;
   std::int64_t extras = 0;
+  std::int64_t slices = 0;     // Σ (max|Δkey| + 1): main-axis slices, for Bresenham
   std::int64_t broken_rays = 0;  // rays failing a structural check
   std::string first_broken;
 
@@ -143,6 +144,7 @@ void checkBresenham(const std::vector<Cell>& cells, const Cell& from, const Cell
                                       return std::abs(a) < std::abs(b);
                                     }) - delta.begin());
   const std::int64_t n = std::abs(delta[main]);
+  tally.slices += n + 1;
   if (cells.front() != from || cells.back() != to) return tally.broken("Bresenham end keys", s);
   if (static_cast<std::int64_t>(cells.size()) != n + 1) return tally.broken("Bresenham key count", s);
   const Eigen::Vector3d p0 = s.origin_m * (1.0 / s.resolution_m);
@@ -213,18 +215,23 @@ void crossCheck(std::uint32_t seed, int rays) {
   // boundary, i.e. in the ambiguous band, so unambiguous extras must stay below 1e-5 of the visits.
   EXPECT_EQ(dda.misses, 0);
   EXPECT_LE(dda.extraRate(), 1e-5);
-  // Bresenham visits one voxel per main-axis slice where the segment crosses |Δx|+|Δy|+|Δz|+1
-  // voxels, so it must miss some; the per-ray geometric bounds above are the hard check. Here only
-  // that the rates are what a 26-connected line gives: it hits something in every slice, so at
-  // most half of the crossed voxels of random rays are missed, and few visits are extras.
-  EXPECT_GT(bresenham.misses, 0);
-  EXPECT_LT(bresenham.missRate(), 0.5);
-  EXPECT_LT(bresenham.extraRate(), 0.5);
+  // Bresenham: the hard bounds are the per-ray checks above (exact rounding, 26-neighbour steps,
+  // max|Δ|+1 keys, visited voxels within √2/2 voxel of the segment, crossed voxels within 2 voxels
+  // of the line); a broken line fails them. In aggregate, one voxel per main-axis slice can hit at
+  // most Σ(max|Δ|+1) crossed voxels, so the miss rate is at least `miss_floor` (about half for
+  // random directions: the segment crosses |Δx|+|Δy|+|Δz|+1 voxels). The upper limits are
+  // regression guards, measured ≈ 53 % misses and ≈ 18 % extras plus a margin.
+  const double miss_floor = 1.0 - static_cast<double>(bresenham.slices) / static_cast<double>(bresenham.crossed);
+  std::cout << "Bresenham (depth " << Depth << "): one voxel per slice implies a miss rate >= " << 100.0 * miss_floor
+            << " %\n";
+  EXPECT_GE(bresenham.missRate(), miss_floor);
+  EXPECT_LT(bresenham.missRate(), 0.6);
+  EXPECT_LT(bresenham.extraRate(), 0.25);
 }
 
-TEST(RaycastCrossCheck, RandomSegmentsDepth16) { crossCheck<16>(20240611U, 5000); }
-TEST(RaycastCrossCheck, RandomSegmentsDepth32) { crossCheck<32>(7U, 2000); }
-TEST(RaycastCrossCheck, RandomSegmentsDepth64) { crossCheck<64>(64U, 1000); }
+TEST(raycastCrossCheck, RandomSegmentsDepth16) { crossCheck<16>(20240611U, 5000); }
+TEST(raycastCrossCheck, RandomSegmentsDepth32) { crossCheck<32>(7U, 2000); }
+TEST(raycastCrossCheck, RandomSegmentsDepth64) { crossCheck<64>(64U, 1000); }
 
 }  // namespace
 }  // namespace sonarmap

@@ -8,6 +8,7 @@
 /// leaves only and `updateInnerOccupancy()` fixes every inner value and prunes in one pass (§5.5).
 /// Depth 16 uses OctoMap's key layout, so `.bt`/`.ot` files interoperate.
 
+#include <array>
 #include <cstddef>
 #include <optional>
 
@@ -74,7 +75,10 @@ class OccupancyOctree {
   void updateInnerOccupancy();
 
   /// Removes every node.
-  void clear() { pool_.clear(); }
+  void clear() {
+    pool_.clear();
+    cached_levels_ = -1;
+  }
 
   // --- queries -------------------------------------------------------------------------------
 
@@ -120,6 +124,8 @@ class OccupancyOctree {
   float aggregateChildren(const OcTreeNode& parent) const;
 
  private:
+  int cachedLevels(const KeyType& key) const;
+  void updateAncestors(int fresh_from);
   bool tryPrune(NodeRef ref);
   void syncSubtree(NodeRef ref);
   template <class Visitor>
@@ -130,6 +136,11 @@ class OccupancyOctree {
   OctreeOptions options_;
   LogOddsModel model_;
   NodePool pool_;
+  // Path of the last update (paper §5.3's search, reused): consecutive keys along a ray share
+  // their ancestors, so the next descent starts at the deepest common one.
+  std::array<NodeRef, Depth + 1> path_{};
+  KeyType cached_key_{};
+  int cached_levels_ = -1;  ///< levels of path_ valid for cached_key_, −1 = none
 };
 
 using OcTree16 = OccupancyOctree<16>;

@@ -4,60 +4,91 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 
 namespace sonarmap {
 
 template <int Depth>
+int OccupancyOctree<Depth>::cachedLevels(const KeyType& key) const {
+  if (cached_levels_ < 0) return 0;
+  using Index = typename KeyType::Index;
+  const Index differ = static_cast<Index>((key[0] ^ cached_key_[0]) | (key[1] ^ cached_key_[1]) | (key[2] ^ cached_key_[2]));
+  // Levels whose child index agrees: those above the highest differing bit.
+  int common = Depth;
+  if (differ != 0) {
+    if constexpr (Depth <= 64) {
+      common = Depth - 1 - (std::bit_width(static_cast<std::uint64_t>(differ)) - 1);
+    } else {
+      const auto high = static_cast<std::uint64_t>(differ >> 64);
+      const int bit = high != 0 ? 64 + std::bit_width(high) - 1 : std::bit_width(static_cast<std::uint64_t>(differ)) - 1;
+      common = Depth - 1 - bit;
+    }
+  }
+  return std::min(common, cached_levels_);
+}
+
+template <int Depth>
 bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds) {
   if (delta_log_odds == 0.0F) return false;
-  std::array<NodeRef, Depth + 1> path;
-  path[0] = kRootRef;
-  int level = 0;
+  auto& path = path_;
   int fresh_from = Depth + 1;  // first level created by this update
-  NodeRef ref = kRootRef;
+  int level = 0;
   if (!pool_.at(kRootRef).exists()) {
     pool_.at(kRootRef).log_odds = 0.0F;
+    path[0] = kRootRef;
     fresh_from = 0;
   } else {
-    // Descend through existing nodes to the deepest one containing the key.
-    while (level < Depth && pool_.at(ref).hasChildren()) {
-      const NodeRef child = NodePool::childRef(pool_.at(ref).children, childIndex(key, level));
+    // Start from the deepest node shared with the previous update's path, then descend through
+    // existing nodes to the deepest one containing the key.
+    level = cachedLevels(key);
+    path[0] = kRootRef;
+    while (level < Depth && pool_.at(path[level]).hasChildren()) {
+      const NodeRef child = NodePool::childRef(pool_.at(path[level]).children, childIndex(key, level));
       if (!pool_.at(child).exists()) break;
-      ref = child;
-      path[++level] = ref;
+      path[++level] = child;
     }
-    const OcTreeNode& deepest = pool_.at(ref);
+    cached_key_ = key;
+    cached_levels_ = level;
+    const OcTreeNode& deepest = pool_.at(path[level]);
     const bool is_leaf = level == Depth || !deepest.hasChildren();
     if (options_.stability_check && is_leaf && model_.isStable(deepest.log_odds, delta_log_odds)) return false;
   }
   // Create (or expand a pruned leaf into) the missing levels down to the finest voxel.
-  while (level < Depth) {
+  for (; level < Depth; ++level) {
+    const NodeRef ref = path[level];
     if (!pool_.at(ref).hasChildren()) {
       const float fill = level >= fresh_from ? kUnknownLogOdds : pool_.at(ref).log_odds;
       const std::uint32_t block = pool_.allocate(fill);
       pool_.at(ref).children = block;
     }
-    ref = NodePool::childRef(pool_.at(ref).children, childIndex(key, level));
-    path[++level] = ref;
-    if (!pool_.at(ref).exists()) {
-      pool_.at(ref).log_odds = 0.0F;
-      fresh_from = std::min(fresh_from, level);
+    const NodeRef child = NodePool::childRef(pool_.at(ref).children, childIndex(key, level));
+    path[level + 1] = child;
+    if (!pool_.at(child).exists()) {
+      pool_.at(child).log_odds = 0.0F;
+      fresh_from = std::min(fresh_from, level + 1);
     }
   }
-  OcTreeNode& leaf = pool_.at(ref);
+  cached_key_ = key;
+  cached_levels_ = Depth;
+  OcTreeNode& leaf = pool_.at(path[Depth]);
   leaf.log_odds = model_.update(leaf.log_odds, delta_log_odds);
-  if (options_.lazy) return true;
-  // Eager: fix the inner nodes bottom-up; stop once nothing above can change.
-  for (int l = Depth - 1; l >= 0; --l) {
-    const float before = pool_.at(path[l]).log_odds;
-    const bool pruned = options_.prune && tryPrune(path[l]);
-    if (!pruned) {
-      OcTreeNode& inner = pool_.at(path[l]);
-      inner.log_odds = aggregateChildren(inner);
-      if (inner.log_odds == before && l + 1 < fresh_from) break;
-    }
-  }
+  if (!options_.lazy) updateAncestors(fresh_from);
   return true;
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::updateAncestors(int fresh_from) {
+  // Fix the inner nodes bottom-up; stop once nothing above can change.
+  for (int l = Depth - 1; l >= 0; --l) {
+    const float before = pool_.at(path_[l]).log_odds;
+    if (options_.prune && tryPrune(path_[l])) {
+      cached_levels_ = std::min(cached_levels_, l);  // the pruned children are gone
+      continue;
+    }
+    OcTreeNode& inner = pool_.at(path_[l]);
+    inner.log_odds = aggregateChildren(inner);
+    if (inner.log_odds == before && l + 1 < fresh_from) break;
+  }
 }
 
 template <int Depth>
@@ -94,6 +125,7 @@ bool OccupancyOctree<Depth>::tryPrune(NodeRef ref) {
 
 template <int Depth>
 void OccupancyOctree<Depth>::updateInnerOccupancy() {
+  cached_levels_ = -1;  // pruning may free nodes on the cached path
   if (!empty()) syncSubtree(kRootRef);
 }
 
@@ -111,6 +143,7 @@ void OccupancyOctree<Depth>::syncSubtree(NodeRef ref) {
 
 template <int Depth>
 void OccupancyOctree<Depth>::createChildren(NodeRef ref) {
+  cached_levels_ = -1;
   if (pool_.at(ref).hasChildren()) return;
   const std::uint32_t block = pool_.allocate(kUnknownLogOdds);
   pool_.at(ref).children = block;

@@ -15,6 +15,7 @@
 /// written so that no intermediate value exceeds |Δkey| of the main axis. Exact for every depth
 /// 1…128, no overflow, no wrap-around.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -48,8 +49,9 @@ namespace sonarmap {
 template <int Depth, class Visitor>
 bool traverseBresenham(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
                        Visitor&& visit) {
-  // Unsigned and at least as wide as the key: holds any |Δkey| and every accumulator.
-  using Wide = std::conditional_t<(Depth <= 64), std::uint64_t, unsigned __int128>;
+  // Unsigned and at least as wide as the key (the 128-bit key type beyond depth 64): holds any
+  // |Δkey| and every accumulator.
+  using Wide = std::conditional_t<(Depth <= 64), std::uint64_t, KeyIndex<Depth>>;
   const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
   const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
   if (!origin_key || !end_key) return false;
@@ -109,10 +111,22 @@ bool traverseBresenham(const KeyCoder<Depth>& coder, const Eigen::Vector3d& orig
 ///
 /// @param keys  output; cleared first, then filled (capacity is kept: reuse it across rays).
 /// @return false and empty `keys` if either end point is outside the map or not finite.
+/// @throws std::bad_alloc (or std::length_error) if the keys do not fit in memory.
 template <int Depth>
 bool rayKeysBresenham(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
                       std::vector<Key<Depth>>& keys) {
   keys.clear();
+  const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
+  const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
+  if (!origin_key || !end_key) return false;
+  double count = 1.0;  // max(|Δx|, |Δy|, |Δz|) + 1 keys; double: no overflow at any depth
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto from = (*origin_key)[axis];
+    const auto to = (*end_key)[axis];
+    const double span = KeyCoder<Depth>::toDouble(to > from ? to - from : from - to);
+    count = std::max(count, span + 1.0);
+  }
+  keys.reserve(static_cast<std::size_t>(std::min(count, static_cast<double>(keys.max_size()))));
   return traverseBresenham(coder, origin_m, end_m, [&keys](const Key<Depth>& key) { keys.push_back(key); });
 }
 

@@ -21,6 +21,7 @@
 /// Unlike OctoMap's `computeRayKeys`, the end voxel IS visited (last); callers that want free
 /// space only skip the last key.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -71,43 +72,43 @@ bool traverseDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, 
   const double resolution_m = coder.resolution_m();
   const double inv_resolution = 1.0 / resolution_m;  // the factor KeyCoder::keyOf multiplies by
 
-  std::array<bool, 3> step_up{};      // +1 (true) or -1 (false) per axis
+  std::array<Index, 3> step{};        // +1 or -1 (all ones: unsigned modular -1) per axis
   std::array<Index, 3> remaining{};   // key steps still owed per axis: |end - origin|
   std::array<double, 3> t_max{};      // metres along the ray to the next boundary of each axis
   std::array<double, 3> t_delta{};    // metres along the ray between two boundaries of each axis
   for (int axis = 0; axis < 3; ++axis) {
     const Index from = (*origin_key)[axis];
     const Index to = (*end_key)[axis];
-    step_up[axis] = to > from;
-    remaining[axis] = step_up[axis] ? static_cast<Index>(to - from) : static_cast<Index>(from - to);
+    const bool up = to > from;
+    step[axis] = up ? Index{1} : static_cast<Index>(~Index{0});
+    remaining[axis] = up ? static_cast<Index>(to - from) : static_cast<Index>(from - to);
     if (remaining[axis] == 0) {  // includes zero direction components: never step this axis
       t_max[axis] = kInfinity;
       continue;
     }
-    // floor() is monotone, so direction_m[axis] != 0 here and its sign is step_up[axis].
+    // floor() is monotone, so direction_m[axis] != 0 here and its sign is the sign of the step.
     // Position of the origin inside its voxel, in voxel units, computed as keyOf computes the key.
     const double cell = origin_m[axis] * inv_resolution;
     const double fraction = cell - std::floor(cell);  // in [0, 1]
     t_delta[axis] = resolution_m * length_m / std::fabs(direction_m[axis]);
-    t_max[axis] = (step_up[axis] ? 1.0 - fraction : fraction) * t_delta[axis];
+    t_max[axis] = (up ? 1.0 - fraction : fraction) * t_delta[axis];
   }
 
-  const auto step = [&](int axis) {
-    if (step_up[axis]) {
-      ++key[axis];
-    } else {
-      --key[axis];
-    }
+  // Branch-free ±1: adding all ones is -1 modulo 2^bits. The result never actually wraps, because
+  // the budget keeps every key between the origin's and the end's.
+  const auto advance = [&](int axis) {
+    key[axis] = static_cast<Index>(key[axis] + step[axis]);
     visit(std::as_const(key));
   };
 
   // --- Incremental phase (A&W §3): cross the nearest boundary. ---
   for (;;) {
-    const int axis = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+    const int nearer_xy = t_max[1] < t_max[0] ? 1 : 0;  // written to compile to conditional moves
+    const int axis = t_max[2] < t_max[nearer_xy] ? 2 : nearer_xy;
     // End voxel reached: every axis spent its budget and has t_max = +inf. Otherwise the paper's
     // distance condition: the next boundary is past the end point (also catches a NaN t_max).
     if (!(t_max[axis] <= length_m)) break;
-    step(axis);
+    advance(axis);
     if (--remaining[axis] == 0) {
       t_max[axis] = kInfinity;
     } else {
@@ -117,7 +118,7 @@ bool traverseDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, 
 
   // --- Snap to the end voxel (paper §6.1, fig. 12): steps floating-point error left owed. ---
   for (int axis = 0; axis < 3; ++axis) {
-    for (; remaining[axis] != 0; --remaining[axis]) step(axis);
+    for (; remaining[axis] != 0; --remaining[axis]) advance(axis);
   }
   return true;
 }
@@ -128,10 +129,22 @@ bool traverseDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, 
 /// @param keys  output; cleared first, then filled. Reuse one vector across rays to avoid
 ///              reallocation (its capacity is kept).
 /// @return false and empty `keys` if either end point is outside the map or not finite.
+/// @throws std::bad_alloc (or std::length_error) if the keys do not fit in memory.
 template <int Depth>
 bool rayKeysDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
                 std::vector<Key<Depth>>& keys) {
   keys.clear();
+  const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
+  const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
+  if (!origin_key || !end_key) return false;
+  double count = 1.0;  // |Δx| + |Δy| + |Δz| + 1 keys; double: no overflow at any depth
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto from = (*origin_key)[axis];
+    const auto to = (*end_key)[axis];
+    const double span = KeyCoder<Depth>::toDouble(to > from ? to - from : from - to);
+    count += span;
+  }
+  keys.reserve(static_cast<std::size_t>(std::min(count, static_cast<double>(keys.max_size()))));
   return traverseDDA(coder, origin_m, end_m, [&keys](const Key<Depth>& key) { keys.push_back(key); });
 }
 

@@ -1,0 +1,102 @@
+#include "map_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <numbers>
+
+#include "progress.hpp"
+#include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/mapping/map_slice.hpp"
+#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/sonar/polar.hpp"
+#include "sonarmap/sonar/png_writer.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap::cli {
+
+CLI::App* addMapCommand(CLI::App& app, MapArgs& args) {
+  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat) into an occupancy octree (.bt)");
+  cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat")->required();
+  cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
+  cmd->add_option("--png", args.map_png, "Top view of the map at z = 0 (PNG)");
+  cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
+  cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
+  cmd->add_option("--resolution", args.resolution_m, "Voxel edge in metres")->capture_default_str();
+  cmd->add_option("--detector", args.detector, "background | threshold | canny")->capture_default_str();
+  cmd->add_option("--smoothing", args.smoothing, "gaussian | median | mean | none")->capture_default_str();
+  cmd->add_option("--ray", args.ray, "dda | bresenham")->capture_default_str();
+  cmd->add_option("--aggregation", args.aggregation, "Inner nodes: max | mean")->capture_default_str();
+  cmd->add_option("--self-reflection", args.self_reflection_m, "Ignore echoes nearer than this (m)")->capture_default_str();
+  cmd->add_option("--beam-width", args.beam_width_deg, "Horizontal beam width for the Cartesian image (deg)")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  return cmd;
+}
+
+MapperOptions toMapperOptions(const MapArgs& args) {
+  MapperOptions options;
+  options.resolution_m = args.resolution_m;
+  options.detector.kind = parseDetector(args.detector);
+  options.smoothing.kind = parseSmoothing(args.smoothing);
+  options.ray = parseRayAlgorithm(args.ray);
+  if (args.aggregation == "max") {
+    options.octree.aggregation = InnerAggregation::kMax;
+  } else if (args.aggregation == "mean") {
+    options.octree.aggregation = InnerAggregation::kMean;
+  } else {
+    throw ValueError("unknown aggregation '" + args.aggregation + "', expected max or mean");
+  }
+  options.self_reflection_range_m = args.self_reflection_m;
+  if (!(args.beam_width_deg > 0.0 && args.beam_width_deg < 180.0)) {
+    throw ValueError("beam width must be within (0, 180) degrees");
+  }
+  options.validate();
+  return options;
+}
+
+namespace {
+
+/// The polar image of the largest (last, on ties) sweep: the one drawn in the PNGs.
+PolarImage lastFullSweep(const SonarLog& log) {
+  const std::vector<SweepRange> sweeps = splitSweeps(log.beams);
+  if (sweeps.empty()) throw ValueError("the log holds no beams to draw");
+  const SweepRange* best = &sweeps.front();
+  for (const SweepRange& sweep : sweeps) {
+    if (sweep.size() >= best->size()) best = &sweep;
+  }
+  return makePolarImage(log.beams, best->first, best->last_exclusive);
+}
+
+void writeImages(const MapArgs& args, const SonarLog& log, const OcTree16& map, double pixel_m) {
+  if (!args.map_png.empty()) writePng(args.map_png, renderSlice(map, 0.0));
+  if (args.polar_png.empty() && args.cartesian_png.empty()) return;
+  const PolarImage polar = lastFullSweep(log);
+  if (!args.polar_png.empty()) writePng(args.polar_png, polar.intensities);
+  if (!args.cartesian_png.empty()) {
+    writePng(args.cartesian_png, makeCartesianImage(polar, pixel_m, args.beam_width_deg * std::numbers::pi / 180.0));
+  }
+}
+
+}  // namespace
+
+void runMap(const MapArgs& args, const MapperOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const SonarLog log = readSonarLog(args.input);
+  const auto start = Clock::now();
+  SonarMapper mapper = [&] {
+    ProgressBar bar("mapping");
+    return mapSonarLog(log, options, [&](std::size_t done, std::size_t total) {
+      if (!args.quiet) bar.update(done, total);
+    });
+  }();
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  writeBinaryFile(mapper.map(), args.output_bt);
+  writeImages(args, log, mapper.map(), options.resolution_m);
+  const MappingStats& stats = mapper.stats();
+  const NodeCounts counts = mapper.map().counts();
+  std::printf("%zu beams used, %zu skipped, %zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",
+              stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.sweeps, stats.obstacles, counts.nodes,
+              counts.leaves, static_cast<double>(mapper.map().memoryBytes()) / 1024.0, seconds, args.output_bt.c_str());
+}
+
+}  // namespace sonarmap::cli

@@ -1,0 +1,25 @@
+#pragma once
+/// @file map_slice.hpp
+/// Horizontal slices of a map: the 2D map of paper §6 lies in the sonar's plane (z = 0).
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "sonarmap/octree/occupancy_octree.hpp"
+
+namespace sonarmap {
+
+/// Centres (x, y) in metres, map frame, of the finest voxels in the slice containing height
+/// `z_m` whose occupancy is `wanted`. Pruned leaves contribute each of their finest voxels.
+/// @throws OutOfMapError when z_m is outside the map.
+std::vector<Eigen::Vector2d> cellsInSlice(const OcTree16& map, double z_m, Occupancy wanted);
+
+/// Top view of the slice at `z_m`, one pixel per voxel: occupied 0 (black), free 255 (white),
+/// unknown 128 (grey). +x to the right, +y up. The image spans the known voxels of the slice
+/// plus a one-voxel border; an empty slice gives a 1 × 1 grey image. CV_8U, rows × cols.
+/// @throws OutOfMapError when z_m is outside the map.
+cv::Mat renderSlice(const OcTree16& map, double z_m);
+
+}  // namespace sonarmap

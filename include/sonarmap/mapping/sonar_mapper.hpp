@@ -1,0 +1,147 @@
+#pragma once
+/// @file sonar_mapper.hpp
+/// Builds an occupancy octree from MSIS sweeps (paper §6 and §8): each beam's polar row is
+/// cleaned and searched for its first obstacle; the cells from the sonar to that obstacle are
+/// updated free (misses) and the obstacle's cell occupied with a confidence from its intensity.
+///
+/// A sweep is integrated like one scan of OctoMap's `insertPointCloud`: every cell is updated at
+/// most once per sweep, and a cell that is an obstacle of any beam of the sweep is not also
+/// updated free by another beam. Beams are placed in the map frame by the sonar's pose.
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/octree/occupancy_octree.hpp"
+#include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/detection.hpp"
+#include "sonarmap/sonar/detectors.hpp"
+#include "sonarmap/sonar/polar_image.hpp"
+#include "sonarmap/sonar/preprocess.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap {
+
+/// Which voxel traversal turns a beam into cells (paper §6).
+enum class RayAlgorithm {
+  kDDA,        ///< Amanatides & Woo (1987): face-connected, every crossed voxel (default)
+  kBresenham,  ///< 3D Bresenham on keys: 26-connected, "laser-like" (the paper's choice)
+};
+
+/// Parses "dda" or "bresenham". @throws ValueError for any other name.
+RayAlgorithm parseRayAlgorithm(std::string_view name);
+
+/// OctoMap's defaults with lazy evaluation on.
+inline OctreeOptions lazyOctreeOptions() {
+  OctreeOptions options;
+  options.lazy = true;
+  return options;
+}
+
+/// Everything that turns beams into map updates. Defaults map the CRAS tank well.
+struct MapperOptions {
+  double resolution_m = 0.02;            ///< voxel edge (paper: 2D map, 2 cm)
+  /// Sensor model, aggregation, pruning. Lazy by default: a sweep updates leaves only and the
+  /// inner nodes are fixed once at its end (§5.5), so the map is consistent after every sweep.
+  OctreeOptions octree = lazyOctreeOptions();
+  double self_reflection_range_m = 0.5;  ///< bins nearer than this are zeroed (paper §8.1)
+  SmoothingOptions smoothing{};          ///< polar-image smoothing (paper §8.1), Gaussian by default
+  DetectorOptions detector{};            ///< first-obstacle detection (paper §8.2, §9)
+  RayAlgorithm ray = RayAlgorithm::kDDA;
+  /// Horizontal beam width in radians (Tritech Micron: 3°). A beam is cast as a fan of rays over
+  /// this width, spaced at most one voxel apart at its far end (finer rays start where the coarser
+  /// ones drift a voxel apart), so free space is the beam's wedge
+  /// and the obstacle its arc at the detected range — the MSIS inverse sensor model. 0 casts one
+  /// ray along the bearing (the paper's §6).
+  double beam_width_rad = 3.0 * 3.14159265358979323846 / 180.0;
+  /// Intensity that earns the full hit log-odds; a weaker echo earns proportionally less
+  /// (log-odds × intensity / full_confidence_intensity, capped at 1): the paper's "confidence
+  /// based on the intensity" (§6). In 1…255; 160 gives the strong wall echoes of the CRAS Micron
+  /// data (up to 191 after smoothing) full weight.
+  double full_confidence_intensity = 160.0;
+
+  /// @throws ValueError for a non-positive resolution, self-reflection range < 0, a beam width
+  ///         outside [0, π),
+  ///         an intensity scale outside 1…255, or invalid occupancy parameters.
+  void validate() const;
+};
+
+/// Counts gathered while mapping.
+struct MappingStats {
+  std::size_t sweeps = 0;
+  std::size_t beams_used = 0;            ///< beams integrated into the map
+  std::size_t beams_skipped = 0;         ///< malformed beams the reader dropped
+  std::size_t obstacles = 0;             ///< beams with an obstacle
+  std::size_t free_updates = 0;          ///< cells updated free (after per-sweep deduplication)
+  std::size_t occupied_updates = 0;      ///< cells updated occupied
+  std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
+};
+
+/// Maps sweeps of one sonar into an occupancy octree (depth 16, OctoMap's layout).
+class SonarMapper {
+ public:
+  /// @throws ValueError when `options` is invalid (MapperOptions::validate).
+  explicit SonarMapper(const MapperOptions& options = {});
+  SonarMapper(SonarMapper&&) noexcept;
+  SonarMapper& operator=(SonarMapper&&) noexcept;
+  ~SonarMapper();
+
+  /// Cleans and searches the polar image of one sweep (self-reflection removal, smoothing,
+  /// detection) and integrates it. `polar` is modified in place: afterwards it holds the image
+  /// the detector saw. @param sonar_to_map pose of the sonar frame in the map frame.
+  std::vector<BeamDetection> mapSweep(PolarImage& polar, const Eigen::Isometry3d& sonar_to_map = Eigen::Isometry3d::Identity());
+
+  /// Integrates one sweep whose detections are already known (one per polar row).
+  /// @throws ValueError when `detections` and the polar image differ in length.
+  void integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                      const Eigen::Isometry3d& sonar_to_map = Eigen::Isometry3d::Identity());
+
+  const OcTree16& map() const { return map_; }
+  OcTree16& map() { return map_; }
+  const MappingStats& stats() const { return stats_; }
+  MappingStats& stats() { return stats_; }
+  const MapperOptions& options() const { return options_; }
+
+ private:
+  float hitLogOdds(std::uint8_t intensity) const;
+  /// One ray of a beam's fan, planned before any cell is updated.
+  struct FanRay {
+    Eigen::Vector3d start_m;  ///< map frame; the sonar, or where finer rays of the fan begin
+    Eigen::Vector3d end_m;
+    bool hit;
+  };
+  /// Adds the fan of one beam to rays_ and hits_. False (nothing added) if it leaves the map.
+  bool planBeam(const Eigen::Isometry3d& sonar_to_map, double bearing_rad, double range_m, bool hit,
+                std::uint8_t intensity);
+  /// Updates every cell the planned rays cross once, free, unless it is a hit cell of the sweep.
+  void integrateFreeCells();
+  void integrateHits();
+
+  struct SweepCells;  // the sweep's free and hit cells, reused from sweep to sweep
+
+  MapperOptions options_;
+  OcTree16 map_;
+  MappingStats stats_;
+  std::vector<FanRay> rays_;
+  std::vector<std::pair<Key16, std::uint8_t>> hits_;  ///< hit cell, intensity
+  Key16 box_lo_{}, box_hi_{};                         ///< keys the sweep's rays stay within
+  std::unique_ptr<SweepCells> cells_;
+};
+
+/// Progress callback: (sweeps done, sweeps in total).
+using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
+
+/// Joins a sweep of fewer than `min_beams` beams (a log that starts or ends mid-turn) to its
+/// neighbour, so the detector's per-sweep background is always estimated over enough beams.
+std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams);
+
+/// Maps every sweep of `log` (split where the head completes a turn or reverses, short fragments
+/// joined to their neighbour) with the sonar static at the map origin. `stats().beams_skipped` includes the reader's skipped beams.
+/// @throws ValueError for invalid options or a sweep that mixes bin lengths.
+SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options = {}, const ProgressCallback& progress = {});
+
+}  // namespace sonarmap

@@ -1,0 +1,56 @@
+#include "sonarmap/mapping/map_slice.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace sonarmap {
+namespace {
+
+/// Calls visit(x0, y0, edge, occupancy) for every leaf cut by the slice; x0/y0 are key indices of
+/// the leaf's lower corner and edge its width in voxels.
+template <class Visit>
+void forEachLeafInSlice(const OcTree16& map, double z_m, Visit&& visit) {
+  const Key16::Index z_key = map.coder().keyOfChecked({0.0, 0.0, z_m})[2];
+  map.forEachLeaf([&](const LeafView<16>& leaf) {
+    const long edge = static_cast<long>(leaf.edgeVoxels());
+    if (z_key < leaf.key[2] || z_key >= leaf.key[2] + edge) return;
+    visit(static_cast<long>(leaf.key[0]), static_cast<long>(leaf.key[1]), edge, map.model().classify(leaf.log_odds));
+  });
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> cellsInSlice(const OcTree16& map, double z_m, Occupancy wanted) {
+  std::vector<Eigen::Vector2d> cells;
+  const auto& coder = map.coder();
+  forEachLeafInSlice(map, z_m, [&](long x0, long y0, long edge, Occupancy occupancy) {
+    if (occupancy != wanted) return;
+    for (long x = x0; x < x0 + edge; ++x)
+      for (long y = y0; y < y0 + edge; ++y)
+        cells.emplace_back(coder.centerOf(static_cast<Key16::Index>(x)), coder.centerOf(static_cast<Key16::Index>(y)));
+  });
+  return cells;
+}
+
+cv::Mat renderSlice(const OcTree16& map, double z_m) {
+  long min_x = std::numeric_limits<long>::max(), min_y = min_x, max_x = std::numeric_limits<long>::min(), max_y = max_x;
+  forEachLeafInSlice(map, z_m, [&](long x0, long y0, long edge, Occupancy) {
+    min_x = std::min(min_x, x0);
+    min_y = std::min(min_y, y0);
+    max_x = std::max(max_x, x0 + edge - 1);
+    max_y = std::max(max_y, y0 + edge - 1);
+  });
+  if (min_x > max_x) return cv::Mat(1, 1, CV_8U, cv::Scalar(128));
+  const int cols = static_cast<int>(max_x - min_x + 3);
+  const int rows = static_cast<int>(max_y - min_y + 3);
+  cv::Mat image(rows, cols, CV_8U, cv::Scalar(128));
+  forEachLeafInSlice(map, z_m, [&](long x0, long y0, long edge, Occupancy occupancy) {
+    const unsigned char value = occupancy == Occupancy::kOccupied ? 0 : (occupancy == Occupancy::kFree ? 255 : 128);
+    const int left = static_cast<int>(x0 - min_x + 1);
+    const int top = rows - 1 - static_cast<int>(y0 + edge - 1 - min_y + 1);  // +y up
+    image(cv::Rect(left, top, static_cast<int>(edge), static_cast<int>(edge))) = value;
+  });
+  return image;
+}
+
+}  // namespace sonarmap

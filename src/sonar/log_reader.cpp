@@ -1,0 +1,20 @@
+#include "sonarmap/sonar/log_reader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/mat_reader.hpp"
+
+namespace sonarmap {
+
+SonarLog readSonarLog(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".mat") return readCrasMat(path);
+  throw FileError("'" + path + "': unknown sonar log type '" + extension + "', expected .mat");
+}
+
+}  // namespace sonarmap

@@ -1,0 +1,201 @@
+/// Tests of the obstacle detectors on synthetic polar images.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <numbers>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/detectors.hpp"
+#include "sonarmap/sonar/preprocess.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr int kRows = 60;
+constexpr int kBins = 200;
+constexpr double kBinLength_m = 0.02;  // 4 m of range
+
+PolarImage emptySweep(int rows = kRows, int bins = kBins) {
+  PolarImage polar;
+  polar.intensities = cv::Mat::zeros(rows, bins, CV_8UC1);
+  cv::RNG rng(7);
+  rng.fill(polar.intensities, cv::RNG::UNIFORM, 0, 11);  // speckle 0…10
+  for (int r = 0; r < rows; ++r) {
+    polar.valid_bins.push_back(bins);
+    polar.bearing_rad.push_back(2.0 * std::numbers::pi * r / rows);
+    polar.time_s.push_back(0.1 * r);
+  }
+  polar.bin_length_m = kBinLength_m;
+  return polar;
+}
+
+/// First bin of the synthetic wall in row r: bins 100…157 (2.0…3.2 m), a different range per bearing.
+int wallBin(int r) { return 100 + (3 * r) % 58; }
+
+/// Adds a 10-bin wall echo of `value` at wallBin(r) in every row.
+void addWall(PolarImage& polar, std::uint8_t value) {
+  for (int r = 0; r < polar.rows(); ++r) polar.intensities.row(r).colRange(wallBin(r), wallBin(r) + 10).setTo(value);
+}
+
+/// Adds the constant-range return: bins 78…81 (≈1.56…1.64 m) in every row.
+void addRing(PolarImage& polar, std::uint8_t value) { polar.intensities.colRange(78, 82).setTo(value); }
+
+DetectorOptions optionsFor(Detector kind) {
+  DetectorOptions options;
+  options.kind = kind;
+  return options;
+}
+
+TEST(sonarDetectors, ThresholdFindsTheFirstRiseAboveTheThreshold) {
+  PolarImage polar = emptySweep();
+  addWall(polar, 150);
+  const auto found = detectObstacles(polar, optionsFor(Detector::kThreshold));
+  ASSERT_EQ(found.size(), static_cast<std::size_t>(kRows));
+  for (int r = 0; r < kRows; ++r) {
+    EXPECT_EQ(found[r].obstacle_bin, wallBin(r)) << "row " << r;
+    EXPECT_EQ(found[r].intensity, 150);
+  }
+  DetectorOptions high = optionsFor(Detector::kThreshold);
+  high.threshold.min_rise = 150;  // the rise is at most 150 − 0: "exceeds" means strictly more
+  for (const auto& d : detectObstacles(polar, high)) EXPECT_FALSE(d.hasObstacle());
+}
+
+TEST(sonarDetectors, CannyFindsTheStepEdge) {
+  PolarImage polar = emptySweep();
+  for (int r = 0; r < kRows; ++r) polar.intensities.row(r).colRange(120, kBins).setTo(200);
+  const auto found = detectObstacles(polar, optionsFor(Detector::kCanny));
+  for (int r = 0; r < kRows; ++r) {
+    ASSERT_TRUE(found[r].hasObstacle()) << "row " << r;
+    EXPECT_NEAR(found[r].obstacle_bin, 120, 1) << "row " << r;
+  }
+}
+
+TEST(sonarDetectors, CannyFindsASlopedWallEdge) {
+  // Canny runs on the 2D image: a wall that moves 1 bin per beam gives one clean edge along it.
+  PolarImage polar = emptySweep();
+  for (int r = 0; r < kRows; ++r) polar.intensities.row(r).colRange(100 + r, 110 + r).setTo(200);
+  const auto found = detectObstacles(polar, optionsFor(Detector::kCanny));
+  int near = 0;
+  for (int r = 0; r < kRows; ++r) near += found[r].hasObstacle() && std::abs(found[r].obstacle_bin - (100 + r)) <= 2;
+  EXPECT_GE(near, kRows * 9 / 10);
+}
+
+TEST(sonarDetectors, DetectorsDoNotChangeTheirInput) {
+  PolarImage polar = emptySweep();
+  addRing(polar, 90);
+  addWall(polar, 150);
+  const cv::Mat before = polar.intensities.clone();
+  for (Detector kind : {Detector::kThreshold, Detector::kCanny, Detector::kBackgroundSubtracted}) {
+    detectObstacles(polar, optionsFor(kind));
+    EXPECT_EQ(cv::countNonZero(polar.intensities != before), 0) << detectorName(kind);
+  }
+}
+
+TEST(sonarDetectors, BackgroundSubtractedFindsTheWallLeadingEdge) {
+  PolarImage polar = emptySweep();
+  addWall(polar, 150);
+  const auto found = detectObstacles(polar, optionsFor(Detector::kBackgroundSubtracted));
+  for (int r = 0; r < kRows; ++r) {
+    EXPECT_EQ(found[r].obstacle_bin, wallBin(r)) << "row " << r;
+    EXPECT_EQ(found[r].intensity, 150);
+  }
+}
+
+TEST(sonarDetectors, ConstantRangeRingIsIgnoredButTheWallBehindIsFound) {
+  PolarImage polar = emptySweep();
+  addRing(polar, 90);
+  addWall(polar, 150);
+  // The paper's threshold stops at the ring in every beam (rise 90 − ≤10 > 70)…
+  for (const auto& d : detectObstacles(polar, optionsFor(Detector::kThreshold))) EXPECT_EQ(d.obstacle_bin, 78);
+  // …the background-subtracted detector sees through it, raw or after the default smoothing.
+  const auto raw = detectObstacles(polar, optionsFor(Detector::kBackgroundSubtracted));
+  PolarImage smoothed = polar;
+  smooth(smoothed, SmoothingOptions{});
+  const auto after = detectObstacles(smoothed, optionsFor(Detector::kBackgroundSubtracted));
+  for (int r = 0; r < kRows; ++r) {
+    EXPECT_EQ(raw[r].obstacle_bin, wallBin(r)) << "row " << r;
+    ASSERT_TRUE(after[r].hasObstacle()) << "row " << r;
+    EXPECT_NEAR(after[r].obstacle_bin, wallBin(r), 5) << "row " << r;  // the blur spans ±5 bins
+  }
+}
+
+TEST(sonarDetectors, MinRangeAndValidBinsAreHonoured) {
+  for (Detector kind : {Detector::kThreshold, Detector::kCanny, Detector::kBackgroundSubtracted}) {
+    PolarImage polar = emptySweep();
+    for (int r = 0; r < kRows; r += 2) polar.intensities.row(r).colRange(20, 30).setTo(200);  // 0.4 m, half the rows
+    addWall(polar, 200);
+    polar.valid_bins[1] = 90;  // row 1 ends before its wall
+    DetectorOptions options = optionsFor(kind);
+    options.min_range_m = 1.0;  // bin 50
+    const auto found = detectObstacles(polar, options);
+    for (int r = 0; r < kRows; ++r) {
+      if (found[r].hasObstacle()) {
+        EXPECT_GE(found[r].obstacle_bin, 50) << detectorName(kind) << " row " << r;
+      }
+    }
+    EXPECT_FALSE(found[1].hasObstacle()) << detectorName(kind);
+    options.min_range_m = 0.3;
+    EXPECT_NEAR(detectObstacles(polar, options)[0].obstacle_bin, 20, 2) << detectorName(kind);
+  }
+}
+
+TEST(sonarDetectors, BackgroundNeedsEnoughBeams) {
+  PolarImage polar = emptySweep(5);
+  for (int r = 0; r < 5; ++r) polar.intensities.row(r).colRange(60 + 25 * r, 70 + 25 * r).setTo(200);
+  for (const auto& d : detectObstacles(polar, optionsFor(Detector::kBackgroundSubtracted))) {
+    EXPECT_FALSE(d.hasObstacle());  // 5 < min_beams = 20: no background, no obstacle
+  }
+  DetectorOptions options = optionsFor(Detector::kBackgroundSubtracted);
+  options.background.min_beams = 5;
+  const auto found = detectObstacles(polar, options);
+  for (int r = 0; r < 5; ++r) EXPECT_EQ(found[r].obstacle_bin, 60 + 25 * r) << "row " << r;
+}
+
+TEST(sonarDetectors, RangeBackgroundIsTheColumnPercentile) {
+  PolarImage polar = emptySweep(5, 3);
+  const std::uint8_t column[5] = {50, 10, 40, 20, 30};
+  for (int r = 0; r < 5; ++r) polar.intensities.at<std::uint8_t>(r, 1) = column[r];
+  EXPECT_FLOAT_EQ(estimateRangeBackground(polar, 0.0).at<float>(0, 1), 10.0f);
+  EXPECT_FLOAT_EQ(estimateRangeBackground(polar, 50.0).at<float>(0, 1), 30.0f);
+  EXPECT_FLOAT_EQ(estimateRangeBackground(polar, 25.0).at<float>(0, 1), 20.0f);
+  EXPECT_FLOAT_EQ(estimateRangeBackground(polar, 100.0).at<float>(0, 1), 50.0f);
+  polar.valid_bins = {3, 3, 1, 1, 1};  // only rows 0 and 1 have bin 1
+  EXPECT_FLOAT_EQ(estimateRangeBackground(polar, 100.0).at<float>(0, 1), 50.0f);
+  EXPECT_FLOAT_EQ(estimateRangeBackground(polar, 0.0).at<float>(0, 1), 10.0f);
+  EXPECT_THROW(estimateRangeBackground(polar, 101.0), ValueError);
+}
+
+TEST(sonarDetectors, InvalidOptionsAndImagesThrow) {
+  const PolarImage polar = emptySweep();
+  DetectorOptions options;
+  options.min_range_m = -1.0;
+  EXPECT_THROW(detectObstacles(polar, options), ValueError);
+  options = optionsFor(Detector::kCanny);
+  options.canny.aperture_size = 4;
+  EXPECT_THROW(detectObstacles(polar, options), ValueError);
+  options = optionsFor(Detector::kBackgroundSubtracted);
+  options.background.min_run_bins = 0;
+  EXPECT_THROW(detectObstacles(polar, options), ValueError);
+  options = optionsFor(Detector::kThreshold);
+  options.threshold.min_rise = 300;
+  EXPECT_THROW(detectObstacles(polar, options), ValueError);
+  PolarImage missing = polar;
+  missing.valid_bins.pop_back();
+  EXPECT_THROW(detectObstacles(missing, DetectorOptions{}), ValueError);
+}
+
+TEST(sonarDetectors, DetectorNamesRoundTrip) {
+  for (Detector kind : {Detector::kThreshold, Detector::kCanny, Detector::kBackgroundSubtracted}) {
+    EXPECT_EQ(parseDetector(detectorName(kind)), kind);
+  }
+  EXPECT_EQ(detectorName(Detector::kBackgroundSubtracted), "background");
+  EXPECT_THROW(parseDetector("cfar"), ValueError);
+  EXPECT_EQ(DetectorOptions{}.kind, Detector::kBackgroundSubtracted);
+}
+
+}  // namespace
+}  // namespace sonarmap
