@@ -1,0 +1,158 @@
+// The sonar mapper on synthetic sweeps: free space to the first obstacle, the obstacle occupied,
+// beams without an obstacle, per-sweep deduplication, the beam fan and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sonarmap/mapping/sonar_mapper.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kBin = 0.02;
+
+/// A sweep of `beams` beams over a full turn, all with `bins` bins of 2 cm.
+PolarImage makeSweep(int beams, int bins) {
+  PolarImage polar;
+  polar.intensities = cv::Mat::zeros(beams, bins, CV_8U);
+  polar.valid_bins.assign(static_cast<std::size_t>(beams), bins);
+  for (int i = 0; i < beams; ++i) {
+    polar.bearing_rad.push_back(2.0 * std::numbers::pi * i / beams);
+    polar.time_s.push_back(0.05 * i);
+  }
+  polar.bin_length_m = kBin;
+  return polar;
+}
+
+MapperOptions singleRay() {
+  MapperOptions options;
+  options.beam_width_rad = 0.0;
+  return options;
+}
+
+Occupancy at(const SonarMapper& mapper, double x, double y) { return mapper.map().occupancyAt({x, y, 0.0}); }
+
+TEST(mappingSonarMapper, FreeUpToTheObstacleWhichIsOccupied) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(4, 150);
+  std::vector<BeamDetection> detections(4, BeamDetection{99, 200});  // 2.0 m: bin 99 spans 1.98–2.00
+  mapper.integrateSweep(polar, detections);
+  EXPECT_EQ(at(mapper, 1.0, 0.01), Occupancy::kFree);
+  EXPECT_EQ(at(mapper, 1.99, 0.01), Occupancy::kOccupied);
+  EXPECT_EQ(at(mapper, 2.5, 0.01), Occupancy::kUnknown);  // behind the obstacle: never seen
+  EXPECT_EQ(at(mapper, 0.01, 1.5), Occupancy::kFree);     // beam at 90°
+  EXPECT_EQ(mapper.stats().obstacles, 4U);
+  EXPECT_EQ(mapper.stats().beams_used, 4U);
+  EXPECT_EQ(mapper.stats().occupied_updates, 4U);
+}
+
+TEST(mappingSonarMapper, BeamWithoutObstacleClearsToItsRangeOnly) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(1, 100);  // 2 m of bins
+  mapper.integrateSweep(polar, {BeamDetection{}});
+  EXPECT_EQ(at(mapper, 1.9, 0.01), Occupancy::kFree);
+  EXPECT_EQ(at(mapper, 2.1, 0.01), Occupancy::kUnknown);
+  EXPECT_EQ(mapper.stats().obstacles, 0U);
+  EXPECT_EQ(mapper.stats().occupied_updates, 0U);
+}
+
+TEST(mappingSonarMapper, ObstacleOfOneBeamIsNotClearedByAnotherInTheSameSweep) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(2, 150);
+  polar.bearing_rad = {0.0, 0.0};  // two beams along +x
+  mapper.integrateSweep(polar, {BeamDetection{49, 200}, BeamDetection{99, 200}});
+  EXPECT_EQ(at(mapper, 0.99, 0.01), Occupancy::kOccupied);  // hit of beam 0, crossed by beam 1
+  EXPECT_EQ(at(mapper, 1.99, 0.01), Occupancy::kOccupied);
+  // Each cell is updated once per sweep, although both rays cross the first metre.
+  EXPECT_FLOAT_EQ(*mapper.map().search(*mapper.map().coder().keyOf({0.5, 0.01, 0.0})), mapper.map().model().miss);
+}
+
+TEST(mappingSonarMapper, WeakEchoesEarnLessConfidence) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(2, 150);
+  polar.bearing_rad = {0.0, std::numbers::pi / 2};
+  mapper.integrateSweep(polar, {BeamDetection{99, 160}, BeamDetection{99, 40}});
+  const auto strong = mapper.map().search(*mapper.map().coder().keyOf({1.99, 0.01, 0.0}));
+  const auto weak = mapper.map().search(*mapper.map().coder().keyOf({0.01, 1.99, 0.0}));
+  EXPECT_FLOAT_EQ(*strong, mapper.map().model().hit);
+  EXPECT_NEAR(*weak, mapper.map().model().hit * 40.0 / 160.0, 1e-6);
+}
+
+TEST(mappingSonarMapper, BeamFanFillsTheWedgeBetweenBeams) {
+  PolarImage polar = makeSweep(200, 200);  // 1.8° apart, 4 m
+  const std::vector<BeamDetection> detections(200, BeamDetection{149, 200});  // a 3 m circle
+  SonarMapper single(singleRay());
+  single.integrateSweep(polar, detections);
+  SonarMapper fan;  // 3° beams
+  fan.integrateSweep(polar, detections);
+  std::size_t free_single = 0, free_fan = 0, samples = 0;
+  for (double angle = 0.0; angle < 2.0 * std::numbers::pi; angle += 0.001, ++samples) {
+    const double x = 2.5 * std::cos(angle), y = 2.5 * std::sin(angle);
+    free_single += at(single, x, y) == Occupancy::kFree ? 1 : 0;
+    free_fan += at(fan, x, y) == Occupancy::kFree ? 1 : 0;
+  }
+  EXPECT_LT(free_single, samples / 2);  // single rays 7.8 cm apart at 2.5 m leave gaps
+  EXPECT_EQ(free_fan, samples);         // the fan covers the whole circle
+  EXPECT_EQ(at(fan, 2.99 * std::cos(0.3), 2.99 * std::sin(0.3)), Occupancy::kOccupied);
+}
+
+TEST(mappingSonarMapper, BresenhamAndDdaBothMapTheBeam) {
+  MapperOptions options = singleRay();
+  options.ray = RayAlgorithm::kBresenham;
+  SonarMapper mapper(options);
+  PolarImage polar = makeSweep(1, 150);
+  polar.bearing_rad = {0.7};
+  mapper.integrateSweep(polar, {BeamDetection{99, 200}});
+  EXPECT_EQ(mapper.map().occupancyAt({1.99 * std::cos(0.7), 1.99 * std::sin(0.7), 0.0}), Occupancy::kOccupied);
+  EXPECT_EQ(mapper.map().occupancyAt({std::cos(0.7), std::sin(0.7), 0.0}), Occupancy::kFree);
+  EXPECT_EQ(parseRayAlgorithm("bresenham"), RayAlgorithm::kBresenham);
+  EXPECT_THROW(parseRayAlgorithm("laser"), ValueError);
+}
+
+TEST(mappingSonarMapper, BeamsLeavingTheMapAreSkippedAndCounted) {
+  MapperOptions options = singleRay();
+  options.resolution_m = 0.0001;  // depth 16 at 0.1 mm: the map spans ±3.28 m
+  SonarMapper mapper(options);
+  PolarImage polar = makeSweep(2, 250);  // 5 m beams
+  mapper.integrateSweep(polar, {BeamDetection{}, BeamDetection{99, 100}});
+  EXPECT_EQ(mapper.stats().out_of_map, 1U);
+  EXPECT_EQ(mapper.stats().beams_used, 1U);
+}
+
+TEST(mappingSonarMapper, PoseMovesTheBeams) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(1, 150);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(10.0, -3.0, 1.0);
+  pose.rotate(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()));
+  mapper.integrateSweep(polar, {BeamDetection{99, 200}}, pose);  // bearing 0 now points to +y
+  EXPECT_EQ(mapper.map().occupancyAt({10.0, -3.0 + 1.99, 1.0}), Occupancy::kOccupied);
+  EXPECT_EQ(mapper.map().occupancyAt({10.0, -2.0, 1.0}), Occupancy::kFree);
+}
+
+TEST(mappingSonarMapper, BadInputThrows) {
+  SonarMapper mapper;
+  PolarImage polar = makeSweep(3, 10);
+  EXPECT_THROW(mapper.integrateSweep(polar, {BeamDetection{}}), ValueError);
+  MapperOptions options;
+  options.resolution_m = 0.0;
+  EXPECT_THROW(SonarMapper{options}, ValueError);
+  options = {};
+  options.beam_width_rad = -0.1;
+  EXPECT_THROW(SonarMapper{options}, ValueError);
+  options = {};
+  options.full_confidence_intensity = 0.0;
+  EXPECT_THROW(SonarMapper{options}, ValueError);
+}
+
+TEST(mappingSweeps, ShortFragmentsJoinTheirNeighbour) {
+  const std::vector<SweepRange> sweeps{{0, 200}, {200, 400}, {400, 403}};
+  EXPECT_EQ(mergeShortSweeps(sweeps, 20), (std::vector<SweepRange>{{0, 200}, {200, 403}}));
+  const std::vector<SweepRange> leading{{0, 5}, {5, 205}};
+  EXPECT_EQ(mergeShortSweeps(leading, 20), (std::vector<SweepRange>{{0, 205}}));
+  EXPECT_EQ(mergeShortSweeps(sweeps, 1), sweeps);
+}
+
+}  // namespace
+}  // namespace sonarmap
