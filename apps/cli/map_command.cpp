@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "progress.hpp"
+#include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/sonar/log_reader.hpp"
@@ -30,6 +31,8 @@ CLI::App* addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--beam-width", args.beam_width_deg, "Horizontal beam width for the Cartesian image (deg)")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  cmd->add_flag("--tank-report", args.tank_report,
+                "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
   return cmd;
 }
 
@@ -77,6 +80,21 @@ void writeImages(const MapArgs& args, const SonarLog& log, const OcTree16& map, 
   }
 }
 
+void printTankReport(const OcTree16& map) {
+  const std::size_t occupied = cellsInSlice(map, 0.0, Occupancy::kOccupied).size();
+  if (occupied < 8) {
+    std::printf("tank: %zu occupied cells at z = 0, too few to fit walls\n", occupied);
+    return;
+  }
+  const TankMapQuality quality = evaluateTankMap(map, 0.0);
+  const WallFitReport& walls = quality.walls;
+  std::printf("tank: %.2f x %.2f m at %.1f deg, %zu occupied cells, %.3f on walls, %.3f of walls covered, "
+              "rms %.3f m, inside %.3f free %.4f occupied\n",
+              walls.rect.width_m, walls.rect.height_m, walls.rect.angle_rad * 180.0 / std::numbers::pi,
+              quality.occupied_cells, walls.share_on_walls, walls.wall_coverage, walls.rms_wall_distance_m,
+              quality.interior_free_share, quality.interior_occupied_share);
+}
+
 }  // namespace
 
 void runMap(const MapArgs& args, const MapperOptions& options) {
@@ -97,6 +115,7 @@ void runMap(const MapArgs& args, const MapperOptions& options) {
   std::printf("%zu beams used, %zu skipped, %zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",
               stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.sweeps, stats.obstacles, counts.nodes,
               counts.leaves, static_cast<double>(mapper.map().memoryBytes()) / 1024.0, seconds, args.output_bt.c_str());
+  if (args.tank_report) printTankReport(mapper.map());
 }
 
 }  // namespace sonarmap::cli

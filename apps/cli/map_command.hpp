@@ -24,6 +24,7 @@ struct MapArgs {
   double self_reflection_m = 0.5;
   double beam_width_deg = 3.0;
   bool quiet = false;
+  bool tank_report = false;
 };
 
 /// Adds the `map` subcommand, whose options fill `args`.

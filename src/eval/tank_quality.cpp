@@ -21,11 +21,21 @@ TankMapQuality evaluateTankMap(const OcTree16& map, double z_m, const WallFitOpt
     return std::abs(d.dot(u)) < half_u && std::abs(d.dot(v)) < half_v;
   };
   if (half_u <= 0.0 || half_v <= 0.0) return quality;
-  const double cell_area = map.resolution_m() * map.resolution_m();
-  quality.interior_cells = static_cast<std::size_t>(std::lround(4.0 * half_u * half_v / cell_area));
+  // Classify every voxel of the slice whose centre lies inside the shrunk rectangle.
+  const auto& coder = map.coder();
+  const double reach = std::hypot(half_u, half_v);
+  const auto lo = coder.keyOfChecked({rect.center_m.x() - reach, rect.center_m.y() - reach, z_m});
+  const auto hi = coder.keyOfChecked({rect.center_m.x() + reach, rect.center_m.y() + reach, z_m});
   std::size_t free_inside = 0, occupied_inside = 0;
-  for (const auto& p : cellsInSlice(map, z_m, Occupancy::kFree)) free_inside += inside(p) ? 1 : 0;
-  for (const auto& p : occupied) occupied_inside += inside(p) ? 1 : 0;
+  for (auto x = lo[0]; x <= hi[0]; ++x) {
+    for (auto y = lo[1]; y <= hi[1]; ++y) {
+      if (!inside({coder.centerOf(x), coder.centerOf(y)})) continue;
+      ++quality.interior_cells;
+      const Occupancy occupancy = map.occupancyOf(Key16{{x, y, lo[2]}});
+      free_inside += occupancy == Occupancy::kFree ? 1 : 0;
+      occupied_inside += occupancy == Occupancy::kOccupied ? 1 : 0;
+    }
+  }
   if (quality.interior_cells > 0) {
     quality.interior_free_share = static_cast<double>(free_inside) / static_cast<double>(quality.interior_cells);
     quality.interior_occupied_share = static_cast<double>(occupied_inside) / static_cast<double>(quality.interior_cells);
