@@ -6,6 +6,7 @@
 
 #include "progress.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
+#include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/sonar/log_reader.hpp"
@@ -70,14 +71,20 @@ PolarImage lastFullSweep(const SonarLog& log) {
   return makePolarImage(log.beams, best->first, best->last_exclusive);
 }
 
-void writeImages(const MapArgs& args, const SonarLog& log, const OcTree16& map, double pixel_m) {
-  if (!args.map_png.empty()) writePng(args.map_png, renderSlice(map, 0.0));
-  if (args.polar_png.empty() && args.cartesian_png.empty()) return;
-  const PolarImage polar = lastFullSweep(log);
-  if (!args.polar_png.empty()) writePng(args.polar_png, polar.intensities);
-  if (!args.cartesian_png.empty()) {
-    writePng(args.cartesian_png, makeCartesianImage(polar, pixel_m, args.beam_width_deg * std::numbers::pi / 180.0));
+/// Stages every output; nothing appears unless all of them could be written.
+void writeOutputs(const MapArgs& args, const SonarLog& log, const OcTree16& map, double pixel_m) {
+  FileTransaction outputs;
+  outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
+  if (!args.map_png.empty()) outputs.stageBytes(args.map_png, encodePng(renderSlice(map, 0.0)));
+  if (!args.polar_png.empty() || !args.cartesian_png.empty()) {
+    const PolarImage polar = lastFullSweep(log);
+    if (!args.polar_png.empty()) outputs.stageBytes(args.polar_png, encodePng(polar.intensities));
+    if (!args.cartesian_png.empty()) {
+      const cv::Mat cartesian = makeCartesianImage(polar, pixel_m, args.beam_width_deg * std::numbers::pi / 180.0);
+      outputs.stageBytes(args.cartesian_png, encodePng(cartesian));
+    }
   }
+  outputs.commit();
 }
 
 void printTankReport(const OcTree16& map) {
@@ -108,8 +115,7 @@ void runMap(const MapArgs& args, const MapperOptions& options) {
     });
   }();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  writeBinaryFile(mapper.map(), args.output_bt);
-  writeImages(args, log, mapper.map(), options.resolution_m);
+  writeOutputs(args, log, mapper.map(), options.resolution_m);
   const MappingStats& stats = mapper.stats();
   const NodeCounts counts = mapper.map().counts();
   std::printf("%zu beams used, %zu skipped, %zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",

@@ -1,7 +1,6 @@
 #include "sonarmap/io/atomic_file.hpp"
 
 #include <atomic>
-#include <filesystem>
 #include <fstream>
 #include <random>
 
@@ -13,45 +12,69 @@ namespace {
 std::filesystem::path temporaryBeside(const std::filesystem::path& target) {
   static std::atomic<unsigned> counter{0};
   std::random_device entropy;
-  const std::string suffix = ".tmp" + std::to_string(entropy() % 1000000U) + "_" + std::to_string(counter++);
-  return target.parent_path() / ("." + target.filename().string() + suffix);
+  std::string name = ".";  // appended piecewise: GCC 12 warns falsely on "." + std::string
+  name += target.filename().string();
+  name += ".tmp";
+  name += std::to_string(entropy() % 1000000U);
+  name += "_";
+  name += std::to_string(counter++);
+  return target.parent_path() / name;
 }
 
-/// Removes the temporary file unless released.
-struct TemporaryFile {
-  std::filesystem::path path;
-  bool keep = false;
-  ~TemporaryFile() {
-    if (!keep) {
-      std::error_code ignored;
-      std::filesystem::remove(path, ignored);
-    }
-  }
-};
+void removeQuietly(const std::filesystem::path& path) {
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
 
 }  // namespace
 
-void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+FileTransaction::~FileTransaction() {
+  for (const Staged& file : staged_) removeQuietly(file.temporary);
+}
+
+void FileTransaction::stage(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::filesystem::path target(path);
   if (target.filename().empty()) throw FileError("cannot write '" + path + "': not a file name");
-  TemporaryFile temporary{temporaryBeside(target)};
-  {
-    std::ofstream out(temporary.path, std::ios::binary | std::ios::trunc);
+  const std::filesystem::path temporary = temporaryBeside(target);
+  try {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw FileError("cannot write '" + path + "': cannot create a file in its folder");
     write(out);
     out.flush();
     if (!out) throw FileError("cannot write '" + path + "': writing failed (disk full?)");
+  } catch (...) {
+    removeQuietly(temporary);
+    throw;
   }
-  std::error_code error;
-  std::filesystem::rename(temporary.path, target, error);
-  if (error) throw FileError("cannot write '" + path + "': " + error.message());
-  temporary.keep = true;
+  staged_.push_back({temporary, target});
+}
+
+void FileTransaction::stageBytes(const std::string& path, std::span<const unsigned char> bytes) {
+  stage(path, [&](std::ostream& out) {
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  });
+}
+
+void FileTransaction::commit() {
+  while (!staged_.empty()) {
+    const Staged file = staged_.front();
+    std::error_code error;
+    std::filesystem::rename(file.temporary, file.target, error);
+    if (error) throw FileError("cannot write '" + file.target.string() + "': " + error.message());
+    staged_.erase(staged_.begin());
+  }
+}
+
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  FileTransaction transaction;
+  transaction.stage(path, write);
+  transaction.commit();
 }
 
 void writeBytesAtomically(const std::string& path, std::span<const unsigned char> bytes) {
-  writeFileAtomically(path, [&](std::ostream& out) {
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  });
+  FileTransaction transaction;
+  transaction.stageBytes(path, bytes);
+  transaction.commit();
 }
 
 }  // namespace sonarmap

@@ -115,12 +115,18 @@ void SonarMapper::integrateFreeCells() {
     map_.integrate(key, false);
     ++stats_.free_updates;
   };
+  // Rays alternate direction (far end first on every other ray), so consecutive updates are
+  // neighbours and the octree's descent starts from a deep common ancestor.
+  bool forward = true;
   for (const FanRay& ray : rays_) {
+    const Eigen::Vector3d& from = forward ? ray.start_m : ray.end_m;
+    const Eigen::Vector3d& to = forward ? ray.end_m : ray.start_m;
     if (options_.ray == RayAlgorithm::kDDA) {
-      traverseDDA(map_.coder(), ray.start_m, ray.end_m, visit);
+      traverseDDA(map_.coder(), from, to, visit);
     } else {
-      traverseBresenham(map_.coder(), ray.start_m, ray.end_m, visit);
+      traverseBresenham(map_.coder(), from, to, visit);
     }
+    forward = !forward;
   }
 }
 

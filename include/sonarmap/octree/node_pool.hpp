@@ -22,13 +22,20 @@ namespace sonarmap {
 /// Log-odds value that marks a node as not existing (unknown).
 inline constexpr float kUnknownLogOdds = std::numeric_limits<float>::quiet_NaN();
 
-/// One octree node: its log-odds and the index of its block of 8 children (0 = none).
+/// One octree node: its log-odds and the index of its block of 8 children (0 = none). The top
+/// bit of `link` marks an inner node whose subtree changed since the last lazy synchronisation.
 struct OcTreeNode {
+  static constexpr std::uint32_t kDirtyBit = 1U << 31;
+  static constexpr std::uint32_t kBlockMask = kDirtyBit - 1;
+
   float log_odds = kUnknownLogOdds;
-  std::uint32_t children = 0;
+  std::uint32_t link = 0;
 
   bool exists() const { return !std::isnan(log_odds); }
-  bool hasChildren() const { return children != 0; }
+  bool hasChildren() const { return (link & kBlockMask) != 0; }
+  /// Index of the children's block, 0 when there are none.
+  std::uint32_t block() const { return link & kBlockMask; }
+  bool dirty() const { return (link & kDirtyBit) != 0; }
 };
 static_assert(sizeof(OcTreeNode) == 8, "a node is one float and one 32-bit index");
 
@@ -50,7 +57,7 @@ class NodePool {
   static NodeRef childRef(std::uint32_t block, unsigned index) { return (block << 3) | index; }
 
   /// Allocates a block of 8 children, each with log-odds `fill` (NaN: none exist) and no children.
-  /// @throws ValueError when more than 2^29 blocks would be needed.
+  /// @throws ValueError when more than 2^29 blocks would be needed (indices stay below the dirty bit).
   std::uint32_t allocate(float fill) {
     std::uint32_t block;
     if (!free_.empty()) {

@@ -115,7 +115,7 @@ class OccupancyOctree {
 
   const OcTreeNode& node(NodeRef ref) const { return pool_.at(ref); }
   /// Reference of child `index` of a node that has children.
-  static NodeRef childRef(const OcTreeNode& parent, unsigned index) { return NodePool::childRef(parent.children, index); }
+  static NodeRef childRef(const OcTreeNode& parent, unsigned index) { return NodePool::childRef(parent.block(), index); }
   /// Sets a node's log-odds (NaN removes nothing: use only on existing nodes or to create one).
   void setLogOdds(NodeRef ref, float log_odds) { pool_.at(ref).log_odds = log_odds; }
   /// Gives a childless node a block of 8 not-yet-existing children. Invalidates node references.
@@ -124,9 +124,18 @@ class OccupancyOctree {
   float aggregateChildren(const OcTreeNode& parent) const;
 
  private:
+  /// What the 8 children of a block say about their parent, in one pass over them.
+  struct ChildSummary {
+    float aggregate;    ///< max or mean of the existing children (0 if none exists)
+    bool prunable;      ///< all 8 exist, none has children, all have the same log-odds
+  };
+  ChildSummary summarize(std::uint32_t block) const;
+  /// Prunes the inner node `ref` if its children allow it, else sets its aggregate.
+  /// @return true when it was pruned.
+  bool refreshInner(NodeRef ref);
   int cachedLevels(const KeyType& key) const;
   void updateAncestors(int fresh_from);
-  bool tryPrune(NodeRef ref);
+  void markPathDirty();
   void syncSubtree(NodeRef ref);
   template <class Visitor>
   void visitLeaves(NodeRef ref, const KeyType& key, int depth, Visitor& visit) const;

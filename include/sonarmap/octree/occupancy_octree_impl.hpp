@@ -43,7 +43,7 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
     level = cachedLevels(key);
     path[0] = kRootRef;
     while (level < Depth && pool_.at(path[level]).hasChildren()) {
-      const NodeRef child = NodePool::childRef(pool_.at(path[level]).children, childIndex(key, level));
+      const NodeRef child = NodePool::childRef(pool_.at(path[level]).block(), childIndex(key, level));
       if (!pool_.at(child).exists()) break;
       path[++level] = child;
     }
@@ -59,9 +59,9 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
     if (!pool_.at(ref).hasChildren()) {
       const float fill = level >= fresh_from ? kUnknownLogOdds : pool_.at(ref).log_odds;
       const std::uint32_t block = pool_.allocate(fill);
-      pool_.at(ref).children = block;
+      pool_.at(ref).link = block;
     }
-    const NodeRef child = NodePool::childRef(pool_.at(ref).children, childIndex(key, level));
+    const NodeRef child = NodePool::childRef(pool_.at(ref).block(), childIndex(key, level));
     path[level + 1] = child;
     if (!pool_.at(child).exists()) {
       pool_.at(child).log_odds = 0.0F;
@@ -72,8 +72,22 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
   cached_levels_ = Depth;
   OcTreeNode& leaf = pool_.at(path[Depth]);
   leaf.log_odds = model_.update(leaf.log_odds, delta_log_odds);
-  if (!options_.lazy) updateAncestors(fresh_from);
+  if (options_.lazy) {
+    markPathDirty();
+  } else {
+    updateAncestors(fresh_from);
+  }
   return true;
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::markPathDirty() {
+  // Ancestors of a dirty node are dirty: stop at the first one already marked.
+  for (int l = Depth - 1; l >= 0; --l) {
+    OcTreeNode& inner = pool_.at(path_[l]);
+    if (inner.dirty()) return;
+    inner.link |= OcTreeNode::kDirtyBit;
+  }
 }
 
 template <int Depth>
@@ -81,44 +95,50 @@ void OccupancyOctree<Depth>::updateAncestors(int fresh_from) {
   // Fix the inner nodes bottom-up; stop once nothing above can change.
   for (int l = Depth - 1; l >= 0; --l) {
     const float before = pool_.at(path_[l]).log_odds;
-    if (options_.prune && tryPrune(path_[l])) {
+    if (refreshInner(path_[l])) {
       cached_levels_ = std::min(cached_levels_, l);  // the pruned children are gone
       continue;
     }
-    OcTreeNode& inner = pool_.at(path_[l]);
-    inner.log_odds = aggregateChildren(inner);
-    if (inner.log_odds == before && l + 1 < fresh_from) break;
+    if (pool_.at(path_[l]).log_odds == before && l + 1 < fresh_from) break;
   }
+}
+
+template <int Depth>
+typename OccupancyOctree<Depth>::ChildSummary OccupancyOctree<Depth>::summarize(std::uint32_t block) const {
+  const OcTreeNode* children = &pool_.at(NodePool::childRef(block, 0));
+  float max = -std::numeric_limits<float>::infinity();
+  float sum = 0.0F;
+  int count = 0;
+  bool leaves_equal = true;
+  for (unsigned i = 0; i < 8; ++i) {
+    const OcTreeNode& child = children[i];
+    leaves_equal = leaves_equal && !child.hasChildren() && child.log_odds == children[0].log_odds;  // NaN never equal
+    if (!child.exists()) continue;
+    max = std::max(max, child.log_odds);
+    sum += child.log_odds;
+    ++count;
+  }
+  if (count == 0) return {0.0F, false};
+  const float aggregate = options_.aggregation == InnerAggregation::kMax ? max : sum / static_cast<float>(count);
+  return {aggregate, leaves_equal};
 }
 
 template <int Depth>
 float OccupancyOctree<Depth>::aggregateChildren(const OcTreeNode& parent) const {
-  float max = -std::numeric_limits<float>::infinity();
-  float sum = 0.0F;
-  int count = 0;
-  for (unsigned i = 0; i < 8; ++i) {
-    const float value = pool_.at(NodePool::childRef(parent.children, i)).log_odds;
-    if (std::isnan(value)) continue;
-    max = std::max(max, value);
-    sum += value;
-    ++count;
-  }
-  if (count == 0) return 0.0F;
-  return options_.aggregation == InnerAggregation::kMax ? max : sum / static_cast<float>(count);
+  return summarize(parent.block()).aggregate;
 }
 
 template <int Depth>
-bool OccupancyOctree<Depth>::tryPrune(NodeRef ref) {
-  const std::uint32_t block = pool_.at(ref).children;
-  const OcTreeNode& first = pool_.at(NodePool::childRef(block, 0));
-  if (!first.exists() || first.hasChildren()) return false;
-  for (unsigned i = 1; i < 8; ++i) {
-    const OcTreeNode& child = pool_.at(NodePool::childRef(block, i));
-    if (child.hasChildren() || !(child.log_odds == first.log_odds)) return false;  // NaN never equal
-  }
+bool OccupancyOctree<Depth>::refreshInner(NodeRef ref) {
+  const std::uint32_t block = pool_.at(ref).block();
+  const ChildSummary summary = summarize(block);
   OcTreeNode& node = pool_.at(ref);
-  node.log_odds = first.log_odds;
-  node.children = 0;
+  node.log_odds = summary.aggregate;
+  if (!(options_.prune && summary.prunable)) {
+    node.link = block;  // clean
+    return false;
+  }
+  node.link = 0;  // all 8 equal leaves: the node becomes the leaf
   pool_.release(block);
   return true;
 }
@@ -126,19 +146,21 @@ bool OccupancyOctree<Depth>::tryPrune(NodeRef ref) {
 template <int Depth>
 void OccupancyOctree<Depth>::updateInnerOccupancy() {
   cached_levels_ = -1;  // pruning may free nodes on the cached path
-  if (!empty()) syncSubtree(kRootRef);
+  const OcTreeNode& root = pool_.at(kRootRef);
+  if (root.hasChildren() && (root.dirty() || !options_.lazy)) syncSubtree(kRootRef);
 }
 
 template <int Depth>
 void OccupancyOctree<Depth>::syncSubtree(NodeRef ref) {
-  const std::uint32_t block = pool_.at(ref).children;
+  // Post-order over the subtrees that changed since the last synchronisation (dirty nodes);
+  // a clean subtree is already consistent. In eager mode nothing is dirty: visit everything.
+  const std::uint32_t block = pool_.at(ref).block();
   if (block == 0) return;
   for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = NodePool::childRef(block, i);
-    if (pool_.at(child).hasChildren()) syncSubtree(child);
+    const OcTreeNode& child = pool_.at(NodePool::childRef(block, i));
+    if (child.hasChildren() && (child.dirty() || !options_.lazy)) syncSubtree(NodePool::childRef(block, i));
   }
-  if (options_.prune && tryPrune(ref)) return;
-  pool_.at(ref).log_odds = aggregateChildren(pool_.at(ref));
+  refreshInner(ref);
 }
 
 template <int Depth>
@@ -146,7 +168,7 @@ void OccupancyOctree<Depth>::createChildren(NodeRef ref) {
   cached_levels_ = -1;
   if (pool_.at(ref).hasChildren()) return;
   const std::uint32_t block = pool_.allocate(kUnknownLogOdds);
-  pool_.at(ref).children = block;
+  pool_.at(ref).link = block;
 }
 
 template <int Depth>
@@ -155,7 +177,7 @@ std::optional<float> OccupancyOctree<Depth>::search(const KeyType& key, int dept
   if (!pool_.at(ref).exists()) return std::nullopt;
   const int target = std::clamp(depth, 0, Depth);
   for (int level = 0; level < target && pool_.at(ref).hasChildren(); ++level) {
-    ref = NodePool::childRef(pool_.at(ref).children, childIndex(key, level));
+    ref = NodePool::childRef(pool_.at(ref).block(), childIndex(key, level));
     if (!pool_.at(ref).exists()) return std::nullopt;
   }
   return pool_.at(ref).log_odds;
@@ -184,7 +206,7 @@ void OccupancyOctree<Depth>::visitLeaves(NodeRef ref, const KeyType& key, int de
   using Index = typename KeyType::Index;
   const int bit = Depth - 1 - depth;
   for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = NodePool::childRef(node.children, i);
+    const NodeRef child = NodePool::childRef(node.block(), i);
     if (!pool_.at(child).exists()) continue;
     KeyType child_key = key;
     for (int axis = 0; axis < 3; ++axis) {
@@ -211,7 +233,7 @@ void OccupancyOctree<Depth>::countSubtree(NodeRef ref, NodeCounts& counts) const
   }
   ++counts.inner;
   for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = NodePool::childRef(node.children, i);
+    const NodeRef child = NodePool::childRef(node.block(), i);
     if (pool_.at(child).exists()) countSubtree(child, counts);
   }
 }

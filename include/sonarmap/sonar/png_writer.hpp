@@ -1,22 +1,22 @@
 #pragma once
 /// @file png_writer.hpp
-/// Writing images (polar, Cartesian, overlays) as PNG files.
+/// Encoding and writing images (polar, Cartesian, map slices) as PNG.
 
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
 namespace sonarmap {
 
-/// Writes `image` as a PNG through cv::imwrite, atomically: it is encoded to a temporary file
-/// beside `path` (same folder, name `.<file name>.tmp-<random>.png`), which is then renamed onto
-/// `path` with std::filesystem::rename. A failed call leaves no partial PNG and no temporary file;
-/// an existing file at `path` is only replaced by a complete one.
-///
-/// @param path   destination file; its folder must exist. Any extension is kept as given.
+/// Encodes `image` as PNG bytes with cv::imencode.
 /// @param image  CV_8U or CV_16U, 1, 3 or 4 channels (what PNG stores), not empty.
-/// @throws FileError  when the image is empty or of a type PNG cannot store, or when encoding,
-///   writing or renaming fails (the message names `path`).
+/// @throws FileError when the image is empty, of a type PNG cannot store, or encoding fails.
+std::vector<unsigned char> encodePng(const cv::Mat& image);
+
+/// Writes `image` as a PNG file atomically (temporary file beside `path`, then rename): a failed
+/// call leaves no partial PNG and an existing file untouched.
+/// @throws FileError as encodePng, or when the file cannot be written (its folder must exist).
 void writePng(const std::string& path, const cv::Mat& image);
 
 }  // namespace sonarmap

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and maps the paper's CRAS tank dataset into out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+data=${SONARMAP_DATA:-../shared/data}/cras_micron_tank_static.mat
+mkdir -p out
+./build/apps/cli/sonarmap map "$data" -o out/cras_tank.bt --png out/cras_tank.png \
+  --polar-png out/cras_polar.png --cartesian-png out/cras_cartesian.png --tank-report
+echo "wrote out/cras_tank.bt (open it with octovis) and out/cras_tank.png, out/cras_polar.png, out/cras_cartesian.png"

@@ -1,0 +1,329 @@
+// End-to-end tests of the `sonarmap` command-line tool: the built executable (SONARMAP_CLI) runs as
+// a child process with stderr redirected to a file (never a terminal). Covers the happy path on the
+// paper's tank log, interop of the written .bt with OctoMap 1.9 (test-only dependency), usage errors
+// (exit 2), data errors (exit 1) and the promise that a failed run leaves no partial output.
+#include <gtest/gtest.h>
+
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "cli_runner.hpp"
+
+namespace sonarmap::test {
+namespace {
+
+namespace fs = std::filesystem;
+using Names = std::vector<std::string>;
+
+const fs::path kTankLog = fs::path(SONARMAP_SHARED_DATA) / "cras_micron_tank_static.mat";
+constexpr std::size_t kTankBeams = 5604;  // ../shared/data/README.md
+constexpr double kResolution_m = 0.02;    // the CLI's default --resolution
+constexpr double kFloorEchoRange_m = 1.56;
+
+#define SKIP_WITHOUT_TANK_LOG() \
+  if (!fs::exists(kTankLog)) GTEST_SKIP() << "shared data absent: " << kTankLog
+
+/// Lines of `text`, without their '\n'; a last line without '\n' counts too.
+Names linesOf(const std::string& text) {
+  Names lines;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    lines.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return lines;
+}
+
+/// Each test gets its own temporary root: outputs go to root/out (listed by the tests), the
+/// captured streams and hand-made inputs stay in root. Removed on success, kept on failure.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string label = std::string(info->test_suite_name()) + "_" + info->name();
+    std::replace(label.begin(), label.end(), '/', '_');
+    root_ = makeTempDir(label);
+    out_ = root_ / "out";
+    fs::create_directory(out_);
+  }
+  void TearDown() override {
+    if (HasFailure()) {
+      std::cerr << "kept for inspection: " << root_ << '\n';
+    } else {
+      std::error_code ec;
+      fs::remove_all(root_, ec);
+    }
+  }
+
+  ProgramRun run(const Names& args) const { return runProgram(SONARMAP_CLI, args, root_); }
+
+  /// Exit `code`, nothing on stdout, exactly one "sonarmap: error:" line on stderr.
+  static void expectError(const ProgramRun& result, int code) {
+    EXPECT_EQ(result.signal, 0);
+    EXPECT_EQ(result.exit_code, code) << "stderr: " << result.err;
+    EXPECT_EQ(result.out, "");
+    const Names lines = linesOf(result.err);
+    ASSERT_EQ(lines.size(), 1u) << "stderr: " << result.err;
+    EXPECT_EQ(lines[0].rfind("sonarmap: error:", 0), 0u) << lines[0];
+    EXPECT_EQ(result.err.back(), '\n');
+  }
+
+  fs::path root_;
+  fs::path out_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// 1. Happy path
+// ---------------------------------------------------------------------------------------------
+
+using cliMap = CliTest;
+
+TEST_F(cliMap, WritesMapAndImagesAndPrintsOneSummaryLine) {
+  SKIP_WITHOUT_TANK_LOG();
+  const fs::path bt = out_ / "MAP.bt";
+  const ProgramRun result = run({"map", kTankLog.string(), "-o", bt.string(), "--png", (out_ / "slice.png").string(),
+                                 "--polar-png", (out_ / "polar.png").string(), "--cartesian-png",
+                                 (out_ / "cartesian.png").string(), "-q"});
+  ASSERT_EQ(result.signal, 0);
+  ASSERT_EQ(result.exit_code, 0) << "stderr: " << result.err;
+  EXPECT_EQ(result.err, "") << "-q with stderr not a terminal must print nothing on stderr";
+
+  const Names lines = linesOf(result.out);
+  ASSERT_EQ(lines.size(), 1u) << result.out;
+  EXPECT_EQ(result.out.back(), '\n');
+  const std::string& line = lines[0];
+  for (const char* part : {"beams used", "skipped", "sweeps", "obstacles", "map nodes", "KiB", " s ->"}) {
+    EXPECT_NE(line.find(part), std::string::npos) << "'" << part << "' missing from: " << line;
+  }
+  EXPECT_NE(line.find(bt.string()), std::string::npos) << line;
+  std::size_t used = 0, skipped = 0, sweeps = 0, obstacles = 0;
+  ASSERT_EQ(std::sscanf(line.c_str(), "%zu beams used, %zu skipped, %zu sweeps, %zu obstacles", &used, &skipped, &sweeps,
+                        &obstacles),
+            4)
+      << line;
+  EXPECT_EQ(used + skipped, kTankBeams);
+  EXPECT_GT(used, kTankBeams * 9 / 10);
+  EXPECT_GE(sweeps, 27u);  // about 28 full sweeps of 200 beams
+  EXPECT_LE(sweeps, 29u);
+  EXPECT_GT(obstacles, 0u);
+
+  ASSERT_TRUE(fs::is_regular_file(bt));
+  EXPECT_EQ(readFile(bt).rfind("# Octomap OcTree binary file", 0), 0u);
+  for (const char* name : {"slice.png", "polar.png", "cartesian.png"}) {
+    const cv::Mat image = cv::imread((out_ / name).string(), cv::IMREAD_UNCHANGED);
+    EXPECT_FALSE(image.empty()) << name << " does not decode";
+    EXPECT_GT(image.rows, 0) << name;
+    EXPECT_GT(image.cols, 0) << name;
+  }
+  // Atomic writes leave no temporary file behind.
+  EXPECT_EQ(listDir(out_), (Names{"MAP.bt", "cartesian.png", "polar.png", "slice.png"}));
+}
+
+TEST_F(cliMap, NoProgressBarWhenStderrIsNotATerminal) {
+  SKIP_WITHOUT_TANK_LOG();
+  const ProgramRun result = run({"map", kTankLog.string(), "-o", (out_ / "MAP.bt").string()});  // no -q
+  ASSERT_EQ(result.exit_code, 0) << "stderr: " << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_EQ(linesOf(result.out).size(), 1u) << result.out;
+  EXPECT_TRUE(fs::is_regular_file(out_ / "MAP.bt"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. OctoMap 1.9 reads the .bt; the floor echo at a constant 1.56 m does not become a ring
+// ---------------------------------------------------------------------------------------------
+
+using cliOctomap = CliTest;
+
+TEST_F(cliOctomap, OctoMapReadsTheMapAndWallsAreNotTheFloorEchoRing) {
+  SKIP_WITHOUT_TANK_LOG();
+  const fs::path bt = out_ / "MAP.bt";
+  const ProgramRun result = run({"map", kTankLog.string(), "-o", bt.string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << "stderr: " << result.err;
+
+  octomap::OcTree tree(0.1);
+  ASSERT_TRUE(tree.readBinary(bt.string()));
+  EXPECT_NEAR(tree.getResolution(), kResolution_m, 1e-12);
+
+  std::size_t occupied = 0, in_tank = 0, on_ring = 0;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (!tree.isNodeOccupied(*it) || std::abs(it.getZ()) >= kResolution_m) continue;
+    ++occupied;
+    const double range_m = std::hypot(it.getX(), it.getY());
+    if (range_m >= 1.5 && range_m <= 3.5) ++in_tank;
+    if (std::abs(range_m - kFloorEchoRange_m) < 0.04) ++on_ring;
+  }
+  ASSERT_GT(occupied, 0u) << "no occupied leaf at z = 0";
+  EXPECT_GE(static_cast<double>(in_tank), 0.90 * static_cast<double>(occupied))
+      << in_tank << " of " << occupied << " occupied leaves at z = 0 lie 1.5 to 3.5 m from the sonar";
+  EXPECT_LT(static_cast<double>(on_ring), 0.05 * static_cast<double>(occupied))
+      << on_ring << " of " << occupied << " occupied leaves lie on the " << kFloorEchoRange_m << " m floor-echo ring";
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. Usage errors: exit 2, one line on stderr, no output
+// ---------------------------------------------------------------------------------------------
+
+struct UsageCase {
+  const char* name;
+  Names args;  // "{IN}" → the tank log (present or not), "{OUT}" → the output folder
+};
+
+void PrintTo(const UsageCase& usage, std::ostream* os) { *os << usage.name; }
+
+class cliUsage : public CliTest, public ::testing::WithParamInterface<UsageCase> {};
+
+TEST_P(cliUsage, ExitsTwoWithOneErrorLineAndWritesNothing) {
+  Names args = GetParam().args;
+  for (std::string& arg : args) {
+    if (arg == "{IN}") arg = kTankLog.string();
+    if (arg.rfind("{OUT}", 0) == 0) arg = out_.string() + arg.substr(5);
+  }
+  expectError(run(args), 2);
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
+const Names kWithOutputs = {"-o", "{OUT}/MAP.bt", "--png", "{OUT}/MAP.png", "--polar-png", "{OUT}/polar.png"};
+
+Names mapWith(std::initializer_list<std::string> extra) {
+  Names args{"map", "{IN}"};
+  args.insert(args.end(), kWithOutputs.begin(), kWithOutputs.end());
+  args.insert(args.end(), extra);
+  return args;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    cli, cliUsage,
+    ::testing::Values(UsageCase{"MissingOutput", {"map", "{IN}", "--png", "{OUT}/MAP.png"}},
+                      UsageCase{"UnknownOption", mapWith({"--bogus"})},
+                      UsageCase{"NegativeResolution", mapWith({"--resolution", "-1"})},
+                      UsageCase{"ZeroResolution", mapWith({"--resolution", "0"})},
+                      UsageCase{"NonNumericResolution", mapWith({"--resolution", "fine"})},
+                      UsageCase{"UnknownDetector", mapWith({"--detector", "bogus"})},
+                      UsageCase{"UnknownSmoothing", mapWith({"--smoothing", "bogus"})},
+                      UsageCase{"UnknownRay", mapWith({"--ray", "bogus"})},
+                      UsageCase{"UnknownAggregation", mapWith({"--aggregation", "bogus"})},
+                      UsageCase{"ZeroBeamWidth", mapWith({"--beam-width", "0"})},
+                      UsageCase{"NoSubcommand", {}},
+                      UsageCase{"UnknownSubcommand", {"mapp", "{IN}", "-o", "{OUT}/MAP.bt"}}),
+    [](const ::testing::TestParamInfo<UsageCase>& info) { return std::string(info.param.name); });
+
+// ---------------------------------------------------------------------------------------------
+// 4. Data errors: exit 1, one line on stderr naming the file, no output
+// ---------------------------------------------------------------------------------------------
+
+using cliData = CliTest;
+
+TEST_F(cliData, MissingInput) {
+  const fs::path input = root_ / "missing.mat";
+  const ProgramRun result = run({"map", input.string(), "-o", (out_ / "MAP.bt").string(), "--png", (out_ / "MAP.png").string()});
+  expectError(result, 1);
+  EXPECT_NE(result.err.find("missing.mat"), std::string::npos) << result.err;
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
+TEST_F(cliData, TextFileNamedMat) {
+  const fs::path input = root_ / "x.mat";
+  writeFile(input, "not a MATLAB file\n");
+  const ProgramRun result = run({"map", input.string(), "-o", (out_ / "MAP.bt").string(), "--png", (out_ / "MAP.png").string()});
+  expectError(result, 1);
+  EXPECT_NE(result.err.find("x.mat"), std::string::npos) << result.err;
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
+TEST_F(cliData, UnknownInputExtension) {
+  const fs::path input = root_ / "log.xyz";
+  writeFile(input, "1 2 3\n");
+  const ProgramRun result = run({"map", input.string(), "-o", (out_ / "MAP.bt").string(), "--png", (out_ / "MAP.png").string()});
+  expectError(result, 1);
+  EXPECT_NE(result.err.find(".xyz"), std::string::npos) << result.err;
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
+TEST_F(cliData, OutputInMissingDirectory) {
+  SKIP_WITHOUT_TANK_LOG();
+  const fs::path bt = out_ / "no_such_dir" / "MAP.bt";
+  const ProgramRun result = run({"map", kTankLog.string(), "-o", bt.string(), "--png", (out_ / "MAP.png").string(), "-q"});
+  expectError(result, 1);
+  EXPECT_NE(result.err.find(bt.string()), std::string::npos) << result.err;
+  EXPECT_EQ(listDir(out_), Names{}) << "neither the folder nor the PNG may be created";
+}
+
+// ---------------------------------------------------------------------------------------------
+// 5. A failed run leaves existing outputs untouched and no temporary files
+// ---------------------------------------------------------------------------------------------
+
+using cliOutput = CliTest;
+
+const std::string kOldMap = "old map, must survive a failed run\n";
+
+TEST_F(cliOutput, BadInputLeavesExistingMapUntouched) {
+  const fs::path bt = out_ / "MAP.bt";
+  writeFile(bt, kOldMap);
+  const fs::path input = root_ / "x.mat";
+  writeFile(input, "not a MATLAB file\n");
+  expectError(run({"map", input.string(), "-o", bt.string(), "--png", (out_ / "MAP.png").string()}), 1);
+  EXPECT_TRUE(readFile(bt) == kOldMap) << "MAP.bt was replaced (" << fs::file_size(bt) << " bytes)";
+  EXPECT_EQ(listDir(out_), Names{"MAP.bt"});
+}
+
+TEST_F(cliOutput, FailedRenameLeavesNoTemporaryFile) {
+  SKIP_WITHOUT_TANK_LOG();
+  // MAP.bt is a folder: the map is computed and written to a temporary file whose rename fails.
+  const fs::path bt = out_ / "MAP.bt";
+  fs::create_directory(bt);
+  writeFile(bt / "keep.txt", kOldMap);
+  expectError(run({"map", kTankLog.string(), "-o", bt.string(), "-q"}), 1);
+  EXPECT_TRUE(fs::is_directory(bt));
+  EXPECT_EQ(readFile(bt / "keep.txt"), kOldMap);
+  EXPECT_EQ(listDir(out_), Names{"MAP.bt"});
+}
+
+// Disabled: fails today. runMap writes the .bt before the PNGs, so a PNG that cannot be written
+// leaves a new MAP.bt behind (replacing an existing one) while the run reports failure (exit 1).
+// Enable once the CLI validates or stages every output before committing any.
+TEST_F(cliOutput, FailedImageWriteLeavesExistingMapUntouched) {
+  SKIP_WITHOUT_TANK_LOG();
+  const fs::path bt = out_ / "MAP.bt";
+  writeFile(bt, kOldMap);
+  expectError(run({"map", kTankLog.string(), "-o", bt.string(), "--png", (out_ / "no_such_dir" / "MAP.png").string(), "-q"}), 1);
+  EXPECT_TRUE(readFile(bt) == kOldMap) << "MAP.bt was replaced (" << fs::file_size(bt) << " bytes)";
+  EXPECT_EQ(listDir(out_), Names{"MAP.bt"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// 6. Help
+// ---------------------------------------------------------------------------------------------
+
+using cliHelp = CliTest;
+
+TEST_F(cliHelp, HelpPrintsUsageOnStdout) {
+  const ProgramRun result = run({"--help"});
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_EQ(result.err, "");
+  EXPECT_NE(result.out.find("Usage:"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("map"), std::string::npos) << result.out;
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
+TEST_F(cliHelp, MapHelpListsItsOptions) {
+  const ProgramRun result = run({"map", "--help"});
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_EQ(result.err, "");
+  for (const char* option : {"Usage:", "--output", "--png", "--polar-png", "--cartesian-png", "--resolution", "--detector",
+                             "--smoothing", "--ray", "--aggregation", "--self-reflection", "--beam-width", "--quiet"}) {
+    EXPECT_NE(result.out.find(option), std::string::npos) << option << " missing from:\n" << result.out;
+  }
+}
+
+}  // namespace
+}  // namespace sonarmap::test
