@@ -10,6 +10,7 @@
 #include "sonarmap/raycast/dda.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
+#include "sweep_fan.hpp"
 #include "sweep_key_set.hpp"
 
 namespace sonarmap {
@@ -44,6 +45,11 @@ const MapperOptions& validated(const MapperOptions& options) {
 }  // namespace
 
 struct SonarMapper::SweepCells {
+  std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
+  std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
+  std::vector<HitPoint> hit_points;
+  std::vector<std::pair<Key16, std::uint8_t>> hits;   ///< hit cell, intensity
+  Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
   SweepKeySet seen;  ///< cells already updated in this sweep, and the sweep's hit cells
 };
 
@@ -76,68 +82,38 @@ void growBox(Key16& lo, Key16& hi, const Key16& key) {
 bool keyLess(const Key16& a, const Key16& b) { return a.k < b.k; }
 }  // namespace
 
-bool SonarMapper::planBeam(const Eigen::Isometry3d& sonar_to_map, double bearing_rad, double range_m, bool hit,
-                           std::uint8_t intensity) {
-  // The fan has 2^levels + 1 rays, at most one voxel apart at its far end. The two edge rays start
-  // at the sonar; a ray of level k (k ≥ 1, spacing width / 2^k) starts where its coarser
-  // neighbours, width / 2^(k−1) apart, drift a voxel apart — before that they cover its cells.
-  const double width = options_.beam_width_rad;
-  const double voxel_m = options_.resolution_m;
-  int levels = 0;
-  while (width > 0.0 && range_m * width / std::ldexp(1.0, levels) > voxel_m && levels < 16) ++levels;
-  const int rays = width > 0.0 ? (1 << levels) + 1 : 1;
-  const std::size_t first_ray = rays_.size(), first_hit = hits_.size();
-  Key16 lo = box_lo_, hi = box_hi_;
-  for (int j = 0; j < rays; ++j) {
-    const double angle = bearing_rad + (rays == 1 ? 0.0 : width * (static_cast<double>(j) / (rays - 1) - 0.5));
-    const int level = (j == 0 || j == rays - 1) ? 0 : levels - std::countr_zero(static_cast<unsigned>(j));
-    const double start_m = level == 0 ? 0.0 : std::max(0.0, voxel_m * std::ldexp(1.0, level - 1) / width - voxel_m);
-    const Eigen::Vector3d direction(std::cos(angle), std::sin(angle), 0.0);
-    const Eigen::Vector3d end_m = sonar_to_map * Eigen::Vector3d(range_m * direction);
-    const auto end_key = map_.coder().keyOf(end_m);
-    if (!end_key) {
-      rays_.resize(first_ray);
-      hits_.resize(first_hit);
-      return false;
-    }
-    growBox(lo, hi, *end_key);
-    rays_.push_back({sonar_to_map * Eigen::Vector3d(std::min(start_m, range_m) * direction), end_m, hit});
-    if (hit) hits_.emplace_back(*end_key, intensity);
-  }
-  box_lo_ = lo;
-  box_hi_ = hi;
-  return true;
-}
-
 void SonarMapper::integrateFreeCells() {
-  auto visit = [&](const Key16& key) {
-    if (!cells_->seen.insert(key)) return;  // updated already, or a hit cell of this sweep
-    map_.integrate(key, false);
-    ++stats_.free_updates;
-  };
-  // Rays alternate direction (far end first on every other ray), so consecutive updates are
-  // neighbours and the octree's descent starts from a deep common ancestor.
-  bool forward = true;
-  for (const FanRay& ray : rays_) {
-    const Eigen::Vector3d& from = forward ? ray.start_m : ray.end_m;
-    const Eigen::Vector3d& to = forward ? ray.end_m : ray.start_m;
-    if (options_.ray == RayAlgorithm::kDDA) {
-      traverseDDA(map_.coder(), from, to, visit);
-    } else {
-      traverseBresenham(map_.coder(), from, to, visit);
+  cells_->seen.withSet([&](auto& seen) {
+    auto visit = [&](const Key16& key) {
+      if (!insertKey(seen, key)) return;  // updated already, or a hit cell of this sweep
+      map_.integrate(key, false);
+      ++stats_.free_updates;
+    };
+    // Rays alternate direction (far end first on every other ray), so consecutive updates are
+    // neighbours and the octree's descent starts from a deep common ancestor.
+    bool forward = true;
+    for (const FreeRay& ray : cells_->rays) {
+      const Eigen::Vector3d& from = forward ? ray.start_m : ray.end_m;
+      const Eigen::Vector3d& to = forward ? ray.end_m : ray.start_m;
+      if (options_.ray == RayAlgorithm::kDDA) {
+        traverseDDA(map_.coder(), from, to, visit);
+      } else {
+        traverseBresenham(map_.coder(), from, to, visit);
+      }
+      forward = !forward;
     }
-    forward = !forward;
-  }
+  });
 }
 
 void SonarMapper::integrateHits() {
   // One update per hit cell, with the strongest echo that fell into it.
-  std::sort(hits_.begin(), hits_.end(), [](const auto& a, const auto& b) { return keyLess(a.first, b.first); });
-  for (std::size_t i = 0; i < hits_.size();) {
-    std::uint8_t intensity = hits_[i].second;
+  auto& hits = cells_->hits;
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return keyLess(a.first, b.first); });
+  for (std::size_t i = 0; i < hits.size();) {
+    std::uint8_t intensity = hits[i].second;
     std::size_t j = i + 1;
-    for (; j < hits_.size() && hits_[j].first == hits_[i].first; ++j) intensity = std::max(intensity, hits_[j].second);
-    map_.updateNode(hits_[i].first, hitLogOdds(intensity));
+    for (; j < hits.size() && hits[j].first == hits[i].first; ++j) intensity = std::max(intensity, hits[j].second);
+    map_.updateNode(hits[i].first, hitLogOdds(intensity));
     ++stats_.occupied_updates;
     i = j;
   }
@@ -149,31 +125,58 @@ void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<Beam
     throw ValueError("sweep has " + std::to_string(polar.rows()) + " beams but " + std::to_string(detections.size()) +
                      " detections");
   }
-  const auto origin_key = map_.coder().keyOf(sonar_to_map.translation());
-  if (!origin_key) {
-    stats_.out_of_map += detections.size();
-    return;
-  }
-  rays_.clear();
-  hits_.clear();
-  box_lo_ = box_hi_ = *origin_key;
+  SweepCells& cells = *cells_;
+  cells.beams.clear();
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const BeamDetection& detection = detections[row];
     const double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
                                                    : polar.valid_bins[row] * polar.bin_length_m;
-    if (!planBeam(sonar_to_map, polar.bearing_rad[row], range_m, detection.hasObstacle(), detection.intensity)) {
+    const PlannedBeam beam{sonar_to_map, polar.bearing_rad[row], range_m, detection.hasObstacle(), detection.intensity};
+    if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
       continue;
     }
+    cells.beams.push_back(beam);
     ++stats_.beams_used;
     if (detection.hasObstacle()) ++stats_.obstacles;
   }
-  cells_->seen.reset(box_lo_, box_hi_);
-  for (const auto& hit : hits_) cells_->seen.insert(hit.first);  // an obstacle is never also a miss
+  planSweep(cells.beams, options_.beam_width_rad, options_.resolution_m, cells.rays, cells.hit_points);
+  keySweep();
   integrateFreeCells();
   integrateHits();
   if (options_.octree.lazy) map_.updateInnerOccupancy();
   ++stats_.sweeps;
+}
+
+bool SonarMapper::beamInsideMap(const PlannedBeam& beam) const {
+  // The sonar and the wedge's far corners and middle; the map is a box, so the wedge is inside.
+  const double half = 0.5 * options_.beam_width_rad;
+  for (const double offset : {-half, 0.0, half}) {
+    const double angle = beam.bearing_rad + offset;
+    const Eigen::Vector3d end(beam.free_range_m * std::cos(angle), beam.free_range_m * std::sin(angle), 0.0);
+    if (!map_.coder().keyOf(beam.sonar_to_map * end)) return false;
+  }
+  return map_.coder().keyOf(beam.sonar_to_map.translation()).has_value();
+}
+
+void SonarMapper::keySweep() {
+  SweepCells& cells = *cells_;
+  cells.hits.clear();
+  if (cells.beams.empty()) return;
+  cells.box_lo = cells.box_hi = *map_.coder().keyOf(cells.beams.front().sonar_to_map.translation());
+  for (const FreeRay& ray : cells.rays) {
+    for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
+      if (const auto key = map_.coder().keyOf(*point)) growBox(cells.box_lo, cells.box_hi, *key);
+    }
+  }
+  for (const HitPoint& hit : cells.hit_points) {
+    if (const auto key = map_.coder().keyOf(hit.point_m)) {
+      cells.hits.emplace_back(*key, hit.intensity);
+      growBox(cells.box_lo, cells.box_hi, *key);
+    }
+  }
+  cells.seen.reset(cells.box_lo, cells.box_hi);
+  for (const auto& hit : cells.hits) cells.seen.insert(hit.first);  // an obstacle is never also a miss
 }
 
 std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams) {

@@ -20,11 +20,25 @@ class SweepKeySet {
   }
   /// @return true when `key` was not in the set before.
   bool insert(const Key16& key) { return dense_.usable() ? dense_.insert(key) : sparse_.insert(key).second; }
-  bool contains(const Key16& key) const { return dense_.usable() ? dense_.contains(key) : sparse_.contains(key); }
+
+  /// Calls `body(set)` with the concrete set, both offering `insert(key) -> bool`, so hot loops
+  /// are compiled once per kind instead of branching per key.
+  template <class Body>
+  void withSet(Body&& body) {
+    if (dense_.usable()) {
+      body(dense_);
+    } else {
+      body(sparse_);
+    }
+  }
 
  private:
   DenseKeySet<16> dense_;
   absl::flat_hash_set<Key16, KeyHash<16>> sparse_;
 };
+
+/// Uniform insert for the sets SweepKeySet::withSet hands out.
+inline bool insertKey(DenseKeySet<16>& set, const Key16& key) { return set.insert(key); }
+inline bool insertKey(absl::flat_hash_set<Key16, KeyHash<16>>& set, const Key16& key) { return set.insert(key).second; }
 
 }  // namespace sonarmap

@@ -26,6 +26,8 @@
 
 namespace sonarmap {
 
+struct PlannedBeam;  // src/mapping/sweep_fan.hpp
+
 /// Which voxel traversal turns a beam into cells (paper §6).
 enum class RayAlgorithm {
   kDDA,        ///< Amanatides & Woo (1987): face-connected, every crossed voxel (default)
@@ -52,11 +54,10 @@ struct MapperOptions {
   SmoothingOptions smoothing{};          ///< polar-image smoothing (paper §8.1), Gaussian by default
   DetectorOptions detector{};            ///< first-obstacle detection (paper §8.2, §9)
   RayAlgorithm ray = RayAlgorithm::kDDA;
-  /// Horizontal beam width in radians (Tritech Micron: 3°). A beam is cast as a fan of rays over
-  /// this width, spaced at most one voxel apart at its far end (finer rays start where the coarser
-  /// ones drift a voxel apart), so free space is the beam's wedge
-  /// and the obstacle its arc at the detected range — the MSIS inverse sensor model. 0 casts one
-  /// ray along the bearing (the paper's §6).
+  /// Horizontal beam width in radians (Tritech Micron: 3°). Each beam clears its wedge up to the
+  /// detected range and its obstacle is the arc at that range across the width — the MSIS inverse
+  /// sensor model. The sweep's wedges are cast together as one fan of rays at most one voxel apart
+  /// (src/mapping/sweep_fan.hpp). 0 casts one ray along each bearing (the paper's §6).
   double beam_width_rad = 3.0 * 3.14159265358979323846 / 180.0;
   /// Intensity that earns the full hit log-odds; a weaker echo earns proportionally less
   /// (log-odds × intensity / full_confidence_intensity, capped at 1): the paper's "confidence
@@ -108,15 +109,10 @@ class SonarMapper {
 
  private:
   float hitLogOdds(std::uint8_t intensity) const;
-  /// One ray of a beam's fan, planned before any cell is updated.
-  struct FanRay {
-    Eigen::Vector3d start_m;  ///< map frame; the sonar, or where finer rays of the fan begin
-    Eigen::Vector3d end_m;
-    bool hit;
-  };
-  /// Adds the fan of one beam to rays_ and hits_. False (nothing added) if it leaves the map.
-  bool planBeam(const Eigen::Isometry3d& sonar_to_map, double bearing_rad, double range_m, bool hit,
-                std::uint8_t intensity);
+  /// True when the sonar and the beam's wedge lie inside the map.
+  bool beamInsideMap(const PlannedBeam& beam) const;
+  /// Turns the sweep's plan into keys: hit cells, the key box, the seen set primed with the hits.
+  void keySweep();
   /// Updates every cell the planned rays cross once, free, unless it is a hit cell of the sweep.
   void integrateFreeCells();
   void integrateHits();
@@ -126,10 +122,7 @@ class SonarMapper {
   MapperOptions options_;
   OcTree16 map_;
   MappingStats stats_;
-  std::vector<FanRay> rays_;
-  std::vector<std::pair<Key16, std::uint8_t>> hits_;  ///< hit cell, intensity
-  Key16 box_lo_{}, box_hi_{};                         ///< keys the sweep's rays stay within
-  std::unique_ptr<SweepCells> cells_;
+  std::unique_ptr<SweepCells> cells_;  // the sweep's plan, its hit cells and its seen set
 };
 
 /// Progress callback: (sweeps done, sweeps in total).
