@@ -10,7 +10,7 @@
 #include "sonarmap/raycast/dda.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
-#include "sweep_fan.hpp"
+#include "sonarmap/mapping/sweep_fan.hpp"
 #include "sweep_key_set.hpp"
 
 namespace sonarmap {

@@ -1,4 +1,4 @@
-#include "sweep_fan.hpp"
+#include "sonarmap/mapping/sweep_fan.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -26,7 +26,7 @@
 
 namespace sonarmap {
 
-struct PlannedBeam;  // src/mapping/sweep_fan.hpp
+struct PlannedBeam;  // sonarmap/mapping/sweep_fan.hpp
 
 /// Which voxel traversal turns a beam into cells (paper §6).
 enum class RayAlgorithm {

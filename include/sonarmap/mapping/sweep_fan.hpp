@@ -1,0 +1,47 @@
+#pragma once
+//// @file sweep_fan.hpp
+/// Planning the rays that clear a sweep's free space (the mapper's inverse sensor model).
+///
+/// A beam of horizontal width w clears the wedge from the sonar to its free range (its obstacle,
+/// or its full range). The free space of a sweep is the union of its beams' wedges: at each angle,
+/// the longest free range among the beams that cover that angle. The planner samples that union
+/// on one hierarchical grid of 2^L angles per turn, fine enough for rays to be at most one voxel
+/// apart at the longest range: a grid ray of level k starts only where its two coarser neighbours
+/// drift a voxel apart, or where the shorter of them ends — before that they cover its cells.
+/// Overlapping beams (3° wide every 1.8°) are thus cast once, not twice, and neighbouring rays are
+/// neighbours in memory. With w = 0 every beam is one ray from the sonar (paper §6).
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace sonarmap {
+
+//// One beam to integrate, in the sonar frame and with the sonar's pose at its time.
+struct PlannedBeam {
+  Eigen::Isometry3d sonar_to_map;
+  double bearing_rad;   ///< sonar frame, [0, 2π)
+  double free_range_m;  ///< range of the obstacle, or the beam's full range without one
+  bool hit;             ///< the beam ends in an obstacle
+  std::uint8_t intensity;
+};
+
+//// A segment to traverse, map frame. Every cell it crosses is free unless it is a hit cell.
+struct FreeRay {
+  Eigen::Vector3d start_m;
+  Eigen::Vector3d end_m;
+};
+
+//// A point of an obstacle's arc, map frame, and the echo's intensity.
+struct HitPoint {
+  Eigen::Vector3d point_m;
+  std::uint8_t intensity;
+};
+
+//// Plans the free rays (in grid-angle order) and hit points of one sweep's beams.
+//// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
+void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, std::vector<FreeRay>& rays,
+               std::vector<HitPoint>& hits);
+
+}  // namespace sonarmap
