@@ -1,5 +1,5 @@
 #pragma once
-//// @file sweep_fan.hpp
+/// @file sweep_fan.hpp
 /// Planning the rays that clear a sweep's free space (the mapper's inverse sensor model).
 ///
 /// A beam of horizontal width w clears the wedge from the sonar to its free range (its obstacle,
@@ -39,7 +39,8 @@ struct HitPoint {
   std::uint8_t intensity;
 };
 
-//// Plans the free rays (in grid-angle order) and hit points of one sweep's beams.
+//// Plans the free rays (in grid-angle order) and hit points of one sweep's beams, map frame.
+/// `rays` and `hits` are cleared first. Nothing is thrown.
 //// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
 void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, std::vector<FreeRay>& rays,
                std::vector<HitPoint>& hits);
