@@ -18,7 +18,7 @@
 
 namespace sonarmap {
 
-//// One beam to integrate, in the sonar frame and with the sonar's pose at its time.
+/// One beam to integrate, in the sonar frame and with the sonar's pose at its time.
 struct PlannedBeam {
   Eigen::Isometry3d sonar_to_map;
   double bearing_rad;   ///< sonar frame, [0, 2π)
@@ -27,21 +27,21 @@ struct PlannedBeam {
   std::uint8_t intensity;
 };
 
-//// A segment to traverse, map frame. Every cell it crosses is free unless it is a hit cell.
+/// A segment to traverse, map frame. Every cell it crosses is free unless it is a hit cell.
 struct FreeRay {
   Eigen::Vector3d start_m;
   Eigen::Vector3d end_m;
 };
 
-//// A point of an obstacle's arc, map frame, and the echo's intensity.
+/// A point of an obstacle's arc, map frame, and the echo's intensity.
 struct HitPoint {
   Eigen::Vector3d point_m;
   std::uint8_t intensity;
 };
 
-//// Plans the free rays (in grid-angle order) and hit points of one sweep's beams, map frame.
+/// Plans the free rays (in grid-angle order) and hit points of one sweep's beams, map frame.
 /// `rays` and `hits` are cleared first. Nothing is thrown.
-//// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
+/// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
 void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, std::vector<FreeRay>& rays,
                std::vector<HitPoint>& hits);
 
