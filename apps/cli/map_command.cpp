@@ -29,7 +29,8 @@ CLI::App* addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--ray", args.ray, "dda | bresenham")->capture_default_str();
   cmd->add_option("--aggregation", args.aggregation, "Inner nodes: max | mean")->capture_default_str();
   cmd->add_option("--self-reflection", args.self_reflection_m, "Ignore echoes nearer than this (m)")->capture_default_str();
-  cmd->add_option("--beam-width", args.beam_width_deg, "Horizontal beam width for the Cartesian image (deg)")
+  cmd->add_option("--beam-width", args.beam_width_deg,
+                  "Horizontal beam width in degrees: each beam clears its wedge; 0 = one ray per beam (the paper)")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd->add_flag("--tank-report", args.tank_report,
@@ -51,9 +52,10 @@ MapperOptions toMapperOptions(const MapArgs& args) {
     throw ValueError("unknown aggregation '" + args.aggregation + "', expected max or mean");
   }
   options.self_reflection_range_m = args.self_reflection_m;
-  if (!(args.beam_width_deg > 0.0 && args.beam_width_deg < 180.0)) {
-    throw ValueError("beam width must be within (0, 180) degrees");
+  if (!(args.beam_width_deg >= 0.0 && args.beam_width_deg < 180.0)) {
+    throw ValueError("beam width must be within [0, 180) degrees");
   }
+  options.beam_width_rad = args.beam_width_deg * std::numbers::pi / 180.0;
   options.validate();
   return options;
 }
@@ -80,7 +82,9 @@ void writeOutputs(const MapArgs& args, const SonarLog& log, const OcTree16& map,
     const PolarImage polar = lastFullSweep(log);
     if (!args.polar_png.empty()) outputs.stageBytes(args.polar_png, encodePng(polar.intensities));
     if (!args.cartesian_png.empty()) {
-      const cv::Mat cartesian = makeCartesianImage(polar, pixel_m, args.beam_width_deg * std::numbers::pi / 180.0);
+      // With single rays (width 0) the image still spreads each beam over the Micron's 3°.
+      const double width_deg = args.beam_width_deg > 0.0 ? args.beam_width_deg : 3.0;
+      const cv::Mat cartesian = makeCartesianImage(polar, pixel_m, width_deg * std::numbers::pi / 180.0);
       outputs.stageBytes(args.cartesian_png, encodePng(cartesian));
     }
   }

@@ -212,7 +212,8 @@ INSTANTIATE_TEST_SUITE_P(
                       UsageCase{"UnknownSmoothing", mapWith({"--smoothing", "bogus"})},
                       UsageCase{"UnknownRay", mapWith({"--ray", "bogus"})},
                       UsageCase{"UnknownAggregation", mapWith({"--aggregation", "bogus"})},
-                      UsageCase{"ZeroBeamWidth", mapWith({"--beam-width", "0"})},
+                      UsageCase{"NegativeBeamWidth", mapWith({"--beam-width", "-1"})},
+                      UsageCase{"HalfTurnBeamWidth", mapWith({"--beam-width", "180"})},
                       UsageCase{"NoSubcommand", {}},
                       UsageCase{"UnknownSubcommand", {"mapp", "{IN}", "-o", "{OUT}/MAP.bt"}}),
     [](const ::testing::TestParamInfo<UsageCase>& info) { return std::string(info.param.name); });
