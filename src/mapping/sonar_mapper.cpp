@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <future>
 #include <string>
 
 
@@ -11,7 +12,7 @@
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
-#include "sweep_key_set.hpp"
+#include "sweep_cells.hpp"
 
 namespace sonarmap {
 
@@ -44,17 +45,17 @@ const MapperOptions& validated(const MapperOptions& options) {
 }
 }  // namespace
 
-struct SonarMapper::SweepCells {
+struct SonarMapper::SweepWork {
   std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
   std::vector<std::pair<Key16, std::uint8_t>> hits;   ///< hit cell, intensity
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
-  SweepKeySet seen;  ///< cells already updated in this sweep, and the sweep's hit cells
+  SweepCells cells;  ///< cells the sweep's rays cross, and its hit cells, each once
 };
 
 SonarMapper::SonarMapper(const MapperOptions& options)
-    : options_(validated(options)), map_(options.resolution_m, options.octree), cells_(std::make_unique<SweepCells>()) {}
+    : options_(validated(options)), map_(options.resolution_m, options.octree), work_(std::make_unique<SweepWork>()) {}
 SonarMapper::SonarMapper(SonarMapper&&) noexcept = default;
 SonarMapper& SonarMapper::operator=(SonarMapper&&) noexcept = default;
 SonarMapper::~SonarMapper() = default;
@@ -64,10 +65,14 @@ float SonarMapper::hitLogOdds(std::uint8_t intensity) const {
   return static_cast<float>(map_.model().hit * weight);
 }
 
-std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen::Isometry3d& sonar_to_map) {
+std::vector<BeamDetection> SonarMapper::detect(PolarImage& polar) const {
   removeSelfReflection(polar, options_.self_reflection_range_m);
   smooth(polar, options_.smoothing);
-  std::vector<BeamDetection> detections = detectObstacles(polar, options_.detector);
+  return detectObstacles(polar, options_.detector);
+}
+
+std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen::Isometry3d& sonar_to_map) {
+  std::vector<BeamDetection> detections = detect(polar);
   integrateSweep(polar, detections, sonar_to_map);
   return detections;
 }
@@ -83,31 +88,25 @@ bool keyLess(const Key16& a, const Key16& b) { return a.k < b.k; }
 }  // namespace
 
 void SonarMapper::integrateFreeCells() {
-  cells_->seen.withSet([&](auto& seen) {
-    auto visit = [&](const Key16& key) {
-      if (!insertKey(seen, key)) return;  // updated already, or a hit cell of this sweep
-      map_.integrate(key, false);
-      ++stats_.free_updates;
-    };
-    // Rays alternate direction (far end first on every other ray), so consecutive updates are
-    // neighbours and the octree's descent starts from a deep common ancestor.
-    bool forward = true;
-    for (const FreeRay& ray : cells_->rays) {
-      const Eigen::Vector3d& from = forward ? ray.start_m : ray.end_m;
-      const Eigen::Vector3d& to = forward ? ray.end_m : ray.start_m;
+  // First mark every cell the rays cross, then update each once, in memory order.
+  work_->cells.marking([&](auto mark) {
+    for (const FreeRay& ray : work_->rays) {
       if (options_.ray == RayAlgorithm::kDDA) {
-        traverseDDA(map_.coder(), from, to, visit);
+        traverseDDA(map_.coder(), ray.start_m, ray.end_m, mark);
       } else {
-        traverseBresenham(map_.coder(), from, to, visit);
+        traverseBresenham(map_.coder(), ray.start_m, ray.end_m, mark);
       }
-      forward = !forward;
     }
+  });
+  work_->cells.forEachFree([&](const Key16& key) {
+    map_.integrate(key, false);
+    ++stats_.free_updates;
   });
 }
 
 void SonarMapper::integrateHits() {
   // One update per hit cell, with the strongest echo that fell into it.
-  auto& hits = cells_->hits;
+  auto& hits = work_->hits;
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return keyLess(a.first, b.first); });
   for (std::size_t i = 0; i < hits.size();) {
     std::uint8_t intensity = hits[i].second;
@@ -125,8 +124,8 @@ void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<Beam
     throw ValueError("sweep has " + std::to_string(polar.rows()) + " beams but " + std::to_string(detections.size()) +
                      " detections");
   }
-  SweepCells& cells = *cells_;
-  cells.beams.clear();
+  SweepWork& work = *work_;
+  work.beams.clear();
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const BeamDetection& detection = detections[row];
     const double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
@@ -136,11 +135,11 @@ void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<Beam
       ++stats_.out_of_map;
       continue;
     }
-    cells.beams.push_back(beam);
+    work.beams.push_back(beam);
     ++stats_.beams_used;
     if (detection.hasObstacle()) ++stats_.obstacles;
   }
-  planSweep(cells.beams, options_.beam_width_rad, options_.resolution_m, cells.rays, cells.hit_points);
+  planSweep(work.beams, options_.beam_width_rad, options_.resolution_m, work.rays, work.hit_points);
   keySweep();
   integrateFreeCells();
   integrateHits();
@@ -160,23 +159,23 @@ bool SonarMapper::beamInsideMap(const PlannedBeam& beam) const {
 }
 
 void SonarMapper::keySweep() {
-  SweepCells& cells = *cells_;
-  cells.hits.clear();
-  if (cells.beams.empty()) return;
-  cells.box_lo = cells.box_hi = *map_.coder().keyOf(cells.beams.front().sonar_to_map.translation());
-  for (const FreeRay& ray : cells.rays) {
+  SweepWork& work = *work_;
+  work.hits.clear();
+  if (work.beams.empty()) return;
+  work.box_lo = work.box_hi = *map_.coder().keyOf(work.beams.front().sonar_to_map.translation());
+  for (const FreeRay& ray : work.rays) {
     for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
-      if (const auto key = map_.coder().keyOf(*point)) growBox(cells.box_lo, cells.box_hi, *key);
+      if (const auto key = map_.coder().keyOf(*point)) growBox(work.box_lo, work.box_hi, *key);
     }
   }
-  for (const HitPoint& hit : cells.hit_points) {
+  for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      cells.hits.emplace_back(*key, hit.intensity);
-      growBox(cells.box_lo, cells.box_hi, *key);
+      work.hits.emplace_back(*key, hit.intensity);
+      growBox(work.box_lo, work.box_hi, *key);
     }
   }
-  cells.seen.reset(cells.box_lo, cells.box_hi);
-  for (const auto& hit : cells.hits) cells.seen.insert(hit.first);  // an obstacle is never also a miss
+  work.cells.reset(work.box_lo, work.box_hi);
+  for (const auto& hit : work.hits) work.cells.addHit(hit.first);  // an obstacle is never also a miss
 }
 
 std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams) {
@@ -191,14 +190,31 @@ std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::si
   return merged;
 }
 
+namespace {
+/// A sweep cleaned and searched, ready to integrate.
+struct DetectedSweep {
+  PolarImage polar;
+  std::vector<BeamDetection> detections;
+};
+}  // namespace
+
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
   SonarMapper mapper(options);
   mapper.stats().beams_skipped = log.skipped_beams;
   const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
   const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), min_beams);
+  auto detectSweep = [&](std::size_t i) {
+    DetectedSweep sweep{makePolarImage(log.beams, sweeps[i].first, sweeps[i].last_exclusive), {}};
+    sweep.detections = mapper.detect(sweep.polar);
+    return sweep;
+  };
+  const auto launch = options.pipeline_detection ? std::launch::async : std::launch::deferred;
+  std::future<DetectedSweep> next;
+  if (!sweeps.empty()) next = std::async(launch, detectSweep, 0);
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
-    PolarImage polar = makePolarImage(log.beams, sweeps[i].first, sweeps[i].last_exclusive);
-    mapper.mapSweep(polar);
+    DetectedSweep sweep = next.get();  // rethrows what the detection threw
+    if (i + 1 < sweeps.size()) next = std::async(launch, detectSweep, i + 1);
+    mapper.integrateSweep(sweep.polar, sweep.detections);
     if (progress) progress(i + 1, sweeps.size());
   }
   return mapper;

@@ -4,8 +4,10 @@
 /// cells of a sweep or scan far faster than a hash set when the box is small (a horizontal 5 m
 /// sonar sweep at 2 cm is 500 × 500 × 1 voxels, 31 KiB).
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sonarmap/core/key.hpp"
@@ -52,6 +54,23 @@ class DenseKeySet {
     const bool fresh = (bits_[i >> 6] & mask) == 0;
     bits_[i >> 6] |= mask;
     return fresh;
+  }
+
+  /// Calls `visit(const KeyType&)` for every key in the set, x fastest, then y, then z: neighbours
+  /// in space follow each other, which keeps tree descents short.
+  template <class Visitor>
+  void forEach(Visitor&& visit) const {
+    for (std::size_t word = 0; word < bits_.size(); ++word) {
+      for (std::uint64_t bits = bits_[word]; bits != 0; bits &= bits - 1) {
+        std::size_t i = word * 64 + static_cast<std::size_t>(std::countr_zero(bits));
+        KeyType key;
+        for (int axis = 0; axis < 3; ++axis) {
+          key[axis] = static_cast<typename KeyType::Index>(lo_[axis] + i % extent_[axis]);
+          i /= extent_[axis];
+        }
+        visit(std::as_const(key));
+      }
+    }
   }
 
   /// True when `key` (in the box) is in the set.

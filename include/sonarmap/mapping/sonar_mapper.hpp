@@ -65,6 +65,10 @@ struct MapperOptions {
   /// data (up to 191 after smoothing) full weight.
   double full_confidence_intensity = 160.0;
 
+  /// mapSonarLog: clean and detect sweep i+1 on a second thread while sweep i is integrated. The
+  /// map is the same either way (detection does not depend on the map).
+  bool pipeline_detection = true;
+
   /// @throws ValueError for a non-positive resolution, self-reflection range < 0, a beam width
   ///         outside [0, π),
   ///         an intensity scale outside 1…255, or invalid occupancy parameters.
@@ -90,6 +94,10 @@ class SonarMapper {
   SonarMapper(SonarMapper&&) noexcept;
   SonarMapper& operator=(SonarMapper&&) noexcept;
   ~SonarMapper();
+
+  /// Cleans and searches the polar image of one sweep: self-reflection removal and smoothing in
+  /// place, then first-obstacle detection (one per row). Thread-safe: touches no mapper state.
+  std::vector<BeamDetection> detect(PolarImage& polar) const;
 
   /// Cleans and searches the polar image of one sweep (self-reflection removal, smoothing,
   /// detection) and integrates it. `polar` is modified in place: afterwards it holds the image
@@ -117,12 +125,12 @@ class SonarMapper {
   void integrateFreeCells();
   void integrateHits();
 
-  struct SweepCells;  // the sweep's free and hit cells, reused from sweep to sweep
+  struct SweepWork;  // the sweep's plan and cells, reused from sweep to sweep
 
   MapperOptions options_;
   OcTree16 map_;
   MappingStats stats_;
-  std::unique_ptr<SweepCells> cells_;  // the sweep's plan, its hit cells and its seen set
+  std::unique_ptr<SweepWork> work_;
 };
 
 /// Progress callback: (sweeps done, sweeps in total).
