@@ -156,3 +156,40 @@ TEST(mappingSweeps, ShortFragmentsJoinTheirNeighbour) {
 
 }  // namespace
 }  // namespace sonarmap
+
+namespace sonarmap {
+namespace {
+
+TEST(mappingSonarMapper, MapSweepCleansDetectsAndIntegrates) {
+  // A sweep as it arrives: walls whose range changes with bearing (2.0–3.0 m: a room, not a ring,
+  // which the detector's per-range background would remove) behind a bright self-reflection band.
+  PolarImage polar = makeSweep(100, 200);
+  polar.intensities.colRange(0, 10).setTo(250);  // 0–0.2 m: the vehicle's own echo
+  std::vector<double> wall_m;
+  for (int row = 0; row < 100; ++row) {
+    wall_m.push_back(2.0 + std::abs(std::sin(2.0 * polar.bearing_rad[static_cast<std::size_t>(row)])));
+    const int bin = static_cast<int>(wall_m.back() / kBin);
+    polar.intensities.row(row).colRange(bin, bin + 15).setTo(200);
+  }
+  SonarMapper mapper;
+  const std::vector<BeamDetection> detections = mapper.mapSweep(polar);
+  ASSERT_EQ(detections.size(), 100U);
+  for (std::size_t row = 0; row < detections.size(); ++row) {
+    ASSERT_TRUE(detections[row].hasObstacle()) << "beam " << row;
+    // The 11 × 11 Gaussian smooths across ±5 beams: the detection lies between the nearest wall
+    // of those neighbours and this beam's own wall, give or take the blur along the beam
+    // (σ 2.3 bins: the rise can move by about 2σ, so 5 bins of slack).
+    double nearest_m = wall_m[row];
+    for (std::size_t k = 0; k <= 10; ++k) nearest_m = std::min(nearest_m, wall_m[(row + 95 + k) % 100]);
+    const double detected_m = detections[row].obstacle_bin * kBin;
+    EXPECT_GE(detected_m, nearest_m - 5 * kBin) << "beam " << row;
+    EXPECT_LE(detected_m, wall_m[row] + 5 * kBin) << "beam " << row;
+  }
+  EXPECT_EQ(polar.intensities.at<unsigned char>(0, 2), 0);  // self-reflection removed in place
+  EXPECT_EQ(at(mapper, 1.5, 0.0), Occupancy::kFree);
+  EXPECT_EQ(mapper.stats().sweeps, 1U);
+  EXPECT_EQ(mapper.stats().obstacles, 100U);
+}
+
+}  // namespace
+}  // namespace sonarmap

@@ -75,9 +75,6 @@ class KeyCoder {
     return {centerOf(key[0]), centerOf(key[1]), centerOf(key[2])};
   }
 
-  /// Lower corner in metres of the voxel with key index `index`.
-  double lowerCornerOf(Index index) const { return cellOf(index) * resolution_m_; }
-
   /// Signed voxel count from the origin, `index − 2^(Depth−1)`, computed in integers first.
   static double cellOf(Index index) {
     const Index half = Index{1} << (Depth - 1);

@@ -96,7 +96,6 @@ class NodePool {
   /// Bytes of the blocks in use plus the root's block: the map's own size.
   std::size_t bytesInUse() const { return (in_use_ + 1) * sizeof(Block); }
 
-  void reserve(std::size_t blocks) { blocks_.reserve(blocks); }
 
  private:
   std::vector<Block> blocks_;

@@ -19,11 +19,6 @@ struct Beam {
   double bearing_rad = 0.0;   ///< bearing in the sonar frame, radians in [0, 2π)
   double bin_length_m = 0.0;  ///< length of one bin along the beam, metres (> 0)
   std::vector<std::uint8_t> intensities;  ///< echo intensity per bin, 0…255, bin 0 nearest
-
-  /// Range in metres to the centre of bin `bin`.
-  double rangeOfBin(std::size_t bin) const { return (static_cast<double>(bin) + 0.5) * bin_length_m; }
-  /// Range in metres covered by all bins.
-  double maxRange_m() const { return static_cast<double>(intensities.size()) * bin_length_m; }
 };
 
 /// Beams read from a file, in recording order, with the count of beams the reader rejected.
