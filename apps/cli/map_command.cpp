@@ -1,6 +1,7 @@
 #include "map_command.hpp"
 
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <numbers>
 
@@ -16,7 +17,7 @@
 
 namespace sonarmap::cli {
 
-CLI::App* addMapCommand(CLI::App& app, MapArgs& args) {
+Command addMapCommand(CLI::App& app, MapArgs& args) {
   CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat) into an occupancy octree (.bt)");
   cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat")->required();
   cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
@@ -35,7 +36,8 @@ CLI::App* addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd->add_flag("--tank-report", args.tank_report,
                 "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
-  return cmd;
+  auto options = std::make_shared<MapperOptions>();
+  return {cmd, [&args, options] { *options = toMapperOptions(args); }, [&args, options] { runMap(args, *options); }};
 }
 
 MapperOptions toMapperOptions(const MapArgs& args) {

@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "command.hpp"
+
 #include "sonarmap/mapping/sonar_mapper.hpp"
 
 namespace sonarmap::cli {
@@ -27,8 +29,8 @@ struct MapArgs {
   bool tank_report = false;
 };
 
-/// Adds the `map` subcommand, whose options fill `args`.
-CLI::App* addMapCommand(CLI::App& app, MapArgs& args);
+/// Adds the `map` subcommand to `app`; its options fill `args`.
+Command addMapCommand(CLI::App& app, MapArgs& args);
 
 /// Turns the arguments into mapper options. @throws ValueError for a bad name or value (usage).
 MapperOptions toMapperOptions(const MapArgs& args);
