@@ -25,6 +25,7 @@ OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line,
   }
   OctomapHeader header;
   bool has_id = false, has_size = false, has_res = false;
+  std::string res_line;
   while (std::getline(in, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
@@ -34,6 +35,11 @@ OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line,
     if (token == "data") {
       if (!has_id || !has_res) throw FileError(source + ": header ends at 'data' without 'id' and 'res'");
       if (!has_size) throw FileError(source + ": header has no 'size' line");
+      // Checked only once the header is complete: a file cut inside "res 0.1" is truncated, not
+      // a zero resolution.
+      if (!std::isfinite(header.resolution_m) || header.resolution_m <= 0.0) {
+        throw ValueError(source + ": resolution must be finite and > 0, got '" + res_line + "'");
+      }
       return header;
     }
     if (token == "id") {
@@ -45,10 +51,8 @@ OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line,
       header.size = static_cast<std::size_t>(size);
     } else if (token == "res") {
       has_res = static_cast<bool>(tokens >> header.resolution_m);
+      res_line = line;
       if (!has_res) throw FileError(source + ": 'res' must be a number, got '" + line + "'");
-      if (!std::isfinite(header.resolution_m) || header.resolution_m <= 0.0) {
-        throw ValueError(source + ": resolution must be finite and > 0, got '" + line + "'");
-      }
     } else {
       throw FileError(source + ": unknown header line '" + line + "', expected id, size, res or data");
     }

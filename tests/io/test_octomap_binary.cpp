@@ -40,7 +40,7 @@ OcTree16 sampleTree() {
 
 octomap::OcTreeKey toOctomap(const Key16& key) { return octomap::OcTreeKey(key[0], key[1], key[2]); }
 
-TEST(OctomapBinary, OctoMapReadsOurFileAndFindsOurLeaves) {
+TEST(ioOctomapBinary, OctoMapReadsOurFileAndFindsOurLeaves) {
   const OcTree16 tree = sampleTree();
   const fs::path path = tempDir() / "ours.bt";
   writeBinaryFile(tree, path.string());
@@ -63,7 +63,7 @@ TEST(OctomapBinary, OctoMapReadsOurFileAndFindsOurLeaves) {
   EXPECT_EQ(theirs.getNumLeafNodes(), leaves);
 }
 
-TEST(OctomapBinary, WeReadOctoMapsFile) {
+TEST(ioOctomapBinary, WeReadOctoMapsFile) {
   octomap::OcTree theirs(0.05);
   for (int i = -20; i < 20; ++i) {
     theirs.updateNode(octomap::point3d(0.05f * i, 0.3f, 0.0f), true);
@@ -86,7 +86,7 @@ TEST(OctomapBinary, WeReadOctoMapsFile) {
   EXPECT_GT(checked, 20U);
 }
 
-TEST(OctomapBinary, RoundTripKeepsLeavesAndDoesNotChangeTheTree) {
+TEST(ioOctomapBinary, RoundTripKeepsLeavesAndDoesNotChangeTheTree) {
   const OcTree16 tree = sampleTree();
   const NodeCounts before = tree.counts();
   std::stringstream stream;
@@ -102,7 +102,7 @@ TEST(OctomapBinary, RoundTripKeepsLeavesAndDoesNotChangeTheTree) {
   });
 }
 
-TEST(OctomapBinary, HeaderHasOctoMapsExactLines) {
+TEST(ioOctomapBinary, HeaderHasOctoMapsExactLines) {
   OcTree16 tree(0.02);
   tree.integrate(*tree.coder().keyOf({0.1, 0.1, 0.0}), true);
   std::stringstream stream;
@@ -113,7 +113,7 @@ TEST(OctomapBinary, HeaderHasOctoMapsExactLines) {
   EXPECT_EQ(text.size() - (text.find("data\n") + 5), 2U * 16U);  // 16 inner nodes, 2 bytes each
 }
 
-TEST(OctomapBinary, MalformedFilesThrowFileError) {
+TEST(ioOctomapBinary, MalformedFilesThrowFileError) {
   const OcTree16 tree = sampleTree();
   std::stringstream good;
   writeBinary(tree, good);
@@ -135,7 +135,7 @@ TEST(OctomapBinary, MalformedFilesThrowFileError) {
   EXPECT_THROW(readBinaryFile((tempDir() / "missing.bt").string()), FileError);
 }
 
-TEST(AtomicFile, FailedWriteLeavesExistingFileUntouched) {
+TEST(ioAtomicFile, FailedWriteLeavesExistingFileUntouched) {
   const fs::path dir = tempDir() / "atomic";
   fs::create_directories(dir);
   const fs::path path = dir / "keep.bt";

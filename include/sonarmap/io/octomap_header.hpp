@@ -28,7 +28,8 @@ void writeOctomapHeader(std::ostream& out, const std::string& first_line, const 
 /// @param source file name for messages.
 /// @throws FileError when the first line differs, a line is unknown, a value does not parse,
 ///         `id`/`res` is missing, or the stream ends before `data`.
-/// @throws ValueError when the resolution is not finite and positive.
+/// @throws ValueError when the resolution is not finite and positive (checked once the header is
+///         complete, so a header cut short inside the `res` line is a FileError).
 OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line, const std::string& source);
 
 }  // namespace sonarmap

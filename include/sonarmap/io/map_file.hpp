@@ -1,0 +1,32 @@
+#pragma once
+/// @file map_file.hpp
+/// Map files chosen by their extension: `.bt` (OctoMap binary, maximum likelihood;
+/// octomap_binary.hpp) or `.ot` (OctoMap full tree, exact log-odds; octomap_full.hpp).
+/// The extension is compared without regard to case.
+
+#include <string>
+
+#include "sonarmap/octree/occupancy_octree.hpp"
+
+namespace sonarmap {
+
+enum class MapFormat {
+  kBinary,  ///< `.bt`
+  kFull,    ///< `.ot`
+};
+
+/// Format of a map file named `path`, from its extension.
+/// @throws FileError when the extension is neither `.bt` nor `.ot`.
+MapFormat mapFormatOf(const std::string& path);
+
+/// Writes `tree` to `path` atomically in the format its extension names. The tree is not modified.
+/// @throws FileError on an unknown extension or when the file cannot be written (an existing
+///         file is then left untouched).
+void writeMapFile(const OcTree16& tree, const std::string& path);
+
+/// Reads the map file `path` in the format its extension names, with `options`.
+/// @throws FileError on an unknown extension, and as readBinaryFile / readFullFile.
+/// @throws ValueError on a resolution that is not finite and positive.
+OcTree16 readMapFile(const std::string& path, const OctreeOptions& options = {});
+
+}  // namespace sonarmap

@@ -1,0 +1,58 @@
+#pragma once
+/// @file scan_graph.hpp
+/// OctoMap's binary scan graph (`.graph`, OctoMap 1.9 `ScanGraph::readBinary/writeBinary`;
+/// layout in `../shared/docs/formats.md`): 3D scans, each a point cloud in the sensor frame with
+/// the sensor's pose in the world, plus edges (pose constraints between scans).
+///
+/// Layout, little-endian, no header:
+/// ```
+/// uint32 node_count
+/// node_count ×  uint32 point_count, point_count × (int32 3, float64 x y z),
+///               pose = int32 3, float64 tx ty tz, int32 4, float64 qw qx qy qz,  uint32 id
+/// uint32 edge_count
+/// edge_count ×  uint32 first_id, uint32 second_id, pose, float64 weight
+/// ```
+/// Only the scans are returned, in file order; node ids and edges are validated and dropped.
+
+#include <istream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "sonarmap/core/point_cloud.hpp"
+
+namespace sonarmap {
+
+/// Largest deviation of a stored quaternion's norm from 1 that is accepted (and normalised away).
+/// OctoMap keeps quaternions as float32, so its files deviate by about 1e-7.
+inline constexpr double kScanGraphQuaternionTolerance = 1e-3;
+
+/// Reads every scan of a `.graph` file: points in metres in the sensor frame (`Scan::points_m`)
+/// and the sensor pose in the world (`Scan::sensor_to_world`: rotation from the quaternion,
+/// normalised, then the translation in metres), in the file's node order.
+/// Every count is checked against the bytes left before anything is allocated, so a corrupt
+/// count cannot make the reader allocate more than the file's size.
+/// @throws FileError (naming the file, the byte offset and what was expected there) when the file
+///         cannot be opened, ends early, a size marker is not 3 (vectors) or 4 (quaternions), a
+///         number is NaN or infinite, a quaternion's norm is not within
+///         kScanGraphQuaternionTolerance of 1 (a zero quaternion included), an edge names a node
+///         id that is not in the file, or bytes follow the last edge.
+std::vector<Scan> readScanGraph(const std::string& path);
+
+/// Reads a `.graph` from the rest of `in` (to its end). @param source name used in messages.
+/// @throws FileError as readScanGraph(path).
+std::vector<Scan> readScanGraph(std::istream& in, const std::string& source = "<stream>");
+
+/// Writes `scans` as a `.graph` that OctoMap's `ScanGraph::readBinary` reads: node ids 0 … n−1 in
+/// order, no edges. The rotation is written as the unit quaternion of
+/// `sensor_to_world.linear()` (which must be a rotation). Points are written as float64;
+/// OctoMap keeps them as float32 when it reads them.
+/// @throws ValueError when a point or pose value is not finite or a count exceeds 2^32 − 1.
+/// @throws FileError when the stream fails.
+void writeScanGraph(std::ostream& out, const std::vector<Scan>& scans);
+
+/// Writes `scans` to `path` atomically (temporary file + rename): an existing file is left
+/// untouched on any error. @throws ValueError, FileError as writeScanGraph(stream).
+void writeScanGraph(const std::string& path, const std::vector<Scan>& scans);
+
+}  // namespace sonarmap

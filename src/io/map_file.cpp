@@ -1,0 +1,34 @@
+#include "sonarmap/io/map_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/io/octomap_full.hpp"
+
+namespace sonarmap {
+
+MapFormat mapFormatOf(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".bt") return MapFormat::kBinary;
+  if (extension == ".ot") return MapFormat::kFull;
+  throw FileError("'" + path + "': unknown map file extension '" + extension + "', expected .bt or .ot");
+}
+
+void writeMapFile(const OcTree16& tree, const std::string& path) {
+  if (mapFormatOf(path) == MapFormat::kBinary) {
+    writeBinaryFile(tree, path);
+  } else {
+    writeFullFile(tree, path);
+  }
+}
+
+OcTree16 readMapFile(const std::string& path, const OctreeOptions& options) {
+  return mapFormatOf(path) == MapFormat::kBinary ? readBinaryFile(path, options) : readFullFile(path, options);
+}
+
+}  // namespace sonarmap
