@@ -6,7 +6,8 @@
 /// updated with eq. (1) of the paper; inner nodes hold the max (default) or mean of their
 /// children. Identical leaf siblings are pruned into their parent. With `lazy` set, updates touch
 /// leaves only and `updateInnerOccupancy()` fixes every inner value and prunes in one pass (§5.5).
-/// Depth 16 uses OctoMap's key layout, so `.bt`/`.ot` files interoperate.
+/// Depth 16 uses OctoMap's key layout, so `.bt`/`.ot` files interoperate. Optional change
+/// detection records the finest voxels whose occupancy class changed (change_detection.hpp).
 
 #include <array>
 #include <cstddef>
@@ -17,6 +18,7 @@
 #include "sonarmap/core/key.hpp"
 #include "sonarmap/core/key_coder.hpp"
 #include "sonarmap/core/log_odds.hpp"
+#include "sonarmap/octree/change_detection.hpp"
 #include "sonarmap/octree/node_pool.hpp"
 
 namespace sonarmap {
@@ -65,20 +67,46 @@ class OccupancyOctree {
   /// clamps it, and — unless lazy — updates the inner nodes above it and prunes.
   /// @return false when the update was skipped: zero, or the leaf already clamped in the
   ///         update's direction and `stability_check` is on (§5.3); true otherwise.
-  bool updateNode(const KeyType& key, float delta_log_odds);
+  bool updateNode(const KeyType& key, float delta_log_odds) { return updateNode(key, delta_log_odds, false); }
+
+  /// As above; with `lazy_eval` the update touches the leaf only even in an eager tree (OctoMap's
+  /// `updateNode(key, delta, lazy_eval)`): inner nodes stay stale, and no pruning happens, until
+  /// updateInnerOccupancy() or updateDirtyInnerOccupancy(). A lazy tree is lazy either way.
+  bool updateNode(const KeyType& key, float delta_log_odds, bool lazy_eval);
 
   /// A hit (`occupied`) or miss at `key`, with the sensor model's log-odds.
-  bool integrate(const KeyType& key, bool occupied) { return updateNode(key, occupied ? model_.hit : model_.miss); }
+  bool integrate(const KeyType& key, bool occupied, bool lazy_eval = false) {
+    return updateNode(key, occupied ? model_.hit : model_.miss, lazy_eval);
+  }
 
-  /// Recomputes every inner node from its children and prunes (when enabled), in one post-order
-  /// pass: the synchronisation of lazy evaluation (§5.5). Cheap to call on a clean tree.
+  /// Recomputes inner nodes from their children and prunes (when enabled), in one post-order
+  /// pass: the synchronisation of lazy evaluation (§5.5). A lazy tree visits only the subtrees
+  /// changed since the last call; an eager tree visits every node (OctoMap's behaviour).
   void updateInnerOccupancy();
 
-  /// Removes every node.
+  /// Like updateInnerOccupancy(), but visits only subtrees changed by lazy updates in any tree:
+  /// enough after updateNode(…, lazy_eval = true) when nothing else edited nodes directly.
+  void updateDirtyInnerOccupancy();
+
+  /// Removes every node and every recorded change.
   void clear() {
     pool_.clear();
+    changes_.clear();
     cached_levels_ = -1;
   }
+
+  // --- change detection (OctoMap's enableChangeDetection / changedKeys) ----------------------
+
+  /// Starts or stops recording changed voxels. Recorded changes are kept when stopping. Off by
+  /// default; when off, an update pays one predictable branch.
+  void enableChangeDetection(bool enable) { detect_changes_ = enable; }
+  bool isChangeDetectionEnabled() const { return detect_changes_; }
+  /// Forgets every recorded change: the current classes become the reference.
+  void resetChangeDetection() { changes_.clear(); }
+  /// Finest voxels created, or whose occupancy class changed, by updateNode since the last reset
+  /// while detection was on. Raw node edits (setLogOdds, file readers) are not recorded.
+  const ChangedKeys<Depth>& changedKeys() const { return changes_; }
+  std::size_t numChangesDetected() const { return changes_.size(); }
 
   // --- queries -------------------------------------------------------------------------------
 
@@ -96,6 +124,20 @@ class OccupancyOctree {
   /// Calls `visit(const LeafView<Depth>&)` for every leaf, in depth-first order (child 0 … 7).
   template <class Visitor>
   void forEachLeaf(Visitor&& visit) const;
+
+  /// Calls `visit(const LeafView<Depth>&)` for every leaf that intersects the box of finest keys
+  /// [min_key, max_key] (inclusive on each axis), in depth-first order; subtrees outside the box
+  /// are skipped. A pruned leaf that overlaps the box is visited whole (it may extend past it).
+  /// Visits nothing when min_key > max_key on some axis (OctoMap's leaf_bbx_iterator).
+  template <class Visitor>
+  void forEachLeafInBox(const KeyType& min_key, const KeyType& max_key, Visitor&& visit) const;
+
+  /// The same for the box between two points in metres (map frame), corners included.
+  /// @throws OutOfMapError when a corner is outside the map or not finite.
+  template <class Visitor>
+  void forEachLeafInBox(const Eigen::Vector3d& min_point_m, const Eigen::Vector3d& max_point_m, Visitor&& visit) const {
+    forEachLeafInBox(coder_.keyOfChecked(min_point_m), coder_.keyOfChecked(max_point_m), visit);
+  }
 
   /// Nodes, inner nodes and leaves, counted by one traversal.
   NodeCounts counts() const;
@@ -130,15 +172,19 @@ class OccupancyOctree {
     bool prunable;      ///< all 8 exist, none has children, all have the same log-odds
   };
   ChildSummary summarize(std::uint32_t block) const;
-  /// Prunes the inner node `ref` if its children allow it, else sets its aggregate.
+  /// Prunes the inner node `ref` if its children allow it, else sets its aggregate. Clears its
+  /// dirty bit unless `keep_dirty` (an eager update through a subtree other lazy updates dirtied).
   /// @return true when it was pruned.
-  bool refreshInner(NodeRef ref);
+  bool refreshInner(NodeRef ref, bool keep_dirty = false);
   int cachedLevels(const KeyType& key) const;
   void updateAncestors(int fresh_from);
   void markPathDirty();
-  void syncSubtree(NodeRef ref);
+  void syncSubtree(NodeRef ref, bool all);
   template <class Visitor>
   void visitLeaves(NodeRef ref, const KeyType& key, int depth, Visitor& visit) const;
+  template <class Visitor>
+  void visitLeavesInBox(NodeRef ref, const KeyType& key, int depth, const KeyType& lo, const KeyType& hi,
+                        Visitor& visit) const;
   void countSubtree(NodeRef ref, NodeCounts& counts) const;
 
   KeyCoder<Depth> coder_;
@@ -150,6 +196,8 @@ class OccupancyOctree {
   std::array<NodeRef, Depth + 1> path_{};
   KeyType cached_key_{};
   int cached_levels_ = -1;  ///< levels of path_ valid for cached_key_, −1 = none
+  bool detect_changes_ = false;
+  ChangedKeys<Depth> changes_;
 };
 
 using OcTree16 = OccupancyOctree<16>;

@@ -28,7 +28,7 @@ int OccupancyOctree<Depth>::cachedLevels(const KeyType& key) const {
 }
 
 template <int Depth>
-bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds) {
+bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds, bool lazy_eval) {
   if (delta_log_odds == 0.0F) return false;
   auto& path = path_;
   int fresh_from = Depth + 1;  // first level created by this update
@@ -71,8 +71,12 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
   cached_key_ = key;
   cached_levels_ = Depth;
   OcTreeNode& leaf = pool_.at(path[Depth]);
-  leaf.log_odds = model_.update(leaf.log_odds, delta_log_odds);
-  if (options_.lazy) {
+  const float before = leaf.log_odds;
+  leaf.log_odds = model_.update(before, delta_log_odds);
+  if (detect_changes_) [[unlikely]] {
+    recordChange(changes_, model_, key, fresh_from <= Depth, before, leaf.log_odds);
+  }
+  if (options_.lazy || lazy_eval) {
     markPathDirty();
   } else {
     updateAncestors(fresh_from);
@@ -95,7 +99,7 @@ void OccupancyOctree<Depth>::updateAncestors(int fresh_from) {
   // Fix the inner nodes bottom-up; stop once nothing above can change.
   for (int l = Depth - 1; l >= 0; --l) {
     const float before = pool_.at(path_[l]).log_odds;
-    if (refreshInner(path_[l])) {
+    if (refreshInner(path_[l], /*keep_dirty=*/true)) {
       cached_levels_ = std::min(cached_levels_, l);  // the pruned children are gone
       continue;
     }
@@ -129,13 +133,13 @@ float OccupancyOctree<Depth>::aggregateChildren(const OcTreeNode& parent) const 
 }
 
 template <int Depth>
-bool OccupancyOctree<Depth>::refreshInner(NodeRef ref) {
+bool OccupancyOctree<Depth>::refreshInner(NodeRef ref, bool keep_dirty) {
   const std::uint32_t block = pool_.at(ref).block();
   const ChildSummary summary = summarize(block);
   OcTreeNode& node = pool_.at(ref);
   node.log_odds = summary.aggregate;
   if (!(options_.prune && summary.prunable)) {
-    node.link = block;  // clean
+    node.link = keep_dirty ? (node.link | block) : block;  // clean unless kept dirty
     return false;
   }
   node.link = 0;  // all 8 equal leaves: the node becomes the leaf
@@ -146,19 +150,27 @@ bool OccupancyOctree<Depth>::refreshInner(NodeRef ref) {
 template <int Depth>
 void OccupancyOctree<Depth>::updateInnerOccupancy() {
   cached_levels_ = -1;  // pruning may free nodes on the cached path
+  const bool all = !options_.lazy;
   const OcTreeNode& root = pool_.at(kRootRef);
-  if (root.hasChildren() && (root.dirty() || !options_.lazy)) syncSubtree(kRootRef);
+  if (root.hasChildren() && (root.dirty() || all)) syncSubtree(kRootRef, all);
 }
 
 template <int Depth>
-void OccupancyOctree<Depth>::syncSubtree(NodeRef ref) {
+void OccupancyOctree<Depth>::updateDirtyInnerOccupancy() {
+  cached_levels_ = -1;
+  const OcTreeNode& root = pool_.at(kRootRef);
+  if (root.hasChildren() && root.dirty()) syncSubtree(kRootRef, false);
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::syncSubtree(NodeRef ref, bool all) {
   // Post-order over the subtrees that changed since the last synchronisation (dirty nodes);
-  // a clean subtree is already consistent. In eager mode nothing is dirty: visit everything.
+  // a clean subtree is already consistent. `all` visits every inner node (eager trees).
   const std::uint32_t block = pool_.at(ref).block();
   if (block == 0) return;
   for (unsigned i = 0; i < 8; ++i) {
     const OcTreeNode& child = pool_.at(NodePool::childRef(block, i));
-    if (child.hasChildren() && (child.dirty() || !options_.lazy)) syncSubtree(NodePool::childRef(block, i));
+    if (child.hasChildren() && (child.dirty() || all)) syncSubtree(NodePool::childRef(block, i), all);
   }
   refreshInner(ref);
 }
@@ -213,6 +225,41 @@ void OccupancyOctree<Depth>::visitLeaves(NodeRef ref, const KeyType& key, int de
       if ((i >> axis) & 1U) child_key[axis] = static_cast<Index>(child_key[axis] | (Index{1} << bit));
     }
     visitLeaves(child, child_key, depth + 1, visit);
+  }
+}
+
+template <int Depth>
+template <class Visitor>
+void OccupancyOctree<Depth>::forEachLeafInBox(const KeyType& min_key, const KeyType& max_key, Visitor&& visit) const {
+  for (int axis = 0; axis < 3; ++axis) {
+    if (min_key[axis] > max_key[axis]) return;
+  }
+  if (!empty()) visitLeavesInBox(kRootRef, KeyType{}, 0, min_key, max_key, visit);
+}
+
+template <int Depth>
+template <class Visitor>
+void OccupancyOctree<Depth>::visitLeavesInBox(NodeRef ref, const KeyType& key, int depth, const KeyType& lo,
+                                              const KeyType& hi, Visitor& visit) const {
+  // `key` is the lowest corner of a node that intersects the box.
+  const OcTreeNode& node = pool_.at(ref);
+  if (!node.hasChildren()) {
+    visit(LeafView<Depth>{key, depth, node.log_odds});
+    return;
+  }
+  using Index = typename KeyType::Index;
+  const int bit = Depth - 1 - depth;
+  const Index last = static_cast<Index>((Index{1} << bit) - 1);  // a child spans [corner, corner + last]
+  for (unsigned i = 0; i < 8; ++i) {
+    const NodeRef child = NodePool::childRef(node.block(), i);
+    if (!pool_.at(child).exists()) continue;
+    KeyType child_key = key;
+    bool inside = true;
+    for (int axis = 0; axis < 3; ++axis) {
+      if ((i >> axis) & 1U) child_key[axis] = static_cast<Index>(child_key[axis] | (Index{1} << bit));
+      inside = inside && child_key[axis] <= hi[axis] && static_cast<Index>(child_key[axis] + last) >= lo[axis];
+    }
+    if (inside) visitLeavesInBox(child, child_key, depth + 1, lo, hi, visit);
   }
 }
 

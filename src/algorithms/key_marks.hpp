@@ -1,0 +1,158 @@
+#pragma once
+// A set of keys inside a box of keys, each kept once: one bit per voxel of the box when the box
+// is small enough (a scan's cells are marked with a shift and an OR, no hashing), a hash set
+// otherwise (a far-reaching or tilted scan). Internal to the library: the generalisation of the
+// mapper's SweepCells (any depth, erase, merge of per-thread sets, ordered visits).
+//
+// The bitmap is made of bricks of 4 × 4 × 4 voxels aligned to multiples of 4 (a node at depth
+// Depth − 2), one 64-bit word each, its bits in the octree's child order (Morton order: x, y, z
+// bits interleaved). Bricks are stored x fastest, then y, then z. Keys are visited brick by brick
+// and in Morton order inside a brick, so consecutive keys share all but their last two levels of
+// ancestors: the octree's path cache makes each update's descent short. The hash set visits its
+// keys in the same order, so a dense and a sparse set of the same keys drive identical updates.
+
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <absl/container/flat_hash_set.h>
+
+#include "sonarmap/core/key.hpp"
+
+namespace sonarmap {
+
+template <int Depth>
+class KeyMarks {
+ public:
+  using KeyType = Key<Depth>;
+  using Index = typename KeyType::Index;
+
+  /// Largest box kept as a bitmap by default: 2^27 voxels, 16 MiB.
+  static constexpr std::size_t kMaxDenseVoxels = std::size_t{1} << 27;
+
+  /// Empties the set for keys within [lo, hi] (inclusive; lo ≤ hi on every axis). A bitmap when
+  /// the box, grown to whole bricks, holds at most `max_dense_voxels` voxels; a hash set otherwise.
+  void reset(const KeyType& lo, const KeyType& hi, std::size_t max_dense_voxels = kMaxDenseVoxels) {
+    sparse_.clear();
+    bits_.clear();
+    dense_ = true;
+    const std::size_t max_bricks = max_dense_voxels / 64;
+    std::size_t bricks = 1;
+    for (int axis = 0; axis < 3; ++axis) {
+      lo_[axis] = static_cast<Index>(lo[axis] & ~Index{3});
+      const Index span = static_cast<Index>((hi[axis] - lo_[axis]) >> 2);  // bricks − 1
+      if (span >= max_bricks || bricks > max_bricks / (static_cast<std::size_t>(span) + 1)) {
+        dense_ = false;
+        return;
+      }
+      bricks_[axis] = static_cast<std::size_t>(span) + 1;
+      bricks *= bricks_[axis];
+    }
+    bits_.assign(bricks, 0);
+  }
+
+  bool dense() const { return dense_; }
+
+  /// Calls `body(mark)` where `mark(key)` adds a key of the box, the concrete set's insert, so a
+  /// traversal loop is compiled once per kind instead of branching per key.
+  template <class Body>
+  void marking(Body&& body) {
+    if (dense_) {
+      body([this](const KeyType& key) { bits_[word(key)] |= bit(key); });
+    } else {
+      body([this](const KeyType& key) { sparse_.insert(key); });
+    }
+  }
+
+  void insert(const KeyType& key) {
+    if (dense_) {
+      bits_[word(key)] |= bit(key);
+    } else {
+      sparse_.insert(key);
+    }
+  }
+
+  void erase(const KeyType& key) {
+    if (dense_) {
+      bits_[word(key)] &= ~bit(key);
+    } else {
+      sparse_.erase(key);
+    }
+  }
+
+  /// Adds every key of `other`, reset with the same box and limit (so of the same kind).
+  void merge(const KeyMarks& other) {
+    if (dense_) {
+      for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] |= other.bits_[w];
+    } else {
+      sparse_.insert(other.sparse_.begin(), other.sparse_.end());
+    }
+  }
+
+  /// Calls `visit(const KeyType&)` once per key: by brick (x fastest, then y, then z), and in
+  /// Morton order inside a brick.
+  template <class Visitor>
+  void forEachOrdered(Visitor&& visit) {
+    if (dense_) {
+      forEachDense(visit);
+      return;
+    }
+    ordered_.assign(sparse_.begin(), sparse_.end());
+    std::sort(ordered_.begin(), ordered_.end(), visitLess);
+    for (const KeyType& key : ordered_) visit(std::as_const(key));
+  }
+
+  /// Orders keys as forEachOrdered visits them: by brick z, y, x, then Morton order in the brick.
+  static bool visitLess(const KeyType& a, const KeyType& b) {
+    const auto brick = [](const KeyType& k) { return std::tuple(k[2] >> 2, k[1] >> 2, k[0] >> 2); };
+    if (brick(a) != brick(b)) return brick(a) < brick(b);
+    return bitIndex(a) < bitIndex(b);
+  }
+
+ private:
+  /// Position of a key in its brick's word: x, y, z bits of the key's low two bits interleaved.
+  static unsigned bitIndex(const KeyType& key) {
+    const auto x = static_cast<unsigned>(key[0] & 3U), y = static_cast<unsigned>(key[1] & 3U),
+               z = static_cast<unsigned>(key[2] & 3U);
+    return (x & 1U) | ((y & 1U) << 1) | ((z & 1U) << 2) | ((x & 2U) << 2) | ((y & 2U) << 3) | ((z & 2U) << 4);
+  }
+  static std::uint64_t bit(const KeyType& key) { return std::uint64_t{1} << bitIndex(key); }
+
+  std::size_t word(const KeyType& key) const {
+    const auto brick = [&](int axis) { return static_cast<std::size_t>((key[axis] - lo_[axis]) >> 2); };
+    return brick(0) + bricks_[0] * (brick(1) + bricks_[1] * brick(2));
+  }
+
+  template <class Visitor>
+  void forEachDense(Visitor& visit) const {
+    // Running brick coordinates: no division per word.
+    std::size_t bx = 0, by = 0, bz = 0;
+    for (std::size_t w = 0; w < bits_.size(); ++w) {
+      for (std::uint64_t bits = bits_[w]; bits != 0; bits &= bits - 1) {
+        const auto b = static_cast<unsigned>(std::countr_zero(bits));
+        KeyType key;
+        key[0] = static_cast<Index>(lo_[0] + 4 * bx + ((b & 1U) | ((b >> 2) & 2U)));
+        key[1] = static_cast<Index>(lo_[1] + 4 * by + (((b >> 1) & 1U) | ((b >> 3) & 2U)));
+        key[2] = static_cast<Index>(lo_[2] + 4 * bz + (((b >> 2) & 1U) | ((b >> 4) & 2U)));
+        visit(std::as_const(key));
+      }
+      if (++bx == bricks_[0]) {
+        bx = 0;
+        if (++by == bricks_[1]) by = 0, ++bz;
+      }
+    }
+  }
+
+  bool dense_ = true;
+  KeyType lo_{};                           ///< lowest corner of the bricks (multiples of 4)
+  std::size_t bricks_[3] = {0, 0, 0};      ///< bricks per axis
+  std::vector<std::uint64_t> bits_;
+  absl::flat_hash_set<KeyType, KeyHash<Depth>> sparse_;
+  std::vector<KeyType> ordered_;
+};
+
+}  // namespace sonarmap

@@ -1,0 +1,224 @@
+// Point-cloud and ray insertion with OctoMap's semantics: trace, deduplicate, then update each
+// voxel once in memory order (see point_cloud_insertion.hpp).
+#include "sonarmap/algorithms/point_cloud_insertion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "key_marks.hpp"
+#include "sonarmap/raycast/dda.hpp"
+
+namespace sonarmap {
+namespace {
+
+using Marks = KeyMarks<16>;
+
+/// One ray of a scan that passed the checks.
+struct ScanRay {
+  Eigen::Vector3d end_m;  ///< where the ray ends: the point, or the point clipped to the range limit
+  bool hit;               ///< the end voxel is occupied (false for a ray clipped at the range limit)
+};
+
+/// A scan's rays with the keys they touch.
+struct PreparedScan {
+  std::vector<ScanRay> rays;
+  std::vector<Key16> hits;  ///< end keys of the rays that hit
+  Key16 lo{}, hi{};         ///< box of every key the rays visit (DDA keys stay in the end keys' box)
+};
+
+void checkRange(double max_range_m) {
+  if (std::isnan(max_range_m)) throw ValueError("max range must be a number of metres (< 0: none), got NaN");
+}
+
+void growBox(Key16& lo, Key16& hi, const Key16& key) {
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis] = std::min(lo[axis], key[axis]);
+    hi[axis] = std::max(hi[axis], key[axis]);
+  }
+}
+
+/// OctoMap's computeDiscreteUpdate: the centre of each distinct end-point voxel. Non-finite points
+/// and points outside the map are counted and dropped (OctoMap would wrap their keys).
+PointCloud discretized(const KeyCoder<16>& coder, const PointCloud& points, InsertStats& stats) {
+  std::vector<Key16> keys;
+  keys.reserve(points.size());
+  for (const Eigen::Vector3d& point : points) {
+    if (!point.allFinite()) {
+      ++stats.skipped_nonfinite;
+    } else if (const auto key = coder.keyOf(point)) {
+      keys.push_back(*key);
+    } else {
+      ++stats.out_of_map;
+    }
+  }
+  std::sort(keys.begin(), keys.end(), Marks::visitLess);
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  PointCloud centres;
+  centres.reserve(keys.size());
+  for (const Key16& key : keys) centres.push_back(coder.centerOf(key));
+  return centres;
+}
+
+/// Where the ray to `point_m` ends, and whether it hits: clipped at `max_range_m` (when ≥ 0) like
+/// OctoMap's computeUpdate.
+ScanRay clipRay(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& point_m, double max_range_m) {
+  const Eigen::Vector3d ray = point_m - origin_m;
+  double range_m = ray.norm();
+  if (!std::isfinite(range_m)) range_m = ray.stableNorm();  // huge but finite coordinates
+  if (max_range_m < 0.0 || range_m <= max_range_m) return {point_m, true};
+  return {origin_m + ray * (max_range_m / range_m), false};
+}
+
+PreparedScan prepareScan(const KeyCoder<16>& coder, const PointCloud& points, const Eigen::Vector3d& origin_m,
+                         const Key16& origin_key, double max_range_m, InsertStats& stats) {
+  PreparedScan scan;
+  scan.lo = scan.hi = origin_key;
+  scan.rays.reserve(points.size());
+  for (const Eigen::Vector3d& point : points) {
+    if (!point.allFinite()) {
+      ++stats.skipped_nonfinite;
+      continue;
+    }
+    const ScanRay ray = clipRay(origin_m, point, max_range_m);
+    const auto end_key = coder.keyOf(ray.end_m);
+    if (!end_key) {
+      ++stats.out_of_map;
+      continue;
+    }
+    growBox(scan.lo, scan.hi, *end_key);
+    scan.rays.push_back(ray);
+    if (ray.hit) scan.hits.push_back(*end_key);
+  }
+  stats.rays = scan.rays.size();
+  return scan;
+}
+
+/// Marks every voxel the rays [first, last) cross, except each ray's end voxel (computeRayKeys).
+void traceRays(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const ScanRay* first,
+               const ScanRay* last, Marks& marks) {
+  marks.marking([&](auto mark) {
+    for (const ScanRay* ray = first; ray != last; ++ray) {
+      bool started = false;
+      Key16 previous{};
+      traverseDDA(coder, origin_m, ray->end_m, [&](const Key16& key) {
+        if (started) mark(previous);  // one key behind: the end voxel is never marked
+        previous = key;
+        started = true;
+      });
+    }
+  });
+}
+
+/// The crossed cells of all rays, traced by `threads` threads into their own sets, merged.
+void traceScan(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const PreparedScan& scan,
+               unsigned threads, Marks& crossed) {
+  crossed.reset(scan.lo, scan.hi);
+  const std::size_t n = scan.rays.size();
+  threads = static_cast<unsigned>(std::clamp<std::size_t>(n / 256, 1, threads));  // ≥ 256 rays per thread
+  if (threads <= 1) {
+    traceRays(coder, origin_m, scan.rays.data(), scan.rays.data() + n, crossed);
+    return;
+  }
+  std::vector<Marks> parts(threads - 1);
+  std::vector<std::exception_ptr> errors(threads);
+  std::vector<std::jthread> workers;  // joined on every exit path, also if starting one throws
+  const auto run = [&](unsigned t, Marks& marks) {
+    try {
+      traceRays(coder, origin_m, scan.rays.data() + n * t / threads, scan.rays.data() + n * (t + 1) / threads, marks);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  for (unsigned t = 1; t < threads; ++t) {
+    parts[t - 1].reset(scan.lo, scan.hi);
+    workers.emplace_back(run, t, std::ref(parts[t - 1]));
+  }
+  run(0, crossed);
+  for (std::jthread& worker : workers) worker.join();
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  for (const Marks& part : parts) crossed.merge(part);
+}
+
+InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const Eigen::Vector3d& sensor_origin_m,
+                        const InsertOptions& options, unsigned threads) {
+  checkRange(options.max_range_m);
+  const KeyCoder<16>& coder = map.coder();
+  const Key16 origin_key = coder.keyOfChecked(sensor_origin_m);  // throws OutOfMapError
+  if (threads == 0) threads = std::max(1U, std::thread::hardware_concurrency());
+
+  InsertStats stats;
+  stats.points = points_world_m.size();
+  std::optional<PointCloud> centres;
+  if (options.discretize) centres = discretized(coder, points_world_m, stats);
+  const PreparedScan scan = prepareScan(coder, centres ? *centres : points_world_m, sensor_origin_m, origin_key,
+                                        options.max_range_m, stats);
+  Marks crossed;
+  traceScan(coder, sensor_origin_m, scan, threads, crossed);
+
+  // Occupied wins over free (OctoMap's disjoint sets); then misses, then hits, each voxel once.
+  std::vector<Key16> hits = scan.hits;
+  std::sort(hits.begin(), hits.end(), Marks::visitLess);
+  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
+  for (const Key16& key : hits) crossed.erase(key);
+  // Leaves first and inner nodes once at the end: the same tree as eager updates (each voxel is
+  // updated once, and pruning is canonical), without re-aggregating ancestors after every update.
+  const LogOddsModel& model = map.model();
+  crossed.forEachOrdered([&](const Key16& key) {
+    map.updateNode(key, model.miss, /*lazy_eval=*/true);
+    ++stats.free_updates;
+  });
+  for (const Key16& key : hits) map.updateNode(key, model.hit, /*lazy_eval=*/true);
+  stats.occupied_updates = hits.size();
+  if (!options.lazy_eval && !map.options().lazy) map.updateDirtyInnerOccupancy();
+  return stats;
+}
+
+}  // namespace
+
+InsertStats insertPointCloud(OcTree16& map, const PointCloud& points_world_m, const Eigen::Vector3d& sensor_origin_m,
+                             const InsertOptions& options) {
+  return insertCloud(map, points_world_m, sensor_origin_m, options, 1);
+}
+
+InsertStats insertPointCloudParallel(OcTree16& map, const PointCloud& points_world_m,
+                                     const Eigen::Vector3d& sensor_origin_m, const InsertOptions& options,
+                                     unsigned threads) {
+  return insertCloud(map, points_world_m, sensor_origin_m, options, threads);
+}
+
+InsertStats insertScan(OcTree16& map, const Scan& scan, const InsertOptions& options) {
+  PointCloud world;
+  world.reserve(scan.points_m.size());
+  for (const Eigen::Vector3d& point : scan.points_m) world.push_back(scan.sensor_to_world * point);
+  return insertPointCloud(map, world, scan.sensor_to_world.translation(), options);
+}
+
+bool insertRay(OcTree16& map, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m, double max_range_m,
+               bool lazy_eval) {
+  checkRange(max_range_m);
+  const KeyCoder<16>& coder = map.coder();
+  if (!coder.keyOf(origin_m) || !end_m.allFinite()) return false;
+  const ScanRay ray = clipRay(origin_m, end_m, max_range_m > 0.0 ? max_range_m : -1.0);
+  const auto end_key = coder.keyOf(ray.end_m);
+  if (!end_key) return false;
+  const float miss = map.model().miss;
+  bool started = false;
+  Key16 previous{};
+  traverseDDA(coder, origin_m, ray.end_m, [&](const Key16& key) {
+    if (started) map.updateNode(previous, miss, lazy_eval);  // every crossed voxel but the end's
+    previous = key;
+    started = true;
+  });
+  if (ray.hit) map.updateNode(*end_key, map.model().hit, lazy_eval);
+  return true;
+}
+
+}  // namespace sonarmap
