@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cloud_command.hpp"
 #include "map_command.hpp"
 #include "sonarmap/core/errors.hpp"
 
@@ -19,10 +20,12 @@ int fail(int code, const char* message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sonarmap: probabilistic 3D occupancy maps from mechanically scanned imaging sonar"};
+  CLI::App app{"sonarmap: probabilistic 3D occupancy maps from mechanically scanned imaging sonar and point clouds"};
   app.require_subcommand(1);
   sonarmap::cli::MapArgs map_args;
-  const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args)};
+  sonarmap::cli::CloudArgs cloud_args;
+  const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
+                                                     sonarmap::cli::addCloudCommand(app, cloud_args)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {

@@ -52,10 +52,10 @@ PointCloud readPointText(std::istream& in, const std::string& source) {
       if (columns == 3) fail("more than 3 values, expected 'x y z' in metres");
       double value = 0.0;
       const bool parsed = parseNumber(token, value);
-      if (!parsed || !std::isfinite(value)) {
+      if (!parsed) {  // nan and inf are numbers: a point without a return, skipped at insertion
         std::string message = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + string
         message += token;
-        message += parsed ? "' is not a finite number" : "' is not a number, expected 'x y z' in metres";
+        message += "' is not a number, expected 'x y z' in metres";
         fail(message);
       }
       xyz[columns++] = value;

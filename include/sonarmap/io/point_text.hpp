@@ -12,10 +12,11 @@
 
 namespace sonarmap {
 
-/// Reads the points of a text point file, in file order.
+/// Reads the points of a text point file, in file order. `nan` and `inf` are kept (a sensor's
+/// "no return"): insertPointCloud skips and counts non-finite points.
 /// @throws FileError (naming the file and the 1-based line number) when the file cannot be opened,
-///         a line does not hold exactly 3 values, a value is not a number or is not finite
-///         (`nan`, `inf`), or the file holds no point at all.
+///         a line does not hold exactly 3 values, a value is not a number, or the file holds no
+///         point at all.
 PointCloud readPointText(const std::string& path);
 
 /// Reads points from the rest of `in`. @param source name used in messages.
