@@ -12,7 +12,7 @@
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
-#include "sweep_cells.hpp"
+#include "../algorithms/key_marks.hpp"
 
 namespace sonarmap {
 
@@ -51,7 +51,7 @@ struct SonarMapper::SweepWork {
   std::vector<HitPoint> hit_points;
   std::vector<std::pair<Key16, std::uint8_t>> hits;   ///< hit cell, intensity
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
-  SweepCells cells;  ///< cells the sweep's rays cross, and its hit cells, each once
+  KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
 };
 
 SonarMapper::SonarMapper(const MapperOptions& options)
@@ -88,9 +88,10 @@ bool keyLess(const Key16& a, const Key16& b) { return a.k < b.k; }
 }  // namespace
 
 void SonarMapper::integrateFreeCells() {
-  // First mark every cell the rays cross, then update each once, in memory order.
-  work_->cells.marking([&](auto mark) {
-    for (const FreeRay& ray : work_->rays) {
+  // First mark every cell the rays cross, then update each once, in tree order.
+  SweepWork& work = *work_;
+  work.crossed.marking([&](auto mark) {
+    for (const FreeRay& ray : work.rays) {
       if (options_.ray == RayAlgorithm::kDDA) {
         traverseDDA(map_.coder(), ray.start_m, ray.end_m, mark);
       } else {
@@ -98,7 +99,8 @@ void SonarMapper::integrateFreeCells() {
       }
     }
   });
-  work_->cells.forEachFree([&](const Key16& key) {
+  for (const auto& hit : work.hits) work.crossed.erase(hit.first);  // an obstacle is never also a miss
+  work.crossed.forEachOrdered([&](const Key16& key) {
     map_.integrate(key, false);
     ++stats_.free_updates;
   });
@@ -174,8 +176,7 @@ void SonarMapper::keySweep() {
       growBox(work.box_lo, work.box_hi, *key);
     }
   }
-  work.cells.reset(work.box_lo, work.box_hi);
-  for (const auto& hit : work.hits) work.cells.addHit(hit.first);  // an obstacle is never also a miss
+  work.crossed.reset(work.box_lo, work.box_hi);
 }
 
 std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams) {
