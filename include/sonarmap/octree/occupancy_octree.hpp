@@ -181,8 +181,6 @@ class OccupancyOctree {
   void markPathDirty();
   void syncSubtree(NodeRef ref, bool all);
   template <class Visitor>
-  void visitLeaves(NodeRef ref, const KeyType& key, int depth, Visitor& visit) const;
-  template <class Visitor>
   void visitLeavesInBox(NodeRef ref, const KeyType& key, int depth, const KeyType& lo, const KeyType& hi,
                         Visitor& visit) const;
   void countSubtree(NodeRef ref, NodeCounts& counts) const;

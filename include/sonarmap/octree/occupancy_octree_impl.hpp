@@ -204,28 +204,9 @@ Occupancy OccupancyOctree<Depth>::occupancyOf(const KeyType& key) const {
 template <int Depth>
 template <class Visitor>
 void OccupancyOctree<Depth>::forEachLeaf(Visitor&& visit) const {
-  if (!empty()) visitLeaves(kRootRef, KeyType{}, 0, visit);
-}
-
-template <int Depth>
-template <class Visitor>
-void OccupancyOctree<Depth>::visitLeaves(NodeRef ref, const KeyType& key, int depth, Visitor& visit) const {
-  const OcTreeNode& node = pool_.at(ref);
-  if (!node.hasChildren()) {
-    visit(LeafView<Depth>{key, depth, node.log_odds});
-    return;
-  }
   using Index = typename KeyType::Index;
-  const int bit = Depth - 1 - depth;
-  for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = NodePool::childRef(node.block(), i);
-    if (!pool_.at(child).exists()) continue;
-    KeyType child_key = key;
-    for (int axis = 0; axis < 3; ++axis) {
-      if ((i >> axis) & 1U) child_key[axis] = static_cast<Index>(child_key[axis] | (Index{1} << bit));
-    }
-    visitLeaves(child, child_key, depth + 1, visit);
-  }
+  const auto all = static_cast<Index>(~Index{0});  // the box spans every key of the map
+  forEachLeafInBox(KeyType{}, KeyType{{all, all, all}}, visit);
 }
 
 template <int Depth>
