@@ -36,12 +36,6 @@ void checkRange(double max_range_m) {
   if (std::isnan(max_range_m)) throw ValueError("max range must be a number of metres (< 0: none), got NaN");
 }
 
-void growBox(Key16& lo, Key16& hi, const Key16& key) {
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis] = std::min(lo[axis], key[axis]);
-    hi[axis] = std::max(hi[axis], key[axis]);
-  }
-}
 
 /// OctoMap's computeDiscreteUpdate: the centre of each distinct end-point voxel. Non-finite points
 /// and points outside the map are counted and dropped (OctoMap would wrap their keys).
@@ -91,7 +85,7 @@ PreparedScan prepareScan(const KeyCoder<16>& coder, const PointCloud& points, co
       ++stats.out_of_map;
       continue;
     }
-    growBox(scan.lo, scan.hi, *end_key);
+    growKeyBox(scan.lo, scan.hi, *end_key);
     scan.rays.push_back(ray);
     if (ray.hit) scan.hits.push_back(*end_key);
   }

@@ -78,12 +78,6 @@ std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen:
 }
 
 namespace {
-void growBox(Key16& lo, Key16& hi, const Key16& key) {
-  for (int axis = 0; axis < 3; ++axis) {
-    lo[axis] = std::min(lo[axis], key[axis]);
-    hi[axis] = std::max(hi[axis], key[axis]);
-  }
-}
 bool keyLess(const Key16& a, const Key16& b) { return a.k < b.k; }
 }  // namespace
 
@@ -167,13 +161,13 @@ void SonarMapper::keySweep() {
   work.box_lo = work.box_hi = *map_.coder().keyOf(work.beams.front().sonar_to_map.translation());
   for (const FreeRay& ray : work.rays) {
     for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
-      if (const auto key = map_.coder().keyOf(*point)) growBox(work.box_lo, work.box_hi, *key);
+      if (const auto key = map_.coder().keyOf(*point)) growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
       work.hits.emplace_back(*key, hit.intensity);
-      growBox(work.box_lo, work.box_hi, *key);
+      growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }
   work.crossed.reset(work.box_lo, work.box_hi);

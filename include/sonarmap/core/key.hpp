@@ -62,6 +62,15 @@ constexpr unsigned childIndex(const Key<Depth>& key, int level) {
          (static_cast<unsigned>((key[2] >> bit) & 1U) << 2);
 }
 
+/// Grows the box [lo, hi] (inclusive, per axis) so that it holds `key`.
+template <int Depth>
+constexpr void growKeyBox(Key<Depth>& lo, Key<Depth>& hi, const Key<Depth>& key) {
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (key[axis] < lo[axis]) lo[axis] = key[axis];
+    if (key[axis] > hi[axis]) hi[axis] = key[axis];
+  }
+}
+
 /// Hash of a key, for unordered sets of keys. For depth ≤ 21 the three components pack without
 /// loss into one 64-bit word (48 bits for OctoMap's depth 16, paper §5.1).
 template <int Depth>
