@@ -77,10 +77,6 @@ std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen:
   return detections;
 }
 
-namespace {
-bool keyLess(const Key16& a, const Key16& b) { return a.k < b.k; }
-}  // namespace
-
 void SonarMapper::integrateFreeCells() {
   // First mark every cell the rays cross, then update each once, in tree order.
   SweepWork& work = *work_;
@@ -103,7 +99,7 @@ void SonarMapper::integrateFreeCells() {
 void SonarMapper::integrateHits() {
   // One update per hit cell, with the strongest echo that fell into it.
   auto& hits = work_->hits;
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return keyLess(a.first, b.first); });
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return KeyMarks<16>::visitLess(a.first, b.first); });
   for (std::size_t i = 0; i < hits.size();) {
     std::uint8_t intensity = hits[i].second;
     std::size_t j = i + 1;
