@@ -169,8 +169,8 @@ void compareNodes(const OcTree16& map, NodeRef ref, const octomap::OcTree& tree,
   if (ours.log_odds == node->getLogOdds() && our_children == their_children) ++result.equal;
   if (!our_children || !their_children) return;
   for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = OcTree16::childRef(ours, i);
-    if (map.node(child).exists() && tree.nodeChildExists(node, i)) {
+    const NodeRef child = map.childRef(ours, i);
+    if (child != kNoNodeRef && tree.nodeChildExists(node, i)) {
       compareNodes(map, child, tree, tree.getNodeChild(node, i), result);
     }
   }

@@ -23,13 +23,13 @@ void writeNode(const OcTree16& tree, const OcTreeNode& node, std::string& out) {
   unsigned codes[8];
   unsigned char bytes[2] = {0, 0};
   for (unsigned i = 0; i < 8; ++i) {
-    codes[i] = childCode(tree, tree.node(OcTree16::childRef(node, i)));
+    codes[i] = childCode(tree, tree.node(tree.childRef(node, i)));
     bytes[i / 4] = static_cast<unsigned char>(bytes[i / 4] | (codes[i] << (2 * (i % 4))));
   }
   out.push_back(static_cast<char>(bytes[0]));
   out.push_back(static_cast<char>(bytes[1]));
   for (unsigned i = 0; i < 8; ++i) {
-    if (codes[i] == kInner) writeNode(tree, tree.node(OcTree16::childRef(node, i)), out);
+    if (codes[i] == kInner) writeNode(tree, tree.node(tree.childRef(node, i)), out);
   }
 }
 
@@ -56,10 +56,12 @@ class BinaryReader {
     }
     const unsigned bits = data_[offset_] | (static_cast<unsigned>(data_[offset_ + 1]) << 8);
     offset_ += 2;
-    tree_.createChildren(ref);
+    unsigned mask = 0;  // children that exist: code not kUnknown
+    for (unsigned i = 0; i < 8; ++i) mask |= ((bits >> (2 * i)) & 3U) != kUnknown ? 1U << i : 0U;
+    tree_.createChildren(ref, mask);
     for (unsigned i = 0; i < 8; ++i) {
       const unsigned code = (bits >> (2 * i)) & 3U;
-      const NodeRef child = OcTree16::childRef(tree_.node(ref), i);
+      const NodeRef child = tree_.childRef(tree_.node(ref), i);
       if (code == kFreeLeaf) tree_.setLogOdds(child, tree_.model().clamp_min);
       if (code == kOccupiedLeaf) tree_.setLogOdds(child, tree_.model().clamp_max);
       if (code == kInner) {

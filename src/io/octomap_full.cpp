@@ -30,16 +30,11 @@ class FullWriter {
 
   void writeNode(const OcTreeNode& node) {
     detail::putF32(buffer_, node.log_odds);
-    unsigned char bits = 0;
-    if (node.hasChildren()) {
-      for (unsigned i = 0; i < 8; ++i) {
-        if (tree_.node(OcTree16::childRef(node, i)).exists()) bits = static_cast<unsigned char>(bits | (1U << i));
-      }
-    }
+    const auto bits = static_cast<unsigned char>(tree_.childMask(node));
     buffer_.push_back(static_cast<char>(bits));
     if (buffer_.size() >= kFlushBytes) flush();
     for (unsigned i = 0; i < 8; ++i) {
-      if ((bits >> i) & 1U) writeNode(tree_.node(OcTree16::childRef(node, i)));
+      if ((bits >> i) & 1U) writeNode(tree_.node(tree_.childRef(node, i)));
     }
   }
 
@@ -83,9 +78,9 @@ class FullReader {
     const std::uint8_t bits = in_.u8("child bits");
     if (bits == 0) return;
     if (depth >= OcTree16::kDepth) in_.failAt(at + 4, "node at depth 16 (the finest level) has children, expected a leaf");
-    tree_.createChildren(ref);
+    tree_.createChildren(ref, bits);
     for (unsigned i = 0; i < 8; ++i) {
-      if ((bits >> i) & 1U) readNode(OcTree16::childRef(tree_.node(ref), i), depth + 1);
+      if ((bits >> i) & 1U) readNode(tree_.childRef(tree_.node(ref), i), depth + 1);
     }
     tree_.setLogOdds(ref, tree_.aggregateChildren(tree_.node(ref)));
   }

@@ -40,10 +40,11 @@ OcTree16 sampleTree(const OctreeOptions& options = {}) {
 void dump(const OcTree16& tree, NodeRef ref, std::vector<std::pair<std::uint32_t, unsigned>>& out) {
   const OcTreeNode& node = tree.node(ref);
   unsigned bits = 0;
-  for (unsigned i = 0; node.hasChildren() && i < 8; ++i) bits |= tree.node(OcTree16::childRef(node, i)).exists() ? 1U << i : 0U;
+  for (unsigned i = 0; i < 8; ++i) bits |= tree.node(tree.childRef(node, i)).exists() ? 1U << i : 0U;
+  EXPECT_EQ(bits, tree.childMask(node));
   out.emplace_back(std::bit_cast<std::uint32_t>(node.log_odds), bits);
   for (unsigned i = 0; i < 8; ++i)
-    if ((bits >> i) & 1U) dump(tree, OcTree16::childRef(node, i), out);
+    if ((bits >> i) & 1U) dump(tree, tree.childRef(node, i), out);
 }
 std::vector<std::pair<std::uint32_t, unsigned>> dump(const OcTree16& tree) {
   std::vector<std::pair<std::uint32_t, unsigned>> out;

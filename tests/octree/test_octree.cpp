@@ -180,11 +180,18 @@ TEST(Octree, LazyEvaluationEndsInTheSameTreeAsEagerUpdates) {
   EXPECT_FLOAT_EQ(*eager.search(key16(0, 0, 0), 0), *lazy.search(key16(0, 0, 0), 0));
 }
 
-TEST(Octree, NodesAreEightBytesAndMemoryFollowsBlocks) {
+TEST(Octree, NodesAreEightBytesAndMemoryFollowsCompactArrays) {
   OcTree16 tree(0.01);
   tree.integrate(key16(0, 0, 0), true);
-  // 16 inner nodes each own one block of 8 children (64 bytes), plus the root's block.
-  EXPECT_EQ(tree.memoryBytes(), 17U * 64U + sizeof(OcTree16));
+  // Root and "no node" slots, then 16 inner nodes each with a one-child array (header + child).
+  EXPECT_EQ(tree.memoryBytes(), (2U + 16U * 2U) * 8U + sizeof(OcTree16));
+  // A sibling fills the one-child array of the depth-15 node: it grows to capacity 2 (3 slots).
+  tree.integrate(key16(1, 0, 0), true);
+  EXPECT_EQ(tree.memoryBytes(), (2U + 15U * 2U + 3U) * 8U + sizeof(OcTree16));
+  // Eight siblings: capacity 8 (9 slots) until they prune into their parent.
+  for (unsigned i = 2; i < 8; ++i) tree.integrate(key16(i & 1U, (i >> 1) & 1U, i >> 2), true);
+  EXPECT_EQ(tree.counts().leaves, 1U);
+  EXPECT_EQ(tree.memoryBytes(), (2U + 15U * 2U) * 8U + sizeof(OcTree16));
   EXPECT_GE(tree.memoryBytesAllocated(), tree.memoryBytes());
 }
 

@@ -1,12 +1,18 @@
 #pragma once
 /// @file node_pool.hpp
-/// Storage of octree nodes: 8-byte nodes kept in blocks of 8 siblings (paper §5.6).
+/// Storage of octree nodes: 8-byte nodes, each inner node pointing to a compact array holding only
+/// its existing children (paper §5.6's "single pointer to an array of children", made compact).
 ///
-/// A node holds its log-odds (float32) and one 32-bit index of its children's block — the
-/// "single pointer to an array of 8 children" of paper §5.6, with an index instead of a pointer
-/// so a node is 8 bytes instead of OctoMap's 24 plus a 64-byte pointer array per inner node.
-/// A child that does not exist (unknown space) has a NaN log-odds. Block 0 is never a child block:
-/// its slot 0 holds the root, so `children == 0` means "no children".
+/// A node holds its log-odds (float32) and one 32-bit index of its children's array — an index
+/// instead of a pointer, so a node is 8 bytes where OctoMap's is 16 plus a 64-byte array of 8
+/// pointers per inner node. An array is one header slot followed by the existing children in child
+/// order (0…7); the header records which children exist (an 8-bit mask) and the array's capacity
+/// (1, 2, 4 or 8 children). A path through sparse space thus costs 16 bytes per level instead of
+/// OctoMap's 80, a full set of 8 children 72 bytes instead of 192. An array grows to the next
+/// capacity when a child is added to a full one; freed arrays are reused by capacity.
+///
+/// All nodes live in one vector of slots addressed by 32-bit references. Slot 0 is the root;
+/// slot 1 is a permanent "no node" (NaN log-odds) that `childRef` returns for a missing child.
 
 #include <array>
 #include <cmath>
@@ -22,85 +28,109 @@ namespace sonarmap {
 /// Log-odds value that marks a node as not existing (unknown).
 inline constexpr float kUnknownLogOdds = std::numeric_limits<float>::quiet_NaN();
 
-/// One octree node: its log-odds and the index of its block of 8 children (0 = none). The top
-/// bit of `link` marks an inner node whose subtree changed since the last lazy synchronisation.
+/// One octree node: its log-odds and the slot of its children's array (0 = none). The top bit of
+/// `link` marks an inner node whose subtree changed since the last lazy synchronisation.
 struct OcTreeNode {
   static constexpr std::uint32_t kDirtyBit = 1U << 31;
-  static constexpr std::uint32_t kBlockMask = kDirtyBit - 1;
+  static constexpr std::uint32_t kArrayMask = kDirtyBit - 1;
 
   float log_odds = kUnknownLogOdds;
   std::uint32_t link = 0;
 
   bool exists() const { return !std::isnan(log_odds); }
-  bool hasChildren() const { return (link & kBlockMask) != 0; }
-  /// Index of the children's block, 0 when there are none.
-  std::uint32_t block() const { return link & kBlockMask; }
+  bool hasChildren() const { return (link & kArrayMask) != 0; }
+  /// Slot of the children's array header, 0 when there are none.
+  std::uint32_t array() const { return link & kArrayMask; }
   bool dirty() const { return (link & kDirtyBit) != 0; }
 };
 static_assert(sizeof(OcTreeNode) == 8, "a node is one float and one 32-bit index");
 
-/// Reference to a node: block index × 8 + slot. The root is reference 0.
+/// Reference to a node: its slot. The root is reference 0.
 using NodeRef = std::uint32_t;
 inline constexpr NodeRef kRootRef = 0;
+/// Reference of a child that does not exist: a node that never exists.
+inline constexpr NodeRef kNoNodeRef = 1;
 
-/// Blocks of 8 sibling nodes with a free list, addressed by 32-bit indices.
+/// Nodes in compact children arrays with per-capacity free lists, addressed by 32-bit slots.
 class NodePool {
  public:
-  using Block = std::array<OcTreeNode, 8>;
+  NodePool() { clear(); }
 
-  NodePool() : blocks_(1) {}
+  OcTreeNode& at(NodeRef ref) { return slots_[ref]; }
+  const OcTreeNode& at(NodeRef ref) const { return slots_[ref]; }
 
-  OcTreeNode& at(NodeRef ref) { return blocks_[ref >> 3][ref & 7U]; }
-  const OcTreeNode& at(NodeRef ref) const { return blocks_[ref >> 3][ref & 7U]; }
+  /// Bit i set when child i of `parent` exists.
+  unsigned childMask(const OcTreeNode& parent) const { return parent.hasChildren() ? maskOf(parent.array()) : 0U; }
 
-  /// Reference of child `index` (0…7) of a node whose children block is `block`.
-  static NodeRef childRef(std::uint32_t block, unsigned index) { return (block << 3) | index; }
+  /// Number of existing children of `parent`; they occupy firstChild(parent) + 0 … count − 1.
+  unsigned childCount(const OcTreeNode& parent) const { return kBitCount[childMask(parent)]; }
 
-  /// Allocates a block of 8 children, each with log-odds `fill` (NaN: none exist) and no children.
-  /// @throws ValueError when more than 2^29 blocks would be needed (indices stay below the dirty bit).
-  std::uint32_t allocate(float fill) {
-    std::uint32_t block;
-    if (!free_.empty()) {
-      block = free_.back();
-      free_.pop_back();
-    } else {
-      if (blocks_.size() >= (std::size_t{1} << 29)) throw ValueError("octree exceeds 2^29 node blocks");
-      block = static_cast<std::uint32_t>(blocks_.size());
-      blocks_.emplace_back();
-    }
-    for (auto& node : blocks_[block]) node = OcTreeNode{fill, 0};
-    ++in_use_;
-    return block;
+  /// Reference of the first existing child of a node that has children.
+  static NodeRef firstChild(const OcTreeNode& parent) { return parent.array() + 1; }
+
+  /// Reference of child `index` (0…7) of `parent`, kNoNodeRef when it does not exist.
+  NodeRef childRef(const OcTreeNode& parent, unsigned index) const {
+    if (!parent.hasChildren()) return kNoNodeRef;
+    const std::uint32_t array = parent.array();
+    const unsigned mask = maskOf(array);
+    if (((mask >> index) & 1U) == 0) return kNoNodeRef;
+    return array + 1 + kBitCount[mask & ((1U << index) - 1U)];
   }
 
-  /// Returns a block to the free list. Its nodes' own children must already be released.
-  void release(std::uint32_t block) {
-    free_.push_back(block);
-    --in_use_;
-  }
+  /// Gives the childless node `parent` the children in `mask` (non-zero), each with `log_odds`
+  /// and no children. Invalidates C++ references to nodes (not NodeRefs).
+  /// @throws ValueError when the pool would exceed 2^31 slots.
+  void createChildren(NodeRef parent, unsigned mask, float log_odds);
+
+  /// Adds the missing child `index` to `parent` (which may have no children yet) with `log_odds`
+  /// and returns its reference. Moves `parent`'s other children when their array is full
+  /// (their NodeRefs change; `parent`'s does not). @throws ValueError as createChildren.
+  NodeRef addChild(NodeRef parent, unsigned index, float log_odds);
+
+  /// Frees `parent`'s children array (its children must be childless) and clears its link.
+  void releaseChildren(NodeRef parent);
 
   /// Drops every node, including the root.
-  void clear() {
-    blocks_.assign(1, Block{});
-    free_.clear();
-    in_use_ = 0;
-  }
+  void clear();
 
-  std::size_t blocksInUse() const { return in_use_; }
+  /// Rewrites the tree below the root into a new vector, depth first, each array at the smallest
+  /// capacity that holds its children: gives back freed arrays and spare capacity. Changes every
+  /// NodeRef except the root's.
+  void compact();
 
-  /// Bytes allocated for nodes and the free list (capacity, not only what is in use).
-  std::size_t bytesAllocated() const {
-    return blocks_.capacity() * sizeof(Block) + free_.capacity() * sizeof(std::uint32_t);
-  }
+  /// Slots held by freed arrays, waiting for reuse.
+  std::size_t freeSlots() const { return slots_.size() - used_slots_; }
 
-  /// Bytes of the blocks in use plus the root's block: the map's own size.
-  std::size_t bytesInUse() const { return (in_use_ + 1) * sizeof(Block); }
+  /// Bytes of the slots in use (root, the "no node" slot and live arrays): the map's own size.
+  std::size_t bytesInUse() const { return used_slots_ * sizeof(OcTreeNode); }
 
+  /// Bytes allocated for slots and free lists (capacity, not only what is in use).
+  std::size_t bytesAllocated() const;
 
  private:
-  std::vector<Block> blocks_;
-  std::vector<std::uint32_t> free_;
-  std::size_t in_use_ = 0;
+  static constexpr unsigned kClasses = 4;
+  static constexpr std::array<unsigned, kClasses> kCapacity = {1, 2, 4, 8};
+  static constexpr std::uint32_t kMaxSlots = OcTreeNode::kArrayMask;
+  static constexpr std::array<std::uint8_t, 256> kBitCount = [] {
+    std::array<std::uint8_t, 256> counts{};
+    for (unsigned m = 0; m < 256; ++m) counts[m] = static_cast<std::uint8_t>((m & 1U) + (m > 1 ? counts[m >> 1] : 0));
+    return counts;
+  }();
+
+  /// Smallest capacity class holding `children` (1…8) children.
+  static unsigned classFor(unsigned children) { return children <= 1 ? 0 : children <= 2 ? 1 : children <= 4 ? 2 : 3; }
+  unsigned maskOf(std::uint32_t array) const { return slots_[array].link & 0xFFU; }
+  unsigned classOf(std::uint32_t array) const { return (slots_[array].link >> 8) & 3U; }
+  void setHeader(std::uint32_t array, unsigned mask, unsigned cls) { slots_[array] = OcTreeNode{kUnknownLogOdds, mask | (cls << 8)}; }
+  /// Slot of a new array of class `cls` (header included), from the free list or the end.
+  std::uint32_t allocate(unsigned cls);
+  void release(std::uint32_t array);
+  /// Copies the subtree at `from` (in `old`) to `to`, appending its arrays (compact()).
+  void copySubtree(const std::vector<OcTreeNode>& old, NodeRef from, NodeRef to);
+
+  std::vector<OcTreeNode> slots_;
+  std::array<std::vector<std::uint32_t>, kClasses> free_;
+  std::size_t used_slots_ = 0;
 };
 
 }  // namespace sonarmap

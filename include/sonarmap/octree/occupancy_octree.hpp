@@ -142,10 +142,20 @@ class OccupancyOctree {
   /// Nodes, inner nodes and leaves, counted by one traversal.
   NodeCounts counts() const;
 
-  /// Bytes the tree's nodes occupy (blocks in use, 64 bytes per block of 8 siblings).
+  /// Bytes the tree's nodes occupy: 8 bytes per slot in use (the root, and per inner node one
+  /// header plus its children array's capacity of 1, 2, 4 or 8 nodes; node_pool.hpp), plus the
+  /// tree object. Comparable to OctoMap's `memoryUsage()` (16 B per node, 64 B per inner node).
   std::size_t memoryBytes() const { return pool_.bytesInUse() + sizeof(*this); }
-  /// Bytes allocated by the tree, including capacity kept for growth and freed blocks.
+  /// Bytes allocated by the tree, including capacity kept for growth and freed arrays.
   std::size_t memoryBytesAllocated() const { return pool_.bytesAllocated() + sizeof(*this); }
+  /// Gives back freed arrays and spare capacity by rewriting the nodes into a fresh vector, depth
+  /// first. Done automatically by updateInnerOccupancy() / updateDirtyInnerOccupancy() when more
+  /// than four fifths of the slots are free (e.g. after a lazy sync pruned most of the tree).
+  /// Invalidates every NodeRef but the root's.
+  void shrinkToFit() {
+    cached_levels_ = -1;
+    pool_.compact();
+  }
 
   bool empty() const { return !pool_.at(kRootRef).exists(); }
   double resolution_m() const { return coder_.resolution_m(); }
@@ -156,22 +166,31 @@ class OccupancyOctree {
   // --- raw node access, for file readers and writers ----------------------------------------
 
   const OcTreeNode& node(NodeRef ref) const { return pool_.at(ref); }
-  /// Reference of child `index` of a node that has children.
-  static NodeRef childRef(const OcTreeNode& parent, unsigned index) { return NodePool::childRef(parent.block(), index); }
-  /// Sets a node's log-odds (NaN removes nothing: use only on existing nodes or to create one).
-  void setLogOdds(NodeRef ref, float log_odds) { pool_.at(ref).log_odds = log_odds; }
-  /// Gives a childless node a block of 8 not-yet-existing children. Invalidates node references.
-  void createChildren(NodeRef ref);
+  /// Reference of child `index` (0…7) of `parent`; kNoNodeRef, a node that does not exist, when
+  /// there is no such child.
+  NodeRef childRef(const OcTreeNode& parent, unsigned index) const { return pool_.childRef(parent, index); }
+  /// Bit i set when child i of `parent` exists.
+  unsigned childMask(const OcTreeNode& parent) const { return pool_.childMask(parent); }
+  /// Sets an existing node's log-odds, or the root's to create it (NaN removes nothing).
+  /// @throws ValueError for kNoNodeRef.
+  void setLogOdds(NodeRef ref, float log_odds) {
+    if (ref == kNoNodeRef) throw ValueError("setLogOdds on a child that does not exist");
+    pool_.at(ref).log_odds = log_odds;
+  }
+  /// Gives an existing childless node the children in `mask` (bit i: child i), with log-odds 0
+  /// and no children. Invalidates C++ references to nodes, not NodeRefs.
+  /// @throws ValueError when `ref` is kNoNodeRef or already has children.
+  void createChildren(NodeRef ref, unsigned mask);
   /// Inner value of a node from its existing children, by the configured aggregation.
   float aggregateChildren(const OcTreeNode& parent) const;
 
  private:
-  /// What the 8 children of a block say about their parent, in one pass over them.
+  /// What the children of a node say about it, in one pass over them.
   struct ChildSummary {
     float aggregate;    ///< max or mean of the existing children (0 if none exists)
     bool prunable;      ///< all 8 exist, none has children, all have the same log-odds
   };
-  ChildSummary summarize(std::uint32_t block) const;
+  ChildSummary summarize(const OcTreeNode& parent) const;
   /// Prunes the inner node `ref` if its children allow it, else sets its aggregate. Clears its
   /// dirty bit unless `keep_dirty` (an eager update through a subtree other lazy updates dirtied).
   /// @return true when it was pruned.
@@ -180,6 +199,7 @@ class OccupancyOctree {
   void updateAncestors(int fresh_from);
   void markPathDirty();
   void syncSubtree(NodeRef ref, bool all);
+  void shrinkIfMostlyFree();
   template <class Visitor>
   void visitLeavesInBox(NodeRef ref, const KeyType& key, int depth, const KeyType& lo, const KeyType& hi,
                         Visitor& visit) const;

@@ -42,9 +42,9 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
     // existing nodes to the deepest one containing the key.
     level = cachedLevels(key);
     path[0] = kRootRef;
-    while (level < Depth && pool_.at(path[level]).hasChildren()) {
-      const NodeRef child = NodePool::childRef(pool_.at(path[level]).block(), childIndex(key, level));
-      if (!pool_.at(child).exists()) break;
+    while (level < Depth) {
+      const NodeRef child = pool_.childRef(pool_.at(path[level]), childIndex(key, level));
+      if (child == kNoNodeRef) break;
       path[++level] = child;
     }
     cached_key_ = key;
@@ -56,15 +56,12 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
   // Create (or expand a pruned leaf into) the missing levels down to the finest voxel.
   for (; level < Depth; ++level) {
     const NodeRef ref = path[level];
-    if (!pool_.at(ref).hasChildren()) {
-      const float fill = level >= fresh_from ? kUnknownLogOdds : pool_.at(ref).log_odds;
-      const std::uint32_t block = pool_.allocate(fill);
-      pool_.at(ref).link = block;
-    }
-    const NodeRef child = NodePool::childRef(pool_.at(ref).block(), childIndex(key, level));
-    path[level + 1] = child;
-    if (!pool_.at(child).exists()) {
-      pool_.at(child).log_odds = 0.0F;
+    const unsigned index = childIndex(key, level);
+    if (level < fresh_from && !pool_.at(ref).hasChildren()) {  // a pruned leaf: all 8 children inherit it
+      pool_.createChildren(ref, 0xFFU, pool_.at(ref).log_odds);
+      path[level + 1] = pool_.childRef(pool_.at(ref), index);
+    } else {
+      path[level + 1] = pool_.addChild(ref, index, 0.0F);
       fresh_from = std::min(fresh_from, level + 1);
     }
   }
@@ -108,19 +105,17 @@ void OccupancyOctree<Depth>::updateAncestors(int fresh_from) {
 }
 
 template <int Depth>
-typename OccupancyOctree<Depth>::ChildSummary OccupancyOctree<Depth>::summarize(std::uint32_t block) const {
-  const OcTreeNode* children = &pool_.at(NodePool::childRef(block, 0));
+typename OccupancyOctree<Depth>::ChildSummary OccupancyOctree<Depth>::summarize(const OcTreeNode& parent) const {
+  const unsigned count = pool_.childCount(parent);
+  const OcTreeNode* children = &pool_.at(NodePool::firstChild(parent));
   float max = -std::numeric_limits<float>::infinity();
   float sum = 0.0F;
-  int count = 0;
-  bool leaves_equal = true;
-  for (unsigned i = 0; i < 8; ++i) {
-    const OcTreeNode& child = children[i];
-    leaves_equal = leaves_equal && !child.hasChildren() && child.log_odds == children[0].log_odds;  // NaN never equal
-    if (!child.exists()) continue;
+  bool leaves_equal = count == 8;
+  for (unsigned k = 0; k < count; ++k) {
+    const OcTreeNode& child = children[k];
+    leaves_equal = leaves_equal && !child.hasChildren() && child.log_odds == children[0].log_odds;
     max = std::max(max, child.log_odds);
     sum += child.log_odds;
-    ++count;
   }
   if (count == 0) return {0.0F, false};
   const float aggregate = options_.aggregation == InnerAggregation::kMax ? max : sum / static_cast<float>(count);
@@ -129,21 +124,19 @@ typename OccupancyOctree<Depth>::ChildSummary OccupancyOctree<Depth>::summarize(
 
 template <int Depth>
 float OccupancyOctree<Depth>::aggregateChildren(const OcTreeNode& parent) const {
-  return summarize(parent.block()).aggregate;
+  return summarize(parent).aggregate;
 }
 
 template <int Depth>
 bool OccupancyOctree<Depth>::refreshInner(NodeRef ref, bool keep_dirty) {
-  const std::uint32_t block = pool_.at(ref).block();
-  const ChildSummary summary = summarize(block);
+  const ChildSummary summary = summarize(pool_.at(ref));
   OcTreeNode& node = pool_.at(ref);
   node.log_odds = summary.aggregate;
   if (!(options_.prune && summary.prunable)) {
-    node.link = keep_dirty ? (node.link | block) : block;  // clean unless kept dirty
+    if (!keep_dirty) node.link &= ~OcTreeNode::kDirtyBit;
     return false;
   }
-  node.link = 0;  // all 8 equal leaves: the node becomes the leaf
-  pool_.release(block);
+  pool_.releaseChildren(ref);  // all 8 equal leaves: the node becomes the leaf
   return true;
 }
 
@@ -153,6 +146,12 @@ void OccupancyOctree<Depth>::updateInnerOccupancy() {
   const bool all = !options_.lazy;
   const OcTreeNode& root = pool_.at(kRootRef);
   if (root.hasChildren() && (root.dirty() || all)) syncSubtree(kRootRef, all);
+  shrinkIfMostlyFree();
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::shrinkIfMostlyFree() {
+  if (pool_.freeSlots() > 4 * (pool_.bytesInUse() / sizeof(OcTreeNode))) shrinkToFit();
 }
 
 template <int Depth>
@@ -160,27 +159,28 @@ void OccupancyOctree<Depth>::updateDirtyInnerOccupancy() {
   cached_levels_ = -1;
   const OcTreeNode& root = pool_.at(kRootRef);
   if (root.hasChildren() && root.dirty()) syncSubtree(kRootRef, false);
+  shrinkIfMostlyFree();
 }
 
 template <int Depth>
 void OccupancyOctree<Depth>::syncSubtree(NodeRef ref, bool all) {
   // Post-order over the subtrees that changed since the last synchronisation (dirty nodes);
   // a clean subtree is already consistent. `all` visits every inner node (eager trees).
-  const std::uint32_t block = pool_.at(ref).block();
-  if (block == 0) return;
-  for (unsigned i = 0; i < 8; ++i) {
-    const OcTreeNode& child = pool_.at(NodePool::childRef(block, i));
-    if (child.hasChildren() && (child.dirty() || all)) syncSubtree(NodePool::childRef(block, i), all);
+  const OcTreeNode& node = pool_.at(ref);
+  if (!node.hasChildren()) return;
+  const NodeRef first = NodePool::firstChild(node);
+  const unsigned count = pool_.childCount(node);
+  for (NodeRef child = first; child < first + count; ++child) {
+    if (pool_.at(child).hasChildren() && (pool_.at(child).dirty() || all)) syncSubtree(child, all);
   }
   refreshInner(ref);
 }
 
 template <int Depth>
-void OccupancyOctree<Depth>::createChildren(NodeRef ref) {
+void OccupancyOctree<Depth>::createChildren(NodeRef ref, unsigned mask) {
   cached_levels_ = -1;
-  if (pool_.at(ref).hasChildren()) return;
-  const std::uint32_t block = pool_.allocate(kUnknownLogOdds);
-  pool_.at(ref).link = block;
+  if (ref == kNoNodeRef || pool_.at(ref).hasChildren()) throw ValueError("createChildren needs an existing childless node");
+  if ((mask & 0xFFU) != 0) pool_.createChildren(ref, mask & 0xFFU, 0.0F);
 }
 
 template <int Depth>
@@ -189,8 +189,8 @@ std::optional<float> OccupancyOctree<Depth>::search(const KeyType& key, int dept
   if (!pool_.at(ref).exists()) return std::nullopt;
   const int target = std::clamp(depth, 0, Depth);
   for (int level = 0; level < target && pool_.at(ref).hasChildren(); ++level) {
-    ref = NodePool::childRef(pool_.at(ref).block(), childIndex(key, level));
-    if (!pool_.at(ref).exists()) return std::nullopt;
+    ref = pool_.childRef(pool_.at(ref), childIndex(key, level));
+    if (ref == kNoNodeRef) return std::nullopt;
   }
   return pool_.at(ref).log_odds;
 }
@@ -231,9 +231,9 @@ void OccupancyOctree<Depth>::visitLeavesInBox(NodeRef ref, const KeyType& key, i
   using Index = typename KeyType::Index;
   const int bit = Depth - 1 - depth;
   const Index last = static_cast<Index>((Index{1} << bit) - 1);  // a child spans [corner, corner + last]
-  for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = NodePool::childRef(node.block(), i);
-    if (!pool_.at(child).exists()) continue;
+  NodeRef child = NodePool::firstChild(node);
+  for (unsigned mask = pool_.childMask(node); mask != 0; mask &= mask - 1, ++child) {
+    const auto i = static_cast<unsigned>(std::countr_zero(mask));
     KeyType child_key = key;
     bool inside = true;
     for (int axis = 0; axis < 3; ++axis) {
@@ -260,10 +260,9 @@ void OccupancyOctree<Depth>::countSubtree(NodeRef ref, NodeCounts& counts) const
     return;
   }
   ++counts.inner;
-  for (unsigned i = 0; i < 8; ++i) {
-    const NodeRef child = NodePool::childRef(node.block(), i);
-    if (pool_.at(child).exists()) countSubtree(child, counts);
-  }
+  const NodeRef first = NodePool::firstChild(node);
+  const unsigned count = pool_.childCount(node);
+  for (NodeRef child = first; child < first + count; ++child) countSubtree(child, counts);
 }
 
 }  // namespace sonarmap
