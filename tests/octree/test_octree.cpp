@@ -2,6 +2,7 @@
 // lazy evaluation, expansion, counts and memory (paper §5).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <map>
 #include <random>
 #include <tuple>
@@ -193,6 +194,51 @@ TEST(Octree, NodesAreEightBytesAndMemoryFollowsCompactArrays) {
   EXPECT_EQ(tree.counts().leaves, 1U);
   EXPECT_EQ(tree.memoryBytes(), (2U + 15U * 2U) * 8U + sizeof(OcTree16));
   EXPECT_GE(tree.memoryBytesAllocated(), tree.memoryBytes());
+}
+
+TEST(Octree, ChildrenAddedInAnyOrderAreFoundByIndex) {
+  OcTree16 tree(0.01, OctreeOptions{.prune = false});
+  const unsigned order[8] = {5, 0, 7, 2, 6, 1, 3, 4};  // grows the array 1 → 2 → 4 → 8, inserting inside
+  for (unsigned n = 0; n < 8; ++n) {
+    const unsigned i = order[n];
+    tree.updateNode(key16(i & 1U, (i >> 1) & 1U, i >> 2), 0.1F * static_cast<float>(i + 1));
+  }
+  for (unsigned i = 0; i < 8; ++i) {
+    EXPECT_FLOAT_EQ(*tree.search(key16(i & 1U, (i >> 1) & 1U, i >> 2)), 0.1F * static_cast<float>(i + 1)) << i;
+  }
+  EXPECT_EQ(tree.counts().leaves, 8U);
+}
+
+TEST(Octree, ShrinkToFitKeepsTheTreeAndGivesMemoryBack) {
+  OcTree16 tree(0.01, OctreeOptions{.lazy = true});
+  for (int x = 0; x < 64; ++x)
+    for (int y = 0; y < 64; ++y)
+      for (int z = 0; z < 64; ++z) tree.integrate(key16(x, y, z), (x / 16 + y / 16 + z / 16) % 2 == 0);
+  const std::size_t before = tree.memoryBytesAllocated();
+  tree.updateInnerOccupancy();  // prunes every 16³ block, then compacts: most slots were freed
+  std::vector<std::tuple<Key16, int, float>> leaves;
+  tree.forEachLeaf([&](const LeafView<16>& l) { leaves.emplace_back(l.key, l.depth, l.log_odds); });
+  EXPECT_EQ(leaves.size(), 64U);
+  EXPECT_LT(tree.memoryBytesAllocated(), before / 20);
+  EXPECT_LE(tree.memoryBytes(), tree.memoryBytesAllocated());
+  tree.shrinkToFit();  // again: nothing changes
+  std::vector<std::tuple<Key16, int, float>> again;
+  tree.forEachLeaf([&](const LeafView<16>& l) { again.emplace_back(l.key, l.depth, l.log_odds); });
+  EXPECT_EQ(leaves, again);
+  EXPECT_EQ(tree.occupancyOf(key16(0, 0, 0)), Occupancy::kOccupied);
+  EXPECT_EQ(tree.occupancyOf(key16(16, 0, 0)), Occupancy::kFree);
+}
+
+TEST(Octree, RawAccessRejectsMissingChildren) {
+  OcTree16 tree(0.01);
+  tree.integrate(key16(0, 0, 0), true);
+  const OcTreeNode& root = tree.node(kRootRef);
+  unsigned found = 0;
+  for (unsigned i = 0; i < 8; ++i) found += tree.childRef(root, i) != kNoNodeRef ? 1U : 0U;
+  EXPECT_EQ(found, 1U);
+  EXPECT_EQ(std::popcount(tree.childMask(root)), 1);
+  EXPECT_THROW(tree.setLogOdds(kNoNodeRef, 1.0F), ValueError);
+  EXPECT_THROW(tree.createChildren(kRootRef, 0xFF), ValueError);  // the root already has children
 }
 
 TEST(Octree, OccupancyAtRejectsPointsOutsideTheMap) {
