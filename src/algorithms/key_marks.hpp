@@ -52,6 +52,8 @@ class KeyMarks {
       bricks_[axis] = static_cast<std::size_t>(span) + 1;
       bricks *= bricks_[axis];
     }
+    stride_y_ = bricks_[0];
+    stride_z_ = bricks_[0] * bricks_[1];
     bits_.assign(bricks, 0);
   }
 
@@ -106,6 +108,24 @@ class KeyMarks {
     for (const KeyType& key : ordered_) visit(std::as_const(key));
   }
 
+  /// Calls `visit(corner, bits)` once per brick holding keys, in forEachOrdered's brick order:
+  /// `corner` is the brick's lowest key, bit b of `bits` its key at Morton index b (bitIndex).
+  template <class Visitor>
+  void forEachBrick(Visitor&& visit) {
+    if (dense_) {
+      forEachWord([&](std::uint64_t bits, const KeyType& corner) { visit(corner, bits); });
+      return;
+    }
+    ordered_.assign(sparse_.begin(), sparse_.end());
+    std::sort(ordered_.begin(), ordered_.end(), visitLess);
+    for (std::size_t i = 0; i < ordered_.size();) {
+      const KeyType corner = brickCorner(ordered_[i]);
+      std::uint64_t bits = 0;
+      for (; i < ordered_.size() && brickCorner(ordered_[i]) == corner; ++i) bits |= bit(ordered_[i]);
+      visit(corner, bits);
+    }
+  }
+
   /// Orders keys as forEachOrdered visits them: by brick z, y, x, then Morton order in the brick.
   static bool visitLess(const KeyType& a, const KeyType& b) {
     const auto brick = [](const KeyType& k) { return std::tuple(k[2] >> 2, k[1] >> 2, k[0] >> 2); };
@@ -116,29 +136,39 @@ class KeyMarks {
  private:
   /// Position of a key in its brick's word: x, y, z bits of the key's low two bits interleaved.
   static unsigned bitIndex(const KeyType& key) {
-    const auto x = static_cast<unsigned>(key[0] & 3U), y = static_cast<unsigned>(key[1] & 3U),
-               z = static_cast<unsigned>(key[2] & 3U);
-    return (x & 1U) | ((y & 1U) << 1) | ((z & 1U) << 2) | ((x & 2U) << 2) | ((y & 2U) << 3) | ((z & 2U) << 4);
+    constexpr unsigned kSpread[4] = {0, 1, 8, 9};  // low two bits of a coordinate, 3 bits apart
+    return kSpread[key[0] & 3U] | (kSpread[key[1] & 3U] << 1) | (kSpread[key[2] & 3U] << 2);
   }
   static std::uint64_t bit(const KeyType& key) { return std::uint64_t{1} << bitIndex(key); }
+  static KeyType brickCorner(const KeyType& key) {
+    return KeyType{{static_cast<Index>(key[0] & ~Index{3}), static_cast<Index>(key[1] & ~Index{3}),
+                    static_cast<Index>(key[2] & ~Index{3})}};
+  }
 
   std::size_t word(const KeyType& key) const {
     const auto brick = [&](int axis) { return static_cast<std::size_t>((key[axis] - lo_[axis]) >> 2); };
-    return brick(0) + bricks_[0] * (brick(1) + bricks_[1] * brick(2));
+    return brick(0) + stride_y_ * brick(1) + stride_z_ * brick(2);
   }
 
-  template <class Visitor>
-  void forEachDense(Visitor& visit) const {
+  /// The key at bit `b` of the brick whose lowest key is `corner`.
+  static KeyType keyAt(const KeyType& corner, unsigned b) {
+    KeyType key;
+    key[0] = static_cast<Index>(corner[0] + ((b & 1U) | ((b >> 2) & 2U)));
+    key[1] = static_cast<Index>(corner[1] + (((b >> 1) & 1U) | ((b >> 3) & 2U)));
+    key[2] = static_cast<Index>(corner[2] + (((b >> 2) & 1U) | ((b >> 4) & 2U)));
+    return key;
+  }
+
+  /// Calls `body(bits, corner)` for every non-empty brick word, in storage order.
+  template <class Body>
+  void forEachWord(Body&& body) const {
     // Running brick coordinates: no division per word.
     std::size_t bx = 0, by = 0, bz = 0;
     for (std::size_t w = 0; w < bits_.size(); ++w) {
-      for (std::uint64_t bits = bits_[w]; bits != 0; bits &= bits - 1) {
-        const auto b = static_cast<unsigned>(std::countr_zero(bits));
-        KeyType key;
-        key[0] = static_cast<Index>(lo_[0] + 4 * bx + ((b & 1U) | ((b >> 2) & 2U)));
-        key[1] = static_cast<Index>(lo_[1] + 4 * by + (((b >> 1) & 1U) | ((b >> 3) & 2U)));
-        key[2] = static_cast<Index>(lo_[2] + 4 * bz + (((b >> 2) & 1U) | ((b >> 4) & 2U)));
-        visit(std::as_const(key));
+      if (bits_[w] != 0) {
+        const KeyType corner{{static_cast<Index>(lo_[0] + 4 * bx), static_cast<Index>(lo_[1] + 4 * by),
+                              static_cast<Index>(lo_[2] + 4 * bz)}};
+        body(bits_[w], corner);
       }
       if (++bx == bricks_[0]) {
         bx = 0;
@@ -147,9 +177,20 @@ class KeyMarks {
     }
   }
 
+  template <class Visitor>
+  void forEachDense(Visitor& visit) const {
+    forEachWord([&](std::uint64_t bits, const KeyType& corner) {
+      for (; bits != 0; bits &= bits - 1) {
+        const KeyType key = keyAt(corner, static_cast<unsigned>(std::countr_zero(bits)));
+        visit(key);
+      }
+    });
+  }
+
   bool dense_ = true;
   KeyType lo_{};                           ///< lowest corner of the bricks (multiples of 4)
   std::size_t bricks_[3] = {0, 0, 0};      ///< bricks per axis
+  std::size_t stride_y_ = 0, stride_z_ = 0;  ///< words between bricks one apart along y, z
   std::vector<std::uint64_t> bits_;
   absl::flat_hash_set<KeyType, KeyHash<Depth>> sparse_;
   std::vector<KeyType> ordered_;

@@ -3,6 +3,7 @@
 #include "sonarmap/algorithms/point_cloud_insertion.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <exception>
 #include <functional>
@@ -94,10 +95,16 @@ PreparedScan prepareScan(const KeyCoder<16>& coder, const PointCloud& points, co
 }
 
 /// Marks every voxel the rays [first, last) cross, except each ray's end voxel (computeRayKeys).
+/// A hit ray marks its end voxel too: every hit voxel is erased from the set afterwards anyway
+/// (occupied wins), so only rays clipped at the range limit need to stop one voxel short.
 void traceRays(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const ScanRay* first,
                const ScanRay* last, Marks& marks) {
   marks.marking([&](auto mark) {
     for (const ScanRay* ray = first; ray != last; ++ray) {
+      if (ray->hit) {
+        traverseDDA(coder, origin_m, ray->end_m, mark);
+        continue;
+      }
       bool started = false;
       Key16 previous{};
       traverseDDA(coder, origin_m, ray->end_m, [&](const Key16& key) {
@@ -165,9 +172,9 @@ InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const E
   // Leaves first and inner nodes once at the end: the same tree as eager updates (each voxel is
   // updated once, and pruning is canonical), without re-aggregating ancestors after every update.
   const LogOddsModel& model = map.model();
-  crossed.forEachOrdered([&](const Key16& key) {
-    map.updateNode(key, model.miss, /*lazy_eval=*/true);
-    ++stats.free_updates;
+  crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
+    map.updateBrick(corner, voxels, model.miss);  // the crossed voxels of one 4³ brick at once
+    stats.free_updates += static_cast<std::size_t>(std::popcount(voxels));
   });
   for (const Key16& key : hits) map.updateNode(key, model.hit, /*lazy_eval=*/true);
   stats.occupied_updates = hits.size();

@@ -22,6 +22,7 @@ struct KeyChange {
   Occupancy now = Occupancy::kUnknown;     ///< class after the latest update
   /// The "now occupied" flag of OctoMap-style consumers.
   bool occupied() const { return now == Occupancy::kOccupied; }
+  friend bool operator==(const KeyChange&, const KeyChange&) = default;
 };
 
 /// Changed voxels by key.

@@ -74,6 +74,23 @@ class OccupancyOctree {
   /// updateInnerOccupancy() or updateDirtyInnerOccupancy(). A lazy tree is lazy either way.
   bool updateNode(const KeyType& key, float delta_log_odds, bool lazy_eval);
 
+  /// Adds `delta_log_odds` to every finest voxel of the node at `depth` (0 … Depth) that contains
+  /// `key`, with the result of updateNode(voxel, delta, lazy_eval = true) on each voxel followed by
+  /// the inner-node synchronisation: unknown space inside the cube becomes one leaf per largest
+  /// unknown node (the leaves pruning would have merged), existing leaves are updated in place.
+  /// Leaves only: inner nodes stay stale until updateInnerOccupancy() / updateDirtyInnerOccupancy().
+  /// Cost: one descent plus the existing nodes inside the cube. With pruning off or change
+  /// detection on it updates voxel by voxel. Used by point-cloud insertion for whole 2³ and 4³
+  /// blocks of free space.
+  /// @throws ValueError for a voxel-by-voxel cube of more than 2^10 voxels per edge.
+  void updateCube(const KeyType& key, int depth, float delta_log_odds);
+
+  /// updateCube for a set of voxels of one brick, the 4 × 4 × 4 voxels of the node at depth
+  /// Depth − 2 containing `corner`: bit b of `voxels` is the voxel whose child index is b & 7 at
+  /// the finest level and b >> 3 one level up (Morton order). A brick in unknown space is built
+  /// at once, its arrays at their final size. Same result and bookkeeping as updateCube.
+  void updateBrick(const KeyType& corner, std::uint64_t voxels, float delta_log_odds);
+
   /// A hit (`occupied`) or miss at `key`, with the sensor model's log-odds.
   bool integrate(const KeyType& key, bool occupied, bool lazy_eval = false) {
     return updateNode(key, occupied ? model_.hit : model_.miss, lazy_eval);
@@ -195,9 +212,23 @@ class OccupancyOctree {
   /// dirty bit unless `keep_dirty` (an eager update through a subtree other lazy updates dirtied).
   /// @return true when it was pruned.
   bool refreshInner(NodeRef ref, bool keep_dirty = false);
+  static constexpr int kMaxVoxelwiseCubeLevels = 10;
   int cachedLevels(const KeyType& key) const;
+  /// Fills path_ from the root towards `key` through existing nodes, at most to level `target`;
+  /// returns the level reached. Creates the root (setting `fresh_from` to 0) when it is missing.
+  int descend(const KeyType& key, int target, int& fresh_from);
+  /// Creates (or expands pruned leaves into) path_[level + 1 … target]; `fresh_from` becomes the
+  /// first level created from unknown space.
+  void createPath(const KeyType& key, int level, int target, int& fresh_from);
+  void updateSubtree(NodeRef ref, float delta_log_odds);
+  void buildFreshBrick(NodeRef brick, std::uint64_t voxels, float log_odds);
+  /// Key of bit `bit` of the brick holding `corner` (updateBrick's bit order).
+  static KeyType brickKey(const KeyType& corner, unsigned bit);
+  template <class Visitor>
+  void forEachVoxelOfCube(const KeyType& key, int depth, Visitor&& visit);
   void updateAncestors(int fresh_from);
-  void markPathDirty();
+  /// Marks path_[0 … below − 1] dirty.
+  void markPathDirty(int below);
   void syncSubtree(NodeRef ref, bool all);
   void shrinkIfMostlyFree();
   template <class Visitor>

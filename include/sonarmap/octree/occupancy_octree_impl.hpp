@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <string>
+#include <utility>
 
 namespace sonarmap {
 
@@ -28,53 +30,63 @@ int OccupancyOctree<Depth>::cachedLevels(const KeyType& key) const {
 }
 
 template <int Depth>
-bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds, bool lazy_eval) {
-  if (delta_log_odds == 0.0F) return false;
-  auto& path = path_;
-  int fresh_from = Depth + 1;  // first level created by this update
-  int level = 0;
+int OccupancyOctree<Depth>::descend(const KeyType& key, int target, int& fresh_from) {
+  path_[0] = kRootRef;
   if (!pool_.at(kRootRef).exists()) {
     pool_.at(kRootRef).log_odds = 0.0F;
-    path[0] = kRootRef;
     fresh_from = 0;
-  } else {
-    // Start from the deepest node shared with the previous update's path, then descend through
-    // existing nodes to the deepest one containing the key.
-    level = cachedLevels(key);
-    path[0] = kRootRef;
-    while (level < Depth) {
-      const NodeRef child = pool_.childRef(pool_.at(path[level]), childIndex(key, level));
-      if (child == kNoNodeRef) break;
-      path[++level] = child;
-    }
-    cached_key_ = key;
-    cached_levels_ = level;
-    const OcTreeNode& deepest = pool_.at(path[level]);
-    const bool is_leaf = level == Depth || !deepest.hasChildren();
-    if (options_.stability_check && is_leaf && model_.isStable(deepest.log_odds, delta_log_odds)) return false;
+    return 0;
   }
-  // Create (or expand a pruned leaf into) the missing levels down to the finest voxel.
-  for (; level < Depth; ++level) {
-    const NodeRef ref = path[level];
+  // Start from the deepest node shared with the previous update's path, then descend through
+  // existing nodes to the deepest one containing the key.
+  int level = std::min(cachedLevels(key), target);
+  while (level < target) {
+    const NodeRef child = pool_.childRef(pool_.at(path_[level]), childIndex(key, level));
+    if (child == kNoNodeRef) break;
+    path_[++level] = child;
+  }
+  cached_key_ = key;
+  cached_levels_ = level;
+  return level;
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::createPath(const KeyType& key, int level, int target, int& fresh_from) {
+  // Create (or expand a pruned leaf into) the missing levels down to `target`.
+  for (; level < target; ++level) {
+    const NodeRef ref = path_[level];
     const unsigned index = childIndex(key, level);
     if (level < fresh_from && !pool_.at(ref).hasChildren()) {  // a pruned leaf: all 8 children inherit it
       pool_.createChildren(ref, 0xFFU, pool_.at(ref).log_odds);
-      path[level + 1] = pool_.childRef(pool_.at(ref), index);
+      path_[level + 1] = pool_.childRef(pool_.at(ref), index);
     } else {
-      path[level + 1] = pool_.addChild(ref, index, 0.0F);
+      path_[level + 1] = pool_.addChild(ref, index, 0.0F);
       fresh_from = std::min(fresh_from, level + 1);
     }
   }
   cached_key_ = key;
-  cached_levels_ = Depth;
-  OcTreeNode& leaf = pool_.at(path[Depth]);
+  cached_levels_ = target;
+}
+
+template <int Depth>
+bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds, bool lazy_eval) {
+  if (delta_log_odds == 0.0F) return false;
+  int fresh_from = Depth + 1;  // first level created by this update
+  const int level = descend(key, Depth, fresh_from);
+  if (fresh_from > Depth && options_.stability_check) {
+    const OcTreeNode& deepest = pool_.at(path_[level]);
+    const bool is_leaf = level == Depth || !deepest.hasChildren();
+    if (is_leaf && model_.isStable(deepest.log_odds, delta_log_odds)) return false;
+  }
+  createPath(key, level, Depth, fresh_from);
+  OcTreeNode& leaf = pool_.at(path_[Depth]);
   const float before = leaf.log_odds;
   leaf.log_odds = model_.update(before, delta_log_odds);
   if (detect_changes_) [[unlikely]] {
     recordChange(changes_, model_, key, fresh_from <= Depth, before, leaf.log_odds);
   }
   if (options_.lazy || lazy_eval) {
-    markPathDirty();
+    markPathDirty(Depth);
   } else {
     updateAncestors(fresh_from);
   }
@@ -82,9 +94,126 @@ bool OccupancyOctree<Depth>::updateNode(const KeyType& key, float delta_log_odds
 }
 
 template <int Depth>
-void OccupancyOctree<Depth>::markPathDirty() {
+void OccupancyOctree<Depth>::updateCube(const KeyType& key, int depth, float delta_log_odds) {
+  if (delta_log_odds == 0.0F) return;
+  depth = std::clamp(depth, 0, Depth);
+  if (depth == Depth || !options_.prune || detect_changes_) {  // every voxel needs its own leaf or record
+    if (Depth - depth > kMaxVoxelwiseCubeLevels) {
+      throw ValueError("updateCube: a cube of 2^" + std::to_string(Depth - depth) +
+                       " voxels per edge needs pruning on and change detection off");
+    }
+    forEachVoxelOfCube(key, depth, [&](const KeyType& voxel) { updateNode(voxel, delta_log_odds, true); });
+    return;
+  }
+  int fresh_from = Depth + 1;
+  const int level = descend(key, depth, fresh_from);
+  createPath(key, level, depth, fresh_from);
+  const NodeRef target = path_[depth];
+  if (depth >= fresh_from) {
+    pool_.at(target).log_odds = model_.update(0.0F, delta_log_odds);  // unknown space: one new leaf
+  } else {
+    updateSubtree(target, delta_log_odds);
+  }
+  markPathDirty(depth);
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::updateBrick(const KeyType& corner, std::uint64_t voxels, float delta_log_odds) {
+  static_assert(Depth >= 2, "a brick spans the two finest levels");
+  if (voxels == 0 || delta_log_odds == 0.0F) return;
+  const bool voxelwise = !options_.prune || detect_changes_;  // every voxel its own leaf or record
+  if (voxels == ~std::uint64_t{0} && !voxelwise) {
+    updateCube(corner, Depth - 2, delta_log_odds);
+    return;
+  }
+  if (!voxelwise) {
+    int fresh_from = Depth + 1;
+    const int level = descend(corner, Depth - 2, fresh_from);
+    createPath(corner, level, Depth - 2, fresh_from);
+    if (Depth - 2 >= fresh_from) {
+      buildFreshBrick(path_[Depth - 2], voxels, model_.update(0.0F, delta_log_odds));
+      markPathDirty(Depth - 2);
+      return;
+    }
+  }
+  // Known space (or voxel-by-voxel bookkeeping): octet by octet, as single voxels or 2³ cubes.
+  for (unsigned octet = 0; octet < 8; ++octet) {
+    const auto bits = static_cast<unsigned>((voxels >> (8 * octet)) & 0xFFU);
+    if (bits == 0xFFU) updateCube(brickKey(corner, 8 * octet), Depth - 1, delta_log_odds);
+    for (unsigned rest = bits == 0xFFU ? 0U : bits; rest != 0; rest &= rest - 1) {
+      updateNode(brickKey(corner, 8 * octet + static_cast<unsigned>(std::countr_zero(rest))), delta_log_odds, true);
+    }
+  }
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::buildFreshBrick(NodeRef brick, std::uint64_t voxels, float log_odds) {
+  // The brick's node is new: give it exactly its children, each exactly its own (no array grows).
+  // Every node built holds `log_odds`, the max and the mean of its children, and none can be
+  // pruned (a full brick goes to updateCube, a full octet is one leaf): all are already in sync.
+  unsigned octets = 0;
+  for (unsigned octet = 0; octet < 8; ++octet) octets |= ((voxels >> (8 * octet)) & 0xFFU) != 0 ? 1U << octet : 0U;
+  pool_.createChildren(brick, octets, log_odds);
+  pool_.at(brick).log_odds = log_odds;
+  NodeRef child = NodePool::firstChild(pool_.at(brick));
+  for (unsigned rest = octets; rest != 0; rest &= rest - 1, ++child) {
+    const auto bits = static_cast<unsigned>((voxels >> (8 * std::countr_zero(rest))) & 0xFFU);
+    if (bits != 0xFFU) pool_.createChildren(child, bits, log_odds);  // else a whole octet: one leaf
+  }
+}
+
+template <int Depth>
+typename OccupancyOctree<Depth>::KeyType OccupancyOctree<Depth>::brickKey(const KeyType& corner, unsigned bit) {
+  using Index = typename KeyType::Index;
+  KeyType key;
+  for (unsigned axis = 0; axis < 3; ++axis) {
+    const auto low = static_cast<Index>(((bit >> axis) & 1U) | (((bit >> (axis + 3)) & 1U) << 1));
+    key[axis] = static_cast<Index>((corner[axis] & ~Index{3}) | low);
+  }
+  return key;
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::updateSubtree(NodeRef ref, float delta_log_odds) {
+  // Each leaf stands for equal voxels; unknown children become leaves of their own size.
+  OcTreeNode& node = pool_.at(ref);
+  if (!node.hasChildren()) {
+    node.log_odds = model_.update(node.log_odds, delta_log_odds);
+    return;
+  }
+  node.link |= OcTreeNode::kDirtyBit;
+  const unsigned mask = pool_.childMask(node);
+  const NodeRef first = NodePool::firstChild(node);
+  const unsigned count = pool_.childCount(node);
+  for (NodeRef child = first; child < first + count; ++child) updateSubtree(child, delta_log_odds);
+  const float fresh = model_.update(0.0F, delta_log_odds);
+  for (unsigned i = 0; i < 8; ++i) {
+    if (((mask >> i) & 1U) == 0) pool_.addChild(ref, i, fresh);
+  }
+}
+
+template <int Depth>
+template <class Visitor>
+void OccupancyOctree<Depth>::forEachVoxelOfCube(const KeyType& key, int depth, Visitor&& visit) {
+  using Index = typename KeyType::Index;
+  const int bits = Depth - depth;  // ≤ kMaxVoxelwiseCubeLevels
+  const std::uint32_t edge = std::uint32_t{1} << bits;
+  const auto low = static_cast<Index>(edge - 1);
+  KeyType voxel;
+  for (std::uint32_t x = 0; x < edge; ++x)
+    for (std::uint32_t y = 0; y < edge; ++y)
+      for (std::uint32_t z = 0; z < edge; ++z) {
+        voxel[0] = static_cast<Index>((key[0] & ~low) | x);
+        voxel[1] = static_cast<Index>((key[1] & ~low) | y);
+        voxel[2] = static_cast<Index>((key[2] & ~low) | z);
+        visit(std::as_const(voxel));
+      }
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::markPathDirty(int below) {
   // Ancestors of a dirty node are dirty: stop at the first one already marked.
-  for (int l = Depth - 1; l >= 0; --l) {
+  for (int l = below - 1; l >= 0; --l) {
     OcTreeNode& inner = pool_.at(path_[l]);
     if (inner.dirty()) return;
     inner.link |= OcTreeNode::kDirtyBit;
