@@ -64,7 +64,20 @@ class KeyMarks {
   template <class Body>
   void marking(Body&& body) {
     if (dense_) {
-      body([this](const KeyType& key) { bits_[word(key)] |= bit(key); });
+      // Consecutive keys of a ray mostly share a brick: gather their bits in a register and
+      // store them when the brick changes, instead of a load-or-store chain per key.
+      std::size_t current = 0;
+      std::uint64_t pending = 0;
+      body([&](const KeyType& key) {
+        const std::size_t w = word(key);
+        if (w != current) {
+          bits_[current] |= pending;
+          current = w;
+          pending = 0;
+        }
+        pending |= bit(key);
+      });
+      bits_[current] |= pending;
     } else {
       body([this](const KeyType& key) { sparse_.insert(key); });
     }
@@ -83,6 +96,15 @@ class KeyMarks {
       bits_[word(key)] &= ~bit(key);
     } else {
       sparse_.erase(key);
+    }
+  }
+
+  /// Removes every key of `other`, reset with the same box and limit (so of the same kind).
+  void subtract(const KeyMarks& other) {
+    if (dense_) {
+      for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] &= ~other.bits_[w];
+    } else {
+      for (const KeyType& key : other.sparse_) sparse_.erase(key);
     }
   }
 

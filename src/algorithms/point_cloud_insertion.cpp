@@ -164,20 +164,23 @@ InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const E
   Marks crossed;
   traceScan(coder, sensor_origin_m, scan, threads, crossed);
 
-  // Occupied wins over free (OctoMap's disjoint sets); then misses, then hits, each voxel once.
-  std::vector<Key16> hits = scan.hits;
-  std::sort(hits.begin(), hits.end(), Marks::visitLess);
-  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
-  for (const Key16& key : hits) crossed.erase(key);
-  // Leaves first and inner nodes once at the end: the same tree as eager updates (each voxel is
-  // updated once, and pruning is canonical), without re-aggregating ancestors after every update.
+  // Occupied wins over free (OctoMap's disjoint sets); then misses, then hits, each voxel once,
+  // brick by brick. Leaves first and inner nodes once at the end: the same tree as eager updates
+  // (each voxel is updated once, and pruning is canonical), without re-aggregating ancestors
+  // after every update.
+  Marks hits;
+  hits.reset(scan.lo, scan.hi);
+  for (const Key16& key : scan.hits) hits.insert(key);
+  crossed.subtract(hits);
   const LogOddsModel& model = map.model();
-  crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
-    map.updateBrick(corner, voxels, model.miss);  // the crossed voxels of one 4³ brick at once
-    stats.free_updates += static_cast<std::size_t>(std::popcount(voxels));
-  });
-  for (const Key16& key : hits) map.updateNode(key, model.hit, /*lazy_eval=*/true);
-  stats.occupied_updates = hits.size();
+  const auto update = [&map](float delta, std::size_t& count) {
+    return [&map, delta, &count](const Key16& corner, std::uint64_t voxels) {
+      map.updateBrick(corner, voxels, delta);
+      count += static_cast<std::size_t>(std::popcount(voxels));
+    };
+  };
+  crossed.forEachBrick(update(model.miss, stats.free_updates));
+  hits.forEachBrick(update(model.hit, stats.occupied_updates));
   if (!options.lazy_eval && !map.options().lazy) map.updateDirtyInnerOccupancy();
   return stats;
 }
