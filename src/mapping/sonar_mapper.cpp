@@ -90,10 +90,12 @@ void SonarMapper::integrateFreeCells() {
     }
   });
   for (const auto& hit : work.hits) work.crossed.erase(hit.first);  // an obstacle is never also a miss
-  work.crossed.forEachOrdered([&](const Key16& key) {
-    map_.integrate(key, false);
-    ++stats_.free_updates;
+  // Brick by brick, leaves only; an eager tree then syncs its inner nodes once (the same tree).
+  work.crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
+    map_.updateBrick(corner, voxels, map_.model().miss);
+    stats_.free_updates += static_cast<std::size_t>(std::popcount(voxels));
   });
+  if (!map_.options().lazy) map_.updateDirtyInnerOccupancy();
 }
 
 void SonarMapper::integrateHits() {
