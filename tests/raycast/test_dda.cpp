@@ -148,6 +148,40 @@ TYPED_TEST(raycastDda, EndPointsOutsideTheMapOrNotFiniteVisitNothing) {
   }
 }
 
+// Equal tMax (through edges and corners) step x before y before z, pinned key by key. The ties are
+// exact: the tied axes see the same numbers (all three 0.05), or only exact ones (±0.25 → ±2.5
+// voxels, fraction 0.5) and mirrored direction components.
+TYPED_TEST(raycastDda, TiesStepXThenYThenZ) {
+  const auto cells = [this](const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m) {
+    std::vector<test::Cell> out;
+    for (const auto& key : this->keys(origin_m, end_m)) out.push_back(this->cell(key));
+    return out;
+  };
+  using C = std::vector<test::Cell>;
+  EXPECT_EQ(cells({0.05, 0.05, 0.05}, {0.35, 0.35, 0.35}),
+            (C{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {2, 1, 1},  //
+               {2, 2, 1}, {2, 2, 2}, {3, 2, 2}, {3, 3, 2}, {3, 3, 3}}));
+  EXPECT_EQ(cells({0.35, 0.35, 0.35}, {0.05, 0.05, 0.05}),
+            (C{{3, 3, 3}, {2, 3, 3}, {2, 2, 3}, {2, 2, 2}, {1, 2, 2},  //
+               {1, 1, 2}, {1, 1, 1}, {0, 1, 1}, {0, 0, 1}, {0, 0, 0}}));
+  EXPECT_EQ(cells({0.25, -0.25, 0.05}, {0.55, -0.55, 0.05}),
+            (C{{2, -3, 0}, {3, -3, 0}, {3, -4, 0}, {4, -4, 0}, {4, -5, 0}, {5, -5, 0}, {5, -6, 0}}));
+  EXPECT_EQ(cells({0.05, 0.25, -0.25}, {0.05, 0.55, -0.55}),
+            (C{{0, 2, -3}, {0, 3, -3}, {0, 3, -4}, {0, 4, -4}, {0, 4, -5}, {0, 5, -5}, {0, 5, -6}}));
+}
+
+// |end - origin| overflowing double (resolution 1e300 m) leaves no usable distance: the walk is the
+// snap alone, x steps, then y, then z, and still ends on the end key (it must not run forever).
+TYPED_TEST(raycastDda, OverflowingLengthWalksTheSnapAlone) {
+  const KeyCoder<TestFixture::kDepth> coder(1e300);
+  std::vector<typename TestFixture::KeyT> ray;
+  ASSERT_TRUE(rayKeysDDA(coder, {1.5e300, 2.5e300, -0.5e300}, {4.5e300, 0.5e300, 1.5e300}, ray));
+  std::vector<test::Cell> cells;
+  for (const auto& key : ray) cells.push_back(this->cell(key));
+  EXPECT_EQ(cells, (std::vector<test::Cell>{
+                       {1, 2, -1}, {2, 2, -1}, {3, 2, -1}, {4, 2, -1}, {4, 1, -1}, {4, 0, -1}, {4, 0, 0}, {4, 0, 1}}));
+}
+
 TYPED_TEST(raycastDda, VisitorSeesTheSameKeysAsRayKeys) {
   const Eigen::Vector3d origin(-0.31, 0.72, 0.05);
   const Eigen::Vector3d end(0.44, -0.18, -0.6);

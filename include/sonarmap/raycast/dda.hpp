@@ -13,20 +13,24 @@
 /// farther along the ray than the end point (travelled distance > |end - origin|). Floating-point
 /// error can trigger the second case one or two boundaries early, with the end voxel not yet
 /// reached (paper fig. 11); the walk then "snaps" to the end voxel (paper fig. 12) by the key steps
-/// still missing, one face step at a time. Each axis has an exact budget of |Δkey| steps, so the
-/// walk never steps past the end key on any axis: keys stay in the box spanned by the origin and
-/// end keys (no wrap-around at the map border), the last key is always the end key, and
-/// consecutive keys are always face neighbours.
+/// still missing, one face step at a time, x first, then y, then z. Each axis has an exact budget
+/// of |Δkey| steps, so the walk never steps past the end key on any axis: keys stay in the box
+/// spanned by the origin and end keys (no wrap-around at the map border), the last key is always
+/// the end key, and consecutive keys are always face neighbours. Equal `tMax` (a ray through an
+/// edge or a corner) step x before y before z.
 ///
 /// Unlike OctoMap's `computeRayKeys`, the end voxel IS visited (last); callers that want free
 /// space only skip the last key.
+///
+/// Implementation: each axis' state is a scalar DdaAxis (x, y and z), selected by comparisons
+/// rather than by indexing arrays with a run-time axis, and each key handed to the visitor is
+/// assembled from the three indices. The hot loop thus stays in registers, with no store-to-load
+/// round trip through memory per voxel. The budget of an axis is its end key index.
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -35,6 +39,93 @@
 #include "sonarmap/core/key_coder.hpp"
 
 namespace sonarmap {
+
+namespace detail {
+
+/// DDA state of one axis (Amanatides & Woo 1987, §3; paper §6.1). Distances `t_*` are metres along
+/// the ray from the origin; indices are key components (finest level) of this axis.
+template <class Index>
+struct DdaAxis {
+  Index index = 0;  ///< current voxel
+  Index end = 0;    ///< end voxel: the budget, never stepped past
+  Index step = 0;   ///< +1 or all ones (unsigned modular -1): the key step towards `end`
+  double t_max = std::numeric_limits<double>::infinity();  ///< to the next boundary; +inf at `end`
+  double t_delta = 0.0;  ///< between two boundaries of this axis: resolution / |direction|
+
+  /// Steps `index` one voxel towards `end`. Adding all ones subtracts 1 modulo 2^bits; the index
+  /// stays between the origin's and the end's, so it never actually wraps.
+  void advance() { index = static_cast<Index>(index + step); }
+
+  /// Crosses the next boundary of this axis: advance(), then move `t_max` to the following
+  /// boundary, or to +inf once `end` is reached so that the axis is never chosen again.
+  void cross() {
+    advance();
+    if (index == end) {
+      t_max = std::numeric_limits<double>::infinity();
+    } else {
+      t_max += t_delta;
+    }
+  }
+};
+
+/// Initialisation phase (A&W §3) of one axis.
+/// @param from, to        key indices of the origin and end voxels on this axis.
+/// @param origin_m        this axis' coordinate of the origin, world frame, metres.
+/// @param direction_m     this axis' component of end - origin, metres.
+/// @param length_m        |end - origin|, metres.
+/// @param resolution_m    voxel edge, metres; `inv_resolution` = 1 / resolution_m, the factor
+///                        KeyCoder::keyOf multiplies by.
+template <class Index>
+DdaAxis<Index> makeDdaAxis(Index from, Index to, double origin_m, double direction_m, double length_m,
+                           double resolution_m, double inv_resolution) {
+  DdaAxis<Index> axis;
+  axis.index = from;
+  axis.end = to;
+  const bool up = to > from;
+  axis.step = up ? Index{1} : static_cast<Index>(~Index{0});
+  if (from == to) return axis;  // includes zero direction components: never stepped, t_max = +inf
+  // floor() is monotone, so direction_m != 0 here and its sign is the sign of the step. Position
+  // of the origin inside its voxel, in voxel units, computed as keyOf computes the key.
+  const double cell = origin_m * inv_resolution;
+  const double fraction = cell - std::floor(cell);  // in [0, 1]
+  axis.t_delta = resolution_m * length_m / std::fabs(direction_m);
+  axis.t_max = (up ? 1.0 - fraction : fraction) * axis.t_delta;
+  return axis;
+}
+
+/// Incremental phase (A&W §3): crosses the nearest boundary, calling `visit_current()` after each
+/// step, until every axis is at its end (all `t_max` = +inf) or the nearest boundary lies past
+/// `length_m` metres — the paper's distance condition, which also stops at a NaN `t_max`. Ties go
+/// to x, then y. `length_m` must be finite (+inf would pass the +inf of finished axes).
+template <class Index, class VisitCurrent>
+void crossBoundaries(DdaAxis<Index>& x, DdaAxis<Index>& y, DdaAxis<Index>& z, double length_m,
+                     VisitCurrent& visit_current) {
+  for (;;) {
+    const bool y_first = y.t_max < x.t_max;
+    const double t_xy = y_first ? y.t_max : x.t_max;
+    const bool z_first = z.t_max < t_xy;
+    if (!((z_first ? z.t_max : t_xy) <= length_m)) return;
+    if (z_first) {
+      z.cross();
+    } else if (y_first) {
+      y.cross();
+    } else {
+      x.cross();
+    }
+    visit_current();
+  }
+}
+
+/// Snap (paper §6.1, fig. 12): the key steps `axis` still owes, one visit_current() after each.
+template <class Index, class VisitCurrent>
+void snapToEnd(DdaAxis<Index>& axis, VisitCurrent& visit_current) {
+  while (axis.index != axis.end) {
+    axis.advance();
+    visit_current();
+  }
+}
+
+}  // namespace detail
 
 /// Visits the finest-level voxels crossed by the segment from `origin_m` to `end_m` with a 3D DDA.
 ///
@@ -45,81 +136,48 @@ namespace sonarmap {
 /// @param visit     callable as `visit(const Key<Depth>&)`; called once per voxel, in order along
 ///                  the segment, from the origin's voxel to the end's voxel, both included.
 ///                  Consecutive keys differ by exactly 1 in exactly one component. Its return
-///                  value is ignored; an exception it throws propagates and ends the walk.
+///                  value is ignored; an exception it throws propagates and ends the walk. The
+///                  key it gets is valid during the call only (copy it to keep it).
 /// @return false, without calling `visit`, if either end point is outside the map or not finite
 ///         (see KeyCoder::keyOf); true otherwise. Equal voxels (including origin == end) visit one
 ///         key. Throws nothing itself.
 ///
-/// Cost: one comparison chain and one addition per voxel, no allocation, no hashing. Number of
-/// keys = |Δx| + |Δy| + |Δz| + 1 in key units. For very deep trees the walk is only as exact as
-/// `double` is at the coordinates (53-bit mantissa); keys remain exact and monotone.
+/// Cost: about two comparisons, one key step and one addition per voxel, all in registers; no
+/// allocation, no hashing. Number of keys = |Δx| + |Δy| + |Δz| + 1 in key units. For very deep
+/// trees the walk is only as exact as `double` is at the coordinates (53-bit mantissa); keys
+/// remain exact and monotone. If |end - origin| overflows `double` (only possible with absurd
+/// resolutions, beyond ~1e115 m), no distance is usable and the walk is the snap alone.
 template <int Depth, class Visitor>
 bool traverseDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
                  Visitor&& visit) {
-  using Index = KeyIndex<Depth>;
   const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
   const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
   if (!origin_key || !end_key) return false;
-
-  Key<Depth> key = *origin_key;
-  visit(std::as_const(key));
-  if (key == *end_key) return true;
+  visit(*origin_key);
+  if (*origin_key == *end_key) return true;
 
   // --- Initialisation phase (A&W §3), with t in metres along the ray. ---
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   const Eigen::Vector3d direction_m = end_m - origin_m;
   const double length_m = direction_m.norm();  // > 0: the keys differ
   const double resolution_m = coder.resolution_m();
-  const double inv_resolution = 1.0 / resolution_m;  // the factor KeyCoder::keyOf multiplies by
-
-  std::array<Index, 3> step{};        // +1 or -1 (all ones: unsigned modular -1) per axis
-  std::array<Index, 3> remaining{};   // key steps still owed per axis: |end - origin|
-  std::array<double, 3> t_max{};      // metres along the ray to the next boundary of each axis
-  std::array<double, 3> t_delta{};    // metres along the ray between two boundaries of each axis
-  for (int axis = 0; axis < 3; ++axis) {
-    const Index from = (*origin_key)[axis];
-    const Index to = (*end_key)[axis];
-    const bool up = to > from;
-    step[axis] = up ? Index{1} : static_cast<Index>(~Index{0});
-    remaining[axis] = up ? static_cast<Index>(to - from) : static_cast<Index>(from - to);
-    if (remaining[axis] == 0) {  // includes zero direction components: never step this axis
-      t_max[axis] = kInfinity;
-      continue;
-    }
-    // floor() is monotone, so direction_m[axis] != 0 here and its sign is the sign of the step.
-    // Position of the origin inside its voxel, in voxel units, computed as keyOf computes the key.
-    const double cell = origin_m[axis] * inv_resolution;
-    const double fraction = cell - std::floor(cell);  // in [0, 1]
-    t_delta[axis] = resolution_m * length_m / std::fabs(direction_m[axis]);
-    t_max[axis] = (up ? 1.0 - fraction : fraction) * t_delta[axis];
-  }
-
-  // Branch-free ±1: adding all ones is -1 modulo 2^bits. The result never actually wraps, because
-  // the budget keeps every key between the origin's and the end's.
-  const auto advance = [&](int axis) {
-    key[axis] = static_cast<Index>(key[axis] + step[axis]);
-    visit(std::as_const(key));
+  const double inv_resolution = 1.0 / resolution_m;
+  const auto axis = [&](int a) {
+    return detail::makeDdaAxis((*origin_key)[a], (*end_key)[a], origin_m[a], direction_m[a], length_m, resolution_m,
+                               inv_resolution);
+  };
+  auto x = axis(0);
+  auto y = axis(1);
+  auto z = axis(2);
+  const auto visit_current = [&] {
+    const Key<Depth> key{{x.index, y.index, z.index}};
+    visit(key);
   };
 
-  // --- Incremental phase (A&W §3): cross the nearest boundary. ---
-  for (;;) {
-    const int nearer_xy = t_max[1] < t_max[0] ? 1 : 0;  // written to compile to conditional moves
-    const int axis = t_max[2] < t_max[nearer_xy] ? 2 : nearer_xy;
-    // End voxel reached: every axis spent its budget and has t_max = +inf. Otherwise the paper's
-    // distance condition: the next boundary is past the end point (also catches a NaN t_max).
-    if (!(t_max[axis] <= length_m)) break;
-    advance(axis);
-    if (--remaining[axis] == 0) {
-      t_max[axis] = kInfinity;
-    } else {
-      t_max[axis] += t_delta[axis];
-    }
-  }
-
-  // --- Snap to the end voxel (paper §6.1, fig. 12): steps floating-point error left owed. ---
-  for (int axis = 0; axis < 3; ++axis) {
-    for (; remaining[axis] != 0; --remaining[axis]) advance(axis);
-  }
+  // Incremental phase (A&W §3), then the snap (paper §6.1, fig. 12): the steps still owed.
+  if (length_m < std::numeric_limits<double>::infinity()) detail::crossBoundaries(x, y, z, length_m, visit_current);
+  detail::snapToEnd(x, visit_current);
+  detail::snapToEnd(y, visit_current);
+  detail::snapToEnd(z, visit_current);
   return true;
 }
 
