@@ -5,13 +5,15 @@
 // mapper's SweepCells (any depth, erase, merge of per-thread sets, ordered visits).
 //
 // The bitmap is made of bricks of 4 × 4 × 4 voxels aligned to multiples of 4 (a node at depth
-// Depth − 2), one 64-bit word each, its bits in the octree's child order (Morton order: x, y, z
-// bits interleaved). Bricks are stored x fastest, then y, then z. Keys are visited brick by brick
+// Depth − 2), one 64-bit word each. A word stores its voxels x fastest (bit x + 4y + 16z, cheap
+// to compute per marked key); visits convert it to the octree's child order (Morton order: x, y,
+// z bits interleaved) with a table, once per word. Bricks are stored x fastest, then y, then z. Keys are visited brick by brick
 // and in Morton order inside a brick, so consecutive keys share all but their last two levels of
 // ancestors: the octree's path cache makes each update's descent short. The hash set visits its
 // keys in the same order, so a dense and a sparse set of the same keys drive identical updates.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -66,16 +68,18 @@ class KeyMarks {
     if (dense_) {
       // Consecutive keys of a ray mostly share a brick: gather their bits in a register and
       // store them when the brick changes, instead of a load-or-store chain per key.
-      std::size_t current = 0;
+      std::size_t current = 0;  // word of the brick at lo_
+      KeyType current_key = lo_;
       std::uint64_t pending = 0;
       body([&](const KeyType& key) {
-        const std::size_t w = word(key);
-        if (w != current) {
+        const auto differ = (key[0] ^ current_key[0]) | (key[1] ^ current_key[1]) | (key[2] ^ current_key[2]);
+        if ((differ >> 2) != 0) {  // another brick
           bits_[current] |= pending;
-          current = w;
+          current = word(key);
+          current_key = key;
           pending = 0;
         }
-        pending |= bit(key);
+        pending |= rowBit(key);
       });
       bits_[current] |= pending;
     } else {
@@ -85,7 +89,7 @@ class KeyMarks {
 
   void insert(const KeyType& key) {
     if (dense_) {
-      bits_[word(key)] |= bit(key);
+      bits_[word(key)] |= rowBit(key);
     } else {
       sparse_.insert(key);
     }
@@ -93,7 +97,7 @@ class KeyMarks {
 
   void erase(const KeyType& key) {
     if (dense_) {
-      bits_[word(key)] &= ~bit(key);
+      bits_[word(key)] &= ~rowBit(key);
     } else {
       sparse_.erase(key);
     }
@@ -158,10 +162,35 @@ class KeyMarks {
  private:
   /// Position of a key in its brick's word: x, y, z bits of the key's low two bits interleaved.
   static unsigned bitIndex(const KeyType& key) {
-    constexpr unsigned kSpread[4] = {0, 1, 8, 9};  // low two bits of a coordinate, 3 bits apart
-    return kSpread[key[0] & 3U] | (kSpread[key[1] & 3U] << 1) | (kSpread[key[2] & 3U] << 2);
+    // Low two bits of a coordinate, 3 bits apart: 0b ab → 0b a00b. Arithmetic, not a table (a
+    // local table is rebuilt on the stack per call and stalls the load that follows).
+    const auto spread = [](auto c) { return static_cast<unsigned>((c & 1U) | ((c & 2U) << 2)); };
+    return spread(key[0]) | (spread(key[1]) << 1) | (spread(key[2]) << 2);
   }
   static std::uint64_t bit(const KeyType& key) { return std::uint64_t{1} << bitIndex(key); }
+  /// The key's bit in a stored word: x fastest, then y, then z.
+  static std::uint64_t rowBit(const KeyType& key) {
+    const auto index = static_cast<unsigned>((key[0] & 3U) | ((key[1] & 3U) << 2) | ((key[2] & 3U) << 4));
+    return std::uint64_t{1} << index;
+  }
+  /// kRowToMorton[j][v]: the Morton-order bits of byte j = v of a stored word.
+  static constexpr auto kRowToMorton = [] {
+    std::array<std::array<std::uint64_t, 256>, 8> table{};
+    for (unsigned j = 0; j < 8; ++j)
+      for (unsigned v = 0; v < 256; ++v)
+        for (unsigned k = 0; k < 8; ++k) {
+          if (((v >> k) & 1U) == 0) continue;
+          const unsigned p = 8 * j + k, x = p & 3U, y = (p >> 2) & 3U, z = p >> 4;
+          const unsigned m = (x & 1U) | ((y & 1U) << 1) | ((z & 1U) << 2) | ((x & 2U) << 2) | ((y & 2U) << 3) | ((z & 2U) << 4);
+          table[j][v] |= std::uint64_t{1} << m;
+        }
+    return table;
+  }();
+  static std::uint64_t toMorton(std::uint64_t row_bits) {
+    std::uint64_t morton = 0;
+    for (unsigned j = 0; j < 8; ++j) morton |= kRowToMorton[j][(row_bits >> (8 * j)) & 0xFFU];
+    return morton;
+  }
   static KeyType brickCorner(const KeyType& key) {
     return KeyType{{static_cast<Index>(key[0] & ~Index{3}), static_cast<Index>(key[1] & ~Index{3}),
                     static_cast<Index>(key[2] & ~Index{3})}};
@@ -190,7 +219,7 @@ class KeyMarks {
       if (bits_[w] != 0) {
         const KeyType corner{{static_cast<Index>(lo_[0] + 4 * bx), static_cast<Index>(lo_[1] + 4 * by),
                               static_cast<Index>(lo_[2] + 4 * bz)}};
-        body(bits_[w], corner);
+        body(toMorton(bits_[w]), corner);
       }
       if (++bx == bricks_[0]) {
         bx = 0;

@@ -222,6 +222,8 @@ class OccupancyOctree {
   void createPath(const KeyType& key, int level, int target, int& fresh_from);
   void updateSubtree(NodeRef ref, float delta_log_odds);
   void buildFreshBrick(NodeRef brick, std::uint64_t voxels, float log_odds);
+  void mergeBrick(NodeRef brick, std::uint64_t voxels, float delta_log_odds, float fresh);
+  void mergeOctet(NodeRef node, unsigned bits, float delta_log_odds, float fresh);
   /// Key of bit `bit` of the brick holding `corner` (updateBrick's bit order).
   static KeyType brickKey(const KeyType& corner, unsigned bit);
   template <class Visitor>

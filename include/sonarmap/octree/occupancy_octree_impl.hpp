@@ -121,27 +121,64 @@ template <int Depth>
 void OccupancyOctree<Depth>::updateBrick(const KeyType& corner, std::uint64_t voxels, float delta_log_odds) {
   static_assert(Depth >= 2, "a brick spans the two finest levels");
   if (voxels == 0 || delta_log_odds == 0.0F) return;
-  const bool voxelwise = !options_.prune || detect_changes_;  // every voxel its own leaf or record
-  if (voxels == ~std::uint64_t{0} && !voxelwise) {
+  if (!options_.prune || detect_changes_) {  // voxel by voxel, for their own leaves or change records
+    for (unsigned b = 0; b < 64; ++b) {
+      if (((voxels >> b) & 1U) != 0) updateNode(brickKey(corner, b), delta_log_odds, true);
+    }
+    return;
+  }
+  if (voxels == ~std::uint64_t{0}) {
     updateCube(corner, Depth - 2, delta_log_odds);
     return;
   }
-  if (!voxelwise) {
-    int fresh_from = Depth + 1;
-    const int level = descend(corner, Depth - 2, fresh_from);
-    createPath(corner, level, Depth - 2, fresh_from);
-    if (Depth - 2 >= fresh_from) {
-      buildFreshBrick(path_[Depth - 2], voxels, model_.update(0.0F, delta_log_odds));
-      markPathDirty(Depth - 2);
-      return;
-    }
+  int fresh_from = Depth + 1;
+  const int level = descend(corner, Depth - 2, fresh_from);
+  createPath(corner, level, Depth - 2, fresh_from);
+  const float fresh = model_.update(0.0F, delta_log_odds);
+  if (Depth - 2 >= fresh_from) {
+    buildFreshBrick(path_[Depth - 2], voxels, fresh);
+  } else {
+    mergeBrick(path_[Depth - 2], voxels, delta_log_odds, fresh);
   }
-  // Known space (or voxel-by-voxel bookkeeping): octet by octet, as single voxels or 2³ cubes.
+  markPathDirty(Depth - 2);
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::mergeBrick(NodeRef brick, std::uint64_t voxels, float delta_log_odds, float fresh) {
+  // A known brick: update its voxels in place, one octet (node one level up) at a time.
+  if (!pool_.at(brick).hasChildren()) pool_.createChildren(brick, 0xFFU, pool_.at(brick).log_odds);  // expand
+  pool_.at(brick).link |= OcTreeNode::kDirtyBit;
   for (unsigned octet = 0; octet < 8; ++octet) {
     const auto bits = static_cast<unsigned>((voxels >> (8 * octet)) & 0xFFU);
-    if (bits == 0xFFU) updateCube(brickKey(corner, 8 * octet), Depth - 1, delta_log_odds);
-    for (unsigned rest = bits == 0xFFU ? 0U : bits; rest != 0; rest &= rest - 1) {
-      updateNode(brickKey(corner, 8 * octet + static_cast<unsigned>(std::countr_zero(rest))), delta_log_odds, true);
+    if (bits == 0) continue;
+    const NodeRef child = pool_.childRef(pool_.at(brick), octet);
+    if (child != kNoNodeRef) {
+      mergeOctet(child, bits, delta_log_odds, fresh);
+    } else if (bits == 0xFFU) {
+      pool_.addChild(brick, octet, fresh);  // unknown: one leaf
+    } else {
+      pool_.createChildren(pool_.addChild(brick, octet, fresh), bits, fresh);  // in sync, not prunable
+    }
+  }
+}
+
+template <int Depth>
+void OccupancyOctree<Depth>::mergeOctet(NodeRef node, unsigned bits, float delta_log_odds, float fresh) {
+  if (!pool_.at(node).hasChildren()) {
+    if (bits == 0xFFU) {  // the whole leaf
+      pool_.at(node).log_odds = model_.update(pool_.at(node).log_odds, delta_log_odds);
+      return;
+    }
+    pool_.createChildren(node, 0xFFU, pool_.at(node).log_odds);  // expand a pruned leaf
+  }
+  pool_.at(node).link |= OcTreeNode::kDirtyBit;
+  for (unsigned rest = bits; rest != 0; rest &= rest - 1) {
+    const auto i = static_cast<unsigned>(std::countr_zero(rest));
+    const NodeRef leaf = pool_.childRef(pool_.at(node), i);
+    if (leaf == kNoNodeRef) {
+      pool_.addChild(node, i, fresh);
+    } else {
+      pool_.at(leaf).log_odds = model_.update(pool_.at(leaf).log_odds, delta_log_odds);
     }
   }
 }
