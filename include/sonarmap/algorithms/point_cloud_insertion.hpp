@@ -12,10 +12,12 @@
 /// the two maps agree on all but a few boundary voxels (tests/algorithms: ≥ 99.9 % of the volume).
 ///
 /// Speed: the scan's crossed cells are marked in a bitmap over the box of keys the scan spans (a
-/// hash set when the box exceeds 2^27 voxels), then each is updated once, brick of 4 × 4 × 4 voxels
-/// after brick and in the octree's child order inside a brick, so every descent is short; leaves
-/// are updated first and the inner nodes above them fixed once at the end (same tree as eager
-/// updates). About 10× faster than OctoMap 1.9's insertPointCloud on the parity clouds.
+/// hash set when the box exceeds 2^27 voxels), its end cells in a second one, and the hits removed
+/// from the crossed set word by word. Each set is then applied brick by brick — the 4 × 4 × 4
+/// voxels of one node two levels above the finest (OccupancyOctree::updateBrick): a brick in
+/// unknown space is built at once with its children arrays at their final size, a known one is
+/// merged in place. Leaves are updated first and the inner nodes above them fixed once at the end
+/// (the same tree as eager updates). See docs/benchmarks.md, "Point-cloud workloads".
 
 #include <cstddef>
 
