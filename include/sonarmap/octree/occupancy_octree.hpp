@@ -220,10 +220,14 @@ class OccupancyOctree {
   /// Creates (or expands pruned leaves into) path_[level + 1 … target]; `fresh_from` becomes the
   /// first level created from unknown space.
   void createPath(const KeyType& key, int level, int target, int& fresh_from);
-  void updateSubtree(NodeRef ref, float delta_log_odds);
+  /// The update helpers below return whether any value or node changed, and mark dirty only
+  /// the inner nodes below which something did.
+  bool coveredByStableLeaf(int level, int fresh_from, float delta_log_odds) const;
+  bool updateSubtree(NodeRef ref, float delta_log_odds);
+  bool updateLeaf(NodeRef leaf, float delta_log_odds);
   void buildFreshBrick(NodeRef brick, std::uint64_t voxels, float log_odds);
-  void mergeBrick(NodeRef brick, std::uint64_t voxels, float delta_log_odds, float fresh);
-  void mergeOctet(NodeRef node, unsigned bits, float delta_log_odds, float fresh);
+  bool mergeBrick(NodeRef brick, std::uint64_t voxels, float delta_log_odds, float fresh);
+  bool mergeOctet(NodeRef node, unsigned bits, float delta_log_odds, float fresh);
   /// Key of bit `bit` of the brick holding `corner` (updateBrick's bit order).
   static KeyType brickKey(const KeyType& corner, unsigned bit);
   template <class Visitor>

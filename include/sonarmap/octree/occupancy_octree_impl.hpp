@@ -107,14 +107,24 @@ void OccupancyOctree<Depth>::updateCube(const KeyType& key, int depth, float del
   }
   int fresh_from = Depth + 1;
   const int level = descend(key, depth, fresh_from);
+  if (coveredByStableLeaf(level, fresh_from, delta_log_odds)) return;
   createPath(key, level, depth, fresh_from);
   const NodeRef target = path_[depth];
+  bool changed = level < depth;  // nodes were created or expanded on the way
   if (depth >= fresh_from) {
     pool_.at(target).log_odds = model_.update(0.0F, delta_log_odds);  // unknown space: one new leaf
   } else {
-    updateSubtree(target, delta_log_odds);
+    changed = updateSubtree(target, delta_log_odds) || changed;
   }
-  markPathDirty(depth);
+  if (changed) markPathDirty(depth);
+}
+
+template <int Depth>
+bool OccupancyOctree<Depth>::coveredByStableLeaf(int level, int fresh_from, float delta_log_odds) const {
+  // A leaf containing the whole cube, already clamped in the update's direction: the update would
+  // change no value (the stability check of §5.3, for a whole cube at once).
+  const OcTreeNode& deepest = pool_.at(path_[level]);
+  return fresh_from > Depth && !deepest.hasChildren() && model_.isStable(deepest.log_odds, delta_log_odds);
 }
 
 template <int Depth>
@@ -133,54 +143,70 @@ void OccupancyOctree<Depth>::updateBrick(const KeyType& corner, std::uint64_t vo
   }
   int fresh_from = Depth + 1;
   const int level = descend(corner, Depth - 2, fresh_from);
+  if (coveredByStableLeaf(level, fresh_from, delta_log_odds)) return;
   createPath(corner, level, Depth - 2, fresh_from);
   const float fresh = model_.update(0.0F, delta_log_odds);
+  bool changed = level < Depth - 2;  // nodes were created or expanded on the way
   if (Depth - 2 >= fresh_from) {
     buildFreshBrick(path_[Depth - 2], voxels, fresh);
   } else {
-    mergeBrick(path_[Depth - 2], voxels, delta_log_odds, fresh);
+    changed = mergeBrick(path_[Depth - 2], voxels, delta_log_odds, fresh) || changed;
   }
-  markPathDirty(Depth - 2);
+  if (changed) markPathDirty(Depth - 2);
 }
 
 template <int Depth>
-void OccupancyOctree<Depth>::mergeBrick(NodeRef brick, std::uint64_t voxels, float delta_log_odds, float fresh) {
-  // A known brick: update its voxels in place, one octet (node one level up) at a time.
-  if (!pool_.at(brick).hasChildren()) pool_.createChildren(brick, 0xFFU, pool_.at(brick).log_odds);  // expand
-  pool_.at(brick).link |= OcTreeNode::kDirtyBit;
+bool OccupancyOctree<Depth>::mergeBrick(NodeRef brick, std::uint64_t voxels, float delta_log_odds, float fresh) {
+  // A known brick: update its voxels in place, one octet (node one level up) at a time. Marks
+  // dirty, and reports, only what changed: clamped voxels seen again leave the sync nothing to do.
+  bool changed = !pool_.at(brick).hasChildren();
+  if (changed) pool_.createChildren(brick, 0xFFU, pool_.at(brick).log_odds);  // expand a pruned leaf
   for (unsigned octet = 0; octet < 8; ++octet) {
     const auto bits = static_cast<unsigned>((voxels >> (8 * octet)) & 0xFFU);
     if (bits == 0) continue;
     const NodeRef child = pool_.childRef(pool_.at(brick), octet);
     if (child != kNoNodeRef) {
-      mergeOctet(child, bits, delta_log_odds, fresh);
+      changed = mergeOctet(child, bits, delta_log_odds, fresh) || changed;
     } else if (bits == 0xFFU) {
       pool_.addChild(brick, octet, fresh);  // unknown: one leaf
+      changed = true;
     } else {
       pool_.createChildren(pool_.addChild(brick, octet, fresh), bits, fresh);  // in sync, not prunable
+      changed = true;
     }
   }
+  if (changed) pool_.at(brick).link |= OcTreeNode::kDirtyBit;
+  return changed;
 }
 
 template <int Depth>
-void OccupancyOctree<Depth>::mergeOctet(NodeRef node, unsigned bits, float delta_log_odds, float fresh) {
+bool OccupancyOctree<Depth>::mergeOctet(NodeRef node, unsigned bits, float delta_log_odds, float fresh) {
   if (!pool_.at(node).hasChildren()) {
-    if (bits == 0xFFU) {  // the whole leaf
-      pool_.at(node).log_odds = model_.update(pool_.at(node).log_odds, delta_log_odds);
-      return;
-    }
+    if (bits == 0xFFU) return updateLeaf(node, delta_log_odds);  // the whole leaf
+    if (model_.isStable(pool_.at(node).log_odds, delta_log_odds)) return false;
     pool_.createChildren(node, 0xFFU, pool_.at(node).log_odds);  // expand a pruned leaf
+    pool_.at(node).link |= OcTreeNode::kDirtyBit;
   }
-  pool_.at(node).link |= OcTreeNode::kDirtyBit;
+  bool changed = false;
   for (unsigned rest = bits; rest != 0; rest &= rest - 1) {
     const auto i = static_cast<unsigned>(std::countr_zero(rest));
     const NodeRef leaf = pool_.childRef(pool_.at(node), i);
     if (leaf == kNoNodeRef) {
       pool_.addChild(node, i, fresh);
+      changed = true;
     } else {
-      pool_.at(leaf).log_odds = model_.update(pool_.at(leaf).log_odds, delta_log_odds);
+      changed = updateLeaf(leaf, delta_log_odds) || changed;
     }
   }
+  if (changed) pool_.at(node).link |= OcTreeNode::kDirtyBit;
+  return changed || pool_.at(node).dirty();
+}
+
+template <int Depth>
+bool OccupancyOctree<Depth>::updateLeaf(NodeRef leaf, float delta_log_odds) {
+  const float before = pool_.at(leaf).log_odds;
+  pool_.at(leaf).log_odds = model_.update(before, delta_log_odds);
+  return pool_.at(leaf).log_odds != before;
 }
 
 template <int Depth>
@@ -211,22 +237,21 @@ typename OccupancyOctree<Depth>::KeyType OccupancyOctree<Depth>::brickKey(const 
 }
 
 template <int Depth>
-void OccupancyOctree<Depth>::updateSubtree(NodeRef ref, float delta_log_odds) {
-  // Each leaf stands for equal voxels; unknown children become leaves of their own size.
-  OcTreeNode& node = pool_.at(ref);
-  if (!node.hasChildren()) {
-    node.log_odds = model_.update(node.log_odds, delta_log_odds);
-    return;
-  }
-  node.link |= OcTreeNode::kDirtyBit;
-  const unsigned mask = pool_.childMask(node);
-  const NodeRef first = NodePool::firstChild(node);
-  const unsigned count = pool_.childCount(node);
-  for (NodeRef child = first; child < first + count; ++child) updateSubtree(child, delta_log_odds);
+bool OccupancyOctree<Depth>::updateSubtree(NodeRef ref, float delta_log_odds) {
+  // Each leaf stands for equal voxels; unknown children become leaves of their own size. Marks
+  // dirty, and reports, only what changed.
+  if (!pool_.at(ref).hasChildren()) return updateLeaf(ref, delta_log_odds);
+  const unsigned mask = pool_.childMask(pool_.at(ref));
+  const NodeRef first = NodePool::firstChild(pool_.at(ref));
+  const unsigned count = pool_.childCount(pool_.at(ref));
+  bool changed = mask != 0xFFU;
+  for (NodeRef child = first; child < first + count; ++child) changed = updateSubtree(child, delta_log_odds) || changed;
   const float fresh = model_.update(0.0F, delta_log_odds);
   for (unsigned i = 0; i < 8; ++i) {
     if (((mask >> i) & 1U) == 0) pool_.addChild(ref, i, fresh);
   }
+  if (changed) pool_.at(ref).link |= OcTreeNode::kDirtyBit;
+  return changed;
 }
 
 template <int Depth>
