@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cloud_command.hpp"
+#include "convert_command.hpp"
 #include "map_command.hpp"
 #include "sonarmap/core/errors.hpp"
 
@@ -24,8 +25,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   sonarmap::cli::MapArgs map_args;
   sonarmap::cli::CloudArgs cloud_args;
+  sonarmap::cli::ConvertArgs convert_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
-                                                     sonarmap::cli::addCloudCommand(app, cloud_args)};
+                                                     sonarmap::cli::addCloudCommand(app, cloud_args),
+                                                     sonarmap::cli::addConvertCommand(app, convert_args)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {

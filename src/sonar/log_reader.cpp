@@ -5,7 +5,9 @@
 #include <filesystem>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/beam_csv.hpp"
 #include "sonarmap/sonar/mat_reader.hpp"
+#include "sonarmap/sonar/v4log_reader.hpp"
 
 namespace sonarmap {
 
@@ -14,7 +16,9 @@ SonarLog readSonarLog(const std::string& path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".mat") return readCrasMat(path);
-  throw FileError("'" + path + "': unknown sonar log type '" + extension + "', expected .mat");
+  if (extension == ".csv") return readBeamCsv(path);
+  if (extension == ".v4log") return readSeaNetV4Log(path);
+  throw FileError("'" + path + "': unknown sonar log type '" + extension + "', expected .mat, .csv or .V4LOG");
 }
 
 }  // namespace sonarmap

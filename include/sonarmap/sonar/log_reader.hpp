@@ -8,7 +8,9 @@
 
 namespace sonarmap {
 
-/// Reads the beams of a sonar log: `.mat` (CRAS Tritech Micron, MATLAB 5 struct array).
+/// Reads the beams of a sonar log: `.mat` (CRAS Tritech Micron, MATLAB 5 struct array; readCrasMat),
+/// `.csv` (beam CSV, one beam per row; readBeamCsv), `.V4LOG` (Tritech SeaNet V4 log; readSeaNetV4Log,
+/// default V4LogOptions). Extensions are matched case-insensitively.
 /// @throws FileError for an unknown extension or a file the format's reader rejects.
 SonarLog readSonarLog(const std::string& path);
 

@@ -1,0 +1,77 @@
+#pragma once
+/// @file navigation.hpp
+/// Vehicle navigation for a moving sonar: fixes in the local NED frame (the marine convention),
+/// pose interpolation at beam times, and the sonar's mounting on the vehicle.
+///
+/// Frames:
+///  - NED: local tangent frame, x north, y east, z down, metres; the navigation's frame.
+///  - body: the vehicle's frame, x forward, y starboard, z down (FRD); roll, pitch, yaw are the
+///    usual Z-Y-X (yaw, then pitch, then roll) Euler angles of body in NED, radians.
+///  - sonar: the head's frame of beam.hpp (x along bearing 0, y left, z up).
+///  - map: the frame the octree is written in, z up so that octovis shows it upright: NWU,
+///    x north, y west, z up (NED with y and z negated). A sonar mounted upright and aligned with
+///    the vehicle, on a vehicle at the NED origin with zero attitude, has the identity pose in the
+///    map, so a static log maps the same with or without navigation.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace sonarmap {
+
+/// One navigation fix.
+struct NavSample {
+  double time_s = 0.0;                                    ///< same clock as the beams' time_s
+  Eigen::Vector3d position_ned_m = Eigen::Vector3d::Zero();  ///< vehicle origin in NED, metres
+  double roll_rad = 0.0;   ///< about body x; positive lowers the starboard side
+  double pitch_rad = 0.0;  ///< about body y; positive raises the bow
+  double yaw_rad = 0.0;    ///< heading, clockwise from north seen from above
+};
+
+/// Navigation fixes sorted by strictly increasing time.
+using NavTrack = std::vector<NavSample>;
+
+/// Pose of the body frame in NED (maps body coordinates to NED) for one fix: rotation
+/// Rz(yaw)·Ry(pitch)·Rx(roll) (Z-Y-X Euler angles, Eigen::AngleAxis about NED's axes), translation
+/// `position_ned_m`. Yaw π/2 turns body +x (forward) to NED +y (east). No check on the values.
+Eigen::Isometry3d bodyToNed(const NavSample& sample);
+
+/// NED → map (NWU): (n, e, d) ↦ (n, −e, −d), the rotation diag(1, −1, −1) with no translation.
+/// The same matrix maps an upright sonar frame (x forward, y left, z up) to body (FRD), so
+/// nedToMap() · bodyToNed(zero fix) · diag(1, −1, −1) is the identity (see the frames above).
+Eigen::Isometry3d nedToMap();
+
+/// Pose of the vehicle body in NED at `time_s`: position interpolated linearly, attitude by
+/// quaternion slerp (Eigen, shortest arc: a yaw from 179° to −179° passes through 180°, not 0°)
+/// between the two fixes around it. At a fix's own time the result is that fix's bodyToNed.
+/// nullopt when `time_s` lies outside [first fix, last fix] or is NaN (the beam is then skipped
+/// and counted by the caller).
+/// Cost: O(fixes) to check the track, plus O(log fixes) for the search.
+/// @throws ValueError when the track is empty, holds a non-finite value, or its times are not
+///         strictly increasing.
+std::optional<Eigen::Isometry3d> interpolateBodyToNed(const NavTrack& track, double time_s);
+
+/// Reads a navigation CSV (docs/formats.md, "Navigation CSV"): header row exactly
+/// `time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad`, then one fix per row: time in seconds (the
+/// beams' clock), x, y, z of the vehicle origin in NED (metres north, east, down), roll, pitch, yaw
+/// in radians (Z-Y-X, as NavSample). Numbers as std::from_chars reads them (no leading '+').
+/// Spaces and tabs around fields, CRLF line ends, blank lines and a UTF-8 byte-order mark are
+/// accepted.
+/// @return the fixes in file order (strictly increasing times).
+/// @throws FileError naming the file, the 1-based line and the field for anything malformed: the
+///         file cannot be opened or is empty; the header differs; a row has missing or extra
+///         fields, a value that is not a number or not finite, or a time not after the previous
+///         row's; the file has a header row only ("no fixes").
+NavTrack readNavCsv(const std::string& path);
+
+/// Writes a navigation CSV readable by readNavCsv, numbers in their shortest exact decimal form
+/// (reading back gives the identical doubles). Written atomically: temporary file + rename, so
+/// an existing file is untouched on failure.
+/// @throws ValueError (before writing anything) when the track is empty, holds a non-finite
+///         value, or its times are not strictly increasing: readNavCsv would reject the file.
+/// @throws FileError when the file cannot be written.
+void writeNavCsv(const std::string& path, const NavTrack& track);
+
+}  // namespace sonarmap

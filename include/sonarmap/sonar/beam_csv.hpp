@@ -1,0 +1,54 @@
+#pragma once
+/// @file beam_csv.hpp
+/// Beam CSV: a plain-text sonar log, one beam per row (docs/formats.md, "Beam CSV"), for logs
+/// from other tools (a spreadsheet, a script) and for exchanging beams without MATLAB.
+///
+///     time_s,bearing_deg,bin_length_m,b0,b1,...,b<K-1>
+///     10.28,0,0.0125313,12,40,7
+///
+///  - time_s: seconds, the log's own clock (the navigation's clock when there is one); finite;
+///    rows in time order (equal times allowed, going backwards is an error).
+///  - bearing_deg: degrees in the sonar frame of beam.hpp, 0 along the sonar's +x, counter-
+///    clockwise positive seen from above; any finite value, wrapped to [0°, 360°).
+///  - bin_length_m: metres, finite and > 0.
+///  - b0…b<K-1>: echo intensity per bin, integers 0…255, b0 nearest. The header has as many
+///    b-columns as the longest beam (K ≥ 0); a row may hold fewer bins than the header (trailing
+///    empty fields, as spreadsheets pad short rows, count as absent bins), never more.
+/// Spaces and tabs around fields, CRLF line ends, blank lines and a UTF-8 byte-order mark are
+/// accepted. Numbers as std::from_chars reads them (no leading '+').
+
+#include <string>
+
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap {
+
+/// Reads a beam CSV. Bearings are converted to Beam::bearing_rad = radians(bearing_deg wrapped
+/// to [0°, 360°)), computed as deg · π / 180 like readCrasMat. Nothing is skipped: the returned
+/// log has skipped_beams = 0.
+/// @return the beams in file order.
+/// @throws FileError naming the file, the 1-based line and the field (column name and number)
+///         when the file cannot be opened or is empty; the header is not
+///         `time_s,bearing_deg,bin_length_m,b0,b1,…` with consecutive b-columns; a row has fewer
+///         than 3 fields or more bins than the header declares; a number is malformed or not
+///         finite (a NaN bearing); a bin length is ≤ 0; an intensity is not an integer in 0…255;
+///         a time is before the previous row's ("times go backwards"); or there is no beam row.
+SonarLog readBeamCsv(const std::string& path);
+
+/// Writes the beams of `log` as a beam CSV (atomically: temporary file + rename). Beams may have
+/// different bin counts; the header has as many b-columns as the longest beam. Times and bin
+/// lengths are written in their shortest exact decimal form, so they read back identically.
+/// Bearings are written in degrees chosen so that readBeamCsv gives back the identical
+/// bearing_rad: the nearest degree value, or its neighbour one ulp away when only that one reads
+/// back exactly (11 of the CRAS log's 200 bearings). This is exact for every bearing that some
+/// double degree value maps to, which includes every bearing readCrasMat and readBeamCsv produce
+/// (degrees → radians). About a fifth of arbitrary radians values in [0, 2π) are the image of no
+/// double degree value; those read back within 1 ulp (< 9e-16 rad). A bearing outside [0, 2π)
+/// reads back wrapped into it. skipped_beams and skip_reasons are not written.
+/// @throws ValueError (before writing anything) when the log has no beam, or a beam has a
+///         non-finite time or bearing, a bin length that is not finite and > 0, or a time before
+///         the previous beam's: readBeamCsv would reject the file. The message names the beam's
+///         index. @throws FileError when the file cannot be written.
+void writeBeamCsv(const std::string& path, const SonarLog& log);
+
+}  // namespace sonarmap

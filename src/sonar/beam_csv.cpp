@@ -1,0 +1,166 @@
+/// @file beam_csv.cpp
+/// Beam CSV reader and writer (see beam_csv.hpp).
+
+#include "sonarmap/sonar/beam_csv.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <string_view>
+
+#include "../io/csv_fields.hpp"
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/io/atomic_file.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr std::size_t kFixedColumns = 3;  // time_s, bearing_deg, bin_length_m
+constexpr std::string_view kFixedNames[kFixedColumns] = {"time_s", "bearing_deg", "bin_length_m"};
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// Bearing in [0, 2π) from any finite angle in degrees (the same arithmetic as readCrasMat).
+double bearingFromDegrees(double bearing_deg) {
+  double deg = std::fmod(bearing_deg, 360.0);
+  if (deg < 0.0) deg += 360.0;
+  const double rad = deg * std::numbers::pi / 180.0;
+  return rad < kTwoPi ? rad : 0.0;
+}
+
+/// The degree value that bearingFromDegrees maps back to exactly `bearing_rad`: the nearest
+/// degree value or one of its neighbours a few ulps away; the nearest one when none does.
+double degreesFromBearing(double bearing_rad) {
+  const double nearest_deg = bearing_rad * 180.0 / std::numbers::pi;
+  double below = nearest_deg, above = nearest_deg;
+  for (int step = 0; step <= 4; ++step) {
+    if (bearingFromDegrees(below) == bearing_rad) return below;
+    if (bearingFromDegrees(above) == bearing_rad) return above;
+    below = std::nextafter(below, -HUGE_VAL);
+    above = std::nextafter(above, HUGE_VAL);
+  }
+  return nearest_deg;
+}
+
+/// The header name of bin `bin`'s column: "b0", "b1", …
+std::string binColumnName(std::size_t bin) {
+  std::string name = "b";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "b" + string
+  name += std::to_string(bin);
+  return name;
+}
+
+/// Reads the header; @return the number of b-columns it declares.
+std::size_t readHeader(csv::LineReader& reader) {
+  if (!reader.next()) reader.failFile("empty, expected the header row time_s,bearing_deg,bin_length_m,b0,b1,...");
+  for (std::size_t c = 0; c < kFixedColumns; ++c) reader.expectName(c, kFixedNames[c]);
+  const std::size_t bins = reader.fields().size() - kFixedColumns;
+  for (std::size_t i = 0; i < bins; ++i) reader.expectName(kFixedColumns + i, binColumnName(i));
+  return bins;
+}
+
+std::uint8_t readIntensity(const csv::LineReader& reader, std::size_t column, std::size_t bin) {
+  const std::string_view token = reader.fields()[column];
+  const char* end = token.data() + token.size();
+  long value = 0;
+  const auto [stop, error] = std::from_chars(token.data(), end, value);
+  const bool integer = (error == std::errc() || error == std::errc::result_out_of_range) && stop == end;
+  if (integer && error == std::errc() && value >= 0 && value <= 255) return static_cast<std::uint8_t>(value);
+  std::string what = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + string
+  what += token;
+  what += token.empty() ? "' (empty; only trailing bins may be empty)"
+                        : (integer ? "' is out of range" : "' is not an integer");
+  reader.failField(column, binColumnName(bin), what + ", expected an intensity 0...255");
+}
+
+Beam readBeam(const csv::LineReader& reader, std::size_t header_bins) {
+  const std::vector<std::string_view>& fields = reader.fields();
+  if (fields.size() < kFixedColumns) {
+    reader.fail(std::to_string(fields.size()) + " field(s), expected at least 3: time_s,bearing_deg,bin_length_m");
+  }
+  std::size_t bins = fields.size() - kFixedColumns;
+  while (bins > 0 && fields[kFixedColumns + bins - 1].empty()) --bins;  // spreadsheet padding
+  if (bins > header_bins) {
+    reader.fail(std::to_string(bins) + " bins, more than the " + std::to_string(header_bins) +
+                " b-columns the header declares");
+  }
+  Beam beam;
+  beam.time_s = reader.finiteNumber(0, kFixedNames[0], "seconds");
+  beam.bearing_rad = bearingFromDegrees(reader.finiteNumber(1, kFixedNames[1], "degrees"));
+  beam.bin_length_m = reader.finiteNumber(2, kFixedNames[2], "metres > 0");
+  if (!(beam.bin_length_m > 0.0)) {
+    reader.failField(2, kFixedNames[2], csv::formatNumber(beam.bin_length_m) + " m, expected metres > 0");
+  }
+  beam.intensities.resize(bins);
+  for (std::size_t i = 0; i < bins; ++i) beam.intensities[i] = readIntensity(reader, kFixedColumns + i, i);
+  return beam;
+}
+
+/// @throws ValueError when writing `log` would give a file readBeamCsv rejects.
+void checkWritable(const SonarLog& log) {
+  if (log.beams.empty()) throw ValueError("writeBeamCsv: the log has no beam");
+  for (std::size_t i = 0; i < log.beams.size(); ++i) {
+    const Beam& beam = log.beams[i];
+    const std::string where = "writeBeamCsv: beam " + std::to_string(i) + ": ";
+    if (!std::isfinite(beam.time_s) || !std::isfinite(beam.bearing_rad)) {
+      throw ValueError(where + "time or bearing is not finite");
+    }
+    if (!(beam.bin_length_m > 0.0 && std::isfinite(beam.bin_length_m))) {
+      throw ValueError(where + "bin length " + csv::formatNumber(beam.bin_length_m) + " m, expected finite and > 0");
+    }
+    if (i > 0 && beam.time_s < log.beams[i - 1].time_s) {
+      throw ValueError(where + "time " + csv::formatNumber(beam.time_s) + " s is before the previous beam's " +
+                       csv::formatNumber(log.beams[i - 1].time_s) + " s");
+    }
+  }
+}
+
+}  // namespace
+
+SonarLog readBeamCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError("cannot open '" + path + "' for reading");
+  csv::LineReader reader(in, path);
+  const std::size_t header_bins = readHeader(reader);
+  SonarLog log;
+  std::size_t previous_line = 0;
+  while (reader.next()) {
+    Beam beam = readBeam(reader, header_bins);
+    if (!log.beams.empty() && beam.time_s < log.beams.back().time_s) {
+      reader.failField(0, kFixedNames[0], "times go backwards: " + csv::formatNumber(beam.time_s) +
+                                              " s is before the previous beam's " +
+                                              csv::formatNumber(log.beams.back().time_s) + " s (line " +
+                                              std::to_string(previous_line) + ")");
+    }
+    previous_line = reader.lineNumber();
+    log.beams.push_back(std::move(beam));
+  }
+  if (log.beams.empty()) reader.failFile("no beams: only the header row");
+  return log;
+}
+
+void writeBeamCsv(const std::string& path, const SonarLog& log) {
+  checkWritable(log);
+  std::size_t header_bins = 0;
+  for (const Beam& beam : log.beams) header_bins = std::max(header_bins, beam.intensities.size());
+  writeFileAtomically(path, [&](std::ostream& out) {
+    std::string line = "time_s,bearing_deg,bin_length_m";
+    for (std::size_t i = 0; i < header_bins; ++i) line += ',' + binColumnName(i);
+    out << line << '\n';
+    for (const Beam& beam : log.beams) {
+      line.clear();
+      csv::appendNumber(line, beam.time_s);
+      line += ',';
+      csv::appendNumber(line, degreesFromBearing(beam.bearing_rad));
+      line += ',';
+      csv::appendNumber(line, beam.bin_length_m);
+      for (const std::uint8_t intensity : beam.intensities) {
+        line += ',';
+        line += std::to_string(intensity);
+      }
+      out << line << '\n';
+    }
+  });
+}
+
+}  // namespace sonarmap

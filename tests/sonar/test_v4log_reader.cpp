@@ -1,0 +1,313 @@
+/// Tests of readSeaNetV4Log: the real SeaNet sector log, synthetic V4LOG files built here (field
+/// conversion, skipped records, 4-bit bins), dispatch by extension, and broken files.
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/sonar/v4log_reader.hpp"
+#include "temp_dir.hpp"
+
+namespace sonarmap {
+namespace {
+
+using test::TempDir;
+
+constexpr double kPi = std::numbers::pi;
+const std::string kSectorLog = std::string(SONARMAP_SHARED_DATA) + "/seanet_sector_target.V4LOG";
+
+double degrees(double rad) { return rad * 180.0 / kPi; }
+
+// ---- synthetic files ---------------------------------------------------------------------------
+
+// Byte offsets inside the file header and inside an mtHeadData record (formats.md, verified on the
+// sample).
+constexpr std::size_t kDataOffsetAt = 40;
+constexpr std::size_t kRecordCountAt = 44;
+constexpr std::size_t kDateAt = 2;
+constexpr std::size_t kAdIntervalAt = 35;
+constexpr std::size_t kBearingAt = 42;
+constexpr std::size_t kDataBytesAt = 44;
+
+constexpr double kFirstDate_days = 38494.620369097225;  // the sample's first record, 2005-05-22
+
+void putU16(std::string& out, std::uint16_t v) {
+  out.push_back(static_cast<char>(v & 0xFF));
+  out.push_back(static_cast<char>(v >> 8));
+}
+void putU32(std::string& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
+}
+void putF64(std::string& out, double v) {
+  const auto bits = std::bit_cast<std::uint64_t>(v);
+  for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xFF));
+}
+void setU16(std::string& bytes, std::size_t at, std::uint16_t v) {
+  bytes[at] = static_cast<char>(v & 0xFF);
+  bytes[at + 1] = static_cast<char>(v >> 8);
+}
+void setU32(std::string& bytes, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xFF);
+}
+
+/// One record of a synthetic log; defaults are the sample's settings.
+struct Record {
+  double date_days = kFirstDate_days;
+  std::uint8_t type = 2;                 // mtHeadData
+  std::uint16_t head_control = 0x230D;   // adc8on, scanright, invert, raw, hasmot, replyASL
+  std::uint16_t ad_interval = 33;
+  std::uint16_t bearing = 3200;
+  std::vector<std::uint8_t> data = {10, 20, 30};
+  std::size_t appended_bytes = 0;        // bytes after the data (an appended message)
+};
+
+std::string recordBytes(const Record& r) {
+  std::string out;
+  putU16(out, 0);  // length, set below
+  putF64(out, r.date_days);
+  out += {'\x02', '\xFF', static_cast<char>(r.type), '\x80', '\x02'};  // tx, rx, type, sequence, node
+  if (r.type != 2) {
+    out += std::string(12, '\x07');  // some other message body
+  } else {
+    putU16(out, static_cast<std::uint16_t>(r.data.size() + 31));  // packed size
+    out += {'\x02', '\x10', '\x00'};                              // device type, head status, sweep code
+    putU16(out, r.head_control);
+    putU16(out, 100);         // range scale: 10 m
+    putU32(out, 0x02999999);  // TxN
+    out += '\x58';            // gain
+    putU16(out, 90);          // slope
+    out += {'\x95', '\x0E'};  // AD span, AD low
+    putU16(out, 0);           // heading offset
+    putU16(out, r.ad_interval);
+    putU16(out, 2400);  // left limit
+    putU16(out, 4000);  // right limit
+    out += '\x40';      // step 64
+    putU16(out, r.bearing);
+    putU16(out, static_cast<std::uint16_t>(r.data.size()));
+    out.append(r.data.begin(), r.data.end());
+    out += std::string(r.appended_bytes, '\x55');
+  }
+  setU16(out, 0, static_cast<std::uint16_t>(out.size()));
+  return out;
+}
+
+/// An 80-byte header (data offset 80) and the records.
+std::string v4log(const std::vector<Record>& records) {
+  std::string out = "SeaNetV4 Log File V1";
+  out += std::string(11, ' ') + '\x1A';
+  for (const std::uint32_t v : {16U, 80U, 80U, static_cast<std::uint32_t>(records.size()), 0U, 0U, 0U, 0U}) putU32(out, v);
+  putF64(out, kFirstDate_days);
+  putF64(out, kFirstDate_days + 1e-3);
+  for (const Record& r : records) out += recordBytes(r);
+  return out;
+}
+
+std::string writeFile(const TempDir& dir, const std::string& name, const std::string& bytes) {
+  const std::string path = dir.file(name);
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+/// The FileError message of reading `bytes` as a file, or "" when nothing is thrown.
+std::string fileErrorOf(const TempDir& dir, const std::string& bytes) {
+  const std::string path = writeFile(dir, "broken.V4LOG", bytes);
+  try {
+    readSeaNetV4Log(path);
+  } catch (const FileError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    return message;
+  }
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// ---- the real log --------------------------------------------------------------------------------
+
+TEST(sonarV4log, ReadsTheRealSectorLog) {
+  if (!std::filesystem::exists(kSectorLog)) GTEST_SKIP() << "no shared data at " << kSectorLog;
+  const SonarLog log = readSonarLog(kSectorLog);
+  ASSERT_EQ(log.beams.size(), 468u);
+  EXPECT_EQ(log.skipped_beams, 0u);
+  EXPECT_TRUE(log.skip_reasons.empty());
+
+  // ADInterval 33 × 640 ns × 1500 m/s / 2 = 15.84 mm; the range scale (10 m) / 642 bins is
+  // 15.58 mm: the head samples 642 × 15.84 mm = 10.17 m.
+  const double bin_length_m = 33 * 640e-9 * 1500.0 / 2.0;
+  double min_deg = 360.0;
+  double max_deg = 0.0;
+  std::size_t repeated = 0;
+  for (std::size_t i = 0; i < log.beams.size(); ++i) {
+    const Beam& beam = log.beams[i];
+    ASSERT_EQ(beam.intensities.size(), 642u) << "beam " << i;
+    ASSERT_NEAR(beam.bin_length_m, bin_length_m, 1e-12) << "beam " << i;
+    ASSERT_GE(beam.bearing_rad, 0.0);
+    ASSERT_LT(beam.bearing_rad, 2.0 * kPi);
+    min_deg = std::min(min_deg, degrees(beam.bearing_rad));
+    max_deg = std::max(max_deg, degrees(beam.bearing_rad));
+    if (i == 0) continue;
+    ASSERT_GT(beam.time_s, log.beams[i - 1].time_s) << "beam " << i;
+    const double step_deg = degrees(beam.bearing_rad - log.beams[i - 1].bearing_rad);
+    ASSERT_NEAR(std::abs(step_deg), std::abs(step_deg) < 1.8 ? 0.0 : 3.6, 1e-9) << "beam " << i;
+    repeated += std::abs(step_deg) < 1.8 ? 1 : 0;
+  }
+  EXPECT_NEAR(bin_length_m * 642, 10.17, 0.01);
+  EXPECT_NEAR(10.0 / 642, bin_length_m, 0.02 * bin_length_m);
+  // SeaNet bearings 2368…3968 (1/16 gradian, clockwise) → (6400 − b) × 360° / 6400.
+  EXPECT_NEAR(min_deg, 136.8, 1e-9);
+  EXPECT_NEAR(max_deg, 226.8, 1e-9);
+  EXPECT_NEAR(max_deg - min_deg, 90.0, 1e-9);
+  EXPECT_EQ(repeated, 18u);  // the head pings twice at each end of the sector
+  EXPECT_NEAR(degrees(log.beams[0].bearing_rad), 172.8, 1e-9);  // SeaNet 3328
+  EXPECT_NEAR(degrees(log.beams[1].bearing_rad), 169.2, 1e-9);  // 3392: SeaNet +64 is 3.6° clockwise
+  EXPECT_DOUBLE_EQ(log.beams[0].time_s, 0.0);
+  EXPECT_NEAR(log.beams[1].time_s, 0.844, 0.001);
+  EXPECT_NEAR(log.beams.back().time_s, 45.188, 0.001);
+  // The bins start 46 bytes into the record: the first beam begins 00 00 00 3E 63.
+  const std::vector<std::uint8_t> first(log.beams[0].intensities.begin(), log.beams[0].intensities.begin() + 5);
+  EXPECT_EQ(first, (std::vector<std::uint8_t>{0x00, 0x00, 0x00, 0x3E, 0x63}));
+}
+
+// ---- synthetic logs ------------------------------------------------------------------------------
+
+TEST(sonarV4log, ConvertsSyntheticRecordsAndSkipsOthers) {
+  TempDir dir;
+  std::vector<Record> records(6);
+  records[0].bearing = 0;
+  records[0].ad_interval = 10;
+  records[1].type = 6;  // mtBBUserData: not a beam
+  records[2].head_control = 0x2308;  // adc8on clear: 4-bit bins
+  records[2].bearing = 1600;
+  records[2].data = {0xF1, 0x0A};
+  records[3].bearing = 4800;
+  records[3].date_days = kFirstDate_days + 1.5 / 86400.0;
+  records[3].appended_bytes = 7;
+  records[4].data.clear();  // no data bytes
+  records[5].bearing = 6399;
+  const SonarLog log = readSeaNetV4Log(writeFile(dir, "synthetic.V4LOG", v4log(records)));
+
+  ASSERT_EQ(log.beams.size(), 4u);
+  ASSERT_EQ(log.skipped_beams, 2u);
+  ASSERT_EQ(log.skip_reasons.size(), 2u);
+  EXPECT_TRUE(contains(log.skip_reasons[0], "record 1")) << log.skip_reasons[0];
+  EXPECT_TRUE(contains(log.skip_reasons[0], "message type 6")) << log.skip_reasons[0];
+  EXPECT_TRUE(contains(log.skip_reasons[1], "record 4")) << log.skip_reasons[1];
+  EXPECT_TRUE(contains(log.skip_reasons[1], "no data bytes")) << log.skip_reasons[1];
+
+  EXPECT_DOUBLE_EQ(log.beams[0].bearing_rad, 0.0);
+  EXPECT_NEAR(log.beams[0].bin_length_m, 10 * 640e-9 * 750.0, 1e-15);
+  EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{10, 20, 30}));
+  // SeaNet 1600 is a quarter turn clockwise: 3π/2 counter-clockwise.
+  EXPECT_NEAR(log.beams[1].bearing_rad, 1.5 * kPi, 1e-12);
+  EXPECT_EQ(log.beams[1].intensities, (std::vector<std::uint8_t>{255, 17, 0, 170}));  // high nibble first, ×17
+  EXPECT_NEAR(log.beams[2].bearing_rad, 0.5 * kPi, 1e-12);
+  EXPECT_NEAR(log.beams[2].time_s, 1.5, 1e-6);
+  EXPECT_NEAR(log.beams[3].bearing_rad, 2.0 * kPi / 6400, 1e-12);  // read after the appended bytes
+  EXPECT_DOUBLE_EQ(log.beams[3].time_s, 0.0);
+}
+
+TEST(sonarV4log, BinLengthFollowsTheSoundSpeed) {
+  TempDir dir;
+  const std::string path = writeFile(dir, "one.V4LOG", v4log({Record{}}));
+  EXPECT_NEAR(readSeaNetV4Log(path, V4LogOptions{1400.0}).beams.at(0).bin_length_m, 33 * 640e-9 * 700.0, 1e-15);
+  EXPECT_THROW(readSeaNetV4Log(path, V4LogOptions{0.0}), ValueError);
+  EXPECT_THROW(readSeaNetV4Log(path, V4LogOptions{std::numeric_limits<double>::quiet_NaN()}), ValueError);
+}
+
+TEST(sonarV4log, ReadSonarLogDispatchesByExtensionInAnyCase) {
+  TempDir dir;
+  const std::string bytes = v4log({Record{}, Record{}});
+  for (const char* name : {"a.V4LOG", "b.v4log", "c.V4Log"}) {
+    EXPECT_EQ(readSonarLog(writeFile(dir, name, bytes)).beams.size(), 2u) << name;
+  }
+  try {
+    readSonarLog(writeFile(dir, "d.v4", bytes));
+    ADD_FAILURE() << "no FileError for an unknown extension";
+  } catch (const FileError& e) {
+    EXPECT_TRUE(contains(e.what(), ".V4LOG")) << e.what();
+  }
+}
+
+// ---- broken files --------------------------------------------------------------------------------
+
+TEST(sonarV4log, RejectsAWrongMagic) {
+  TempDir dir;
+  std::string bytes = v4log({Record{}});
+  bytes[7] = '5';  // "SeaNetV5 ..."
+  const std::string message = fileErrorOf(dir, bytes);
+  EXPECT_TRUE(contains(message, "byte 0")) << message;
+  EXPECT_TRUE(contains(message, "magic is 'SeaNetV5 Log File V1'")) << message;
+  // A short file of another kind is named as such, not as a truncated log.
+  EXPECT_TRUE(contains(fileErrorOf(dir, "time,angle\n"), "not a SeaNet V4 log"));
+}
+
+TEST(sonarV4log, RejectsTruncatedFilesAtEveryOffset) {
+  TempDir dir;
+  const std::string bytes = v4log({Record{}, Record{}});  // 80 + 2 × 49 bytes
+  ASSERT_EQ(bytes.size(), 178u);
+  for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
+    const std::string message = fileErrorOf(dir, bytes.substr(0, cut));
+    ASSERT_FALSE(message.empty()) << "no FileError for a file cut at " << cut;
+    ASSERT_TRUE(contains(message, "byte ")) << message;
+  }
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes.substr(0, 50)), "file ends, expected the 80-byte SeaNet V4 file header"));
+  const std::string in_header = fileErrorOf(dir, bytes.substr(0, 100));  // 20 bytes: too few for 2 records
+  EXPECT_TRUE(contains(in_header, "byte 44: record count is 2")) << in_header;
+  const std::string in_record = fileErrorOf(dir, bytes.substr(0, 170));
+  EXPECT_TRUE(contains(in_record, "byte 129: length of record 1 is 49 but the file ends 41 bytes")) << in_record;
+}
+
+TEST(sonarV4log, RejectsHugeDeclaredCounts) {
+  TempDir dir;
+  const std::string good = v4log({Record{}});
+  std::string bytes = good;
+  setU32(bytes, kRecordCountAt, 0xFFFFFFFFU);
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 44: record count is 4294967295"));
+  bytes = good;
+  setU32(bytes, kDataOffsetAt, 0xFFFFFFF0U);
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 40: data offset is 4294967280"));
+  bytes = good;
+  setU16(bytes, 80, 0xFFFF);
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 80: length of record 0 is 65535 but the file ends 49 bytes"));
+  bytes = good;
+  setU16(bytes, 80 + kDataBytesAt, 60000);
+  const std::string message = fileErrorOf(dir, bytes);
+  EXPECT_TRUE(contains(message, "byte 124: data byte count of record 0 is 60000 but the record holds 3 bytes")) << message;
+}
+
+TEST(sonarV4log, RejectsBadFields) {
+  TempDir dir;
+  const std::string good = v4log({Record{}});
+  std::string bytes = good;
+  setU16(bytes, 80 + kAdIntervalAt, 0);
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 115: ADInterval of record 0 is 0"));
+  bytes = good;
+  setU16(bytes, 80 + kBearingAt, 6400);
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 122: bearing of record 0 is 6400"));
+  bytes = good;
+  setU16(bytes, 80, 20);  // an mtHeadData record shorter than its header
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 80: length of record 0 is 20, expected at least 46"));
+  bytes = good;
+  setU16(bytes, 80, 5);
+  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 80: length of record 0 is 5, expected at least 13"));
+  bytes = good;
+  for (std::size_t i = 0; i < 8; ++i) bytes[80 + kDateAt + i] = '\xFF';  // a NaN date
+  const std::string message = fileErrorOf(dir, bytes);
+  EXPECT_TRUE(contains(message, "byte 82: record date")) << message;
+  EXPECT_TRUE(contains(message, "expected a finite number")) << message;
+}
+
+}  // namespace
+}  // namespace sonarmap
