@@ -25,7 +25,9 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
   cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
   cmd->add_option("--resolution", args.resolution_m, "Voxel edge in metres")->capture_default_str();
-  cmd->add_option("--detector", args.detector, "background | threshold | canny")->capture_default_str();
+  cmd->add_option("--detector", args.detector,
+                  "background | threshold | canny | cfar-ca | cfar-so | cfar-go | cfar-os (CFAR along each beam)")
+      ->capture_default_str();
   cmd->add_option("--smoothing", args.smoothing, "gaussian | median | mean | none")->capture_default_str();
   cmd->add_option("--ray", args.ray, "dda | bresenham")->capture_default_str();
   cmd->add_option("--aggregation", args.aggregation, "Inner nodes: max | mean")->capture_default_str();
@@ -43,7 +45,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
 MapperOptions toMapperOptions(const MapArgs& args) {
   MapperOptions options;
   options.resolution_m = args.resolution_m;
-  options.detector.kind = parseDetector(args.detector);
+  selectDetector(options.detector, args.detector);
   options.smoothing.kind = parseSmoothing(args.smoothing);
   options.ray = parseRayAlgorithm(args.ray);
   if (args.aggregation == "max") {

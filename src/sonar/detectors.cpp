@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
+#include <span>
 #include <string>
 
 #include "detector_internal.hpp"
@@ -63,7 +63,47 @@ void checkOptions(const DetectorOptions& options) {
     case Detector::kBackgroundSubtracted:
       checkBackground(options.background);
       break;
+    case Detector::kCfar:
+      options.cfar.validate();
+      break;
   }
+}
+
+/// CFAR along each row over its valid bins (cfar.hpp); options already validated.
+std::vector<BeamDetection> detectCfar(const PolarImage& polar, int min_bin, const CfarOptions& options) {
+  std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
+  for (int r = 0; r < polar.rows(); ++r) {
+    const auto end = static_cast<std::size_t>(std::clamp(polar.valid_bins[r], 0, polar.cols()));
+    const int bin = firstCfarBin(std::span(polar.intensities.ptr<std::uint8_t>(r), end), min_bin, options);
+    if (bin >= 0) detections[r] = detail::detectionAt(polar, r, bin);
+  }
+  return detections;
+}
+
+/// A name the CLI accepts, with the detector and (for kCfar) the variant it selects.
+struct NamedDetector {
+  const char* name;
+  Detector kind;
+  CfarVariant variant;
+};
+
+constexpr NamedDetector kDetectorNames[] = {
+    {"threshold", Detector::kThreshold, CfarVariant::kCellAveraging},
+    {"canny", Detector::kCanny, CfarVariant::kCellAveraging},
+    {"background", Detector::kBackgroundSubtracted, CfarVariant::kCellAveraging},
+    {"cfar-ca", Detector::kCfar, CfarVariant::kCellAveraging},
+    {"cfar-so", Detector::kCfar, CfarVariant::kSmallestOf},
+    {"cfar-go", Detector::kCfar, CfarVariant::kGreatestOf},
+    {"cfar-os", Detector::kCfar, CfarVariant::kOrderedStatistic},
+};
+
+const NamedDetector& namedDetector(std::string_view name) {
+  for (const NamedDetector& named : kDetectorNames) {
+    if (name == named.name) return named;
+  }
+  std::string expected;
+  for (const NamedDetector& named : kDetectorNames) expected += (expected.empty() ? "" : ", ") + std::string(named.name);
+  throw ValueError("unknown detector '" + std::string(name) + "', expected one of " + expected);
 }
 
 }  // namespace
@@ -92,25 +132,32 @@ std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const Detect
       return detail::detectCanny(polar, min_bin, options.canny);
     case Detector::kBackgroundSubtracted:
       return detail::detectBackgroundSubtracted(polar, min_bin, options.background);
+    case Detector::kCfar:
+      return detectCfar(polar, min_bin, options.cfar);
   }
   return std::vector<BeamDetection>(static_cast<std::size_t>(polar.rows()));
 }
 
-Detector parseDetector(std::string_view name) {
-  for (Detector kind : {Detector::kThreshold, Detector::kCanny, Detector::kBackgroundSubtracted}) {
-    if (name == detectorName(kind)) return kind;
-  }
-  throw ValueError("unknown detector '" + std::string(name) + "', expected threshold, canny or background");
+Detector parseDetector(std::string_view name) { return namedDetector(name).kind; }
+
+void selectDetector(DetectorOptions& options, std::string_view name) {
+  const NamedDetector& named = namedDetector(name);
+  options.kind = named.kind;
+  if (named.kind == Detector::kCfar) options.cfar.variant = named.variant;
 }
 
 std::string detectorName(Detector kind) {
-  switch (kind) {
-    case Detector::kThreshold:
-      return "threshold";
-    case Detector::kCanny:
-      return "canny";
-    case Detector::kBackgroundSubtracted:
-      return "background";
+  DetectorOptions options;
+  options.kind = kind;
+  options.cfar.variant = CfarVariant::kCellAveraging;
+  return detectorName(options);
+}
+
+std::string detectorName(const DetectorOptions& options) {
+  for (const NamedDetector& named : kDetectorNames) {
+    if (named.kind == options.kind && (named.kind != Detector::kCfar || named.variant == options.cfar.variant)) {
+      return named.name;
+    }
   }
   return "unknown";
 }

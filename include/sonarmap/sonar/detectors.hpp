@@ -13,6 +13,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "sonarmap/sonar/cfar.hpp"
 #include "sonarmap/sonar/detection.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
 
@@ -23,6 +24,8 @@ enum class Detector {
   kThreshold,             ///< paper §8.2: first rise between consecutive bins above a threshold
   kCanny,                 ///< paper §9: first Canny edge pixel along the row
   kBackgroundSubtracted,  ///< ours: first run above a per-sweep, per-range background (see below)
+  kCfar,                  ///< first run of CFAR detections above an intensity floor along the row
+                          ///< (cfar.hpp; Richards ch. 6, Rohling 1983), variant in CfarOptions
 };
 
 /// Paper §8.2: an obstacle starts at the first bin c with I[c] − I[c−1] > min_rise (both bins at
@@ -82,6 +85,7 @@ struct DetectorOptions {
   ThresholdOptions threshold;
   CannyOptions canny;
   BackgroundOptions background;
+  CfarOptions cfar;
 };
 
 /// Finds the first obstacle of each row of `polar` with the detector `options.kind`.
@@ -99,11 +103,20 @@ std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const Detect
 /// @throws ValueError  when percentile is outside [0, 100] or the image is not CV_8UC1.
 cv::Mat estimateRangeBackground(const PolarImage& polar, double percentile);
 
-/// Parses a detector name: "threshold", "canny" or "background" (as the CLI writes them).
-/// @throws ValueError  naming the accepted values, for any other text.
+/// Parses a detector name as the CLI writes it: "threshold", "canny", "background", or "cfar-ca",
+/// "cfar-so", "cfar-go", "cfar-os" (all four give kCfar; selectDetector() also sets the variant).
+/// @throws ValueError  naming the accepted values, for any other text (also for a bare "cfar").
 Detector parseDetector(std::string_view name);
 
-/// The name parseDetector() accepts for `kind`.
+/// Sets options.kind and, for a CFAR name, options.cfar.variant from a name parseDetector()
+/// accepts; every other option is left as it is.
+/// @throws ValueError  naming the accepted values, for any other text.
+void selectDetector(DetectorOptions& options, std::string_view name);
+
+/// The name parseDetector() accepts for `kind` (kCfar: "cfar-ca", the CA variant's name).
 std::string detectorName(Detector kind);
+
+/// The name selectDetector() accepts for options.kind and, for kCfar, options.cfar.variant.
+std::string detectorName(const DetectorOptions& options);
 
 }  // namespace sonarmap
