@@ -1,0 +1,166 @@
+#pragma once
+/// @file msis_simulator.hpp
+/// A mechanically scanned imaging sonar (MSIS) simulator with ground truth: it scans a Scene from a
+/// vehicle that stands still or follows a Trajectory and writes what a Tritech Micron would log
+/// (paper §2.1), with the difficulties of the real CRAS tank data (../shared/data/README.md).
+///
+/// Echo model of one beam (bearing β in the sonar frame, beam.hpp):
+///  1. Rays. A grid of horizontal.rays × vertical.rays directions spans ±extent half beam widths
+///     around the beam's axis on each axis (bearing β + h, elevation v in the sonar frame). Each
+///     carries the two-way beam pattern p(h)² p(v)² with the one-way power pattern
+///     p(θ) = 2^−|2θ/W|^n (−3 dB at ±W/2; n = exponent, 2 is Gaussian, larger is flatter with
+///     steeper edges), times cos v (the solid angle of a ray); the weights add up to 1.
+///  2. Direct echo. A ray meeting a surface at range r with incidence θ (to the normal) and
+///     reflectivity ρ returns ρ · cos^(k−1) θ · r⁻² · 10^(−2αr/10): Lambert's backscatter
+///     (strength ∝ cos^k θ per unit area, k = lambert_exponent) over the ray's footprint (r²/cos θ),
+///     two-way spherical spreading (r⁻⁴) and absorption α. Its energy is spread over the ranges its
+///     footprint covers (from the range's derivative across the ray's angular cell), so a surface
+///     at grazing incidence (the floor, the water surface) gives a long smooth return.
+///  3. Multipath. The ray is mirrored at the surface (d' = d − 2(d·n)n) and traced to a second
+///     surface Q; Q scatters back to the head (if nothing is in between) with
+///     ρ₁ · specular_share · ρ₂ · (cos θ_out + glint_gain · exp(−ψ²/2σ²)), where θ_out is the angle
+///     between Q's normal and the way back to the head and ψ the angle between the way back and
+///     the second mirror direction (σ = glint_width_rad): a dihedral corner sends its double bounce
+///     straight back, so multipath is strongest near corners. It arrives at half the path length
+///     (r₁ + r₂ + r₃)/2, behind the wall, with the receive pattern of its arrival direction, which
+///     never falls below sidelobe_level_db (side and back lobes). Opposite walls give an echo at
+///     the tank's width; corners give the strongest multipath.
+///  4. Pulse. Each bin sums the energy of the pulse_length_m before it (the leading edge of an
+///     echo is at the surface's range).
+///  5. Receiver. Time-varying gain TVG(r) = r² · 10^(2 tvg_absorption · r/10) (20 log r + 2αr, the
+///     extended-target law), so a surface's level does not depend on its range. Multiplicative
+///     speckle: the mean of speckle_looks consecutive exponential draws (fully developed speckle
+///     is exponential in power; the moving mean gives it the pulse's correlation length). Additive
+///     noise: exponential power of mean noise_level_db before the gain, so it grows with range
+///     after it as in the real data. The self-reflection band (reflections from the vehicle: a
+///     plateau of self_reflection_intensity to self_reflection_end_m, tapering over 5 cm) under
+///     the same speckle; bins before blanking_m are 0.
+///  6. Quantisation. intensity = 255 · (10 log10 P − ad_low_db) / ad_span_db, rounded, clipped to
+///     0…255 (the Micron's ADlow/ADspan mapping of the log-amplified echo).
+///
+/// Levels are in dB relative to the echo of a reflector with ρ = 1 filling the beam at normal
+/// incidence. The defaults were tuned on the built-in `tank` against the CRAS log (percentiles of
+/// the intensity over all beams at a range; real → simulated): band at 0.1–0.3 m, median ≈ 100 →
+/// 95; 0.4–1.4 m, median 0 → 0; ring at 1.5–1.7 m, median 20–28 → 28–37, starting sharply at
+/// ≈ 1.5 m in both; walls' leading edges 100–190 → 110–200; beyond 3.5 m (noise and multipath),
+/// median 45–60 → 41–59. Known difference: the real log holds more energy behind the walls
+/// (90th percentile ≈ 100–120 at 3–5 m; here ≈ 60–75).
+///
+/// Randomness: std::mt19937_64 seeded with `seed` (its output is fixed by the C++ standard). An
+/// exponential draw is −log(v) with v = (k + 1) · 2⁻⁵³, k the top 53 bits of one 64-bit output,
+/// so v is uniform on (0, 1]. No std::*_distribution is used, so a seed gives the same log with
+/// any standard library (up to the last bit of libm's log, exp and pow). Draws are taken beam by
+/// beam in a fixed order.
+
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sim/scene.hpp"
+#include "sonarmap/sim/trajectory.hpp"
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap {
+
+/// Geometry and timing of the sonar head. Defaults: the Tritech Micron of the CRAS log.
+struct MsisHeadOptions {
+  double step_rad = 1.8 * std::numbers::pi / 180.0;  ///< bearing step between beams, > 0; 200 beams per turn
+  double horizontal_beam_width_rad = 3.0 * std::numbers::pi / 180.0;  ///< −3 dB full width, (0, π)
+  double vertical_beam_width_rad = 35.0 * std::numbers::pi / 180.0;   ///< −3 dB full width, (0, π)
+  double range_m = 5.0;                                               ///< range scale, > 0
+  /// Bins per beam, ≥ 1; bin_length_m = range_m / bins (0.012531 m: the CRAS log's step_dist).
+  int bins = 399;
+  double beam_period_s = 0.043;    ///< time between beams (CRAS: ≈ 43 ms, 8.6 s per turn), > 0
+  double start_bearing_rad = 0.0;  ///< bearing of the first beam, radians (wrapped to [0, 2π))
+  bool counter_clockwise = true;   ///< the head turns counter-clockwise (bearings increase); false: clockwise
+
+  double binLength_m() const { return range_m / bins; }
+  /// Beams in one 360° turn: round(2π / step_rad).
+  std::size_t beamsPerTurn() const;
+  /// @throws ValueError naming the field that is out of range or not finite.
+  void validate() const;
+};
+
+/// One axis of the beam pattern and of the grid of rays across it (step 1 of the file's comment).
+struct ApertureAxis {
+  int rays = 1;           ///< rays across the axis, ≥ 1
+  double extent = 1.5;    ///< the rays span ± extent half beam widths, > 0
+  double exponent = 2.0;  ///< n of the one-way pattern 2^−|2θ/W|^n, > 0 (2: Gaussian)
+
+  /// @throws ValueError naming `axis` ("horizontal", "vertical") and the field.
+  void validate(const char* axis) const;
+};
+
+/// The echo model (see the file's comment for each step). Levels in dB re the full-beam echo of a
+/// perfect reflector at normal incidence.
+struct EchoModelOptions {
+  ApertureAxis horizontal{5, 2.0, 2.0};   ///< across the bearing: a Gaussian main lobe with its skirt
+  ApertureAxis vertical{15, 1.5, 8.0};    ///< the 35° fan: flat-topped with steep edges (a sharp ring)
+  double lambert_exponent = 2.0;          ///< k: backscatter per unit area ∝ cos^k(incidence), ≥ 1 (2: Lambert)
+  double absorption_db_per_m = 0.15;      ///< one-way absorption of the water (≈ 700 kHz), ≥ 0
+  double tvg_absorption_db_per_m = 0.15;  ///< absorption the head's TVG compensates, ≥ 0
+  double pulse_length_m = 0.05;           ///< range extent of the transmitted pulse, > 0
+  int speckle_looks = 3;                  ///< exponential draws averaged per bin (speckle and noise); 0: no fluctuation
+  double noise_level_db = -37.5;          ///< mean additive noise power before the gain (at 1 m after it)
+  double ad_low_db = -33.0;               ///< level that maps to intensity 0
+  double ad_span_db = 45.0;               ///< level span that maps to 0…255, > 0
+  double blanking_m = 0.05;               ///< bins nearer than this are 0 (transmit blanking), ≥ 0
+  double self_reflection_end_m = 0.3;     ///< end of the self-reflection band, ≥ 0 (0: none)
+  double self_reflection_intensity = 100.0;                 ///< mean intensity of the band, 0…255
+  bool multipath = true;                                    ///< trace one specular bounce
+  double specular_share = 0.6;                              ///< share of the energy a surface mirrors onwards, [0, 1]
+  double glint_gain = 8.0;                                  ///< strength of the second surface's mirror lobe, ≥ 0
+  double glint_width_rad = 8.0 * std::numbers::pi / 180.0;  ///< σ of the mirror lobe, > 0
+  /// One-way power of the side and back lobes relative to the axis, dB, ≤ 0: the receive pattern
+  /// of a multipath echo never falls below it, so a double bounce arriving from the side or from
+  /// behind (the opposite wall, heard through the back lobe) is still heard.
+  double sidelobe_level_db = -20.0;
+
+  /// @throws ValueError naming the field that is out of range or not finite.
+  void validate() const;
+};
+
+/// The sonar's mounting: sonar frame (beam.hpp: x along bearing 0, y left, z up) → body frame
+/// (FRD). Default: upright and aligned, at the body origin: diag(1, −1, −1).
+Eigen::Isometry3d defaultSonarToBody();
+
+/// Everything a simulation run needs besides the scene.
+struct MsisSimulationOptions {
+  MsisHeadOptions head;
+  EchoModelOptions echo;
+  std::size_t turns = 28;                      ///< full 360° turns of the head; beams = turns × head.beamsPerTurn()
+  double start_time_s = 0.0;                   ///< time of the first beam, seconds
+  Trajectory trajectory = staticTrajectory();  ///< the vehicle's pose over time (NED, navigation.hpp)
+  Eigen::Isometry3d sonar_to_body = defaultSonarToBody();
+  double nav_rate_hz = 10.0;  ///< rate of the NavTrack written with the log; 0: none
+  std::uint64_t seed = 1;     ///< seed of the speckle and noise
+
+  /// @throws ValueError for invalid head or echo options, a missing trajectory, a non-finite start
+  ///         time, a negative or non-finite nav rate, or a non-rigid sonar_to_body.
+  void validate() const;
+};
+
+/// A simulated run and its ground truth.
+struct MsisSimulation {
+  SonarLog log;  ///< beams in time order, bearings in [0, 2π), no skipped beams
+  /// Fixes of the trajectory at nav_rate_hz from the first beam's time until at least the last
+  /// beam's (so every beam can be interpolated); empty when nav_rate_hz is 0.
+  NavTrack nav;
+  Scene scene;  ///< the scene that was scanned (map frame)
+};
+
+/// Pose of the sonar frame in the map frame for one navigation fix:
+/// nedToMap() · bodyToNed(fix) · sonar_to_body (navigation.hpp).
+Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body);
+
+/// Simulates `options.turns` turns of the head in `scene`.
+/// Cost: about beams × horizontal.rays × vertical.rays × (1 + 2 with multipath) ray–scene
+/// queries; the default 28-turn tank run (5,600 beams) takes about 0.3 s on one core.
+/// @throws ValueError for invalid options (MsisSimulationOptions::validate) or an invalid scene
+///         (validateScene).
+MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options = {});
+
+}  // namespace sonarmap

@@ -1,0 +1,83 @@
+/// @file receiver.cpp
+/// Pulse, gain, speckle, noise, self-reflection band and quantisation (see receiver.hpp).
+
+#include "receiver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sonarmap::sim {
+namespace {
+
+constexpr double kSelfReflectionTaper_m = 0.05;  // the band fades out over this range after its end
+
+double powerOf(double level_db) { return std::pow(10.0, level_db / 10.0); }
+
+}  // namespace
+
+Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo) : head_(head), echo_(echo) {
+  const double bin_m = head.binLength_m();
+  pulse_bins_ = std::max(1, static_cast<int>(std::lround(echo.pulse_length_m / bin_m)));
+  const auto bins = static_cast<std::size_t>(head.bins);
+  gain_.resize(bins);
+  self_reflection_.assign(bins, 0.0);
+  const double band_power = powerOf(levelOf(echo.self_reflection_intensity));
+  for (std::size_t i = 0; i < bins; ++i) {
+    const double range_m = (static_cast<double>(i) + 0.5) * bin_m;
+    gain_[i] = range_m * range_m * std::pow(10.0, 2.0 * echo.tvg_absorption_db_per_m * range_m / 10.0);
+    const double past_end_m = range_m - echo.self_reflection_end_m;
+    if (echo.self_reflection_end_m > 0.0 && echo.self_reflection_intensity > 0.0 &&
+        past_end_m < kSelfReflectionTaper_m) {
+      self_reflection_[i] = band_power * std::clamp(1.0 - past_end_m / kSelfReflectionTaper_m, 0.0, 1.0);
+    }
+  }
+}
+
+double Receiver::levelOf(double intensity) const { return echo_.ad_low_db + intensity / 255.0 * echo_.ad_span_db; }
+
+std::uint8_t Receiver::quantise(double power) const {
+  if (!(power > 0.0)) return 0;
+  const double intensity = 255.0 * (10.0 * std::log10(power) - echo_.ad_low_db) / echo_.ad_span_db;
+  return static_cast<std::uint8_t>(std::lround(std::clamp(intensity, 0.0, 255.0)));
+}
+
+void Receiver::fluctuation(Random& random, std::vector<double>& factors) {
+  const auto bins = static_cast<std::size_t>(head_.bins);
+  const auto looks = static_cast<std::size_t>(std::max(echo_.speckle_looks, 0));
+  factors.assign(bins, 1.0);
+  if (looks == 0) return;
+  draws_.resize(bins + looks - 1);
+  for (double& draw : draws_) draw = random.exponential();
+  double sum = 0.0;  // running sum of the window draws_[i, i + looks)
+  for (std::size_t k = 0; k + 1 < looks; ++k) sum += draws_[k];
+  for (std::size_t i = 0; i < bins; ++i) {
+    sum += draws_[i + looks - 1];
+    factors[i] = sum / static_cast<double>(looks);
+    sum -= draws_[i];
+  }
+}
+
+void Receiver::receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities) {
+  const std::size_t bins = energy.size();
+  // Pulse: each bin sums the energy of the pulse length before it (a running sum).
+  pulse_.assign(bins, 0.0);
+  double window = 0.0;
+  for (std::size_t i = 0; i < bins; ++i) {
+    window += energy[i];
+    if (i >= static_cast<std::size_t>(pulse_bins_)) window -= energy[i - static_cast<std::size_t>(pulse_bins_)];
+    pulse_[i] = std::max(window, 0.0);
+  }
+  fluctuation(random, speckle_);
+  fluctuation(random, noise_);
+  const double noise_power = powerOf(echo_.noise_level_db);
+  const double bin_m = head_.binLength_m();
+  intensities.resize(bins);
+  for (std::size_t i = 0; i < bins; ++i) {
+    const double power =
+        (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + noise_power * noise_[i] * gain_[i];
+    const bool blanked = (static_cast<double>(i) + 0.5) * bin_m < echo_.blanking_m;
+    intensities[i] = blanked ? 0 : quantise(power);
+  }
+}
+
+}  // namespace sonarmap::sim

@@ -1,0 +1,43 @@
+#pragma once
+/// @file receiver.hpp
+/// Private to the simulator: the head's receiver (steps 4–6 of msis_simulator.hpp): pulse,
+/// time-varying gain, speckle, noise, self-reflection band and quantisation to 0…255.
+
+#include <cstdint>
+#include <vector>
+
+#include "random.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+
+namespace sonarmap::sim {
+
+/// Turns received energy per range bin (BeamEchoTracer::trace) into one beam's intensities.
+class Receiver {
+ public:
+  /// Precomputes the gain and the band for `head` and `echo`, which it copies.
+  Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo);
+
+  /// @param energy       received energy per bin, head.bins values.
+  /// @param random       the run's stream; takes 2 · (bins + speckle_looks − 1) draws (none
+  ///                     without speckle).
+  /// @param intensities  set to head.bins values.
+  void receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities);
+
+  /// Echo level (dB) that quantises to `intensity` (the inverse of the AD mapping).
+  double levelOf(double intensity) const;
+
+ private:
+  std::uint8_t quantise(double power) const;
+  /// Sets `factors` (one per bin, mean 1) to the moving mean of speckle_looks exponential draws,
+  /// or to 1 when speckle_looks is 0.
+  void fluctuation(Random& random, std::vector<double>& factors);
+
+  MsisHeadOptions head_;
+  EchoModelOptions echo_;
+  int pulse_bins_ = 1;
+  std::vector<double> gain_;                             // TVG per bin (power factor)
+  std::vector<double> self_reflection_;                  // band power per bin, after the gain
+  std::vector<double> pulse_, speckle_, noise_, draws_;  // per-beam scratch
+};
+
+}  // namespace sonarmap::sim
