@@ -7,15 +7,16 @@
 #include <random>
 #include <tuple>
 
+#include "octree/octree_testing.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
 namespace {
 
-Key16 key16(int x, int y, int z) {
-  return Key16{{static_cast<std::uint16_t>(32768 + x), static_cast<std::uint16_t>(32768 + y),
-                static_cast<std::uint16_t>(32768 + z)}};
-}
+using testing::key16;
+using testing::Leaf;
+using testing::asTuple;
+using testing::leavesOf;
 
 TEST(Octree, EmptyTreeIsUnknown) {
   const OcTree16 tree(0.05);

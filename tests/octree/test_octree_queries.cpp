@@ -7,17 +7,16 @@
 #include <tuple>
 #include <vector>
 
+#include "octree/octree_testing.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
 namespace {
 
-using Leaf = std::tuple<std::uint16_t, std::uint16_t, std::uint16_t, int, float>;
-
-Key16 key16(int x, int y, int z) {
-  return Key16{{static_cast<std::uint16_t>(32768 + x), static_cast<std::uint16_t>(32768 + y),
-                static_cast<std::uint16_t>(32768 + z)}};
-}
+using testing::key16;
+using testing::Leaf;
+using testing::asTuple;
+using testing::leavesOf;
 
 /// Random hits and misses around the origin plus a solid block that prunes to coarse leaves.
 OcTree16 sampleTree(const OctreeOptions& options = {}) {
@@ -31,8 +30,6 @@ OcTree16 sampleTree(const OctreeOptions& options = {}) {
   if (options.lazy) tree.updateInnerOccupancy();
   return tree;
 }
-
-Leaf asTuple(const LeafView<16>& l) { return {l.key[0], l.key[1], l.key[2], l.depth, l.log_odds}; }
 
 std::vector<Leaf> bruteForceInBox(const OcTree16& tree, const Key16& lo, const Key16& hi) {
   std::vector<Leaf> leaves;

@@ -3,25 +3,26 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 #include <tuple>
 #include <vector>
 
+#include "octree/octree_testing.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
 namespace {
 
-using Leaf = std::tuple<std::uint16_t, std::uint16_t, std::uint16_t, int, float>;
+using testing::key16;
+using testing::Leaf;
+using testing::asTuple;
+using testing::leavesOf;
 
-Key16 key16(int x, int y, int z) {
-  return Key16{{static_cast<std::uint16_t>(32768 + x), static_cast<std::uint16_t>(32768 + y),
-                static_cast<std::uint16_t>(32768 + z)}};
-}
-
-std::vector<Leaf> leavesOf(const OcTree16& tree) {
-  std::vector<Leaf> leaves;
-  tree.forEachLeaf([&](const LeafView<16>& l) { leaves.emplace_back(l.key[0], l.key[1], l.key[2], l.depth, l.log_odds); });
-  return leaves;
+/// Synchronises both trees' inner nodes and lists their leaves, for comparison.
+std::pair<std::vector<Leaf>, std::vector<Leaf>> syncedLeaves(OcTree16& a, OcTree16& b) {
+  a.updateDirtyInnerOccupancy();
+  b.updateDirtyInnerOccupancy();
+  return {leavesOf(a), leavesOf(b)};
 }
 
 /// A tree with scattered voxels, a solid block pruned to coarse leaves, and a few inner nodes.
@@ -62,14 +63,12 @@ TEST_P(UpdateCube, EqualsUpdatingEveryVoxelOfTheCube) {
                               delta, /*lazy_eval=*/true);
         }
     if (i % 50 == 49) {  // sync now and then, so later cubes meet pruned leaves too
-      by_cube.updateDirtyInnerOccupancy();
-      by_voxel.updateDirtyInnerOccupancy();
-      ASSERT_EQ(leavesOf(by_cube), leavesOf(by_voxel)) << "after cube " << i;
+      const auto [mine, reference] = syncedLeaves(by_cube, by_voxel);
+      ASSERT_EQ(mine, reference) << "after cube " << i;
     }
   }
-  by_cube.updateDirtyInnerOccupancy();
-  by_voxel.updateDirtyInnerOccupancy();
-  EXPECT_EQ(leavesOf(by_cube), leavesOf(by_voxel));
+  const auto [mine, reference] = syncedLeaves(by_cube, by_voxel);
+  EXPECT_EQ(mine, reference);
   EXPECT_EQ(by_cube.counts().nodes, by_voxel.counts().nodes);
   EXPECT_EQ(*by_cube.search(key16(0, 0, 0), 0), *by_voxel.search(key16(0, 0, 0), 0));
 }
@@ -104,14 +103,12 @@ TEST_P(UpdateCube, BricksEqualUpdatingTheirVoxels) {
       by_voxel.updateNode(key, delta, /*lazy_eval=*/true);
     }
     if (i % 75 == 74) {
-      by_brick.updateDirtyInnerOccupancy();
-      by_voxel.updateDirtyInnerOccupancy();
-      ASSERT_EQ(leavesOf(by_brick), leavesOf(by_voxel)) << "after brick " << i;
+      const auto [mine, reference] = syncedLeaves(by_brick, by_voxel);
+      ASSERT_EQ(mine, reference) << "after brick " << i;
     }
   }
-  by_brick.updateDirtyInnerOccupancy();
-  by_voxel.updateDirtyInnerOccupancy();
-  EXPECT_EQ(leavesOf(by_brick), leavesOf(by_voxel));
+  const auto [mine, reference] = syncedLeaves(by_brick, by_voxel);
+  EXPECT_EQ(mine, reference);
   EXPECT_EQ(by_brick.counts().nodes, by_voxel.counts().nodes);
 }
 
@@ -157,9 +154,8 @@ TEST(octreeUpdateCube, BricksRecordTheSameChangesAsSingleVoxels) {
   }
   EXPECT_EQ(by_brick.numChangesDetected(), 16U);
   EXPECT_EQ(by_brick.changedKeys(), by_voxel.changedKeys());
-  by_brick.updateDirtyInnerOccupancy();
-  by_voxel.updateDirtyInnerOccupancy();
-  EXPECT_EQ(leavesOf(by_brick), leavesOf(by_voxel));
+  const auto [mine, reference] = syncedLeaves(by_brick, by_voxel);
+  EXPECT_EQ(mine, reference);
 }
 
 }  // namespace
