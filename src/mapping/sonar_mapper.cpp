@@ -4,8 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <future>
+#include <optional>
 #include <string>
-
 
 #include "sonarmap/raycast/bresenham.hpp"
 #include "sonarmap/raycast/dda.hpp"
@@ -52,6 +52,9 @@ struct SonarMapper::SweepWork {
   std::vector<std::pair<Key16, std::uint8_t>> hits;   ///< hit cell, intensity
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
+  std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
+  std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
+  std::vector<HitPoint> group_hits;  ///< planBeams: that group's hit points
 };
 
 SonarMapper::SonarMapper(const MapperOptions& options)
@@ -112,19 +115,21 @@ void SonarMapper::integrateHits() {
   }
 }
 
-void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
-                                 const Eigen::Isometry3d& sonar_to_map) {
-  if (detections.size() != static_cast<std::size_t>(polar.rows())) {
-    throw ValueError("sweep has " + std::to_string(polar.rows()) + " beams but " + std::to_string(detections.size()) +
-                     " detections");
-  }
+template <class PoseOfRow>
+void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                PoseOfRow&& pose_of) {
   SweepWork& work = *work_;
   work.beams.clear();
   for (std::size_t row = 0; row < detections.size(); ++row) {
+    const Eigen::Isometry3d* sonar_to_map = pose_of(row);
+    if (sonar_to_map == nullptr) {
+      ++stats_.beams_without_nav;
+      continue;
+    }
     const BeamDetection& detection = detections[row];
     const double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
                                                    : polar.valid_bins[row] * polar.bin_length_m;
-    const PlannedBeam beam{sonar_to_map, polar.bearing_rad[row], range_m, detection.hasObstacle(), detection.intensity};
+    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], range_m, detection.hasObstacle(), detection.intensity};
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
       continue;
@@ -133,12 +138,85 @@ void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<Beam
     ++stats_.beams_used;
     if (detection.hasObstacle()) ++stats_.obstacles;
   }
-  planSweep(work.beams, options_.beam_width_rad, options_.resolution_m, work.rays, work.hit_points);
+  planBeams();
   keySweep();
   integrateFreeCells();
   integrateHits();
   if (options_.octree.lazy) map_.updateInnerOccupancy();
   ++stats_.sweeps;
+}
+
+namespace {
+/// @throws ValueError when the sweep's `what` (detections, poses) do not number one per polar row.
+void checkRows(const PolarImage& polar, std::size_t count, const char* what) {
+  if (count != static_cast<std::size_t>(polar.rows())) {
+    throw ValueError("sweep has " + std::to_string(polar.rows()) + " beams but " + std::to_string(count) + " " + what);
+  }
+}
+
+/// An upper bound of how far any point within `reach_m` of the sonar moves between the poses `a`
+/// and `b`: |Δtranslation| + reach · |Δrotation angle|.
+double poseDisplacementBound_m(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double reach_m) {
+  if (a.matrix() == b.matrix()) return 0.0;
+  const double angle_rad = Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
+  return (a.translation() - b.translation()).norm() + reach_m * std::abs(angle_rad);
+}
+}  // namespace
+
+void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                 const Eigen::Isometry3d& sonar_to_map) {
+  checkRows(polar, detections.size(), "detections");
+  integrateRows(polar, detections, [&](std::size_t) { return &sonar_to_map; });
+}
+
+void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                 const std::vector<Eigen::Isometry3d>& sonar_to_map_per_row) {
+  checkRows(polar, detections.size(), "detections");
+  checkRows(polar, sonar_to_map_per_row.size(), "poses");
+  integrateRows(polar, detections, [&](std::size_t row) { return &sonar_to_map_per_row[row]; });
+}
+
+void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                 const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row) {
+  checkRows(polar, detections.size(), "detections");
+  checkRows(polar, sonar_to_map_per_row.size(), "poses");
+  integrateRows(polar, detections, [&](std::size_t row) -> const Eigen::Isometry3d* {
+    const auto& pose = sonar_to_map_per_row[row];
+    return pose ? &*pose : nullptr;
+  });
+}
+
+void SonarMapper::planBeams() {
+  // The fan (sweep_fan.hpp) assumes its beams share the sonar's pose: a finer ray starts where its
+  // coarser neighbours drift a voxel apart. Beams whose poses move no point of their reach by more
+  // than a quarter voxel from the group's first pose are planned as one fan (each still placed with
+  // its own pose); the others group by group, their rays and hits appended in beam order.
+  SweepWork& work = *work_;
+  const std::vector<PlannedBeam>& beams = work.beams;
+  double reach_m = options_.resolution_m;
+  for (const PlannedBeam& beam : beams) reach_m = std::max(reach_m, beam.free_range_m);
+  const double tolerance_m = 0.25 * options_.resolution_m;
+  auto groupEnd = [&](std::size_t first) {
+    std::size_t end = first + 1;
+    while (end < beams.size() &&
+           poseDisplacementBound_m(beams[first].sonar_to_map, beams[end].sonar_to_map, reach_m) <= tolerance_m) {
+      ++end;
+    }
+    return end;
+  };
+  if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always
+    planSweep(beams, options_.beam_width_rad, options_.resolution_m, work.rays, work.hit_points);
+    return;
+  }
+  work.rays.clear();
+  work.hit_points.clear();
+  for (std::size_t first = 0, end = 0; first < beams.size(); first = end) {
+    end = groupEnd(first);
+    work.group.assign(beams.begin() + static_cast<std::ptrdiff_t>(first), beams.begin() + static_cast<std::ptrdiff_t>(end));
+    planSweep(work.group, options_.beam_width_rad, options_.resolution_m, work.group_rays, work.group_hits);
+    work.rays.insert(work.rays.end(), work.group_rays.begin(), work.group_rays.end());
+    work.hit_points.insert(work.hit_points.end(), work.group_hits.begin(), work.group_hits.end());
+  }
 }
 
 bool SonarMapper::beamInsideMap(const PlannedBeam& beam) const {
@@ -191,7 +269,11 @@ struct DetectedSweep {
 };
 }  // namespace
 
-SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
+namespace {
+/// mapSonarLog's body: `integrate(mapper, polar, detections)` places each detected sweep.
+template <class Integrate>
+SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress,
+                      Integrate&& integrate) {
   SonarMapper mapper(options);
   mapper.stats().beams_skipped = log.skipped_beams;
   const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
@@ -207,10 +289,43 @@ SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
     DetectedSweep sweep = next.get();  // rethrows what the detection threw
     if (i + 1 < sweeps.size()) next = std::async(launch, detectSweep, i + 1);
-    mapper.integrateSweep(sweep.polar, sweep.detections);
+    integrate(mapper, sweep.polar, sweep.detections);
     if (progress) progress(i + 1, sweeps.size());
   }
   return mapper;
+}
+
+/// interpolateBodyToNed on the two fixes around `time_s` only (O(log fixes)); `track` must have
+/// been checked once by interpolateBodyToNed on the whole track.
+std::optional<Eigen::Isometry3d> bodyToNedAt(const NavTrack& track, double time_s) {
+  if (track.size() < 2) return interpolateBodyToNed(track, time_s);
+  const auto after = std::upper_bound(track.begin(), track.end(), time_s,
+                                      [](double t, const NavSample& fix) { return t < fix.time_s; });
+  const auto hi = static_cast<std::size_t>(
+      std::clamp<std::ptrdiff_t>(after - track.begin(), 1, static_cast<std::ptrdiff_t>(track.size()) - 1));
+  return interpolateBodyToNed(NavTrack{track[hi - 1], track[hi]}, time_s);
+}
+}  // namespace
+
+SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
+  return mapSweeps(log, options, progress, [](SonarMapper& mapper, const PolarImage& polar, const auto& detections) {
+    mapper.integrateSweep(polar, detections);
+  });
+}
+
+SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
+                        const MapperOptions& options, const ProgressCallback& progress) {
+  (void)interpolateBodyToNed(nav, 0.0);  // checks the whole track once: throws ValueError when it is invalid
+  const Eigen::Isometry3d ned_to_map = nedToMap();
+  std::vector<std::optional<Eigen::Isometry3d>> poses;
+  return mapSweeps(log, options, progress, [&](SonarMapper& mapper, const PolarImage& polar, const auto& detections) {
+    poses.clear();
+    for (const double time_s : polar.time_s) {
+      const std::optional<Eigen::Isometry3d> body_to_ned = bodyToNedAt(nav, time_s);
+      poses.push_back(body_to_ned ? std::optional(ned_to_map * *body_to_ned * sonar_to_body) : std::nullopt);
+    }
+    mapper.integrateSweep(polar, detections, poses);
+  });
 }
 
 }  // namespace sonarmap

@@ -6,16 +6,20 @@
 ///
 /// A sweep is integrated like one scan of OctoMap's `insertPointCloud`: every cell is updated at
 /// most once per sweep, and a cell that is an obstacle of any beam of the sweep is not also
-/// updated free by another beam. Beams are placed in the map frame by the sonar's pose.
+/// updated free by another beam. Beams are placed in the map frame by the sonar's pose: one pose for
+/// the whole sweep (a static vehicle), or one per beam (a moving vehicle: a Micron turn takes
+/// ~8.6 s), e.g. interpolated from navigation fixes at each beam's time (mapSonarLog with a NavTrack).
 
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
 #include "sonarmap/sonar/detection.hpp"
@@ -84,6 +88,7 @@ struct MappingStats {
   std::size_t free_updates = 0;          ///< cells updated free (after per-sweep deduplication)
   std::size_t occupied_updates = 0;      ///< cells updated occupied
   std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
+  std::size_t beams_without_nav = 0;     ///< beams without a pose: their time lies outside the navigation (skipped)
 };
 
 /// Maps sweeps of one sonar into an occupancy octree (depth 16, OctoMap's layout).
@@ -109,6 +114,22 @@ class SonarMapper {
   void integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                       const Eigen::Isometry3d& sonar_to_map = Eigen::Isometry3d::Identity());
 
+  /// Integrates one sweep of a moving sonar: row r is placed with `sonar_to_map_per_row[r]` (the
+  /// sonar's pose in the map frame at the beam's time). Consecutive beams whose poses move any
+  /// point of their reach by at most a quarter voxel share one fan of rays (sweep_fan.hpp), so a
+  /// static sweep is planned once and maps exactly as the single-pose overload; a moving one is
+  /// planned group by group (moving at 0.1 m/s with 2 cm voxels: about one beam per group), which
+  /// casts the overlap of neighbouring wedges twice (the cells are still updated once per sweep).
+  /// @throws ValueError when `detections` or the poses differ in length from the polar image.
+  void integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                      const std::vector<Eigen::Isometry3d>& sonar_to_map_per_row);
+
+  /// As above; a row whose pose is nullopt (no navigation at its time) is skipped and counted in
+  /// stats().beams_without_nav.
+  /// @throws ValueError when `detections` or the poses differ in length from the polar image.
+  void integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                      const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row);
+
   const OcTree16& map() const { return map_; }
   OcTree16& map() { return map_; }
   const MappingStats& stats() const { return stats_; }
@@ -117,6 +138,11 @@ class SonarMapper {
 
  private:
   float hitLogOdds(std::uint8_t intensity) const;
+  /// integrateSweep's body: `pose_of(row)` is the row's pose, or null to skip it without navigation.
+  template <class PoseOfRow>
+  void integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);
+  /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
+  void planBeams();
   /// True when the sonar and the beam's wedge lie inside the map.
   bool beamInsideMap(const PlannedBeam& beam) const;
   /// Turns the sweep's plan into keys: hit cells, the key box, the seen set primed with the hits.
@@ -144,5 +170,18 @@ std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::si
 /// joined to their neighbour) with the sonar static at the map origin. `stats().beams_skipped` includes the reader's skipped beams.
 /// @throws ValueError for invalid options or a sweep that mixes bin lengths.
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options = {}, const ProgressCallback& progress = {});
+
+/// Maps every sweep of `log` (split and detected as above) from a moving vehicle: each beam is
+/// placed with the sonar's pose at its time, nedToMap() · bodyToNed(t) · sonar_to_body, where
+/// bodyToNed(t) is interpolated from `nav` (interpolateBodyToNed, navigation.hpp; O(log fixes) per
+/// beam). Beams whose time lies outside [first fix, last fix] are skipped and counted in
+/// `stats().beams_without_nav`. A constant track at the NED origin with the default mounting
+/// (upright, aligned: sonar_to_body = diag(1, −1, −1)) gives the same map as the overload above.
+/// @param nav            navigation fixes on the beams' clock (NED, body FRD; navigation.hpp).
+/// @param sonar_to_body  the sonar's mounting: sonar frame (beam.hpp) → body frame (FRD).
+/// @throws ValueError for invalid options, a sweep that mixes bin lengths, or a navigation track
+///         that is empty, non-finite or not strictly increasing in time.
+SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
+                        const MapperOptions& options = {}, const ProgressCallback& progress = {});
 
 }  // namespace sonarmap
