@@ -1,0 +1,109 @@
+#pragma once
+/// @file ground_truth.hpp
+/// Scoring an occupancy map against the ground truth of a simulated run (sim/scene.hpp): how many
+/// occupied voxels lie on a surface (precision), how much of the surface the sonar could see was
+/// mapped (recall), how many free voxels are really water (free accuracy), and how far the mapped
+/// walls are from the true ones (wall-position error).
+///
+/// Definitions (map frame, metres; "voxel" is a finest voxel of the map, pruned leaves expanded;
+/// a voxel's position is its centre; res is the map's resolution):
+///  - Tolerance T = max(GroundTruthOptions::tolerance_m, √3 · res): never less than one voxel
+///    diagonal.
+///  - Evaluated region: the voxels whose centre z lies in [z_min, z_max]. Without z options this
+///    is the slab of the map's known voxels (lowest to highest known voxel), so a 2D sonar map is
+///    scored on its own layer.
+///  - Sensors: GroundTruthOptions::sensor_positions_m (default the map origin, where mapSonarLog
+///    and `sonarmap map` place a static sonar). Range R: max_range_m, or when unset the largest
+///    distance from a known voxel of the region to its nearest sensor plus T (the reach of the map;
+///    a wall lies just beyond the last voxel the sonar cleared).
+///  - Precision = occupied voxels of the region within T of a scene surface (distanceToSurface)
+///    / occupied voxels of the region.
+///  - Surface voxels: the voxels of the map's grid inside the region's box (the horizontal bounding
+///    box of the region's known voxels, grown by T on each side, × [z_min, z_max]) whose centre is within res / 2 of a scene
+///    surface (the surface sampled at the map's resolution), that are within R of a sensor and
+///    visible from it: the first surface along the ray from the sensor towards the centre is met
+///    no earlier than one voxel (res) before the centre. Surfaces hidden behind others (the wall
+///    behind a floater), out of reach or outside the slab do not count.
+///  - Recall = surface voxels with an occupied voxel of the region whose centre is within T
+///    / surface voxels.
+///  - Free accuracy = free voxels of the region that are in the water / free voxels of the region.
+///    A voxel is in the water when the straight segment from some sensor to its centre crosses no
+///    scene surface (so it is neither inside a solid block or pile nor beyond a wall), or when it is
+///    within T of a surface (the band where a wall's voxels are half water).
+///  - Wall-position error: over the occupied voxels of the region within match_distance_m of a
+///    surface ("matched"; farther ones are clutter or ghosts, already counted by the precision), the
+///    mean and the root mean square of the distance to the nearest surface. Per surface (scene
+///    primitive), the median signed offset of the matched voxels whose nearest surface it is:
+///    positive when the voxel is on the near side of the surface seen from the nearest sensor (the
+///    segment from that sensor to the voxel does not cross the primitive: the map puts the wall too
+///    near), negative behind it.
+///
+/// Cost: the region's voxels × primitives distance queries, plus one ray–scene query per sensor for
+/// each free voxel and each surface voxel candidate: keep the sensor list short (a few positions of a
+/// moving run) for large maps.
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sonarmap/octree/occupancy_octree.hpp"
+#include "sonarmap/sim/scene.hpp"
+
+namespace sonarmap {
+
+/// Options of evaluateAgainstScene(); see the file's comment for each definition.
+struct GroundTruthOptions {
+  double tolerance_m = 0.1;             ///< match distance for precision and recall, > 0 (raised to √3 · res)
+  std::optional<double> z_min_m;        ///< lower bound of the evaluated slab (map frame); unset: lowest known voxel
+  std::optional<double> z_max_m;        ///< upper bound; unset: highest known voxel
+  /// Positions of the sonar head, map frame, at least one. Default: the map origin.
+  std::vector<Eigen::Vector3d> sensor_positions_m{Eigen::Vector3d::Zero()};
+  std::optional<double> max_range_m;    ///< sonar reach, > 0; unset: the map's reach + T (see above)
+  double match_distance_m = 0.5;        ///< occupied voxels within it enter the wall-position error, > 0
+
+  /// @throws ValueError naming the field when a number is not finite, a distance is not > 0,
+  ///         z_min_m > z_max_m, or there is no sensor position.
+  void validate() const;
+};
+
+/// The wall-position error of one scene primitive.
+struct SurfaceOffset {
+  std::size_t primitive = 0;           ///< index into Scene::primitives
+  std::size_t voxels = 0;              ///< matched occupied voxels whose nearest surface it is
+  double median_signed_offset_m = 0.0; ///< > 0: in front of the surface (sensor side), < 0: behind
+};
+
+/// What evaluateAgainstScene() measured. Shares are in [0, 1] and 0 when their denominator is 0.
+struct GroundTruthReport {
+  double tolerance_m = 0.0;  ///< T actually used
+  double z_min_m = 0.0;      ///< evaluated slab, map frame
+  double z_max_m = 0.0;
+  double max_range_m = 0.0;  ///< R actually used
+
+  std::size_t occupied_voxels = 0;
+  std::size_t occupied_on_surface = 0;  ///< within T of a surface
+  double precision = 0.0;
+
+  std::size_t surface_voxels = 0;       ///< visible surface voxels of the region
+  std::size_t surface_voxels_found = 0; ///< with an occupied voxel within T
+  double recall = 0.0;
+
+  std::size_t free_voxels = 0;
+  std::size_t free_in_water = 0;
+  double free_accuracy = 0.0;
+
+  std::size_t matched_voxels = 0;       ///< occupied voxels within match_distance_m of a surface
+  double mean_distance_m = 0.0;         ///< over the matched voxels
+  double rms_distance_m = 0.0;
+  std::vector<SurfaceOffset> surfaces;  ///< primitives with at least one matched voxel, in scene order
+};
+
+/// Scores `map` against the ground truth `scene` (both in the map frame); definitions in the
+/// file's comment.
+/// @throws ValueError for invalid options, an empty or invalid scene (validateScene), or when the
+///         map has no known voxel in the evaluated slab.
+GroundTruthReport evaluateAgainstScene(const OcTree16& map, const Scene& scene, const GroundTruthOptions& options = {});
+
+}  // namespace sonarmap
