@@ -8,7 +8,10 @@
 
 #include "cloud_command.hpp"
 #include "convert_command.hpp"
+#include "demo_command.hpp"
+#include "eval_command.hpp"
 #include "map_command.hpp"
+#include "simulate_command.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace {
@@ -26,9 +29,15 @@ int main(int argc, char** argv) {
   sonarmap::cli::MapArgs map_args;
   sonarmap::cli::CloudArgs cloud_args;
   sonarmap::cli::ConvertArgs convert_args;
+  sonarmap::cli::SimulateArgs simulate_args;
+  sonarmap::cli::DemoArgs demo_args;
+  sonarmap::cli::EvalArgs eval_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
                                                      sonarmap::cli::addCloudCommand(app, cloud_args),
-                                                     sonarmap::cli::addConvertCommand(app, convert_args)};
+                                                     sonarmap::cli::addConvertCommand(app, convert_args),
+                                                     sonarmap::cli::addSimulateCommand(app, simulate_args),
+                                                     sonarmap::cli::addDemoCommand(app, demo_args),
+                                                     sonarmap::cli::addEvalCommand(app, eval_args)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {

@@ -1,19 +1,18 @@
 #include "map_command.hpp"
 
+#include <algorithm>
 #include <chrono>
-#include <memory>
+#include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
+#include <utility>
 
+#include "map_outputs.hpp"
 #include "progress.hpp"
-#include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/io/atomic_file.hpp"
-#include "sonarmap/io/octomap_binary.hpp"
-#include "sonarmap/mapping/map_slice.hpp"
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/log_reader.hpp"
-#include "sonarmap/sonar/polar.hpp"
-#include "sonarmap/sonar/png_writer.hpp"
-#include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap::cli {
 
@@ -35,11 +34,43 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--beam-width", args.beam_width_deg,
                   "Horizontal beam width in degrees: each beam clears its wedge; 0 = one ray per beam (the paper)")
       ->capture_default_str();
+  cmd->add_option("--nav", args.nav_csv,
+                  "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, the log's "
+                  "clock): each beam is placed with the vehicle's pose at its time; beams outside its time span "
+                  "are skipped");
+  cmd->add_option("--mounting", args.mounting,
+                  "With --nav: the sonar's frame (x along bearing 0, y left, z up) in the vehicle's body frame "
+                  "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
+                  "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,180,0,0")
+      ->delimiter(',')
+      ->expected(6);
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd->add_flag("--tank-report", args.tank_report,
                 "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
-  auto options = std::make_shared<MapperOptions>();
-  return {cmd, [&args, options] { *options = toMapperOptions(args); }, [&args, options] { runMap(args, *options); }};
+  struct Checked {
+    MapperOptions options;
+    Eigen::Isometry3d sonar_to_body;
+  };
+  auto checked = std::make_shared<Checked>();
+  auto check = [&args, checked] {
+    if (!args.mounting.empty() && args.nav_csv.empty()) throw ValueError("--mounting needs --nav");
+    *checked = {toMapperOptions(args), toSonarToBody(args.mounting)};
+  };
+  return {cmd, check, [&args, checked] { runMap(args, checked->options, checked->sonar_to_body); }};
+}
+
+Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) {
+  if (mounting.empty()) return defaultSonarToBody();
+  if (mounting.size() != 6 || !std::all_of(mounting.begin(), mounting.end(), [](double v) { return std::isfinite(v); })) {
+    throw ValueError("--mounting expects six finite numbers X,Y,Z,ROLL,PITCH,YAW (metres, degrees)");
+  }
+  constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+  NavSample pose;  // the sonar's pose in the body frame, built as a fix's body pose in NED
+  pose.position_ned_m = Eigen::Vector3d(mounting[0], mounting[1], mounting[2]);
+  pose.roll_rad = mounting[3] * kRadPerDeg;
+  pose.pitch_rad = mounting[4] * kRadPerDeg;
+  pose.yaw_rad = mounting[5] * kRadPerDeg;
+  return bodyToNed(pose);
 }
 
 MapperOptions toMapperOptions(const MapArgs& args) {
@@ -66,70 +97,48 @@ MapperOptions toMapperOptions(const MapArgs& args) {
 
 namespace {
 
-/// The polar image of the largest (last, on ties) sweep: the one drawn in the PNGs.
-PolarImage lastFullSweep(const SonarLog& log) {
-  const std::vector<SweepRange> sweeps = splitSweeps(log.beams);
-  if (sweeps.empty()) throw ValueError("the log holds no beams to draw");
-  const SweepRange* best = &sweeps.front();
-  for (const SweepRange& sweep : sweeps) {
-    if (sweep.size() >= best->size()) best = &sweep;
-  }
-  return makePolarImage(log.beams, best->first, best->last_exclusive);
+/// Maps the log, static or with navigation, drawing a progress bar unless args.quiet.
+MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options,
+                 const Eigen::Isometry3d& sonar_to_body) {
+  if (args.nav_csv.empty()) return mapWithProgress(log, options, args.quiet);
+  const NavTrack nav = readNavCsv(args.nav_csv);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  SonarMapper mapper = [&] {
+    ProgressBar bar("mapping");
+    return mapSonarLog(log, nav, sonar_to_body, options, [&](std::size_t done, std::size_t total) {
+      if (!args.quiet) bar.update(done, total);
+    });
+  }();
+  return {std::move(mapper), std::chrono::duration<double>(Clock::now() - start).count()};
 }
 
-/// Stages every output; nothing appears unless all of them could be written.
-void writeOutputs(const MapArgs& args, const SonarLog& log, const OcTree16& map, double pixel_m) {
-  FileTransaction outputs;
-  outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
-  if (!args.map_png.empty()) outputs.stageBytes(args.map_png, encodePng(renderSlice(map, 0.0)));
-  if (!args.polar_png.empty() || !args.cartesian_png.empty()) {
-    const PolarImage polar = lastFullSweep(log);
-    if (!args.polar_png.empty()) outputs.stageBytes(args.polar_png, encodePng(polar.intensities));
-    if (!args.cartesian_png.empty()) {
-      // With single rays (width 0) the image still spreads each beam over the Micron's 3°.
-      const double width_deg = args.beam_width_deg > 0.0 ? args.beam_width_deg : 3.0;
-      const cv::Mat cartesian = makeCartesianImage(polar, pixel_m, width_deg * std::numbers::pi / 180.0);
-      outputs.stageBytes(args.cartesian_png, encodePng(cartesian));
-    }
-  }
-  outputs.commit();
-}
-
-void printTankReport(const OcTree16& map) {
-  const std::size_t occupied = cellsInSlice(map, 0.0, Occupancy::kOccupied).size();
-  if (occupied < 8) {
-    std::printf("tank: %zu occupied cells at z = 0, too few to fit walls\n", occupied);
-    return;
-  }
-  const TankMapQuality quality = evaluateTankMap(map, 0.0);
-  const WallFitReport& walls = quality.walls;
-  std::printf("tank: %.2f x %.2f m at %.1f deg, %zu occupied cells, %.3f on walls, %.3f of walls covered, "
-              "rms %.3f m, inside %.3f free %.4f occupied\n",
-              walls.rect.width_m, walls.rect.height_m, walls.rect.angle_rad * 180.0 / std::numbers::pi,
-              quality.occupied_cells, walls.share_on_walls, walls.wall_coverage, walls.rms_wall_distance_m,
-              quality.interior_free_share, quality.interior_occupied_share);
+/// printMapSummary's line, with the beams skipped for lacking navigation after "skipped".
+void printNavSummary(const MappedLog& run, const std::string& output_bt) {
+  const MappingStats& stats = run.mapper.stats();
+  const OcTree16& map = run.mapper.map();
+  const NodeCounts counts = map.counts();
+  std::printf("%zu beams used, %zu skipped, %zu without navigation, %zu sweeps, %zu obstacles, %zu map nodes "
+              "(%zu leaves), %.1f KiB, %.3f s -> %s\n",
+              stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.beams_without_nav, stats.sweeps,
+              stats.obstacles, counts.nodes, counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0,
+              run.seconds, output_bt.c_str());
 }
 
 }  // namespace
 
-void runMap(const MapArgs& args, const MapperOptions& options) {
-  using Clock = std::chrono::steady_clock;
+void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const SonarLog log = readSonarLog(args.input);
-  const auto start = Clock::now();
-  SonarMapper mapper = [&] {
-    ProgressBar bar("mapping");
-    return mapSonarLog(log, options, [&](std::size_t done, std::size_t total) {
-      if (!args.quiet) bar.update(done, total);
-    });
-  }();
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  writeOutputs(args, log, mapper.map(), options.resolution_m);
-  const MappingStats& stats = mapper.stats();
-  const NodeCounts counts = mapper.map().counts();
-  std::printf("%zu beams used, %zu skipped, %zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",
-              stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.sweeps, stats.obstacles, counts.nodes,
-              counts.leaves, static_cast<double>(mapper.map().memoryBytes()) / 1024.0, seconds, args.output_bt.c_str());
-  if (args.tank_report) printTankReport(mapper.map());
+  const MappedLog mapped = mapLog(args, log, options, sonar_to_body);
+  FileTransaction outputs;  // nothing appears unless every output could be written
+  stageMapOutputs(outputs, args, log, mapped.mapper.map(), options.resolution_m);
+  outputs.commit();
+  if (args.nav_csv.empty()) {
+    printMapSummary(mapped, args.output_bt);
+  } else {
+    printNavSummary(mapped, args.output_bt);
+  }
+  if (args.tank_report) printTankReport(mapped.mapper.map());
 }
 
 }  // namespace sonarmap::cli

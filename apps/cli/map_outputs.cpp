@@ -1,0 +1,84 @@
+#include "map_outputs.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+#include "progress.hpp"
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/eval/tank_quality.hpp"
+#include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/mapping/map_slice.hpp"
+#include "sonarmap/sonar/polar.hpp"
+#include "sonarmap/sonar/png_writer.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap::cli {
+namespace {
+
+/// The polar image of the largest (last, on ties) sweep: the one drawn in the PNGs.
+PolarImage lastFullSweep(const SonarLog& log) {
+  const std::vector<SweepRange> sweeps = splitSweeps(log.beams);
+  if (sweeps.empty()) throw ValueError("the log holds no beams to draw");
+  const SweepRange* best = &sweeps.front();
+  for (const SweepRange& sweep : sweeps) {
+    if (sweep.size() >= best->size()) best = &sweep;
+  }
+  return makePolarImage(log.beams, best->first, best->last_exclusive);
+}
+
+}  // namespace
+
+MappedLog mapWithProgress(const SonarLog& log, const MapperOptions& options, bool quiet) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  SonarMapper mapper = [&] {
+    ProgressBar bar("mapping");
+    return mapSonarLog(log, options, [&](std::size_t done, std::size_t total) {
+      if (!quiet) bar.update(done, total);
+    });
+  }();
+  return {std::move(mapper), std::chrono::duration<double>(Clock::now() - start).count()};
+}
+
+void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
+                     double pixel_m) {
+  outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
+  if (!args.map_png.empty()) outputs.stageBytes(args.map_png, encodePng(renderSlice(map, 0.0)));
+  if (args.polar_png.empty() && args.cartesian_png.empty()) return;
+  const PolarImage polar = lastFullSweep(log);
+  if (!args.polar_png.empty()) outputs.stageBytes(args.polar_png, encodePng(polar.intensities));
+  if (!args.cartesian_png.empty()) {
+    // With single rays (width 0) the image still spreads each beam over the Micron's 3°.
+    const double width_deg = args.beam_width_deg > 0.0 ? args.beam_width_deg : 3.0;
+    const cv::Mat cartesian = makeCartesianImage(polar, pixel_m, width_deg * std::numbers::pi / 180.0);
+    outputs.stageBytes(args.cartesian_png, encodePng(cartesian));
+  }
+}
+
+void printMapSummary(const MappedLog& run, const std::string& output_bt) {
+  const MappingStats& stats = run.mapper.stats();
+  const OcTree16& map = run.mapper.map();
+  const NodeCounts counts = map.counts();
+  std::printf("%zu beams used, %zu skipped, %zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",
+              stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.sweeps, stats.obstacles, counts.nodes,
+              counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds, output_bt.c_str());
+}
+
+void printTankReport(const OcTree16& map) {
+  const std::size_t occupied = cellsInSlice(map, 0.0, Occupancy::kOccupied).size();
+  if (occupied < 8) {
+    std::printf("tank: %zu occupied cells at z = 0, too few to fit walls\n", occupied);
+    return;
+  }
+  const TankMapQuality quality = evaluateTankMap(map, 0.0);
+  const WallFitReport& walls = quality.walls;
+  std::printf("tank: %.2f x %.2f m at %.1f deg, %zu occupied cells, %.3f on walls, %.3f of walls covered, "
+              "rms %.3f m, inside %.3f free %.4f occupied\n",
+              walls.rect.width_m, walls.rect.height_m, walls.rect.angle_rad * 180.0 / std::numbers::pi,
+              quality.occupied_cells, walls.share_on_walls, walls.wall_coverage, walls.rms_wall_distance_m,
+              quality.interior_free_share, quality.interior_occupied_share);
+}
+
+}  // namespace sonarmap::cli

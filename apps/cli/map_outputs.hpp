@@ -1,0 +1,41 @@
+#pragma once
+// What `sonarmap map` does after reading a log, shared with `sonarmap demo`: mapping with a
+// progress bar, staging the .bt and the images, the summary line and the tank report.
+
+#include <string>
+
+#include "map_command.hpp"
+
+#include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap::cli {
+
+/// A finished mapping run.
+struct MappedLog {
+  SonarMapper mapper;
+  double seconds = 0.0;  ///< wall time of the mapping alone (no reading or writing), seconds
+};
+
+/// Maps `log` with the sonar static at the map origin (mapSonarLog), drawing a progress bar on
+/// stderr unless `quiet`. @throws ValueError as mapSonarLog.
+MappedLog mapWithProgress(const SonarLog& log, const MapperOptions& options, bool quiet);
+
+/// Stages args.output_bt (OctoMap binary) and the images whose paths are not empty:
+/// args.map_png (top view at z = 0), args.polar_png and args.cartesian_png (the largest sweep;
+/// Cartesian pixels of `pixel_m` metres, each beam spread over args.beam_width_deg, or 3° when 0).
+/// @throws FileError when a file cannot be staged; ValueError when images are wanted from a log
+///         without beams.
+void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
+                     double pixel_m);
+
+/// Prints the one-line summary of a mapping run on stdout: beams used and skipped, sweeps,
+/// obstacles, map nodes and leaves, memory, time and the .bt written.
+void printMapSummary(const MappedLog& run, const std::string& output_bt);
+
+/// Prints one line on stdout: the rectangle fitted to the occupied cells at z = 0 and the map's
+/// quality (eval/tank_quality.hpp), or why there are too few cells to fit it.
+void printTankReport(const OcTree16& map);
+
+}  // namespace sonarmap::cli

@@ -1,0 +1,47 @@
+#pragma once
+// Output folders of the commands that write several files (`simulate`, `demo`): created when
+// missing, removed again when the run fails, and a way to stage files from the library writers
+// that only take a path.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sonarmap/io/atomic_file.hpp"
+
+namespace sonarmap::cli {
+
+/// An output folder, created (with its missing parents) by the constructor. Unless keep() is
+/// called, the destructor removes the folders it created, if they are still empty: a failed run
+/// leaves nothing behind, and a folder that existed before is never touched.
+class OutputDir {
+ public:
+  /// @throws FileError when `path` exists and is not a folder, or cannot be created.
+  explicit OutputDir(const std::string& path);
+  OutputDir(const OutputDir&) = delete;
+  OutputDir& operator=(const OutputDir&) = delete;
+  ~OutputDir();
+
+  /// The path of `name` inside the folder.
+  std::string file(const std::string& name) const;
+  /// The run succeeded: keep the folder.
+  void keep() { keep_ = true; }
+
+ private:
+  void removeCreated() const;
+
+  std::filesystem::path path_;
+  std::vector<std::filesystem::path> created_;  ///< deepest last
+  bool keep_ = false;
+};
+
+/// Stages `target` in `outputs` with what `write` writes to the path it is given: a library writer
+/// that only takes a path (writeBeamCsv, writeNavCsv) writes into a scratch folder under the
+/// system's temporary folder, its bytes are staged, the scratch folder is removed.
+/// @throws FileError when the scratch file cannot be made or read, or the target cannot be staged;
+///         exceptions from `write` propagate.
+void stageFromPathWriter(FileTransaction& outputs, const std::string& target,
+                         const std::function<void(const std::string& path)>& write);
+
+}  // namespace sonarmap::cli

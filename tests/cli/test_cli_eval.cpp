@@ -1,0 +1,86 @@
+// End-to-end tests of `sonarmap eval`: a map scored against a scene file or a built-in scene, one
+// line per metric, and the CLI's error contract.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "cli_fixture.hpp"
+#include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+
+namespace sonarmap::test {
+namespace {
+
+using cliEval = CliTest;
+
+/// A 0.1 m map: water in front of a wall at x = 1.05 m, the wall mapped on rows −5…−1 one voxel
+/// too near (x = 0.95 m). Seen from the origin, the wall's voxels of rows −6…5 (the known rows
+/// grown by the tolerance, within the map's reach + tolerance: 1.226 m) are the surface.
+fs::path writeWallMap(const fs::path& path) {
+  OcTree16 map(0.1);
+  auto key = [&](int i, int j) { return map.coder().keyOfChecked({(i + 0.5) * 0.1, (j + 0.5) * 0.1, 0.05}); };
+  for (int j = -5; j < 5; ++j) {
+    for (int i = 0; i < (j < 0 ? 9 : 10); ++i) map.updateNode(key(i, j), -2.0F);
+  }
+  for (int j = -5; j < 0; ++j) map.updateNode(key(9, j), 2.0F);
+  writeMapFile(map, path.string());
+  return path;
+}
+
+TEST_F(cliEval, ScoresAMapAgainstASceneFileLineByLine) {
+  const fs::path map = writeWallMap(root_ / "wall.bt");
+  const fs::path scene = root_ / "wall.scene";
+  std::ofstream(scene) << "# the wall\nplane 1.05 0 0  1 0 0  0.9\n";
+  const ProgramRun result = run({"eval", map.string(), "--truth", scene.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_EQ(linesOf(result.out),
+            (Names{"precision 1.0000 (5 of 5 occupied voxels on a surface)",
+                   "recall 0.5833 (7 of 12 visible surface voxels mapped)",
+                   "free_accuracy 1.0000 (95 of 95 free voxels in the water)",
+                   "wall_error_mean_m 0.1000 rms_m 0.1000 (5 occupied voxels within 0.50 m of a surface)",
+                   "surface 0 plane median_offset_m +0.1000 (5 voxels)",
+                   "region z [0.050, 0.050] m, range 1.226 m, tolerance 0.173 m"}));
+  // A tighter tolerance (raised to the voxel diagonal) and a sensor behind the wall.
+  const ProgramRun behind =
+      run({"eval", map.string(), "--truth", scene.string(), "--tolerance", "0.01", "--sensor", "2,0,0.05"});
+  ASSERT_EQ(behind.exit_code, 0) << behind.err;
+  const Names lines = linesOf(behind.out);
+  ASSERT_EQ(lines.size(), 6U) << behind.out;
+  EXPECT_EQ(lines[4], "surface 0 plane median_offset_m -0.1000 (5 voxels)");
+  EXPECT_EQ(lines[2], "free_accuracy 0.0526 (5 of 95 free voxels in the water)");  // only column 9 near the wall
+}
+
+TEST_F(cliEval, ScoresASimulatedTankAgainstTheBuiltInScene) {
+  const fs::path map = root_ / "tank.ot";
+  writeMapFile(mapSonarLog(simulateMsis(builtinScene("tank")).log).map(), map.string());
+  const ProgramRun result = run({"eval", map.string(), "--truth", "tank", "--z-min", "0", "--z-max", "0.02"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Names lines = linesOf(result.out);
+  ASSERT_GE(lines.size(), 5U) << result.out;
+  ASSERT_EQ(lines[0].rfind("precision ", 0), 0U) << lines[0];
+  EXPECT_GT(std::atof(lines[0].c_str() + 10), 0.8);  // library test: 0.859
+  ASSERT_EQ(lines[1].rfind("recall ", 0), 0U) << lines[1];
+  EXPECT_GT(std::atof(lines[1].c_str() + 7), 0.88);  // 0.932
+  EXPECT_EQ(lines.back().rfind("region z [0.000, 0.020] m", 0), 0U) << lines.back();
+}
+
+TEST_F(cliEval, BadArgumentsAndInputsFailWithOneLine) {
+  const fs::path map = writeWallMap(root_ / "wall.bt");
+  const fs::path scene = root_ / "bad.scene";
+  std::ofstream(scene) << "plane 1 0 0  0 0 0  0.9\n";  // zero normal
+  expectError(run({"eval", map.string()}), 2);                                            // no --truth
+  expectError(run({"eval", map.string(), "--truth", "tank", "--tolerance", "0"}), 2);     // not > 0
+  expectError(run({"eval", map.string(), "--truth", "tank", "--sensor", "1,2"}), 2);      // not a triple
+  expectError(run({"eval", map.string(), "--truth", "tank", "--z-min", "1", "--z-max", "0"}), 2);
+  expectError(run({"eval", (root_ / "missing.bt").string(), "--truth", "tank"}), 1);
+  expectError(run({"eval", map.string(), "--truth", scene.string()}), 1);                 // invalid scene
+  expectError(run({"eval", map.string(), "--truth", "lake"}), 1);                          // neither file nor name
+  expectError(run({"eval", map.string(), "--truth", "tank", "--z-min", "3", "--z-max", "4"}), 1);  // nothing known
+}
+
+}  // namespace
+}  // namespace sonarmap::test

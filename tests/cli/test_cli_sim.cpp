@@ -1,0 +1,173 @@
+// End-to-end tests of `sonarmap simulate` and `sonarmap demo`: the simulated files, their
+// determinism, that they map into an octree OctoMap 1.9 reads (test-only dependency), the demo's
+// tank quality, and the CLI's error contract. No shared data needed.
+#include <gtest/gtest.h>
+
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "cli_fixture.hpp"
+
+namespace sonarmap::test {
+namespace {
+
+const Names kSimulationFiles{"beams.csv", "nav.csv", "scene.txt"};
+const Names kDemoFiles{"beams.csv", "scene.txt", "tank.bt", "tank.png", "tank_cartesian.png", "tank_polar.png"};
+
+/// Occupied leaves of the .bt at `path` (read by OctoMap) whose centre is within a voxel of z = 0.
+std::size_t occupiedLeavesAtZ0(const fs::path& path) {
+  octomap::OcTree tree(0.1);
+  if (!tree.readBinary(path.string())) ADD_FAILURE() << "OctoMap cannot read " << path;
+  std::size_t occupied = 0;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    occupied += tree.isNodeOccupied(*it) && std::abs(it.getZ()) < tree.getResolution() ? 1 : 0;
+  }
+  return occupied;
+}
+
+using cliSim = CliTest;
+
+TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
+  const fs::path dir = out_ / "run";
+  const ProgramRun result = run({"simulate", "tank", "-o", dir.string(), "--turns", "2", "--seed", "7"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  // 2 turns of 200 beams, 43 ms apart: 17.157 s of fixes at 10 Hz, 0 s to 17.2 s.
+  EXPECT_EQ(linesOf(result.out), Names{"400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string()});
+  EXPECT_EQ(listDir(dir), kSimulationFiles);
+  const Names rows = linesOf(readFile(dir / "beams.csv"));
+  ASSERT_EQ(rows.size(), 401U);  // header + 400 beams
+  EXPECT_EQ(rows[0].rfind("time_s,bearing_deg,bin_length_m,b0,b1,", 0), 0U) << rows[0];
+  EXPECT_EQ(linesOf(readFile(dir / "nav.csv"))[0], "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad");
+
+  const fs::path bt = out_ / "run.bt";
+  const ProgramRun mapped = run({"map", (dir / "beams.csv").string(), "-o", bt.string(), "-q"});
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  EXPECT_GT(occupiedLeavesAtZ0(bt), 500U) << "the tank's walls should be mapped";
+}
+
+TEST_F(cliSim, SameSeedGivesIdenticalFilesAndAnotherSeedOtherBeams) {
+  const auto simulate = [&](const std::string& name, const std::string& seed) {
+    const ProgramRun result = run({"simulate", "harbour", "-o", (out_ / name).string(), "--turns", "1", "--seed", seed,
+                                   "--speed", "0.3", "--heading", "90"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+  };
+  simulate("a", "3");
+  simulate("b", "3");
+  simulate("c", "4");
+  for (const std::string& file : kSimulationFiles) {
+    SCOPED_TRACE(file);
+    EXPECT_EQ(readFile(out_ / "a" / file), readFile(out_ / "b" / file));
+  }
+  EXPECT_NE(readFile(out_ / "a" / "beams.csv"), readFile(out_ / "c" / "beams.csv"));
+  EXPECT_EQ(readFile(out_ / "a" / "nav.csv"), readFile(out_ / "c" / "nav.csv"));
+}
+
+TEST_F(cliSim, MovingRunNavigationFollowsSpeedAndHeading) {
+  const fs::path dir = out_ / "moving";
+  ASSERT_EQ(run({"simulate", "harbour", "-o", dir.string(), "--turns", "1", "--speed", "0.5", "--heading", "90",
+                 "--nav-rate", "2"})
+                .exit_code,
+            0);
+  const Names rows = linesOf(readFile(dir / "nav.csv"));
+  ASSERT_EQ(rows.size(), 20U);  // header + 19 fixes every 0.5 s over the 8.557 s of beams: 0 … 9 s
+  double time_s = 0, x_m = 0, y_m = 0, z_m = 0, roll_rad = 0, pitch_rad = 0, yaw_rad = 0;
+  ASSERT_EQ(std::sscanf(rows.back().c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &time_s, &x_m, &y_m, &z_m, &roll_rad,
+                        &pitch_rad, &yaw_rad),
+            7)
+      << rows.back();
+  EXPECT_DOUBLE_EQ(time_s, 9.0);
+  EXPECT_NEAR(x_m, 0.0, 1e-9);  // heading 90°: east, NED +y
+  EXPECT_NEAR(y_m, 4.5, 1e-9);
+  EXPECT_NEAR(yaw_rad, std::numbers::pi / 2, 1e-12);
+}
+
+TEST_F(cliSim, SceneFileGivesTheSameRunAsTheBuiltInScene) {
+  ASSERT_EQ(run({"simulate", "tank", "-o", (out_ / "builtin").string(), "--turns", "1", "--nav-rate", "0"}).exit_code, 0);
+  EXPECT_EQ(listDir(out_ / "builtin"), (Names{"beams.csv", "scene.txt"})) << "--nav-rate 0 writes no nav.csv";
+  const fs::path scene = root_ / "my_tank.txt";
+  fs::copy_file(out_ / "builtin" / "scene.txt", scene);
+  ASSERT_EQ(run({"simulate", scene.string(), "-o", (out_ / "file").string(), "--turns", "1", "--nav-rate", "0"}).exit_code,
+            0);
+  EXPECT_EQ(readFile(out_ / "file" / "beams.csv"), readFile(out_ / "builtin" / "beams.csv"));
+}
+
+TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
+  const fs::path dir = out_ / "demo" / "nested";  // created with its parent
+  const ProgramRun result = run({"demo", "-o", dir.string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_EQ(listDir(dir), kDemoFiles);
+  const Names lines = linesOf(result.out);
+  ASSERT_EQ(lines.size(), 2U) << result.out;
+  std::size_t used = 0, skipped = 0, sweeps = 0;
+  ASSERT_EQ(std::sscanf(lines[0].c_str(), "%zu beams used, %zu skipped, %zu sweeps", &used, &skipped, &sweeps), 3)
+      << lines[0];
+  EXPECT_EQ(used, 5600U);  // 28 turns of 200 beams
+  EXPECT_EQ(skipped, 0U);
+  EXPECT_EQ(sweeps, 28U);
+  EXPECT_NE(lines[0].find("-> " + (dir / "tank.bt").string()), std::string::npos) << lines[0];
+
+  double width_m = 0, height_m = 0, angle_deg = 0, on_walls = 0, covered = 0, rms_m = 0, free_inside = 0,
+         occupied_inside = 0;
+  std::size_t cells = 0;
+  ASSERT_EQ(std::sscanf(lines[1].c_str(),
+                        "tank: %lf x %lf m at %lf deg, %zu occupied cells, %lf on walls, %lf of walls covered, rms %lf m, "
+                        "inside %lf free %lf occupied",
+                        &width_m, &height_m, &angle_deg, &cells, &on_walls, &covered, &rms_m, &free_inside,
+                        &occupied_inside),
+            9)
+      << lines[1];
+  // The built-in tank's inner faces are 4.2 m × 4.4 m apart (sim/builtin_scenes.hpp).
+  EXPECT_NEAR(std::min(width_m, height_m), 4.2, 0.15) << lines[1];
+  EXPECT_NEAR(std::max(width_m, height_m), 4.4, 0.15) << lines[1];
+  EXPECT_GT(on_walls, 0.9) << lines[1];
+  EXPECT_GT(covered, 0.8) << lines[1];
+  EXPECT_LT(rms_m, 0.05) << lines[1];
+  EXPECT_GT(free_inside, 0.8) << lines[1];
+  EXPECT_LT(occupied_inside, 0.02) << lines[1];
+  EXPECT_EQ(occupiedLeavesAtZ0(dir / "tank.bt"), cells);
+}
+
+TEST_F(cliSim, UsageErrorsExitTwoAndWriteNothing) {
+  const std::string dir = (out_ / "x").string();
+  expectError(run({"simulate", "lake", "-o", dir}), 2);  // neither a built-in scene nor a file
+  expectError(run({"simulate", "tank", "-o", dir, "--turns", "0"}), 2);
+  expectError(run({"simulate", "tank", "-o", dir, "--nav-rate", "-1"}), 2);
+  expectError(run({"simulate", "tank", "-o", dir, "--speed", "fast"}), 2);
+  expectError(run({"simulate", "tank"}), 2);  // no -o
+  writeFile(out_ / "file.txt", "a file, not a folder\n");
+  expectError(run({"simulate", "tank", "-o", (out_ / "file.txt").string()}), 2);
+  expectError(run({"demo", "-o", (out_ / "file.txt").string()}), 2);
+  EXPECT_EQ(listDir(out_), Names{"file.txt"});
+}
+
+TEST_F(cliSim, DataAndOutputErrorsExitOneAndWriteNothing) {
+  const fs::path scene = root_ / "bad_scene.txt";
+  writeFile(scene, "box 0 0 0 1 1\n");  // too few fields
+  const ProgramRun bad_scene = run({"simulate", scene.string(), "-o", (out_ / "x").string()});
+  expectError(bad_scene, 1);
+  EXPECT_NE(bad_scene.err.find("line 1"), std::string::npos) << bad_scene.err;
+  // A folder cannot be created below a file.
+  writeFile(out_ / "file.txt", "a file, not a folder\n");
+  expectError(run({"simulate", "tank", "--turns", "1", "-o", (out_ / "file.txt" / "run").string()}), 1);
+  EXPECT_EQ(listDir(out_), Names{"file.txt"});
+}
+
+TEST_F(cliSim, FailureAfterTheWorkLeavesNoFileBehind) {
+  // The first file each command commits is a folder: every output is computed and staged, the
+  // first rename fails, and no other file is renamed into place.
+  fs::create_directories(out_ / "sim" / "scene.txt");
+  expectError(run({"simulate", "tank", "--turns", "1", "-o", (out_ / "sim").string()}), 1);
+  EXPECT_EQ(listDir(out_ / "sim"), Names{"scene.txt"});
+  fs::create_directories(out_ / "demo" / "tank.bt");
+  expectError(run({"demo", "-q", "-o", (out_ / "demo").string()}), 1);
+  EXPECT_EQ(listDir(out_ / "demo"), Names{"tank.bt"});
+}
+
+}  // namespace
+}  // namespace sonarmap::test
