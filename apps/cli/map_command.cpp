@@ -17,8 +17,8 @@
 namespace sonarmap::cli {
 
 Command addMapCommand(CLI::App& app, MapArgs& args) {
-  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat) into an occupancy octree (.bt)");
-  cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat")->required();
+  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, beam .csv) into an occupancy octree (.bt)");
+  cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG or beam .csv")->required();
   cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
   cmd->add_option("--png", args.map_png, "Top view of the map at z = 0 (PNG)");
   cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");

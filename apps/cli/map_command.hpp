@@ -9,7 +9,7 @@
 #include "command.hpp"
 
 #include "sonarmap/mapping/sonar_mapper.hpp"
-#include "sonarmap/sim/msis_simulator.hpp"  // defaultSonarToBody
+#include "sonarmap/nav/navigation.hpp"  // defaultSonarToBody
 
 namespace sonarmap::cli {
 

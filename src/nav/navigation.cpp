@@ -140,4 +140,14 @@ void writeNavCsv(const std::string& path, const NavTrack& track) {
   });
 }
 
+Eigen::Isometry3d defaultSonarToBody() {
+  Eigen::Isometry3d sonar_to_body = Eigen::Isometry3d::Identity();
+  sonar_to_body.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  return sonar_to_body;
+}
+
+Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body) {
+  return nedToMap() * bodyToNed(fix) * sonar_to_body;
+}
+
 }  // namespace sonarmap

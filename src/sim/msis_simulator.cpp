@@ -107,16 +107,6 @@ void MsisSimulationOptions::validate() const {
           "MSIS simulation: sonar_to_body must be a finite rigid transform (rotation + translation)");
 }
 
-Eigen::Isometry3d defaultSonarToBody() {
-  Eigen::Isometry3d sonar_to_body = Eigen::Isometry3d::Identity();
-  sonar_to_body.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  return sonar_to_body;
-}
-
-Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body) {
-  return nedToMap() * bodyToNed(fix) * sonar_to_body;
-}
-
 MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options) {
   options.validate();
   validateScene(scene);

@@ -43,6 +43,14 @@ Eigen::Isometry3d bodyToNed(const NavSample& sample);
 /// nedToMap() · bodyToNed(zero fix) · diag(1, −1, −1) is the identity (see the frames above).
 Eigen::Isometry3d nedToMap();
 
+/// The sonar's mounting on the vehicle: sonar frame (beam.hpp: x along bearing 0, y left, z up) →
+/// body frame (FRD). Default: upright and aligned, at the body origin: diag(1, −1, −1).
+Eigen::Isometry3d defaultSonarToBody();
+
+/// Pose of the sonar frame in the map frame for one navigation fix:
+/// nedToMap() · bodyToNed(fix) · sonar_to_body.
+Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body);
+
 /// Pose of the vehicle body in NED at `time_s`: position interpolated linearly, attitude by
 /// quaternion slerp (Eigen, shortest arc: a yaw from 179° to −179° passes through 180°, not 0°)
 /// between the two fixes around it. At a fix's own time the result is that fix's bodyToNed.

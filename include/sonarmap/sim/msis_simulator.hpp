@@ -123,10 +123,6 @@ struct EchoModelOptions {
   void validate() const;
 };
 
-/// The sonar's mounting: sonar frame (beam.hpp: x along bearing 0, y left, z up) → body frame
-/// (FRD). Default: upright and aligned, at the body origin: diag(1, −1, −1).
-Eigen::Isometry3d defaultSonarToBody();
-
 /// Everything a simulation run needs besides the scene.
 struct MsisSimulationOptions {
   MsisHeadOptions head;
@@ -151,10 +147,6 @@ struct MsisSimulation {
   NavTrack nav;
   Scene scene;  ///< the scene that was scanned (map frame)
 };
-
-/// Pose of the sonar frame in the map frame for one navigation fix:
-/// nedToMap() · bodyToNed(fix) · sonar_to_body (navigation.hpp).
-Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body);
 
 /// Simulates `options.turns` turns of the head in `scene`.
 /// Cost: about beams × horizontal.rays × vertical.rays × (1 + 2 with multipath) ray–scene
