@@ -37,7 +37,9 @@ void run(const DemoArgs& args) {
   OutputDir dir(args.output_dir);
   const MapArgs map_args = demoMapArgs(dir, args.quiet);
   const MapperOptions mapper_options = toMapperOptions(map_args);
-  const MappedLog mapped = mapWithProgress(simulation.log, mapper_options, args.quiet);
+  const MappedLog mapped = mapWithProgress(
+      [&](const ProgressCallback& progress) { return mapSonarLog(simulation.log, mapper_options, progress); },
+      args.quiet);
   FileTransaction outputs;
   stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapper_options.resolution_m);
   stageSimulation(outputs, args.output_dir, simulation);

@@ -1,15 +1,11 @@
 #include "map_command.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <numbers>
-#include <utility>
 
 #include "map_outputs.hpp"
-#include "progress.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/log_reader.hpp"
@@ -100,29 +96,14 @@ namespace {
 /// Maps the log, static or with navigation, drawing a progress bar unless args.quiet.
 MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options,
                  const Eigen::Isometry3d& sonar_to_body) {
-  if (args.nav_csv.empty()) return mapWithProgress(log, options, args.quiet);
+  if (args.nav_csv.empty()) {
+    return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(log, options, progress); },
+                           args.quiet);
+  }
   const NavTrack nav = readNavCsv(args.nav_csv);
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  SonarMapper mapper = [&] {
-    ProgressBar bar("mapping");
-    return mapSonarLog(log, nav, sonar_to_body, options, [&](std::size_t done, std::size_t total) {
-      if (!args.quiet) bar.update(done, total);
-    });
-  }();
-  return {std::move(mapper), std::chrono::duration<double>(Clock::now() - start).count()};
-}
-
-/// printMapSummary's line, with the beams skipped for lacking navigation after "skipped".
-void printNavSummary(const MappedLog& run, const std::string& output_bt) {
-  const MappingStats& stats = run.mapper.stats();
-  const OcTree16& map = run.mapper.map();
-  const NodeCounts counts = map.counts();
-  std::printf("%zu beams used, %zu skipped, %zu without navigation, %zu sweeps, %zu obstacles, %zu map nodes "
-              "(%zu leaves), %.1f KiB, %.3f s -> %s\n",
-              stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.beams_without_nav, stats.sweeps,
-              stats.obstacles, counts.nodes, counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0,
-              run.seconds, output_bt.c_str());
+  return mapWithProgress(
+      [&](const ProgressCallback& progress) { return mapSonarLog(log, nav, sonar_to_body, options, progress); },
+      args.quiet);
 }
 
 }  // namespace
@@ -133,11 +114,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   FileTransaction outputs;  // nothing appears unless every output could be written
   stageMapOutputs(outputs, args, log, mapped.mapper.map(), options.resolution_m);
   outputs.commit();
-  if (args.nav_csv.empty()) {
-    printMapSummary(mapped, args.output_bt);
-  } else {
-    printNavSummary(mapped, args.output_bt);
-  }
+  printMapSummary(mapped, args.output_bt, /*with_nav=*/!args.nav_csv.empty());
   if (args.tank_report) printTankReport(mapped.mapper.map());
 }
 

@@ -30,12 +30,12 @@ PolarImage lastFullSweep(const SonarLog& log) {
 
 }  // namespace
 
-MappedLog mapWithProgress(const SonarLog& log, const MapperOptions& options, bool quiet) {
+MappedLog mapWithProgress(const MapCall& map, bool quiet) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   SonarMapper mapper = [&] {
     ProgressBar bar("mapping");
-    return mapSonarLog(log, options, [&](std::size_t done, std::size_t total) {
+    return map([&](std::size_t done, std::size_t total) {
       if (!quiet) bar.update(done, total);
     });
   }();
@@ -57,13 +57,15 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarL
   }
 }
 
-void printMapSummary(const MappedLog& run, const std::string& output_bt) {
+void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav) {
   const MappingStats& stats = run.mapper.stats();
   const OcTree16& map = run.mapper.map();
   const NodeCounts counts = map.counts();
-  std::printf("%zu beams used, %zu skipped, %zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",
-              stats.beams_used, stats.beams_skipped + stats.out_of_map, stats.sweeps, stats.obstacles, counts.nodes,
-              counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds, output_bt.c_str());
+  std::printf("%zu beams used, %zu skipped, ", stats.beams_used, stats.beams_skipped + stats.out_of_map);
+  if (with_nav) std::printf("%zu without navigation, ", stats.beams_without_nav);
+  std::printf("%zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n", stats.sweeps,
+              stats.obstacles, counts.nodes, counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0,
+              run.seconds, output_bt.c_str());
 }
 
 void printTankReport(const OcTree16& map) {

@@ -2,6 +2,7 @@
 // What `sonarmap map` does after reading a log, shared with `sonarmap demo`: mapping with a
 // progress bar, staging the .bt and the images, the summary line and the tank report.
 
+#include <functional>
 #include <string>
 
 #include "map_command.hpp"
@@ -18,9 +19,12 @@ struct MappedLog {
   double seconds = 0.0;  ///< wall time of the mapping alone (no reading or writing), seconds
 };
 
-/// Maps `log` with the sonar static at the map origin (mapSonarLog), drawing a progress bar on
-/// stderr unless `quiet`. @throws ValueError as mapSonarLog.
-MappedLog mapWithProgress(const SonarLog& log, const MapperOptions& options, bool quiet);
+/// One mapping call (a mapSonarLog overload) given the progress callback to report to.
+using MapCall = std::function<SonarMapper(const ProgressCallback&)>;
+
+/// Runs `map`, drawing a progress bar on stderr unless `quiet`, and times it.
+/// @throws whatever `map` throws (ValueError from mapSonarLog).
+MappedLog mapWithProgress(const MapCall& map, bool quiet);
 
 /// Stages args.output_bt (OctoMap binary) and the images whose paths are not empty:
 /// args.map_png (top view at z = 0), args.polar_png and args.cartesian_png (the largest sweep;
@@ -30,9 +34,10 @@ MappedLog mapWithProgress(const SonarLog& log, const MapperOptions& options, boo
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
                      double pixel_m);
 
-/// Prints the one-line summary of a mapping run on stdout: beams used and skipped, sweeps,
-/// obstacles, map nodes and leaves, memory, time and the .bt written.
-void printMapSummary(const MappedLog& run, const std::string& output_bt);
+/// Prints the one-line summary of a mapping run on stdout: beams used and skipped (with
+/// `with_nav`, also those without navigation), sweeps, obstacles, map nodes and leaves, memory,
+/// time and the .bt written.
+void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav = false);
 
 /// Prints one line on stdout: the rectangle fitted to the occupied cells at z = 0 and the map's
 /// quality (eval/tank_quality.hpp), or why there are too few cells to fit it.
