@@ -267,9 +267,7 @@ struct DetectedSweep {
   PolarImage polar;
   std::vector<BeamDetection> detections;
 };
-}  // namespace
 
-namespace {
 /// mapSonarLog's body: `integrate(mapper, polar, detections)` places each detected sweep.
 template <class Integrate>
 SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress,
@@ -295,16 +293,6 @@ SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const P
   return mapper;
 }
 
-/// interpolateBodyToNed on the two fixes around `time_s` only (O(log fixes)); `track` must have
-/// been checked once by interpolateBodyToNed on the whole track.
-std::optional<Eigen::Isometry3d> bodyToNedAt(const NavTrack& track, double time_s) {
-  if (track.size() < 2) return interpolateBodyToNed(track, time_s);
-  const auto after = std::upper_bound(track.begin(), track.end(), time_s,
-                                      [](double t, const NavSample& fix) { return t < fix.time_s; });
-  const auto hi = static_cast<std::size_t>(
-      std::clamp<std::ptrdiff_t>(after - track.begin(), 1, static_cast<std::ptrdiff_t>(track.size()) - 1));
-  return interpolateBodyToNed(NavTrack{track[hi - 1], track[hi]}, time_s);
-}
 }  // namespace
 
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
@@ -315,13 +303,13 @@ SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const
 
 SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
                         const MapperOptions& options, const ProgressCallback& progress) {
-  (void)interpolateBodyToNed(nav, 0.0);  // checks the whole track once: throws ValueError when it is invalid
+  const NavInterpolator interpolator(nav);  // checks the track once: throws ValueError when it is invalid
   const Eigen::Isometry3d ned_to_map = nedToMap();
   std::vector<std::optional<Eigen::Isometry3d>> poses;
   return mapSweeps(log, options, progress, [&](SonarMapper& mapper, const PolarImage& polar, const auto& detections) {
     poses.clear();
     for (const double time_s : polar.time_s) {
-      const std::optional<Eigen::Isometry3d> body_to_ned = bodyToNedAt(nav, time_s);
+      const std::optional<Eigen::Isometry3d> body_to_ned = interpolator.bodyToNedAt(time_s);
       poses.push_back(body_to_ned ? std::optional(ned_to_map * *body_to_ned * sonar_to_body) : std::nullopt);
     }
     mapper.integrateSweep(polar, detections, poses);

@@ -82,7 +82,13 @@ Eigen::Isometry3d nedToMap() {
 }
 
 std::optional<Eigen::Isometry3d> interpolateBodyToNed(const NavTrack& track, double time_s) {
-  checkTrack(track, "interpolateBodyToNed");
+  return NavInterpolator(track).bodyToNedAt(time_s);
+}
+
+NavInterpolator::NavInterpolator(const NavTrack& track) : track_(track) { checkTrack(track, "interpolateBodyToNed"); }
+
+std::optional<Eigen::Isometry3d> NavInterpolator::bodyToNedAt(double time_s) const {
+  const NavTrack& track = track_;
   if (!(time_s >= track.front().time_s && time_s <= track.back().time_s)) return std::nullopt;
   const auto after = std::upper_bound(track.begin(), track.end(), time_s,
                                       [](double t, const NavSample& fix) { return t < fix.time_s; });
@@ -122,22 +128,25 @@ NavTrack readNavCsv(const std::string& path) {
   return track;
 }
 
-void writeNavCsv(const std::string& path, const NavTrack& track) {
+void writeNavCsv(std::ostream& out, const NavTrack& track) {
   checkTrack(track, "writeNavCsv");
-  writeFileAtomically(path, [&](std::ostream& out) {
-    out << kHeader << '\n';
-    std::string line;
-    for (const NavSample& fix : track) {
-      line.clear();
-      for (const double value : {fix.time_s, fix.position_ned_m.x(), fix.position_ned_m.y(), fix.position_ned_m.z(),
-                                 fix.roll_rad, fix.pitch_rad, fix.yaw_rad}) {
-        if (!line.empty()) line += ',';
-        csv::appendNumber(line, value);
-      }
-      line += '\n';
-      out << line;
+  out << kHeader << '\n';
+  std::string line;
+  for (const NavSample& fix : track) {
+    line.clear();
+    for (const double value : {fix.time_s, fix.position_ned_m.x(), fix.position_ned_m.y(), fix.position_ned_m.z(),
+                               fix.roll_rad, fix.pitch_rad, fix.yaw_rad}) {
+      if (!line.empty()) line += ',';
+      csv::appendNumber(line, value);
     }
-  });
+    line += '\n';
+    out << line;
+  }
+}
+
+void writeNavCsv(const std::string& path, const NavTrack& track) {
+  checkTrack(track, "writeNavCsv");  // before the temporary file is made
+  writeFileAtomically(path, [&](std::ostream& out) { writeNavCsv(out, track); });
 }
 
 Eigen::Isometry3d defaultSonarToBody() {

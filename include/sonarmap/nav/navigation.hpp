@@ -14,6 +14,7 @@
 ///    map, so a static log maps the same with or without navigation.
 
 #include <optional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,19 @@ Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sona
 ///         strictly increasing.
 std::optional<Eigen::Isometry3d> interpolateBodyToNed(const NavTrack& track, double time_s);
 
+/// interpolateBodyToNed for many times on one track: the track is checked once, at construction,
+/// and each bodyToNedAt costs O(log fixes). Keeps a reference: `track` must outlive it.
+class NavInterpolator {
+ public:
+  /// @throws ValueError as interpolateBodyToNed for an invalid track.
+  explicit NavInterpolator(const NavTrack& track);
+  /// As interpolateBodyToNed(track, time_s).
+  std::optional<Eigen::Isometry3d> bodyToNedAt(double time_s) const;
+
+ private:
+  const NavTrack& track_;
+};
+
 /// Reads a navigation CSV (docs/formats.md, "Navigation CSV"): header row exactly
 /// `time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad`, then one fix per row: time in seconds (the
 /// beams' clock), x, y, z of the vehicle origin in NED (metres north, east, down), roll, pitch, yaw
@@ -81,5 +95,9 @@ NavTrack readNavCsv(const std::string& path);
 ///         value, or its times are not strictly increasing: readNavCsv would reject the file.
 /// @throws FileError when the file cannot be written.
 void writeNavCsv(const std::string& path, const NavTrack& track);
+
+/// The same CSV written to a stream (e.g. to stage it with other outputs, io/atomic_file.hpp).
+/// @throws ValueError as writeNavCsv(path, track), before writing anything.
+void writeNavCsv(std::ostream& out, const NavTrack& track);
 
 }  // namespace sonarmap
