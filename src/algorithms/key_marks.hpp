@@ -7,10 +7,10 @@
 // The bitmap is made of bricks of 4 × 4 × 4 voxels aligned to multiples of 4 (a node at depth
 // Depth − 2), one 64-bit word each. A word stores its voxels x fastest (bit x + 4y + 16z, cheap
 // to compute per marked key); visits convert it to the octree's child order (Morton order: x, y,
-// z bits interleaved) with a table, once per word. Bricks are stored x fastest, then y, then z. Keys are visited brick by brick
-// and in Morton order inside a brick, so consecutive keys share all but their last two levels of
-// ancestors: the octree's path cache makes each update's descent short. The hash set visits its
-// keys in the same order, so a dense and a sparse set of the same keys drive identical updates.
+// z bits interleaved) with a table, once per word. Bricks are stored x fastest, then y, then z,
+// and are visited in that order, each as one Morton-ordered word (OccupancyOctree::updateBrick
+// applies it with one descent). The hash set visits its keys as the same bricks in the same
+// order, so a dense and a sparse set of the same keys drive identical updates.
 
 #include <algorithm>
 #include <array>
@@ -18,7 +18,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <tuple>
-#include <utility>
 #include <vector>
 
 #include <absl/container/flat_hash_set.h>
@@ -121,21 +120,9 @@ class KeyMarks {
     }
   }
 
-  /// Calls `visit(const KeyType&)` once per key: by brick (x fastest, then y, then z), and in
-  /// Morton order inside a brick.
-  template <class Visitor>
-  void forEachOrdered(Visitor&& visit) {
-    if (dense_) {
-      forEachDense(visit);
-      return;
-    }
-    ordered_.assign(sparse_.begin(), sparse_.end());
-    std::sort(ordered_.begin(), ordered_.end(), visitLess);
-    for (const KeyType& key : ordered_) visit(std::as_const(key));
-  }
-
-  /// Calls `visit(corner, bits)` once per brick holding keys, in forEachOrdered's brick order:
-  /// `corner` is the brick's lowest key, bit b of `bits` its key at Morton index b (bitIndex).
+  /// Calls `visit(corner, bits)` once per brick holding keys, brick by brick (x fastest, then y,
+  /// then z): `corner` is the brick's lowest key, bit b of `bits` its key at Morton index b
+  /// (bitIndex).
   template <class Visitor>
   void forEachBrick(Visitor&& visit) {
     if (dense_) {
@@ -152,7 +139,7 @@ class KeyMarks {
     }
   }
 
-  /// Orders keys as forEachOrdered visits them: by brick z, y, x, then Morton order in the brick.
+  /// Orders keys as forEachBrick visits them: by brick z, y, x, then Morton order in the brick.
   static bool visitLess(const KeyType& a, const KeyType& b) {
     const auto brick = [](const KeyType& k) { return std::tuple(k[2] >> 2, k[1] >> 2, k[0] >> 2); };
     if (brick(a) != brick(b)) return brick(a) < brick(b);
@@ -226,16 +213,6 @@ class KeyMarks {
         if (++by == bricks_[1]) by = 0, ++bz;
       }
     }
-  }
-
-  template <class Visitor>
-  void forEachDense(Visitor& visit) const {
-    forEachWord([&](std::uint64_t bits, const KeyType& corner) {
-      for (; bits != 0; bits &= bits - 1) {
-        const KeyType key = keyAt(corner, static_cast<unsigned>(std::countr_zero(bits)));
-        visit(key);
-      }
-    });
   }
 
   bool dense_ = true;
