@@ -1,14 +1,10 @@
 #pragma once
 // Output folders of the commands that write several files (`simulate`, `demo`): created when
-// missing, removed again when the run fails, and a way to stage files from the library writers
-// that only take a path.
+// missing, removed again when the run fails.
 
 #include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
-
-#include "sonarmap/io/atomic_file.hpp"
 
 namespace sonarmap::cli {
 
@@ -35,13 +31,5 @@ class OutputDir {
   std::vector<std::filesystem::path> created_;  ///< deepest last
   bool keep_ = false;
 };
-
-/// Stages `target` in `outputs` with what `write` writes to the path it is given: a library writer
-/// that only takes a path (writeBeamCsv, writeNavCsv) writes into a scratch folder under the
-/// system's temporary folder, its bytes are staged, the scratch folder is removed.
-/// @throws FileError when the scratch file cannot be made or read, or the target cannot be staged;
-///         exceptions from `write` propagate.
-void stageFromPathWriter(FileTransaction& outputs, const std::string& target,
-                         const std::function<void(const std::string& path)>& write);
 
 }  // namespace sonarmap::cli

@@ -77,11 +77,9 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
 void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run) {
   const fs::path folder(dir);
   outputs.stage((folder / "scene.txt").string(), [&](std::ostream& out) { writeScene(out, run.scene); });
-  stageFromPathWriter(outputs, (folder / "beams.csv").string(),
-                      [&](const std::string& path) { writeBeamCsv(path, run.log); });
+  outputs.stage((folder / "beams.csv").string(), [&](std::ostream& out) { writeBeamCsv(out, run.log); });
   if (!run.nav.empty()) {
-    stageFromPathWriter(outputs, (folder / "nav.csv").string(),
-                        [&](const std::string& path) { writeNavCsv(path, run.nav); });
+    outputs.stage((folder / "nav.csv").string(), [&](std::ostream& out) { writeNavCsv(out, run.nav); });
   }
 }
 

@@ -139,28 +139,31 @@ SonarLog readBeamCsv(const std::string& path) {
   return log;
 }
 
-void writeBeamCsv(const std::string& path, const SonarLog& log) {
+void writeBeamCsv(std::ostream& out, const SonarLog& log) {
   checkWritable(log);
   std::size_t header_bins = 0;
   for (const Beam& beam : log.beams) header_bins = std::max(header_bins, beam.intensities.size());
-  writeFileAtomically(path, [&](std::ostream& out) {
-    std::string line = "time_s,bearing_deg,bin_length_m";
-    for (std::size_t i = 0; i < header_bins; ++i) line += ',' + binColumnName(i);
-    out << line << '\n';
-    for (const Beam& beam : log.beams) {
-      line.clear();
-      csv::appendNumber(line, beam.time_s);
+  std::string line = "time_s,bearing_deg,bin_length_m";
+  for (std::size_t i = 0; i < header_bins; ++i) line += ',' + binColumnName(i);
+  out << line << '\n';
+  for (const Beam& beam : log.beams) {
+    line.clear();
+    csv::appendNumber(line, beam.time_s);
+    line += ',';
+    csv::appendNumber(line, degreesFromBearing(beam.bearing_rad));
+    line += ',';
+    csv::appendNumber(line, beam.bin_length_m);
+    for (const std::uint8_t intensity : beam.intensities) {
       line += ',';
-      csv::appendNumber(line, degreesFromBearing(beam.bearing_rad));
-      line += ',';
-      csv::appendNumber(line, beam.bin_length_m);
-      for (const std::uint8_t intensity : beam.intensities) {
-        line += ',';
-        line += std::to_string(intensity);
-      }
-      out << line << '\n';
+      line += std::to_string(intensity);
     }
-  });
+    out << line << '\n';
+  }
+}
+
+void writeBeamCsv(const std::string& path, const SonarLog& log) {
+  checkWritable(log);  // before the temporary file is made
+  writeFileAtomically(path, [&](std::ostream& out) { writeBeamCsv(out, log); });
 }
 
 }  // namespace sonarmap

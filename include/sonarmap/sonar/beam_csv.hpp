@@ -17,6 +17,7 @@
 /// Spaces and tabs around fields, CRLF line ends, blank lines and a UTF-8 byte-order mark are
 /// accepted. Numbers as std::from_chars reads them (no leading '+').
 
+#include <iosfwd>
 #include <string>
 
 #include "sonarmap/sonar/beam.hpp"
@@ -50,5 +51,9 @@ SonarLog readBeamCsv(const std::string& path);
 ///         the previous beam's: readBeamCsv would reject the file. The message names the beam's
 ///         index. @throws FileError when the file cannot be written.
 void writeBeamCsv(const std::string& path, const SonarLog& log);
+
+/// The same CSV written to a stream (e.g. to stage it with other outputs, io/atomic_file.hpp).
+/// @throws ValueError as writeBeamCsv(path, log), before writing anything.
+void writeBeamCsv(std::ostream& out, const SonarLog& log);
 
 }  // namespace sonarmap
