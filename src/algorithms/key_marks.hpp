@@ -61,16 +61,36 @@ class KeyMarks {
   bool dense() const { return dense_; }
 
   /// Calls `body(mark)` where `mark(key)` adds a key of the box, the concrete set's insert, so a
-  /// traversal loop is compiled once per kind instead of branching per key.
+  /// traversal loop is compiled once per kind instead of branching per key. `mark(key,
+  /// SteppedAxis<A>{})` (A = 0, 1, 2) adds a key that differs from the key marked just before
+  /// along axis A only, by one (a DDA step, see traverseDDASteps): cheaper, as only that axis'
+  /// part of the brick and bit position changes.
   template <class Body>
   void marking(Body&& body) {
-    if (dense_) {
-      // Consecutive keys of a ray mostly share a brick: gather their bits in a register and
-      // store them when the brick changes, instead of a load-or-store chain per key.
-      std::size_t current = 0;  // word of the brick at lo_
-      KeyType current_key = lo_;
-      std::uint64_t pending = 0;
-      body([&](const KeyType& key) {
+    if (!dense_) {
+      body([this](const KeyType& key, auto...) { sparse_.insert(key); });
+      return;
+    }
+    // Consecutive keys of a ray mostly share a brick: gather their bits in a register and store
+    // them when the brick changes, instead of a load-or-store chain per key.
+    std::size_t current = 0;  // word of the brick at lo_
+    KeyType current_key = lo_;
+    std::uint64_t pending = 0;
+    unsigned row = 0;  // bit of the last key in its brick's word
+    const std::size_t strides[3] = {1, stride_y_, stride_z_};
+    body([&](const KeyType& key, auto... stepped) {
+      if constexpr (sizeof...(stepped) == 1 && (decltype(stepped)::value + ... + 0) >= 0) {
+        constexpr int kAxis = (decltype(stepped)::value + ...);
+        constexpr unsigned kShift = 2 * kAxis;
+        const unsigned low = key[kAxis] & 3U;
+        row = (row & ~(3U << kShift)) | (low << kShift);
+        if (((key[kAxis] ^ current_key[kAxis]) >> 2) != 0) {  // the next brick along this axis
+          bits_[current] |= pending;
+          pending = 0;
+          current = low == 0 ? current + strides[kAxis] : current - strides[kAxis];
+          current_key[kAxis] = key[kAxis];
+        }
+      } else {
         const auto differ = (key[0] ^ current_key[0]) | (key[1] ^ current_key[1]) | (key[2] ^ current_key[2]);
         if ((differ >> 2) != 0) {  // another brick
           bits_[current] |= pending;
@@ -78,12 +98,11 @@ class KeyMarks {
           current_key = key;
           pending = 0;
         }
-        pending |= rowBit(key);
-      });
-      bits_[current] |= pending;
-    } else {
-      body([this](const KeyType& key) { sparse_.insert(key); });
-    }
+        row = rowIndex(key);
+      }
+      pending |= std::uint64_t{1} << row;
+    });
+    bits_[current] |= pending;
   }
 
   void insert(const KeyType& key) {
@@ -156,9 +175,9 @@ class KeyMarks {
   }
   static std::uint64_t bit(const KeyType& key) { return std::uint64_t{1} << bitIndex(key); }
   /// The key's bit in a stored word: x fastest, then y, then z.
-  static std::uint64_t rowBit(const KeyType& key) {
-    const auto index = static_cast<unsigned>((key[0] & 3U) | ((key[1] & 3U) << 2) | ((key[2] & 3U) << 4));
-    return std::uint64_t{1} << index;
+  static std::uint64_t rowBit(const KeyType& key) { return std::uint64_t{1} << rowIndex(key); }
+  static unsigned rowIndex(const KeyType& key) {
+    return static_cast<unsigned>((key[0] & 3U) | ((key[1] & 3U) << 2) | ((key[2] & 3U) << 4));
   }
   /// kRowToMorton[j][v]: the Morton-order bits of byte j = v of a stored word.
   static constexpr auto kRowToMorton = [] {

@@ -102,7 +102,7 @@ void traceRays(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const
   marks.marking([&](auto mark) {
     for (const ScanRay* ray = first; ray != last; ++ray) {
       if (ray->hit) {
-        traverseDDA(coder, origin_m, ray->end_m, mark);
+        traverseDDASteps(coder, origin_m, ray->end_m, mark);
         continue;
       }
       bool started = false;

@@ -86,7 +86,7 @@ void SonarMapper::integrateFreeCells() {
   work.crossed.marking([&](auto mark) {
     for (const FreeRay& ray : work.rays) {
       if (options_.ray == RayAlgorithm::kDDA) {
-        traverseDDA(map_.coder(), ray.start_m, ray.end_m, mark);
+        traverseDDASteps(map_.coder(), ray.start_m, ray.end_m, mark);
       } else {
         traverseBresenham(map_.coder(), ray.start_m, ray.end_m, mark);
       }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "raycast/segment_reference.hpp"
@@ -190,6 +191,34 @@ TYPED_TEST(raycastDda, VisitorSeesTheSameKeysAsRayKeys) {
   std::vector<typename TestFixture::KeyT> filled(5);  // cleared first
   EXPECT_TRUE(rayKeysDDA(this->coder, origin, end, filled));
   EXPECT_EQ(visited, filled);
+}
+
+// traverseDDASteps visits the same keys and names, at compile time, the one axis each step moved
+// along (-1 for the origin's voxel only): rays in all octants, through snaps and ties.
+TYPED_TEST(raycastDda, StepsNameTheAxisThatMoved) {
+  const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays = {
+      {{-0.31, 0.72, 0.05}, {0.44, -0.18, -0.6}}, {{0.05, 0.05, 0.05}, {0.95, 0.95, 0.95}},
+      {{0.0, 0.0, 0.0}, {-0.7, 0.3, 0.9}},        {{0.12, -0.4, 0.33}, {0.12, -0.4, -0.91}},
+      {{0.3, 0.3, 0.3}, {0.3, 0.3, 0.3}}};
+  for (const auto& [origin, end] : rays) {
+    std::vector<typename TestFixture::KeyT> visited;
+    std::vector<int> axes;
+    EXPECT_TRUE(traverseDDASteps(this->coder, origin, end, [&](const auto& key, auto stepped) {
+      visited.push_back(key);
+      axes.push_back(decltype(stepped)::value);
+    }));
+    EXPECT_EQ(visited, this->keys(origin, end));
+    ASSERT_FALSE(axes.empty());
+    EXPECT_EQ(axes.front(), -1);
+    for (std::size_t i = 1; i < visited.size(); ++i) {
+      ASSERT_GE(axes[i], 0);
+      const auto a = this->cell(visited[i - 1]);
+      const auto b = this->cell(visited[i]);
+      for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_EQ(std::abs(b[axis] - a[axis]), axis == axes[i] ? 1 : 0) << "step " << i << " axis " << axis;
+      }
+    }
+  }
 }
 
 // The whole map along one axis, corner to corner: no wrap-around at either border.

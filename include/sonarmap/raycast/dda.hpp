@@ -24,13 +24,15 @@
 ///
 /// Implementation: each axis' state is a scalar DdaAxis (x, y and z), selected by comparisons
 /// rather than by indexing arrays with a run-time axis, and each key handed to the visitor is
-/// assembled from the three indices. The hot loop thus stays in registers, with no store-to-load
+/// assembled from the three indices; detail::traverseDDASteps also tells the visitor, at compile
+/// time, which axis was stepped. The hot loop thus stays in registers, with no store-to-load
 /// round trip through memory per voxel. The budget of an axis is its end key index.
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,6 +41,11 @@
 #include "sonarmap/core/key_coder.hpp"
 
 namespace sonarmap {
+
+/// The axis a DDA visit stepped along, known at compile time: 0, 1, 2 for x, y, z; -1 for the
+/// origin's voxel (no step).
+template <int A>
+using SteppedAxis = std::integral_constant<int, A>;
 
 namespace detail {
 
@@ -93,10 +100,11 @@ DdaAxis<Index> makeDdaAxis(Index from, Index to, double origin_m, double directi
   return axis;
 }
 
-/// Incremental phase (A&W §3): crosses the nearest boundary, calling `visit_current()` after each
-/// step, until every axis is at its end (all `t_max` = +inf) or the nearest boundary lies past
-/// `length_m` metres — the paper's distance condition, which also stops at a NaN `t_max`. Ties go
-/// to x, then y. `length_m` must be finite (+inf would pass the +inf of finished axes).
+/// Incremental phase (A&W §3): crosses the nearest boundary, calling `visit_current(SteppedAxis)`
+/// after each step, until every axis is at its end (all `t_max` = +inf) or the nearest boundary
+/// lies past `length_m` metres — the paper's distance condition, which also stops at a NaN
+/// `t_max`. Ties go to x, then y. `length_m` must be finite (+inf would pass the +inf of finished
+/// axes).
 template <class Index, class VisitCurrent>
 void crossBoundaries(DdaAxis<Index>& x, DdaAxis<Index>& y, DdaAxis<Index>& z, double length_m,
                      VisitCurrent& visit_current) {
@@ -107,25 +115,66 @@ void crossBoundaries(DdaAxis<Index>& x, DdaAxis<Index>& y, DdaAxis<Index>& z, do
     if (!((z_first ? z.t_max : t_xy) <= length_m)) return;
     if (z_first) {
       z.cross();
+      visit_current(SteppedAxis<2>{});
     } else if (y_first) {
       y.cross();
+      visit_current(SteppedAxis<1>{});
     } else {
       x.cross();
+      visit_current(SteppedAxis<0>{});
     }
-    visit_current();
   }
 }
 
-/// Snap (paper §6.1, fig. 12): the key steps `axis` still owes, one visit_current() after each.
-template <class Index, class VisitCurrent>
+/// Snap (paper §6.1, fig. 12): the key steps `axis` (number A) still owes, one
+/// visit_current(SteppedAxis<A>) after each.
+template <int A, class Index, class VisitCurrent>
 void snapToEnd(DdaAxis<Index>& axis, VisitCurrent& visit_current) {
   while (axis.index != axis.end) {
     axis.advance();
-    visit_current();
+    visit_current(SteppedAxis<A>{});
   }
 }
 
 }  // namespace detail
+
+/// traverseDDA, with each visit told the axis it stepped along: `visit(key, SteppedAxis<A>{})`,
+/// A = -1 for the first key (the origin's voxel), 0/1/2 when the key differs from the one before
+/// along x/y/z only. Callers that keep per-key state can update just that axis' part of it.
+/// Same arguments, order and guarantees as traverseDDA.
+template <int Depth, class Visitor>
+bool traverseDDASteps(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
+                      Visitor&& visit) {
+  const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
+  const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
+  if (!origin_key || !end_key) return false;
+  visit(*origin_key, SteppedAxis<-1>{});
+  if (*origin_key == *end_key) return true;
+
+  // --- Initialisation phase (A&W §3), with t in metres along the ray. ---
+  const Eigen::Vector3d direction_m = end_m - origin_m;
+  const double length_m = direction_m.norm();  // > 0: the keys differ
+  const double resolution_m = coder.resolution_m();
+  const double inv_resolution = 1.0 / resolution_m;
+  const auto axis = [&](int a) {
+    return detail::makeDdaAxis((*origin_key)[a], (*end_key)[a], origin_m[a], direction_m[a], length_m,
+                               resolution_m, inv_resolution);
+  };
+  auto x = axis(0);
+  auto y = axis(1);
+  auto z = axis(2);
+  const auto visit_current = [&](auto stepped) {
+    const Key<Depth> key{{x.index, y.index, z.index}};
+    visit(key, stepped);
+  };
+
+  // Incremental phase (A&W §3), then the snap (paper §6.1, fig. 12): the steps still owed.
+  if (length_m < std::numeric_limits<double>::infinity()) detail::crossBoundaries(x, y, z, length_m, visit_current);
+  detail::snapToEnd<0>(x, visit_current);
+  detail::snapToEnd<1>(y, visit_current);
+  detail::snapToEnd<2>(z, visit_current);
+  return true;
+}
 
 /// Visits the finest-level voxels crossed by the segment from `origin_m` to `end_m` with a 3D DDA.
 ///
@@ -150,35 +199,7 @@ void snapToEnd(DdaAxis<Index>& axis, VisitCurrent& visit_current) {
 template <int Depth, class Visitor>
 bool traverseDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
                  Visitor&& visit) {
-  const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
-  const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
-  if (!origin_key || !end_key) return false;
-  visit(*origin_key);
-  if (*origin_key == *end_key) return true;
-
-  // --- Initialisation phase (A&W §3), with t in metres along the ray. ---
-  const Eigen::Vector3d direction_m = end_m - origin_m;
-  const double length_m = direction_m.norm();  // > 0: the keys differ
-  const double resolution_m = coder.resolution_m();
-  const double inv_resolution = 1.0 / resolution_m;
-  const auto axis = [&](int a) {
-    return detail::makeDdaAxis((*origin_key)[a], (*end_key)[a], origin_m[a], direction_m[a], length_m, resolution_m,
-                               inv_resolution);
-  };
-  auto x = axis(0);
-  auto y = axis(1);
-  auto z = axis(2);
-  const auto visit_current = [&] {
-    const Key<Depth> key{{x.index, y.index, z.index}};
-    visit(key);
-  };
-
-  // Incremental phase (A&W §3), then the snap (paper §6.1, fig. 12): the steps still owed.
-  if (length_m < std::numeric_limits<double>::infinity()) detail::crossBoundaries(x, y, z, length_m, visit_current);
-  detail::snapToEnd(x, visit_current);
-  detail::snapToEnd(y, visit_current);
-  detail::snapToEnd(z, visit_current);
-  return true;
+  return traverseDDASteps(coder, origin_m, end_m, [&visit](const Key<Depth>& key, auto) { visit(key); });
 }
 
 /// Keys of the voxels crossed by the segment from `origin_m` to `end_m` (3D DDA), in order, from
