@@ -100,12 +100,13 @@ DdaAxis<Index> makeDdaAxis(Index from, Index to, double origin_m, double directi
   return axis;
 }
 
-/// Incremental phase (A&W §3): crosses the nearest boundary, calling `visit_current(SteppedAxis)`
+/// Incremental phase (A&W §3): crosses the nearest boundary, calling `visit_current(stepped)`
 /// after each step, until every axis is at its end (all `t_max` = +inf) or the nearest boundary
 /// lies past `length_m` metres — the paper's distance condition, which also stops at a NaN
 /// `t_max`. Ties go to x, then y. `length_m` must be finite (+inf would pass the +inf of finished
-/// axes).
-template <class Index, class VisitCurrent>
+/// axes). With kTellAxis, `stepped` is the SteppedAxis crossed (one call per branch); without,
+/// it is SteppedAxis<-1> from a single call after the branch, the tighter loop.
+template <bool kTellAxis, class Index, class VisitCurrent>
 void crossBoundaries(DdaAxis<Index>& x, DdaAxis<Index>& y, DdaAxis<Index>& z, double length_m,
                      VisitCurrent& visit_current) {
   for (;;) {
@@ -113,15 +114,26 @@ void crossBoundaries(DdaAxis<Index>& x, DdaAxis<Index>& y, DdaAxis<Index>& z, do
     const double t_xy = y_first ? y.t_max : x.t_max;
     const bool z_first = z.t_max < t_xy;
     if (!((z_first ? z.t_max : t_xy) <= length_m)) return;
-    if (z_first) {
-      z.cross();
-      visit_current(SteppedAxis<2>{});
-    } else if (y_first) {
-      y.cross();
-      visit_current(SteppedAxis<1>{});
+    if constexpr (kTellAxis) {
+      if (z_first) {
+        z.cross();
+        visit_current(SteppedAxis<2>{});
+      } else if (y_first) {
+        y.cross();
+        visit_current(SteppedAxis<1>{});
+      } else {
+        x.cross();
+        visit_current(SteppedAxis<0>{});
+      }
     } else {
-      x.cross();
-      visit_current(SteppedAxis<0>{});
+      if (z_first) {
+        z.cross();
+      } else if (y_first) {
+        y.cross();
+      } else {
+        x.cross();
+      }
+      visit_current(SteppedAxis<-1>{});
     }
   }
 }
@@ -136,15 +148,11 @@ void snapToEnd(DdaAxis<Index>& axis, VisitCurrent& visit_current) {
   }
 }
 
-}  // namespace detail
-
-/// traverseDDA, with each visit told the axis it stepped along: `visit(key, SteppedAxis<A>{})`,
-/// A = -1 for the first key (the origin's voxel), 0/1/2 when the key differs from the one before
-/// along x/y/z only. Callers that keep per-key state can update just that axis' part of it.
-/// Same arguments, order and guarantees as traverseDDA.
-template <int Depth, class Visitor>
-bool traverseDDASteps(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
-                      Visitor&& visit) {
+/// The walk of traverseDDA and traverseDDASteps: `visit(key, stepped)` for every key, `stepped`
+/// as crossBoundaries<kTellAxis> gives it (SteppedAxis<-1> for the origin's voxel).
+template <bool kTellAxis, int Depth, class Visitor>
+[[gnu::always_inline]] inline bool walkDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
+             Visitor&& visit) {
   const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
   const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
   if (!origin_key || !end_key) return false;
@@ -157,8 +165,8 @@ bool traverseDDASteps(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origi
   const double resolution_m = coder.resolution_m();
   const double inv_resolution = 1.0 / resolution_m;
   const auto axis = [&](int a) {
-    return detail::makeDdaAxis((*origin_key)[a], (*end_key)[a], origin_m[a], direction_m[a], length_m,
-                               resolution_m, inv_resolution);
+    return makeDdaAxis((*origin_key)[a], (*end_key)[a], origin_m[a], direction_m[a], length_m, resolution_m,
+                       inv_resolution);
   };
   auto x = axis(0);
   auto y = axis(1);
@@ -169,11 +177,25 @@ bool traverseDDASteps(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origi
   };
 
   // Incremental phase (A&W §3), then the snap (paper §6.1, fig. 12): the steps still owed.
-  if (length_m < std::numeric_limits<double>::infinity()) detail::crossBoundaries(x, y, z, length_m, visit_current);
-  detail::snapToEnd<0>(x, visit_current);
-  detail::snapToEnd<1>(y, visit_current);
-  detail::snapToEnd<2>(z, visit_current);
+  if (length_m < std::numeric_limits<double>::infinity()) {
+    crossBoundaries<kTellAxis>(x, y, z, length_m, visit_current);
+  }
+  snapToEnd<0>(x, visit_current);
+  snapToEnd<1>(y, visit_current);
+  snapToEnd<2>(z, visit_current);
   return true;
+}
+
+}  // namespace detail
+
+/// traverseDDA, with each visit told the axis it stepped along: `visit(key, SteppedAxis<A>{})`,
+/// A = -1 for the first key (the origin's voxel), 0/1/2 when the key differs from the one before
+/// along x/y/z only. Callers that keep per-key state can update just that axis' part of it.
+/// Same arguments, order and guarantees as traverseDDA.
+template <int Depth, class Visitor>
+[[gnu::always_inline]] inline bool traverseDDASteps(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
+                      Visitor&& visit) {
+  return detail::walkDDA<true>(coder, origin_m, end_m, visit);
 }
 
 /// Visits the finest-level voxels crossed by the segment from `origin_m` to `end_m` with a 3D DDA.
@@ -199,7 +221,7 @@ bool traverseDDASteps(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origi
 template <int Depth, class Visitor>
 bool traverseDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
                  Visitor&& visit) {
-  return traverseDDASteps(coder, origin_m, end_m, [&visit](const Key<Depth>& key, auto) { visit(key); });
+  return detail::walkDDA<false>(coder, origin_m, end_m, [&visit](const Key<Depth>& key, auto) { visit(key); });
 }
 
 /// Keys of the voxels crossed by the segment from `origin_m` to `end_m` (3D DDA), in order, from
