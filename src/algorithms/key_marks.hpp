@@ -121,13 +121,19 @@ class KeyMarks {
     }
   }
 
-  /// Removes every key of `other`, reset with the same box and limit (so of the same kind).
-  void subtract(const KeyMarks& other) {
-    if (dense_) {
-      for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] &= ~other.bits_[w];
-    } else {
+  /// Removes every key of `other`, reset with the same box and limit (so of the same kind), and
+  /// returns the number of keys left (counted on the way: no extra pass).
+  std::size_t subtract(const KeyMarks& other) {
+    if (!dense_) {
       for (const KeyType& key : other.sparse_) sparse_.erase(key);
+      return sparse_.size();
     }
+    std::size_t left = 0;
+    for (std::size_t w = 0; w < bits_.size(); ++w) {
+      bits_[w] &= ~other.bits_[w];
+      if (bits_[w] != 0) left += static_cast<std::size_t>(std::popcount(bits_[w]));
+    }
+    return left;
   }
 
   /// Adds every key of `other`, reset with the same box and limit (so of the same kind).

@@ -171,7 +171,8 @@ InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const E
   Marks hits;
   hits.reset(scan.lo, scan.hi);
   for (const Key16& key : scan.hits) hits.insert(key);
-  crossed.subtract(hits);
+  const std::size_t free_voxels = crossed.subtract(hits);
+  map.reserve(free_voxels + scan.hits.size());  // one allocation instead of growth and copies
   const LogOddsModel& model = map.model();
   const auto update = [&map](float delta, std::size_t& count) {
     return [&map, delta, &count](const Key16& corner, std::uint64_t voxels) {

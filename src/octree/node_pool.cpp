@@ -12,6 +12,11 @@ void NodePool::clear() {
   used_slots_ = 2;
 }
 
+void NodePool::reserve(std::size_t slots) {
+  const std::size_t needed = std::min<std::size_t>(slots_.size() + slots, kMaxSlots);
+  if (needed > slots_.capacity()) slots_.reserve(std::max(needed, 2 * slots_.capacity()));
+}
+
 std::uint32_t NodePool::allocate(unsigned cls) {
   const std::size_t size = kCapacity[cls] + 1;
   used_slots_ += size;

@@ -230,6 +230,26 @@ TEST(Octree, ShrinkToFitKeepsTheTreeAndGivesMemoryBack) {
   EXPECT_EQ(tree.occupancyOf(key16(16, 0, 0)), Occupancy::kFree);
 }
 
+TEST(Octree, ReserveMakesRoomWithoutChangingTheTree) {
+  OcTree16 tree(0.01);
+  tree.integrate(key16(0, 0, 0), true);
+  const std::size_t bytes = tree.memoryBytes();
+  tree.reserve(100000);
+  EXPECT_EQ(tree.memoryBytes(), bytes);
+  EXPECT_GE(tree.memoryBytesAllocated(), 100000U * 8U);
+  const std::size_t reserved = tree.memoryBytesAllocated();
+  for (int x = 0; x < 32; ++x)  // about 40,000 slots: fits, so the pool does not grow again
+    for (int y = 0; y < 32; ++y)
+      for (int z = 0; z < 32; ++z) tree.integrate(key16(x, y, z), (x + y + z) % 2 == 0);
+  // Only the free lists of outgrown arrays add bytes; a grown pool would add 800 KB at least.
+  EXPECT_LT(tree.memoryBytesAllocated(), reserved + 64U * 1024U);
+  EXPECT_GT(tree.memoryBytes(), 32U * 32U * 32U * 8U);
+  EXPECT_EQ(tree.occupancyOf(key16(1, 0, 0)), Occupancy::kFree);
+  const std::size_t filled = tree.memoryBytesAllocated();
+  tree.reserve(10);  // already room: nothing changes
+  EXPECT_EQ(tree.memoryBytesAllocated(), filled);
+}
+
 TEST(Octree, RawAccessRejectsMissingChildren) {
   OcTree16 tree(0.01);
   tree.integrate(key16(0, 0, 0), true);

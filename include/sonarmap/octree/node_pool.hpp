@@ -93,6 +93,12 @@ class NodePool {
   /// Drops every node, including the root.
   void clear();
 
+  /// Makes room for `slots` more slots (nodes and array headers) at the end without moving the
+  /// pool: one allocation, and no copy, before a known amount of growth. Capacity at least
+  /// doubles when it grows, so repeated calls stay amortised O(1) per slot. Untouched capacity
+  /// is address space, not resident memory. @throws std::bad_alloc.
+  void reserve(std::size_t slots);
+
   /// Rewrites the tree below the root into a new vector, depth first, each array at the smallest
   /// capacity that holds its children: gives back freed arrays and spare capacity. Changes every
   /// NodeRef except the root's.

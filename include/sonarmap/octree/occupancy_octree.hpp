@@ -159,6 +159,13 @@ class OccupancyOctree {
   /// Nodes, inner nodes and leaves, counted by one traversal.
   NodeCounts counts() const;
 
+  /// Makes room for `slots` more node slots (8 bytes each: nodes and children-array headers)
+  /// without moving the node pool: one allocation instead of repeated growth and copies before a
+  /// large update into unknown space (point-cloud insertion reserves one slot per distinct
+  /// voxel it will update, about what dense free space costs). Does not change the tree;
+  /// memoryBytes() is unchanged, memoryBytesAllocated() grows. @throws std::bad_alloc.
+  void reserve(std::size_t slots) { pool_.reserve(slots); }
+
   /// Bytes the tree's nodes occupy: 8 bytes per slot in use (the root, and per inner node one
   /// header plus its children array's capacity of 1, 2, 4 or 8 nodes; node_pool.hpp), plus the
   /// tree object. Comparable to OctoMap's `memoryUsage()` (16 B per node, 64 B per inner node).
