@@ -21,6 +21,8 @@ template <class... Fs>
 struct Overloaded : Fs... {
   using Fs::operator()...;
 };
+template <class... Fs>
+Overloaded(Fs...) -> Overloaded<Fs...>;  // clang 14 has no aggregate CTAD (the fuzz build)
 
 std::string describe(double value) { return std::to_string(value); }
 

@@ -1,0 +1,13 @@
+// libFuzzer harness: CRAS Micron MAT-file bytes (through a temporary file: libmatio reads paths)
+// → readCrasMat.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_input.hpp"
+#include "sonarmap/sonar/mat_reader.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static sonarmap::fuzz::InputFile file(".mat");
+  const std::string& path = file.write(data, size);
+  return sonarmap::fuzz::expectReadOrError([&] { sonarmap::readCrasMat(path); });
+}

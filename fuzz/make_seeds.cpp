@@ -1,0 +1,96 @@
+// Writes the seed corpus of every fuzz harness: small valid inputs made with the library's own
+// writers and the simulator (no copy of ../shared/data), one folder per harness.
+// Usage: sonarmap_fuzz_seeds OUT_DIR   (the committed seeds are in fuzz/corpus/).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "sonar/mat_fixture.hpp"
+#include "sonar/v4log_fixture.hpp"
+#include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/io/octomap_full.hpp"
+#include "sonarmap/io/scan_graph.hpp"
+#include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+#include "sonarmap/sim/scene_file.hpp"
+#include "sonarmap/sonar/beam_csv.hpp"
+
+namespace fs = std::filesystem;
+using namespace sonarmap;
+
+namespace {
+
+fs::path g_out;
+
+void seed(const std::string& harness, const std::string& name, const std::function<void(std::ostream&)>& write) {
+  fs::create_directories(g_out / harness);
+  std::ofstream out(g_out / harness / name, std::ios::binary);
+  write(out);
+}
+
+/// A short simulated run of the tank: 2 turns of a coarse head (few bins), with navigation.
+MsisSimulation smallRun() {
+  MsisSimulationOptions options;
+  options.turns = 1;
+  options.head.step_rad = 0.3;
+  options.head.bins = 24;
+  return simulateMsis(builtinScene("tank"), options);
+}
+
+OcTree16 smallTree() {
+  OcTree16 tree(0.1);
+  for (int i = 0; i < 12; ++i) tree.integrate(tree.coder().keyOfChecked(Eigen::Vector3d(0.1 * i, 0.05 * i, 0.3)), i % 3 != 0);
+  tree.updateInnerOccupancy();
+  return tree;
+}
+
+void sonarSeeds() {
+  const MsisSimulation run = smallRun();
+  seed("beam_csv", "tank.csv", [&](std::ostream& out) { writeBeamCsv(out, run.log); });
+  seed("nav_csv", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
+  seed("scene", "tank.scene", [&](std::ostream& out) { writeScene(out, run.scene); });
+  seed("scene", "harbour.scene", [&](std::ostream& out) { writeScene(out, builtinScene("harbour")); });
+  seed("v4log", "three.V4LOG", [](std::ostream& out) {
+    test::V4Record other;
+    other.type = 4;
+    test::V4Record four_bit;
+    four_bit.head_control = 0x230C;
+    four_bit.bearing = 3264;
+    out << test::v4log({test::V4Record{}, other, four_bit});
+  });
+  std::vector<test::MatBeam> beams(3);
+  for (std::size_t i = 0; i < beams.size(); ++i) beams[i].angle = 0.1 * static_cast<double>(i), beams[i].time = 0.04 * static_cast<double>(i);
+  beams[2].scalar_class = MAT_C_DOUBLE;
+  const fs::path mat = g_out / "mat" / "three.mat";
+  fs::create_directories(mat.parent_path());
+  test::writeCrasMat(mat.string(), beams);
+}
+
+void cloudSeeds() {
+  Scan scan;
+  for (int i = 0; i < 8; ++i) scan.points_m.emplace_back(0.5 * i, 1.0, -0.25 * i);
+  scan.sensor_to_world.translate(Eigen::Vector3d(0.1, 0.2, 0.3));
+  seed("scan_graph", "two.graph", [&](std::ostream& out) { writeScanGraph(out, {scan, scan}); });
+  seed("point_text", "cloud.xyz", [](std::ostream& out) { out << "1 2 3\n0.5 -0.25 4e1\n# comment\nnan 0 0\n"; });
+  const OcTree16 tree = smallTree();
+  seed("octomap_bt", "small.bt", [&](std::ostream& out) { writeBinary(tree, out); });
+  seed("octomap_ot", "small.ot", [&](std::ostream& out) { writeFull(tree, out); });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: sonarmap_fuzz_seeds OUT_DIR\n";
+    return 2;
+  }
+  g_out = argv[1];
+  sonarSeeds();
+  cloudSeeds();
+  return 0;
+}

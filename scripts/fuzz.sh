@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# libFuzzer harnesses of every reader (fuzz/), built with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer into build-fuzz/.
+#   bash scripts/fuzz.sh build                 configure and build the harnesses
+#   bash scripts/fuzz.sh replay                run every harness once over its seed corpus
+#                                              (fuzz/corpus/NAME) and its crash regressions
+#                                              (fuzz/regressions/NAME); fails on any finding
+#   bash scripts/fuzz.sh run NAME SECONDS      fuzz one harness for SECONDS, growing a working
+#                                              corpus in build-fuzz/work/NAME (seeded from
+#                                              fuzz/corpus/NAME); findings land in
+#                                              build-fuzz/work/NAME-findings/
+#   bash scripts/fuzz.sh list                  the harness names
+set -euo pipefail
+cd "$(dirname "$0")/.."
+names=(v4log mat beam_csv nav_csv scan_graph point_text octomap_bt octomap_ot scene)
+build=build-fuzz
+# Shared by every run: 10 s per input is a hang; 2 GiB of memory (also the largest single
+# allocation) is an out-of-memory finding.
+common=(-timeout=10 -rss_limit_mb=2048 -max_len=65536)
+
+build() {
+  command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang)" >&2; exit 2; }
+  CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=undefined" \
+    -DSONARMAP_BUILD_FUZZERS=ON -DSONARMAP_BUILD_TESTS=OFF -DSONARMAP_BUILD_BENCHMARKS=OFF \
+    -DSONARMAP_BUILD_CLI=OFF >/dev/null
+  cmake --build "$build"
+}
+
+replay() {
+  local name dirs
+  for name in "${names[@]}"; do
+    dirs=(fuzz/corpus/"$name")
+    [ -d fuzz/regressions/"$name" ] && dirs+=(fuzz/regressions/"$name")
+    echo "replay $name: $(find "${dirs[@]}" -type f | wc -l) inputs"
+    "$build"/fuzz/fuzz_"$name" "${common[@]}" -runs=0 "${dirs[@]}" 2>"$build"/replay-"$name".log ||
+      { tail -40 "$build"/replay-"$name".log >&2; echo "fuzz.sh: $name failed on a replayed input" >&2; exit 1; }
+  done
+}
+
+run() {
+  local name=$1 seconds=$2 work=$build/work/$1
+  mkdir -p "$work" "$work"-findings
+  cp -n fuzz/corpus/"$name"/* "$work"/ 2>/dev/null || true
+  "$build"/fuzz/fuzz_"$name" "${common[@]}" -max_total_time="$seconds" -print_final_stats=1 \
+    -artifact_prefix="$work"-findings/ "$work"
+}
+
+case "${1:-}" in
+  build) build ;;
+  replay) replay ;;
+  run) [ $# -eq 3 ] || { echo "usage: fuzz.sh run NAME SECONDS" >&2; exit 2; }; run "$2" "$3" ;;
+  list) printf '%s\n' "${names[@]}" ;;
+  *) echo "usage: fuzz.sh build | replay | run NAME SECONDS | list" >&2; exit 2 ;;
+esac
