@@ -271,9 +271,8 @@ TEST_F(cliOutput, FailedRenameLeavesNoTemporaryFile) {
   EXPECT_EQ(listDir(out_), Names{"MAP.bt"});
 }
 
-// Disabled: fails today. runMap writes the .bt before the PNGs, so a PNG that cannot be written
-// leaves a new MAP.bt behind (replacing an existing one) while the run reports failure (exit 1).
-// Enable once the CLI validates or stages every output before committing any.
+// The PNG cannot be staged (its folder is missing): nothing is committed, MAP.bt keeps its content.
+// Failures after some outputs were already renamed into place: test_cli_atomic.cpp.
 TEST_F(cliOutput, FailedImageWriteLeavesExistingMapUntouched) {
   SKIP_WITHOUT_TANK_LOG();
   const fs::path bt = out_ / "MAP.bt";
