@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages sonarmap needs to build and test, when any is missing.
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
-  libopencv-dev libmatio-dev libcli11-dev libeigen3-dev libabsl-dev
+  libopencv-dev libmatio-dev zlib1g-dev libcli11-dev libeigen3-dev libabsl-dev
   libgtest-dev libbenchmark-dev liboctomap-dev)
 missing=()
 for p in "${packages[@]}"; do

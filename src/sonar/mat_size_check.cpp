@@ -1,0 +1,207 @@
+/// @file mat_size_check.cpp
+/// checkMatSizes: a bounds-checked walk over MAT-file v5 data elements (see mat_size_check.hpp).
+
+#include "mat_size_check.hpp"
+
+#include <zlib.h>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "sonarmap/core/errors.hpp"
+
+namespace sonarmap::detail {
+namespace {
+
+// Data types and array classes of the MAT-file v5 format (MathWorks, "MAT-File Format", tables
+// 1-1 and 1-3).
+constexpr std::uint32_t kMiInt8 = 1, kMiInt32 = 5, kMiUint32 = 6, kMiMatrix = 14, kMiCompressed = 15;
+constexpr std::uint32_t kCellClass = 1, kStructClass = 2, kObjectClass = 3, kSparseClass = 5;
+constexpr std::size_t kHeaderBytes = 128;
+constexpr int kMaxDepth = 32;
+
+/// A data element: its type and its content (tag excluded).
+struct Element {
+  std::uint32_t type = 0;
+  std::span<const unsigned char> content;
+  std::size_t offset = 0;  ///< of the tag, as reported in messages
+};
+
+/// Sequential reader of the data elements inside one container (the file, or an array's bytes).
+class ElementReader {
+ public:
+  ElementReader(std::span<const unsigned char> bytes, std::size_t base, bool swap, const std::string& where)
+      : bytes_(bytes), base_(base), swap_(swap), where_(where) {}
+
+  bool atEnd() const { return position_ >= bytes_.size(); }
+  std::size_t offset() const { return base_ + position_; }
+  std::span<const unsigned char> rest() const { return bytes_.subspan(position_); }
+
+  [[noreturn]] void fail(std::size_t at, const std::string& message) const {
+    throw FileError(where_ + ": byte " + std::to_string(at) + ": " + message);
+  }
+
+  std::uint32_t u32At(std::span<const unsigned char> bytes, std::size_t at) const {
+    std::uint32_t value = 0;
+    for (int i = 0; i < 4; ++i) {
+      const unsigned shift = swap_ ? 8U * (3U - static_cast<unsigned>(i)) : 8U * static_cast<unsigned>(i);
+      value |= static_cast<std::uint32_t>(bytes[at + static_cast<std::size_t>(i)]) << shift;
+    }
+    return value;
+  }
+
+  /// The next element: a small one (type and size in one word, content in the next 4 bytes) or a
+  /// full one (8-byte tag, content padded to 8 bytes, except compressed content).
+  Element next() {
+    const std::size_t at = offset();
+    if (bytes_.size() - position_ < 8) fail(at, "expected an 8-byte data element tag, " + left());
+    const std::uint32_t word = u32At(bytes_, position_);
+    if ((word >> 16) != 0) {  // small data element format
+      const std::size_t size = word >> 16;
+      if (size > 4) fail(at, "small data element declares " + std::to_string(size) + " bytes, at most 4 fit");
+      Element e{word & 0xFFFFU, bytes_.subspan(position_ + 4, size), at};
+      position_ += 8;
+      return e;
+    }
+    const std::size_t size = u32At(bytes_, position_ + 4);
+    position_ += 8;
+    if (size > bytes_.size() - position_) {
+      fail(at, "data element declares " + std::to_string(size) + " bytes, " + left());
+    }
+    Element e{word, bytes_.subspan(position_, size), at};
+    const std::size_t padded = word == kMiCompressed ? size : (size + 7) / 8 * 8;
+    position_ += std::min(padded, bytes_.size() - position_);
+    return e;
+  }
+
+  /// The next element, which must be of `type`.
+  Element expect(std::uint32_t type, const char* what) {
+    const std::size_t at = offset();
+    const Element e = next();
+    if (e.type != type) fail(at, std::string("expected ") + what + " (data type " + std::to_string(type) + "), found data type " + std::to_string(e.type));
+    return e;
+  }
+
+  bool swap() const { return swap_; }
+  const std::string& where() const { return where_; }
+
+ private:
+  std::string left() const { return std::to_string(bytes_.size() - position_) + " left"; }
+
+  std::span<const unsigned char> bytes_;
+  std::size_t base_;
+  bool swap_;
+  const std::string& where_;
+  std::size_t position_ = 0;
+};
+
+void checkArray(const Element& matrix, bool swap, const std::string& where, int depth);
+
+/// Product of the dimensions, or fails on a negative one; saturates at the largest size_t.
+std::size_t elementCount(const ElementReader& reader, const Element& dims) {
+  if (dims.content.size() % 4 != 0) reader.fail(dims.offset, "dimensions are not a whole number of int32");
+  std::size_t count = 1;
+  for (std::size_t i = 0; i < dims.content.size(); i += 4) {
+    const auto dim = static_cast<std::int32_t>(reader.u32At(dims.content, i));
+    if (dim < 0) reader.fail(dims.offset, "dimension " + std::to_string(i / 4) + " is " + std::to_string(dim) + ", expected ≥ 0");
+    const auto d = static_cast<std::size_t>(dim);
+    count = d != 0 && count > std::numeric_limits<std::size_t>::max() / d ? std::numeric_limits<std::size_t>::max() : count * d;
+  }
+  return count;
+}
+
+void requireFits(const ElementReader& reader, std::size_t at, std::size_t count, std::size_t bytes_each, std::size_t bytes,
+                 const char* what) {
+  if (count > bytes / bytes_each) {
+    reader.fail(at, "array declares " + std::to_string(count) + " " + what + " but holds only " + std::to_string(bytes) +
+                        " bytes (at least " + std::to_string(bytes_each) + " per " + what + ")");
+  }
+}
+
+/// Checks the miMATRIX elements a cell, struct or object array holds, `count` of them.
+void checkChildren(ElementReader& reader, std::size_t count, int depth) {
+  for (std::size_t i = 0; i < count && !reader.atEnd(); ++i) {
+    const Element child = reader.next();
+    if (child.type == kMiMatrix) checkArray(child, reader.swap(), reader.where(), depth + 1);
+  }
+}
+
+/// Checks one array (miMATRIX content): flags, dimensions, name, then what its class stores.
+void checkArray(const Element& matrix, bool swap, const std::string& where, int depth) {
+  ElementReader reader(matrix.content, matrix.offset + 8, swap, where);
+  if (depth > kMaxDepth) reader.fail(matrix.offset, "arrays nested deeper than " + std::to_string(kMaxDepth) + " levels");
+  const Element flags = reader.expect(kMiUint32, "array flags");
+  if (flags.content.size() < 8) reader.fail(flags.offset, "array flags hold " + std::to_string(flags.content.size()) + " bytes, expected 8");
+  const std::uint32_t cls = reader.u32At(flags.content, 0) & 0xFFU;
+  const std::size_t count = elementCount(reader, reader.expect(kMiInt32, "array dimensions"));
+  if (cls == kObjectClass) reader.expect(kMiInt8, "object class name");
+  reader.expect(kMiInt8, "array name");
+  const std::size_t at = reader.offset();
+  const std::size_t bytes = reader.rest().size();
+  if (cls == kCellClass) {
+    requireFits(reader, at, count, 8, bytes, "cells");
+    checkChildren(reader, count, depth);
+  } else if (cls == kStructClass || cls == kObjectClass) {
+    const Element name_length = reader.expect(kMiInt32, "field name length");
+    const std::size_t length = name_length.content.size() >= 4 ? reader.u32At(name_length.content, 0) : 0;
+    const Element names = reader.expect(kMiInt8, "field names");
+    const std::size_t fields = length == 0 ? 0 : names.content.size() / length;
+    requireFits(reader, at, count, 8 * std::max<std::size_t>(fields, 1), bytes, "struct elements");
+    checkChildren(reader, count * fields, depth);
+  } else if (cls == kSparseClass) {
+    requireFits(reader, at, reader.u32At(flags.content, 4), 4, bytes, "stored values");
+  } else {
+    requireFits(reader, at, count, 1, bytes, "elements");
+  }
+}
+
+/// Inflates a compressed variable's zlib stream, at most kMaxInflatedMatBytes.
+std::vector<unsigned char> inflateElement(const Element& compressed, const ElementReader& reader) {
+  std::vector<unsigned char> out;
+  if (compressed.content.size() > std::numeric_limits<uInt>::max()) {
+    reader.fail(compressed.offset, "compressed variable larger than zlib can take in one call");
+  }
+  z_stream stream{};
+  if (inflateInit(&stream) != Z_OK) reader.fail(compressed.offset, "zlib cannot start inflating");
+  stream.next_in = const_cast<unsigned char*>(compressed.content.data());  // zlib's API is not const
+  stream.avail_in = static_cast<uInt>(compressed.content.size());
+  int status = Z_OK;
+  while (status == Z_OK) {
+    if (out.size() >= kMaxInflatedMatBytes) break;
+    const std::size_t done = out.size();
+    out.resize(std::min(kMaxInflatedMatBytes, std::max<std::size_t>(2 * done, 4096)));
+    stream.next_out = out.data() + done;
+    stream.avail_out = static_cast<uInt>(out.size() - done);
+    status = inflate(&stream, Z_NO_FLUSH);
+    out.resize(done + (out.size() - done - stream.avail_out));
+  }
+  inflateEnd(&stream);
+  if (status == Z_OK) reader.fail(compressed.offset, "compressed variable inflates to more than " + std::to_string(kMaxInflatedMatBytes) + " bytes");
+  if (status != Z_STREAM_END && status != Z_BUF_ERROR) reader.fail(compressed.offset, "compressed variable does not inflate (zlib error " + std::to_string(status) + ")");
+  return out;
+}
+
+}  // namespace
+
+void checkMatSizes(std::span<const unsigned char> file, const std::string& path) {
+  if (file.size() < kHeaderBytes) {
+    throw FileError(path + ": " + std::to_string(file.size()) + " bytes, expected a 128-byte MAT-file v5 header");
+  }
+  const bool swap = file[126] == 'M' && file[127] == 'I';  // written big-endian: "MI" read byte by byte
+  ElementReader top(file.subspan(kHeaderBytes), kHeaderBytes, swap, path);
+  while (!top.atEnd()) {
+    const Element e = top.next();
+    if (e.type == kMiMatrix) checkArray(e, swap, path, 0);
+    if (e.type != kMiCompressed) continue;
+    const std::vector<unsigned char> inflated = inflateElement(e, top);
+    const std::string where = path + " (variable compressed at byte " + std::to_string(e.offset) + ", inflated)";
+    ElementReader inner(inflated, 0, swap, where);
+    while (!inner.atEnd()) {
+      const Element variable = inner.next();
+      if (variable.type == kMiMatrix) checkArray(variable, swap, where, 0);
+    }
+  }
+}
+
+}  // namespace sonarmap::detail

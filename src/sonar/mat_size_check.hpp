@@ -1,0 +1,33 @@
+#pragma once
+/// @file mat_size_check.hpp
+/// Private to src/sonar: checks the sizes a MAT-file v5 declares before libmatio allocates from
+/// them. libmatio trusts an array's dimensions: a hostile or corrupt file that declares 2^48
+/// elements in 1 KB makes it request petabytes. This walk over the file's data elements (format:
+/// MathWorks, "MAT-File Format", version 5, chapter 1) rejects such files first.
+
+#include <cstddef>
+#include <span>
+#include <string>
+
+namespace sonarmap::detail {
+
+/// Largest inflated size of one compressed (miCOMPRESSED) variable the check accepts: 1 GiB.
+inline constexpr std::size_t kMaxInflatedMatBytes = std::size_t{1} << 30;
+
+/// Walks every top-level data element of a MAT-file v5 (inflating compressed ones with zlib, up to
+/// kMaxInflatedMatBytes each) and checks every array (miMATRIX, nested ones included, at most 32
+/// levels deep): its array flags and dimensions subelements are present, no dimension is negative,
+/// and the number of elements fits in the bytes the array occupies — at least 1 byte per element
+/// of a numeric, character or logical array, 8 bytes (one tag) per element of a cell array and
+/// per element and field of a struct or object array, 4 bytes per stored value of a sparse one.
+/// Every allocation libmatio then makes is thereby bounded by a small multiple of the (inflated)
+/// file size.
+/// @param file   the whole file.
+/// @param path   the file's name, for messages.
+/// @throws FileError naming `path`, the byte offset (inside the inflated variable, with the
+///         variable's own offset, for compressed ones) and what was expected, when the header is
+///         shorter than 128 bytes, an element runs past its container, a compressed variable does
+///         not inflate or inflates beyond the limit, or an array's sizes do not fit.
+void checkMatSizes(std::span<const unsigned char> file, const std::string& path);
+
+}  // namespace sonarmap::detail
