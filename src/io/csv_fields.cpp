@@ -8,6 +8,7 @@
 #include <system_error>
 #include <utility>
 
+#include "message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap::csv {
@@ -69,7 +70,7 @@ void LineReader::expectName(std::size_t column, std::string_view name) const {
          std::to_string(column + 1));
   }
   if (fields_[column] != name) {
-    fail("header column " + std::to_string(column + 1) + " is " + quoted(fields_[column]) + ", expected " +
+    fail("header column " + std::to_string(column + 1) + " is " + detail::quotedForMessage(fields_[column]) + ", expected " +
          quoted(name));
   }
 }
@@ -80,13 +81,13 @@ double LineReader::finiteNumber(std::size_t column, std::string_view name, std::
   const char* end = token.data() + token.size();
   const auto [stop, error] = std::from_chars(token.data(), end, value);
   if (error == std::errc::result_out_of_range && stop == end) {  // 1e999, 1e-999
-    failField(column, name, quoted(token) + " is out of the range of a double, expected " + std::string(expected));
+    failField(column, name, detail::quotedForMessage(token) + " is out of the range of a double, expected " + std::string(expected));
   }
   if (error != std::errc() || stop != end || token.empty()) {
-    failField(column, name, quoted(token) + " is not a number, expected " + std::string(expected));
+    failField(column, name, detail::quotedForMessage(token) + " is not a number, expected " + std::string(expected));
   }
   if (!std::isfinite(value)) {
-    failField(column, name, quoted(token) + " is not finite, expected " + std::string(expected));
+    failField(column, name, detail::quotedForMessage(token) + " is not finite, expected " + std::string(expected));
   }
   return value;
 }

@@ -30,7 +30,9 @@ class LineReader {
 
   /// @throws FileError "'source', line N: what".
   [[noreturn]] void fail(const std::string& what) const;
-  /// @throws FileError "'source', line N, field 'name' (column c): what" (c is 1-based).
+  /// @throws FileError "'source', line N, field 'name' (column c): what" (c is 1-based). Field
+  /// text that the messages of this class quote from the file is escaped and cut
+  /// (detail::quotedForMessage), so a binary line cannot break the one-line message.
   [[noreturn]] void failField(std::size_t column, std::string_view name, const std::string& what) const;
   /// @throws FileError "'source': what" (for problems of the whole file).
   [[noreturn]] void failFile(const std::string& what) const;

@@ -4,6 +4,7 @@
 #include <iterator>
 #include <vector>
 
+#include "message_text.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/io/octomap_header.hpp"
 
@@ -99,13 +100,18 @@ void writeBinaryFile(const OcTree16& tree, const std::string& path) {
 
 OcTree16 readBinary(std::istream& in, const OctreeOptions& options, const std::string& source) {
   const OctomapHeader header = readOctomapHeader(in, kBinaryFileFirstLine, source);
-  if (header.id != "OcTree") throw FileError(source + ": tree type '" + header.id + "' is not OcTree");
+  if (header.id != "OcTree") throw FileError(source + ": tree type " + detail::quotedForMessage(header.id) + " is not OcTree");
   OcTree16 tree(header.resolution_m, options);
   if (header.size == 0) return tree;
   const std::vector<unsigned char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // Each inner node takes 2 bytes and has at least one child: a tree of `size` nodes has at most
-  // size/2 inner nodes, so fewer than 2 bytes cannot describe it; check before building.
+  // Each inner node takes 2 bytes and has 1 to 8 children, so D data bytes describe 2 to 1 + 4·D
+  // nodes: a larger size is rejected before the tree is built.
   if (data.size() < 2) throw FileError(source + ": header says " + std::to_string(header.size) + " nodes but no data follows");
+  if (header.size > 1 + 4 * data.size()) {
+    throw FileError(source + ": header says " + std::to_string(header.size) + " nodes but the " +
+                    std::to_string(data.size()) + " data bytes after the header describe at most " +
+                    std::to_string(1 + 4 * data.size()) + " (2 bytes per inner node of at most 8 children)");
+  }
   const std::size_t nodes = BinaryReader(tree, data, source).read();
   if (nodes != header.size) {
     throw FileError(source + ": header says " + std::to_string(header.size) + " nodes, data holds " + std::to_string(nodes));

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "byte_io.hpp"
+#include "message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/io/octomap_header.hpp"
@@ -110,7 +111,7 @@ void writeFullFile(const OcTree16& tree, const std::string& path) {
 OcTree16 readFull(std::istream& in, const OctreeOptions& options, const std::string& source) {
   const OctomapHeader header = readOctomapHeader(in, kFullFileFirstLine, source);
   if (header.id != "OcTree") {
-    throw FileError(source + ": tree type '" + header.id + "' is not OcTree (only OcTree's .ot layout is read)");
+    throw FileError(source + ": tree type " + detail::quotedForMessage(header.id) + " is not OcTree (only OcTree's .ot layout is read)");
   }
   OcTree16 tree(header.resolution_m, options);
   if (header.size == 0) return tree;

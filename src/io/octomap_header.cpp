@@ -4,9 +4,19 @@
 #include <cmath>
 #include <sstream>
 
+#include "message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
+namespace {
+
+/// Reads `value` from the rest of a header line; false unless it parses and nothing follows it.
+template <typename T>
+bool readWholeValue(std::istringstream& tokens, T& value) {
+  return static_cast<bool>(tokens >> value) && (tokens >> std::ws).eof();
+}
+
+}  // namespace
 
 void writeOctomapHeader(std::ostream& out, const std::string& first_line, const OctomapHeader& header) {
   char res[64];
@@ -38,23 +48,23 @@ OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line,
       // Checked only once the header is complete: a file cut inside "res 0.1" is truncated, not
       // a zero resolution.
       if (!std::isfinite(header.resolution_m) || header.resolution_m <= 0.0) {
-        throw ValueError(source + ": resolution must be finite and > 0, got '" + res_line + "'");
+        throw ValueError(source + ": resolution must be finite and > 0, got " + detail::quotedForMessage(res_line));
       }
       return header;
     }
     if (token == "id") {
-      has_id = static_cast<bool>(tokens >> header.id);
+      has_id = readWholeValue(tokens, header.id);
     } else if (token == "size") {
       long long size = -1;
-      has_size = static_cast<bool>(tokens >> size) && size >= 0;
-      if (!has_size) throw FileError(source + ": 'size' must be a node count >= 0, got '" + line + "'");
+      has_size = readWholeValue(tokens, size) && size >= 0;
+      if (!has_size) throw FileError(source + ": 'size' must be a node count >= 0, got " + detail::quotedForMessage(line));
       header.size = static_cast<std::size_t>(size);
     } else if (token == "res") {
-      has_res = static_cast<bool>(tokens >> header.resolution_m);
+      has_res = readWholeValue(tokens, header.resolution_m);
       res_line = line;
-      if (!has_res) throw FileError(source + ": 'res' must be a number, got '" + line + "'");
+      if (!has_res) throw FileError(source + ": 'res' must be a number, got " + detail::quotedForMessage(line));
     } else {
-      throw FileError(source + ": unknown header line '" + line + "', expected id, size, res or data");
+      throw FileError(source + ": unknown header line " + detail::quotedForMessage(line) + ", expected id, size, res or data");
     }
   }
   throw FileError(source + ": file ends inside the header, before the 'data' line");

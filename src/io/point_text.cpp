@@ -6,6 +6,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
@@ -53,10 +54,7 @@ PointCloud readPointText(std::istream& in, const std::string& source) {
       double value = 0.0;
       const bool parsed = parseNumber(token, value);
       if (!parsed) {  // nan and inf are numbers: a point without a return, skipped at insertion
-        std::string message = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + string
-        message += token;
-        message += "' is not a number, expected 'x y z' in metres";
-        fail(message);
+        fail(detail::quotedForMessage(token) + " is not a number, expected 'x y z' in metres");
       }
       xyz[columns++] = value;
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../io/csv_fields.hpp"
+#include "../io/message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 
@@ -62,12 +63,12 @@ class LineContext {
       const auto [stop, error] = std::from_chars(token.data(), end, values[i]);
       const bool out_of_range = error == std::errc::result_out_of_range && stop == end;
       if ((error != std::errc() && !out_of_range) || stop != end) {
-        fail(kind + ": value " + std::to_string(i + 1) + " '" + std::string(token) +
-             "' is not a number (fields: " + std::string(names) + ")");
+        fail(kind + ": value " + std::to_string(i + 1) + " " + detail::quotedForMessage(token) +
+             " is not a number (fields: " + std::string(names) + ")");
       }
       if (out_of_range || !std::isfinite(values[i])) {
-        fail(kind + ": value " + std::to_string(i + 1) + " '" + std::string(token) +
-             "' is not finite (fields: " + std::string(names) + ")");
+        fail(kind + ": value " + std::to_string(i + 1) + " " + detail::quotedForMessage(token) +
+             " is not finite (fields: " + std::string(names) + ")");
       }
     }
     return values;
@@ -92,7 +93,7 @@ Primitive parsePrimitive(const std::vector<std::string_view>& tokens, const Line
     const auto v = context.numbers<6>(tokens, kCylinderFields);
     return Cylinder{v[0], v[1], v[2], v[3], v[4], v[5]};
   }
-  context.fail("unknown primitive '" + std::string(kind) + "', expected plane, box or cylinder");
+  context.fail("unknown primitive " + detail::quotedForMessage(kind) + ", expected plane, box or cylinder");
 }
 
 void appendNumbers(std::string& line, std::initializer_list<double> values) {

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "../io/csv_fields.hpp"
+#include "../io/message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 
@@ -66,10 +67,9 @@ std::uint8_t readIntensity(const csv::LineReader& reader, std::size_t column, st
   const auto [stop, error] = std::from_chars(token.data(), end, value);
   const bool integer = (error == std::errc() || error == std::errc::result_out_of_range) && stop == end;
   if (integer && error == std::errc() && value >= 0 && value <= 255) return static_cast<std::uint8_t>(value);
-  std::string what = "'";  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + string
-  what += token;
-  what += token.empty() ? "' (empty; only trailing bins may be empty)"
-                        : (integer ? "' is out of range" : "' is not an integer");
+  std::string what = detail::quotedForMessage(token);
+  what += token.empty() ? " (empty; only trailing bins may be empty)"
+                        : (integer ? " is out of range" : " is not an integer");
   reader.failField(column, binColumnName(bin), what + ", expected an intensity 0...255");
 }
 

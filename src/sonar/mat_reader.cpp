@@ -5,9 +5,12 @@
 
 #include <matio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -17,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mat_size_check.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
@@ -24,6 +28,11 @@ namespace {
 
 constexpr const char* kVariable = "parsedData";
 constexpr const char* kFields[] = {"time", "angle", "step_dist", "intensities"};
+/// Bytes a struct field takes in a level-5 file at the least: the tag of its miMATRIX element.
+constexpr std::uintmax_t kMinFieldBytes = 8;
+/// zlib cannot expand data more than about 1032:1, so a compressed variable holds at most this
+/// many times the file's size once inflated; declared sizes above that are not believed.
+constexpr std::uintmax_t kMaxInflation = 1032;
 
 // ---- libmatio plumbing: RAII handles and a quiet logger ----------------------------------------
 
@@ -62,10 +71,27 @@ struct BeamOrReason {
   std::string reason;
 };
 
+/// The product of the declared dimensions; SIZE_MAX when it overflows (dimensions come from the file).
 std::size_t elementCount(const matvar_t& var) {
+  if (var.rank <= 0 || var.dims == nullptr) return 0;
   std::size_t count = 1;
-  for (int d = 0; d < var.rank; ++d) count *= var.dims[d];
-  return var.rank > 0 ? count : 0;
+  for (int d = 0; d < var.rank; ++d) {
+    if (var.dims[d] != 0 && count > SIZE_MAX / var.dims[d]) return SIZE_MAX;
+    count *= var.dims[d];
+  }
+  return count;
+}
+
+/// "parsedData(5) [index 4]": element `index` as MATLAB (1-based) and C++ count it.
+std::string elementName(std::size_t index) {
+  return std::string(kVariable) + "(" + std::to_string(index + 1) + ") [index " + std::to_string(index) + "]";
+}
+
+/// "1×5604", for messages.
+std::string dimsText(const matvar_t& var) {
+  std::string text;
+  for (int d = 0; d < var.rank && var.dims != nullptr; ++d) text += (d > 0 ? "×" : "") + std::to_string(var.dims[d]);
+  return text.empty() ? "no dimensions" : text;
 }
 
 /// MATLAB's name of a class, for messages.
@@ -187,22 +213,95 @@ BeamOrReason readBeam(matvar_t* data, std::size_t index) {
 
 // ---- the log -------------------------------------------------------------------------------------
 
+/// The whole file, for detail::checkMatSizes.
+std::vector<unsigned char> fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throwFileError(path, "cannot be read");
+  return bytes;
+}
+
 MatFile openMat(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throwFileError(path, "no such file (or not a regular file)");
+  detail::checkMatSizes(fileBytes(path), path);  // before libmatio allocates from declared sizes
   MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throwFileError(path, "cannot be opened as a MATLAB MAT-file");
+  // libmatio takes any file without a level-5 header for a version 4 file, which cannot hold structs.
+  if (Mat_GetVersion(mat.get()) == MAT_FT_MAT4) {
+    throwFileError(path, "has no 128-byte MATLAB 5 header, expected a MATLAB 5 (or 7.3) MAT-file");
+  }
   return mat;
 }
 
-MatVar readParsedData(mat_t* mat, const std::string& path) {
-  MatVar data(Mat_VarRead(mat, kVariable));
-  if (!data) throwFileError(path, std::string("no readable variable '") + kVariable + "'");
-  if (data->class_type != MAT_C_STRUCT) {
-    throwFileError(path, std::string("variable '") + kVariable + "' is " + className(data->class_type) +
+/// True when the struct array `var` holds a field pointer for each of its elements × fields, so
+/// that Mat_VarGetStructField* stays within its data (libmatio indexes by the declared dimensions).
+bool structIsComplete(const matvar_t& var) {
+  const std::size_t fields = Mat_VarGetNumberOfFields(const_cast<matvar_t*>(&var));
+  const std::size_t elements = elementCount(var);
+  return var.data != nullptr && fields > 0 && elements <= SIZE_MAX / fields / sizeof(matvar_t*) &&
+         var.nbytes == elements * fields * sizeof(matvar_t*);
+}
+
+/// Rejects declared sizes that the file cannot hold, from the variable's header alone (before any
+/// data is read): the struct's elements × fields × 8 bytes, and the sum over its fields of
+/// elements × element size, must fit in `budget` bytes.
+void checkDeclaredSizes(matvar_t& info, std::uintmax_t budget, const std::string& path) {
+  const std::size_t fields = Mat_VarGetNumberOfFields(&info);
+  const std::size_t elements = elementCount(info);
+  if (fields != 0 && elements > budget / kMinFieldBytes / fields) {
+    throwFileError(path, std::string("'") + kVariable + "' declares " + dimsText(info) + " elements of " +
+                             std::to_string(fields) + " fields (at least " + std::to_string(kMinFieldBytes) +
+                             " bytes each) but the file can hold at most " + std::to_string(budget) + " bytes");
+  }
+  if (!structIsComplete(info)) throwFileError(path, std::string("the fields of '") + kVariable + "' cannot be read");
+  std::uintmax_t left = budget;  // declared bytes still believable
+  for (std::size_t i = 0; i < elements; ++i) {
+    for (std::size_t f = 0; f < fields; ++f) {
+      const matvar_t* field = Mat_VarGetStructFieldByIndex(&info, f, i);
+      if (field == nullptr) continue;  // reported per beam
+      const std::size_t size = std::max<std::size_t>(Mat_SizeOfClass(field->class_type), 1);
+      const std::size_t count = elementCount(*field);
+      if (count > left / size) {
+        throwFileError(path, elementName(i) + ": field '" + (field->name != nullptr ? field->name : "?") +
+                                 "' declares " + dimsText(*field) + " elements of " + std::to_string(size) +
+                                 " bytes, more than the " + std::to_string(budget) +
+                                 " bytes the file can hold for all fields");
+      }
+      left -= count * size;
+    }
+  }
+}
+
+/// The most bytes the variables of a file of `file_bytes` can hold: the file's size, or
+/// kMaxInflation times it for a compressed (zlib, or HDF5 7.3) variable.
+std::uintmax_t byteBudget(const mat_t& mat, const matvar_t& info, std::uintmax_t file_bytes) {
+  const bool compressed =
+      info.compression != MAT_COMPRESSION_NONE || Mat_GetVersion(const_cast<mat_t*>(&mat)) == MAT_FT_MAT73;
+  return compressed ? file_bytes * kMaxInflation : file_bytes;
+}
+
+/// Reads the header of `parsedData` (no data) and checks its class and declared sizes.
+void checkParsedDataInfo(mat_t* mat, const std::string& path) {
+  MatVar info(Mat_VarReadInfo(mat, kVariable));
+  if (!info) throwFileError(path, std::string("no readable variable '") + kVariable + "'");
+  if (info->class_type != MAT_C_STRUCT) {
+    throwFileError(path, std::string("variable '") + kVariable + "' is " + className(info->class_type) +
                              ", expected a struct array");
   }
-  if (elementCount(*data) == 0) throwFileError(path, std::string("'") + kVariable + "' is empty");
+  if (elementCount(*info) == 0) throwFileError(path, std::string("'") + kVariable + "' is empty");
+  std::error_code ec;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  if (ec) throwFileError(path, "its size cannot be read");
+  checkDeclaredSizes(*info, byteBudget(*mat, *info, file_bytes), path);
+}
+
+MatVar readParsedData(mat_t* mat, const std::string& path) {
+  checkParsedDataInfo(mat, path);
+  MatVar data(Mat_VarRead(mat, kVariable));
+  if (!data || data->class_type != MAT_C_STRUCT || !structIsComplete(*data)) {
+    throwFileError(path, std::string("variable '") + kVariable + "' cannot be read");
+  }
   const unsigned field_count = Mat_VarGetNumberOfFields(data.get());
   char* const* names = Mat_VarGetStructFieldnames(data.get());
   for (const char* wanted : kFields) {
@@ -228,6 +327,35 @@ std::size_t dominantBinCount(const std::vector<BeamOrReason>& read) {
   return best;
 }
 
+/// The valid beams of `read` in file order, and why the others were skipped (a beam whose bin
+/// count is not the dominant one is skipped too). @throws FileError when a valid beam's time is
+/// before the previous valid beam's.
+SonarLog collectBeams(std::vector<BeamOrReason>& read, const std::string& path) {
+  const std::size_t bins = dominantBinCount(read);
+  SonarLog log;
+  log.beams.reserve(read.size());
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    auto& r = read[i];
+    if (r.beam && r.beam->intensities.size() != bins) {
+      r.reason = "has " + std::to_string(r.beam->intensities.size()) + " bins, the log's beams have " +
+                 std::to_string(bins);
+      r.beam.reset();
+    }
+    if (r.beam && !log.beams.empty() && r.beam->time_s < log.beams.back().time_s) {
+      throwFileError(path, elementName(i) + ": field 'time' is " + std::to_string(r.beam->time_s) +
+                               " s, before the previous beam's " + std::to_string(log.beams.back().time_s) +
+                               " s; times must not go backwards");
+    }
+    if (r.beam) {
+      log.beams.push_back(std::move(*r.beam));
+    } else {
+      ++log.skipped_beams;
+      log.skip_reasons.push_back(path + ": " + elementName(i) + ": " + r.reason);
+    }
+  }
+  return log;
+}
+
 }  // namespace
 
 SonarLog readCrasMat(const std::string& path) {
@@ -241,24 +369,7 @@ SonarLog readCrasMat(const std::string& path) {
   read.reserve(count);
   for (std::size_t i = 0; i < count; ++i) read.push_back(readBeam(data.get(), i));
 
-  const std::size_t bins = dominantBinCount(read);
-  SonarLog log;
-  log.beams.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    auto& r = read[i];
-    if (r.beam && r.beam->intensities.size() != bins) {
-      r.reason = "has " + std::to_string(r.beam->intensities.size()) + " bins, the log's beams have " +
-                 std::to_string(bins);
-      r.beam.reset();
-    }
-    if (r.beam) {
-      log.beams.push_back(std::move(*r.beam));
-    } else {
-      ++log.skipped_beams;
-      log.skip_reasons.push_back(path + ": " + kVariable + "(" + std::to_string(i + 1) + ") [index " +
-                                 std::to_string(i) + "]: " + r.reason);
-    }
-  }
+  SonarLog log = collectBeams(read, path);
   if (log.beams.empty()) {
     throwFileError(path, std::string("no valid beam; ") + kVariable + "(1): " + read.front().reason);
   }

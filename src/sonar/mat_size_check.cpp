@@ -111,11 +111,12 @@ std::size_t elementCount(const ElementReader& reader, const Element& dims) {
   return count;
 }
 
+/// @param what the plural of what is counted ("elements", "cells"…).
 void requireFits(const ElementReader& reader, std::size_t at, std::size_t count, std::size_t bytes_each, std::size_t bytes,
                  const char* what) {
   if (count > bytes / bytes_each) {
     reader.fail(at, "array declares " + std::to_string(count) + " " + what + " but holds only " + std::to_string(bytes) +
-                        " bytes (at least " + std::to_string(bytes_each) + " per " + what + ")");
+                        " bytes, at least " + std::to_string(bytes_each) + " bytes needed for each");
   }
 }
 
@@ -185,10 +186,11 @@ std::vector<unsigned char> inflateElement(const Element& compressed, const Eleme
 }  // namespace
 
 void checkMatSizes(std::span<const unsigned char> file, const std::string& path) {
-  if (file.size() < kHeaderBytes) {
-    throw FileError(path + ": " + std::to_string(file.size()) + " bytes, expected a 128-byte MAT-file v5 header");
-  }
+  if (file.size() < kHeaderBytes) return;  // no level-5 header: not this format (the caller says so)
   const bool swap = file[126] == 'M' && file[127] == 'I';  // written big-endian: "MI" read byte by byte
+  if (!swap && !(file[126] == 'I' && file[127] == 'M')) return;
+  const unsigned version = swap ? (file[124] << 8U) | file[125] : (file[125] << 8U) | file[124];
+  if (version != 0x0100) return;  // 7.3 (HDF5) or unknown: not walked
   ElementReader top(file.subspan(kHeaderBytes), kHeaderBytes, swap, path);
   while (!top.atEnd()) {
     const Element e = top.next();

@@ -14,7 +14,9 @@ namespace sonarmap::detail {
 /// Largest inflated size of one compressed (miCOMPRESSED) variable the check accepts: 1 GiB.
 inline constexpr std::size_t kMaxInflatedMatBytes = std::size_t{1} << 30;
 
-/// Walks every top-level data element of a MAT-file v5 (inflating compressed ones with zlib, up to
+/// Files without a level-5 header (shorter than 128 bytes, no "IM"/"MI" endian indicator, or a
+/// version other than 0x0100, e.g. 7.3 files, which are HDF5) are not walked: the caller decides
+/// what to do with them. Otherwise, walks every top-level data element of a MAT-file v5 (inflating compressed ones with zlib, up to
 /// kMaxInflatedMatBytes each) and checks every array (miMATRIX, nested ones included, at most 32
 /// levels deep): its array flags and dimensions subelements are present, no dimension is negative,
 /// and the number of elements fits in the bytes the array occupies — at least 1 byte per element
@@ -25,9 +27,9 @@ inline constexpr std::size_t kMaxInflatedMatBytes = std::size_t{1} << 30;
 /// @param file   the whole file.
 /// @param path   the file's name, for messages.
 /// @throws FileError naming `path`, the byte offset (inside the inflated variable, with the
-///         variable's own offset, for compressed ones) and what was expected, when the header is
-///         shorter than 128 bytes, an element runs past its container, a compressed variable does
-///         not inflate or inflates beyond the limit, or an array's sizes do not fit.
+///         variable's own offset, for compressed ones) and what was expected, when an element
+///         runs past its container, a compressed variable does not inflate or inflates beyond the
+///         limit, or an array's sizes do not fit.
 void checkMatSizes(std::span<const unsigned char> file, const std::string& path);
 
 }  // namespace sonarmap::detail

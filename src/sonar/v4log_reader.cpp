@@ -27,6 +27,7 @@ constexpr std::size_t kMagicBytes = 32;
 /// Record length, OLE date, tx node, rx node, message type: the least a record can hold.
 constexpr std::size_t kMinRecordBytes = 2 + 8 + 3;
 constexpr std::uint8_t kMtHeadData = 2;
+constexpr std::size_t kRecordDateAt = 2;  // offset of the OLE date in a record
 constexpr std::uint32_t kBearingUnitsPerTurn = 6400;  // 1/16 gradian
 constexpr double kAdIntervalUnit_s = 640e-9;
 constexpr double kSecondsPerDay = 86400.0;
@@ -198,6 +199,15 @@ ParsedRecord readRecord(std::span<const unsigned char> record, std::size_t at, s
   return parsed;
 }
 
+/// Throws unless the beam of record `index` (at byte `at`), at `time_s`, is not before the
+/// previous beam's `previous_s` (seconds since the first record).
+void checkTimeOrder(double time_s, double previous_s, std::size_t at, std::uint32_t index, const std::string& source) {
+  if (time_s >= previous_s) return;
+  throw FileError(source + ": byte " + std::to_string(at + kRecordDateAt) + ": date of " + recordName(index) + " is " +
+                  std::to_string(time_s) + " s after the first record, before the previous beam's " +
+                  std::to_string(previous_s) + " s; times must not go backwards");
+}
+
 }  // namespace
 
 SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::string& source, const V4LogOptions& options) {
@@ -210,19 +220,27 @@ SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::strin
   log.beams.reserve(header.record_count);
   std::size_t at = header.data_offset;
   std::optional<double> first_date_days;
+  std::string first_skip;  // why the first record without a beam has none
   for (std::uint32_t index = 0; index < header.record_count; ++index) {
     const std::span<const unsigned char> record = recordAt(bytes, at, index, source);
     ParsedRecord parsed = readRecord(record, at, index, source, options.sound_speed_m_s);
     if (!first_date_days) first_date_days = parsed.date_days;
     if (parsed.beam) {
       parsed.beam->time_s = (parsed.date_days - *first_date_days) * kSecondsPerDay;
+      if (!log.beams.empty()) checkTimeOrder(parsed.beam->time_s, log.beams.back().time_s, at, index, source);
       log.beams.push_back(std::move(*parsed.beam));
     } else {
+      const std::string reason = recordName(index) + " at byte " + std::to_string(at) + ": " + parsed.skip_reason;
+      if (first_skip.empty()) first_skip = reason;
       ++log.skipped_beams;
-      log.skip_reasons.push_back(source + ": " + recordName(index) + " at byte " + std::to_string(at) + ": " +
-                                 parsed.skip_reason);
+      log.skip_reasons.push_back(source + ": " + reason);
     }
     at += record.size();  // past any bytes appended after the data
+  }
+  if (log.beams.empty()) {
+    throw FileError(source + ": no beam in the " + std::to_string(header.record_count) +
+                    " record(s) the header declares, expected mtHeadData records with data bytes" +
+                    (first_skip.empty() ? "" : " (" + first_skip + ")"));
   }
   return log;
 }

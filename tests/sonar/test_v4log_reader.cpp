@@ -196,6 +196,7 @@ TEST(sonarV4log, ConvertsSyntheticRecordsAndSkipsOthers) {
   records[3].appended_bytes = 7;
   records[4].data.clear();  // no data bytes
   records[5].bearing = 6399;
+  records[5].date_days = kFirstDate_days + 2.0 / 86400.0;  // times must not go backwards
   const SonarLog log = readSeaNetV4Log(writeFile(dir, "synthetic.V4LOG", v4log(records)));
 
   ASSERT_EQ(log.beams.size(), 4u);
@@ -215,7 +216,7 @@ TEST(sonarV4log, ConvertsSyntheticRecordsAndSkipsOthers) {
   EXPECT_NEAR(log.beams[2].bearing_rad, 0.5 * kPi, 1e-12);
   EXPECT_NEAR(log.beams[2].time_s, 1.5, 1e-6);
   EXPECT_NEAR(log.beams[3].bearing_rad, 2.0 * kPi / 6400, 1e-12);  // read after the appended bytes
-  EXPECT_DOUBLE_EQ(log.beams[3].time_s, 0.0);
+  EXPECT_NEAR(log.beams[3].time_s, 2.0, 1e-6);
 }
 
 TEST(sonarV4log, BinLengthFollowsTheSoundSpeed) {

@@ -26,9 +26,13 @@ void writeBinaryFile(const OcTree16& tree, const std::string& path);
 
 /// Reads a `.bt` stream into a new tree with the given options (sensor model, aggregation).
 /// @param source name used in error messages (the file name).
+/// Reads the data bytes that follow the header (no more than the stream holds) and checks `size`
+/// against them before building anything: 2 bytes per inner node of at most 8 children describe
+/// at most 1 + 4 × bytes nodes, so a corrupt `size` of 10^9 is rejected at once.
 /// @throws FileError on a wrong first line, a missing or malformed `id`/`size`/`res`/`data`
-///         header, an id other than `OcTree`, truncated data, a node count that differs from
-///         `size`, or an inner-node code at the finest level. @throws ValueError on a resolution
+///         header, an id other than `OcTree`, a `size` more than the data can describe,
+///         truncated data, a node count that differs from `size`, or an inner-node code at the
+///         finest level. Messages name `source`; text quoted from the file is escaped and cut. @throws ValueError on a resolution
 ///         that is not finite and positive.
 OcTree16 readBinary(std::istream& in, const OctreeOptions& options = {}, const std::string& source = "<stream>");
 

@@ -26,8 +26,10 @@ void writeOctomapHeader(std::ostream& out, const std::string& first_line, const 
 
 /// Reads the header up to and including the `data` line; the stream is left at the first data byte.
 /// @param source file name for messages.
-/// @throws FileError when the first line differs, a line is unknown, a value does not parse,
-///         `id`/`res` is missing, or the stream ends before `data`.
+/// @throws FileError when the first line differs, a line is unknown, a value does not parse or
+///         is followed by more text (`res 0.1m`), `size` is negative, `id`/`size`/`res` is
+///         missing, or the stream ends before `data`. Messages start with `source`; header text
+///         quoted in them is escaped (non-printable bytes as \xNN) and cut at 64 bytes.
 /// @throws ValueError when the resolution is not finite and positive (checked once the header is
 ///         complete, so a header cut short inside the `res` line is a FileError).
 OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line, const std::string& source);

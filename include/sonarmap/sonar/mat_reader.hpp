@@ -27,15 +27,25 @@ namespace sonarmap {
 /// A beam is malformed when a field is missing, empty, complex, of the wrong class or size, when
 /// a value is not finite, when `step_dist` ≤ 0, or when its bin count differs from the log's
 /// dominant bin count (the most common one; the last beam of the CRAS log has 186 bins instead
-/// of 399). Beams keep the file's order; times and bearings are not required to be monotonic.
+/// of 399). Beams keep the file's order; bearings need not be monotonic, times must not decrease
+/// from one valid beam to the next.
+///
+/// Declared sizes are checked before any data is read (libmatio's Mat_VarReadInfo, header only):
+/// `parsedData`'s elements × fields × 8 bytes (the least a field takes) and each field's elements ×
+/// element size must fit in the file's size, or in 1032 times it for a compressed (zlib, or
+/// HDF5 7.3) variable, zlib's largest expansion. So a header claiming 10^9 beams or bins is
+/// rejected without allocating for them.
 ///
 /// libmatio's own log messages are captured (never printed) and appended to the exception text.
 ///
 /// @param path  MAT-file to read.
 /// @return      the beams in recording order, with the skipped-beam count and reasons.
-/// @throws FileError  when the file cannot be opened or is not a MAT-file, when `parsedData` is
-///   missing, not a struct array, empty, or lacks one of the four fields, or when no beam of the
-///   file is valid (the message then quotes the first beam's problem). The message names the file.
+/// @throws FileError  when the file cannot be opened, is not a MAT-file or has no MATLAB 5 header
+///   (libmatio reads anything else as MATLAB 4, which has no structs), when `parsedData` is
+///   missing, not a struct array, empty, or lacks one of the four fields, when a declared size
+///   cannot fit in the file (see above), when a valid beam's time is before the previous valid
+///   beam's ("times must not go backwards", naming the element), or when no beam of the file is
+///   valid (the message then quotes the first beam's problem). The message names the file.
 SonarLog readCrasMat(const std::string& path);
 
 }  // namespace sonarmap

@@ -76,7 +76,9 @@ SonarLog readSeaNetV4Log(const std::string& path, const V4LogOptions& options = 
 ///   lies outside the file; the record count cannot fit in the bytes after the data offset (at
 ///   least 13 bytes per record, checked before allocating); a record length is below 13, or below
 ///   46 for mtHeadData, or runs past the end of the file; a record date is not finite; the data byte
-///   count exceeds the record; ADInterval is 0 (no positive bin length); a bearing is ≥ 6,400.
+///   count exceeds the record; ADInterval is 0 (no positive bin length); a bearing is ≥ 6,400; a
+///   beam's date is before the previous beam's (at the record's date: "times must not go
+///   backwards"); or the file holds no beam at all (no record, or none is mtHeadData with data).
 /// @throws ValueError when `options.sound_speed_m_s` is not a positive finite number.
 SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::string& source,
                           const V4LogOptions& options = {});

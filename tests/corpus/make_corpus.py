@@ -1,0 +1,268 @@
+#!/usr/bin/env python3
+"""Writes the binary files of the broken-input corpus (tests/corpus/broken/) and the small valid
+seeds (tests/corpus/valid/) that test_corpus truncates and flips.
+
+Run once from anywhere: `python3 tests/corpus/make_corpus.py`. Python 3 standard library only;
+every file is built here byte by byte (nothing is copied from real data). The text files of the
+corpus (CSV, x y z, scene) are written by hand and are not touched. The committed files are what
+the test reads; rerunning this script rewrites the same bytes.
+
+Layouts: ../shared/docs/formats.md and the readers' headers (MAT-file level 5: MathWorks'
+"MAT-File Format" document; SeaNet V4LOG: include/sonarmap/sonar/v4log_reader.hpp).
+"""
+
+import pathlib
+import struct
+import zlib
+
+HERE = pathlib.Path(__file__).resolve().parent
+BROKEN = HERE / "broken"
+VALID = HERE / "valid"
+
+HUGE = 1_000_000_000  # a count no tiny file can hold
+
+# ---- MAT-file level 5 ----------------------------------------------------------------------------
+
+MI_INT8, MI_UINT8, MI_INT32, MI_UINT32, MI_SINGLE, MI_DOUBLE, MI_MATRIX, MI_COMPRESSED = 1, 2, 5, 6, 7, 9, 14, 15
+MX_STRUCT, MX_DOUBLE, MX_SINGLE, MX_INT16, MX_UINT8 = 2, 6, 7, 10, 9
+FIELDS = ("time", "angle", "step_dist", "intensities")
+
+
+def mat_header(version=0x0100, endian=b"IM"):
+    text = b"MATLAB 5.0 MAT-file, Platform: sonarmap test corpus, Created on: 2024-01-01"
+    return text.ljust(116, b" ") + b"\0" * 8 + struct.pack("<H", version) + endian
+
+
+def element(mi_type, payload):
+    """A data element: 8-byte tag, payload, zero padding to 8 bytes."""
+    out = struct.pack("<II", mi_type, len(payload)) + payload
+    return out + b"\0" * (-len(out) % 8)
+
+
+def matrix(mx_class, dims, name, body):
+    """An miMATRIX element: array flags, dimensions, name, then the class's own sub-elements."""
+    content = element(MI_UINT32, struct.pack("<II", mx_class, 0))
+    content += element(MI_INT32, struct.pack("<%di" % len(dims), *dims))
+    content += element(MI_INT8, name.encode())
+    content += body
+    return struct.pack("<II", MI_MATRIX, len(content)) + content
+
+
+def single(value, name=""):
+    return matrix(MX_SINGLE, (1, 1), name, element(MI_SINGLE, struct.pack("<f", value)))
+
+
+def uint8_vector(values, mx_class=MX_UINT8, dims=None):
+    return matrix(mx_class, dims or (1, len(values)), "", element(MI_UINT8, bytes(values)))
+
+
+def struct_array(name, fields, elements, dims=None):
+    """A 1×N struct array; `elements` holds, per element, one miMATRIX per field."""
+    names = b"".join(f.encode().ljust(32, b"\0") for f in fields)
+    body = struct.pack("<HHi", MI_INT32, 4, 32) + element(MI_INT8, names)
+    body += b"".join(b"".join(e) for e in elements)
+    return matrix(MX_STRUCT, dims or (1, len(elements)), name, body)
+
+
+def beam(time=10.0, angle=0.0, step=0.0125, bins=(0, 10, 200, 30)):
+    return [single(time), single(angle), single(step), uint8_vector(bins)]
+
+
+def cras_mat(beams, fields=FIELDS, dims=None, name="parsedData"):
+    return mat_header() + struct_array(name, fields, beams, dims)
+
+
+def compressed(mat_bytes):
+    """The same file with its one variable stored as an miCOMPRESSED (zlib) element."""
+    packed = zlib.compress(mat_bytes[128:])
+    return mat_bytes[:128] + struct.pack("<II", MI_COMPRESSED, len(packed)) + packed  # not padded
+
+
+def valid_beams():
+    return [beam(10.0 + 0.05 * i, 1.8 * i, bins=(i, 10, 200, 30)) for i in range(3)]
+
+
+def mat_files():
+    good = cras_mat(valid_beams())
+    flipped_class = bytearray(good)
+    flipped_class[128 + 16] = 0x01  # parsedData's array flags: struct (2) → cell (1)
+    huge_intensities = beam()
+    huge_intensities[3] = matrix(MX_UINT8, (1, HUGE), "", element(MI_UINT8, bytes(4)))
+    return {
+        "mat_empty.mat": b"",
+        "mat_text.mat": b"time,angle,step_dist\n10,0,0.0125\n" * 8,
+        "mat_wrong_endian.mat": mat_header(endian=b"XY") + good[128:],
+        "mat_header_only.mat": mat_header(),
+        "mat_truncated.mat": good[: len(good) // 2],
+        "mat_huge_struct.mat": cras_mat(valid_beams()[:1], dims=(1, HUGE)),
+        "mat_huge_intensities.mat": cras_mat([huge_intensities]),
+        "mat_wrong_variable.mat": cras_mat(valid_beams(), name="otherData"),
+        "mat_not_struct.mat": mat_header() + single(1.0, "parsedData"),
+        "mat_class_flipped.mat": bytes(flipped_class),
+        "mat_missing_field.mat": cras_mat([b[:2] + b[3:] for b in valid_beams()], fields=("time", "angle", "intensities")),
+        "mat_empty_struct.mat": cras_mat([], dims=(1, 0)),
+        "mat_nan_angle.mat": cras_mat([beam(angle=float("nan")), beam(11.0, angle=float("nan"))]),
+        "mat_inf_time.mat": cras_mat([beam(time=float("inf"))]),
+        "mat_zero_step.mat": cras_mat([beam(step=0.0), beam(11.0, step=0.0)]),
+        "mat_negative_step.mat": cras_mat([beam(step=-0.0125)]),
+        "mat_wrong_type.mat": cras_mat([beam()[:3] + [matrix(MX_INT16, (1, 2), "", element(MI_UINT8, bytes(4)))]]),
+        "mat_time_backwards.mat": cras_mat([beam(10.0), beam(10.1), beam(9.0)]),
+    }, {"cras_small.mat": good, "cras_small_compressed.mat": compressed(good)}
+
+
+# ---- SeaNet V4LOG --------------------------------------------------------------------------------
+
+V4_MAGIC = b"SeaNetV4 Log File V1"
+OLE_DATE = 38494.620369097225  # days since 1899-12-30
+
+
+def v4_header(record_count, data_offset=80, magic=V4_MAGIC):
+    head = magic.ljust(32, b"\0") + struct.pack("<IIII", 16, 0, data_offset, record_count)
+    return head + b"\0" * 16 + struct.pack("<dd", OLE_DATE, OLE_DATE)
+
+
+def head_data(date=OLE_DATE, ad_interval=33, bearing=3200, data=b"\x0a\x14\x1e\x28", data_count=None, length=None):
+    message = struct.pack("<BBBBBHBBBHHIBHBBHHHHBHH", 2, 255, 2, 0x80, 2, 0, 11, 0x11, 0, 0x230D, 100, 0, 60, 125,
+                          80, 0, 0, ad_interval, 2400, 4000, 16, bearing,
+                          len(data) if data_count is None else data_count)
+    body = struct.pack("<d", date) + message + data
+    return struct.pack("<H", length if length is not None else 2 + len(body)) + body
+
+
+def other_record(date=OLE_DATE, message_type=4):
+    body = struct.pack("<dBBB", date, 2, 255, message_type)
+    return struct.pack("<H", 2 + len(body)) + body
+
+
+def v4log(records, **header):
+    return v4_header(len(records), **header) + b"".join(records)
+
+
+def v4_files():
+    step = 0.5 / 86400.0
+    good = v4log([head_data(OLE_DATE + i * step, bearing=3200 + 16 * i) for i in range(3)])
+    return {
+        "v4_empty.V4LOG": b"",
+        "v4_wrong_magic.V4LOG": v4log([head_data()], magic=b"SeaNetV3 Log File V1"),
+        "v4_truncated_header.V4LOG": good[:50],
+        "v4_huge_record_count.V4LOG": v4_header(HUGE) + head_data(),
+        "v4_data_offset_outside.V4LOG": v4log([head_data()], data_offset=100_000),
+        "v4_zero_adinterval.V4LOG": v4log([head_data(ad_interval=0)]),
+        "v4_nan_date.V4LOG": v4log([head_data(date=float("nan"))]),
+        "v4_bearing_out_of_range.V4LOG": v4log([head_data(bearing=6400)]),
+        "v4_record_past_end.V4LOG": v4log([head_data(), head_data(length=60000)]),
+        "v4_record_too_short.V4LOG": v4log([head_data(length=4)]),
+        "v4_data_count_too_big.V4LOG": v4log([head_data(data_count=5000)]),
+        "v4_time_backwards.V4LOG": v4log([head_data(OLE_DATE), head_data(OLE_DATE - step)]),
+        "v4_no_beams.V4LOG": v4log([other_record(), head_data(data=b"")]),
+        "v4_zero_records.V4LOG": v4log([]),
+    }, {"seanet_small.V4LOG": good}
+
+
+# ---- OctoMap scan graph --------------------------------------------------------------------------
+
+
+def vec(x, y, z, marker=3):
+    return struct.pack("<iddd", marker, x, y, z)
+
+
+def pose(t=(1.0, 0.0, -0.5), q=(1.0, 0.0, 0.0, 0.0)):
+    return vec(*t) + struct.pack("<idddd", 4, *q)
+
+
+def node(points, node_id=0, node_pose=None):
+    return struct.pack("<I", len(points)) + b"".join(points) + (node_pose or pose()) + struct.pack("<I", node_id)
+
+
+def graph(nodes, edges=b"", edge_count=0):
+    return struct.pack("<I", len(nodes)) + b"".join(nodes) + struct.pack("<I", edge_count) + edges
+
+
+def graph_files():
+    points = [vec(1.0, 0.0, 0.0), vec(0.0, 1.0, 0.5), vec(-1.0, -0.5, 0.25)]
+    good = graph([node(points, 0), node(points[:2], 1, pose((2.0, 0.0, 0.0)))],
+                 struct.pack("<II", 0, 1) + pose() + struct.pack("<d", 1.0), 1)
+    return {
+        "graph_empty.graph": b"",
+        "graph_text.graph": b"1.0 2.0 3.0\n4.0 5.0 6.0\n",
+        "graph_huge_node_count.graph": struct.pack("<I", HUGE) + node(points),
+        "graph_huge_point_count.graph": struct.pack("<II", 1, HUGE) + b"".join(points),
+        "graph_nan_point.graph": graph([node([vec(1.0, float("nan"), 0.0)])]),
+        "graph_bad_marker.graph": graph([node([vec(1.0, 2.0, 3.0, marker=7)])]),
+        "graph_zero_quaternion.graph": graph([node(points, node_pose=pose(q=(0.0, 0.0, 0.0, 0.0)))]),
+        "graph_inf_translation.graph": graph([node(points, node_pose=pose(t=(float("inf"), 0.0, 0.0)))]),
+        "graph_bad_edge.graph": graph([node(points)], struct.pack("<II", 0, 7) + pose() + struct.pack("<d", 1.0), 1),
+        "graph_trailing_bytes.graph": graph([node(points)]) + b"junk",
+        "graph_truncated.graph": good[: len(good) - 40],
+    }, {"scan_small.graph": good}
+
+
+# ---- OctoMap .bt and .ot -------------------------------------------------------------------------
+
+
+def octomap_header(first_line, size, res="0.1", tree_id="OcTree", extra=""):
+    return (f"{first_line}\n# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
+            f"id {tree_id}\nsize {size}\nres {res}\n{extra}data\n").encode()
+
+
+BT = "# Octomap OcTree binary file"
+OT = "# Octomap OcTree file"
+# Root: child 0 inner (its 8 children occupied leaves), child 1 occupied, child 2 free: 12 nodes.
+BT_DATA = bytes([0x1B, 0x00, 0xAA, 0xAA])
+
+
+def ot_records(records):
+    return b"".join(struct.pack("<fB", log_odds, bits) for log_odds, bits in records)
+
+
+OT_TREE = [(3.5, 0x07), (3.5, 0xFF)] + [(3.5, 0)] * 8 + [(3.5, 0), (-2.0, 0)]
+
+
+def bt_files():
+    deep = bytes([0x03, 0x00]) * 17  # child 0 inner at every level, below the finest one
+    return {
+        "bt_empty.bt": b"",
+        "bt_wrong_magic.bt": octomap_header("# Octomap OcTree file", 12) + BT_DATA,
+        "bt_no_data_line.bt": octomap_header(BT, 12)[:-5],
+        "bt_unknown_line.bt": octomap_header(BT, 12, extra="colour red\n") + BT_DATA,
+        "bt_wrong_id.bt": octomap_header(BT, 12, tree_id="ColorOcTree") + BT_DATA,
+        "bt_zero_res.bt": octomap_header(BT, 12, res="0") + BT_DATA,
+        "bt_negative_res.bt": octomap_header(BT, 12, res="-0.1") + BT_DATA,
+        "bt_nan_res.bt": octomap_header(BT, 12, res="nan") + BT_DATA,
+        "bt_res_not_number.bt": octomap_header(BT, 12, res="fine") + BT_DATA,
+        "bt_negative_size.bt": octomap_header(BT, -12) + BT_DATA,
+        "bt_huge_size.bt": octomap_header(BT, HUGE) + BT_DATA,
+        "bt_size_mismatch.bt": octomap_header(BT, 14) + BT_DATA,
+        "bt_truncated_data.bt": octomap_header(BT, 12) + BT_DATA[:3],
+        "bt_too_deep.bt": octomap_header(BT, 18) + deep,
+    }, {"tree_small.bt": octomap_header(BT, 12) + BT_DATA}
+
+
+def ot_files():
+    return {
+        "ot_empty.ot": b"",
+        "ot_wrong_magic.ot": octomap_header(BT, 12) + ot_records(OT_TREE),
+        "ot_zero_res.ot": octomap_header(OT, 12, res="0") + ot_records(OT_TREE),
+        "ot_inf_res.ot": octomap_header(OT, 12, res="1e999") + ot_records(OT_TREE),
+        "ot_huge_size.ot": octomap_header(OT, HUGE) + ot_records(OT_TREE),
+        "ot_nan_log_odds.ot": octomap_header(OT, 12) + ot_records([(float("nan"), 0x07)] + OT_TREE[1:]),
+        "ot_tree_ends_early.ot": octomap_header(OT, 13) + ot_records(OT_TREE + [(0.0, 0)]),
+        "ot_tree_continues.ot": octomap_header(OT, 11) + ot_records(OT_TREE),
+        "ot_truncated.ot": octomap_header(OT, 12) + ot_records(OT_TREE)[:33],
+        "ot_too_deep.ot": octomap_header(OT, 18) + ot_records([(0.0, 0x01)] * 17 + [(0.0, 0)]),
+    }, {"tree_small.ot": octomap_header(OT, 12) + ot_records(OT_TREE)}
+
+
+def main():
+    for folder in (BROKEN, VALID):
+        folder.mkdir(exist_ok=True)
+    for make in (mat_files, v4_files, graph_files, bt_files, ot_files):
+        broken, valid = make()
+        for name, data in broken.items():
+            (BROKEN / name).write_bytes(data)
+        for name, data in valid.items():
+            (VALID / name).write_bytes(data)
+
+
+if __name__ == "__main__":
+    main()
