@@ -102,7 +102,7 @@ class KeyMarks {
       }
       pending |= std::uint64_t{1} << row;
     });
-    bits_[current] |= pending;
+    if (pending != 0) bits_[current] |= pending;  // nothing marked: the box may even be empty
   }
 
   void insert(const KeyType& key) {

@@ -120,6 +120,19 @@ TEST(mappingSonarMapper, BeamsLeavingTheMapAreSkippedAndCounted) {
   EXPECT_EQ(mapper.stats().beams_used, 1U);
 }
 
+// Every beam of the sweep leaves the map (a hostile bin length in a valid log): nothing is
+// marked, nothing is written out of bounds, and the beams are counted.
+TEST(mappingSonarMapper, SweepWhoseBeamsAllLeaveTheMapChangesNothing) {
+  MapperOptions options = singleRay();
+  options.resolution_m = 0.0001;  // the map spans ±3.28 m
+  SonarMapper mapper(options);
+  PolarImage polar = makeSweep(3, 250);  // 5 m beams
+  mapper.integrateSweep(polar, {BeamDetection{}, BeamDetection{}, BeamDetection{}});
+  EXPECT_EQ(mapper.stats().out_of_map, 3U);
+  EXPECT_EQ(mapper.stats().beams_used, 0U);
+  EXPECT_EQ(mapper.map().counts().nodes, 0U);
+}
+
 TEST(mappingSonarMapper, PoseMovesTheBeams) {
   SonarMapper mapper(singleRay());
   PolarImage polar = makeSweep(1, 150);
