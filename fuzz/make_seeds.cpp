@@ -52,6 +52,7 @@ OcTree16 smallTree() {
 void sonarSeeds() {
   const MsisSimulation run = smallRun();
   seed("beam_csv", "tank.csv", [&](std::ostream& out) { writeBeamCsv(out, run.log); });
+  seed("map_beam_csv", "tank.csv", [&](std::ostream& out) { writeBeamCsv(out, run.log); });
   seed("nav_csv", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
   seed("scene", "tank.scene", [&](std::ostream& out) { writeScene(out, run.scene); });
   seed("scene", "harbour.scene", [&](std::ostream& out) { writeScene(out, builtinScene("harbour")); });

@@ -12,7 +12,11 @@
 #   bash scripts/fuzz.sh list                  the harness names
 set -euo pipefail
 cd "$(dirname "$0")/.."
-names=(v4log mat beam_csv nav_csv scan_graph point_text octomap_bt octomap_ot scene)
+names=(v4log mat beam_csv nav_csv scan_graph point_text octomap_bt octomap_ot scene map_beam_csv)
+# Files of the hand-made corpus (tests/corpus/valid and broken) each harness also starts from.
+declare -A corpus_glob=([v4log]='*.V4LOG' [mat]='*.mat' [beam_csv]='beams*.csv' [nav_csv]='nav*.csv'
+  [scan_graph]='*.graph' [point_text]='*.xyz' [octomap_bt]='*.bt' [octomap_ot]='*.ot'
+  [scene]='scene*' [map_beam_csv]='beams*.csv')
 build=build-fuzz
 # Shared by every run: 10 s per input is a hang; 2 GiB of memory (also the largest single
 # allocation) is an out-of-memory finding.
@@ -35,20 +39,27 @@ build() {
 }
 
 replay() {
-  local name dirs
+  local name dirs files
   for name in "${names[@]}"; do
     dirs=(fuzz/corpus/"$name")
     [ -d fuzz/regressions/"$name" ] && dirs+=(fuzz/regressions/"$name")
-    echo "replay $name: $(find "${dirs[@]}" -type f | wc -l) inputs"
-    "$build"/fuzz/fuzz_"$name" "${common[@]}" -runs=0 "${dirs[@]}" 2>"$build"/replay-"$name".log ||
+    mapfile -t files < <(find "${dirs[@]}" -type f; handmade "$name")
+    echo "replay $name: ${#files[@]} inputs"
+    "$build"/fuzz/fuzz_"$name" "${common[@]}" -runs=0 "${files[@]}" 2>"$build"/replay-"$name".log ||
       { tail -40 "$build"/replay-"$name".log >&2; echo "fuzz.sh: $name failed on a replayed input" >&2; exit 1; }
   done
+}
+
+# The hand-made corpus files for harness $1.
+handmade() {
+  find tests/corpus/valid tests/corpus/broken -name "${corpus_glob[$1]}" -type f
 }
 
 run() {
   local name=$1 seconds=$2 work=$build/work/$1
   mkdir -p "$work" "$work"-findings
   cp -n fuzz/corpus/"$name"/* "$work"/ 2>/dev/null || true
+  handmade "$name" | xargs -r cp -n -t "$work"/
   "$build"/fuzz/fuzz_"$name" "${common[@]}" -max_total_time="$seconds" -print_final_stats=1 \
     -artifact_prefix="$work"-findings/ "$work"
 }

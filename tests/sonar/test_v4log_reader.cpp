@@ -18,6 +18,7 @@
 #include "sonarmap/sonar/log_reader.hpp"
 #include "sonarmap/sonar/v4log_reader.hpp"
 #include "temp_dir.hpp"
+#include "v4log_fixture.hpp"
 
 namespace sonarmap {
 namespace {
@@ -31,87 +32,18 @@ double degrees(double rad) { return rad * 180.0 / kPi; }
 
 // ---- synthetic files ---------------------------------------------------------------------------
 
-// Byte offsets inside the file header and inside an mtHeadData record (formats.md, verified on the
-// sample).
-constexpr std::size_t kDataOffsetAt = 40;
-constexpr std::size_t kRecordCountAt = 44;
-constexpr std::size_t kDateAt = 2;
-constexpr std::size_t kAdIntervalAt = 35;
-constexpr std::size_t kBearingAt = 42;
-constexpr std::size_t kDataBytesAt = 44;
-
-constexpr double kFirstDate_days = 38494.620369097225;  // the sample's first record, 2005-05-22
-
-void putU16(std::string& out, std::uint16_t v) {
-  out.push_back(static_cast<char>(v & 0xFF));
-  out.push_back(static_cast<char>(v >> 8));
-}
-void putU32(std::string& out, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
-}
-void putF64(std::string& out, double v) {
-  const auto bits = std::bit_cast<std::uint64_t>(v);
-  for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xFF));
-}
-void setU16(std::string& bytes, std::size_t at, std::uint16_t v) {
-  bytes[at] = static_cast<char>(v & 0xFF);
-  bytes[at + 1] = static_cast<char>(v >> 8);
-}
-void setU32(std::string& bytes, std::size_t at, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-
-/// One record of a synthetic log; defaults are the sample's settings.
-struct Record {
-  double date_days = kFirstDate_days;
-  std::uint8_t type = 2;                 // mtHeadData
-  std::uint16_t head_control = 0x230D;   // adc8on, scanright, invert, raw, hasmot, replyASL
-  std::uint16_t ad_interval = 33;
-  std::uint16_t bearing = 3200;
-  std::vector<std::uint8_t> data = {10, 20, 30};
-  std::size_t appended_bytes = 0;        // bytes after the data (an appended message)
-};
-
-std::string recordBytes(const Record& r) {
-  std::string out;
-  putU16(out, 0);  // length, set below
-  putF64(out, r.date_days);
-  out += {'\x02', '\xFF', static_cast<char>(r.type), '\x80', '\x02'};  // tx, rx, type, sequence, node
-  if (r.type != 2) {
-    out += std::string(12, '\x07');  // some other message body
-  } else {
-    putU16(out, static_cast<std::uint16_t>(r.data.size() + 31));  // packed size
-    out += {'\x02', '\x10', '\x00'};                              // device type, head status, sweep code
-    putU16(out, r.head_control);
-    putU16(out, 100);         // range scale: 10 m
-    putU32(out, 0x02999999);  // TxN
-    out += '\x58';            // gain
-    putU16(out, 90);          // slope
-    out += {'\x95', '\x0E'};  // AD span, AD low
-    putU16(out, 0);           // heading offset
-    putU16(out, r.ad_interval);
-    putU16(out, 2400);  // left limit
-    putU16(out, 4000);  // right limit
-    out += '\x40';      // step 64
-    putU16(out, r.bearing);
-    putU16(out, static_cast<std::uint16_t>(r.data.size()));
-    out.append(r.data.begin(), r.data.end());
-    out += std::string(r.appended_bytes, '\x55');
-  }
-  setU16(out, 0, static_cast<std::uint16_t>(out.size()));
-  return out;
-}
-
-/// An 80-byte header (data offset 80) and the records.
-std::string v4log(const std::vector<Record>& records) {
-  std::string out = "SeaNetV4 Log File V1";
-  out += std::string(11, ' ') + '\x1A';
-  for (const std::uint32_t v : {16U, 80U, 80U, static_cast<std::uint32_t>(records.size()), 0U, 0U, 0U, 0U}) putU32(out, v);
-  putF64(out, kFirstDate_days);
-  putF64(out, kFirstDate_days + 1e-3);
-  for (const Record& r : records) out += recordBytes(r);
-  return out;
-}
+// The synthetic file builder (v4log_fixture.hpp), under this file's short names.
+using Record = test::V4Record;
+using test::setU16;
+using test::setU32;
+using test::v4log;
+constexpr std::size_t kDataOffsetAt = test::kV4DataOffsetAt;
+constexpr std::size_t kRecordCountAt = test::kV4RecordCountAt;
+constexpr std::size_t kDateAt = test::kV4DateAt;
+constexpr std::size_t kAdIntervalAt = test::kV4AdIntervalAt;
+constexpr std::size_t kBearingAt = test::kV4BearingAt;
+constexpr std::size_t kDataBytesAt = test::kV4DataBytesAt;
+constexpr double kFirstDate_days = test::kV4FirstDate_days;
 
 std::string writeFile(const TempDir& dir, const std::string& name, const std::string& bytes) {
   const std::string path = dir.file(name);

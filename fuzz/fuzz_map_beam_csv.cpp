@@ -1,0 +1,19 @@
+// libFuzzer harness: beam CSV bytes → readBeamCsv → the whole mapping pipeline (sweeps, polar
+// images, self-reflection removal, smoothing, detection, ray casting, octree) with the CLI's
+// defaults. A log that reads must map without crashing or hanging, whatever its values.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_input.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sonar/beam_csv.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static sonarmap::fuzz::InputFile file(".csv");
+  const std::string& path = file.write(data, size);
+  return sonarmap::fuzz::expectReadOrError([&] {
+    sonarmap::MapperOptions options;
+    options.pipeline_detection = false;  // one thread: libFuzzer's timeout and leak checks see everything
+    (void)sonarmap::mapSonarLog(sonarmap::readBeamCsv(path), options);
+  });
+}
