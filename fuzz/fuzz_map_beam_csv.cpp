@@ -14,6 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   return sonarmap::fuzz::expectReadOrError([&] {
     sonarmap::MapperOptions options;
     options.pipeline_detection = false;  // one thread: libFuzzer's timeout and leak checks see everything
+    options.max_range_m = 30.0;  // explore inputs, not ever longer beams (a 300 m beam is legitimate work)
     (void)sonarmap::mapSonarLog(sonarmap::readBeamCsv(path), options);
   });
 }

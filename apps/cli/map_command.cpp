@@ -27,6 +27,9 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--ray", args.ray, "dda | bresenham")->capture_default_str();
   cmd->add_option("--aggregation", args.aggregation, "Inner nodes: max | mean")->capture_default_str();
   cmd->add_option("--self-reflection", args.self_reflection_m, "Ignore echoes nearer than this (m)")->capture_default_str();
+  cmd->add_option("--max-range", args.max_range_m,
+                  "Use beams up to this range (m): longer ones clear free space up to it, their obstacle dropped")
+      ->capture_default_str();
   cmd->add_option("--beam-width", args.beam_width_deg,
                   "Horizontal beam width in degrees: each beam clears its wedge; 0 = one ray per beam (the paper)")
       ->capture_default_str();
@@ -83,6 +86,7 @@ MapperOptions toMapperOptions(const MapArgs& args) {
     throw ValueError("unknown aggregation '" + args.aggregation + "', expected max or mean");
   }
   options.self_reflection_range_m = args.self_reflection_m;
+  options.max_range_m = args.max_range_m;
   if (!(args.beam_width_deg >= 0.0 && args.beam_width_deg < 180.0)) {
     throw ValueError("beam width must be within [0, 180) degrees");
   }

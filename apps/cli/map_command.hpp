@@ -26,6 +26,7 @@ struct MapArgs {
   std::string ray = "dda";
   std::string aggregation = "max";
   double self_reflection_m = 0.5;
+  double max_range_m = 300.0;  ///< MapperOptions::max_range_m
   double beam_width_deg = 3.0;
   bool quiet = false;
   bool tank_report = false;

@@ -29,6 +29,7 @@ void MapperOptions::validate() const {
   if (!std::isfinite(self_reflection_range_m) || self_reflection_range_m < 0.0) {
     throw ValueError("self-reflection range must be >= 0 m, got " + std::to_string(self_reflection_range_m));
   }
+  if (!(max_range_m > 0.0)) throw ValueError("max range must be > 0 m, got " + std::to_string(max_range_m));
   if (!(beam_width_rad >= 0.0 && beam_width_rad < 3.14159265358979323846)) {
     throw ValueError("beam width must be within [0, pi) rad, got " + std::to_string(beam_width_rad));
   }
@@ -127,16 +128,22 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       continue;
     }
     const BeamDetection& detection = detections[row];
-    const double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
-                                                   : polar.valid_bins[row] * polar.bin_length_m;
-    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], range_m, detection.hasObstacle(), detection.intensity};
+    double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
+                                             : polar.valid_bins[row] * polar.bin_length_m;
+    bool hit = detection.hasObstacle();
+    if (range_m > options_.max_range_m) {  // OctoMap's maxrange: free up to the limit, no obstacle
+      range_m = options_.max_range_m;
+      hit = false;
+      ++stats_.beams_clipped;
+    }
+    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], range_m, hit, detection.intensity};
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
       continue;
     }
     work.beams.push_back(beam);
     ++stats_.beams_used;
-    if (detection.hasObstacle()) ++stats_.obstacles;
+    if (hit) ++stats_.obstacles;
   }
   planBeams();
   keySweep();

@@ -224,13 +224,15 @@ std::vector<unsigned char> fileBytes(const std::string& path) {
 MatFile openMat(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throwFileError(path, "no such file (or not a regular file)");
-  detail::checkMatSizes(fileBytes(path), path);  // before libmatio allocates from declared sizes
-  MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
-  if (!mat) throwFileError(path, "cannot be opened as a MATLAB MAT-file");
-  // libmatio takes any file without a level-5 header for a version 4 file, which cannot hold structs.
-  if (Mat_GetVersion(mat.get()) == MAT_FT_MAT4) {
+  // Before libmatio sees the file: it takes any file without a level-5 header for a version 4
+  // file (which cannot hold structs), and it allocates from declared sizes unchecked.
+  const std::vector<unsigned char> bytes = fileBytes(path);
+  if (!detail::hasMat5Header(bytes)) {
     throwFileError(path, "has no 128-byte MATLAB 5 header, expected a MATLAB 5 (or 7.3) MAT-file");
   }
+  detail::checkMatSizes(bytes, path);
+  MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
+  if (!mat) throwFileError(path, "cannot be opened as a MATLAB MAT-file");
   return mat;
 }
 

@@ -185,10 +185,14 @@ std::vector<unsigned char> inflateElement(const Element& compressed, const Eleme
 
 }  // namespace
 
+bool hasMat5Header(std::span<const unsigned char> file) {
+  return file.size() >= kHeaderBytes &&
+         ((file[126] == 'I' && file[127] == 'M') || (file[126] == 'M' && file[127] == 'I'));
+}
+
 void checkMatSizes(std::span<const unsigned char> file, const std::string& path) {
-  if (file.size() < kHeaderBytes) return;  // no level-5 header: not this format (the caller says so)
+  if (!hasMat5Header(file)) return;  // not this format: the caller says so
   const bool swap = file[126] == 'M' && file[127] == 'I';  // written big-endian: "MI" read byte by byte
-  if (!swap && !(file[126] == 'I' && file[127] == 'M')) return;
   const unsigned version = swap ? (file[124] << 8U) | file[125] : (file[125] << 8U) | file[124];
   if (version != 0x0100) return;  // 7.3 (HDF5) or unknown: not walked
   ElementReader top(file.subspan(kHeaderBytes), kHeaderBytes, swap, path);

@@ -11,6 +11,11 @@
 
 namespace sonarmap::detail {
 
+/// True when `file` starts with a MATLAB 5 (or 7.3) 128-byte header: at least 128 bytes, with the
+/// endian indicator "IM" (little-endian) or "MI" (big-endian) at bytes 126–127. libmatio takes
+/// any other file for a MATLAB 4 file, whose headers it trusts just as blindly.
+bool hasMat5Header(std::span<const unsigned char> file);
+
 /// Largest inflated size of one compressed (miCOMPRESSED) variable the check accepts: 1 GiB.
 inline constexpr std::size_t kMaxInflatedMatBytes = std::size_t{1} << 30;
 

@@ -57,6 +57,22 @@ TEST(mappingSonarMapper, BeamWithoutObstacleClearsToItsRangeOnly) {
   EXPECT_EQ(mapper.stats().occupied_updates, 0U);
 }
 
+// OctoMap's maxrange: a beam longer than max_range_m clears up to it, its far obstacle dropped.
+TEST(mappingSonarMapper, BeamsAreUsedUpToTheMaxRangeOnly) {
+  MapperOptions options = singleRay();
+  options.max_range_m = 1.5;
+  SonarMapper mapper(options);
+  PolarImage polar = makeSweep(2, 150);  // 3 m of bins
+  mapper.integrateSweep(polar, {BeamDetection{99, 200}, BeamDetection{40, 200}});  // 2.0 m, 0.81 m
+  EXPECT_EQ(at(mapper, 1.4, 0.01), Occupancy::kFree);
+  EXPECT_EQ(at(mapper, 1.99, 0.01), Occupancy::kUnknown);  // beyond the limit: not occupied, not free
+  EXPECT_EQ(at(mapper, -0.81, 0.01), Occupancy::kOccupied);  // the second beam's obstacle is within it
+  EXPECT_EQ(mapper.stats().beams_clipped, 1U);
+  EXPECT_EQ(mapper.stats().obstacles, 1U);
+  options.max_range_m = 0.0;
+  EXPECT_THROW(SonarMapper{options}, ValueError);
+}
+
 TEST(mappingSonarMapper, ObstacleOfOneBeamIsNotClearedByAnotherInTheSameSweep) {
   SonarMapper mapper(singleRay());
   PolarImage polar = makeSweep(2, 150);

@@ -55,6 +55,12 @@ struct MapperOptions {
   /// inner nodes are fixed once at its end (§5.5), so the map is consistent after every sweep.
   OctreeOptions octree = lazyOctreeOptions();
   double self_reflection_range_m = 0.5;  ///< bins nearer than this are zeroed (paper §8.1)
+  /// Longest range a beam is used to, metres (OctoMap's maxrange): a beam reaching farther clears
+  /// free space up to max_range_m only, and an obstacle beyond it is dropped. The default is the
+  /// longest range of mechanically scanned sonars (Tritech SeaKing: 300 m; Micron: 75 m), so real
+  /// logs are untouched while a log declaring kilometre-long bins cannot make the mapper walk
+  /// billions of voxels. > 0; +inf: no limit.
+  double max_range_m = 300.0;
   SmoothingOptions smoothing{};          ///< polar-image smoothing (paper §8.1), Gaussian by default
   DetectorOptions detector{};            ///< first-obstacle detection (paper §8.2, §9)
   RayAlgorithm ray = RayAlgorithm::kDDA;
@@ -73,7 +79,8 @@ struct MapperOptions {
   /// map is the same either way (detection does not depend on the map).
   bool pipeline_detection = true;
 
-  /// @throws ValueError for a non-positive resolution, self-reflection range < 0, a beam width
+  /// @throws ValueError for a non-positive resolution, self-reflection range < 0, a max range
+  ///         that is NaN or ≤ 0, a beam width
   ///         outside [0, π),
   ///         an intensity scale outside 1…255, or invalid occupancy parameters.
   void validate() const;
@@ -88,6 +95,7 @@ struct MappingStats {
   std::size_t free_updates = 0;          ///< cells updated free (after per-sweep deduplication)
   std::size_t occupied_updates = 0;      ///< cells updated occupied
   std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
+  std::size_t beams_clipped = 0;         ///< beams longer than max_range_m (used up to it, obstacle dropped)
   std::size_t beams_without_nav = 0;     ///< beams without a pose: their time lies outside the navigation (skipped)
 };
 
