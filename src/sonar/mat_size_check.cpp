@@ -132,6 +132,11 @@ void checkChildren(ElementReader& reader, std::size_t count, int depth) {
 void checkArray(const Element& matrix, bool swap, const std::string& where, int depth) {
   ElementReader reader(matrix.content, matrix.offset + 8, swap, where);
   if (depth > kMaxDepth) reader.fail(matrix.offset, "arrays nested deeper than " + std::to_string(kMaxDepth) + " levels");
+  // Its subelements are padded to 8 bytes, so its size is too; libmatio skips an array by that
+  // size, and the walk must step exactly as libmatio does to check what libmatio will read.
+  if (matrix.content.size() % 8 != 0) {
+    reader.fail(matrix.offset, "array of " + std::to_string(matrix.content.size()) + " bytes, expected a multiple of 8");
+  }
   const Element flags = reader.expect(kMiUint32, "array flags");
   if (flags.content.size() < 8) reader.fail(flags.offset, "array flags hold " + std::to_string(flags.content.size()) + " bytes, expected 8");
   const std::uint32_t cls = reader.u32At(flags.content, 0) & 0xFFU;
@@ -148,6 +153,10 @@ void checkArray(const Element& matrix, bool swap, const std::string& where, int 
     const std::size_t length = name_length.content.size() >= 4 ? reader.u32At(name_length.content, 0) : 0;
     const Element names = reader.expect(kMiInt8, "field names");
     const std::size_t fields = length == 0 ? 0 : names.content.size() / length;
+    if (fields * length != names.content.size()) {  // libmatio would read a different layout
+      reader.fail(names.offset, "field names take " + std::to_string(names.content.size()) +
+                                    " bytes, expected a multiple of the name length " + std::to_string(length));
+    }
     requireFits(reader, at, count, 8 * std::max<std::size_t>(fields, 1), bytes, "struct elements");
     checkChildren(reader, count * fields, depth);
   } else if (cls == kSparseClass) {

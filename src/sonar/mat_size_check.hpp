@@ -23,7 +23,9 @@ inline constexpr std::size_t kMaxInflatedMatBytes = std::size_t{1} << 30;
 /// version other than 0x0100, e.g. 7.3 files, which are HDF5) are not walked: the caller decides
 /// what to do with them. Otherwise, walks every top-level data element of a MAT-file v5 (inflating compressed ones with zlib, up to
 /// kMaxInflatedMatBytes each) and checks every array (miMATRIX, nested ones included, at most 32
-/// levels deep): its array flags and dimensions subelements are present, no dimension is negative,
+/// levels deep): its size is a multiple of 8 and a struct's field names a whole number of names
+/// (so the walk steps through the file exactly as libmatio will), its array flags and dimensions
+/// subelements are present, no dimension is negative,
 /// and the number of elements fits in the bytes the array occupies — at least 1 byte per element
 /// of a numeric, character or logical array, 8 bytes (one tag) per element of a cell array and
 /// per element and field of a struct or object array, 4 bytes per stored value of a sparse one.

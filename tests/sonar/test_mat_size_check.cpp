@@ -79,6 +79,9 @@ TEST(sonarMatSizeCheck, RejectsDimensionsTheBytesCannotHold) {
   putU32(two_fields, (4U << 16) | 5U), putU32(two_fields, 8), putU32(two_fields, 1), putU32(two_fields, 16);
   two_fields.resize(two_fields.size() + 16, 'a');
   EXPECT_NE(errorOf(fileWithArray(2, {1, 1000}, 16, two_fields)).find("struct elements"), std::string::npos);
+  Bytes ragged_names = two_fields;  // 13 bytes of names for names of 8: libmatio would read 8
+  ragged_names[12] = 13;
+  EXPECT_NE(errorOf(fileWithArray(2, {1, 1}, 16, ragged_names)).find("multiple of the name length 8"), std::string::npos);
   EXPECT_NE(errorOf(fileWithArray(1, {1, 1000}, 16)).find("cells"), std::string::npos);
   EXPECT_NE(errorOf(fileWithArray(6, {1, -3}, 16)).find("is -3, expected ≥ 0"), std::string::npos);
 }
