@@ -120,7 +120,8 @@ void requireFits(const ElementReader& reader, std::size_t at, std::size_t count,
   }
 }
 
-/// Checks the miMATRIX elements a cell, struct or object array holds, `count` of them.
+/// Checks the miMATRIX elements a cell, struct or object array holds, `count` of them (anything
+/// after them is checked as data subelements by checkArray).
 void checkChildren(ElementReader& reader, std::size_t count, int depth) {
   for (std::size_t i = 0; i < count && !reader.atEnd(); ++i) {
     const Element child = reader.next();
@@ -164,6 +165,7 @@ void checkArray(const Element& matrix, bool swap, const std::string& where, int 
   } else {
     requireFits(reader, at, count, 1, bytes, "elements");
   }
+  while (!reader.atEnd()) reader.next();  // data subelements (real, imaginary, ir, jc…) fit in the array
 }
 
 /// Inflates a compressed variable's zlib stream, at most kMaxInflatedMatBytes.

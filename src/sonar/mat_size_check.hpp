@@ -25,7 +25,7 @@ inline constexpr std::size_t kMaxInflatedMatBytes = std::size_t{1} << 30;
 /// kMaxInflatedMatBytes each) and checks every array (miMATRIX, nested ones included, at most 32
 /// levels deep): its size is a multiple of 8 and a struct's field names a whole number of names
 /// (so the walk steps through the file exactly as libmatio will), its array flags and dimensions
-/// subelements are present, no dimension is negative,
+/// subelements are present, every data subelement fits inside the array, no dimension is negative,
 /// and the number of elements fits in the bytes the array occupies — at least 1 byte per element
 /// of a numeric, character or logical array, 8 bytes (one tag) per element of a cell array and
 /// per element and field of a struct or object array, 4 bytes per stored value of a sparse one.

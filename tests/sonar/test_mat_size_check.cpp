@@ -84,6 +84,10 @@ TEST(sonarMatSizeCheck, RejectsDimensionsTheBytesCannotHold) {
   EXPECT_NE(errorOf(fileWithArray(2, {1, 1}, 16, ragged_names)).find("multiple of the name length 8"), std::string::npos);
   EXPECT_NE(errorOf(fileWithArray(1, {1, 1000}, 16)).find("cells"), std::string::npos);
   EXPECT_NE(errorOf(fileWithArray(6, {1, -3}, 16)).find("is -3, expected ≥ 0"), std::string::npos);
+  Bytes data_tag;  // a uint8 data subelement declaring 2^32 − 10 bytes inside a 16-byte array
+  putU32(data_tag, 2), putU32(data_tag, 0xFFFFFFF6U);
+  const std::string overlong = errorOf(fileWithArray(6, {1, 2}, 8, data_tag));
+  EXPECT_NE(overlong.find("data element declares 4294967286 bytes"), std::string::npos) << overlong;
 }
 
 TEST(sonarMatSizeCheck, RejectsTruncationAndBrokenCompression) {
