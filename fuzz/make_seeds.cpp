@@ -1,6 +1,6 @@
 // Writes the seed corpus of every fuzz harness: small valid inputs made with the library's own
 // writers and the simulator (no copy of ../shared/data), one folder per harness.
-// Usage: sonarmap_fuzz_seeds OUT_DIR   (the committed seeds are in fuzz/corpus/).
+// Usage: sonarmap_fuzz_seeds OUT_DIR   (scripts/fuzz.sh build writes them to build-fuzz/seeds/).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

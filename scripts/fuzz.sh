@@ -3,11 +3,12 @@
 # UndefinedBehaviorSanitizer into build-fuzz/.
 #   bash scripts/fuzz.sh build                 configure and build the harnesses
 #   bash scripts/fuzz.sh replay                run every harness once over its seed corpus
-#                                              (fuzz/corpus/NAME) and its crash regressions
+#                                              (build-fuzz/seeds/NAME, written by the build
+#                                              with sonarmap_fuzz_seeds) and its crash regressions
 #                                              (fuzz/regressions/NAME); fails on any finding
 #   bash scripts/fuzz.sh run NAME SECONDS      fuzz one harness for SECONDS, growing a working
 #                                              corpus in build-fuzz/work/NAME (seeded from
-#                                              fuzz/corpus/NAME); findings land in
+#                                              build-fuzz/seeds/NAME); findings land in
 #                                              build-fuzz/work/NAME-findings/
 #   bash scripts/fuzz.sh list                  the harness names
 set -euo pipefail
@@ -36,12 +37,14 @@ build() {
     -DSONARMAP_BUILD_FUZZERS=ON -DSONARMAP_BUILD_TESTS=OFF -DSONARMAP_BUILD_BENCHMARKS=OFF \
     -DSONARMAP_BUILD_CLI=OFF >/dev/null
   cmake --build "$build"
+  rm -rf "$build"/seeds
+  "$build"/fuzz/sonarmap_fuzz_seeds "$build"/seeds  # generated, not committed
 }
 
 replay() {
   local name dirs files
   for name in "${names[@]}"; do
-    dirs=(fuzz/corpus/"$name")
+    dirs=("$build"/seeds/"$name")
     [ -d fuzz/regressions/"$name" ] && dirs+=(fuzz/regressions/"$name")
     mapfile -t files < <(find "${dirs[@]}" -type f; handmade "$name")
     echo "replay $name: ${#files[@]} inputs"
@@ -58,7 +61,7 @@ handmade() {
 run() {
   local name=$1 seconds=$2 work=$build/work/$1
   mkdir -p "$work" "$work"-findings
-  cp -n fuzz/corpus/"$name"/* "$work"/ 2>/dev/null || true
+  cp -n "$build"/seeds/"$name"/* "$work"/ 2>/dev/null || true
   handmade "$name" | xargs -r cp -n -t "$work"/
   "$build"/fuzz/fuzz_"$name" "${common[@]}" -max_total_time="$seconds" -print_final_stats=1 \
     -artifact_prefix="$work"-findings/ "$work"
