@@ -19,7 +19,7 @@
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 
 namespace {
 

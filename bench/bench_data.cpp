@@ -9,8 +9,8 @@
 #include <numbers>
 #include <optional>
 
-#include "sonarmap/sonar/detectors.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
 #include "sonarmap/sonar/sweeps.hpp"

@@ -13,7 +13,7 @@
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/sonar/beam.hpp"
-#include "sonarmap/sonar/detection.hpp"
+#include "sonarmap/detection/detection.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
 
 namespace sonarmap::bench {

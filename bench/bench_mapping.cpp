@@ -18,8 +18,8 @@
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/raycast/bresenham.hpp"
 #include "sonarmap/raycast/dda.hpp"
-#include "sonarmap/sonar/detectors.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
 
 namespace sonarmap::bench {

@@ -6,7 +6,7 @@
 
 #include "fuzz_input.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static sonarmap::fuzz::InputFile file(".csv");

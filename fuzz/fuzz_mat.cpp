@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
-#include "sonarmap/sonar/mat_reader.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static sonarmap::fuzz::InputFile file(".mat");

@@ -3,7 +3,7 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
-#include "sonarmap/sonar/v4log_reader.hpp"
+#include "sonarmap/formats/v4log_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return sonarmap::fuzz::expectReadOrError(

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "sonar/mat_fixture.hpp"
-#include "sonar/v4log_fixture.hpp"
+#include "formats/mat_fixture.hpp"
+#include "formats/v4log_fixture.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/io/scan_graph.hpp"
@@ -18,7 +18,7 @@
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene_file.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
 
 namespace fs = std::filesystem;
 using namespace sonarmap;

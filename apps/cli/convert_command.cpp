@@ -4,8 +4,8 @@
 #include <filesystem>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 
 namespace sonarmap::cli {
 namespace {

@@ -8,7 +8,7 @@
 #include "map_outputs.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/nav/navigation.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 
 namespace sonarmap::cli {
 

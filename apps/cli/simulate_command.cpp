@@ -13,7 +13,7 @@
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/sim/trajectory.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
 
 namespace sonarmap::cli {
 namespace {

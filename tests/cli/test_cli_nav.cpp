@@ -11,7 +11,7 @@
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
 
 namespace sonarmap::test {
 namespace {

@@ -24,14 +24,14 @@
 #include <vector>
 
 #include "cli/cli_runner.hpp"
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/io/point_text.hpp"
 #include "sonarmap/io/scan_graph.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/scene_file.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 
 namespace sonarmap {
 namespace {

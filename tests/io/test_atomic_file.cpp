@@ -12,7 +12,7 @@
 
 #include <unistd.h>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/io/map_file.hpp"
 
 namespace sonarmap {

@@ -14,7 +14,7 @@
 #include <random>
 #include <sstream>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/io/octomap_header.hpp"
 

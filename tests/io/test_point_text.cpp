@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/point_text.hpp"
 

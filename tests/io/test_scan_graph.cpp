@@ -12,7 +12,7 @@
 #include <random>
 #include <sstream>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/scan_graph.hpp"
 

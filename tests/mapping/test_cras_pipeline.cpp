@@ -8,7 +8,7 @@
 #include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 
 namespace sonarmap {
 namespace {

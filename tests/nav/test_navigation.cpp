@@ -8,7 +8,7 @@
 #include <numbers>
 #include <string>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/nav/navigation.hpp"
 

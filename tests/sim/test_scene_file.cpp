@@ -6,7 +6,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "sonar/temp_dir.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene_file.hpp"

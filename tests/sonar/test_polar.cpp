@@ -11,7 +11,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/sonar/polar.hpp"
-#include "temp_dir.hpp"
+#include "common/temp_dir.hpp"
 
 namespace sonarmap {
 namespace {

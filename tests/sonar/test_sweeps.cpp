@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-#include "sonarmap/sonar/mat_reader.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap {

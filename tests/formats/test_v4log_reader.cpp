@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
-#include "sonarmap/sonar/v4log_reader.hpp"
-#include "temp_dir.hpp"
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/v4log_reader.hpp"
+#include "common/temp_dir.hpp"
 #include "v4log_fixture.hpp"
 
 namespace sonarmap {

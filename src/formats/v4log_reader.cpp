@@ -1,7 +1,7 @@
 /// @file v4log_reader.cpp
 /// readSeaNetV4Log / parseSeaNetV4Log: Tritech SeaNet `.V4LOG` → SonarLog (see v4log_reader.hpp).
 
-#include "sonarmap/sonar/v4log_reader.hpp"
+#include "sonarmap/formats/v4log_reader.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -20,9 +20,9 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/rectangle_fit.hpp"
-#include "sonarmap/sonar/cfar.hpp"
-#include "sonarmap/sonar/detectors.hpp"
-#include "sonarmap/sonar/mat_reader.hpp"
+#include "sonarmap/detection/cfar.hpp"
+#include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
@@ -392,7 +392,7 @@ TEST(sonarCfar, DetectorNamesSelectTheVariant) {
 // ---------------------------------------------------------------------------------------------
 
 /// All 28 full sweeps of ../shared/data/cras_micron_tank_static.mat through the default
-/// preprocessing of tests/sonar/test_detectors_real.cpp: removeSelfReflection(0.3 m) → smooth.
+/// preprocessing of tests/detection/test_detectors_real.cpp: removeSelfReflection(0.3 m) → smooth.
 class sonarCfarRealLog : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

@@ -12,9 +12,9 @@
 #include <string>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
-#include "sonarmap/sonar/log_reader.hpp"
-#include "temp_dir.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/log_reader.hpp"
+#include "common/temp_dir.hpp"
 
 namespace sonarmap {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "mat_fixture.hpp"
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sonar/mat_reader.hpp"
-#include "temp_dir.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
+#include "common/temp_dir.hpp"
 
 namespace sonarmap {
 namespace {

@@ -1,7 +1,7 @@
 /// @file cfar_detector.cpp
 /// CFAR detection along a beam: CA, SO, GO (Richards ch. 6) and OS (Rohling 1983); see cfar.hpp.
 
-#include "sonarmap/sonar/cfar.hpp"
+#include "sonarmap/detection/cfar.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 /// @file mat_reader.cpp
 /// readCrasMat: CRAS Micron MAT-file → SonarLog, via libmatio (see mat_reader.hpp).
 
-#include "sonarmap/sonar/mat_reader.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
 
 #include <matio.h>
 

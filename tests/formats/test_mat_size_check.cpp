@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "sonar/mat_fixture.hpp"
-#include "sonar/mat_size_check.hpp"
-#include "sonar/temp_dir.hpp"
+#include "formats/mat_fixture.hpp"
+#include "formats/mat_size_check.hpp"
+#include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {

@@ -1,7 +1,7 @@
 /// @file beam_csv.cpp
 /// Beam CSV reader and writer (see beam_csv.hpp).
 
-#include "sonarmap/sonar/beam_csv.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
 
 #include <algorithm>
 #include <charconv>

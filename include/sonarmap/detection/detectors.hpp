@@ -13,8 +13,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "sonarmap/sonar/cfar.hpp"
-#include "sonarmap/sonar/detection.hpp"
+#include "sonarmap/detection/cfar.hpp"
+#include "sonarmap/detection/detection.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
 
 namespace sonarmap {
@@ -55,7 +55,7 @@ struct CannyOptions {
 ///   2. Residual: I[r][c] − background[c].
 ///   3. The obstacle is the first bin c ≥ min range that starts `min_run_bins` consecutive bins
 ///      with residual ≥ `min_excess` (the run rejects speckle and short multipath glints).
-/// Defaults, chosen on the CRAS tank log (28 sweeps; checked by tests/sonar/test_detectors_real.cpp):
+/// Defaults, chosen on the CRAS tank log (28 sweeps; checked by tests/detection/test_detectors_real.cpp):
 /// at the ring's range the 25th percentile is ≈15 and the 90th ≈40 (raw), so an excess of 45 does
 /// not fire on it, while the walls' leading edges (100…170) clear it; 8 bins = 10 cm is shorter
 /// than a wall echo and longer than speckle. The result held with no, mean, median and Gaussian

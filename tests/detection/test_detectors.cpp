@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sonar/detectors.hpp"
+#include "sonarmap/detection/detectors.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
 
 namespace sonarmap {

@@ -47,7 +47,7 @@ enum class CfarVariant {
 /// use them for square-law detected, independent samples.
 ///
 /// Defaults, chosen on the CRAS tank log after the default preprocessing (removeSelfReflection
-/// 0.3 m, Gaussian 11 × 11), pooled over its 28 sweeps (checked by tests/sonar/test_cfar.cpp; the
+/// 0.3 m, Gaussian 11 × 11), pooled over its 28 sweeps (checked by tests/detection/test_cfar.cpp; the
 /// share is that of detections within 0.15 m of the rectangle evaluateWalls() fits to them):
 ///   - guard 24 bins (0.30 m) per side: longer than the smoothed leading edge and the wall's own
 ///     echo, so at a wall's first bin the leading window lies behind the wall instead of on it.

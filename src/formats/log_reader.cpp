@@ -1,13 +1,13 @@
-#include "sonarmap/sonar/log_reader.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sonar/beam_csv.hpp"
-#include "sonarmap/sonar/mat_reader.hpp"
-#include "sonarmap/sonar/v4log_reader.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
+#include "sonarmap/formats/v4log_reader.hpp"
 
 namespace sonarmap {
 

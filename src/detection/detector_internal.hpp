@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "sonarmap/sonar/detectors.hpp"
+#include "sonarmap/detection/detectors.hpp"
 
 namespace sonarmap::detail {
 

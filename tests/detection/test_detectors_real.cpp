@@ -17,8 +17,8 @@
 #include <numbers>
 #include <vector>
 
-#include "sonarmap/sonar/detectors.hpp"
-#include "sonarmap/sonar/mat_reader.hpp"
+#include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/formats/mat_reader.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
 #include "sonarmap/sonar/sweeps.hpp"

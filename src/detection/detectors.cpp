@@ -1,7 +1,7 @@
 /// @file detectors.cpp
 /// detectObstacles: validation, dispatch and names (see detectors.hpp).
 
-#include "sonarmap/sonar/detectors.hpp"
+#include "sonarmap/detection/detectors.hpp"
 
 #include <algorithm>
 #include <cmath>
