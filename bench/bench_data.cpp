@@ -23,6 +23,7 @@ namespace sonarmap::bench {
 
 MapperOptions mapperOptions(Variant variant) {
   MapperOptions options;
+  options.resolution_m = 0.02;  // the CRAS log's automatic resolution, also for the synthetic sweeps
   switch (variant) {
     case Variant::kDefault: break;
     case Variant::kSingleRay: options.beam_width_rad = 0.0; break;
@@ -134,7 +135,7 @@ PreparedSweeps prepareSweeps(const SonarLog& log, const MapperOptions& options) 
   PreparedSweeps prepared;
   prepared.polar = rawSweeps(log, options);
   for (PolarImage& polar : prepared.polar) {
-    removeSelfReflection(polar, options.self_reflection_range_m);
+    removeSelfReflection(polar, options.self_reflection_range_m.value_or(0.5));
     smooth(polar, options.smoothing);
     prepared.detections.push_back(detectObstacles(polar, options.detector));
     prepared.beams += static_cast<std::size_t>(polar.rows());
@@ -147,10 +148,8 @@ void sweepBeams(const PolarImage& polar, const std::vector<BeamDetection>& detec
   beams.clear();
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const BeamDetection& detection = detections[row];
-    const double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
-                                                   : polar.valid_bins[row] * polar.bin_length_m;
-    beams.push_back({Eigen::Isometry3d::Identity(), polar.bearing_rad[row], range_m, detection.hasObstacle(),
-                     detection.intensity});
+    const double range_m = detection.hasObstacle() ? detection.range_m : polar.valid_bins[row] * polar.bin_length_m;
+    beams.push_back({Eigen::Isometry3d::Identity(), polar.bearing_rad[row], range_m, range_m, detection.hasObstacle()});
   }
 }
 

@@ -74,7 +74,7 @@ enum class Stage {
 /// doing nothing with the keys but a checksum (so that every key is computed).
 /// @return voxels visited, duplicates included.
 std::size_t walkRays(const PreparedSweeps& prepared, const MapperOptions& options) {
-  const KeyCoder<16> coder(options.resolution_m);
+  const KeyCoder<16> coder(*options.resolution_m);
   std::vector<PlannedBeam> beams;
   std::vector<FreeRay> rays;
   std::vector<HitPoint> hits;
@@ -85,7 +85,7 @@ std::size_t walkRays(const PreparedSweeps& prepared, const MapperOptions& option
   };
   for (std::size_t i = 0; i < prepared.polar.size(); ++i) {
     sweepBeams(prepared.polar[i], prepared.detections[i], beams);
-    planSweep(beams, options.beam_width_rad, options.resolution_m, rays, hits);
+    planSweep(beams, options.beam_width_rad, *options.resolution_m, 0.0, rays, hits);
     for (const FreeRay& ray : rays) {
       if (options.ray == RayAlgorithm::kDDA) {
         traverseDDA(coder, ray.start_m, ray.end_m, visit);
@@ -111,7 +111,7 @@ void mapStage(benchmark::State& state, Source source, Stage stage, Variant varia
     for (auto _ : state) {
       std::vector<PolarImage> images = rawSweeps(*log, options);
       for (PolarImage& polar : images) {
-        removeSelfReflection(polar, options.self_reflection_range_m);
+        removeSelfReflection(polar, options.self_reflection_range_m.value_or(0.5));
         smooth(polar, options.smoothing);
       }
       benchmark::DoNotOptimize(images.data());

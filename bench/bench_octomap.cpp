@@ -54,7 +54,7 @@ std::size_t insertSweep(octomap::OcTree& tree, const PolarImage& polar, const st
                         const MapperOptions& options, SweepBuffers& buffers) {
   const octomap::point3d origin(0.0F, 0.0F, 0.0F);
   sweepBeams(polar, detections, buffers.beams);
-  planSweep(buffers.beams, options.beam_width_rad, options.resolution_m, buffers.rays, buffers.hits);
+  planSweep(buffers.beams, options.beam_width_rad, *options.resolution_m, 0.0, buffers.rays, buffers.hits);
   buffers.cloud.clear();
   for (const HitPoint& hit : buffers.hits) buffers.cloud.push_back(toOctomap(hit.point_m));
   tree.insertPointCloud(buffers.cloud, origin, -1.0, /*lazy_eval=*/true);
@@ -65,7 +65,7 @@ std::size_t insertSweep(octomap::OcTree& tree, const PolarImage& polar, const st
     if (!beam.hit) buffers.free_beams.push_back(beam);
   }
   if (!buffers.free_beams.empty()) {
-    planSweep(buffers.free_beams, options.beam_width_rad, options.resolution_m, buffers.rays, buffers.hits);
+    planSweep(buffers.free_beams, options.beam_width_rad, *options.resolution_m, 0.0, buffers.rays, buffers.hits);
     buffers.free_keys.clear();
     for (const FreeRay& ray : buffers.rays) {
       const octomap::point3d end = toOctomap(ray.end_m);
@@ -124,7 +124,7 @@ void octomapSameRays(benchmark::State& state, Source source, Variant variant) {
   SweepBuffers buffers;
   std::size_t rays = 0;
   for (auto _ : state) {
-    auto tree = std::make_unique<octomap::OcTree>(options.resolution_m);
+    auto tree = std::make_unique<octomap::OcTree>(*options.resolution_m);
     rays = 0;
     for (std::size_t i = 0; i < prepared.polar.size(); ++i) {
       rays += insertSweep(*tree, prepared.polar[i], prepared.detections[i], options, buffers);

@@ -41,7 +41,7 @@ void run(const DemoArgs& args) {
       [&](const ProgressCallback& progress) { return mapSonarLog(simulation.log, mapper_options, progress); },
       args.quiet);
   FileTransaction outputs;
-  stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapper_options.resolution_m);
+  stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapped.mapper.map().resolution_m());
   stageSimulation(outputs, args.output_dir, simulation);
   outputs.commit();
   dir.keep();

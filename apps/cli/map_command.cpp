@@ -1,6 +1,7 @@
 #include "map_command.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -12,6 +13,16 @@
 
 namespace sonarmap::cli {
 
+double parseMetres(const std::string& text, const char* option) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, error] = std::from_chars(text.data(), end, value);
+  if (error != std::errc{} || ptr != end || !std::isfinite(value) || value <= 0.0) {
+    throw ValueError(std::string(option) + " expects a number of metres > 0 or auto, got '" + text + "'");
+  }
+  return value;
+}
+
 Command addMapCommand(CLI::App& app, MapArgs& args) {
   CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, beam .csv) into an occupancy octree (.bt)");
   cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG or beam .csv")->required();
@@ -19,7 +30,10 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--png", args.map_png, "Top view of the map at z = 0 (PNG)");
   cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
   cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
-  cmd->add_option("--resolution", args.resolution_m, "Voxel edge in metres")->capture_default_str();
+  cmd->add_option("--resolution", args.resolution,
+                  "Voxel edge in metres, or auto: about 1/256 of the log's reach rounded to 1, 2 or 5 x 10^k m "
+                  "(Micron at 5 m: 0.02; SeaKing at 30 m: 0.1; Ping360 at 50 m: 0.2)")
+      ->capture_default_str();
   cmd->add_option("--detector", args.detector,
                   "background | threshold | canny | cfar-ca | cfar-so | cfar-go | cfar-os (CFAR along each beam)")
       ->capture_default_str();
@@ -74,7 +88,7 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) {
 
 MapperOptions toMapperOptions(const MapArgs& args) {
   MapperOptions options;
-  options.resolution_m = args.resolution_m;
+  if (args.resolution != "auto") options.resolution_m = parseMetres(args.resolution, "--resolution");
   selectDetector(options.detector, args.detector);
   options.smoothing.kind = parseSmoothing(args.smoothing);
   options.ray = parseRayAlgorithm(args.ray);
@@ -116,7 +130,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const SonarLog log = readSonarLog(args.input);
   const MappedLog mapped = mapLog(args, log, options, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
-  stageMapOutputs(outputs, args, log, mapped.mapper.map(), options.resolution_m);
+  stageMapOutputs(outputs, args, log, mapped.mapper.map(), mapped.mapper.map().resolution_m());
   outputs.commit();
   printMapSummary(mapped, args.output_bt, /*with_nav=*/!args.nav_csv.empty());
   if (args.tank_report) printTankReport(mapped.mapper.map());

@@ -20,7 +20,7 @@ struct MapArgs {
   std::string map_png;
   std::string polar_png;
   std::string cartesian_png;
-  double resolution_m = 0.02;
+  std::string resolution = "auto";  ///< metres, or "auto" (autoResolution_m of the log's reach)
   std::string detector = "background";
   std::string smoothing = "gaussian";
   std::string ray = "dda";
@@ -36,6 +36,9 @@ struct MapArgs {
 
 /// Adds the `map` subcommand to `app`; its options fill `args`.
 Command addMapCommand(CLI::App& app, MapArgs& args);
+
+/// `text` as a number of metres > 0. @throws ValueError (usage) naming `option` otherwise.
+double parseMetres(const std::string& text, const char* option);
 
 /// Turns the arguments into mapper options. @throws ValueError for a bad name or value (usage).
 MapperOptions toMapperOptions(const MapArgs& args);

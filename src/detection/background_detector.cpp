@@ -1,71 +1,120 @@
 /// @file background_detector.cpp
-/// Background-subtracted run detector and its per-range background (see detectors.hpp).
+/// The calibrated background-subtracted detector: one outward pass over the ranges measuring the
+/// background over the beams still in water, and the leading-edge range (see detectors.hpp).
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <vector>
 
+#include "column_histogram.hpp"
 #include "detector_internal.hpp"
-#include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
 
-namespace sonarmap {
+namespace sonarmap::detail {
 namespace {
 
-/// The `percentile` (0…100) of `values` by the nearest-rank rule on the sorted values; `values` is reordered.
-float percentileOf(std::vector<std::uint8_t>& values, double percentile) {
-  const double position = percentile / 100.0 * static_cast<double>(values.size() - 1);
-  const auto k = static_cast<std::ptrdiff_t>(std::lround(position));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return static_cast<float>(values[static_cast<std::size_t>(k)]);
+/// The echo's peak is sought this far behind its first bin above the threshold, metres: a pulse
+/// length or two (Ping360 at 50 m: ≈ 0.3 m), so a stronger echo farther on (a wall behind a weak
+/// target, multipath) cannot pull the leading edge to itself.
+constexpr double kPeakWindow_m = 0.3;
+/// A range's water statistics need this share of the rows (and at least 3) still in water there;
+/// beyond, the last range that had them is used.
+constexpr double kMinWaterShare = 0.05;
+
+/// Residual of bin c of `row` above the background, intensity counts.
+float residual(const std::uint8_t* row, const SweepCalibration& calibration, int c) {
+  return static_cast<float>(row[c]) - calibration.background[static_cast<std::size_t>(c)];
 }
 
-/// First bin c in [min_bin, end) starting `run` consecutive bins with row[c] − background[c] ≥ excess; −1 if none.
-int firstRunAboveBackground(const std::uint8_t* row, const float* background, int min_bin, int end,
-                            const BackgroundOptions& options) {
-  int run = 0;
-  for (int c = min_bin; c < end; ++c) {
-    run = static_cast<float>(row[c]) - background[c] >= static_cast<float>(options.min_excess) ? run + 1 : 0;
-    if (run == options.min_run_bins) return c - run + 1;
+/// The outward pass (detectors.hpp, BackgroundOptions). Returns each row's first bin of the run
+/// (−1 if none) and fills `water` with B, σ, T as measured over the rows still in water.
+std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
+                             const SweepCalibration& all_rows, SweepCalibration& water) {
+  const int rows = polar.rows(), cols = polar.cols();
+  const CalibrationOptions& calibration = options.calibration;
+  const int run = binsForLength(options.min_echo_length_m, polar.bin_length_m, 1, std::max(1, cols));
+  const int window = binsForLength(calibration.noise_window_m, polar.bin_length_m, 0, std::max(0, cols));
+  const auto min_water = static_cast<std::uint32_t>(std::max(3.0, std::ceil(kMinWaterShare * rows)));
+  water = all_rows;
+  std::vector<float> raw_sigma(static_cast<std::size_t>(cols), 0.0f), trailing;
+  std::vector<int> first(static_cast<std::size_t>(rows), -1), length(static_cast<std::size_t>(rows), 0);
+  std::vector<int> in_water;  // rows not yet detected
+  for (int r = 0; r < rows; ++r) in_water.push_back(r);
+  IntensityHistogram histogram;
+  for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    histogram.clear();
+    for (const int r : in_water) {
+      // A row already above the threshold is in an echo, not in water.
+      if (c < polar.valid_bins[static_cast<std::size_t>(r)] && length[static_cast<std::size_t>(r)] == 0) {
+        histogram.add(polar.intensities.at<std::uint8_t>(r, c));
+      }
+    }
+    if (histogram.total() >= min_water) {
+      water.background[i] = histogram.percentile(calibration.background_percentile);
+      raw_sigma[i] = lowerHalfSigma(histogram);
+    } else if (c > context.min_bin) {
+      water.background[i] = water.background[i - 1];
+      raw_sigma[i] = raw_sigma[i - 1];
+    } else {
+      raw_sigma[i] = all_rows.noise_sigma[i];
+    }
+    // σ: the median over the trailing window of ranges already measured.
+    const int lo = std::max(context.min_bin, c - window);
+    trailing.assign(raw_sigma.begin() + lo, raw_sigma.begin() + c + 1);
+    const auto middle = trailing.begin() + static_cast<std::ptrdiff_t>(trailing.size() / 2);
+    std::nth_element(trailing.begin(), middle, trailing.end());
+    water.noise_sigma[i] = *middle;
+    water.threshold[i] = thresholdFor(water.noise_sigma[i], calibration, water.span_db);
+    // Rows whose run reaches the echo length leave the water.
+    std::erase_if(in_water, [&](int r) {
+      const auto row = static_cast<std::size_t>(r);
+      if (c >= polar.valid_bins[row]) return true;
+      const float excess = static_cast<float>(polar.intensities.at<std::uint8_t>(r, c)) - water.background[i];
+      length[row] = excess >= water.threshold[i] ? length[row] + 1 : 0;
+      if (length[row] < run) return false;
+      first[row] = c - run + 1;
+      return true;
+    });
   }
-  return -1;
+  return first;
 }
 
 }  // namespace
 
-cv::Mat estimateRangeBackground(const PolarImage& polar, double percentile) {
-  if (polar.intensities.type() != CV_8UC1) throw ValueError("estimateRangeBackground: the polar image must be CV_8UC1");
-  if (!(percentile >= 0.0 && percentile <= 100.0)) {
-    throw ValueError("estimateRangeBackground: percentile must be in [0, 100], got " + std::to_string(percentile));
+BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
+                            const SweepCalibration& calibration, double edge_db) {
+  const auto* values = polar.intensities.ptr<std::uint8_t>(row);
+  const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
+  auto above = [&](int c) { return residual(values, calibration, c) >= calibration.threshold[static_cast<std::size_t>(c)]; };
+  // The echo: the bins above the threshold from `bin` on, within the peak window; its peak.
+  int peak = bin;
+  const int window_end = std::min(end, bin + binsForLength(kPeakWindow_m, polar.bin_length_m, 1, std::max(1, end)));
+  for (int c = bin; c < window_end && above(c); ++c) {
+    if (residual(values, calibration, c) > residual(values, calibration, peak)) peak = c;
   }
-  cv::Mat background = cv::Mat::zeros(1, polar.cols(), CV_32FC1);
-  std::vector<std::uint8_t> column;
-  for (int c = 0; c < polar.cols(); ++c) {
-    column.clear();
-    for (int r = 0; r < polar.rows(); ++r) {
-      const bool valid = polar.valid_bins.empty() || c < polar.valid_bins[r];
-      if (valid) column.push_back(polar.intensities.at<std::uint8_t>(r, c));
-    }
-    if (!column.empty()) background.at<float>(0, c) = percentileOf(column, percentile);
-  }
-  return background;
+  // Back from the peak while the echo stays within edge_db of it (and above half the threshold).
+  const float edge = std::max(residual(values, calibration, peak) - static_cast<float>(countsForDb(edge_db, context.span_db)),
+                              0.5f * calibration.threshold[static_cast<std::size_t>(bin)]);
+  int first = peak;
+  while (first > context.min_bin && residual(values, calibration, first - 1) >= edge) --first;
+  BeamDetection detection = detectionAt(polar, row, first);
+  detection.range_m = (first + 0.5) * polar.bin_length_m;  // the surface lies within the first bin of the rise
+  return detection;
 }
 
-namespace detail {
-
-std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, int min_bin,
-                                                      const BackgroundOptions& options) {
+std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
+                                                      const BackgroundOptions& options,
+                                                      const SweepCalibration& all_rows, SweepCalibration& water) {
   std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
+  water = all_rows;
   if (polar.rows() < options.min_beams || polar.cols() == 0) return detections;
-  const cv::Mat background = estimateRangeBackground(polar, options.background_percentile);
-  const auto* bg = background.ptr<float>(0);
+  const std::vector<int> first = outwardPass(polar, context, options, all_rows, water);
   for (int r = 0; r < polar.rows(); ++r) {
-    const int end = std::min(polar.valid_bins[r], polar.cols());
-    const int bin = firstRunAboveBackground(polar.intensities.ptr<std::uint8_t>(r), bg, min_bin, end, options);
-    if (bin >= 0) detections[r] = detectionAt(polar, r, bin);
+    const int bin = first[static_cast<std::size_t>(r)];
+    if (bin >= 0) detections[static_cast<std::size_t>(r)] = leadingEdgeAt(polar, r, bin, context, water, options.leading_edge_db);
   }
   return detections;
 }
 
-}  // namespace detail
-}  // namespace sonarmap
+}  // namespace sonarmap::detail

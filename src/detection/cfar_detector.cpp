@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
 
 namespace sonarmap {
 namespace {
@@ -18,6 +19,12 @@ namespace {
 constexpr int kMaxWindowBins = 65535;  // keeps the window arithmetic far from int overflow
 
 [[noreturn]] void throwOption(const std::string& what) { throw ValueError("CFAR options: " + what); }
+
+void requireLength(double value_m, bool positive, const char* name) {
+  if (!(std::isfinite(value_m) && (positive ? value_m > 0.0 : value_m >= 0.0))) {
+    throwOption(std::string(name) + (positive ? " must be > 0 m" : " must be >= 0 m"));
+  }
+}
 
 /// Half-open range of training bins [begin, end).
 struct Window {
@@ -30,7 +37,7 @@ struct Window {
 /// cell); OS copies the training cells into a scratch buffer and selects the k-th (O(T) per cell).
 class NoiseEstimator {
  public:
-  NoiseEstimator(std::span<const std::uint8_t> beam, const CfarOptions& options)
+  NoiseEstimator(std::span<const std::uint8_t> beam, const CfarCells& options)
       : beam_(beam), options_(options), prefix_(beam.size() + 1, 0) {
     for (std::size_t i = 0; i < beam.size(); ++i) prefix_[i + 1] = prefix_[i] + beam[i];
   }
@@ -69,14 +76,16 @@ class NoiseEstimator {
   }
 
   std::span<const std::uint8_t> beam_;
-  const CfarOptions& options_;
+  const CfarCells& options_;
   std::vector<std::int64_t> prefix_;  ///< prefix_[i] = sum of bins [0, i)
   std::vector<std::uint8_t> scratch_;
 };
 
 /// Does cell c pass both the CFAR threshold and the intensity floor?
-bool passes(NoiseEstimator& noise, std::span<const std::uint8_t> beam, int c, const CfarOptions& options) {
-  if (beam[static_cast<std::size_t>(c)] < options.min_intensity) return false;
+bool passes(NoiseEstimator& noise, std::span<const std::uint8_t> beam, int c, const CfarCells& options,
+            std::span<const float> floor) {
+  const auto i = static_cast<std::size_t>(c);
+  if (floor.empty() ? beam[i] < options.min_intensity : static_cast<float>(beam[i]) < floor[i]) return false;
   const std::optional<double> z = noise.at(c);
   return z.has_value() && beam[static_cast<std::size_t>(c)] > options.scale * *z;
 }
@@ -88,7 +97,7 @@ void checkProbability(double pfa, int training_cells) {
 
 }  // namespace
 
-void CfarOptions::validate() const {
+void CfarCells::validate() const {
   if (training_bins < 1 || training_bins > kMaxWindowBins) {
     throwOption("training_bins must be in [1, 65535], got " + std::to_string(training_bins));
   }
@@ -101,7 +110,7 @@ void CfarOptions::validate() const {
   if (min_run_bins < 1) throwOption("min_run_bins must be >= 1, got " + std::to_string(min_run_bins));
 }
 
-std::vector<float> cfarThresholds(std::span<const std::uint8_t> beam, const CfarOptions& options) {
+std::vector<float> cfarThresholds(std::span<const std::uint8_t> beam, const CfarCells& options) {
   options.validate();
   NoiseEstimator noise(beam, options);
   std::vector<float> thresholds(beam.size(), std::numeric_limits<float>::infinity());
@@ -111,16 +120,40 @@ std::vector<float> cfarThresholds(std::span<const std::uint8_t> beam, const Cfar
   return thresholds;
 }
 
-int firstCfarBin(std::span<const std::uint8_t> beam, int min_bin, const CfarOptions& options) {
+int firstCfarBin(std::span<const std::uint8_t> beam, int min_bin, const CfarCells& options,
+                 std::span<const float> floor) {
   options.validate();
   if (min_bin < 0) throw ValueError("firstCfarBin: min_bin must be >= 0, got " + std::to_string(min_bin));
+  if (!floor.empty() && floor.size() < beam.size()) throw ValueError("firstCfarBin: the floor is shorter than the beam");
   NoiseEstimator noise(beam, options);
   int run = 0;
   for (int c = min_bin; c < static_cast<int>(beam.size()); ++c) {
-    run = passes(noise, beam, c, options) ? run + 1 : 0;
+    run = passes(noise, beam, c, options, floor) ? run + 1 : 0;
     if (run == options.min_run_bins) return c - run + 1;
   }
   return -1;
+}
+
+void CfarOptions::validate() const {
+  requireLength(training_m, true, "the training window");
+  requireLength(guard_m, false, "the guard window");
+  requireLength(min_echo_length_m, false, "the minimum echo length");
+  if (!(scale > 0.0) || !std::isfinite(scale)) throwOption("scale must be finite and > 0");
+  if (!(os_rank > 0.0 && os_rank <= 1.0)) throwOption("os_rank must be in (0, 1]");
+  if (!(std::isfinite(min_contrast_db) && min_contrast_db >= 0.0)) throwOption("the minimum contrast must be >= 0 dB");
+}
+
+CfarCells CfarOptions::cells(double bin_length_m) const {
+  validate();
+  CfarCells cells;
+  cells.variant = variant;
+  cells.training_bins = binsForLength(training_m, bin_length_m, 1, kMaxWindowBins);
+  cells.guard_bins = binsForLength(guard_m, bin_length_m, 0, kMaxWindowBins);
+  cells.scale = scale;
+  cells.os_rank = os_rank;
+  cells.min_intensity = 0;
+  cells.min_run_bins = binsForLength(min_echo_length_m, bin_length_m, 1, kMaxWindowBins);
+  return cells;
 }
 
 double caCfarScale(double false_alarm_probability, int training_cells) {

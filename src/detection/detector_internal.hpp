@@ -8,20 +8,40 @@
 
 namespace sonarmap::detail {
 
-/// First bin whose centre (bin + 0.5) × bin_length_m is at or beyond min_range_m (≥ 0).
-int firstBinAtRange(const PolarImage& polar, double min_range_m);
+/// What every detector needs besides its own options: the first bin it may report and the image's
+/// intensity scale.
+struct DetectionContext {
+  int min_bin = 0;         ///< first bin whose centre is at or beyond the minimum range
+  double span_db = 45.0;   ///< dB span of the intensities 0…255
+};
 
-/// The detection of `bin` in `row`, with the image's intensity there.
+/// The detection of `bin` in `row`, with the image's intensity there and the bin's centre as range.
 BeamDetection detectionAt(const PolarImage& polar, int row, int bin);
 
+/// The detection of the echo found at `bin` in `row` at its leading edge: the echo is the run of
+/// bins above the threshold from `bin` on; back from its peak over the bins within `edge_db` of the
+/// peak (and at least half the threshold above the background), the first of them, its centre as
+/// the range (detectors.hpp, BackgroundOptions, step 3).
+BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
+                            const SweepCalibration& calibration, double edge_db);
+
 /// Paper §8.2 threshold on the rise between consecutive bins; options already validated.
-std::vector<BeamDetection> detectThreshold(const PolarImage& polar, int min_bin, const ThresholdOptions& options);
+std::vector<BeamDetection> detectThreshold(const PolarImage& polar, const DetectionContext& context,
+                                           const ThresholdOptions& options);
 
 /// Paper §9 Gaussian blur + Canny; options already validated.
-std::vector<BeamDetection> detectCanny(const PolarImage& polar, int min_bin, const CannyOptions& options);
+std::vector<BeamDetection> detectCanny(const PolarImage& polar, const DetectionContext& context,
+                                       const CannyOptions& options);
 
-/// Background-subtracted run detector; options already validated.
-std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, int min_bin,
-                                                      const BackgroundOptions& options);
+/// Background-subtracted detector: the outward pass over the ranges (detectors.hpp), starting from
+/// the calibration over all rows; `water` receives B, σ and T as measured over the rows still in
+/// water at each range (the all-rows values before the minimum range). Options already validated.
+std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
+                                                      const BackgroundOptions& options,
+                                                      const SweepCalibration& all_rows, SweepCalibration& water);
+
+/// CFAR along each row, with a floor at the calibrated background plus the minimum contrast.
+std::vector<BeamDetection> detectCfar(const PolarImage& polar, const DetectionContext& context,
+                                      const CfarOptions& options, const SweepCalibration& calibration);
 
 }  // namespace sonarmap::detail

@@ -1,5 +1,5 @@
 /// @file detectors.cpp
-/// detectObstacles: validation, dispatch and names (see detectors.hpp).
+/// detectObstacles: validation, calibration, dispatch and names (see detectors.hpp).
 
 #include "sonarmap/detection/detectors.hpp"
 
@@ -10,74 +10,45 @@
 
 #include "detector_internal.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
 
 namespace sonarmap {
 namespace {
 
-[[noreturn]] void throwOption(const std::string& what) { throw ValueError("detectObstacles: " + what); }
+[[noreturn]] void throwOption(const std::string& what) { throw ValueError("detector options: " + what); }
 
 void checkImage(const PolarImage& polar) {
-  if (polar.intensities.type() != CV_8UC1) throwOption("the polar image must be CV_8UC1");
+  if (polar.intensities.type() != CV_8UC1) throw ValueError("detectObstacles: the polar image must be CV_8UC1");
   if (static_cast<int>(polar.valid_bins.size()) != polar.rows()) {
-    throwOption("valid_bins has " + std::to_string(polar.valid_bins.size()) + " entries for " +
-                std::to_string(polar.rows()) + " rows");
+    throw ValueError("detectObstacles: valid_bins has " + std::to_string(polar.valid_bins.size()) + " entries for " +
+                     std::to_string(polar.rows()) + " rows");
   }
-  if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) throwOption("bin_length_m must be > 0 m");
+  if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) {
+    throw ValueError("detectObstacles: bin_length_m must be > 0 m");
+  }
+}
+
+void requireNonNegative(double value, const char* what) {
+  if (!(std::isfinite(value) && value >= 0.0)) throwOption(std::string(what) + " must be finite and >= 0");
 }
 
 void checkCanny(const CannyOptions& o) {
-  if (o.blur_kernel_size < 1 || o.blur_kernel_size % 2 == 0 || o.blur_kernel_size > 255) {
-    throwOption("canny.blur_kernel_size must be odd in [1, 255], got " + std::to_string(o.blur_kernel_size));
-  }
-  if (!(o.blur_sigma >= 0.0) || !std::isfinite(o.blur_sigma)) throwOption("canny.blur_sigma must be finite and >= 0");
-  if (!(o.low_threshold >= 0.0) || !(o.high_threshold >= o.low_threshold) || !std::isfinite(o.high_threshold)) {
-    throwOption("canny thresholds must satisfy 0 <= low_threshold <= high_threshold");
+  requireNonNegative(o.blur_range_m, "canny blur along the beam (m)");
+  requireNonNegative(o.blur_bearing_rad, "canny blur across beams");
+  requireNonNegative(o.low_threshold_db, "canny low threshold (dB)");
+  if (!(std::isfinite(o.high_threshold_db) && o.high_threshold_db >= o.low_threshold_db)) {
+    throwOption("canny thresholds must satisfy 0 <= low <= high (dB)");
   }
   if (o.aperture_size != 3 && o.aperture_size != 5 && o.aperture_size != 7) {
-    throwOption("canny.aperture_size must be 3, 5 or 7, got " + std::to_string(o.aperture_size));
+    throwOption("canny aperture must be 3, 5 or 7, got " + std::to_string(o.aperture_size));
   }
 }
 
 void checkBackground(const BackgroundOptions& o) {
-  if (!(o.background_percentile >= 0.0 && o.background_percentile <= 100.0)) {
-    throwOption("background.background_percentile must be in [0, 100]");
-  }
-  if (o.min_excess < 1 || o.min_excess > 255) throwOption("background.min_excess must be in [1, 255]");
-  if (o.min_run_bins < 1) throwOption("background.min_run_bins must be >= 1");
-  if (o.min_beams < 1) throwOption("background.min_beams must be >= 1");
-}
-
-void checkOptions(const DetectorOptions& options) {
-  if (!(options.min_range_m >= 0.0) || !std::isfinite(options.min_range_m)) {
-    throwOption("min_range_m must be finite and >= 0, got " + std::to_string(options.min_range_m));
-  }
-  switch (options.kind) {
-    case Detector::kThreshold:
-      if (options.threshold.min_rise < 0 || options.threshold.min_rise > 255) {
-        throwOption("threshold.min_rise must be in [0, 255]");
-      }
-      break;
-    case Detector::kCanny:
-      checkCanny(options.canny);
-      break;
-    case Detector::kBackgroundSubtracted:
-      checkBackground(options.background);
-      break;
-    case Detector::kCfar:
-      options.cfar.validate();
-      break;
-  }
-}
-
-/// CFAR along each row over its valid bins (cfar.hpp); options already validated.
-std::vector<BeamDetection> detectCfar(const PolarImage& polar, int min_bin, const CfarOptions& options) {
-  std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
-  for (int r = 0; r < polar.rows(); ++r) {
-    const auto end = static_cast<std::size_t>(std::clamp(polar.valid_bins[r], 0, polar.cols()));
-    const int bin = firstCfarBin(std::span(polar.intensities.ptr<std::uint8_t>(r), end), min_bin, options);
-    if (bin >= 0) detections[r] = detail::detectionAt(polar, r, bin);
-  }
-  return detections;
+  o.calibration.validate();
+  requireNonNegative(o.min_echo_length_m, "the minimum echo length (m)");
+  requireNonNegative(o.leading_edge_db, "the leading edge's level below the peak (dB)");
+  if (o.min_beams < 1) throwOption("background min_beams must be >= 1");
 }
 
 /// A name the CLI accepts, with the detector and (for kCfar) the variant it selects.
@@ -88,9 +59,9 @@ struct NamedDetector {
 };
 
 constexpr NamedDetector kDetectorNames[] = {
+    {"background", Detector::kBackgroundSubtracted, CfarVariant::kCellAveraging},
     {"threshold", Detector::kThreshold, CfarVariant::kCellAveraging},
     {"canny", Detector::kCanny, CfarVariant::kCellAveraging},
-    {"background", Detector::kBackgroundSubtracted, CfarVariant::kCellAveraging},
     {"cfar-ca", Detector::kCfar, CfarVariant::kCellAveraging},
     {"cfar-so", Detector::kCfar, CfarVariant::kSmallestOf},
     {"cfar-go", Detector::kCfar, CfarVariant::kGreatestOf},
@@ -108,34 +79,101 @@ const NamedDetector& namedDetector(std::string_view name) {
 
 }  // namespace
 
-namespace detail {
-
-int firstBinAtRange(const PolarImage& polar, double min_range_m) {
-  const double limit = min_range_m / polar.bin_length_m - 0.5;  // bins with centre < min_range_m
-  return std::max(0, static_cast<int>(std::min(std::ceil(limit), 1e9)));
+void DetectorOptions::validate() const {
+  if (min_range_m) requireNonNegative(*min_range_m, "the minimum range (m)");
+  if (intensity_span_db && !(std::isfinite(*intensity_span_db) && *intensity_span_db > 0.0)) {
+    throwOption("the intensity span must be a finite number of dB > 0");
+  }
+  switch (kind) {
+    case Detector::kThreshold:
+      requireNonNegative(threshold.min_rise_db, "the threshold's rise (dB)");
+      break;
+    case Detector::kCanny:
+      checkCanny(canny);
+      break;
+    case Detector::kBackgroundSubtracted:
+      checkBackground(background);
+      break;
+    case Detector::kCfar:
+      background.calibration.validate();
+      cfar.validate();
+      break;
+  }
 }
 
+namespace detail {
+
 BeamDetection detectionAt(const PolarImage& polar, int row, int bin) {
-  return BeamDetection{bin, polar.intensities.at<std::uint8_t>(row, bin)};
+  return BeamDetection{bin, polar.intensities.at<std::uint8_t>(row, bin), (bin + 0.5) * polar.bin_length_m};
+}
+
+std::vector<BeamDetection> detectCfar(const PolarImage& polar, const DetectionContext& context,
+                                      const CfarOptions& options, const SweepCalibration& calibration) {
+  const CfarCells cells = options.cells(polar.bin_length_m);
+  const double contrast = countsForDb(options.min_contrast_db, context.span_db);
+  std::vector<float> floor(calibration.background.size());
+  for (std::size_t c = 0; c < floor.size(); ++c) floor[c] = calibration.background[c] + static_cast<float>(contrast);
+  std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
+  for (int r = 0; r < polar.rows(); ++r) {
+    const auto end = static_cast<std::size_t>(std::clamp(polar.valid_bins[static_cast<std::size_t>(r)], 0, polar.cols()));
+    const int bin = firstCfarBin(std::span(polar.intensities.ptr<std::uint8_t>(r), end), context.min_bin, cells, floor);
+    if (bin >= 0) detections[static_cast<std::size_t>(r)] = detectionAt(polar, r, bin);
+  }
+  return detections;
 }
 
 }  // namespace detail
 
-std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const DetectorOptions& options) {
-  checkImage(polar);
-  checkOptions(options);
-  const int min_bin = detail::firstBinAtRange(polar, options.min_range_m);
+namespace {
+
+/// The detections of `options.kind` from the all-rows `calibration` (already checked against the
+/// image); `water` receives the calibration the detections were made with.
+std::vector<BeamDetection> runDetector(const PolarImage& polar, const DetectorOptions& options,
+                                       const detail::DetectionContext& context, const SweepCalibration& calibration,
+                                       SweepCalibration& water) {
+  water = calibration;
   switch (options.kind) {
     case Detector::kThreshold:
-      return detail::detectThreshold(polar, min_bin, options.threshold);
+      return detail::detectThreshold(polar, context, options.threshold);
     case Detector::kCanny:
-      return detail::detectCanny(polar, min_bin, options.canny);
+      return detail::detectCanny(polar, context, options.canny);
     case Detector::kBackgroundSubtracted:
-      return detail::detectBackgroundSubtracted(polar, min_bin, options.background);
+      return detail::detectBackgroundSubtracted(polar, context, options.background, calibration, water);
     case Detector::kCfar:
-      return detectCfar(polar, min_bin, options.cfar);
+      // The floor: above the background of the water, as the background detector measures it.
+      detail::detectBackgroundSubtracted(polar, context, options.background, calibration, water);
+      return detail::detectCfar(polar, context, options.cfar, water);
   }
   return std::vector<BeamDetection>(static_cast<std::size_t>(polar.rows()));
+}
+
+}  // namespace
+
+SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options) {
+  checkImage(polar);
+  options.validate();
+  const double span_db = options.intensity_span_db.value_or(intensitySpan_db(polar));
+  return detectSweep(polar, options, calibrateSweep(polar, options.background.calibration, span_db));
+}
+
+SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration) {
+  checkImage(polar);
+  options.validate();
+  const auto cols = static_cast<std::size_t>(polar.cols());
+  if (calibration.background.size() != cols || calibration.threshold.size() != cols) {
+    throw ValueError("detectSweep: the calibration has " + std::to_string(calibration.background.size()) +
+                     " columns for an image of " + std::to_string(cols));
+  }
+  SweepDetection result;
+  result.min_range_m = options.min_range_m.value_or(calibration.near_field_end_m);
+  const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
+                                         calibration.span_db};
+  result.detections = runDetector(polar, options, context, calibration, result.calibration);
+  return result;
+}
+
+std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const DetectorOptions& options) {
+  return detectSweep(polar, options).detections;
 }
 
 Detector parseDetector(std::string_view name) { return namedDetector(name).kind; }

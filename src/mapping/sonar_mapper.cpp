@@ -10,36 +10,17 @@
 #include "sonarmap/raycast/bresenham.hpp"
 #include "sonarmap/raycast/dda.hpp"
 #include "sonarmap/sonar/polar.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "../algorithms/key_marks.hpp"
 
 namespace sonarmap {
 
-RayAlgorithm parseRayAlgorithm(std::string_view name) {
-  if (name == "dda") return RayAlgorithm::kDDA;
-  if (name == "bresenham") return RayAlgorithm::kBresenham;
-  throw ValueError("unknown ray algorithm '" + std::string(name) + "', expected dda or bresenham");
-}
-
-void MapperOptions::validate() const {
-  if (!std::isfinite(resolution_m) || resolution_m <= 0.0) {
-    throw ValueError("resolution must be a finite number of metres > 0, got " + std::to_string(resolution_m));
-  }
-  if (!std::isfinite(self_reflection_range_m) || self_reflection_range_m < 0.0) {
-    throw ValueError("self-reflection range must be >= 0 m, got " + std::to_string(self_reflection_range_m));
-  }
-  if (!(max_range_m > 0.0)) throw ValueError("max range must be > 0 m, got " + std::to_string(max_range_m));
-  if (!(beam_width_rad >= 0.0 && beam_width_rad < 3.14159265358979323846)) {
-    throw ValueError("beam width must be within [0, pi) rad, got " + std::to_string(beam_width_rad));
-  }
-  if (!(full_confidence_intensity >= 1.0 && full_confidence_intensity <= 255.0)) {
-    throw ValueError("full-confidence intensity must be within 1…255, got " + std::to_string(full_confidence_intensity));
-  }
-  octree.occupancy.validate();
-}
-
 namespace {
+/// The map's resolution until the first sweep fixes an automatic one (the map is empty until then).
+constexpr double kUnresolvedResolution_m = 0.02;
+
 const MapperOptions& validated(const MapperOptions& options) {
   options.validate();
   return options;
@@ -50,8 +31,9 @@ struct SonarMapper::SweepWork {
   std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
-  std::vector<std::pair<Key16, std::uint8_t>> hits;   ///< hit cell, intensity
+  std::vector<Key16> hits;                            ///< hit cells, one per arc point
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
+  double tolerance_m = 0.0;                           ///< the sweep's range tolerance
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
@@ -59,21 +41,40 @@ struct SonarMapper::SweepWork {
 };
 
 SonarMapper::SonarMapper(const MapperOptions& options)
-    : options_(validated(options)), map_(options.resolution_m, options.octree), work_(std::make_unique<SweepWork>()) {}
+    : options_(validated(options)),
+      map_(options.resolution_m.value_or(kUnresolvedResolution_m), options.octree),
+      work_(std::make_unique<SweepWork>()) {}
 SonarMapper::SonarMapper(SonarMapper&&) noexcept = default;
 SonarMapper& SonarMapper::operator=(SonarMapper&&) noexcept = default;
 SonarMapper::~SonarMapper() = default;
 
-float SonarMapper::hitLogOdds(std::uint8_t intensity) const {
-  const double weight = std::min(1.0, static_cast<double>(intensity) / options_.full_confidence_intensity);
-  return static_cast<float>(map_.model().hit * weight);
+double SonarMapper::rangeTolerance_m(const PolarImage& polar) const {
+  return options_.range_tolerance_m.value_or(polar.bin_length_m + 0.5 * *options_.resolution_m);
 }
 
-std::vector<BeamDetection> SonarMapper::detect(PolarImage& polar) const {
-  removeSelfReflection(polar, options_.self_reflection_range_m);
-  smooth(polar, options_.smoothing);
-  return detectObstacles(polar, options_.detector);
+void SonarMapper::resolveResolution(const PolarImage& polar) {
+  if (options_.resolution_m) return;
+  const double reach_m = std::min(polar.cols() * polar.bin_length_m, options_.max_range_m);
+  options_.resolution_m = autoResolution_m(reach_m > 0.0 ? reach_m : polar.bin_length_m);
+  map_ = OcTree16(*options_.resolution_m, options_.octree);
 }
+
+SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
+  // Calibrate on the image as recorded: the band and the near field are measured before the band is
+  // zeroed and before any smoothing spreads it.
+  const DetectorOptions& detector = options_.detector;
+  const double span_db = detector.intensity_span_db.value_or(intensitySpan_db(polar));
+  const SweepCalibration recorded = calibrateSweep(polar, detector.background.calibration, span_db);
+  removeSelfReflection(polar, options_.self_reflection_range_m.value_or(recorded.band_end_m));
+  if (options_.smoothing.kind == Smoothing::kNone) return sonarmap::detectSweep(polar, detector, recorded);
+  smooth(polar, options_.smoothing);
+  SweepCalibration smoothed = calibrateSweep(polar, detector.background.calibration, span_db);
+  smoothed.band_end_m = recorded.band_end_m;
+  smoothed.near_field_end_m = recorded.near_field_end_m;
+  return sonarmap::detectSweep(polar, detector, smoothed);
+}
+
+std::vector<BeamDetection> SonarMapper::detect(PolarImage& polar) const { return detectSweep(polar).detections; }
 
 std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen::Isometry3d& sonar_to_map) {
   std::vector<BeamDetection> detections = detect(polar);
@@ -93,7 +94,7 @@ void SonarMapper::integrateFreeCells() {
       }
     }
   });
-  for (const auto& hit : work.hits) work.crossed.erase(hit.first);  // an obstacle is never also a miss
+  for (const Key16& hit : work.hits) work.crossed.erase(hit);  // an obstacle is never also a miss
   // Brick by brick, leaves only; an eager tree then syncs its inner nodes once (the same tree).
   work.crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
     map_.updateBrick(corner, voxels, map_.model().miss);
@@ -103,24 +104,23 @@ void SonarMapper::integrateFreeCells() {
 }
 
 void SonarMapper::integrateHits() {
-  // One update per hit cell, with the strongest echo that fell into it.
+  // One update per hit cell, however many arc points fell into it.
   auto& hits = work_->hits;
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return KeyMarks<16>::visitLess(a.first, b.first); });
-  for (std::size_t i = 0; i < hits.size();) {
-    std::uint8_t intensity = hits[i].second;
-    std::size_t j = i + 1;
-    for (; j < hits.size() && hits[j].first == hits[i].first; ++j) intensity = std::max(intensity, hits[j].second);
-    map_.updateNode(hits[i].first, hitLogOdds(intensity));
+  std::sort(hits.begin(), hits.end(), [](const Key16& a, const Key16& b) { return KeyMarks<16>::visitLess(a, b); });
+  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
+  for (const Key16& key : hits) {
+    map_.updateNode(key, map_.model().hit);
     ++stats_.occupied_updates;
-    i = j;
   }
 }
 
 template <class PoseOfRow>
 void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                                 PoseOfRow&& pose_of) {
+  resolveResolution(polar);
   SweepWork& work = *work_;
   work.beams.clear();
+  const double tolerance_m = work.tolerance_m = rangeTolerance_m(polar);
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const Eigen::Isometry3d* sonar_to_map = pose_of(row);
     if (sonar_to_map == nullptr) {
@@ -128,15 +128,18 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       continue;
     }
     const BeamDetection& detection = detections[row];
-    double range_m = detection.hasObstacle() ? (detection.obstacle_bin + 0.5) * polar.bin_length_m
-                                             : polar.valid_bins[row] * polar.bin_length_m;
+    if (detection.hasObstacle() && !(std::isfinite(detection.range_m) && detection.range_m > 0.0)) {
+      throw ValueError("detection of beam " + std::to_string(row) + " has an obstacle at a range that is not > 0 m");
+    }
+    double range_m = detection.hasObstacle() ? detection.range_m : polar.valid_bins[row] * polar.bin_length_m;
     bool hit = detection.hasObstacle();
     if (range_m > options_.max_range_m) {  // OctoMap's maxrange: free up to the limit, no obstacle
       range_m = options_.max_range_m;
       hit = false;
       ++stats_.beams_clipped;
     }
-    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], range_m, hit, detection.intensity};
+    const double free_range_m = hit ? std::max(0.0, range_m - tolerance_m) : range_m;
+    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit};
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
       continue;
@@ -200,19 +203,20 @@ void SonarMapper::planBeams() {
   // its own pose); the others group by group, their rays and hits appended in beam order.
   SweepWork& work = *work_;
   const std::vector<PlannedBeam>& beams = work.beams;
-  double reach_m = options_.resolution_m;
-  for (const PlannedBeam& beam : beams) reach_m = std::max(reach_m, beam.free_range_m);
-  const double tolerance_m = 0.25 * options_.resolution_m;
+  const double voxel_m = *options_.resolution_m;
+  double reach_m = voxel_m;
+  for (const PlannedBeam& beam : beams) reach_m = std::max({reach_m, beam.free_range_m, beam.hit ? beam.hit_range_m : 0.0});
+  const double drift_m = 0.25 * voxel_m;
   auto groupEnd = [&](std::size_t first) {
     std::size_t end = first + 1;
     while (end < beams.size() &&
-           poseDisplacementBound_m(beams[first].sonar_to_map, beams[end].sonar_to_map, reach_m) <= tolerance_m) {
+           poseDisplacementBound_m(beams[first].sonar_to_map, beams[end].sonar_to_map, reach_m) <= drift_m) {
       ++end;
     }
     return end;
   };
   if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always
-    planSweep(beams, options_.beam_width_rad, options_.resolution_m, work.rays, work.hit_points);
+    planSweep(beams, options_.beam_width_rad, voxel_m, work.tolerance_m, work.rays, work.hit_points);
     return;
   }
   work.rays.clear();
@@ -220,7 +224,7 @@ void SonarMapper::planBeams() {
   for (std::size_t first = 0, end = 0; first < beams.size(); first = end) {
     end = groupEnd(first);
     work.group.assign(beams.begin() + static_cast<std::ptrdiff_t>(first), beams.begin() + static_cast<std::ptrdiff_t>(end));
-    planSweep(work.group, options_.beam_width_rad, options_.resolution_m, work.group_rays, work.group_hits);
+    planSweep(work.group, options_.beam_width_rad, voxel_m, work.tolerance_m, work.group_rays, work.group_hits);
     work.rays.insert(work.rays.end(), work.group_rays.begin(), work.group_rays.end());
     work.hit_points.insert(work.hit_points.end(), work.group_hits.begin(), work.group_hits.end());
   }
@@ -249,7 +253,7 @@ void SonarMapper::keySweep() {
   }
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      work.hits.emplace_back(*key, hit.intensity);
+      work.hits.push_back(*key);
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }
@@ -279,7 +283,9 @@ struct DetectedSweep {
 template <class Integrate>
 SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress,
                       Integrate&& integrate) {
-  SonarMapper mapper(options);
+  const MapperOptions resolved = resolveForLog(options, log);
+  checkWorkBudget(log, resolved);
+  SonarMapper mapper(resolved);
   mapper.stats().beams_skipped = log.skipped_beams;
   const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
   const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), min_beams);

@@ -109,6 +109,7 @@ PolarImage makePolarImage(const std::vector<Beam>& beams, std::size_t first, std
   for (std::size_t i = first; i < last_exclusive; ++i) cols = std::max(cols, beams[i].intensities.size());
   PolarImage polar;
   polar.bin_length_m = beams[first].bin_length_m;
+  polar.intensity_span_db = beams[first].intensity_span_db;
   polar.intensities = cv::Mat::zeros(static_cast<int>(last_exclusive - first), static_cast<int>(cols), CV_8UC1);
   for (std::size_t i = first; i < last_exclusive; ++i) {
     const Beam& beam = beams[i];

@@ -158,6 +158,17 @@ TEST(mappingMoving, BeamsOutsideTheNavigationAreSkippedAndCounted) {
 // integrateSweep with one pose per row, on a synthetic sweep
 // ---------------------------------------------------------------------------------------------
 
+/// An obstacle at 1.0 m: the centre of bin 49 of 2 cm.
+const BeamDetection kObstacleAt1m{49, 200, 0.99};
+
+/// 2 cm voxels and no range tolerance: the hit is in the voxel of the detected range.
+MapperOptions twoCentimetres() {
+  MapperOptions options;
+  options.resolution_m = 0.02;
+  options.range_tolerance_m = 0.0;
+  return options;
+}
+
 PolarImage twoBeams() {
   PolarImage polar;
   polar.intensities = cv::Mat::zeros(2, 150, CV_8U);
@@ -175,9 +186,9 @@ Eigen::Isometry3d translation(double x_m, double y_m) {
 }
 
 TEST(mappingMoving, EachRowIsPlacedWithItsOwnPose) {
-  SonarMapper mapper;
+  SonarMapper mapper(twoCentimetres());
   // Both obstacles at 1.0 m (bin 49); the second beam's sonar has moved 1 m along +x.
-  mapper.integrateSweep(twoBeams(), {BeamDetection{49, 200}, BeamDetection{49, 200}},
+  mapper.integrateSweep(twoBeams(), {kObstacleAt1m, kObstacleAt1m},
                         std::vector<Eigen::Isometry3d>{translation(0.0, 0.0), translation(1.0, 0.0)});
   const auto at = [&](double x, double y) { return mapper.map().occupancyAt({x, y, 0.01}); };
   EXPECT_EQ(at(0.99, 0.0), Occupancy::kOccupied);  // first beam: from the origin along +x
@@ -188,8 +199,8 @@ TEST(mappingMoving, EachRowIsPlacedWithItsOwnPose) {
 }
 
 TEST(mappingMoving, RowsWithoutPoseAreSkippedAndCountedAndLengthsChecked) {
-  SonarMapper mapper;
-  const std::vector<BeamDetection> detections{BeamDetection{49, 200}, BeamDetection{49, 200}};
+  SonarMapper mapper(twoCentimetres());
+  const std::vector<BeamDetection> detections{kObstacleAt1m, kObstacleAt1m};
   mapper.integrateSweep(twoBeams(), detections,
                         std::vector<std::optional<Eigen::Isometry3d>>{std::nullopt, translation(0.0, 0.0)});
   EXPECT_EQ(mapper.stats().beams_without_nav, 1U);

@@ -25,8 +25,19 @@ PolarImage makeSweep(int beams, int bins) {
   return polar;
 }
 
-MapperOptions singleRay() {
+/// An obstacle whose leading edge is at the centre of `bin` (2 cm bins).
+BeamDetection obstacleAt(int bin, std::uint8_t intensity = 200) { return {bin, intensity, (bin + 0.5) * kBin}; }
+
+/// 2 cm voxels, no range tolerance: free space ends at the obstacle's voxel.
+MapperOptions fanOptions() {
   MapperOptions options;
+  options.resolution_m = 0.02;
+  options.range_tolerance_m = 0.0;
+  return options;
+}
+
+MapperOptions singleRay() {
+  MapperOptions options = fanOptions();
   options.beam_width_rad = 0.0;
   return options;
 }
@@ -36,7 +47,7 @@ Occupancy at(const SonarMapper& mapper, double x, double y) { return mapper.map(
 TEST(mappingSonarMapper, FreeUpToTheObstacleWhichIsOccupied) {
   SonarMapper mapper(singleRay());
   PolarImage polar = makeSweep(4, 150);
-  std::vector<BeamDetection> detections(4, BeamDetection{99, 200});  // 2.0 m: bin 99 spans 1.98–2.00
+  std::vector<BeamDetection> detections(4, obstacleAt(99, 200));  // 2.0 m: bin 99 spans 1.98–2.00
   mapper.integrateSweep(polar, detections);
   EXPECT_EQ(at(mapper, 1.0, 0.01), Occupancy::kFree);
   EXPECT_EQ(at(mapper, 1.99, 0.01), Occupancy::kOccupied);
@@ -63,7 +74,7 @@ TEST(mappingSonarMapper, BeamsAreUsedUpToTheMaxRangeOnly) {
   options.max_range_m = 1.5;
   SonarMapper mapper(options);
   PolarImage polar = makeSweep(2, 150);  // 3 m of bins
-  mapper.integrateSweep(polar, {BeamDetection{99, 200}, BeamDetection{40, 200}});  // 2.0 m, 0.81 m
+  mapper.integrateSweep(polar, {obstacleAt(99, 200), obstacleAt(40, 200)});  // 2.0 m, 0.81 m
   EXPECT_EQ(at(mapper, 1.4, 0.01), Occupancy::kFree);
   EXPECT_EQ(at(mapper, 1.99, 0.01), Occupancy::kUnknown);  // beyond the limit: not occupied, not free
   EXPECT_EQ(at(mapper, -0.81, 0.01), Occupancy::kOccupied);  // the second beam's obstacle is within it
@@ -77,30 +88,37 @@ TEST(mappingSonarMapper, ObstacleOfOneBeamIsNotClearedByAnotherInTheSameSweep) {
   SonarMapper mapper(singleRay());
   PolarImage polar = makeSweep(2, 150);
   polar.bearing_rad = {0.0, 0.0};  // two beams along +x
-  mapper.integrateSweep(polar, {BeamDetection{49, 200}, BeamDetection{99, 200}});
+  mapper.integrateSweep(polar, {obstacleAt(49, 200), obstacleAt(99, 200)});
   EXPECT_EQ(at(mapper, 0.99, 0.01), Occupancy::kOccupied);  // hit of beam 0, crossed by beam 1
   EXPECT_EQ(at(mapper, 1.99, 0.01), Occupancy::kOccupied);
   // Each cell is updated once per sweep, although both rays cross the first metre.
   EXPECT_FLOAT_EQ(*mapper.map().search(*mapper.map().coder().keyOf({0.5, 0.01, 0.0})), mapper.map().model().miss);
 }
 
-TEST(mappingSonarMapper, WeakEchoesEarnLessConfidence) {
+// A detection is the detector's decision: weak and strong echoes earn the same hit (P 0.7).
+TEST(mappingSonarMapper, EveryDetectedEchoEarnsTheFullHit) {
   SonarMapper mapper(singleRay());
   PolarImage polar = makeSweep(2, 150);
   polar.bearing_rad = {0.0, std::numbers::pi / 2};
-  mapper.integrateSweep(polar, {BeamDetection{99, 160}, BeamDetection{99, 40}});
+  mapper.integrateSweep(polar, {obstacleAt(99, 160), obstacleAt(99, 40)});
   const auto strong = mapper.map().search(*mapper.map().coder().keyOf({1.99, 0.01, 0.0}));
   const auto weak = mapper.map().search(*mapper.map().coder().keyOf({0.01, 1.99, 0.0}));
   EXPECT_FLOAT_EQ(*strong, mapper.map().model().hit);
-  EXPECT_NEAR(*weak, mapper.map().model().hit * 40.0 / 160.0, 1e-6);
+  EXPECT_FLOAT_EQ(*weak, mapper.map().model().hit);
+}
+
+TEST(mappingSonarMapper, ObstacleWithoutAPositiveRangeIsRejected) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(1, 150);
+  EXPECT_THROW(mapper.integrateSweep(polar, {BeamDetection{99, 200}}), ValueError);  // range_m left at 0
 }
 
 TEST(mappingSonarMapper, BeamFanFillsTheWedgeBetweenBeams) {
   PolarImage polar = makeSweep(200, 200);  // 1.8° apart, 4 m
-  const std::vector<BeamDetection> detections(200, BeamDetection{149, 200});  // a 3 m circle
+  const std::vector<BeamDetection> detections(200, obstacleAt(149, 200));  // a 3 m circle
   SonarMapper single(singleRay());
   single.integrateSweep(polar, detections);
-  SonarMapper fan;  // 3° beams
+  SonarMapper fan(fanOptions());  // 3° beams
   fan.integrateSweep(polar, detections);
   std::size_t free_single = 0, free_fan = 0, samples = 0;
   for (double angle = 0.0; angle < 2.0 * std::numbers::pi; angle += 0.001, ++samples) {
@@ -119,7 +137,7 @@ TEST(mappingSonarMapper, BresenhamAndDdaBothMapTheBeam) {
   SonarMapper mapper(options);
   PolarImage polar = makeSweep(1, 150);
   polar.bearing_rad = {0.7};
-  mapper.integrateSweep(polar, {BeamDetection{99, 200}});
+  mapper.integrateSweep(polar, {obstacleAt(99, 200)});
   EXPECT_EQ(mapper.map().occupancyAt({1.99 * std::cos(0.7), 1.99 * std::sin(0.7), 0.0}), Occupancy::kOccupied);
   EXPECT_EQ(mapper.map().occupancyAt({std::cos(0.7), std::sin(0.7), 0.0}), Occupancy::kFree);
   EXPECT_EQ(parseRayAlgorithm("bresenham"), RayAlgorithm::kBresenham);
@@ -131,7 +149,7 @@ TEST(mappingSonarMapper, BeamsLeavingTheMapAreSkippedAndCounted) {
   options.resolution_m = 0.0001;  // depth 16 at 0.1 mm: the map spans ±3.28 m
   SonarMapper mapper(options);
   PolarImage polar = makeSweep(2, 250);  // 5 m beams
-  mapper.integrateSweep(polar, {BeamDetection{}, BeamDetection{99, 100}});
+  mapper.integrateSweep(polar, {BeamDetection{}, obstacleAt(99, 100)});
   EXPECT_EQ(mapper.stats().out_of_map, 1U);
   EXPECT_EQ(mapper.stats().beams_used, 1U);
 }
@@ -155,13 +173,13 @@ TEST(mappingSonarMapper, PoseMovesTheBeams) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = Eigen::Vector3d(10.0, -3.0, 1.0);
   pose.rotate(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()));
-  mapper.integrateSweep(polar, {BeamDetection{99, 200}}, pose);  // bearing 0 now points to +y
+  mapper.integrateSweep(polar, {obstacleAt(99, 200)}, pose);  // bearing 0 now points to +y
   EXPECT_EQ(mapper.map().occupancyAt({10.0, -3.0 + 1.99, 1.0}), Occupancy::kOccupied);
   EXPECT_EQ(mapper.map().occupancyAt({10.0, -2.0, 1.0}), Occupancy::kFree);
 }
 
 TEST(mappingSonarMapper, BadInputThrows) {
-  SonarMapper mapper;
+  SonarMapper mapper(fanOptions());
   PolarImage polar = makeSweep(3, 10);
   EXPECT_THROW(mapper.integrateSweep(polar, {BeamDetection{}}), ValueError);
   MapperOptions options;
@@ -171,7 +189,10 @@ TEST(mappingSonarMapper, BadInputThrows) {
   options.beam_width_rad = -0.1;
   EXPECT_THROW(SonarMapper{options}, ValueError);
   options = {};
-  options.full_confidence_intensity = 0.0;
+  options.range_tolerance_m = -0.01;
+  EXPECT_THROW(SonarMapper{options}, ValueError);
+  options = {};
+  options.max_voxel_updates = 0.0;
   EXPECT_THROW(SonarMapper{options}, ValueError);
 }
 

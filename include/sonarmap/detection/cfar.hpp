@@ -39,41 +39,20 @@ enum class CfarVariant {
                       ///< robust to up to n − k interfering targets in the training cells
 };
 
-/// Options of CFAR detection along a beam (see the file comment for the cell layout).
+/// CFAR detection along a beam in cells (bins), as the functions below use it. The detector's
+/// options in physical units (CfarOptions, detectors.hpp) are converted into these for each image.
 ///
-/// Scale: set directly, not from a design false-alarm probability. The Micron's 0…255 intensities
-/// are log-compressed and, after the default 11 × 11 Gaussian, strongly correlated between bins, so
-/// the exponential-noise formulas (caCfarScale(), osCfarScale()) do not give the rate on such data;
-/// use them for square-law detected, independent samples.
-///
-/// Defaults, chosen on the CRAS tank log after the default preprocessing (removeSelfReflection
-/// 0.3 m, Gaussian 11 × 11), pooled over its 28 sweeps (checked by tests/detection/test_cfar.cpp; the
-/// share is that of detections within 0.15 m of the rectangle evaluateWalls() fits to them):
-///   - guard 24 bins (0.30 m) per side: longer than the smoothed leading edge and the wall's own
-///     echo, so at a wall's first bin the leading window lies behind the wall instead of on it.
-///     With 4 guard bins the wall masks itself for GO and OS: 4853 and 4514 of 5600 beams detect,
-///     0.815 and 0.756 on the walls (CA and SO are hardly affected);
-///   - training 48 bins (0.60 m) per side: a steady estimate across the tank's dark interior;
-///   - scale 1.25, floor 70, runs of 6 bins (7.5 cm). The floor is what removes the ≈1.56 m
-///     floor/surface ring: CFAR alone (floor 0) puts 25 % of its detections on it, since the ring
-///     is locally brighter than its neighbours in every beam.
-///   Result: CA 5600 detections, 0.835 on the walls; SO 5600, 0.816; GO 5572, 0.858; OS 5499,
-///   0.857; none on the ring (the background-subtracted detector: 5600, 0.816, none). CA is the
-///   default: it detects in every beam and loses less of the floater inside the tank than GO and OS
-///   (283 detections in its region against 258 and 255). A floor of 60 keeps more of the floater
-///   (385, as many as the background detector) for about the same share (CA 0.838), but one sweep
-///   in 28 then drops to 0.76.
-/// Limits: a beam shorter than guard + training + 1 = 73 bins has no complete training window and
-/// no detection; the floor is in the sonar's intensity units, so another gain needs another floor.
-struct CfarOptions {
+/// Scale: the exponential-noise formulas (caCfarScale(), osCfarScale()) give α for square-law
+/// detected, independent samples; MSIS intensities are log-compressed and correlated over the
+/// pulse, so on sonar images α is a design ratio, not a false-alarm rate.
+struct CfarCells {
   CfarVariant variant = CfarVariant::kCellAveraging;
   int training_bins = 48;     ///< training cells per side, 1…65535
   int guard_bins = 24;        ///< guard cells per side between the cell under test and its training, 0…65535
   double scale = 1.25;        ///< threshold multiplier α on the noise estimate, finite and > 0
   double os_rank = 0.75;      ///< OS only: k as a share of the n training cells used, in (0, 1] (Rohling: ≈3/4)
-  int min_intensity = 70;     ///< intensity floor: a detected cell also has I ≥ min_intensity, 0…255
-  int min_run_bins = 6;       ///< consecutive passing cells that make an obstacle, ≥ 1
-
+  int min_intensity = 0;      ///< intensity floor: a detected cell also has I ≥ min_intensity, 0…255
+  int min_run_bins = 1;       ///< consecutive passing cells that make an obstacle, ≥ 1
   /// @throws ValueError  naming the field, when an option is outside its documented range.
   void validate() const;
 };
@@ -85,19 +64,22 @@ struct CfarOptions {
 /// @return         beam.size() thresholds in intensity units; +infinity where neither training window
 ///                 fits inside the beam. Cost: O(bins) for CA/SO/GO (prefix sums), O(bins × T) for
 ///                 OS (std::nth_element over the ≤ 2T training cells of each cell).
-/// @throws ValueError  when `options` is invalid (CfarOptions::validate).
-std::vector<float> cfarThresholds(std::span<const std::uint8_t> beam, const CfarOptions& options);
+/// @throws ValueError  when `options` is invalid (CfarCells::validate).
+std::vector<float> cfarThresholds(std::span<const std::uint8_t> beam, const CfarCells& options);
 
 /// The first obstacle along one beam: the first bin c ≥ min_bin that starts `min_run_bins`
-/// consecutive bins each with I > scale × Z and I ≥ min_intensity.
+/// consecutive bins each with I > scale × Z and I ≥ the floor (floor[c] when `floor` is given, one
+/// value per bin; else min_intensity).
 ///
 /// @param beam     intensities of the beam's valid bins, bin 0 nearest (0…255).
 /// @param min_bin  first bin that may be reported, ≥ 0 (bins before it still serve as training).
-/// @param options  CFAR options.
+/// @param options  CFAR cells.
+/// @param floor    empty, or at least beam.size() per-bin floors in intensity counts.
 /// @return         the bin index, or −1 when there is none. Stops at the first obstacle: the cost is
 ///                 that of cfarThresholds() over the bins searched.
-/// @throws ValueError  when `options` is invalid or min_bin < 0.
-int firstCfarBin(std::span<const std::uint8_t> beam, int min_bin, const CfarOptions& options);
+/// @throws ValueError  when `options` is invalid, min_bin < 0, or `floor` is shorter than the beam.
+int firstCfarBin(std::span<const std::uint8_t> beam, int min_bin, const CfarCells& options,
+                 std::span<const float> floor = {});
 
 /// CA-CFAR scale for a design false-alarm probability, square-law detected (exponential) noise and
 /// N training cells (Richards ch. 6, CA-CFAR analysis): Pfa = (1 + α/N)^(−N), so α = N (Pfa^(−1/N) − 1).
@@ -114,5 +96,29 @@ double caCfarScale(double false_alarm_probability, int training_cells);
 /// @param rank                     k in [1, N].
 /// @throws ValueError  when an argument is outside its range.
 double osCfarScale(double false_alarm_probability, int training_cells, int rank);
+
+/// CFAR detection in physical units (the detector's options; converted to CfarCells with each
+/// image's bin length and intensity scale). The level floor is relative to the sweep's calibrated
+/// background (calibration.hpp), as the background detector's: it is what keeps CFAR off the
+/// constant-range ring, which is locally brighter than its neighbours in every beam.
+/// Defaults: the windows that worked on the CRAS log (guard 24 and training 48 bins of 1.25 cm
+/// there), now in metres.
+/// Limits: a beam shorter than guard + training + one bin has no complete training window and no
+/// detection.
+struct CfarOptions {
+  CfarVariant variant = CfarVariant::kCellAveraging;
+  double training_m = 0.6;        ///< training window per side, metres, > 0 (≥ 1 bin)
+  double guard_m = 0.3;           ///< guard window per side, metres, ≥ 0
+  double scale = 1.25;            ///< α, the threshold's ratio to the noise estimate, finite and > 0
+  double os_rank = 0.75;          ///< OS only: k as a share of the training cells, in (0, 1]
+  double min_contrast_db = 8.0;   ///< a detected cell also rises this much above the background, dB, ≥ 0
+  double min_echo_length_m = 0.04;  ///< consecutive passing cells that make an obstacle, metres, ≥ 0 (≥ 1 bin)
+
+  /// The cells for bins of `bin_length_m` (the floor is applied per bin by the detector).
+  /// @throws ValueError  when an option is outside its documented range or the bin length is not > 0.
+  CfarCells cells(double bin_length_m) const;
+  /// @throws ValueError  naming the option, when it is outside its documented range.
+  void validate() const;
+};
 
 }  // namespace sonarmap

@@ -10,7 +10,10 @@ namespace sonarmap {
 /// First obstacle along one beam (one row of a PolarImage).
 struct BeamDetection {
   int obstacle_bin = -1;         ///< bin of the first obstacle, −1 when the beam saw none
-  std::uint8_t intensity = 0;    ///< intensity at that bin (0…255), for the hit's confidence
+  std::uint8_t intensity = 0;    ///< intensity at that bin (0…255)
+  /// Range of the obstacle's leading edge along the beam, metres, > 0 when there is an obstacle:
+  /// where the echo rises out of the background, to a fraction of a bin (detectors.hpp).
+  double range_m = 0.0;
   bool hasObstacle() const { return obstacle_bin >= 0; }
 };
 

@@ -3,16 +3,19 @@
 /// Finding the first obstacle along each beam of a polar image (paper §6, §8.2, §9).
 ///
 /// Every detector returns one BeamDetection per row of the polar image: the first bin, at or beyond
-/// `min_range_m` and below the row's `valid_bins`, that the detector calls an obstacle, with the
-/// image's intensity at that bin; −1 when the beam has none. Bins nearer than `min_range_m` are
-/// never reported (paper §8.2: "measurements that are close to the sonar ... are self-reflections").
+/// the minimum range and below the row's `valid_bins`, that the detector calls an obstacle, with
+/// the image's intensity at that bin and the range of the echo's leading edge; −1 when the beam
+/// has none. Bins nearer than the minimum range are never reported (paper §8.2: "measurements that
+/// are close to the sonar ... are self-reflections").
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "sonarmap/detection/calibration.hpp"
 #include "sonarmap/detection/cfar.hpp"
 #include "sonarmap/detection/detection.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
@@ -23,70 +26,92 @@ namespace sonarmap {
 enum class Detector {
   kThreshold,             ///< paper §8.2: first rise between consecutive bins above a threshold
   kCanny,                 ///< paper §9: first Canny edge pixel along the row
-  kBackgroundSubtracted,  ///< ours: first run above a per-sweep, per-range background (see below)
-  kCfar,                  ///< first run of CFAR detections above an intensity floor along the row
+  kBackgroundSubtracted,  ///< ours, the default: first echo above the calibrated background (below)
+  kCfar,                  ///< first run of CFAR detections above a level floor along the row
                           ///< (cfar.hpp; Richards ch. 6, Rohling 1983), variant in CfarOptions
 };
 
-/// Paper §8.2: an obstacle starts at the first bin c with I[c] − I[c−1] > min_rise (both bins at
-/// or beyond the minimum range). Rising edges only: a drop in intensity is not an obstacle.
-/// On the CRAS log after the default 11 × 11 Gaussian no rise between neighbouring bins reaches 70,
-/// so this finds nothing there; on the raw log it stops at the ≈1.56 m ring or in multipath.
+/// Paper §8.2: an obstacle starts at the first bin c with I[c] − I[c−1] above min_rise_db (both
+/// bins at or beyond the minimum range). Rising edges only: a drop in intensity is not an obstacle.
+/// The paper's "around 70" of 255 on its Micron data is 12.4 dB on a 45 dB scale.
 struct ThresholdOptions {
-  int min_rise = 70;  ///< intensity step, 0…255; "the threshold that produced the best results is around 70"
+  double min_rise_db = 12.4;  ///< rise between consecutive bins, dB, ≥ 0
 };
 
-/// Paper §9: Gaussian blur (kernel 11, σ 2.3), then cv::Canny(low 0, high 113, aperture 3) on the
-/// polar image; the obstacle is the first edge pixel along the row.
+/// Paper §9: Gaussian blur (the paper's kernel 11, σ 2.3 pixels on the Micron: 2.9 cm along the
+/// beam, 4.1° across), then cv::Canny(low 0, high 113 of 255, aperture 3) on the polar image; the
+/// obstacle is the first edge pixel along the row. Canny's thresholds apply to the Sobel gradient
+/// of the intensities and are given here in dB of intensity (113 of 255 on a 45 dB scale: 19.9 dB).
 struct CannyOptions {
-  int blur_kernel_size = 11;  ///< odd ≥ 1; 1 skips the blur (e.g. when the image is already smoothed)
-  double blur_sigma = 2.3;    ///< Gaussian σ in pixels, ≥ 0 (0: derived from the kernel size)
-  double low_threshold = 0.0;
-  double high_threshold = 113.0;
-  int aperture_size = 3;      ///< Sobel aperture: 3, 5 or 7
+  double blur_range_m = 0.029;                                     ///< Gaussian σ along the beam, metres, ≥ 0
+  double blur_bearing_rad = 4.1 * 3.14159265358979323846 / 180.0;  ///< Gaussian σ across beams, radians, ≥ 0
+  double low_threshold_db = 0.0;                                   ///< hysteresis low threshold, dB, ≥ 0
+  double high_threshold_db = 19.9;                                 ///< hysteresis high threshold, dB, ≥ low
+  int aperture_size = 3;  ///< Sobel operator's size: 3, 5 or 7 (a discrete stencil, not a length)
 };
 
-/// Ours, for MSIS data where something returns at the same range in every bearing (the floor or
-/// surface entering the 35° vertical aperture: the ≈1.56 m ring of the CRAS tank data), which the
-/// paper's threshold reports as the first obstacle of many beams.
-///   1. Background: for each bin (range) c, the `background_percentile` of column c over the rows
-///      of the image (one sweep: all bearings at that range). A return at constant range is in
-///      most rows and becomes background; a wall is at a given range in few bearings and is not.
-///   2. Residual: I[r][c] − background[c].
-///   3. The obstacle is the first bin c ≥ min range that starts `min_run_bins` consecutive bins
-///      with residual ≥ `min_excess` (the run rejects speckle and short multipath glints).
-/// Defaults, chosen on the CRAS tank log (28 sweeps; checked by tests/detection/test_detectors_real.cpp):
-/// at the ring's range the 25th percentile is ≈15 and the 90th ≈40 (raw), so an excess of 45 does
-/// not fire on it, while the walls' leading edges (100…170) clear it; 8 bins = 10 cm is shorter
-/// than a wall echo and longer than speckle. The result held with no, mean, median and Gaussian
-/// smoothing alike (≈82 % of detections within 0.15 m of the fitted tank walls, none on the ring).
-/// On that log the ring is faint, so the floor and the run do much of the work: without the
-/// background (percentile 0) the share on the walls drops to ≈75–78 %, and with a lower floor or a
-/// brighter ring (more gain) the ring takes over, which the background prevents.
-/// Limits: anything at one range in more than (100 − percentile) % of the rows is background, so a
-/// round tank centred on the sonar would vanish; the image should hold a sweep of many bearings
-/// (with fewer than `min_beams` rows the background is not estimated and no obstacle is reported;
-/// for a partial sweep, build the polar image over the last full turn instead). The intensity
-/// scale is the sonar's 0…255 with its gain as logged: another gain needs another min_excess.
+/// Ours, the default: the first echo that rises above what the sweep records at the same range in
+/// most bearings, by more than the sweep's own noise allows (calibration.hpp):
+///   1. calibrate the sweep: background B(c), noise spread σ(c), threshold T(c), near field;
+///   2. the obstacle is the first bin c at or beyond the minimum range that starts a run of
+///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along;
+///   3. its range is the echo's leading edge, the nearest surface within the beam: the echo is the
+///      run of bins above T from c on (its peak sought within 0.3 m of c); going back from the peak
+///      over the bins within leading_edge_db of it, the centre of the first of them. The peak lies
+///      up to a pulse length behind the surface, and a wall seen at an angle returns its nearest
+///      point from the beam's edge, 6 dB (two-way) below the axis; a crossing low on the rise of a
+///      strong echo instead reaches into the beam pattern's skirt, beyond the nominal width, and a
+///      point high on it lies behind the surface. 10 dB below the peak gave the nearest surface
+///      within the −3 dB beam on the simulated heads (docs/accuracy.md): median within a bin.
+/// The constant-range ring (the surface or seabed entering the vertical aperture: CRAS's 1.56 m)
+/// is in every bearing and so in B; a wall is at one range in few bearings and is not. Limits:
+/// anything at one range in more than (100 − percentile) % of the bearings is background, so a
+/// round tank centred on the sonar would vanish; with fewer than `min_beams` rows the background is
+/// not estimated and no obstacle is reported (mapSonarLog joins a short sweep to its neighbour).
 struct BackgroundOptions {
-  double background_percentile = 25.0;  ///< percentile in [0, 100] of each bin across the rows
-  int min_excess = 45;                  ///< residual intensity above background, 1…255
-  int min_run_bins = 8;                 ///< consecutive bins above min_excess, ≥ 1
-  int min_beams = 20;                   ///< fewest rows to estimate a background, ≥ 1
+  CalibrationOptions calibration;   ///< background percentile, contrast, false-alarm rate, near field
+  double min_echo_length_m = 0.04;  ///< least extent of an echo along the beam, metres, ≥ 0 (≥ 1 bin)
+  double leading_edge_db = 10.0;    ///< the leading edge is within this of the echo's peak, dB, ≥ 0
+  int min_beams = 20;               ///< fewest rows (beams) to estimate a background, ≥ 1
 };
 
-/// Options of detectObstacles(); each detector reads its own part.
+/// Options of detectObstacles(); each detector reads its own part. All in physical units,
+/// converted with each image's bin length, beam spacing and intensity scale (polar_units.hpp).
 struct DetectorOptions {
   Detector kind = Detector::kBackgroundSubtracted;
-  /// Bins whose centre is nearer are ignored, metres, ≥ 0. On the CRAS log the self-reflection band
-  /// ends at ≈0.35 m, but static returns (the vehicle's own body, present in every sweep) reach
-  /// ≈0.8 m at bearings ≈200°…260°, so the default is 1.0 m; the tank walls start at ≈1.65 m.
-  double min_range_m = 1.0;
+  /// Bins whose centre is nearer are never reported, metres, ≥ 0 (paper §8.2: "measurements that
+  /// are close to the sonar ... are self-reflections"). Unset: the near-field clutter extent
+  /// estimated on each sweep (calibration.hpp: CRAS ≈ 0.8 m, the SeaNet sector log ≈ 0.6 m).
+  std::optional<double> min_range_m;
+  /// dB span of the intensities 0…255, > 0. Unset: the log's (SeaNet's ADspan), else 45 dB.
+  std::optional<double> intensity_span_db;
   ThresholdOptions threshold;
   CannyOptions canny;
   BackgroundOptions background;
   CfarOptions cfar;
+
+  /// @throws ValueError naming the option when the minimum range, the span or the chosen
+  ///         detector's options are outside their documented ranges.
+  void validate() const;
 };
+
+/// One sweep's detections with the calibration they were made with.
+struct SweepDetection {
+  std::vector<BeamDetection> detections;  ///< one per row
+  SweepCalibration calibration;           ///< background, noise, threshold, near field (calibration.hpp)
+  double min_range_m = 0.0;               ///< the minimum range used: the option, or the near-field end
+};
+
+/// Calibrates the sweep (calibrateSweep with options.background.calibration) and finds the first
+/// obstacle of each row with the detector `options.kind`; the calibration's background and near
+/// field serve every detector (the minimum range when unset, the CFAR's floor).
+/// @throws ValueError  as detectObstacles().
+SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options);
+
+/// As above with a calibration made beforehand (e.g. on the image before smoothing, or before the
+/// self-reflection band was zeroed): one value per column of `polar`.
+/// @throws ValueError  as detectObstacles(), or when the calibration's length differs from the columns.
+SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration);
 
 /// Finds the first obstacle of each row of `polar` with the detector `options.kind`.
 ///
@@ -97,11 +122,6 @@ struct DetectorOptions {
 /// @throws ValueError  when the image is not CV_8UC1, lacks valid_bins, has bin_length_m ≤ 0, or an
 ///   option is out of its documented range.
 std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const DetectorOptions& options);
-
-/// The per-bin background of kBackgroundSubtracted: CV_32F, 1 × cols, the `percentile` of each column
-/// over the rows whose valid_bins cover it (0 where no row does).
-/// @throws ValueError  when percentile is outside [0, 100] or the image is not CV_8UC1.
-cv::Mat estimateRangeBackground(const PolarImage& polar, double percentile);
 
 /// Parses a detector name as the CLI writes it: "threshold", "canny", "background", or "cfar-ca",
 /// "cfar-so", "cfar-go", "cfar-os" (all four give kCfar; selectDetector() also sets the variant).

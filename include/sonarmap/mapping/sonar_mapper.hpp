@@ -19,8 +19,8 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/nav/navigation.hpp"
-#include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
 #include "sonarmap/detection/detection.hpp"
 #include "sonarmap/detection/detectors.hpp"
@@ -31,60 +31,6 @@
 namespace sonarmap {
 
 struct PlannedBeam;  // sonarmap/mapping/sweep_fan.hpp
-
-/// Which voxel traversal turns a beam into cells (paper §6).
-enum class RayAlgorithm {
-  kDDA,        ///< Amanatides & Woo (1987): face-connected, every crossed voxel (default)
-  kBresenham,  ///< 3D Bresenham on keys: 26-connected, "laser-like" (the paper's choice)
-};
-
-/// Parses "dda" or "bresenham". @throws ValueError for any other name.
-RayAlgorithm parseRayAlgorithm(std::string_view name);
-
-/// OctoMap's defaults with lazy evaluation on.
-inline OctreeOptions lazyOctreeOptions() {
-  OctreeOptions options;
-  options.lazy = true;
-  return options;
-}
-
-/// Everything that turns beams into map updates. Defaults map the CRAS tank well.
-struct MapperOptions {
-  double resolution_m = 0.02;            ///< voxel edge (paper: 2D map, 2 cm)
-  /// Sensor model, aggregation, pruning. Lazy by default: a sweep updates leaves only and the
-  /// inner nodes are fixed once at its end (§5.5), so the map is consistent after every sweep.
-  OctreeOptions octree = lazyOctreeOptions();
-  double self_reflection_range_m = 0.5;  ///< bins nearer than this are zeroed (paper §8.1)
-  /// Longest range a beam is used to, metres (OctoMap's maxrange): a beam reaching farther clears
-  /// free space up to max_range_m only, and an obstacle beyond it is dropped. The default is the
-  /// longest range of mechanically scanned sonars (Tritech SeaKing: 300 m; Micron: 75 m), so real
-  /// logs are untouched while a log declaring kilometre-long bins cannot make the mapper walk
-  /// billions of voxels. > 0; +inf: no limit.
-  double max_range_m = 300.0;
-  SmoothingOptions smoothing{};          ///< polar-image smoothing (paper §8.1), Gaussian by default
-  DetectorOptions detector{};            ///< first-obstacle detection (paper §8.2, §9)
-  RayAlgorithm ray = RayAlgorithm::kDDA;
-  /// Horizontal beam width in radians (Tritech Micron: 3°). Each beam clears its wedge up to the
-  /// detected range and its obstacle is the arc at that range across the width — the MSIS inverse
-  /// sensor model. The sweep's wedges are cast together as one fan of rays at most one voxel apart
-  /// (src/mapping/sweep_fan.hpp). 0 casts one ray along each bearing (the paper's §6).
-  double beam_width_rad = 3.0 * 3.14159265358979323846 / 180.0;
-  /// Intensity that earns the full hit log-odds; a weaker echo earns proportionally less
-  /// (log-odds × intensity / full_confidence_intensity, capped at 1): the paper's "confidence
-  /// based on the intensity" (§6). In 1…255; 160 gives the strong wall echoes of the CRAS Micron
-  /// data (up to 191 after smoothing) full weight.
-  double full_confidence_intensity = 160.0;
-
-  /// mapSonarLog: clean and detect sweep i+1 on a second thread while sweep i is integrated. The
-  /// map is the same either way (detection does not depend on the map).
-  bool pipeline_detection = true;
-
-  /// @throws ValueError for a non-positive resolution, self-reflection range < 0, a max range
-  ///         that is NaN or ≤ 0, a beam width
-  ///         outside [0, π),
-  ///         an intensity scale outside 1…255, or invalid occupancy parameters.
-  void validate() const;
-};
 
 /// Counts gathered while mapping.
 struct MappingStats {
@@ -108,8 +54,14 @@ class SonarMapper {
   SonarMapper& operator=(SonarMapper&&) noexcept;
   ~SonarMapper();
 
-  /// Cleans and searches the polar image of one sweep: self-reflection removal and smoothing in
-  /// place, then first-obstacle detection (one per row). Thread-safe: touches no mapper state.
+  /// Calibrates, cleans and searches the polar image of one sweep: the calibration (calibration.hpp)
+  /// on the image as recorded, self-reflection removal (up to the option, or the calibrated band's
+  /// end) and smoothing in place, then first-obstacle detection (one per row) with the calibration
+  /// (recomputed on the smoothed image when smoothing, the near field kept). Thread-safe: touches no
+  /// mapper state.
+  SweepDetection detectSweep(PolarImage& polar) const;
+
+  /// detectSweep(polar).detections.
   std::vector<BeamDetection> detect(PolarImage& polar) const;
 
   /// Cleans and searches the polar image of one sweep (self-reflection removal, smoothing,
@@ -145,7 +97,11 @@ class SonarMapper {
   const MapperOptions& options() const { return options_; }
 
  private:
-  float hitLogOdds(std::uint8_t intensity) const;
+  /// With an automatic resolution, fixes it from the first sweep's reach (autoResolution_m) and
+  /// starts the (still empty) map at that resolution.
+  void resolveResolution(const PolarImage& polar);
+  /// MapperOptions::range_tolerance_m, or its automatic value for the sweep: a bin plus half a voxel.
+  double rangeTolerance_m(const PolarImage& polar) const;
   /// integrateSweep's body: `pose_of(row)` is the row's pose, or null to skip it without navigation.
   template <class PoseOfRow>
   void integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);

@@ -22,9 +22,10 @@ namespace sonarmap {
 struct PlannedBeam {
   Eigen::Isometry3d sonar_to_map;
   double bearing_rad;   ///< sonar frame, [0, 2π)
-  double free_range_m;  ///< range of the obstacle, or the beam's full range without one
+  double free_range_m;  ///< the beam clears its wedge up to here: its obstacle's range minus the range
+                        ///< tolerance, or the beam's full range without one
+  double hit_range_m;   ///< range of the obstacle's arc (the echo's leading edge); unused without a hit
   bool hit;             ///< the beam ends in an obstacle
-  std::uint8_t intensity;
 };
 
 /// A segment to traverse, map frame. Every cell it crosses is free unless it is a hit cell.
@@ -33,16 +34,23 @@ struct FreeRay {
   Eigen::Vector3d end_m;
 };
 
-/// A point of an obstacle's arc, map frame, and the echo's intensity.
+/// A point of an obstacle's arc, map frame.
 struct HitPoint {
   Eigen::Vector3d point_m;
-  std::uint8_t intensity;
 };
 
 /// Plans the free rays (in grid-angle order) and hit points of one sweep's beams, map frame.
 /// `rays` and `hits` are cleared first. Nothing is thrown.
-/// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
-void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, std::vector<FreeRay>& rays,
-               std::vector<HitPoint>& hits);
+///
+/// An obstacle is the arc at its range across the beam's width. Where another beam of the sweep
+/// covers the same grid angle and clears farther than the arc's range plus `tolerance_m`, that
+/// point of the arc is dropped ("somewhere occupied, everywhere empty": Moravec & Elfes 1985,
+/// Elfes 1987): at oblique incidence the leading edge comes from the beam's near side, and its
+/// neighbours, which see the same wall farther away, carve the rest of the arc away. Rays of
+/// width 0 (one ray per beam) keep their single hit point.
+/// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0;
+/// @param tolerance_m    range tolerance, ≥ 0 (MapperOptions::range_tolerance_m).
+void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
+               std::vector<FreeRay>& rays, std::vector<HitPoint>& hits);
 
 }  // namespace sonarmap

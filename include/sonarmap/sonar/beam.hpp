@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct Beam {
   double bearing_rad = 0.0;   ///< bearing in the sonar frame, radians in [0, 2π)
   double bin_length_m = 0.0;  ///< length of one bin along the beam, metres (> 0)
   std::vector<std::uint8_t> intensities;  ///< echo intensity per bin, 0…255, bin 0 nearest
+  /// dB span the intensities 0…255 cover, when the format records it (SeaNet: ADspan × 80 / 255);
+  /// unset otherwise (polar_units.hpp then assumes kDefaultIntensitySpan_db).
+  std::optional<double> intensity_span_db;
 };
 
 /// Beams read from a file, in recording order, with the count of beams the reader rejected.

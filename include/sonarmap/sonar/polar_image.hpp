@@ -3,6 +3,7 @@
 /// The polar image of a run of beams (paper §2.1): row r is beam r, column c is bin c.
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -20,6 +21,7 @@ struct PolarImage {
   std::vector<double> bearing_rad;   ///< bearing of each row, sonar frame
   std::vector<double> time_s;        ///< time of each row
   double bin_length_m = 0.0;         ///< bin length (all beams of one image share it)
+  std::optional<double> intensity_span_db;  ///< the first beam's Beam::intensity_span_db
 
   int rows() const { return intensities.rows; }
   int cols() const { return intensities.cols; }

@@ -1,0 +1,112 @@
+#pragma once
+/// @file mapper_options.hpp
+/// Everything that turns beams into map updates (MapperOptions), and the values the mapper
+/// derives from a log when an option is left on "auto": the map's resolution from the log's reach,
+/// and the estimate of the work a log asks for, checked against a budget before mapping.
+
+#include <cstddef>
+#include <numbers>
+#include <optional>
+#include <string_view>
+
+#include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/octree/occupancy_octree.hpp"
+#include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/preprocess.hpp"
+
+namespace sonarmap {
+
+/// Which voxel traversal turns a beam into cells (paper §6).
+enum class RayAlgorithm {
+  kDDA,        ///< Amanatides & Woo (1987): face-connected, every crossed voxel (default)
+  kBresenham,  ///< 3D Bresenham on keys: 26-connected, "laser-like" (the paper's choice)
+};
+
+/// Parses "dda" or "bresenham". @throws ValueError for any other name.
+RayAlgorithm parseRayAlgorithm(std::string_view name);
+
+/// OctoMap's defaults with lazy evaluation on.
+inline OctreeOptions lazyOctreeOptions() {
+  OctreeOptions options;
+  options.lazy = true;
+  return options;
+}
+
+/// Everything that turns beams into map updates. Options left unset (nullopt) are derived from
+/// each log or sweep: nothing here is tuned to one sonar.
+struct MapperOptions {
+  /// Voxel edge in metres, > 0. Unset: autoResolution_m() of the log's reach (mapSonarLog), or of
+  /// the first sweep's reach (a SonarMapper fed sweeps directly).
+  std::optional<double> resolution_m;
+  /// Sensor model, aggregation, pruning. Lazy by default: a sweep updates leaves only and the
+  /// inner nodes are fixed once at its end (§5.5), so the map is consistent after every sweep.
+  /// P(occupied | echo) is occupancy.prob_hit (OctoMap's 0.7) for every detected obstacle.
+  OctreeOptions octree = lazyOctreeOptions();
+  /// Bins nearer than this are zeroed before smoothing and detection (paper §8.1: reflections from
+  /// the vehicle and the transducer's ringing), metres, ≥ 0. Unset: the near-field clutter extent
+  /// estimated on each sweep (estimateNearField, detection/calibration.hpp).
+  std::optional<double> self_reflection_range_m;
+  /// Longest range a beam is used to, metres (OctoMap's maxrange): a beam reaching farther clears
+  /// free space up to max_range_m only, and an obstacle beyond it is dropped. The default is the
+  /// longest range of mechanically scanned sonars (Tritech SeaKing: 300 m), so real logs are
+  /// untouched while a log declaring kilometre-long bins cannot make the mapper walk billions of
+  /// voxels. > 0; +inf: no limit.
+  double max_range_m = 300.0;
+  SmoothingOptions smoothing{};  ///< polar-image smoothing (paper §8.1), physical units
+  DetectorOptions detector{};    ///< first-obstacle detection (paper §8.2, §9), physical units
+  RayAlgorithm ray = RayAlgorithm::kDDA;
+  /// Horizontal beam width in radians (Tritech Micron and SeaKing: 3°, Ping360: 2°), in [0, π).
+  /// Each beam clears its wedge up to the detected range and its obstacle is the arc at that range
+  /// across the width — the MSIS inverse sensor model. The sweep's wedges are cast together as one
+  /// fan of rays at most one voxel apart (sweep_fan.hpp). 0 casts one ray per bearing (paper §6).
+  double beam_width_rad = 3.0 * std::numbers::pi / 180.0;
+  /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much
+  /// before its obstacle, so the obstacle's range uncertainty (a bin, the pulse, a voxel) does not
+  /// clear what the same surface gave in earlier sweeps; an arc point of the obstacle is dropped
+  /// where another beam of the sweep saw free water beyond it by more than this. Unset: one bin
+  /// plus half a voxel.
+  std::optional<double> range_tolerance_m;
+  /// Work budget: mapSonarLog refuses a log whose estimated voxel updates (estimateVoxelUpdates)
+  /// exceed this, before mapping, naming the resolution that would fit. > 0; +inf: no limit.
+  /// The default is about a minute of mapping on one core.
+  double max_voxel_updates = 1e10;
+  /// mapSonarLog: clean and detect sweep i+1 on a second thread while sweep i is integrated. The
+  /// map is the same either way (detection does not depend on the map).
+  bool pipeline_detection = true;
+
+  /// @throws ValueError naming the option for a resolution that is set but not finite and > 0, a
+  ///         self-reflection range or range tolerance that is set but not finite and ≥ 0, a max
+  ///         range that is NaN or ≤ 0, a beam width outside [0, π), a budget that is NaN or ≤ 0,
+  ///         invalid smoothing or detector options, or invalid occupancy parameters.
+  void validate() const;
+};
+
+/// The default map resolution for a sonar reaching `reach_m`: about 256 voxels from the sonar to
+/// the end of its beams (reach / 256), rounded to the nearest of 1, 2, 5 × 10^k metres, and never
+/// below 1 mm. Tritech Micron at 5 m: 0.02 m (the paper's); SeaKing at 30 m: 0.1 m; Ping360 at
+/// 50 m: 0.2 m. Cost and detail then do not depend on the range scale: a 360° sweep touches about
+/// π · 256² ≈ 2 × 10⁵ cells of its plane whatever the sonar.
+/// @throws ValueError when reach_m is not finite and > 0.
+double autoResolution_m(double reach_m);
+
+/// The reach of a log: its longest beam (bins × bin length), at most max_range_m, metres;
+/// 0 for a log without beams.
+double logReach_m(const SonarLog& log, double max_range_m);
+
+/// `options` with every "auto" the mapper needs before the first sweep resolved for `log`:
+/// resolution_m (autoResolution_m of logReach_m). Other options are unchanged.
+/// @throws ValueError when options are invalid, or the resolution is auto and the log has no beam.
+MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
+
+/// Upper estimate of the voxel updates mapping `log` with `options` (resolution resolved) costs:
+/// the area each beam's wedge sweeps in the sonar's plane, max(beam width, bearing step to the
+/// next beam) × range² / 2, over the voxel's area, summed over the beams (a 360° sweep: π R² / res²).
+double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options);
+
+/// Throws when estimateVoxelUpdates() exceeds options.max_voxel_updates.
+/// @throws ValueError naming the estimate, the budget, the option that raises it
+///         (max_voxel_updates, `--max-voxel-updates` on the command line) and the finest
+///         resolution that fits the budget.
+void checkWorkBudget(const SonarLog& log, const MapperOptions& options);
+
+}  // namespace sonarmap

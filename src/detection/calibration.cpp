@@ -1,0 +1,148 @@
+/// @file calibration.cpp
+/// Per-sweep background, noise spread, threshold and near field (see calibration.hpp).
+
+#include "sonarmap/detection/calibration.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <cmath>
+#include <string>
+
+#include "column_histogram.hpp"
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
+
+namespace sonarmap {
+namespace {
+
+
+[[noreturn]] void throwOption(const std::string& what) { throw ValueError("calibration: " + what); }
+
+/// Per column: the percentiles the calibration needs, over all rows whose valid bins cover it.
+struct ColumnProfile {
+  std::vector<float> background, median, clutter, sigma;
+};
+
+ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& options) {
+  const auto cols = static_cast<std::size_t>(polar.cols());
+  ColumnProfile profile{std::vector<float>(cols), std::vector<float>(cols), std::vector<float>(cols),
+                        std::vector<float>(cols)};
+  detail::IntensityHistogram histogram;
+  for (std::size_t c = 0; c < cols; ++c) {
+    histogram.clear();
+    for (int r = 0; r < polar.rows(); ++r) {
+      if (static_cast<int>(c) < polar.valid_bins[static_cast<std::size_t>(r)]) {
+        histogram.add(polar.intensities.at<std::uint8_t>(r, static_cast<int>(c)));
+      }
+    }
+    if (histogram.total() == 0) continue;
+    profile.background[c] = histogram.percentile(options.background_percentile);
+    profile.median[c] = histogram.percentile(50.0);
+    profile.clutter[c] = histogram.percentile(100.0 * (1.0 - options.clutter_share));
+    profile.sigma[c] = detail::lowerHalfSigma(histogram);
+  }
+  return profile;
+}
+
+}  // namespace
+
+std::vector<float> windowedMedian(const std::vector<float>& values, int half_window) {
+  const std::size_t n = values.size();
+  std::vector<float> out(n), window;
+  const auto w = static_cast<std::size_t>(std::max(0, half_window));
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::size_t lo = c > w ? c - w : 0, hi = std::min(n, c + w + 1);
+    window.assign(values.begin() + static_cast<std::ptrdiff_t>(lo), values.begin() + static_cast<std::ptrdiff_t>(hi));
+    const auto middle = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+    std::nth_element(window.begin(), middle, window.end());
+    out[c] = *middle;
+  }
+  return out;
+}
+
+namespace {
+
+/// First column after the median profile's near peak where it falls half-way to the far level.
+int bandEnd(const ColumnProfile& profile) {
+  const auto cols = static_cast<int>(profile.median.size());
+  if (cols == 0) return 0;
+  const int search = std::max(1, cols / 4);
+  const auto peak = std::max_element(profile.median.begin(), profile.median.begin() + search);
+  std::vector<float> far(profile.median.begin() + cols / 2, profile.median.end());
+  std::nth_element(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(far.size() / 2), far.end());
+  const float half = 0.5f * (*peak + far[far.size() / 2]);
+  int c = static_cast<int>(peak - profile.median.begin());
+  while (c < cols && profile.median[static_cast<std::size_t>(c)] > half) ++c;
+  return c;
+}
+
+/// End of the clutter contiguous with the band: the last column, reached through gaps of at most
+/// gap_bins, where the clutter quantile rises above the threshold.
+int nearFieldEnd(const ColumnProfile& profile, const std::vector<float>& threshold, int band_end, int gap_bins) {
+  const auto cols = static_cast<int>(profile.median.size());
+  int last = band_end;
+  for (int c = band_end; c < cols && c - last <= gap_bins; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    if (profile.clutter[i] - profile.background[i] >= threshold[i]) last = c + 1;
+  }
+  return last;
+}
+
+}  // namespace
+
+void CalibrationOptions::validate() const {
+  if (!(background_percentile >= 0.0 && background_percentile <= 100.0)) {
+    throwOption("the background percentile must be in [0, 100]");
+  }
+  if (!(std::isfinite(min_contrast_db) && min_contrast_db >= 0.0)) throwOption("the minimum contrast must be >= 0 dB");
+  if (!(false_alarm_probability > 0.0 && false_alarm_probability < 0.5)) {
+    throwOption("the false-alarm probability must be in (0, 0.5)");
+  }
+  if (!(std::isfinite(noise_window_m) && noise_window_m >= 0.0)) throwOption("the noise window must be >= 0 m");
+  if (!(clutter_share > 0.0 && clutter_share <= 0.5)) throwOption("the clutter share must be in (0, 0.5]");
+  if (!(std::isfinite(max_gap_m) && max_gap_m >= 0.0)) throwOption("the near-field gap must be >= 0 m");
+}
+
+double gaussianQuantile(double upper_tail_probability) {
+  if (!(upper_tail_probability > 0.0 && upper_tail_probability < 0.5)) {
+    throw ValueError("gaussianQuantile: the tail probability must be in (0, 0.5)");
+  }
+  double lo = 0.0, hi = 40.0;  // Q(z) = erfc(z / √2) / 2 falls monotonically
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(mid / std::sqrt(2.0)) > upper_tail_probability ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+float thresholdFor(float sigma, const CalibrationOptions& options, double span_db) {
+  return static_cast<float>(std::max(countsForDb(options.min_contrast_db, span_db),
+                                     gaussianQuantile(options.false_alarm_probability) * sigma));
+}
+
+SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOptions& options, double span_db) {
+  options.validate();
+  if (polar.intensities.type() != CV_8UC1) throwOption("the polar image must be CV_8UC1");
+  if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) throwOption("bin_length_m must be > 0 m");
+  if (static_cast<int>(polar.valid_bins.size()) != polar.rows()) throwOption("valid_bins must hold one entry per row");
+  countsForDb(options.min_contrast_db, span_db);  // checks the span
+  SweepCalibration calibration;
+  calibration.span_db = span_db;
+  const ColumnProfile profile = profileColumns(polar, options);
+  const int window = binsForLength(options.noise_window_m, polar.bin_length_m, 0, polar.cols());
+  calibration.background = profile.background;
+  calibration.noise_sigma = windowedMedian(profile.sigma, window);
+  calibration.threshold.resize(calibration.noise_sigma.size());
+  for (std::size_t c = 0; c < calibration.threshold.size(); ++c) {
+    calibration.threshold[c] = thresholdFor(calibration.noise_sigma[c], options, span_db);
+  }
+  const int band = bandEnd(profile);
+  const int gap = binsForLength(options.max_gap_m, polar.bin_length_m, 1, std::max(1, polar.cols()));
+  const int near_field = nearFieldEnd(profile, calibration.threshold, band, gap);
+  calibration.band_end_m = band * polar.bin_length_m;
+  calibration.near_field_end_m = near_field * polar.bin_length_m;
+  return calibration;
+}
+
+}  // namespace sonarmap

@@ -1,0 +1,48 @@
+#pragma once
+/// @file column_histogram.hpp
+/// Private to detection: percentiles of 8-bit intensities by a 256-bin histogram (O(1) to add a
+/// value, O(256) per percentile), for the per-range statistics of calibration.hpp.
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace sonarmap::detail {
+
+class IntensityHistogram {
+ public:
+  void add(std::uint8_t value) {
+    ++counts_[value];
+    ++total_;
+  }
+  void clear() {
+    counts_.fill(0);
+    total_ = 0;
+  }
+  std::uint32_t total() const { return total_; }
+
+  /// The `percentile` (0…100) by the nearest-rank rule on the sorted values; total() > 0.
+  float percentile(double percentile) const {
+    const auto rank = static_cast<std::uint32_t>(std::lround(percentile / 100.0 * (total_ - 1)));
+    std::uint32_t seen = 0;
+    for (int v = 0; v < 256; ++v) {
+      seen += counts_[static_cast<std::size_t>(v)];
+      if (seen > rank) return static_cast<float>(v);
+    }
+    return 255.0f;
+  }
+
+ private:
+  std::array<std::uint32_t, 256> counts_{};
+  std::uint32_t total_ = 0;
+};
+
+/// The lower-half spread of a histogram, as the σ of a Gaussian with the same quartiles:
+/// (Q50 − Q25) / Φ⁻¹(0.75).
+inline float lowerHalfSigma(const IntensityHistogram& histogram) {
+  constexpr double kGaussianQuartileSpread = 0.6744897501960817;
+  const double spread = histogram.percentile(50.0) - histogram.percentile(25.0);
+  return static_cast<float>(std::max(0.0, spread) / kGaussianQuartileSpread);
+}
+
+}  // namespace sonarmap::detail

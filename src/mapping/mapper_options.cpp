@@ -1,0 +1,128 @@
+/// @file mapper_options.cpp
+/// MapperOptions validation, the automatic resolution and the work budget (see mapper_options.hpp).
+
+#include "sonarmap/mapping/mapper_options.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "sonarmap/core/errors.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kAutoVoxelsPerReach = 256.0;
+constexpr double kFinestAutoResolution_m = 0.001;
+
+std::string metres(double value_m) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g m", value_m);
+  return text;
+}
+
+void checkOptionalLength(const std::optional<double>& value_m, const char* name, bool zero_allowed) {
+  if (!value_m) return;
+  const bool ok = std::isfinite(*value_m) && (zero_allowed ? *value_m >= 0.0 : *value_m > 0.0);
+  if (!ok) {
+    throw ValueError(std::string(name) + " must be a finite number of metres " + (zero_allowed ? ">= 0" : "> 0") +
+                     ", got " + std::to_string(*value_m));
+  }
+}
+
+/// Bearing step from beam i to the next beam of the log, wrapped to [0, π]; the previous step for
+/// the last beam, 2π for a log of one beam.
+double stepAfter(const std::vector<Beam>& beams, std::size_t i) {
+  if (beams.size() < 2) return kTwoPi;
+  const std::size_t a = i + 1 < beams.size() ? i : i - 1;
+  return std::abs(std::remainder(beams[a + 1].bearing_rad - beams[a].bearing_rad, kTwoPi));
+}
+
+}  // namespace
+
+RayAlgorithm parseRayAlgorithm(std::string_view name) {
+  if (name == "dda") return RayAlgorithm::kDDA;
+  if (name == "bresenham") return RayAlgorithm::kBresenham;
+  throw ValueError("unknown ray algorithm '" + std::string(name) + "', expected dda or bresenham");
+}
+
+void MapperOptions::validate() const {
+  checkOptionalLength(resolution_m, "resolution", false);
+  checkOptionalLength(self_reflection_range_m, "self-reflection range", true);
+  checkOptionalLength(range_tolerance_m, "range tolerance", true);
+  if (!(max_range_m > 0.0)) throw ValueError("max range must be > 0 m, got " + std::to_string(max_range_m));
+  if (!(beam_width_rad >= 0.0 && beam_width_rad < std::numbers::pi)) {
+    throw ValueError("beam width must be within [0, pi) rad, got " + std::to_string(beam_width_rad));
+  }
+  if (!(max_voxel_updates > 0.0)) {
+    throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));
+  }
+  smoothing.validate();
+  detector.validate();
+  octree.occupancy.validate();
+}
+
+double autoResolution_m(double reach_m) {
+  if (!(std::isfinite(reach_m) && reach_m > 0.0)) {
+    throw ValueError("automatic resolution: the sonar's reach must be > 0 m, got " + std::to_string(reach_m));
+  }
+  const double target = std::max(reach_m / kAutoVoxelsPerReach, kFinestAutoResolution_m);
+  // Nearest of 1, 2, 5 × 10^k in log scale.
+  const double decade = std::pow(10.0, std::floor(std::log10(target)));
+  double best = decade;
+  for (const double step : {1.0, 2.0, 5.0, 10.0}) {
+    if (std::abs(std::log(step * decade / target)) < std::abs(std::log(best / target))) best = step * decade;
+  }
+  return best;
+}
+
+double logReach_m(const SonarLog& log, double max_range_m) {
+  double reach_m = 0.0;
+  for (const Beam& beam : log.beams) {
+    reach_m = std::max(reach_m, static_cast<double>(beam.intensities.size()) * beam.bin_length_m);
+  }
+  return std::min(reach_m, max_range_m);
+}
+
+MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log) {
+  options.validate();
+  MapperOptions resolved = options;
+  if (!resolved.resolution_m) {
+    const double reach_m = logReach_m(log, options.max_range_m);
+    if (!(reach_m > 0.0)) throw ValueError("automatic resolution: the log has no beam with bins");
+    resolved.resolution_m = autoResolution_m(reach_m);
+  }
+  return resolved;
+}
+
+double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
+  const double voxel_m = options.resolution_m.value_or(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3)));
+  double updates = 0.0;
+  for (std::size_t i = 0; i < log.beams.size(); ++i) {
+    const Beam& beam = log.beams[i];
+    const double range_m = std::min(static_cast<double>(beam.intensities.size()) * beam.bin_length_m, options.max_range_m);
+    if (!(range_m > 0.0)) continue;
+    // The union of overlapping wedges grows by one bearing step per beam; a ray is a line of voxels.
+    const double width_rad = std::min(std::max(options.beam_width_rad, voxel_m / range_m), stepAfter(log.beams, i));
+    updates += width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;
+  }
+  return updates;
+}
+
+void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
+  const double updates = estimateVoxelUpdates(log, options);
+  if (updates <= options.max_voxel_updates) return;
+  // Updates scale with 1 / resolution²: the finest resolution that fits.
+  const double voxel_m = options.resolution_m.value_or(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3)));
+  const double fits_m = voxel_m * std::sqrt(updates / options.max_voxel_updates);
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "mapping this log at %s voxels needs about %.3g voxel updates, more than the budget of %.3g "
+                "(max_voxel_updates, --max-voxel-updates): use a resolution of at least %s, or raise the budget",
+                metres(voxel_m).c_str(), updates, options.max_voxel_updates, metres(fits_m).c_str());
+  throw ValueError(text);
+}
+
+}  // namespace sonarmap
