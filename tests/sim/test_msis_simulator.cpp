@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -65,6 +67,20 @@ double firstAbove(const Beam& beam, int threshold, double from_m) {
   return -1.0;
 }
 
+/// FNV-1a hash of every beam's time, bearing and bin length (their bits) and intensities.
+std::uint64_t checksum(const SonarLog& log) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  auto add = [&hash](std::uint64_t byte) { hash = (hash ^ byte) * 1099511628211ULL; };
+  for (const Beam& beam : log.beams) {
+    for (const double value : {beam.time_s, beam.bearing_rad, beam.bin_length_m}) {
+      const auto bits = std::bit_cast<std::uint64_t>(value);
+      for (int shift = 0; shift < 64; shift += 8) add((bits >> shift) & 0xFFU);
+    }
+    for (const std::uint8_t intensity : beam.intensities) add(intensity);
+  }
+  return hash;
+}
+
 /// Range of the first surface along the horizontal ray at `bearing_rad` from the map origin.
 SceneHit horizontalHit(const Scene& scene, double bearing_rad) {
   const auto hit = firstHit(scene, Eigen::Vector3d::Zero(),
@@ -93,6 +109,16 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
   }
   // The ground truth travels with the log.
   EXPECT_EQ(run.scene.primitives.size(), builtinScene("tank").primitives.size());
+}
+
+TEST(simMsis, DefaultTankAndHarbourLogsAreUnchanged) {
+  // Checksums of what the simulator wrote before sonar presets, sector scans and scaled scenes
+  // were added: the defaults (the Micron, 360° turns, the 5 m scenes) must give the same bytes.
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0x99976a199f6f88dcULL);
+  MsisSimulationOptions moving = turns(1);
+  moving.seed = 3;
+  moving.trajectory = constantVelocityTrajectory(NavSample{}, Eigen::Vector3d(0.0, 0.3, 0.0));
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("harbour"), moving).log), 0xb8b486fae00677d9ULL);
 }
 
 TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
