@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -136,6 +137,59 @@ TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
   EXPECT_EQ(run.log.beams[0].intensities.size(), 200U);
   EXPECT_DOUBLE_EQ(run.log.beams[0].bin_length_m, 0.05);
   EXPECT_EQ(splitSweeps(run.log.beams).size(), 1U);
+}
+
+/// Bearing difference to − from, wrapped to (−π, π].
+double wrappedDifference(double from_rad, double to_rad) { return std::remainder(to_rad - from_rad, 2.0 * std::numbers::pi); }
+
+TEST(simMsis, SectorHeadSweepsBackAndForthBetweenItsLimits) {
+  // A 90° sector centred on 350° (it straddles bearing 0), 1.8° steps: 50 steps, 51 beams a pass.
+  for (const bool counter_clockwise : {true, false}) {
+    SCOPED_TRACE(counter_clockwise ? "counter-clockwise" : "clockwise");
+    MsisSimulationOptions options = noiseless(4);
+    options.head.sector_width_rad = 90.0 * kDegree;
+    options.head.sector_center_rad = 350.0 * kDegree;
+    options.head.counter_clockwise = counter_clockwise;
+    options.head.start_bearing_rad = 2.0;  // ignored by a sector head
+    ASSERT_TRUE(options.head.isSector());
+    ASSERT_EQ(options.head.sectorSteps(), 50U);
+    ASSERT_EQ(options.head.beamsPerTurn(), 51U);
+    const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
+    const std::vector<Beam>& beams = run.log.beams;
+    ASSERT_EQ(beams.size(), 4U * 51U);  // `turns` counts passes across the sector
+    const double first_sign = counter_clockwise ? 1.0 : -1.0;
+    EXPECT_NEAR(wrappedDifference(350.0 * kDegree, beams[0].bearing_rad), -first_sign * 45.0 * kDegree, 1e-9);
+    for (std::size_t i = 0; i < beams.size(); ++i) {
+      EXPECT_GE(beams[i].bearing_rad, 0.0);
+      EXPECT_LT(beams[i].bearing_rad, 2.0 * std::numbers::pi);
+      EXPECT_LE(std::abs(wrappedDifference(350.0 * kDegree, beams[i].bearing_rad)), 45.0 * kDegree + 1e-9) << i;
+      EXPECT_NEAR(beams[i].time_s, 0.043 * static_cast<double>(i), 1e-9);
+      if (i == 0) continue;
+      const double step = wrappedDifference(beams[i - 1].bearing_rad, beams[i].bearing_rad);
+      if (i % 51 == 0) {
+        // The head pings again at the limit it reached, then reverses (as in the SeaNet log).
+        EXPECT_NEAR(step, 0.0, 1e-9) << i;
+        EXPECT_NEAR(std::abs(wrappedDifference(350.0 * kDegree, beams[i].bearing_rad)), 45.0 * kDegree, 1e-9) << i;
+      } else {
+        const double pass_sign = (i / 51) % 2 == 0 ? first_sign : -first_sign;
+        EXPECT_NEAR(step, pass_sign * 1.8 * kDegree, 1e-9) << i;
+      }
+    }
+    // One sweep per pass; the repeated limit beam (a zero step) closes the sweep it ends.
+    const std::vector<SweepRange> sweeps = splitSweeps(beams);
+    ASSERT_EQ(sweeps.size(), 4U);
+    for (std::size_t k = 1; k < sweeps.size(); ++k) EXPECT_EQ(sweeps[k].first, 51U * k + 1U);
+    EXPECT_EQ(sweeps.back().last_exclusive, beams.size());
+  }
+}
+
+TEST(simMsis, FullWidthSectorIsAContinuousTurn) {
+  MsisSimulationOptions options = turns(1);
+  options.head.sector_width_rad = 360.0 * kDegree;
+  options.head.sector_center_rad = 1.0;  // ignored by a 360° head
+  EXPECT_FALSE(options.head.isSector());
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), options).log),
+            checksum(simulateMsis(builtinScene("tank"), turns(1)).log));
 }
 
 TEST(simMsis, SameSeedSameLogOtherSeedOtherLog) {
@@ -324,6 +378,15 @@ TEST(simMsis, InvalidOptionsAndScenesAreRejected) {
   rejects(options);
   options = turns(1);
   options.echo.vertical.rays = 0;
+  rejects(options);
+  for (const double width_rad : {0.0, -1.0, 2.0 * std::numbers::pi + 1e-6, 1.0 * kDegree, std::nan("")}) {
+    options = turns(1);
+    options.head.sector_width_rad = width_rad;  // 1°: less than the 1.8° step
+    rejects(options);
+  }
+  options = turns(1);
+  options.head.sector_width_rad = 90.0 * kDegree;
+  options.head.sector_center_rad = std::numeric_limits<double>::infinity();
   rejects(options);
   options = turns(1);
   options.echo.ad_span_db = 0.0;

@@ -74,12 +74,36 @@ struct MsisHeadOptions {
   /// Bins per beam, ≥ 1; bin_length_m = range_m / bins (0.012531 m: the CRAS log's step_dist).
   int bins = 399;
   double beam_period_s = 0.043;    ///< time between beams (CRAS: ≈ 43 ms, 8.6 s per turn), > 0
-  double start_bearing_rad = 0.0;  ///< bearing of the first beam, radians (wrapped to [0, 2π))
-  bool counter_clockwise = true;   ///< the head turns counter-clockwise (bearings increase); false: clockwise
+  /// Bearing of the first beam of a 360° head, radians (wrapped to [0, 2π)); a sector head starts
+  /// at a limit of its sector instead.
+  double start_bearing_rad = 0.0;
+  /// The head turns counter-clockwise (bearings increase); false: clockwise. A sector head's first
+  /// pass runs this way, the next one back.
+  bool counter_clockwise = true;
+  /// Width of the scanned sector, radians, in (0, 2π]. 2π (the default): a continuous 360° scan.
+  /// Less: a sector scan. The head then sweeps between the limits
+  /// sector_center_rad ± sectorSteps() · step_rad / 2 (inside the sector, centred on it) and
+  /// reverses at each: like a Tritech head (the SeaNet log, ../shared/data), it pings at the limit
+  /// it reached and again at the same bearing as the first beam of the pass back. So one pass holds
+  /// sectorSteps() + 1 beams, from one limit to the other, both included. The sector must hold at
+  /// least one step (sector_width_rad ≥ step_rad).
+  double sector_width_rad = 2.0 * std::numbers::pi;
+  double sector_center_rad = 0.0;  ///< bearing of the sector's centre, radians (sector scans only)
 
   double binLength_m() const { return range_m / bins; }
-  /// Beams in one 360° turn: round(2π / step_rad).
+  /// Whether the head scans a sector (sector_width_rad < 2π) rather than turning continuously.
+  bool isSector() const;
+  /// Steps of one pass across the sector: floor(sector_width_rad / step_rad), ≥ 1 for a valid
+  /// sector head (not meaningful for a 360° head).
+  std::size_t sectorSteps() const;
+  /// Beams in one turn: round(2π / step_rad) for a 360° head; for a sector head, the beams of one
+  /// pass across the sector, sectorSteps() + 1.
   std::size_t beamsPerTurn() const;
+  /// Bearing of beam `index` (0 for the first beam of the run), radians in [0, 2π), sonar frame.
+  /// 360° head: start_bearing_rad + index · step (− for clockwise), wrapped. Sector head: pass
+  /// p = index / beamsPerTurn() starts at the limit where pass p − 1 ended (the first pass at the
+  /// limit from which counter_clockwise leads across the sector) and steps to the other limit.
+  double bearingOf(std::size_t index) const;
   /// @throws ValueError naming the field that is out of range or not finite.
   void validate() const;
 };
@@ -127,7 +151,9 @@ struct EchoModelOptions {
 struct MsisSimulationOptions {
   MsisHeadOptions head;
   EchoModelOptions echo;
-  std::size_t turns = 28;                      ///< full 360° turns of the head; beams = turns × head.beamsPerTurn()
+  /// Full 360° turns of the head, or for a sector head passes across the sector (one pass from one
+  /// limit to the other is a "turn"); beams = turns × head.beamsPerTurn().
+  std::size_t turns = 28;
   double start_time_s = 0.0;                   ///< time of the first beam, seconds
   Trajectory trajectory = staticTrajectory();  ///< the vehicle's pose over time (NED, navigation.hpp)
   Eigen::Isometry3d sonar_to_body = defaultSonarToBody();
