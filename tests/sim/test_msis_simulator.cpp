@@ -221,6 +221,23 @@ TEST(simMsis, SelfReflectionBandThenSilenceUntilTheRing) {
   EXPECT_LT(gap[gap.size() * 9 / 10], 3.0);  // and nothing follows it until the ring
 }
 
+TEST(simMsis, SelfReflectionBandTapersOverItsTaperLength) {
+  // Open water (no echo), no speckle and noise: what is left is the band. A 0.5 m taper after a
+  // plateau to 0.3 m: half the plateau's power (−3 dB) at 0.55 m, nothing from 0.8 m on.
+  MsisSimulationOptions options = noiseless(1);
+  options.head.step_rad = 90.0 * kDegree;
+  options.echo.self_reflection_taper_m = 0.5;
+  const Scene empty{{Plane{{0.0, 0.0, -100.0}, Eigen::Vector3d::UnitZ(), 0.5}}};
+  const MsisSimulation run = simulateMsis(empty, options);
+  const double per_db = 255.0 / options.echo.ad_span_db;
+  for (const Beam& beam : run.log.beams) {
+    EXPECT_NEAR(meanIntensity(beam, 0.1, 0.3), 100.0, 0.5);
+    EXPECT_NEAR(meanIntensity(beam, 0.54, 0.56), 100.0 - 10.0 * std::log10(2.0) * per_db, 2.0);
+    EXPECT_GT(meanIntensity(beam, 0.7, 0.75), 0.0);
+    EXPECT_EQ(peak(beam, 0.8, 5.0).first, 0);
+  }
+}
+
 TEST(simMsis, WallEchoesAtTheRangesOfTheGeometry) {
   const Scene tank = builtinScene("tank");
   const MsisSimulation run = simulateMsis(tank, turns(1));
@@ -390,6 +407,9 @@ TEST(simMsis, InvalidOptionsAndScenesAreRejected) {
   rejects(options);
   options = turns(1);
   options.echo.ad_span_db = 0.0;
+  rejects(options);
+  options = turns(1);
+  options.echo.self_reflection_taper_m = 0.0;
   rejects(options);
   options = turns(1);
   options.trajectory = nullptr;

@@ -32,9 +32,10 @@
 ///     speckle: the mean of speckle_looks consecutive exponential draws (fully developed speckle
 ///     is exponential in power; the moving mean gives it the pulse's correlation length). Additive
 ///     noise: exponential power of mean noise_level_db before the gain, so it grows with range
-///     after it as in the real data. The self-reflection band (reflections from the vehicle: a
-///     plateau of self_reflection_intensity to self_reflection_end_m, tapering over 5 cm) under
-///     the same speckle; bins before blanking_m are 0.
+///     after it as in the real data. The self-reflection band (reflections from the vehicle and the
+///     transducer's ringing: a plateau of self_reflection_intensity to self_reflection_end_m, its
+///     power tapering linearly to 0 over self_reflection_taper_m) under the same speckle; bins
+///     before blanking_m are 0.
 ///  6. Quantisation. intensity = 255 · (10 log10 P − ad_low_db) / ad_span_db, rounded, clipped to
 ///     0…255 (the Micron's ADlow/ADspan mapping of the log-amplified echo).
 ///
@@ -132,8 +133,12 @@ struct EchoModelOptions {
   double ad_low_db = -33.0;               ///< level that maps to intensity 0
   double ad_span_db = 45.0;               ///< level span that maps to 0…255, > 0
   double blanking_m = 0.05;               ///< bins nearer than this are 0 (transmit blanking), ≥ 0
-  double self_reflection_end_m = 0.3;     ///< end of the self-reflection band, ≥ 0 (0: none)
+  double self_reflection_end_m = 0.3;     ///< end of the self-reflection band's plateau, ≥ 0 (0: none)
   double self_reflection_intensity = 100.0;                 ///< mean intensity of the band, 0…255
+  /// Range over which the band's power falls linearly from its plateau to 0 after
+  /// self_reflection_end_m, > 0: short for reflections off the vehicle (the Micron's 5 cm), long for
+  /// a transducer that rings for a while after transmitting.
+  double self_reflection_taper_m = 0.05;
   bool multipath = true;                                    ///< trace one specular bounce
   double specular_share = 0.6;                              ///< share of the energy a surface mirrors onwards, [0, 1]
   double glint_gain = 8.0;                                  ///< strength of the second surface's mirror lobe, ≥ 0
