@@ -12,6 +12,7 @@
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene_file.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
 #include "sonarmap/sim/trajectory.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
 
@@ -20,18 +21,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr double kDegree = std::numbers::pi / 180.0;
+
 bool isBuiltinScene(const std::string& name) {
   const std::vector<std::string> names = builtinSceneNames();
   return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// "a, b, c".
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
+  return text;
 }
 
 /// A built-in name wins over a file of the same name (write ./tank for the file).
 /// @throws ValueError (usage) when `scene` is neither a built-in name nor an existing file.
 void checkScene(const std::string& scene) {
   if (isBuiltinScene(scene) || fs::exists(scene)) return;
-  std::string known;
-  for (const std::string& name : builtinSceneNames()) known += (known.empty() ? "" : ", ") + name;
-  throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + known + ") nor a scene file");
+  throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(builtinSceneNames(), ", ") +
+                   ") nor a scene file");
 }
 
 /// The simulation options of the arguments. @throws ValueError for a value out of range (usage).
@@ -39,7 +48,16 @@ MsisSimulationOptions toSimulationOptions(const SimulateArgs& args) {
   if (args.turns < 1) throw ValueError("--turns must be at least 1");
   if (!std::isfinite(args.speed_mps)) throw ValueError("--speed must be finite");
   if (!std::isfinite(args.heading_deg)) throw ValueError("--heading must be finite");
+  if (!(std::isfinite(args.sector_deg) && args.sector_deg > 0.0 && args.sector_deg <= 360.0)) {
+    throw ValueError("--sector must be in (0, 360] degrees");
+  }
+  if (!std::isfinite(args.sector_center_deg)) throw ValueError("--sector-center must be finite");
+  const SonarPreset preset = sonarPreset(args.sonar);
   MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  options.head.sector_width_rad = args.sector_deg == 360.0 ? 2.0 * std::numbers::pi : args.sector_deg * kDegree;
+  options.head.sector_center_rad = args.sector_center_deg * kDegree;
   options.turns = args.turns;
   options.seed = args.seed;
   options.nav_rate_hz = args.nav_rate_hz;
@@ -61,15 +79,28 @@ void check(const SimulateArgs& args, MsisSimulationOptions& options) {
 }
 
 void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
-  const Scene scene = isBuiltinScene(args.scene) ? builtinScene(args.scene) : readScene(args.scene);
+  const MsisHeadOptions& head = options.head;
+  const Scene scene = isBuiltinScene(args.scene)
+                          ? builtinScene(args.scene, head.range_m, head.vertical_beam_width_rad)
+                          : readScene(args.scene);
   const MsisSimulation simulation = simulateMsis(scene, options);
   OutputDir dir(args.output_dir);
   FileTransaction outputs;
   stageSimulation(outputs, args.output_dir, simulation);
   outputs.commit();
   dir.keep();
-  std::printf("%zu beams in %zu turns, %zu nav fixes, %zu scene primitives -> %s\n", simulation.log.beams.size(),
-              options.turns, simulation.nav.size(), simulation.scene.primitives.size(), args.output_dir.c_str());
+  char turns[64] = "turns";
+  if (head.isSector()) std::snprintf(turns, sizeof turns, "passes across a %g deg sector", args.sector_deg);
+  std::printf("%s: %zu beams in %zu %s, %zu nav fixes, %zu scene primitives -> %s\n", args.sonar.c_str(),
+              simulation.log.beams.size(), options.turns, turns, simulation.nav.size(),
+              simulation.scene.primitives.size(), args.output_dir.c_str());
+}
+
+/// The --sonar option's help: every preset with its one-line description.
+std::string sonarHelp() {
+  std::string help = "Sonar head preset; built-in scenes are built for its range scale:";
+  for (const std::string& name : sonarPresetNames()) help += "\n  " + name + ": " + sonarPreset(name).description;
+  return help;
 }
 
 }  // namespace
@@ -85,12 +116,27 @@ void stageSimulation(FileTransaction& outputs, const std::string& dir, const Msi
 
 Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "simulate", "Simulate a Tritech Micron scanning a scene: DIR/beams.csv, DIR/nav.csv, DIR/scene.txt");
-  cmd->add_option("scene", args.scene, "Built-in scene (tank | harbour) or a scene file (format: include/sonarmap/sim/scene_file.hpp)")->required();
+      "simulate", "Simulate a mechanically scanned sonar (default: the Tritech Micron) scanning a scene: DIR/beams.csv, "
+                  "DIR/nav.csv, DIR/scene.txt");
+  cmd->add_option("scene", args.scene,
+                  "Built-in scene (" + joined(builtinSceneNames(), " | ") +
+                      "), sized for the sonar's range, or a scene file in metres (format: "
+                      "include/sonarmap/sim/scene_file.hpp)")
+      ->required();
   cmd->add_option("-o,--output", args.output_dir, "Output folder (created when missing)")->required();
+  cmd->add_option("--sonar", args.sonar, sonarHelp())->capture_default_str();
+  cmd->add_option("--sector", args.sector_deg,
+                  "Width of the scanned sector in degrees, (0, 360]; less than 360: the head sweeps back and forth "
+                  "across it")
+      ->capture_default_str();
+  cmd->add_option("--sector-center", args.sector_center_deg,
+                  "Bearing of the sector's centre in degrees, counter-clockwise from the sonar's forward axis")
+      ->capture_default_str();
   cmd->add_option("--seed", args.seed, "Seed of the speckle and noise: a seed always gives the same files")
       ->capture_default_str();
-  cmd->add_option("--turns", args.turns, "Full 360-degree turns of the head (200 beams each)")->capture_default_str();
+  cmd->add_option("--turns", args.turns,
+                  "Full 360-degree turns of the head (the Micron: 200 beams each), or passes across a sector")
+      ->capture_default_str();
   cmd->add_option("--speed", args.speed_mps, "Vehicle speed in m/s along --heading (0: static)")->capture_default_str();
   cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north")
       ->capture_default_str();

@@ -1,6 +1,6 @@
 #pragma once
-// `sonarmap simulate`: a simulated MSIS run (sim/msis_simulator.hpp) written as a beam CSV, its
-// navigation CSV and its ground-truth scene file.
+// `sonarmap simulate`: a simulated MSIS run (sim/msis_simulator.hpp) of a head preset
+// (sim/sonar_presets.hpp) written as a beam CSV, its navigation CSV and its ground-truth scene file.
 
 #include <cstddef>
 #include <cstdint>
@@ -19,8 +19,11 @@ namespace sonarmap::cli {
 struct SimulateArgs {
   std::string scene;  ///< a built-in scene name (builtinSceneNames) or a scene file (scene_file.hpp)
   std::string output_dir;
+  std::string sonar = "micron";  ///< a head preset (sonarPresetNames); built-in scenes are built for its range
+  double sector_deg = 360.0;     ///< width of the scanned sector, degrees, in (0, 360]; 360: continuous turns
+  double sector_center_deg = 0.0;  ///< bearing of the sector's centre, degrees counter-clockwise from the sonar's x
   std::uint64_t seed = 1;
-  std::size_t turns = 28;   ///< full turns of the head, ≥ 1 (28: as many as the CRAS log)
+  std::size_t turns = 28;   ///< full turns of the head (passes across a sector), ≥ 1 (28: as many as the CRAS log)
   double speed_mps = 0.0;   ///< vehicle speed over ground, metres per second
   double heading_deg = 0.0; ///< vehicle heading, degrees clockwise from north (NED yaw)
   double nav_rate_hz = 10.0;///< navigation fixes per second, ≥ 0; 0 writes no nav.csv

@@ -16,6 +16,9 @@ namespace sonarmap {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+/// A sector width within this of 2π is a full turn (degrees converted to radians may miss 2π by
+/// an ulp or so).
+constexpr double kSectorSlack_rad = 1e-9;
 
 void require(bool valid, const std::string& what) {
   if (!valid) throw ValueError(what);
@@ -48,7 +51,26 @@ NavTrack sampleTrajectory(const Trajectory& trajectory, double first_s, double l
 
 }  // namespace
 
-std::size_t MsisHeadOptions::beamsPerTurn() const { return static_cast<std::size_t>(std::lround(kTwoPi / step_rad)); }
+bool MsisHeadOptions::isSector() const { return sector_width_rad < kTwoPi - kSectorSlack_rad; }
+
+std::size_t MsisHeadOptions::sectorSteps() const {
+  return static_cast<std::size_t>(std::floor(sector_width_rad / step_rad + 1e-9));
+}
+
+std::size_t MsisHeadOptions::beamsPerTurn() const {
+  return isSector() ? sectorSteps() + 1 : static_cast<std::size_t>(std::lround(kTwoPi / step_rad));
+}
+
+double MsisHeadOptions::bearingOf(std::size_t index) const {
+  const double signed_step_rad = counter_clockwise ? step_rad : -step_rad;
+  if (!isSector()) return wrapBearing(start_bearing_rad + static_cast<double>(index) * signed_step_rad);
+  const std::size_t steps = sectorSteps();
+  const std::size_t pass = index / (steps + 1);
+  const std::size_t along = index % (steps + 1);
+  const std::size_t from_first_limit = pass % 2 == 0 ? along : steps - along;
+  const double first_limit_rad = sector_center_rad - 0.5 * static_cast<double>(steps) * signed_step_rad;
+  return wrapBearing(first_limit_rad + static_cast<double>(from_first_limit) * signed_step_rad);
+}
 
 void MsisHeadOptions::validate() const {
   require(std::isfinite(step_rad) && step_rad > 0.0 && step_rad <= std::numbers::pi,
@@ -64,6 +86,12 @@ void MsisHeadOptions::validate() const {
   require(std::isfinite(beam_period_s) && beam_period_s > 0.0,
           "MSIS head: beam_period_s must be > 0, got " + std::to_string(beam_period_s));
   require(std::isfinite(start_bearing_rad), "MSIS head: start_bearing_rad must be finite");
+  require(std::isfinite(sector_width_rad) && sector_width_rad > 0.0 && sector_width_rad <= kTwoPi + kSectorSlack_rad,
+          "MSIS head: sector_width_rad must be in (0, 2π], got " + std::to_string(sector_width_rad));
+  require(!isSector() || sector_width_rad >= step_rad * (1.0 - 1e-9),
+          "MSIS head: a sector must hold at least one step: sector_width_rad " + std::to_string(sector_width_rad) +
+              " < step_rad " + std::to_string(step_rad));
+  require(std::isfinite(sector_center_rad), "MSIS head: sector_center_rad must be finite");
 }
 
 void ApertureAxis::validate(const char* axis) const {
@@ -90,6 +118,8 @@ void EchoModelOptions::validate() const {
           "echo model: self_reflection_end_m must be ≥ 0");
   require(finite(self_reflection_intensity) && self_reflection_intensity >= 0.0 && self_reflection_intensity <= 255.0,
           "echo model: self_reflection_intensity must be in 0…255");
+  require(finite(self_reflection_taper_m) && self_reflection_taper_m > 0.0,
+          "echo model: self_reflection_taper_m must be > 0");
   require(finite(specular_share) && specular_share >= 0.0 && specular_share <= 1.0,
           "echo model: specular_share must be in [0, 1]");
   require(finite(glint_gain) && glint_gain >= 0.0, "echo model: glint_gain must be ≥ 0");
@@ -117,13 +147,12 @@ MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& opt
   sim::Receiver receiver(head, options.echo);
   sim::Random random(options.seed);
   const std::size_t beams = options.turns * head.beamsPerTurn();
-  const double step_rad = head.counter_clockwise ? head.step_rad : -head.step_rad;
   std::vector<double> energy;
   run.log.beams.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
     Beam beam;
     beam.time_s = options.start_time_s + static_cast<double>(i) * head.beam_period_s;
-    beam.bearing_rad = wrapBearing(head.start_bearing_rad + static_cast<double>(i) * step_rad);
+    beam.bearing_rad = head.bearingOf(i);
     beam.bin_length_m = head.binLength_m();
     NavSample fix = options.trajectory(beam.time_s);
     fix.time_s = beam.time_s;

@@ -9,8 +9,6 @@
 namespace sonarmap::sim {
 namespace {
 
-constexpr double kSelfReflectionTaper_m = 0.05;  // the band fades out over this range after its end
-
 double powerOf(double level_db) { return std::pow(10.0, level_db / 10.0); }
 
 }  // namespace
@@ -27,8 +25,8 @@ Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo) : 
     gain_[i] = range_m * range_m * std::pow(10.0, 2.0 * echo.tvg_absorption_db_per_m * range_m / 10.0);
     const double past_end_m = range_m - echo.self_reflection_end_m;
     if (echo.self_reflection_end_m > 0.0 && echo.self_reflection_intensity > 0.0 &&
-        past_end_m < kSelfReflectionTaper_m) {
-      self_reflection_[i] = band_power * std::clamp(1.0 - past_end_m / kSelfReflectionTaper_m, 0.0, 1.0);
+        past_end_m < echo.self_reflection_taper_m) {
+      self_reflection_[i] = band_power * std::clamp(1.0 - past_end_m / echo.self_reflection_taper_m, 0.0, 1.0);
     }
   }
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 
@@ -37,7 +38,8 @@ TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.err, "");
   // 2 turns of 200 beams, 43 ms apart: 17.157 s of fixes at 10 Hz, 0 s to 17.2 s.
-  EXPECT_EQ(linesOf(result.out), Names{"400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string()});
+  EXPECT_EQ(linesOf(result.out),
+            Names{"micron: 400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string()});
   EXPECT_EQ(listDir(dir), kSimulationFiles);
   const Names rows = linesOf(readFile(dir / "beams.csv"));
   ASSERT_EQ(rows.size(), 401U);  // header + 400 beams
@@ -48,6 +50,68 @@ TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
   const ProgramRun mapped = run({"map", (dir / "beams.csv").string(), "-o", bt.string(), "-q"});
   ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
   EXPECT_GT(occupiedLeavesAtZ0(bt), 500U) << "the tank's walls should be mapped";
+}
+
+/// FNV-1a hash of `text`'s bytes.
+std::uint64_t fnv1a(const std::string& text) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const unsigned char byte : text) hash = (hash ^ byte) * 1099511628211ULL;
+  return hash;
+}
+
+TEST_F(cliSim, DefaultRunIsTheMicronAndUnchanged) {
+  const fs::path plain = out_ / "plain", micron = out_ / "micron";
+  ASSERT_EQ(run({"simulate", "tank", "-o", plain.string(), "--turns", "2", "--seed", "7"}).exit_code, 0);
+  ASSERT_EQ(run({"simulate", "tank", "-o", micron.string(), "--turns", "2", "--seed", "7", "--sonar", "micron",
+                 "--sector", "360"})
+                .exit_code,
+            0);
+  // Hashes of the files `sonarmap simulate tank --turns 2 --seed 7` wrote before presets, sectors
+  // and scaled scenes were added.
+  EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0x2f20354f000cffc7ULL);
+  EXPECT_EQ(fnv1a(readFile(plain / "nav.csv")), 0xe498463d125b3807ULL);
+  EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0xd30423bb857e69b9ULL);
+  for (const std::string& file : kSimulationFiles) EXPECT_EQ(readFile(plain / file), readFile(micron / file)) << file;
+}
+
+TEST_F(cliSim, SonarPresetScansASectorOfASceneBuiltForItsRange) {
+  const fs::path dir = out_ / "ping360";
+  const ProgramRun result = run({"simulate", "harbour", "-o", dir.string(), "--sonar", "ping360", "--sector", "90",
+                                 "--sector-center", "-10", "--turns", "2", "--nav-rate", "0"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // 90° in 1-gradian (0.9°) steps: 100 steps, 101 beams a pass.
+  EXPECT_EQ(linesOf(result.out), Names{"ping360: 202 beams in 2 passes across a 90 deg sector, 0 nav fixes, 8 scene "
+                                       "primitives -> " + dir.string()});
+  const Names rows = linesOf(readFile(dir / "beams.csv"));
+  ASSERT_EQ(rows.size(), 203U);
+  EXPECT_NE(rows[0].find(",b1199"), std::string::npos);  // 1200 samples
+  EXPECT_EQ(rows[0].find(",b1200"), std::string::npos);
+  double previous_deg = 0.0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    double time_s = 0, bearing_deg = 0, bin_length_m = 0;
+    ASSERT_EQ(std::sscanf(rows[i].c_str(), "%lf,%lf,%lf", &time_s, &bearing_deg, &bin_length_m), 3) << rows[i];
+    EXPECT_NEAR(bin_length_m, 50.0 / 1200.0, 1e-12);
+    EXPECT_LE(std::abs(std::remainder(bearing_deg + 10.0, 360.0)), 45.0 + 1e-6) << i;
+    const double step_deg = std::remainder(bearing_deg - previous_deg, 360.0);
+    if (i == 2) {
+      EXPECT_NEAR(step_deg, 0.9, 1e-6);  // the first pass turns counter-clockwise
+    } else if (i == 103) {
+      EXPECT_NEAR(step_deg, -0.9, 1e-6);  // the second one back
+    }
+    previous_deg = bearing_deg;
+  }
+  // The harbour built for 50 m: the quay's face at 35 m (its block's centre 60 m north).
+  EXPECT_NE(readFile(dir / "scene.txt").find("\nbox 60 0 "), std::string::npos) << readFile(dir / "scene.txt");
+}
+
+TEST_F(cliSim, HelpListsPresetsScenesAndUnits) {
+  const ProgramRun help = run({"simulate", "--help"});
+  ASSERT_EQ(help.exit_code, 0);
+  for (const char* name :
+       {"micron", "seaking-30", "seaking-50", "ping360", "imagenex-881a", "tank", "harbour", "hull", "soft", "open-water",
+        "degrees", "m/s"}) {
+    EXPECT_NE(help.out.find(name), std::string::npos) << name;
+  }
 }
 
 TEST_F(cliSim, SameSeedGivesIdenticalFilesAndAnotherSeedOtherBeams) {
@@ -139,6 +203,12 @@ TEST_F(cliSim, UsageErrorsExitTwoAndWriteNothing) {
   expectError(run({"simulate", "tank", "-o", dir, "--turns", "0"}), 2);
   expectError(run({"simulate", "tank", "-o", dir, "--nav-rate", "-1"}), 2);
   expectError(run({"simulate", "tank", "-o", dir, "--speed", "fast"}), 2);
+  expectError(run({"simulate", "tank", "-o", dir, "--sonar", "seabat"}), 2);
+  for (const std::string sector : {"0", "-90", "361", "nan"}) {
+    expectError(run({"simulate", "tank", "-o", dir, "--sector", sector}), 2);
+  }
+  expectError(run({"simulate", "tank", "-o", dir, "--sector", "1"}), 2);  // less than one 1.8° step
+  expectError(run({"simulate", "tank", "-o", dir, "--sector", "90", "--sector-center", "inf"}), 2);
   expectError(run({"simulate", "tank"}), 2);  // no -o
   writeFile(out_ / "file.txt", "a file, not a folder\n");
   expectError(run({"simulate", "tank", "-o", (out_ / "file.txt").string()}), 2);

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -65,6 +68,20 @@ double firstAbove(const Beam& beam, int threshold, double from_m) {
   return -1.0;
 }
 
+/// FNV-1a hash of every beam's time, bearing and bin length (their bits) and intensities.
+std::uint64_t checksum(const SonarLog& log) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  auto add = [&hash](std::uint64_t byte) { hash = (hash ^ byte) * 1099511628211ULL; };
+  for (const Beam& beam : log.beams) {
+    for (const double value : {beam.time_s, beam.bearing_rad, beam.bin_length_m}) {
+      const auto bits = std::bit_cast<std::uint64_t>(value);
+      for (int shift = 0; shift < 64; shift += 8) add((bits >> shift) & 0xFFU);
+    }
+    for (const std::uint8_t intensity : beam.intensities) add(intensity);
+  }
+  return hash;
+}
+
 /// Range of the first surface along the horizontal ray at `bearing_rad` from the map origin.
 SceneHit horizontalHit(const Scene& scene, double bearing_rad) {
   const auto hit = firstHit(scene, Eigen::Vector3d::Zero(),
@@ -95,6 +112,16 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
   EXPECT_EQ(run.scene.primitives.size(), builtinScene("tank").primitives.size());
 }
 
+TEST(simMsis, DefaultTankAndHarbourLogsAreUnchanged) {
+  // Checksums of what the simulator wrote before sonar presets, sector scans and scaled scenes
+  // were added: the defaults (the Micron, 360° turns, the 5 m scenes) must give the same bytes.
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0x99976a199f6f88dcULL);
+  MsisSimulationOptions moving = turns(1);
+  moving.seed = 3;
+  moving.trajectory = constantVelocityTrajectory(NavSample{}, Eigen::Vector3d(0.0, 0.3, 0.0));
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("harbour"), moving).log), 0xb8b486fae00677d9ULL);
+}
+
 TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
   MsisSimulationOptions options = turns(1);
   options.head.counter_clockwise = false;
@@ -110,6 +137,59 @@ TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
   EXPECT_EQ(run.log.beams[0].intensities.size(), 200U);
   EXPECT_DOUBLE_EQ(run.log.beams[0].bin_length_m, 0.05);
   EXPECT_EQ(splitSweeps(run.log.beams).size(), 1U);
+}
+
+/// Bearing difference to − from, wrapped to (−π, π].
+double wrappedDifference(double from_rad, double to_rad) { return std::remainder(to_rad - from_rad, 2.0 * std::numbers::pi); }
+
+TEST(simMsis, SectorHeadSweepsBackAndForthBetweenItsLimits) {
+  // A 90° sector centred on 350° (it straddles bearing 0), 1.8° steps: 50 steps, 51 beams a pass.
+  for (const bool counter_clockwise : {true, false}) {
+    SCOPED_TRACE(counter_clockwise ? "counter-clockwise" : "clockwise");
+    MsisSimulationOptions options = noiseless(4);
+    options.head.sector_width_rad = 90.0 * kDegree;
+    options.head.sector_center_rad = 350.0 * kDegree;
+    options.head.counter_clockwise = counter_clockwise;
+    options.head.start_bearing_rad = 2.0;  // ignored by a sector head
+    ASSERT_TRUE(options.head.isSector());
+    ASSERT_EQ(options.head.sectorSteps(), 50U);
+    ASSERT_EQ(options.head.beamsPerTurn(), 51U);
+    const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
+    const std::vector<Beam>& beams = run.log.beams;
+    ASSERT_EQ(beams.size(), 4U * 51U);  // `turns` counts passes across the sector
+    const double first_sign = counter_clockwise ? 1.0 : -1.0;
+    EXPECT_NEAR(wrappedDifference(350.0 * kDegree, beams[0].bearing_rad), -first_sign * 45.0 * kDegree, 1e-9);
+    for (std::size_t i = 0; i < beams.size(); ++i) {
+      EXPECT_GE(beams[i].bearing_rad, 0.0);
+      EXPECT_LT(beams[i].bearing_rad, 2.0 * std::numbers::pi);
+      EXPECT_LE(std::abs(wrappedDifference(350.0 * kDegree, beams[i].bearing_rad)), 45.0 * kDegree + 1e-9) << i;
+      EXPECT_NEAR(beams[i].time_s, 0.043 * static_cast<double>(i), 1e-9);
+      if (i == 0) continue;
+      const double step = wrappedDifference(beams[i - 1].bearing_rad, beams[i].bearing_rad);
+      if (i % 51 == 0) {
+        // The head pings again at the limit it reached, then reverses (as in the SeaNet log).
+        EXPECT_NEAR(step, 0.0, 1e-9) << i;
+        EXPECT_NEAR(std::abs(wrappedDifference(350.0 * kDegree, beams[i].bearing_rad)), 45.0 * kDegree, 1e-9) << i;
+      } else {
+        const double pass_sign = (i / 51) % 2 == 0 ? first_sign : -first_sign;
+        EXPECT_NEAR(step, pass_sign * 1.8 * kDegree, 1e-9) << i;
+      }
+    }
+    // One sweep per pass; the repeated limit beam (a zero step) closes the sweep it ends.
+    const std::vector<SweepRange> sweeps = splitSweeps(beams);
+    ASSERT_EQ(sweeps.size(), 4U);
+    for (std::size_t k = 1; k < sweeps.size(); ++k) EXPECT_EQ(sweeps[k].first, 51U * k + 1U);
+    EXPECT_EQ(sweeps.back().last_exclusive, beams.size());
+  }
+}
+
+TEST(simMsis, FullWidthSectorIsAContinuousTurn) {
+  MsisSimulationOptions options = turns(1);
+  options.head.sector_width_rad = 360.0 * kDegree;
+  options.head.sector_center_rad = 1.0;  // ignored by a 360° head
+  EXPECT_FALSE(options.head.isSector());
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), options).log),
+            checksum(simulateMsis(builtinScene("tank"), turns(1)).log));
 }
 
 TEST(simMsis, SameSeedSameLogOtherSeedOtherLog) {
@@ -139,6 +219,23 @@ TEST(simMsis, SelfReflectionBandThenSilenceUntilTheRing) {
   std::sort(gap.begin(), gap.end());
   EXPECT_GT(band[band.size() / 10], 70.0);   // the band is bright in (nearly) every beam: ≈ 100
   EXPECT_LT(gap[gap.size() * 9 / 10], 3.0);  // and nothing follows it until the ring
+}
+
+TEST(simMsis, SelfReflectionBandTapersOverItsTaperLength) {
+  // Open water (no echo), no speckle and noise: what is left is the band. A 0.5 m taper after a
+  // plateau to 0.3 m: half the plateau's power (−3 dB) at 0.55 m, nothing from 0.8 m on.
+  MsisSimulationOptions options = noiseless(1);
+  options.head.step_rad = 90.0 * kDegree;
+  options.echo.self_reflection_taper_m = 0.5;
+  const Scene empty{{Plane{{0.0, 0.0, -100.0}, Eigen::Vector3d::UnitZ(), 0.5}}};
+  const MsisSimulation run = simulateMsis(empty, options);
+  const double per_db = 255.0 / options.echo.ad_span_db;
+  for (const Beam& beam : run.log.beams) {
+    EXPECT_NEAR(meanIntensity(beam, 0.1, 0.3), 100.0, 0.5);
+    EXPECT_NEAR(meanIntensity(beam, 0.54, 0.56), 100.0 - 10.0 * std::log10(2.0) * per_db, 2.0);
+    EXPECT_GT(meanIntensity(beam, 0.7, 0.75), 0.0);
+    EXPECT_EQ(peak(beam, 0.8, 5.0).first, 0);
+  }
 }
 
 TEST(simMsis, WallEchoesAtTheRangesOfTheGeometry) {
@@ -299,8 +396,20 @@ TEST(simMsis, InvalidOptionsAndScenesAreRejected) {
   options = turns(1);
   options.echo.vertical.rays = 0;
   rejects(options);
+  for (const double width_rad : {0.0, -1.0, 2.0 * std::numbers::pi + 1e-6, 1.0 * kDegree, std::nan("")}) {
+    options = turns(1);
+    options.head.sector_width_rad = width_rad;  // 1°: less than the 1.8° step
+    rejects(options);
+  }
+  options = turns(1);
+  options.head.sector_width_rad = 90.0 * kDegree;
+  options.head.sector_center_rad = std::numeric_limits<double>::infinity();
+  rejects(options);
   options = turns(1);
   options.echo.ad_span_db = 0.0;
+  rejects(options);
+  options = turns(1);
+  options.echo.self_reflection_taper_m = 0.0;
   rejects(options);
   options = turns(1);
   options.trajectory = nullptr;

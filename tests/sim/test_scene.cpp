@@ -1,12 +1,11 @@
 // Scene primitives: ray intersections against hand-computed ranges and normals, distances to the
-// surface, validation, and the built-in scenes' geometry.
+// surface and validation (the built-in scenes: test_builtin_scenes.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene.hpp"
 
 namespace sonarmap {
@@ -147,55 +146,6 @@ TEST(simScene, ValidationNamesTheField) {
   Scene scene;
   scene.primitives = {Plane{}, Cylinder{0, 0, -1, 0, 1, 0.5}};
   EXPECT_THROW(validateScene(scene), ValueError);
-}
-
-TEST(simScene, BuiltinTankHasTheCrasGeometry) {
-  const Scene tank = builtinScene("tank");
-  EXPECT_NO_THROW(validateScene(tank));
-  // Horizontal rays from the head: walls between 1.8 m (nearest face, −y) and 3.34 m (corners).
-  double nearest_m = 1e9, farthest_m = 0.0;
-  for (int degree = 0; degree < 360; ++degree) {
-    const double a = degree * std::numbers::pi / 180.0;
-    const auto hit = firstHit(tank, kOrigin, Eigen::Vector3d(std::cos(a), std::sin(a), 0.0), 10.0);
-    ASSERT_TRUE(hit) << degree;
-    nearest_m = std::min(nearest_m, hit->surface.range_m);
-    farthest_m = std::max(farthest_m, hit->surface.range_m);
-  }
-  EXPECT_NEAR(nearest_m, 1.8, 1e-9);
-  EXPECT_NEAR(farthest_m, std::hypot(2.1, 2.6), 0.01);
-  // The top of the 35° aperture meets the surface at ≈ 1.56 m in every direction.
-  const double top = 17.5 * std::numbers::pi / 180.0;
-  const auto ring = firstHit(tank, kOrigin, Eigen::Vector3d(std::cos(top), 0.0, std::sin(top)), 10.0);
-  ASSERT_TRUE(ring);
-  EXPECT_NEAR(ring->surface.range_m, 1.56, 0.01);
-  // The floater at bearing 95°, 1.95 m away, within the aperture (12° up).
-  const double b = 95.0 * std::numbers::pi / 180.0, up = 12.0 * std::numbers::pi / 180.0;
-  const auto floater = firstHit(
-      tank, kOrigin, Eigen::Vector3d(std::cos(up) * std::cos(b), std::cos(up) * std::sin(b), std::sin(up)), 10.0);
-  ASSERT_TRUE(floater);
-  EXPECT_EQ(floater->primitive, 3U);
-  EXPECT_NEAR(floater->surface.range_m * std::cos(up), 1.95, 1e-9);
-}
-
-TEST(simScene, BuiltinLookupByNameAndUnknownNamesListed) {
-  EXPECT_EQ(builtinSceneNames(), (std::vector<std::string>{"tank", "harbour"}));
-  const Scene harbour = builtinScene("harbour");
-  EXPECT_NO_THROW(validateScene(harbour));
-  // Straight ahead (north): a pile at 2 m − 0.2 m; to the west the open water has nothing within 5 m.
-  const auto pile = firstHit(harbour, kOrigin, Eigen::Vector3d::UnitX(), 5.0);
-  ASSERT_TRUE(pile);
-  EXPECT_NEAR(pile->surface.range_m, 1.8, 1e-9);
-  EXPECT_FALSE(firstHit(harbour, kOrigin, Eigen::Vector3d::UnitY(), 5.0));
-  EXPECT_FALSE(firstHit(harbour, kOrigin, -Eigen::Vector3d::UnitX(), 5.0));  // no tank walls
-  try {
-    builtinScene("pool");
-    FAIL() << "expected ValueError";
-  } catch (const ValueError& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find("pool"), std::string::npos);
-    EXPECT_NE(message.find("tank"), std::string::npos);
-    EXPECT_NE(message.find("harbour"), std::string::npos);
-  }
 }
 
 }  // namespace

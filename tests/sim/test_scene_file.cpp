@@ -51,10 +51,12 @@ std::string errorOf(const std::string& text) {
 TEST(simSceneFile, BuiltinScenesRoundTripExactly) {
   test::TempDir dir;
   for (const std::string& name : builtinSceneNames()) {
-    const Scene scene = builtinScene(name);
-    const std::string path = dir.file(name + ".scene");
-    writeScene(path, scene);
-    expectSameScene(readScene(path), scene);
+    for (const double reach_m : {5.0, 20.0, 30.0, 50.0}) {  // as built for the presets' heads
+      const Scene scene = builtinScene(name, reach_m, (reach_m == 5.0 ? 35.0 : 25.0) * std::numbers::pi / 180.0);
+      const std::string path = dir.file(name + ".scene");
+      writeScene(path, scene);
+      expectSameScene(readScene(path), scene);
+    }
   }
 }
 

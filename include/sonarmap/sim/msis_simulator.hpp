@@ -1,8 +1,10 @@
 #pragma once
 /// @file msis_simulator.hpp
 /// A mechanically scanned imaging sonar (MSIS) simulator with ground truth: it scans a Scene from a
-/// vehicle that stands still or follows a Trajectory and writes what a Tritech Micron would log
-/// (paper §2.1), with the difficulties of the real CRAS tank data (../shared/data/README.md).
+/// vehicle that stands still or follows a Trajectory and writes what the head would log (paper
+/// §2.1): by default a Tritech Micron, with the difficulties of the real CRAS tank data
+/// (../shared/data/README.md); sonar_presets.hpp holds the settings of other heads. The head turns
+/// continuously or scans a sector back and forth (MsisHeadOptions::sector_width_rad).
 ///
 /// Echo model of one beam (bearing β in the sonar frame, beam.hpp):
 ///  1. Rays. A grid of horizontal.rays × vertical.rays directions spans ±extent half beam widths
@@ -32,9 +34,10 @@
 ///     speckle: the mean of speckle_looks consecutive exponential draws (fully developed speckle
 ///     is exponential in power; the moving mean gives it the pulse's correlation length). Additive
 ///     noise: exponential power of mean noise_level_db before the gain, so it grows with range
-///     after it as in the real data. The self-reflection band (reflections from the vehicle: a
-///     plateau of self_reflection_intensity to self_reflection_end_m, tapering over 5 cm) under
-///     the same speckle; bins before blanking_m are 0.
+///     after it as in the real data. The self-reflection band (reflections from the vehicle and the
+///     transducer's ringing: a plateau of self_reflection_intensity to self_reflection_end_m, its
+///     power tapering linearly to 0 over self_reflection_taper_m) under the same speckle; bins
+///     before blanking_m are 0.
 ///  6. Quantisation. intensity = 255 · (10 log10 P − ad_low_db) / ad_span_db, rounded, clipped to
 ///     0…255 (the Micron's ADlow/ADspan mapping of the log-amplified echo).
 ///
@@ -65,7 +68,8 @@
 
 namespace sonarmap {
 
-/// Geometry and timing of the sonar head. Defaults: the Tritech Micron of the CRAS log.
+/// Geometry and timing of the sonar head. Defaults: the Tritech Micron of the CRAS log (other heads:
+/// sonar_presets.hpp).
 struct MsisHeadOptions {
   double step_rad = 1.8 * std::numbers::pi / 180.0;  ///< bearing step between beams, > 0; 200 beams per turn
   double horizontal_beam_width_rad = 3.0 * std::numbers::pi / 180.0;  ///< −3 dB full width, (0, π)
@@ -74,12 +78,36 @@ struct MsisHeadOptions {
   /// Bins per beam, ≥ 1; bin_length_m = range_m / bins (0.012531 m: the CRAS log's step_dist).
   int bins = 399;
   double beam_period_s = 0.043;    ///< time between beams (CRAS: ≈ 43 ms, 8.6 s per turn), > 0
-  double start_bearing_rad = 0.0;  ///< bearing of the first beam, radians (wrapped to [0, 2π))
-  bool counter_clockwise = true;   ///< the head turns counter-clockwise (bearings increase); false: clockwise
+  /// Bearing of the first beam of a 360° head, radians (wrapped to [0, 2π)); a sector head starts
+  /// at a limit of its sector instead.
+  double start_bearing_rad = 0.0;
+  /// The head turns counter-clockwise (bearings increase); false: clockwise. A sector head's first
+  /// pass runs this way, the next one back.
+  bool counter_clockwise = true;
+  /// Width of the scanned sector, radians, in (0, 2π]. 2π (the default): a continuous 360° scan.
+  /// Less: a sector scan. The head then sweeps between the limits
+  /// sector_center_rad ± sectorSteps() · step_rad / 2 (inside the sector, centred on it) and
+  /// reverses at each: like a Tritech head (the SeaNet log, ../shared/data), it pings at the limit
+  /// it reached and again at the same bearing as the first beam of the pass back. So one pass holds
+  /// sectorSteps() + 1 beams, from one limit to the other, both included. The sector must hold at
+  /// least one step (sector_width_rad ≥ step_rad).
+  double sector_width_rad = 2.0 * std::numbers::pi;
+  double sector_center_rad = 0.0;  ///< bearing of the sector's centre, radians (sector scans only)
 
   double binLength_m() const { return range_m / bins; }
-  /// Beams in one 360° turn: round(2π / step_rad).
+  /// Whether the head scans a sector (sector_width_rad < 2π) rather than turning continuously.
+  bool isSector() const;
+  /// Steps of one pass across the sector: floor(sector_width_rad / step_rad), ≥ 1 for a valid
+  /// sector head (not meaningful for a 360° head).
+  std::size_t sectorSteps() const;
+  /// Beams in one turn: round(2π / step_rad) for a 360° head; for a sector head, the beams of one
+  /// pass across the sector, sectorSteps() + 1.
   std::size_t beamsPerTurn() const;
+  /// Bearing of beam `index` (0 for the first beam of the run), radians in [0, 2π), sonar frame.
+  /// 360° head: start_bearing_rad + index · step (− for clockwise), wrapped. Sector head: pass
+  /// p = index / beamsPerTurn() starts at the limit where pass p − 1 ended (the first pass at the
+  /// limit from which counter_clockwise leads across the sector) and steps to the other limit.
+  double bearingOf(std::size_t index) const;
   /// @throws ValueError naming the field that is out of range or not finite.
   void validate() const;
 };
@@ -108,8 +136,12 @@ struct EchoModelOptions {
   double ad_low_db = -33.0;               ///< level that maps to intensity 0
   double ad_span_db = 45.0;               ///< level span that maps to 0…255, > 0
   double blanking_m = 0.05;               ///< bins nearer than this are 0 (transmit blanking), ≥ 0
-  double self_reflection_end_m = 0.3;     ///< end of the self-reflection band, ≥ 0 (0: none)
+  double self_reflection_end_m = 0.3;     ///< end of the self-reflection band's plateau, ≥ 0 (0: none)
   double self_reflection_intensity = 100.0;                 ///< mean intensity of the band, 0…255
+  /// Range over which the band's power falls linearly from its plateau to 0 after
+  /// self_reflection_end_m, > 0: short for reflections off the vehicle (the Micron's 5 cm), long for
+  /// a transducer that rings for a while after transmitting.
+  double self_reflection_taper_m = 0.05;
   bool multipath = true;                                    ///< trace one specular bounce
   double specular_share = 0.6;                              ///< share of the energy a surface mirrors onwards, [0, 1]
   double glint_gain = 8.0;                                  ///< strength of the second surface's mirror lobe, ≥ 0
@@ -127,7 +159,9 @@ struct EchoModelOptions {
 struct MsisSimulationOptions {
   MsisHeadOptions head;
   EchoModelOptions echo;
-  std::size_t turns = 28;                      ///< full 360° turns of the head; beams = turns × head.beamsPerTurn()
+  /// Full 360° turns of the head, or for a sector head passes across the sector (one pass from one
+  /// limit to the other is a "turn"); beams = turns × head.beamsPerTurn().
+  std::size_t turns = 28;
   double start_time_s = 0.0;                   ///< time of the first beam, seconds
   Trajectory trajectory = staticTrajectory();  ///< the vehicle's pose over time (NED, navigation.hpp)
   Eigen::Isometry3d sonar_to_body = defaultSonarToBody();
@@ -150,7 +184,8 @@ struct MsisSimulation {
 
 /// Simulates `options.turns` turns of the head in `scene`.
 /// Cost: about beams × horizontal.rays × vertical.rays × (1 + 2 with multipath) ray–scene
-/// queries; the default 28-turn tank run (5,600 beams) takes about 0.3 s on one core.
+/// queries; the default 28-turn tank run (5,600 beams) takes about 0.3 s on one core, a 400-beam
+/// turn of the other presets (400–700 rays a beam) 0.02–0.11 s in the built-in scenes.
 /// @throws ValueError for invalid options (MsisSimulationOptions::validate) or an invalid scene
 ///         (validateScene).
 MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options = {});
