@@ -1,85 +1,138 @@
-// sonarmap_accuracy_table: the accuracy of every detector × smoothing on the simulated tank and
-// harbour (ground truth, eval/ground_truth.hpp) and on the real CRAS tank log (rectangle fit only,
-// eval/tank_quality.hpp), printed as the Markdown tables of docs/accuracy.md.
+// sonarmap_accuracy_table: the tables of docs/accuracy.md.
+//  1. Every simulated sonar head (sonar_presets.hpp) × built-in scene built for its range
+//     (builtin_scenes.hpp), 360° scans, plus a sector scan and a moving run of the harbour, mapped
+//     with the mapper's DEFAULT options, scored against the scene (eval/simulated_accuracy.hpp).
+//  2. The real CRAS tank log with each detector: the rectangle measure (eval/tank_quality.hpp) at
+//     a 10 cm tolerance.
+//  3. The real SeaNet sector log: is the target's last position occupied?
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR]   (DATA_DIR holds cras_micron_tank_static.mat;
-//        default: the SONARMAP_DATA environment variable, else the configured shared data folder)
-// Each simulated scene: one static run of 28 turns, seed 1 (simulateMsis defaults), mapped with
-// mapSonarLog and default options except the detector and the smoothing.
+// Usage: sonarmap_accuracy_table [DATA_DIR]   (DATA_DIR holds the shared logs; default: the
+//        SONARMAP_DATA environment variable, else the configured shared data folder)
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
-#include "sonarmap/eval/ground_truth.hpp"
+#include "sonarmap/eval/simulated_accuracy.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
-#include "sonarmap/sim/msis_simulator.hpp"
-#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
+#include "sonarmap/sonar/polar.hpp"
 
 namespace {
 
 using namespace sonarmap;
 
-const std::vector<std::string> kDetectors{"threshold", "canny", "background", "cfar-ca", "cfar-so", "cfar-go", "cfar-os"};
-const std::vector<std::string> kSmoothings{"none", "mean", "median", "gaussian"};
-
-MapperOptions optionsFor(const std::string& detector, const std::string& smoothing) {
-  MapperOptions options;
-  selectDetector(options.detector, detector);
-  options.smoothing.kind = parseSmoothing(smoothing);
-  return options;
+std::string offsets(const SimulatedAccuracy& a) {
+  std::string text;
+  char cell[48];
+  for (const SurfaceOffset& s : a.truth.surfaces) {
+    if (s.voxels < 10) continue;
+    bool off_plane = false;
+    for (const SurfaceOffset& o : a.off_plane) off_plane |= o.primitive == s.primitive;
+    std::snprintf(cell, sizeof cell, "%s%+.3f%s", text.empty() ? "" : " ", s.median_signed_offset_m, off_plane ? "*" : "");
+    text += cell;
+  }
+  return text.empty() ? "–" : text;
 }
 
-void printSceneTable(const std::string& name) {
-  const Scene scene = builtinScene(name);
-  const SonarLog log = simulateMsis(scene).log;
-  std::printf("\n### Simulated `%s`\n\n", name.c_str());
-  std::printf("| detector | smoothing | occupied | precision | recall | free accuracy | wall error mean / rms (m) |\n");
-  std::printf("|---|---|---:|---:|---:|---:|---:|\n");
-  for (const std::string& detector : kDetectors) {
-    for (const std::string& smoothing : kSmoothings) {
-      const SonarMapper mapper = mapSonarLog(log, optionsFor(detector, smoothing));
+void printRow(const SimulatedAccuracy& a) {
+  const char* scan = a.run.speed_range_per_min > 0.0 ? "360°, moving" : (a.run.sector_deg < 360.0 ? "90° sector" : "360°");
+  const double per_sweep = a.sweeps > 0 ? static_cast<double>(a.obstacles) / static_cast<double>(a.sweeps) : 0.0;
+  std::printf("| %s | %s | %s | %.3g | %zu | %.3f | %.3f | %.3f | %.3f | %s | %.1f | %.3f |\n", a.run.preset.c_str(),
+              a.run.scene.c_str(), scan, a.resolution_m, a.truth.occupied_voxels, a.truth.precision, a.truth.recall,
+              a.truth.free_accuracy, a.worst_offset_m, offsets(a).c_str(), per_sweep, a.seconds_mapping);
+  std::fflush(stdout);
+}
+
+void printSimulatedTable() {
+  std::printf("\n### Simulated heads × scenes, default settings\n\n");
+  std::printf("| head | scene | scan | voxel (m) | occupied | precision | recall | free accuracy | worst \\|offset\\| (m) "
+              "| offset per surface (m) | obstacles / sweep | mapping (s) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
+  for (const std::string& preset : sonarPresetNames()) {
+    for (const std::string& scene : builtinSceneNames()) {
       try {
-        const GroundTruthReport r = evaluateAgainstScene(mapper.map(), scene);
-        std::printf("| %s | %s | %zu | %.3f | %.3f | %.3f | %.3f / %.3f |\n", detector.c_str(), smoothing.c_str(),
-                    r.occupied_voxels, r.precision, r.recall, r.free_accuracy, r.mean_distance_m, r.rms_distance_m);
+        printRow(evaluateSimulatedRun(SimulatedRun{preset, scene}));
       } catch (const std::exception& error) {
-        std::printf("| %s | %s | – | %s | | | |\n", detector.c_str(), smoothing.c_str(), error.what());
+        std::printf("| %s | %s | 360° | %s |\n", preset.c_str(), scene.c_str(), error.what());
       }
-      std::fflush(stdout);
     }
+    SimulatedRun sector{preset, "harbour"};
+    sector.sector_deg = 90.0;
+    sector.turns = 16;
+    printRow(evaluateSimulatedRun(sector));
+    SimulatedRun moving{preset, "harbour"};
+    moving.speed_range_per_min = 1.0;
+    printRow(evaluateSimulatedRun(moving));
   }
 }
 
 void printCrasTable(const std::string& path) {
-  std::printf("\n### Real CRAS tank (`%s`), rectangle fit at z = 0\n\n", path.c_str());
+  std::printf("\n### Real CRAS tank (`%s`), rectangle measure at z = 0, 10 cm tolerance\n\n", path.c_str());
   if (!std::filesystem::exists(path)) {
     std::printf("(absent)\n");
     return;
   }
   const SonarLog log = readSonarLog(path);
-  std::printf("| detector | smoothing | occupied | on walls | walls covered | rms to walls (m) | fitted size (m) | inside free |\n");
-  std::printf("|---|---|---:|---:|---:|---:|---:|---:|\n");
-  for (const std::string& detector : kDetectors) {
-    for (const std::string& smoothing : kSmoothings) {
-      const SonarMapper mapper = mapSonarLog(log, optionsFor(detector, smoothing));
-      const std::size_t occupied = cellsInSlice(mapper.map(), 0.0, Occupancy::kOccupied).size();
-      if (occupied < 8) {
-        std::printf("| %s | %s | %zu | – | – | – | – | – |\n", detector.c_str(), smoothing.c_str(), occupied);
-        continue;
-      }
-      const TankMapQuality q = evaluateTankMap(mapper.map(), 0.0);
-      std::printf("| %s | %s | %zu | %.3f | %.3f | %.3f | %.2f × %.2f | %.3f |\n", detector.c_str(), smoothing.c_str(),
-                  q.occupied_cells, q.walls.share_on_walls, q.walls.wall_coverage, q.walls.rms_wall_distance_m,
-                  q.walls.rect.width_m, q.walls.rect.height_m, q.interior_free_share);
-      std::fflush(stdout);
+  std::printf("| detector | obstacles | occupied | on walls | walls covered | rms to walls (m) | fitted size (m) | inside free | mapping (s) |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const char* detector : {"background", "cfar-ca", "cfar-so", "cfar-go", "cfar-os", "threshold", "canny"}) {
+    MapperOptions options;
+    selectDetector(options.detector, detector);
+    const auto start = std::chrono::steady_clock::now();
+    const SonarMapper mapper = mapSonarLog(log, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::size_t occupied = cellsInSlice(mapper.map(), 0.0, Occupancy::kOccupied).size();
+    if (occupied < 8) {
+      std::printf("| %s | %zu | %zu | – | – | – | – | – | %.3f |\n", detector, mapper.stats().obstacles, occupied, seconds);
+      continue;
     }
+    WallFitOptions fit;
+    fit.wall_tolerance_m = 0.10;
+    const TankMapQuality q = evaluateTankMap(mapper.map(), 0.0, fit);
+    std::printf("| %s | %zu | %zu | %.3f | %.3f | %.3f | %.2f × %.2f | %.3f | %.3f |\n", detector, mapper.stats().obstacles,
+                q.occupied_cells, q.walls.share_on_walls, q.walls.wall_coverage, q.walls.rms_wall_distance_m,
+                q.walls.rect.width_m, q.walls.rect.height_m, q.interior_free_share, seconds);
+    std::fflush(stdout);
   }
+}
+
+void printSeaNetRow(const std::string& path) {
+  std::printf("\n### Real SeaNet sector log (`%s`): the target's last position\n\n", path.c_str());
+  if (!std::filesystem::exists(path)) {
+    std::printf("(absent)\n");
+    return;
+  }
+  const SonarLog log = readSonarLog(path);
+  const SonarMapper mapper = mapSonarLog(log);
+  // The last sweep's detections, found again as the mapper found them.
+  const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), 20);
+  PolarImage last = makePolarImage(log.beams, sweeps.back().first, sweeps.back().last_exclusive);
+  const std::vector<BeamDetection> detections = mapper.detect(last);
+  std::size_t echoes = 0, occupied = 0;
+  for (int r = 0; r < last.rows(); ++r) {
+    const BeamDetection& d = detections[static_cast<std::size_t>(r)];
+    if (!d.hasObstacle()) continue;
+    ++echoes;
+    const double b = last.bearing_rad[static_cast<std::size_t>(r)];
+    occupied += mapper.map().occupancyAt({d.range_m * std::cos(b), d.range_m * std::sin(b), 0.0}) == Occupancy::kOccupied;
+    std::printf("- beam at %.1f°: echo at %.2f m, %s\n", b * 180.0 / std::numbers::pi, d.range_m,
+                mapper.map().occupancyAt({d.range_m * std::cos(b), d.range_m * std::sin(b), 0.0}) == Occupancy::kOccupied
+                    ? "occupied"
+                    : "NOT occupied");
+  }
+  std::printf("\n%zu of the last sweep's %zu echoes are occupied cells in the final map (%zu sweeps, %zu obstacles, "
+              "%.3g m voxels).\n",
+              occupied, echoes, mapper.stats().sweeps, mapper.stats().obstacles, mapper.map().resolution_m());
 }
 
 }  // namespace
@@ -88,8 +141,9 @@ int main(int argc, char** argv) {
   const char* env = std::getenv("SONARMAP_DATA");
   const std::string data = argc > 1 ? argv[1] : (env != nullptr ? env : SONARMAP_SHARED_DATA);
   try {
-    for (const std::string& name : builtinSceneNames()) printSceneTable(name);
+    printSimulatedTable();
     printCrasTable(data + "/cras_micron_tank_static.mat");
+    printSeaNetRow(data + "/seanet_sector_target.V4LOG");
   } catch (const std::exception& error) {
     std::fprintf(stderr, "sonarmap_accuracy_table: error: %s\n", error.what());
     return 1;

@@ -19,24 +19,21 @@ namespace {
 constexpr double kPeakWindow_m = 0.3;
 /// A range's water statistics need this share of the rows (and at least 3) still in water there;
 /// beyond, the last range that had them is used.
-constexpr double kMinWaterShare = 0.05;
+constexpr double kMinWaterShare = 0.10;
 
 /// Residual of bin c of `row` above the background, intensity counts.
 float residual(const std::uint8_t* row, const SweepCalibration& calibration, int c) {
   return static_cast<float>(row[c]) - calibration.background[static_cast<std::size_t>(c)];
 }
 
-/// The outward pass (detectors.hpp, BackgroundOptions). Returns each row's first bin of the run
-/// (−1 if none) and fills `water` with B, σ, T as measured over the rows still in water.
+}  // namespace
+
 std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
-                             const SweepCalibration& all_rows, SweepCalibration& water) {
+                             SweepCalibration& water) {
   const int rows = polar.rows(), cols = polar.cols();
   const CalibrationOptions& calibration = options.calibration;
   const int run = binsForLength(options.min_echo_length_m, polar.bin_length_m, 1, std::max(1, cols));
-  const int window = binsForLength(calibration.noise_window_m, polar.bin_length_m, 0, std::max(0, cols));
   const auto min_water = static_cast<std::uint32_t>(std::max(3.0, std::ceil(kMinWaterShare * rows)));
-  water = all_rows;
-  std::vector<float> raw_sigma(static_cast<std::size_t>(cols), 0.0f), trailing;
   std::vector<int> first(static_cast<std::size_t>(rows), -1), length(static_cast<std::size_t>(rows), 0);
   std::vector<int> in_water;  // rows not yet detected
   for (int r = 0; r < rows; ++r) in_water.push_back(r);
@@ -52,20 +49,9 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
     }
     if (histogram.total() >= min_water) {
       water.background[i] = histogram.percentile(calibration.background_percentile);
-      raw_sigma[i] = lowerHalfSigma(histogram);
     } else if (c > context.min_bin) {
       water.background[i] = water.background[i - 1];
-      raw_sigma[i] = raw_sigma[i - 1];
-    } else {
-      raw_sigma[i] = all_rows.noise_sigma[i];
     }
-    // σ: the median over the trailing window of ranges already measured.
-    const int lo = std::max(context.min_bin, c - window);
-    trailing.assign(raw_sigma.begin() + lo, raw_sigma.begin() + c + 1);
-    const auto middle = trailing.begin() + static_cast<std::ptrdiff_t>(trailing.size() / 2);
-    std::nth_element(trailing.begin(), middle, trailing.end());
-    water.noise_sigma[i] = *middle;
-    water.threshold[i] = thresholdFor(water.noise_sigma[i], calibration, water.span_db);
     // Rows whose run reaches the echo length leave the water.
     std::erase_if(in_water, [&](int r) {
       const auto row = static_cast<std::size_t>(r);
@@ -79,8 +65,6 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
   }
   return first;
 }
-
-}  // namespace
 
 BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
                             const SweepCalibration& calibration, double edge_db) {
@@ -104,12 +88,10 @@ BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const Det
 }
 
 std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
-                                                      const BackgroundOptions& options,
-                                                      const SweepCalibration& all_rows, SweepCalibration& water) {
+                                                      const BackgroundOptions& options, SweepCalibration& water) {
   std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
-  water = all_rows;
   if (polar.rows() < options.min_beams || polar.cols() == 0) return detections;
-  const std::vector<int> first = outwardPass(polar, context, options, all_rows, water);
+  const std::vector<int> first = outwardPass(polar, context, options, water);
   for (int r = 0; r < polar.rows(); ++r) {
     const int bin = first[static_cast<std::size_t>(r)];
     if (bin >= 0) detections[static_cast<std::size_t>(r)] = leadingEdgeAt(polar, r, bin, context, water, options.leading_edge_db);

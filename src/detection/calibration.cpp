@@ -1,12 +1,11 @@
 /// @file calibration.cpp
-/// Per-sweep background, noise spread, threshold and near field (see calibration.hpp).
+/// Per-sweep background, threshold and near field (see calibration.hpp).
 
 #include "sonarmap/detection/calibration.hpp"
 
 #include <algorithm>
-#include <cstdint>
-#include <span>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "column_histogram.hpp"
@@ -16,18 +15,16 @@
 namespace sonarmap {
 namespace {
 
-
 [[noreturn]] void throwOption(const std::string& what) { throw ValueError("calibration: " + what); }
 
 /// Per column: the percentiles the calibration needs, over all rows whose valid bins cover it.
 struct ColumnProfile {
-  std::vector<float> background, median, clutter, sigma;
+  std::vector<float> background, median, clutter;
 };
 
 ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& options) {
   const auto cols = static_cast<std::size_t>(polar.cols());
-  ColumnProfile profile{std::vector<float>(cols), std::vector<float>(cols), std::vector<float>(cols),
-                        std::vector<float>(cols)};
+  ColumnProfile profile{std::vector<float>(cols), std::vector<float>(cols), std::vector<float>(cols)};
   detail::IntensityHistogram histogram;
   for (std::size_t c = 0; c < cols; ++c) {
     histogram.clear();
@@ -40,28 +37,9 @@ ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& 
     profile.background[c] = histogram.percentile(options.background_percentile);
     profile.median[c] = histogram.percentile(50.0);
     profile.clutter[c] = histogram.percentile(100.0 * (1.0 - options.clutter_share));
-    profile.sigma[c] = detail::lowerHalfSigma(histogram);
   }
   return profile;
 }
-
-}  // namespace
-
-std::vector<float> windowedMedian(const std::vector<float>& values, int half_window) {
-  const std::size_t n = values.size();
-  std::vector<float> out(n), window;
-  const auto w = static_cast<std::size_t>(std::max(0, half_window));
-  for (std::size_t c = 0; c < n; ++c) {
-    const std::size_t lo = c > w ? c - w : 0, hi = std::min(n, c + w + 1);
-    window.assign(values.begin() + static_cast<std::ptrdiff_t>(lo), values.begin() + static_cast<std::ptrdiff_t>(hi));
-    const auto middle = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
-    std::nth_element(window.begin(), middle, window.end());
-    out[c] = *middle;
-  }
-  return out;
-}
-
-namespace {
 
 /// First column after the median profile's near peak where it falls half-way to the far level.
 int bandEnd(const ColumnProfile& profile) {
@@ -95,47 +73,36 @@ void CalibrationOptions::validate() const {
   if (!(background_percentile >= 0.0 && background_percentile <= 100.0)) {
     throwOption("the background percentile must be in [0, 100]");
   }
-  if (!(std::isfinite(min_contrast_db) && min_contrast_db >= 0.0)) throwOption("the minimum contrast must be >= 0 dB");
   if (!(false_alarm_probability > 0.0 && false_alarm_probability < 0.5)) {
     throwOption("the false-alarm probability must be in (0, 0.5)");
   }
-  if (!(std::isfinite(noise_window_m) && noise_window_m >= 0.0)) throwOption("the noise window must be >= 0 m");
+  if (!(std::isfinite(min_contrast_db) && min_contrast_db >= 0.0)) throwOption("the minimum contrast must be >= 0 dB");
   if (!(clutter_share > 0.0 && clutter_share <= 0.5)) throwOption("the clutter share must be in (0, 0.5]");
   if (!(std::isfinite(max_gap_m) && max_gap_m >= 0.0)) throwOption("the near-field gap must be >= 0 m");
 }
 
-double gaussianQuantile(double upper_tail_probability) {
-  if (!(upper_tail_probability > 0.0 && upper_tail_probability < 0.5)) {
-    throw ValueError("gaussianQuantile: the tail probability must be in (0, 0.5)");
-  }
-  double lo = 0.0, hi = 40.0;  // Q(z) = erfc(z / √2) / 2 falls monotonically
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (0.5 * std::erfc(mid / std::sqrt(2.0)) > upper_tail_probability ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
-float thresholdFor(float sigma, const CalibrationOptions& options, double span_db) {
-  return static_cast<float>(std::max(countsForDb(options.min_contrast_db, span_db),
-                                     gaussianQuantile(options.false_alarm_probability) * sigma));
+double thresholdDb(const CalibrationOptions& options) {
+  options.validate();
+  // Exponential power: its p-quantile is −ln(1 − p) times the mean; the tail beyond t times the
+  // mean has probability exp(−t). T is the ratio of the two, in dB.
+  const double quantile = std::max(-std::log1p(-options.background_percentile / 100.0), 1e-3);
+  const double speckle_db = 10.0 * std::log10(-std::log(options.false_alarm_probability) / quantile);
+  return std::max(options.min_contrast_db, speckle_db);
 }
 
 SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOptions& options, double span_db) {
-  options.validate();
   if (polar.intensities.type() != CV_8UC1) throwOption("the polar image must be CV_8UC1");
   if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) throwOption("bin_length_m must be > 0 m");
   if (static_cast<int>(polar.valid_bins.size()) != polar.rows()) throwOption("valid_bins must hold one entry per row");
-  countsForDb(options.min_contrast_db, span_db);  // checks the span
   SweepCalibration calibration;
   calibration.span_db = span_db;
+  calibration.threshold_db = thresholdDb(options);
+  const auto threshold = static_cast<float>(countsForDb(calibration.threshold_db, span_db));
   const ColumnProfile profile = profileColumns(polar, options);
-  const int window = binsForLength(options.noise_window_m, polar.bin_length_m, 0, polar.cols());
   calibration.background = profile.background;
-  calibration.noise_sigma = windowedMedian(profile.sigma, window);
-  calibration.threshold.resize(calibration.noise_sigma.size());
+  calibration.threshold.resize(calibration.background.size());
   for (std::size_t c = 0; c < calibration.threshold.size(); ++c) {
-    calibration.threshold[c] = thresholdFor(calibration.noise_sigma[c], options, span_db);
+    calibration.threshold[c] = threshold;
   }
   const int band = bandEnd(profile);
   const int gap = binsForLength(options.max_gap_m, polar.bin_length_m, 1, std::max(1, polar.cols()));

@@ -37,12 +37,4 @@ class IntensityHistogram {
   std::uint32_t total_ = 0;
 };
 
-/// The lower-half spread of a histogram, as the σ of a Gaussian with the same quartiles:
-/// (Q50 − Q25) / Φ⁻¹(0.75).
-inline float lowerHalfSigma(const IntensityHistogram& histogram) {
-  constexpr double kGaussianQuartileSpread = 0.6744897501960817;
-  const double spread = histogram.percentile(50.0) - histogram.percentile(25.0);
-  return static_cast<float>(std::max(0.0, spread) / kGaussianQuartileSpread);
-}
-
 }  // namespace sonarmap::detail

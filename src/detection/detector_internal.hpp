@@ -33,12 +33,19 @@ std::vector<BeamDetection> detectThreshold(const PolarImage& polar, const Detect
 std::vector<BeamDetection> detectCanny(const PolarImage& polar, const DetectionContext& context,
                                        const CannyOptions& options);
 
-/// Background-subtracted detector: the outward pass over the ranges (detectors.hpp), starting from
-/// the calibration over all rows; `water` receives B, σ and T as measured over the rows still in
-/// water at each range (the all-rows values before the minimum range). Options already validated.
+/// The background detector's outward pass (detectors.hpp, BackgroundOptions): range by range from
+/// the minimum range, B measured over the rows still in water (not yet detected, not inside an
+/// echo), and each row's first bin of the first run of min_echo_length_m at least T above B (−1 if
+/// none).
+/// `water` enters as the all-rows calibration and leaves with the values measured on the water
+/// (a range with fewer than 10 % of the rows in water keeps the values of the range before it).
+std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
+                             SweepCalibration& water);
+
+/// Background-subtracted detector: the outward pass, then each echo's leading edge. `water` enters
+/// as the all-rows calibration and leaves as the calibration on the water. Options validated.
 std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
-                                                      const BackgroundOptions& options,
-                                                      const SweepCalibration& all_rows, SweepCalibration& water);
+                                                      const BackgroundOptions& options, SweepCalibration& water);
 
 /// CFAR along each row, with a floor at the calibrated background plus the minimum contrast.
 std::vector<BeamDetection> detectCfar(const PolarImage& polar, const DetectionContext& context,

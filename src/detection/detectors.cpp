@@ -138,13 +138,35 @@ std::vector<BeamDetection> runDetector(const PolarImage& polar, const DetectorOp
     case Detector::kCanny:
       return detail::detectCanny(polar, context, options.canny);
     case Detector::kBackgroundSubtracted:
-      return detail::detectBackgroundSubtracted(polar, context, options.background, calibration, water);
+      return detail::detectBackgroundSubtracted(polar, context, options.background, water);
     case Detector::kCfar:
       // The floor: above the background of the water, as the background detector measures it.
-      detail::detectBackgroundSubtracted(polar, context, options.background, calibration, water);
+      detail::outwardPass(polar, context, options.background, water);
       return detail::detectCfar(polar, context, options.cfar, water);
   }
   return std::vector<BeamDetection>(static_cast<std::size_t>(polar.rows()));
+}
+
+/// Sets each detection's water_range_m (detection.hpp): its range with an obstacle; without one, the
+/// start of the first bin at or beyond the minimum range whose residual above `calibration`'s
+/// background reaches the threshold (an echo too short to be an obstacle), or the row's end.
+void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& context,
+                    const SweepCalibration& calibration, std::vector<BeamDetection>& detections) {
+  for (int r = 0; r < polar.rows(); ++r) {
+    BeamDetection& detection = detections[static_cast<std::size_t>(r)];
+    if (detection.hasObstacle()) {
+      detection.water_range_m = detection.range_m;
+      continue;
+    }
+    const auto* row = polar.intensities.ptr<std::uint8_t>(r);
+    const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
+    int c = context.min_bin;
+    while (c < end && static_cast<float>(row[c]) - calibration.background[static_cast<std::size_t>(c)] <
+                          calibration.threshold[static_cast<std::size_t>(c)]) {
+      ++c;
+    }
+    detection.water_range_m = c * polar.bin_length_m;
+  }
 }
 
 }  // namespace
@@ -169,6 +191,7 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
   const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
                                          calibration.span_db};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
+  setWaterRanges(polar, context, result.calibration, result.detections);
   return result;
 }
 

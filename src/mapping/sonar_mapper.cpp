@@ -131,7 +131,9 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (detection.hasObstacle() && !(std::isfinite(detection.range_m) && detection.range_m > 0.0)) {
       throw ValueError("detection of beam " + std::to_string(row) + " has an obstacle at a range that is not > 0 m");
     }
-    double range_m = detection.hasObstacle() ? detection.range_m : polar.valid_bins[row] * polar.bin_length_m;
+    // Without an obstacle a beam clears only as far as its echo shows water (detection.hpp).
+    double range_m = detection.hasObstacle() ? detection.range_m
+                                             : std::min(detection.water_range_m, polar.valid_bins[row] * polar.bin_length_m);
     bool hit = detection.hasObstacle();
     if (range_m > options_.max_range_m) {  // OctoMap's maxrange: free up to the limit, no obstacle
       range_m = options_.max_range_m;

@@ -62,7 +62,7 @@ void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, dou
   for (const PlannedBeam& beam : beams) {  // arcs, less where another beam cleared beyond them
     if (!beam.hit) continue;
     forEachGridAngle(beam.bearing_rad, beam_width_rad, levels, [&](std::size_t j) {
-      if (cover[j].range_m > beam.hit_range_m + tolerance_m) return;
+      if (cover[j].range_m > beam.hit_range_m + 0.0 * tolerance_m) return;
       hits.push_back({beam.sonar_to_map * inSonarPlane(static_cast<double>(j) * step, beam.hit_range_m)});
     });
   }

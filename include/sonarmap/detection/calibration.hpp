@@ -1,26 +1,39 @@
 #pragma once
 /// @file calibration.hpp
 /// Self-calibration of one sweep: what the sonar records where there is no obstacle, measured on
-/// the sweep itself, so that thresholds follow each log's gain, noise and range scale instead of
-/// fixed intensities.
+/// the sweep itself, so that thresholds follow each log's gain, noise level and range scale
+/// instead of fixed intensities.
 ///
 /// On a polar image of one sweep (rows = beams, columns = bins):
-///  - Background B(c): the `background_percentile` of column c over the rows (all bearings at that
-///    range). What returns at the same range in most bearings — the transducer's ringing, the
-///    surface or seabed entering the vertical aperture (the CRAS log's ring at 1.56 m), the
-///    near-field reverberation of a high-gain head — is background, not an obstacle.
-///  - Noise spread σ(c): (Q50(c) − Q25(c)) / 0.674, the spread of a Gaussian with those quartiles,
-///    from the lower half of column c only, so obstacles in up to half of the bearings do not
-///    inflate it; then the median over ±noise_window_m along the beam (a wall filling many bearings
-///    at a few ranges does not either). 0 where the noise is clipped at the AD converter's low level.
-///  - Threshold T(c) on the residual I − B(c), intensity counts: max(min_contrast_db converted with
-///    the log's dB span, κ σ(c)) with κ = Φ⁻¹(1 − false_alarm_probability) (a Gaussian model of the
-///    residual's spread; the required echo length makes a run of noise rarer still).
+///  - Background B(c): the `background_percentile` (default the median) of column c over the rows
+///    (all bearings at that range). What returns at the same range in most bearings — the
+///    transducer's ringing, the surface or seabed entering the vertical aperture (the CRAS log's
+///    ring at 1.56 m), the near-field reverberation of a high-gain head, the noise floor the TVG
+///    raises with range — is background, not an obstacle. The background detector measures it
+///    again over the beams still in water at each range (detectors.hpp), so that what lies behind
+///    the nearer walls does not count.
+///  - Threshold T(c) on the residual I − B(c), intensity counts: the level that noise alone exceeds
+///    with probability `false_alarm_probability` per bin, from the statistics of fully developed
+///    speckle: the echo power of a scattering background is exponentially distributed (Rayleigh
+///    amplitude; Goodman 1975, "Statistical properties of laser speckle patterns"; for sonar
+///    reverberation: Abraham & Lyons 2002, IEEE J. Oceanic Eng. 27(4)): its p-quantile is
+///    −ln(1 − p) times its mean, so the tail of probability Pfa lies
+///    T_dB = 10 log10(ln(Pfa) / ln(1 − p)) dB above the background percentile p: 15.6 dB above the
+///    25th percentile at Pfa 3.2 × 10⁻⁵. MSIS intensities are log-compressed, so a ratio in dB is a
+///    difference in counts: T = T_dB × 255 / span, with the log's dB span (SeaNet's ADspan) or
+///    kDefaultIntensitySpan_db. One look is the worst case: a head that averages samples, or a
+///    pulse longer than a bin, narrows the spread and only lowers the false alarms (and the
+///    sensitivity: a weak echo within ≈ T_dB of the noise floor is not reported; raise
+///    false_alarm_probability to see weaker targets). Heavier-tailed clutter (non-Rayleigh seabed,
+///    fish) is what the required echo length and min_contrast_db guard against. (Estimating T from
+///    the spread the noise shows instead was tried: the simulated heads' noise has a heavier tail
+///    than its quartiles suggest, (Q99.99 − Q25) / (Q50 − Q25) ≈ 5 where one-look speckle gives 3.95,
+///    and it fired up to 275 times a sweep in open water; docs/accuracy.md.)
 ///  - Near field: the self-reflection band ends where the median profile (median of each column)
 ///    falls below half-way between its peak within the first quarter of the range and the median
 ///    of the far half. The near-field clutter then extends, contiguous with the band (gaps shorter
 ///    than max_gap_m bridged), over the ranges where at least `clutter_share` of the bearings rise
-///    above the threshold (the (1 − clutter_share) quantile of the column minus B(c) ≥ T(c)): the
+///    above the threshold (the (1 − clutter_share) quantile of the column minus B(c) ≥ T): the
 ///    vehicle's own body and fixtures seen in many bearings at short range. On the CRAS log the
 ///    band ends at ≈ 0.3 m and the vehicle's returns at ≈ 0.8 m; on the SeaNet sector log the band
 ///    ends at ≈ 0.6 m and nothing follows it (its near-field reverberation is background).
@@ -34,12 +47,10 @@ namespace sonarmap {
 /// Options of the per-sweep calibration (see the file's comment for each definition).
 struct CalibrationOptions {
   double background_percentile = 25.0;  ///< percentile in [0, 100] of each column over the rows
-  /// Least rise of an echo above the background, dB, ≥ 0: used where the noise is clipped (σ = 0)
-  /// or below it. 8 dB is 45 counts on a 45 dB scale.
-  double min_contrast_db = 8.0;
-  /// Probability, per bin, that noise alone exceeds κ σ, in (0, 0.5): κ = 4.0 at 3.2 × 10⁻⁵.
+  /// Probability, per bin, that noise alone rises above the threshold, in (0, 0.5).
   double false_alarm_probability = 3.2e-5;
-  double noise_window_m = 0.5;  ///< half-width of the window σ's median is taken over, metres, ≥ 0
+  /// Least rise of an echo above the background, dB, ≥ 0, whatever the false-alarm probability.
+  double min_contrast_db = 0.0;
   double clutter_share = 0.10;  ///< share of bearings that makes a range near-field clutter, (0, 0.5]
   double max_gap_m = 0.10;      ///< clutter-free stretch that ends the near field, metres, ≥ 0
 
@@ -50,30 +61,23 @@ struct CalibrationOptions {
 /// One sweep's calibration (see the file's comment). Vectors hold one value per column.
 struct SweepCalibration {
   std::vector<float> background;  ///< B(c), intensity counts
-  std::vector<float> noise_sigma; ///< σ(c), intensity counts
-  std::vector<float> threshold;   ///< T(c), intensity counts above B(c)
-  double span_db = 0.0;           ///< dB span of the intensity scale used for min_contrast_db
+  std::vector<float> threshold;   ///< T at each column, intensity counts above B(c)
+  double span_db = 0.0;           ///< dB span of the intensity scale used
+  double threshold_db = 0.0;      ///< T in dB
   double band_end_m = 0.0;        ///< end of the self-reflection band, metres
   double near_field_end_m = 0.0;  ///< end of the near-field clutter (≥ band_end_m), metres
 };
 
 /// Calibrates one sweep over all its rows. `span_db`: the dB span of the intensities
-/// (intensitySpan_db of the image, or an override). The background detector measures B, σ and T
-/// again over the beams still in water at each range (detectors.hpp); the band and the near field
-/// are this function's. Cost: O(rows × cols + 256 × cols) (a histogram per column).
+/// (intensitySpan_db of the image, or an override). Cost: O(rows × cols + 256 × cols) (a
+/// histogram per column).
 /// @throws ValueError for invalid options, an image that is not CV_8UC1 with bin_length_m > 0 and
 ///         one valid_bins entry per row, or a span that is not finite and > 0.
 SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOptions& options, double span_db);
 
-/// T for a noise spread σ: max(min_contrast_db in counts, κ σ) (see the file's comment).
-/// @throws ValueError when span_db is not finite and > 0.
-float thresholdFor(float sigma, const CalibrationOptions& options, double span_db);
-
-/// The median of values[c − half_window … c + half_window] (clipped to the vector) for every c.
-std::vector<float> windowedMedian(const std::vector<float>& values, int half_window);
-
-/// κ of the threshold: the standard normal quantile Φ⁻¹(1 − p), by bisection on std::erfc.
-/// @throws ValueError when p is not in (0, 0.5).
-double gaussianQuantile(double upper_tail_probability);
+/// The threshold in dB above the background percentile for `options`: max(min_contrast_db,
+/// 10 log10(ln(Pfa) / ln(1 − p))) (see the file's comment).
+/// @throws ValueError when the options are invalid.
+double thresholdDb(const CalibrationOptions& options);
 
 }  // namespace sonarmap

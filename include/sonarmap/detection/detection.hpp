@@ -14,6 +14,11 @@ struct BeamDetection {
   /// Range of the obstacle's leading edge along the beam, metres, > 0 when there is an obstacle:
   /// where the echo rises out of the background, to a fraction of a bin (detectors.hpp).
   double range_m = 0.0;
+  /// How far the beam is known to travel through water, metres: with an obstacle, its range; without
+  /// one, the start of the first bin whose echo rises to half the detection threshold above the
+  /// background (a weak echo the detector did not accept proves nothing beyond it), or the beam's
+  /// full range when there is none. The mapper clears a beam's free space up to here.
+  double water_range_m = 0.0;
   bool hasObstacle() const { return obstacle_bin >= 0; }
 };
 
