@@ -62,7 +62,7 @@ int nearFieldEnd(const ColumnProfile& profile, const std::vector<float>& thresho
   int last = band_end;
   for (int c = band_end; c < cols && c - last <= gap_bins; ++c) {
     const auto i = static_cast<std::size_t>(c);
-    if (profile.clutter[i] - profile.background[i] >= threshold[i]) last = c + 1;
+    if (profile.clutter[i] - profile.background[i] >= 0.5f * threshold[i]) last = c + 1;
   }
   return last;
 }

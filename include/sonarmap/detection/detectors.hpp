@@ -57,12 +57,13 @@ struct CannyOptions {
 ///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along;
 ///   3. its range is the echo's leading edge, the nearest surface within the beam: the echo is the
 ///      run of bins above T from c on (its peak sought within 0.3 m of c); going back from the peak
-///      over the bins within leading_edge_db of it, the centre of the first of them. The peak lies
-///      up to a pulse length behind the surface, and a wall seen at an angle returns its nearest
-///      point from the beam's edge, 6 dB (two-way) below the axis; a crossing low on the rise of a
-///      strong echo instead reaches into the beam pattern's skirt, beyond the nominal width, and a
-///      point high on it lies behind the surface. 10 dB below the peak gave the nearest surface
-///      within the −3 dB beam on the simulated heads (docs/accuracy.md): median within a bin.
+///      over the bins within leading_edge_db of it, the centre of the first of them. A wall seen at
+///      an angle returns its nearest point from the edge of the −3 dB beam, 6 dB (two-way) below
+///      the axis, so the echo's rise mirrors the beam pattern and 6 dB below the peak is the nearest
+///      surface within the nominal width; a crossing lower on the rise of a strong echo reaches
+///      into the pattern's skirt, beyond that width (at long range, metres of it), one higher lies
+///      behind the surface. At normal incidence the rise is the pulse's: 6 dB below its plateau is
+///      a quarter of a pulse length behind the surface (docs/accuracy.md measures the result).
 /// The constant-range ring (the surface or seabed entering the vertical aperture: CRAS's 1.56 m)
 /// is in every bearing and so in B; a wall is at one range in few bearings and is not. Limits:
 /// anything at one range in more than (100 − percentile) % of the bearings is background, so a
@@ -71,7 +72,7 @@ struct CannyOptions {
 struct BackgroundOptions {
   CalibrationOptions calibration;   ///< background percentile, contrast, false-alarm rate, near field
   double min_echo_length_m = 0.04;  ///< least extent of an echo along the beam, metres, ≥ 0 (≥ 1 bin)
-  double leading_edge_db = 10.0;    ///< the leading edge is within this of the echo's peak, dB, ≥ 0
+  double leading_edge_db = 6.0;     ///< the leading edge is within this of the echo's peak, dB, ≥ 0
   int min_beams = 20;               ///< fewest rows (beams) to estimate a background, ≥ 1
 };
 

@@ -32,16 +32,28 @@ inline OctreeOptions lazyOctreeOptions() {
   return options;
 }
 
+/// The sonar mapper's octree: lazy, OctoMap's miss (0.4) and clamping (0.12 … 0.97), and a hit of
+/// P(occupied | echo) = 0.9 (log-odds +2.2; OctoMap's laser default is 0.7, +0.85). A detection has
+/// passed a threshold that noise crosses with probability 3.2 × 10⁻⁵ per bin (calibration.hpp),
+/// so one echo outweighs the clamped free evidence of earlier sweeps (−2.0): the map follows a
+/// target that moves in (the SeaNet sector log's) within a sweep, while a false echo is cleared
+/// again by six sweeps that see water there.
+inline OctreeOptions sonarOctreeOptions() {
+  OctreeOptions options = lazyOctreeOptions();
+  options.occupancy.prob_hit = 0.9;
+  return options;
+}
+
 /// Everything that turns beams into map updates. Options left unset (nullopt) are derived from
 /// each log or sweep: nothing here is tuned to one sonar.
 struct MapperOptions {
   /// Voxel edge in metres, > 0. Unset: autoResolution_m() of the log's reach (mapSonarLog), or of
   /// the first sweep's reach (a SonarMapper fed sweeps directly).
   std::optional<double> resolution_m;
-  /// Sensor model, aggregation, pruning. Lazy by default: a sweep updates leaves only and the
-  /// inner nodes are fixed once at its end (§5.5), so the map is consistent after every sweep.
-  /// P(occupied | echo) is occupancy.prob_hit (OctoMap's 0.7) for every detected obstacle.
-  OctreeOptions octree = lazyOctreeOptions();
+  /// Sensor model, aggregation, pruning (sonarOctreeOptions). Lazy: a sweep updates leaves only and
+  /// the inner nodes are fixed once at its end (§5.5), so the map is consistent after every sweep.
+  /// Every detected obstacle earns occupancy.prob_hit.
+  OctreeOptions octree = sonarOctreeOptions();
   /// Bins nearer than this are zeroed before smoothing and detection (paper §8.1: reflections from
   /// the vehicle and the transducer's ringing), metres, ≥ 0. Unset: the near-field clutter extent
   /// estimated on each sweep (estimateNearField, detection/calibration.hpp).
