@@ -45,7 +45,10 @@ void run(const DemoArgs& args) {
   stageSimulation(outputs, args.output_dir, simulation);
   outputs.commit();
   dir.keep();
-  printMapSummary(mapped, map_args.output_bt);
+  const std::vector<std::string> warnings =
+      mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
+  printWarnings(warnings);
+  printMapSummary(mapped, map_args.output_bt, false, warnings.size());
   printTankReport(mapped.mapper.map());
 }
 

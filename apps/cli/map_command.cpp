@@ -1,7 +1,6 @@
 #include "map_command.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -13,16 +12,6 @@
 
 namespace sonarmap::cli {
 
-double parseMetres(const std::string& text, const char* option) {
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, error] = std::from_chars(text.data(), end, value);
-  if (error != std::errc{} || ptr != end || !std::isfinite(value) || value <= 0.0) {
-    throw ValueError(std::string(option) + " expects a number of metres > 0 or auto, got '" + text + "'");
-  }
-  return value;
-}
-
 Command addMapCommand(CLI::App& app, MapArgs& args) {
   CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, beam .csv) into an occupancy octree (.bt)");
   cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG or beam .csv")->required();
@@ -30,23 +19,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--png", args.map_png, "Top view of the map at z = 0 (PNG)");
   cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
   cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
-  cmd->add_option("--resolution", args.resolution,
-                  "Voxel edge in metres, or auto: about 1/256 of the log's reach rounded to 1, 2 or 5 x 10^k m "
-                  "(Micron at 5 m: 0.02; SeaKing at 30 m: 0.1; Ping360 at 50 m: 0.2)")
-      ->capture_default_str();
-  cmd->add_option("--detector", args.detector,
-                  "background | threshold | canny | cfar-ca | cfar-so | cfar-go | cfar-os (CFAR along each beam)")
-      ->capture_default_str();
-  cmd->add_option("--smoothing", args.smoothing, "gaussian | median | mean | none")->capture_default_str();
-  cmd->add_option("--ray", args.ray, "dda | bresenham")->capture_default_str();
-  cmd->add_option("--aggregation", args.aggregation, "Inner nodes: max | mean")->capture_default_str();
-  cmd->add_option("--self-reflection", args.self_reflection_m, "Ignore echoes nearer than this (m)")->capture_default_str();
-  cmd->add_option("--max-range", args.max_range_m,
-                  "Use beams up to this range (m): longer ones clear free space up to it, their obstacle dropped")
-      ->capture_default_str();
-  cmd->add_option("--beam-width", args.beam_width_deg,
-                  "Horizontal beam width in degrees: each beam clears its wedge; 0 = one ray per beam (the paper)")
-      ->capture_default_str();
+  addMappingOptions(*cmd, args);
   cmd->add_option("--nav", args.nav_csv,
                   "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, the log's "
                   "clock): each beam is placed with the vehicle's pose at its time; beams outside its time span "
@@ -57,9 +30,6 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,180,0,0")
       ->delimiter(',')
       ->expected(6);
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
-  cmd->add_flag("--tank-report", args.tank_report,
-                "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
   struct Checked {
     MapperOptions options;
     Eigen::Isometry3d sonar_to_body;
@@ -86,29 +56,6 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) {
   return bodyToNed(pose);
 }
 
-MapperOptions toMapperOptions(const MapArgs& args) {
-  MapperOptions options;
-  if (args.resolution != "auto") options.resolution_m = parseMetres(args.resolution, "--resolution");
-  selectDetector(options.detector, args.detector);
-  options.smoothing.kind = parseSmoothing(args.smoothing);
-  options.ray = parseRayAlgorithm(args.ray);
-  if (args.aggregation == "max") {
-    options.octree.aggregation = InnerAggregation::kMax;
-  } else if (args.aggregation == "mean") {
-    options.octree.aggregation = InnerAggregation::kMean;
-  } else {
-    throw ValueError("unknown aggregation '" + args.aggregation + "', expected max or mean");
-  }
-  options.self_reflection_range_m = args.self_reflection_m;
-  options.max_range_m = args.max_range_m;
-  if (!(args.beam_width_deg >= 0.0 && args.beam_width_deg < 180.0)) {
-    throw ValueError("beam width must be within [0, 180) degrees");
-  }
-  options.beam_width_rad = args.beam_width_deg * std::numbers::pi / 180.0;
-  options.validate();
-  return options;
-}
-
 namespace {
 
 /// Maps the log, static or with navigation, drawing a progress bar unless args.quiet.
@@ -128,11 +75,15 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
 
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const SonarLog log = readSonarLog(args.input);
+  printWarnings(optionWarnings(options, log));
   const MappedLog mapped = mapLog(args, log, options, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
   stageMapOutputs(outputs, args, log, mapped.mapper.map(), mapped.mapper.map().resolution_m());
   outputs.commit();
-  printMapSummary(mapped, args.output_bt, /*with_nav=*/!args.nav_csv.empty());
+  const std::vector<std::string> warnings =
+      mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
+  printWarnings(warnings);
+  printMapSummary(mapped, args.output_bt, /*with_nav=*/!args.nav_csv.empty(), warnings.size());
   if (args.tank_report) printTankReport(mapped.mapper.map());
 }
 

@@ -57,15 +57,24 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarL
   }
 }
 
-void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav) {
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) std::fprintf(stderr, "sonarmap: warning: %s\n", warning.c_str());
+}
+
+void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav, std::size_t warnings) {
   const MappingStats& stats = run.mapper.stats();
+  const MappingStats::Calibration& calibration = stats.calibration;
   const OcTree16& map = run.mapper.map();
   const NodeCounts counts = map.counts();
   std::printf("%zu beams used, %zu skipped, ", stats.beams_used, stats.beams_skipped + stats.out_of_map);
   if (with_nav) std::printf("%zu without navigation, ", stats.beams_without_nav);
-  std::printf("%zu sweeps, %zu obstacles, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n", stats.sweeps,
-              stats.obstacles, counts.nodes, counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0,
-              run.seconds, output_bt.c_str());
+  std::printf("%zu sweeps, %zu obstacles%s, %g m voxels, min range %.2f m, threshold %.1f dB on %.0f dB, "
+              "%zu map nodes (%zu leaves), %.1f KiB, %.3f s",
+              stats.sweeps, stats.obstacles, stats.obstacles == 0 ? " (EMPTY MAP)" : "", map.resolution_m(),
+              calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes, counts.leaves,
+              static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
+  if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");
+  std::printf(" -> %s\n", output_bt.c_str());
 }
 
 void printTankReport(const OcTree16& map) {

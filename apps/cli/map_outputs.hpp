@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "map_command.hpp"
 
@@ -34,10 +35,14 @@ MappedLog mapWithProgress(const MapCall& map, bool quiet);
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
                      double pixel_m);
 
+/// Prints each warning as one line on stderr: "sonarmap: warning: ...".
+void printWarnings(const std::vector<std::string>& warnings);
+
 /// Prints the one-line summary of a mapping run on stdout: beams used and skipped (with
-/// `with_nav`, also those without navigation), sweeps, obstacles, map nodes and leaves, memory,
-/// time and the .bt written.
-void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav = false);
+/// `with_nav`, also those without navigation), sweeps, obstacles (EMPTY MAP when none), the
+/// resolution, the detector's minimum range and threshold (the calibration of the last sweep), map
+/// nodes and leaves, memory, time, how many warnings were printed, and the .bt written.
+void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav = false, std::size_t warnings = 0);
 
 /// Prints one line on stdout: the rectangle fitted to the occupied cells at z = 0 and the map's
 /// quality (eval/tank_quality.hpp), or why there are too few cells to fit it.

@@ -147,6 +147,35 @@ std::vector<BeamDetection> runDetector(const PolarImage& polar, const DetectorOp
   return std::vector<BeamDetection>(static_cast<std::size_t>(polar.rows()));
 }
 
+/// Counts, among the rows without an obstacle, those with an echo above the threshold between the
+/// band's end and the minimum range, and those whose echo was too short (DetectionDiagnostics).
+DetectionDiagnostics diagnose(const PolarImage& polar, const detail::DetectionContext& context,
+                              const SweepCalibration& calibration, const std::vector<BeamDetection>& detections) {
+  DetectionDiagnostics diagnostics;
+  diagnostics.beams = detections.size();
+  const int band = firstBinAtOrBeyond(calibration.band_end_m, polar.bin_length_m, polar.cols());
+  for (int r = 0; r < polar.rows(); ++r) {
+    const BeamDetection& detection = detections[static_cast<std::size_t>(r)];
+    diagnostics.reach_m = std::max(diagnostics.reach_m, polar.valid_bins[static_cast<std::size_t>(r)] * polar.bin_length_m);
+    if (detection.hasObstacle()) {
+      ++diagnostics.obstacles;
+      continue;
+    }
+    const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
+    diagnostics.reach_m = std::max(diagnostics.reach_m, end * polar.bin_length_m);
+    if (detection.water_range_m > 0.0 && detection.water_range_m < end * polar.bin_length_m) ++diagnostics.echoes_too_short;
+    const auto* row = polar.intensities.ptr<std::uint8_t>(r);
+    for (int c = band; c < std::min(context.min_bin, end); ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      if (static_cast<float>(row[c]) - calibration.background[i] >= calibration.threshold[i]) {
+        ++diagnostics.echoes_before_min_range;
+        break;
+      }
+    }
+  }
+  return diagnostics;
+}
+
 /// Sets each detection's water_range_m (detection.hpp): its range with an obstacle; without one, the
 /// start of the first bin at or beyond the minimum range whose residual above `calibration`'s
 /// background reaches the threshold (an echo too short to be an obstacle), or the row's end.
@@ -165,7 +194,8 @@ void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& con
                           calibration.threshold[static_cast<std::size_t>(c)]) {
       ++c;
     }
-    detection.water_range_m = c * polar.bin_length_m;
+    // A beam that shows nothing beyond the minimum range proves no water (its bins may be zeroed).
+    detection.water_range_m = c > context.min_bin ? c * polar.bin_length_m : 0.0;
   }
 }
 
@@ -192,11 +222,21 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
                                          calibration.span_db};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
   setWaterRanges(polar, context, result.calibration, result.detections);
+  result.diagnostics = diagnose(polar, context, result.calibration, result.detections);
   return result;
 }
 
 std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const DetectorOptions& options) {
   return detectSweep(polar, options).detections;
+}
+
+DetectionDiagnostics& DetectionDiagnostics::operator+=(const DetectionDiagnostics& other) {
+  beams += other.beams;
+  obstacles += other.obstacles;
+  echoes_before_min_range += other.echoes_before_min_range;
+  echoes_too_short += other.echoes_too_short;
+  reach_m = std::max(reach_m, other.reach_m);
+  return *this;
 }
 
 Detector parseDetector(std::string_view name) { return namedDetector(name).kind; }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "sonarmap/core/errors.hpp"
@@ -111,17 +112,61 @@ double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
   return updates;
 }
 
+std::vector<std::string> optionWarnings(const MapperOptions& options, const SonarLog& log) {
+  std::vector<std::string> lines;
+  const double reach_m = logReach_m(log, std::numeric_limits<double>::infinity());
+  if (!(reach_m > 0.0)) return lines;
+  char text[320];
+  auto add = [&](const char* what, double value_m) {
+    std::snprintf(text, sizeof text, "%s %s is beyond the log's reach (%s): %s", what, metres(value_m).c_str(),
+                  metres(reach_m).c_str(), "nothing can be detected");
+    lines.emplace_back(text);
+  };
+  if (options.detector.min_range_m && *options.detector.min_range_m >= reach_m) {
+    add("the detector's minimum range (--min-range)", *options.detector.min_range_m);
+  }
+  if (options.self_reflection_range_m && *options.self_reflection_range_m >= reach_m) {
+    add("the self-reflection range (--self-reflection)", *options.self_reflection_range_m);
+  }
+  if (options.detector.background.min_echo_length_m >= reach_m) {
+    add("the minimum echo length (--min-echo-length)", options.detector.background.min_echo_length_m);
+  }
+  if (options.max_range_m < reach_m) {
+    std::snprintf(text, sizeof text,
+                  "the maximum range (--max-range) %s is below the log's reach (%s): beams reaching farther clear "
+                  "free space up to it and lose their obstacles",
+                  metres(options.max_range_m).c_str(), metres(reach_m).c_str());
+    lines.emplace_back(text);
+  }
+  if (options.resolution_m && *options.resolution_m > 0.25 * reach_m) {
+    std::snprintf(text, sizeof text,
+                  "the resolution (--resolution) %s is coarser than a quarter of the log's reach (%s): each beam "
+                  "covers only a few voxels (auto would choose %s)",
+                  metres(*options.resolution_m).c_str(), metres(reach_m).c_str(), metres(autoResolution_m(reach_m)).c_str());
+    lines.emplace_back(text);
+  }
+  if (options.smoothing.kind != Smoothing::kNone && options.smoothing.range_m > 0.5 * reach_m) {
+    std::snprintf(text, sizeof text,
+                  "the smoothing along the beam (--smoothing-range) %s is longer than half the log's reach (%s)",
+                  metres(options.smoothing.range_m).c_str(), metres(reach_m).c_str());
+    lines.emplace_back(text);
+  }
+  return lines;
+}
+
 void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
   const double updates = estimateVoxelUpdates(log, options);
   if (updates <= options.max_voxel_updates) return;
   // Updates scale with 1 / resolution²: the finest resolution that fits.
   const double voxel_m = options.resolution_m.value_or(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3)));
   const double fits_m = voxel_m * std::sqrt(updates / options.max_voxel_updates);
-  char text[256];
+  char text[400];
   std::snprintf(text, sizeof text,
                 "mapping this log at %s voxels needs about %.3g voxel updates, more than the budget of %.3g "
-                "(max_voxel_updates, --max-voxel-updates): use a resolution of at least %s, or raise the budget",
-                metres(voxel_m).c_str(), updates, options.max_voxel_updates, metres(fits_m).c_str());
+                "(max_voxel_updates, --max-voxel-updates): use a resolution of at least %s (auto: %s), or raise "
+                "the budget",
+                metres(voxel_m).c_str(), updates, options.max_voxel_updates, metres(fits_m).c_str(),
+                metres(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3))).c_str());
   throw ValueError(text);
 }
 

@@ -62,10 +62,13 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
 SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
   // Calibrate on the image as recorded: the band and the near field are measured before the band is
   // zeroed and before any smoothing spreads it.
-  const DetectorOptions& detector = options_.detector;
+  DetectorOptions detector = options_.detector;
   const double span_db = detector.intensity_span_db.value_or(intensitySpan_db(polar));
   const SweepCalibration recorded = calibrateSweep(polar, detector.background.calibration, span_db);
-  removeSelfReflection(polar, options_.self_reflection_range_m.value_or(recorded.band_end_m));
+  const double self_reflection_m = options_.self_reflection_range_m.value_or(recorded.band_end_m);
+  removeSelfReflection(polar, self_reflection_m);
+  // Nothing can be detected, nor water seen, where the bins were zeroed.
+  detector.min_range_m = std::max(detector.min_range_m.value_or(recorded.near_field_end_m), self_reflection_m);
   if (options_.smoothing.kind == Smoothing::kNone) return sonarmap::detectSweep(polar, detector, recorded);
   smooth(polar, options_.smoothing);
   SweepCalibration smoothed = calibrateSweep(polar, detector.background.calibration, span_db);
@@ -77,9 +80,16 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
 std::vector<BeamDetection> SonarMapper::detect(PolarImage& polar) const { return detectSweep(polar).detections; }
 
 std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen::Isometry3d& sonar_to_map) {
-  std::vector<BeamDetection> detections = detect(polar);
-  integrateSweep(polar, detections, sonar_to_map);
-  return detections;
+  SweepDetection detection = detectSweep(polar);
+  recordDetection(detection);
+  integrateSweep(polar, detection.detections, sonar_to_map);
+  return std::move(detection.detections);
+}
+
+void SonarMapper::recordDetection(const SweepDetection& detection) {
+  stats_.detection += detection.diagnostics;
+  stats_.calibration = {detection.calibration.band_end_m, detection.calibration.near_field_end_m, detection.min_range_m,
+                        detection.calibration.threshold_db, detection.calibration.span_db};
 }
 
 void SonarMapper::integrateFreeCells() {
@@ -232,15 +242,19 @@ void SonarMapper::planBeams() {
   }
 }
 
-bool SonarMapper::beamInsideMap(const PlannedBeam& beam) const {
+bool SonarMapper::beamInsideMap(const PlannedBeam& beam) {
   // The sonar and the wedge's far corners and middle; the map is a box, so the wedge is inside.
   const double half = 0.5 * options_.beam_width_rad;
+  const double reach_m = std::max(beam.free_range_m, beam.hit ? beam.hit_range_m : 0.0);
+  bool inside = map_.coder().keyOf(beam.sonar_to_map.translation()).has_value();
+  stats_.farthest_m = std::max(stats_.farthest_m, beam.sonar_to_map.translation().cwiseAbs().maxCoeff());
   for (const double offset : {-half, 0.0, half}) {
     const double angle = beam.bearing_rad + offset;
-    const Eigen::Vector3d end(beam.free_range_m * std::cos(angle), beam.free_range_m * std::sin(angle), 0.0);
-    if (!map_.coder().keyOf(beam.sonar_to_map * end)) return false;
+    const Eigen::Vector3d end = beam.sonar_to_map * Eigen::Vector3d(reach_m * std::cos(angle), reach_m * std::sin(angle), 0.0);
+    stats_.farthest_m = std::max(stats_.farthest_m, end.cwiseAbs().maxCoeff());
+    inside = inside && map_.coder().keyOf(end).has_value();
   }
-  return map_.coder().keyOf(beam.sonar_to_map.translation()).has_value();
+  return inside;
 }
 
 void SonarMapper::keySweep() {
@@ -278,7 +292,7 @@ namespace {
 /// A sweep cleaned and searched, ready to integrate.
 struct DetectedSweep {
   PolarImage polar;
-  std::vector<BeamDetection> detections;
+  SweepDetection detection;
 };
 
 /// mapSonarLog's body: `integrate(mapper, polar, detections)` places each detected sweep.
@@ -293,7 +307,7 @@ SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const P
   const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), min_beams);
   auto detectSweep = [&](std::size_t i) {
     DetectedSweep sweep{makePolarImage(log.beams, sweeps[i].first, sweeps[i].last_exclusive), {}};
-    sweep.detections = mapper.detect(sweep.polar);
+    sweep.detection = mapper.detectSweep(sweep.polar);
     return sweep;
   };
   const auto launch = options.pipeline_detection ? std::launch::async : std::launch::deferred;
@@ -302,8 +316,14 @@ SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const P
   for (std::size_t i = 0; i < sweeps.size(); ++i) {
     DetectedSweep sweep = next.get();  // rethrows what the detection threw
     if (i + 1 < sweeps.size()) next = std::async(launch, detectSweep, i + 1);
-    integrate(mapper, sweep.polar, sweep.detections);
+    mapper.recordDetection(sweep.detection);
+    integrate(mapper, sweep.polar, sweep.detection.detections);
     if (progress) progress(i + 1, sweeps.size());
+  }
+  const MappingStats& stats = mapper.stats();
+  if (stats.beams_used == 0 && stats.out_of_map > 0) {  // an empty map is no answer
+    throw ValueError("no beam could be mapped: " +
+                     mappingWarnings(stats, mapper.options(), mapper.map().resolution_m()).front());
   }
   return mapper;
 }

@@ -96,11 +96,26 @@ struct DetectorOptions {
   void validate() const;
 };
 
+/// Why beams found no obstacle: what a user needs to see when a map comes out empty.
+struct DetectionDiagnostics {
+  std::size_t beams = 0;      ///< rows searched
+  std::size_t obstacles = 0;  ///< rows with an obstacle
+  /// Rows without an obstacle whose echo rises above the threshold between the self-reflection
+  /// band's end and the minimum range: obstacles the minimum range may hide.
+  std::size_t echoes_before_min_range = 0;
+  /// Rows without an obstacle with an echo above the threshold shorter than min_echo_length_m.
+  std::size_t echoes_too_short = 0;
+  double reach_m = 0.0;  ///< the longest row's range (valid bins × bin length), metres
+
+  DetectionDiagnostics& operator+=(const DetectionDiagnostics& other);
+};
+
 /// One sweep's detections with the calibration they were made with.
 struct SweepDetection {
   std::vector<BeamDetection> detections;  ///< one per row
-  SweepCalibration calibration;           ///< background, noise, threshold, near field (calibration.hpp)
+  SweepCalibration calibration;           ///< background, threshold, near field (calibration.hpp)
   double min_range_m = 0.0;               ///< the minimum range used: the option, or the near-field end
+  DetectionDiagnostics diagnostics;
 };
 
 /// Calibrates the sweep (calibrateSweep with options.background.calibration) and finds the first

@@ -7,7 +7,9 @@
 #include <cstddef>
 #include <numbers>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "sonarmap/detection/detectors.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
@@ -114,6 +116,12 @@ MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
 /// the area each beam's wedge sweeps in the sonar's plane, max(beam width, bearing step to the
 /// next beam) × range² / 2, over the voxel's area, summed over the beams (a 360° sweep: π R² / res²).
 double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options);
+
+/// Lines for the user about options that cannot work with `log` (a minimum range, self-reflection
+/// range or echo length beyond the log's reach, a maximum range that cuts its beams, a resolution
+/// coarser than a quarter of the reach, smoothing longer than half of it); each names the option
+/// (MapperOptions field and command-line flag). Empty when nothing needs saying.
+std::vector<std::string> optionWarnings(const MapperOptions& options, const SonarLog& log);
 
 /// Throws when estimateVoxelUpdates() exceeds options.max_voxel_updates.
 /// @throws ValueError naming the estimate, the budget, the option that raises it

@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -43,7 +44,27 @@ struct MappingStats {
   std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
   std::size_t beams_clipped = 0;         ///< beams longer than max_range_m (used up to it, obstacle dropped)
   std::size_t beams_without_nav = 0;     ///< beams without a pose: their time lies outside the navigation (skipped)
+  /// Why beams found no obstacle, summed over the sweeps detected by this mapper (detectors.hpp).
+  DetectionDiagnostics detection;
+  /// The last detected sweep's calibration (calibration.hpp): what the mapper derived from the log.
+  struct Calibration {
+    double band_end_m = 0.0;        ///< end of the self-reflection band
+    double near_field_end_m = 0.0;  ///< end of the near-field clutter
+    double min_range_m = 0.0;       ///< the detector's minimum range (the option, or the near field's end)
+    double threshold_db = 0.0;      ///< the echo threshold above the background
+    double span_db = 0.0;           ///< the intensity scale's dB span used
+  } calibration;
+  /// The largest |x|, |y| or |z| of a point a beam reached (sonar or wedge end), map frame, metres:
+  /// what the map must span (mappingWarnings suggests a resolution from it).
+  double farthest_m = 0.0;
 };
+
+/// Lines for the user about a finished mapping (the library never prints; `sonarmap map` does):
+/// no obstacle, or far fewer obstacles than echoes suggest, with the likely cause (the minimum range
+/// beyond the echoes, echoes shorter than the minimum echo length); most beams outside the map,
+/// with the resolution that would fit (the map spans ±32768 voxels from its origin); beams beyond
+/// the maximum range; beams without navigation. Empty when nothing needs saying.
+std::vector<std::string> mappingWarnings(const MappingStats& stats, const MapperOptions& options, double resolution_m);
 
 /// Maps sweeps of one sonar into an occupancy octree (depth 16, OctoMap's layout).
 class SonarMapper {
@@ -63,6 +84,10 @@ class SonarMapper {
 
   /// detectSweep(polar).detections.
   std::vector<BeamDetection> detect(PolarImage& polar) const;
+
+  /// Adds a sweep's diagnostics to stats().detection and keeps its calibration in
+  /// stats().calibration (mapSweep and mapSonarLog call it for every sweep they detect).
+  void recordDetection(const SweepDetection& detection);
 
   /// Cleans and searches the polar image of one sweep (self-reflection removal, smoothing,
   /// detection) and integrates it. `polar` is modified in place: afterwards it holds the image
@@ -107,8 +132,8 @@ class SonarMapper {
   void integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
   void planBeams();
-  /// True when the sonar and the beam's wedge lie inside the map.
-  bool beamInsideMap(const PlannedBeam& beam) const;
+  /// True when the sonar and the beam's wedge lie inside the map; records how far it reached.
+  bool beamInsideMap(const PlannedBeam& beam);
   /// Turns the sweep's plan into keys: hit cells, the key box, the seen set primed with the hits.
   void keySweep();
   /// Updates every cell the planned rays cross once, free, unless it is a hit cell of the sweep.
@@ -131,8 +156,12 @@ using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
 std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams);
 
 /// Maps every sweep of `log` (split where the head completes a turn or reverses, short fragments
-/// joined to their neighbour) with the sonar static at the map origin. `stats().beams_skipped` includes the reader's skipped beams.
-/// @throws ValueError for invalid options or a sweep that mixes bin lengths.
+/// joined to their neighbour) with the sonar static at the map origin, options left on "auto"
+/// resolved for the log (resolveForLog). `stats().beams_skipped` includes the reader's skipped
+/// beams; mappingWarnings() says what went wrong when few or no obstacles were found.
+/// @throws ValueError for invalid options, a sweep that mixes bin lengths, a log whose estimated
+///         work exceeds options.max_voxel_updates (checkWorkBudget, before mapping), or when no beam
+///         could be mapped because every one reaches outside the map (naming the resolution that fits).
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options = {}, const ProgressCallback& progress = {});
 
 /// Maps every sweep of `log` (split and detected as above) from a moving vehicle: each beam is
