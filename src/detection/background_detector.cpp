@@ -87,6 +87,7 @@ BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const Det
   while (first > context.min_bin && residual(values, calibration, first - 1) >= edge) --first;
   BeamDetection detection = detectionAt(polar, row, first);
   detection.range_m = (first + 0.5) * polar.bin_length_m;  // the surface lies within the first bin of the rise
+  detection.rise_m = (peak - first) * polar.bin_length_m;
   return detection;
 }
 

@@ -150,7 +150,9 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       hit = false;
       ++stats_.beams_clipped;
     }
-    const double free_range_m = hit ? std::max(0.0, range_m - tolerance_m) : range_m;
+    // Automatic tolerance: the sweep's (a bin plus half a voxel) plus the echo's own rise.
+    const double beam_tolerance_m = tolerance_m + (options_.range_tolerance_m ? 0.0 : detection.rise_m);
+    const double free_range_m = hit ? std::max(0.0, range_m - beam_tolerance_m) : range_m;
     const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit};
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;

@@ -19,6 +19,10 @@ struct BeamDetection {
   /// background (a weak echo the detector did not accept proves nothing beyond it), or the beam's
   /// full range when there is none. The mapper clears a beam's free space up to here.
   double water_range_m = 0.0;
+  /// How far behind the leading edge the echo reaches its peak, metres, ≥ 0: the pulse's length at
+  /// normal incidence, the range spread across the beam at oblique incidence — how uncertain the
+  /// surface's range is within this echo (the mapper's automatic range tolerance uses it).
+  double rise_m = 0.0;
   bool hasObstacle() const { return obstacle_bin >= 0; }
 };
 
