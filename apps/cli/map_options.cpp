@@ -57,7 +57,7 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
       ->capture_default_str();
   cmd.add_option("--false-alarm", args.false_alarm,
                  "PROBABILITY per bin that noise alone is taken for an echo, in (0, 0.5): sets the echo threshold "
-                 "above the background by the speckle model (3.2e-5: 15.6 dB); raise it to see weaker targets")
+                 "above the background by the speckle model (1e-6: 16.9 dB); raise it to see weaker targets")
       ->capture_default_str();
   cmd.add_option("--min-contrast", args.min_contrast_db,
                  "Least rise of an echo above the background in DB, whatever --false-alarm gives")

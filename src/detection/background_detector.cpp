@@ -13,9 +13,10 @@
 namespace sonarmap::detail {
 namespace {
 
-/// The echo's peak is sought this far behind its first bin above the threshold, metres: a pulse
-/// length or two (Ping360 at 50 m: ≈ 0.3 m), so a stronger echo farther on (a wall behind a weak
-/// target, multipath) cannot pull the leading edge to itself.
+/// The echo's peak is sought this far behind its first bin above the threshold (at least two
+/// bins), metres: a pulse length or two (Ping360 at 50 m: ≈ 0.2 m). The leading edge is then
+/// sought forward from the rise's foot, so a stronger echo within the window (reverberation or
+/// multipath behind a wall) can only raise the edge's level, never move it behind the first rise.
 constexpr double kPeakWindow_m = 0.3;
 /// A range's water statistics need this share of the rows (and at least 3) still in water there;
 /// beyond, the last range that had them is used. Where fewer beams remain, they are mostly those
@@ -73,18 +74,22 @@ BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const Det
                             const SweepCalibration& calibration, double edge_db) {
   const auto* values = polar.intensities.ptr<std::uint8_t>(row);
   const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
-  auto above = [&](int c) { return residual(values, calibration, c) >= calibration.threshold[static_cast<std::size_t>(c)]; };
-  // The echo: the bins above the threshold from `bin` on, within the peak window; its peak.
+  auto excess = [&](int c) { return residual(values, calibration, c); };
+  const float half_threshold = 0.5f * calibration.threshold[static_cast<std::size_t>(bin)];
+  // The foot of the rise: back from the run while the echo stays above half the threshold.
+  int foot = bin;
+  while (foot > context.min_bin && excess(foot - 1) >= half_threshold) --foot;
+  // The echo's peak, within a pulse or two of the run's start (what lies farther is another echo,
+  // reverberation or multipath, and must not pull the edge to itself).
+  const int window_end = std::min(end, bin + binsForLength(kPeakWindow_m, polar.bin_length_m, 2, std::max(2, end)));
   int peak = bin;
-  const int window_end = std::min(end, bin + binsForLength(kPeakWindow_m, polar.bin_length_m, 1, std::max(1, end)));
-  for (int c = bin; c < window_end && above(c); ++c) {
-    if (residual(values, calibration, c) > residual(values, calibration, peak)) peak = c;
+  for (int c = bin; c < window_end; ++c) {
+    if (excess(c) > excess(peak)) peak = c;
   }
-  // Back from the peak while the echo stays within edge_db of it (and above half the threshold).
-  const float edge = std::max(residual(values, calibration, peak) - static_cast<float>(countsForDb(edge_db, context.span_db)),
-                              0.5f * calibration.threshold[static_cast<std::size_t>(bin)]);
-  int first = peak;
-  while (first > context.min_bin && residual(values, calibration, first - 1) >= edge) --first;
+  // The leading edge: the first bin from the foot that comes within edge_db of the peak.
+  const float edge = std::max(excess(peak) - static_cast<float>(countsForDb(edge_db, context.span_db)), half_threshold);
+  int first = foot;
+  while (first < peak && excess(first) < edge) ++first;
   BeamDetection detection = detectionAt(polar, row, first);
   detection.range_m = (first + 0.5) * polar.bin_length_m;  // the surface lies within the first bin of the rise
   detection.rise_m = (peak - first) * polar.bin_length_m;

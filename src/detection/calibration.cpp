@@ -41,14 +41,16 @@ ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& 
   return profile;
 }
 
-/// First column after the median profile's near peak where it falls half-way to the far level.
-int bandEnd(const ColumnProfile& profile) {
+/// First column after the median profile's near peak where it falls half-way to the far level; 0
+/// when the peak does not rise `significant` counts above the far level (no band).
+int bandEnd(const ColumnProfile& profile, float significant) {
   const auto cols = static_cast<int>(profile.median.size());
   if (cols == 0) return 0;
   const int search = std::max(1, cols / 4);
   const auto peak = std::max_element(profile.median.begin(), profile.median.begin() + search);
   std::vector<float> far(profile.median.begin() + cols / 2, profile.median.end());
   std::nth_element(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(far.size() / 2), far.end());
+  if (*peak - far[far.size() / 2] < significant) return 0;
   const float half = 0.5f * (*peak + far[far.size() / 2]);
   int c = static_cast<int>(peak - profile.median.begin());
   while (c < cols && profile.median[static_cast<std::size_t>(c)] > half) ++c;
@@ -56,13 +58,13 @@ int bandEnd(const ColumnProfile& profile) {
 }
 
 /// End of the clutter contiguous with the band: the last column, reached through gaps of at most
-/// gap_bins, where the clutter quantile rises above the threshold.
-int nearFieldEnd(const ColumnProfile& profile, const std::vector<float>& threshold, int band_end, int gap_bins) {
+/// gap_bins, where the clutter quantile rises `level` counts above the background.
+int nearFieldEnd(const ColumnProfile& profile, float level, int band_end, int gap_bins) {
   const auto cols = static_cast<int>(profile.median.size());
   int last = band_end;
   for (int c = band_end; c < cols && c - last <= gap_bins; ++c) {
     const auto i = static_cast<std::size_t>(c);
-    if (profile.clutter[i] - profile.background[i] >= 0.5f * threshold[i]) last = c + 1;
+    if (profile.clutter[i] - profile.background[i] >= level) last = c + 1;
   }
   return last;
 }
@@ -79,6 +81,13 @@ void CalibrationOptions::validate() const {
   if (!(std::isfinite(min_contrast_db) && min_contrast_db >= 0.0)) throwOption("the minimum contrast must be >= 0 dB");
   if (!(clutter_share > 0.0 && clutter_share <= 0.5)) throwOption("the clutter share must be in (0, 0.5]");
   if (!(std::isfinite(max_gap_m) && max_gap_m >= 0.0)) throwOption("the near-field gap must be >= 0 m");
+}
+
+double clutterLevelDb(const CalibrationOptions& options) {
+  options.validate();
+  // The level speckle exceeds with a quarter of the clutter share's probability.
+  const double quantile = std::max(-std::log1p(-options.background_percentile / 100.0), 1e-3);
+  return 10.0 * std::log10(-std::log(0.25 * options.clutter_share) / quantile);
 }
 
 double thresholdDb(const CalibrationOptions& options) {
@@ -104,9 +113,10 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
   for (std::size_t c = 0; c < calibration.threshold.size(); ++c) {
     calibration.threshold[c] = threshold;
   }
-  const int band = bandEnd(profile);
+  const int band = bandEnd(profile, threshold);
   const int gap = binsForLength(options.max_gap_m, polar.bin_length_m, 1, std::max(1, polar.cols()));
-  const int near_field = nearFieldEnd(profile, calibration.threshold, band, gap);
+  const auto clutter_level = static_cast<float>(countsForDb(clutterLevelDb(options), span_db));
+  const int near_field = nearFieldEnd(profile, clutter_level, band, gap);
   calibration.band_end_m = band * polar.bin_length_m;
   calibration.near_field_end_m = near_field * polar.bin_length_m;
   return calibration;

@@ -28,6 +28,13 @@ PolarImage makeSweep(int beams, int bins) {
 /// An obstacle whose leading edge is at the centre of `bin` (2 cm bins).
 BeamDetection obstacleAt(int bin, std::uint8_t intensity = 200) { return {bin, intensity, (bin + 0.5) * kBin}; }
 
+/// No obstacle, and the beam's echo shows water up to `water_m` (detection.hpp).
+BeamDetection noObstacle(double water_m) {
+  BeamDetection detection;
+  detection.water_range_m = water_m;
+  return detection;
+}
+
 /// 2 cm voxels, no range tolerance: free space ends at the obstacle's voxel.
 MapperOptions fanOptions() {
   MapperOptions options;
@@ -61,11 +68,23 @@ TEST(mappingSonarMapper, FreeUpToTheObstacleWhichIsOccupied) {
 TEST(mappingSonarMapper, BeamWithoutObstacleClearsToItsRangeOnly) {
   SonarMapper mapper(singleRay());
   PolarImage polar = makeSweep(1, 100);  // 2 m of bins
-  mapper.integrateSweep(polar, {BeamDetection{}});
+  mapper.integrateSweep(polar, {noObstacle(2.0)});
   EXPECT_EQ(at(mapper, 1.9, 0.01), Occupancy::kFree);
   EXPECT_EQ(at(mapper, 2.1, 0.01), Occupancy::kUnknown);
   EXPECT_EQ(mapper.stats().obstacles, 0U);
   EXPECT_EQ(mapper.stats().occupied_updates, 0U);
+}
+
+// The no-echo rule: a beam without an obstacle clears only as far as its echo shows water (a weak
+// echo it did not accept, or the minimum range when it shows nothing beyond it, stops it).
+TEST(mappingSonarMapper, BeamWithoutObstacleClearsOnlyWhereItsEchoShowsWater) {
+  SonarMapper mapper(singleRay());
+  PolarImage polar = makeSweep(2, 100);  // 2 m of bins
+  polar.bearing_rad = {0.0, std::numbers::pi / 2};
+  mapper.integrateSweep(polar, {noObstacle(1.0), noObstacle(0.0)});
+  EXPECT_EQ(at(mapper, 0.9, 0.01), Occupancy::kFree);
+  EXPECT_EQ(at(mapper, 1.5, 0.01), Occupancy::kUnknown);  // beyond its water: a wall may stand there
+  EXPECT_EQ(at(mapper, 0.01, 0.5), Occupancy::kUnknown);  // the second beam proved nothing
 }
 
 // OctoMap's maxrange: a beam longer than max_range_m clears up to it, its far obstacle dropped.
@@ -149,7 +168,7 @@ TEST(mappingSonarMapper, BeamsLeavingTheMapAreSkippedAndCounted) {
   options.resolution_m = 0.0001;  // depth 16 at 0.1 mm: the map spans ±3.28 m
   SonarMapper mapper(options);
   PolarImage polar = makeSweep(2, 250);  // 5 m beams
-  mapper.integrateSweep(polar, {BeamDetection{}, obstacleAt(99, 100)});
+  mapper.integrateSweep(polar, {noObstacle(5.0), obstacleAt(99, 100)});
   EXPECT_EQ(mapper.stats().out_of_map, 1U);
   EXPECT_EQ(mapper.stats().beams_used, 1U);
 }
@@ -161,7 +180,7 @@ TEST(mappingSonarMapper, SweepWhoseBeamsAllLeaveTheMapChangesNothing) {
   options.resolution_m = 0.0001;  // the map spans ±3.28 m
   SonarMapper mapper(options);
   PolarImage polar = makeSweep(3, 250);  // 5 m beams
-  mapper.integrateSweep(polar, {BeamDetection{}, BeamDetection{}, BeamDetection{}});
+  mapper.integrateSweep(polar, {noObstacle(5.0), noObstacle(5.0), noObstacle(5.0)});
   EXPECT_EQ(mapper.stats().out_of_map, 3U);
   EXPECT_EQ(mapper.stats().beams_used, 0U);
   EXPECT_EQ(mapper.map().counts().nodes, 0U);

@@ -18,9 +18,9 @@
 ///    amplitude; Goodman 1975, "Statistical properties of laser speckle patterns"; for sonar
 ///    reverberation: Abraham & Lyons 2002, IEEE J. Oceanic Eng. 27(4)): its p-quantile is
 ///    −ln(1 − p) times its mean, so the tail of probability Pfa lies
-///    T_dB = 10 log10(ln(Pfa) / ln(1 − p)) dB above the background percentile p: 15.6 dB above the
-///    25th percentile at Pfa 3.2 × 10⁻⁵. MSIS intensities are log-compressed, so a ratio in dB is a
-///    difference in counts: T = T_dB × 255 / span, with the log's dB span (SeaNet's ADspan) or
+///    T_dB = 10 log10(ln(Pfa) / ln(1 − p)) dB above the background percentile p: 16.9 dB above the
+///    25th percentile at Pfa 10⁻⁶ (the default), 15.6 dB at 3.2 × 10⁻⁵. MSIS intensities are
+///    log-compressed, so a ratio in dB is a difference in counts: T = T_dB × 255 / span, with the log's dB span (SeaNet's ADspan) or
 ///    kDefaultIntensitySpan_db. One look is the worst case: a head that averages samples, or a
 ///    pulse longer than a bin, narrows the spread and only lowers the false alarms (and the
 ///    sensitivity: a weak echo within ≈ T_dB of the noise floor is not reported; raise
@@ -31,10 +31,10 @@
 ///    and it fired up to 275 times a sweep in open water; docs/accuracy.md.)
 ///  - Near field: the self-reflection band ends where the median profile (median of each column)
 ///    falls below half-way between its peak within the first quarter of the range and the median
-///    of the far half. The near-field clutter then extends, contiguous with the band (gaps shorter
+///    of the far half (no band when that peak is not T above the far median). The near-field clutter then extends, contiguous with the band (gaps shorter
 ///    than max_gap_m bridged), over the ranges where at least `clutter_share` of the bearings rise
-///    above the threshold (the (1 − clutter_share) quantile of the column minus B(c) ≥ T): the
-///    vehicle's own body and fixtures seen in many bearings at short range. On the CRAS log the
+///    clutterLevelDb() above the background (the (1 − clutter_share) quantile of the column minus
+///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. On the CRAS log the
 ///    band ends at ≈ 0.3 m and the vehicle's returns at ≈ 0.8 m; on the SeaNet sector log the band
 ///    ends at ≈ 0.6 m and nothing follows it (its near-field reverberation is background).
 
@@ -47,8 +47,9 @@ namespace sonarmap {
 /// Options of the per-sweep calibration (see the file's comment for each definition).
 struct CalibrationOptions {
   double background_percentile = 25.0;  ///< percentile in [0, 100] of each column over the rows
-  /// Probability, per bin, that noise alone rises above the threshold, in (0, 0.5).
-  double false_alarm_probability = 3.2e-5;
+  /// Probability, per bin, that noise alone rises above the threshold, in (0, 0.5). 10⁻⁶: a sweep
+  /// of 200 beams × 400 bins of one-look speckle then gives a false obstacle once in ≈ 12 sweeps.
+  double false_alarm_probability = 1e-6;
   /// Least rise of an echo above the background, dB, ≥ 0, whatever the false-alarm probability.
   double min_contrast_db = 0.0;
   double clutter_share = 0.10;  ///< share of bearings that makes a range near-field clutter, (0, 0.5]
@@ -67,6 +68,13 @@ struct SweepCalibration {
   double band_end_m = 0.0;        ///< end of the self-reflection band, metres
   double near_field_end_m = 0.0;  ///< end of the near-field clutter (≥ band_end_m), metres
 };
+
+/// The level above the background percentile that makes a range near-field clutter when the
+/// (1 − clutter_share) quantile of its bearings reaches it, dB: the level one-look speckle exceeds
+/// with probability clutter_share / 4 (11.1 dB for 10 % above the 25th percentile), so the
+/// noise of open water is never clutter, however high the gain.
+/// @throws ValueError when the options are invalid.
+double clutterLevelDb(const CalibrationOptions& options);
 
 /// Calibrates one sweep over all its rows. `span_db`: the dB span of the intensities
 /// (intensitySpan_db of the image, or an override). Cost: O(rows × cols + 256 × cols) (a

@@ -55,9 +55,9 @@ struct CannyOptions {
 ///   1. calibrate the sweep: background B(c), noise spread σ(c), threshold T(c), near field;
 ///   2. the obstacle is the first bin c at or beyond the minimum range that starts a run of
 ///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along;
-///   3. its range is the echo's leading edge, the nearest surface within the beam: the echo is the
-///      run of bins above T from c on (its peak sought within 0.3 m of c); going back from the peak
-///      over the bins within leading_edge_db of it, the centre of the first of them. A wall seen at
+///   3. its range is the echo's leading edge, the nearest surface within the beam: from the foot of
+///      the rise (back from c while the echo stays above T / 2), the centre of the first bin within
+///      leading_edge_db of the echo's peak (sought within 0.3 m of c). A wall seen at
 ///      an angle returns its nearest point from the edge of the −3 dB beam, 6 dB (two-way) below
 ///      the axis, so the echo's rise mirrors the beam pattern and 6 dB below the peak is the nearest
 ///      surface within the nominal width; a crossing lower on the rise of a strong echo reaches

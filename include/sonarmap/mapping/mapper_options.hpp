@@ -36,7 +36,7 @@ inline OctreeOptions lazyOctreeOptions() {
 
 /// The sonar mapper's octree: lazy, OctoMap's miss (0.4) and clamping (0.12 … 0.97), and a hit of
 /// P(occupied | echo) = 0.9 (log-odds +2.2; OctoMap's laser default is 0.7, +0.85). A detection has
-/// passed a threshold that noise crosses with probability 3.2 × 10⁻⁵ per bin (calibration.hpp),
+/// passed a threshold that noise crosses with probability 10⁻⁶ per bin (calibration.hpp),
 /// so one echo outweighs the clamped free evidence of earlier sweeps (−2.0): the map follows a
 /// target that moves in (the SeaNet sector log's) within a sweep, while a false echo is cleared
 /// again by six sweeps that see water there.
