@@ -42,7 +42,7 @@ ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& 
 }
 
 /// First column after the median profile's near peak where it falls half-way to the far level; 0
-/// when the peak does not rise `significant` counts above the far level (no band).
+/// when the peak does not rise `significant` counts above the quietest range after it (no band).
 int bandEnd(const ColumnProfile& profile, float significant) {
   const auto cols = static_cast<int>(profile.median.size());
   if (cols == 0) return 0;
@@ -50,7 +50,8 @@ int bandEnd(const ColumnProfile& profile, float significant) {
   const auto peak = std::max_element(profile.median.begin(), profile.median.begin() + search);
   std::vector<float> far(profile.median.begin() + cols / 2, profile.median.end());
   std::nth_element(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(far.size() / 2), far.end());
-  if (*peak - far[far.size() / 2] < significant) return 0;
+  const float quietest = *std::min_element(peak, profile.median.end());
+  if (*peak - quietest < significant) return 0;
   const float half = 0.5f * (*peak + far[far.size() / 2]);
   int c = static_cast<int>(peak - profile.median.begin());
   while (c < cols && profile.median[static_cast<std::size_t>(c)] > half) ++c;

@@ -110,9 +110,11 @@ BeamDetection detectionAt(const PolarImage& polar, int row, int bin) {
 std::vector<BeamDetection> detectCfar(const PolarImage& polar, const DetectionContext& context,
                                       const CfarOptions& options, const SweepCalibration& calibration) {
   const CfarCells cells = options.cells(polar.bin_length_m);
-  const double contrast = countsForDb(options.min_contrast_db, context.span_db);
+  const auto contrast = static_cast<float>(countsForDb(options.min_contrast_db, context.span_db));
   std::vector<float> floor(calibration.background.size());
-  for (std::size_t c = 0; c < floor.size(); ++c) floor[c] = calibration.background[c] + static_cast<float>(contrast);
+  for (std::size_t c = 0; c < floor.size(); ++c) {
+    floor[c] = calibration.background[c] + std::max(contrast, calibration.threshold[c]);
+  }
   std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
   for (int r = 0; r < polar.rows(); ++r) {
     const auto end = static_cast<std::size_t>(std::clamp(polar.valid_bins[static_cast<std::size_t>(r)], 0, polar.cols()));

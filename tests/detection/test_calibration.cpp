@@ -169,3 +169,56 @@ TEST(detectionCalibration, InvalidInputThrows) {
 
 }  // namespace
 }  // namespace sonarmap
+
+namespace sonarmap {
+namespace {
+
+/// A sweep whose row r holds, over clipped dark water, the echo of a wall at surface_m(r): its
+/// power rises linearly over the pulse (each bin sums the pulse length before it, as a receiver
+/// does), then holds a plateau 30 dB above the AD's low level for `plateau_m`.
+template <class SurfaceOf>
+PolarImage wallEchoes(int rows, double bin_m, double pulse_m, SurfaceOf surface_m) {
+  const int bins = static_cast<int>(std::lround(6.0 / bin_m));
+  PolarImage polar = noiseSweep(rows, bins, bin_m, -30.0, 9);
+  for (int r = 0; r < rows; ++r) {
+    const double d = surface_m(r);
+    for (int c = 0; c < bins; ++c) {
+      // Energy of [d, d + plateau) received within this bin's pulse window ((c + 1) L − pulse, (c + 1) L].
+      const double window_end = (c + 1) * bin_m, window_start = window_end - pulse_m;
+      const double overlap = std::max(0.0, std::min(window_end, d + 0.3) - std::max(window_start, d));
+      if (overlap <= 0.0) continue;
+      const double level_db = 30.0 + 10.0 * std::log10(overlap / pulse_m);
+      const double counts = 255.0 * (level_db - 0.0) / kSpan_db;
+      polar.intensities.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(std::clamp(std::lround(counts), 0L, 255L));
+    }
+  }
+  return polar;
+}
+
+// The obstacle's range is the echo's leading edge: not moved nearer (as smoothing would), not
+// farther to the peak a pulse later; in metres the same whatever the bin length.
+TEST(detectionLeadingEdge, RangeIsTheLeadingEdgeWhateverTheBinLength) {
+  for (const double bin_m : {0.0125, 0.0417, 0.1}) {
+    for (const double pulse_in_bins : {1.0, 4.0}) {
+      const double pulse_m = pulse_in_bins * bin_m;
+      // Surfaces at every fraction of a bin, 1.5–4.5 m, a different range per bearing.
+      auto surface = [&](int r) { return 1.5 + 3.0 * r / 200.0 + 0.37 * bin_m * (r % 7) / 7.0; };
+      const PolarImage polar = wallEchoes(200, bin_m, pulse_m, surface);
+      const std::vector<BeamDetection> found = detectObstacles(polar, DetectorOptions{});
+      std::vector<double> errors;
+      for (int r = 0; r < 200; ++r) {
+        ASSERT_TRUE(found[static_cast<std::size_t>(r)].hasObstacle()) << bin_m << " row " << r;
+        errors.push_back(found[static_cast<std::size_t>(r)].range_m - surface(r));
+      }
+      std::nth_element(errors.begin(), errors.begin() + 100, errors.end());
+      const double median = errors[100];
+      // 6 dB below the plateau is a quarter pulse behind the surface; the bin's centre adds ±½ bin.
+      EXPECT_GE(median, -0.5 * bin_m - 1e-9) << bin_m << " m bins, pulse " << pulse_m;
+      EXPECT_LE(median, 0.25 * pulse_m + 0.5 * bin_m + 1e-9) << bin_m << " m bins, pulse " << pulse_m;
+      EXPECT_LT(median, pulse_m) << "not the peak";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sonarmap

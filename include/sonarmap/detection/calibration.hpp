@@ -31,7 +31,7 @@
 ///    and it fired up to 275 times a sweep in open water; docs/accuracy.md.)
 ///  - Near field: the self-reflection band ends where the median profile (median of each column)
 ///    falls below half-way between its peak within the first quarter of the range and the median
-///    of the far half (no band when that peak is not T above the far median). The near-field clutter then extends, contiguous with the band (gaps shorter
+///    of the far half (no band when that peak is not T above the quietest range after it). The near-field clutter then extends, contiguous with the band (gaps shorter
 ///    than max_gap_m bridged), over the ranges where at least `clutter_share` of the bearings rise
 ///    clutterLevelDb() above the background (the (1 − clutter_share) quantile of the column minus
 ///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. On the CRAS log the

@@ -98,9 +98,10 @@ double caCfarScale(double false_alarm_probability, int training_cells);
 double osCfarScale(double false_alarm_probability, int training_cells, int rank);
 
 /// CFAR detection in physical units (the detector's options; converted to CfarCells with each
-/// image's bin length and intensity scale). The level floor is relative to the sweep's calibrated
-/// background (calibration.hpp), as the background detector's: it is what keeps CFAR off the
-/// constant-range ring, which is locally brighter than its neighbours in every beam.
+/// image's bin length and intensity scale). A detected cell must also rise above the sweep's
+/// calibrated background by its threshold (calibration.hpp) or min_contrast_db, whichever is more:
+/// the floor is what keeps CFAR off the constant-range ring, which is locally brighter than its
+/// neighbours in every beam, and off noise where the local windows are quiet (clipped water).
 /// Defaults: the windows that worked on the CRAS log (guard 24 and training 48 bins of 1.25 cm
 /// there), now in metres.
 /// Limits: a beam shorter than guard + training + one bin has no complete training window and no
@@ -111,7 +112,7 @@ struct CfarOptions {
   double guard_m = 0.3;           ///< guard window per side, metres, ≥ 0
   double scale = 1.25;            ///< α, the threshold's ratio to the noise estimate, finite and > 0
   double os_rank = 0.75;          ///< OS only: k as a share of the training cells, in (0, 1]
-  double min_contrast_db = 8.0;   ///< a detected cell also rises this much above the background, dB, ≥ 0
+  double min_contrast_db = 0.0;   ///< a detected cell also rises this much above the background, dB, ≥ 0
   double min_echo_length_m = 0.04;  ///< consecutive passing cells that make an obstacle, metres, ≥ 0 (≥ 1 bin)
 
   /// The cells for bins of `bin_length_m` (the floor is applied per bin by the detector).

@@ -1,0 +1,64 @@
+// The accuracy table's rows (docs/accuracy.md, bench/accuracy_table.cpp) that pin the default
+// pipeline: simulated heads in scenes built for their range, mapped with the mapper's defaults and
+// scored against the scene. Each bound is the measured value with a small margin (printed).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "sonarmap/eval/simulated_accuracy.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
+
+namespace sonarmap {
+namespace {
+
+SimulatedAccuracy runAndPrint(const SimulatedRun& run) {
+  const SimulatedAccuracy a = evaluateSimulatedRun(run);
+  std::printf("[ %s %s ] %g m voxels, precision %.3f, recall %.3f, free %.3f, worst offset %.3f m, %zu obstacles in "
+              "%zu sweeps\n",
+              run.preset.c_str(), run.scene.c_str(), a.resolution_m, a.truth.precision, a.truth.recall,
+              a.truth.free_accuracy, a.worst_offset_m, a.obstacles, a.sweeps);
+  return a;
+}
+
+// Open water, only noise and the near field: no false obstacle, whatever the head.
+TEST(evalSimulatedAccuracy, OpenWaterGivesNoFalseObstacleWithAnyHead) {
+  for (const std::string& preset : sonarPresetNames()) {
+    SimulatedRun run{preset, "open-water"};
+    run.turns = 3;
+    const SimulatedAccuracy a = runAndPrint(run);
+    EXPECT_EQ(a.obstacles, 0U) << preset;
+    EXPECT_GT(a.truth.free_voxels, 0U) << preset << ": open water is mapped free";
+    EXPECT_DOUBLE_EQ(a.truth.free_accuracy, 1.0) << preset;
+  }
+}
+
+// The Micron in the tank and the harbour meets every target of the issue: precision and recall
+// ≥ 0.9, each wall's median offset within half a voxel (the floater, above the sonar's plane, is a
+// 2D-mapping limit and reported apart: SimulatedAccuracy::off_plane).
+TEST(evalSimulatedAccuracy, MicronTankAndHarbourMeetTheTargets) {
+  for (const char* scene : {"tank", "harbour"}) {
+    const SimulatedAccuracy a = runAndPrint(SimulatedRun{"micron", scene});
+    EXPECT_GE(a.truth.precision, 0.95) << scene;  // measured 0.971, 0.991
+    EXPECT_GE(a.truth.recall, 0.95) << scene;     // measured 1.000, 0.995
+    EXPECT_GE(a.truth.free_accuracy, 0.99) << scene;
+    EXPECT_LE(a.worst_offset_m, 0.5 * a.resolution_m + 0.007) << scene;  // measured 0.010, 0.016
+  }
+}
+
+// The worst rows of the table: long-range heads mapping thin piles and a hull with 2–3° beams. The
+// piles come out as arcs about a beam step wide (docs/accuracy.md): precision and offsets suffer.
+TEST(evalSimulatedAccuracy, WorstRowsStayAsMeasured) {
+  const SimulatedAccuracy seaking = runAndPrint(SimulatedRun{"seaking-30", "harbour"});
+  EXPECT_GE(seaking.truth.precision, 0.68);  // measured 0.726
+  EXPECT_GE(seaking.truth.recall, 0.90);     // measured 0.954
+  EXPECT_LE(seaking.worst_offset_m, 0.08);   // measured 0.054 (half a voxel)
+  const SimulatedAccuracy ping = runAndPrint(SimulatedRun{"ping360", "harbour"});
+  EXPECT_GE(ping.truth.precision, 0.69);     // measured 0.738
+  EXPECT_GE(ping.truth.recall, 0.85);        // measured 1.000
+  EXPECT_LE(ping.worst_offset_m, 0.25);      // measured 0.210 (a voxel)
+}
+
+}  // namespace
+}  // namespace sonarmap
