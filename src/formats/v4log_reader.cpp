@@ -20,6 +20,9 @@
 namespace sonarmap {
 namespace {
 
+/// SeaNet's AD span and low level count 1/255 of 80 dB (rock-drivers SeaNetTypes; tritech_micron).
+constexpr double kAdScale_db = 80.0;
+
 using detail::ByteCursor;
 
 constexpr std::string_view kMagic = "SeaNetV4 Log File V1";
@@ -121,7 +124,7 @@ std::optional<Beam> readHeadData(ByteCursor& in, std::span<const unsigned char> 
   in.u32("TxN");
   in.u8("gain");
   u16(in, "slope");
-  in.u8("AD span");
+  const std::uint8_t ad_span = in.u8("AD span");
   in.u8("AD low");
   u16(in, "heading offset");
   const std::size_t interval_at = in.offset();
@@ -150,6 +153,8 @@ std::optional<Beam> readHeadData(ByteCursor& in, std::span<const unsigned char> 
   beam.bearing_rad = bearingRad(bearing);
   beam.bin_length_m = ad_interval * kAdIntervalUnit_s * sound_speed_m_s / 2.0;
   beam.intensities = unpackBins(record.subspan(kV4LogHeadDataHeaderBytes, data_bytes), (head_control & kHdCtrlAdc8On) != 0);
+  // ADspan counts 80/255 dB (SeaNet's 0…80 dB scale); 0 would be no span at all: leave it unknown.
+  if (ad_span > 0) beam.intensity_span_db = ad_span * kAdScale_db / 255.0;
   return beam;
 }
 

@@ -182,6 +182,15 @@ INSTANTIATE_TEST_SUITE_P(
                       UsageCase{"UnknownAggregation", mapWith({"--aggregation", "bogus"})},
                       UsageCase{"NegativeBeamWidth", mapWith({"--beam-width", "-1"})},
                       UsageCase{"HalfTurnBeamWidth", mapWith({"--beam-width", "180"})},
+                      UsageCase{"FalseAlarmOfOneHalf", mapWith({"--false-alarm", "0.5"})},
+                      UsageCase{"NegativeMinRange", mapWith({"--min-range", "-1"})},
+                      UsageCase{"MinRangeNotANumber", mapWith({"--min-range", "near"})},
+                      UsageCase{"NegativeMinEchoLength", mapWith({"--min-echo-length", "-0.1"})},
+                      UsageCase{"ZeroIntensitySpan", mapWith({"--intensity-span", "0"})},
+                      UsageCase{"ZeroCfarTraining", mapWith({"--cfar-training", "0"})},
+                      UsageCase{"CertainHit", mapWith({"--hit-probability", "1"})},
+                      UsageCase{"ZeroBudget", mapWith({"--max-voxel-updates", "0"})},
+                      UsageCase{"NegativeSelfReflection", mapWith({"--self-reflection", "-0.5"})},
                       UsageCase{"NoSubcommand", {}},
                       UsageCase{"UnknownSubcommand", {"mapp", "{IN}", "-o", "{OUT}/MAP.bt"}}),
     [](const ::testing::TestParamInfo<UsageCase>& info) { return std::string(info.param.name); });
@@ -302,8 +311,16 @@ TEST_F(cliHelp, MapHelpListsItsOptions) {
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_EQ(result.err, "");
   for (const char* option : {"Usage:", "--output", "--png", "--polar-png", "--cartesian-png", "--resolution", "--detector",
-                             "--smoothing", "--ray", "--aggregation", "--self-reflection", "--beam-width", "--quiet"}) {
+                             "--smoothing", "--ray", "--aggregation", "--self-reflection", "--beam-width", "--quiet",
+                             "--false-alarm", "--min-contrast", "--min-echo-length", "--leading-edge", "--min-range",
+                             "--intensity-span", "--smoothing-range", "--smoothing-bearing", "--cfar-training",
+                             "--cfar-guard", "--max-range", "--range-tolerance", "--max-voxel-updates",
+                             "--hit-probability"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option << " missing from:\n" << result.out;
+  }
+  // Every number's unit is in its help.
+  for (const char* unit : {"METRES", "DEGREES", "DB", "PROBABILITY", "VOXEL UPDATES"}) {
+    EXPECT_NE(result.out.find(unit), std::string::npos) << unit << " missing from:\n" << result.out;
   }
 }
 

@@ -149,6 +149,9 @@ TEST(sonarV4log, ConvertsSyntheticRecordsAndSkipsOthers) {
   EXPECT_NEAR(log.beams[2].time_s, 1.5, 1e-6);
   EXPECT_NEAR(log.beams[3].bearing_rad, 2.0 * kPi / 6400, 1e-12);  // read after the appended bytes
   EXPECT_NEAR(log.beams[3].time_s, 2.0, 1e-6);
+  // ADspan 149 of SeaNet's 80 dB scale: the intensities span 46.7 dB (the detector's dB thresholds).
+  ASSERT_TRUE(log.beams[0].intensity_span_db.has_value());
+  EXPECT_NEAR(*log.beams[0].intensity_span_db, 149.0 * 80.0 / 255.0, 1e-12);
 }
 
 TEST(sonarV4log, BinLengthFollowsTheSoundSpeed) {

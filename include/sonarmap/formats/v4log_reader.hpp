@@ -61,6 +61,9 @@ SonarLog readSeaNetV4Log(const std::string& path, const V4LogOptions& options = 
 ///     come two per byte, high nibble first (pySonar, tritech_micron; rock's driver takes the low
 ///     nibble first), and are scaled ×17 so 0…15 maps onto 0…255. Bin count = data bytes (8-bit)
 ///     or 2 × data bytes (4-bit).
+///   - `intensity_span_db`: the head's AD span, ADspan × 80 / 255 dB (SeaNet's 0…80 dB scale: the
+///     log-compressed echo from ADlow to ADlow + span fills 0…255); unset when ADspan is 0. The
+///     shared sample: 149 → 46.7 dB. The detector converts its dB thresholds with it.
 /// Left/right limits, step and sweep code are not needed to place a beam: a sector scan shows as
 /// bearing reversals, which splitSweeps uses.
 ///
