@@ -134,10 +134,9 @@ std::vector<PolarImage> rawSweeps(const SonarLog& log, const MapperOptions& opti
 PreparedSweeps prepareSweeps(const SonarLog& log, const MapperOptions& options) {
   PreparedSweeps prepared;
   prepared.polar = rawSweeps(log, options);
+  const SonarMapper mapper(options);
   for (PolarImage& polar : prepared.polar) {
-    removeSelfReflection(polar, options.self_reflection_range_m.value_or(0.5));
-    smooth(polar, options.smoothing);
-    prepared.detections.push_back(detectObstacles(polar, options.detector));
+    prepared.detections.push_back(mapper.detect(polar));  // cleans the image in place, as mapSweep does
     prepared.beams += static_cast<std::size_t>(polar.rows());
   }
   return prepared;
@@ -148,7 +147,7 @@ void sweepBeams(const PolarImage& polar, const std::vector<BeamDetection>& detec
   beams.clear();
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const BeamDetection& detection = detections[row];
-    const double range_m = detection.hasObstacle() ? detection.range_m : polar.valid_bins[row] * polar.bin_length_m;
+    const double range_m = detection.hasObstacle() ? detection.range_m : detection.water_range_m;
     beams.push_back({Eigen::Isometry3d::Identity(), polar.bearing_rad[row], range_m, range_m, detection.hasObstacle()});
   }
 }

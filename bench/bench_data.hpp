@@ -51,8 +51,8 @@ const SonarLog* logOrSkip(benchmark::State& state, Source source);
 /// (first 0.3 m) and a wall echo of 12 bins at the wall's range. Deterministic.
 SonarLog syntheticTankLog();
 
-/// Sweeps of a log as mapSonarLog() forms them, each preprocessed (self-reflection removal and
-/// smoothing) and searched with the detector of `options`.
+/// Sweeps of a log as mapSonarLog() forms them, each calibrated, cleaned and searched as
+/// SonarMapper::detectSweep does with `options`.
 struct PreparedSweeps {
   std::vector<PolarImage> polar;                      ///< one cleaned image per sweep
   std::vector<std::vector<BeamDetection>> detections;  ///< one per row of polar[i]
@@ -62,12 +62,12 @@ struct PreparedSweeps {
 /// Raw (not yet preprocessed) polar images of the sweeps mapSonarLog() would map.
 std::vector<PolarImage> rawSweeps(const SonarLog& log, const MapperOptions& options);
 
-/// rawSweeps(), preprocessed and detected as SonarMapper::mapSweep does.
+/// rawSweeps(), calibrated, cleaned and detected as SonarMapper::mapSweep does.
 PreparedSweeps prepareSweeps(const SonarLog& log, const MapperOptions& options);
 
 /// The beams of one sweep as SonarMapper::integrateSweep hands them to planSweep
-/// (sonarmap/mapping/sweep_fan.hpp), with the sonar static at the map origin: an obstacle beam
-/// is free up to its obstacle bin's centre, any other beam up to its last valid bin.
+/// (sonarmap/mapping/sweep_fan.hpp), with the sonar static at the map origin and no range
+/// tolerance: an obstacle beam is free up to its obstacle, any other beam up to its water range.
 /// `beams` is cleared first.
 void sweepBeams(const PolarImage& polar, const std::vector<BeamDetection>& detections, std::vector<PlannedBeam>& beams);
 

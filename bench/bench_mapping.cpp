@@ -14,7 +14,9 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_data.hpp"
+#include "sonarmap/detection/calibration.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/raycast/bresenham.hpp"
 #include "sonarmap/raycast/dda.hpp"
@@ -64,10 +66,11 @@ BENCHMARK_CAPTURE(BM_MapSynthetic, single_ray, Variant::kSingleRay)->Apply(confi
 /// Stages of mapSonarLog, each timed over all sweeps of the log with the earlier stages' output
 /// computed beforehand. Their sum is the pipeline's time (up to the per-sweep call overhead).
 enum class Stage {
-  kPolarPreprocess,  ///< sweep splitting, makePolarImage, removeSelfReflection, smooth
-  kDetect,           ///< detectObstacles on the cleaned images
-  kIntegrate,        ///< SonarMapper::integrateSweep with the detections: rays and octree updates
-  kRaycast,          ///< the part of kIntegrate that plans the sweep's rays and walks their voxels
+  kPolarImages,  ///< sweep splitting and makePolarImage
+  kCalibrate,    ///< calibrateSweep on each image as recorded (part of kDetect): the self-calibration
+  kDetect,       ///< SonarMapper::detectSweep: calibration, band removal, detection on the water
+  kIntegrate,    ///< SonarMapper::integrateSweep with the detections: rays and octree updates
+  kRaycast,      ///< the part of kIntegrate that plans the sweep's rays and walks their voxels
 };
 
 /// Plans every sweep (planSweep) and walks each free ray's voxels with the mapper's traversal,
@@ -107,20 +110,28 @@ void mapStage(benchmark::State& state, Source source, Stage stage, Variant varia
   state.counters["beams/s"] =
       benchmark::Counter(static_cast<double>(prepared.beams), benchmark::Counter::kIsIterationInvariantRate);
 
-  if (stage == Stage::kPolarPreprocess) {
+  if (stage == Stage::kPolarImages) {
     for (auto _ : state) {
       std::vector<PolarImage> images = rawSweeps(*log, options);
-      for (PolarImage& polar : images) {
-        removeSelfReflection(polar, options.self_reflection_range_m.value_or(0.5));
-        smooth(polar, options.smoothing);
-      }
       benchmark::DoNotOptimize(images.data());
     }
-  } else if (stage == Stage::kDetect) {
+  } else if (stage == Stage::kCalibrate || stage == Stage::kDetect) {
+    const std::vector<PolarImage> raw = rawSweeps(*log, options);
+    const SonarMapper mapper(options);
     for (auto _ : state) {
-      for (const PolarImage& polar : prepared.polar) {
-        std::vector<BeamDetection> detections = detectObstacles(polar, options.detector);
-        benchmark::DoNotOptimize(detections.data());
+      state.PauseTiming();
+      std::vector<PolarImage> images = raw;  // detection cleans its image in place
+      for (PolarImage& image : images) image.intensities = image.intensities.clone();
+      state.ResumeTiming();
+      for (PolarImage& polar : images) {
+        if (stage == Stage::kCalibrate) {
+          const SweepCalibration calibration =
+              calibrateSweep(polar, options.detector.background.calibration, intensitySpan_db(polar));
+          benchmark::DoNotOptimize(calibration.background.data());
+        } else {
+          const std::vector<BeamDetection> detections = mapper.detect(polar);
+          benchmark::DoNotOptimize(detections.data());
+        }
       }
     }
   } else if (stage == Stage::kRaycast) {
@@ -153,7 +164,8 @@ void BM_SyntheticStages(benchmark::State& state, Stage stage, Variant variant) {
   mapStage(state, Source::kSynthetic, stage, variant);
 }
 
-BENCHMARK_CAPTURE(BM_CrasStages, polar_preprocess, Stage::kPolarPreprocess, Variant::kDefault)->Apply(configure);
+BENCHMARK_CAPTURE(BM_CrasStages, polar_images, Stage::kPolarImages, Variant::kDefault)->Apply(configure);
+BENCHMARK_CAPTURE(BM_CrasStages, calibrate, Stage::kCalibrate, Variant::kDefault)->Apply(configure);
 BENCHMARK_CAPTURE(BM_CrasStages, detect, Stage::kDetect, Variant::kDefault)->Apply(configure);
 BENCHMARK_CAPTURE(BM_CrasStages, integrate_dda_fan3deg, Stage::kIntegrate, Variant::kDefault)->Apply(configure);
 BENCHMARK_CAPTURE(BM_CrasStages, raycast_only_dda_fan3deg, Stage::kRaycast, Variant::kDefault)->Apply(configure);

@@ -42,13 +42,15 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
   std::vector<int> in_water;  // rows not yet detected
   for (int r = 0; r < rows; ++r) in_water.push_back(r);
   IntensityHistogram histogram;
+  const cv::Mat columns = polar.intensities.t();  // row c: column c's values, contiguous
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
+    const auto* column = columns.ptr<std::uint8_t>(c);
     histogram.clear();
     for (const int r : in_water) {
       // A row already above the threshold is in an echo, not in water.
       if (c < polar.valid_bins[static_cast<std::size_t>(r)] && length[static_cast<std::size_t>(r)] == 0) {
-        histogram.add(polar.intensities.at<std::uint8_t>(r, c));
+        histogram.add(column[r]);
       }
     }
     if (histogram.total() >= min_water) {
@@ -60,7 +62,7 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
     std::erase_if(in_water, [&](int r) {
       const auto row = static_cast<std::size_t>(r);
       if (c >= polar.valid_bins[row]) return true;
-      const float excess = static_cast<float>(polar.intensities.at<std::uint8_t>(r, c)) - water.background[i];
+      const float excess = static_cast<float>(column[r]) - water.background[i];
       length[row] = excess >= water.threshold[i] ? length[row] + 1 : 0;
       if (length[row] < run) return false;
       first[row] = c - run + 1;

@@ -4,6 +4,7 @@
 #include "sonarmap/detection/calibration.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -25,18 +26,28 @@ struct ColumnProfile {
 ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& options) {
   const auto cols = static_cast<std::size_t>(polar.cols());
   ColumnProfile profile{std::vector<float>(cols), std::vector<float>(cols), std::vector<float>(cols)};
+  const cv::Mat columns = polar.intensities.t();  // row c: column c's values, contiguous
+  const bool all_valid = std::all_of(polar.valid_bins.begin(), polar.valid_bins.end(),
+                                     [&](int valid) { return valid >= polar.cols(); });
+  // The three percentiles in ascending order, remembering which is which.
+  std::array<double, 3> wanted{options.background_percentile, 50.0, 100.0 * (1.0 - options.clutter_share)};
+  std::array<int, 3> order{0, 1, 2};
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return wanted[a] < wanted[b]; });
+  const std::array<double, 3> sorted{wanted[order[0]], wanted[order[1]], wanted[order[2]]};
   detail::IntensityHistogram histogram;
   for (std::size_t c = 0; c < cols; ++c) {
     histogram.clear();
+    const auto* values = columns.ptr<std::uint8_t>(static_cast<int>(c));
     for (int r = 0; r < polar.rows(); ++r) {
-      if (static_cast<int>(c) < polar.valid_bins[static_cast<std::size_t>(r)]) {
-        histogram.add(polar.intensities.at<std::uint8_t>(r, static_cast<int>(c)));
-      }
+      if (all_valid || static_cast<int>(c) < polar.valid_bins[static_cast<std::size_t>(r)]) histogram.add(values[r]);
     }
     if (histogram.total() == 0) continue;
-    profile.background[c] = histogram.percentile(options.background_percentile);
-    profile.median[c] = histogram.percentile(50.0);
-    profile.clutter[c] = histogram.percentile(100.0 * (1.0 - options.clutter_share));
+    const std::array<float, 3> found = histogram.percentiles(sorted);
+    std::array<float, 3> by_wanted{};
+    for (int k = 0; k < 3; ++k) by_wanted[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] = found[static_cast<std::size_t>(k)];
+    profile.background[c] = by_wanted[0];
+    profile.median[c] = by_wanted[1];
+    profile.clutter[c] = by_wanted[2];
   }
   return profile;
 }

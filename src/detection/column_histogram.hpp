@@ -21,9 +21,23 @@ class IntensityHistogram {
   }
   std::uint32_t total() const { return total_; }
 
+  /// Several percentiles (0…100, ascending) in one scan: out[i] for percentiles[i]; total() > 0.
+  template <std::size_t N>
+  std::array<float, N> percentiles(const std::array<double, N>& percentiles) const {
+    std::array<float, N> out{};
+    std::size_t next = 0;
+    std::uint32_t seen = 0;
+    for (int v = 0; v < 256 && next < N; ++v) {
+      seen += counts_[static_cast<std::size_t>(v)];
+      while (next < N && seen > rankOf(percentiles[next])) out[next++] = static_cast<float>(v);
+    }
+    for (; next < N; ++next) out[next] = 255.0f;
+    return out;
+  }
+
   /// The `percentile` (0…100) by the nearest-rank rule on the sorted values; total() > 0.
   float percentile(double percentile) const {
-    const auto rank = static_cast<std::uint32_t>(std::lround(percentile / 100.0 * (total_ - 1)));
+    const std::uint32_t rank = rankOf(percentile);
     std::uint32_t seen = 0;
     for (int v = 0; v < 256; ++v) {
       seen += counts_[static_cast<std::size_t>(v)];
@@ -33,6 +47,10 @@ class IntensityHistogram {
   }
 
  private:
+  std::uint32_t rankOf(double percentile) const {
+    return static_cast<std::uint32_t>(std::lround(percentile / 100.0 * (total_ - 1)));
+  }
+
   std::array<std::uint32_t, 256> counts_{};
   std::uint32_t total_ = 0;
 };
