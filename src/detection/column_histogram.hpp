@@ -25,11 +25,13 @@ class IntensityHistogram {
   template <std::size_t N>
   std::array<float, N> percentiles(const std::array<double, N>& percentiles) const {
     std::array<float, N> out{};
+    std::array<std::uint32_t, N> ranks{};
+    for (std::size_t i = 0; i < N; ++i) ranks[i] = rankOf(percentiles[i]);
     std::size_t next = 0;
     std::uint32_t seen = 0;
     for (int v = 0; v < 256 && next < N; ++v) {
       seen += counts_[static_cast<std::size_t>(v)];
-      while (next < N && seen > rankOf(percentiles[next])) out[next++] = static_cast<float>(v);
+      while (next < N && seen > ranks[next]) out[next++] = static_cast<float>(v);
     }
     for (; next < N; ++next) out[next] = 255.0f;
     return out;
