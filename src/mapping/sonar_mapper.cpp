@@ -37,7 +37,6 @@ struct SonarMapper::SweepWork {
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
-  std::vector<HitPoint> group_hits;  ///< planBeams: that group's hit points
 };
 
 SonarMapper::SonarMapper(const MapperOptions& options)
@@ -214,7 +213,8 @@ void SonarMapper::planBeams() {
   // The fan (sweep_fan.hpp) assumes its beams share the sonar's pose: a finer ray starts where its
   // coarser neighbours drift a voxel apart. Beams whose poses move no point of their reach by more
   // than a quarter voxel from the group's first pose are planned as one fan (each still placed with
-  // its own pose); the others group by group, their rays and hits appended in beam order.
+  // its own pose); the others group by group, their rays appended in beam order. The arcs are
+  // planned over the whole sweep, each beam with its own pose.
   SweepWork& work = *work_;
   const std::vector<PlannedBeam>& beams = work.beams;
   const double voxel_m = *options_.resolution_m;
@@ -229,18 +229,17 @@ void SonarMapper::planBeams() {
     }
     return end;
   };
+  planArcs(beams, options_.beam_width_rad, voxel_m, work.tolerance_m, work.hit_points);  // each beam's own pose
   if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always
-    planSweep(beams, options_.beam_width_rad, voxel_m, work.tolerance_m, work.rays, work.hit_points);
+    planFreeRays(beams, options_.beam_width_rad, voxel_m, work.rays);
     return;
   }
   work.rays.clear();
-  work.hit_points.clear();
   for (std::size_t first = 0, end = 0; first < beams.size(); first = end) {
     end = groupEnd(first);
     work.group.assign(beams.begin() + static_cast<std::ptrdiff_t>(first), beams.begin() + static_cast<std::ptrdiff_t>(end));
-    planSweep(work.group, options_.beam_width_rad, voxel_m, work.tolerance_m, work.group_rays, work.group_hits);
+    planFreeRays(work.group, options_.beam_width_rad, voxel_m, work.group_rays);
     work.rays.insert(work.rays.end(), work.group_rays.begin(), work.group_rays.end());
-    work.hit_points.insert(work.hit_points.end(), work.group_hits.begin(), work.group_hits.end());
   }
 }
 

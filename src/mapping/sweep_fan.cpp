@@ -31,23 +31,21 @@ void forEachGridAngle(double bearing_rad, double width_rad, int levels, F&& f) {
   for (long j = first; j <= last; ++j) f(static_cast<std::size_t>(((j % n) + n) % n));
 }
 
-void planSingleRays(const std::vector<PlannedBeam>& beams, std::vector<FreeRay>& rays, std::vector<HitPoint>& hits) {
+void planSingleRays(const std::vector<PlannedBeam>& beams, std::vector<FreeRay>& rays) {
   for (const PlannedBeam& beam : beams) {
     const Eigen::Vector3d end_m = beam.sonar_to_map * inSonarPlane(beam.bearing_rad, beam.free_range_m);
     rays.push_back({beam.sonar_to_map.translation(), end_m});
-    if (beam.hit) hits.push_back({beam.sonar_to_map * inSonarPlane(beam.bearing_rad, beam.hit_range_m)});
   }
 }
 
 }  // namespace
 
-void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
-               std::vector<FreeRay>& rays, std::vector<HitPoint>& hits) {
+void planFreeRays(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m,
+                  std::vector<FreeRay>& rays) {
   rays.clear();
-  hits.clear();
-  if (beam_width_rad <= 0.0) return planSingleRays(beams, rays, hits);
+  if (beam_width_rad <= 0.0) return planSingleRays(beams, rays);
   double longest_m = voxel_m;
-  for (const PlannedBeam& beam : beams) longest_m = std::max({longest_m, beam.free_range_m, beam.hit ? beam.hit_range_m : 0.0});
+  for (const PlannedBeam& beam : beams) longest_m = std::max(longest_m, beam.free_range_m);
   int levels = 3;  // 2^levels grid angles per turn, at most one voxel apart at the longest range
   while (levels < 24 && kTwoPi * longest_m / std::ldexp(1.0, levels) > voxel_m) ++levels;
   const double step = kTwoPi / std::ldexp(1.0, levels);
@@ -57,13 +55,6 @@ void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, dou
     const PlannedBeam& beam = beams[b];
     forEachGridAngle(beam.bearing_rad, beam_width_rad, levels, [&](std::size_t j) {
       if (beam.free_range_m > cover[j].range_m) cover[j] = {beam.free_range_m, static_cast<int>(b)};
-    });
-  }
-  for (const PlannedBeam& beam : beams) {  // arcs, less where another beam cleared beyond them
-    if (!beam.hit) continue;
-    forEachGridAngle(beam.bearing_rad, beam_width_rad, levels, [&](std::size_t j) {
-      if (cover[j].range_m > beam.hit_range_m + 0.0 * tolerance_m) return;
-      hits.push_back({beam.sonar_to_map * inSonarPlane(static_cast<double>(j) * step, beam.hit_range_m)});
     });
   }
   const std::size_t n = cover.size();
@@ -83,6 +74,12 @@ void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, dou
     const double end_m = cover[j].range_m;
     rays.push_back({beam.sonar_to_map * inSonarPlane(angle, std::min(start_m, end_m)), beam.sonar_to_map * inSonarPlane(angle, end_m)});
   }
+}
+
+void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
+               std::vector<FreeRay>& rays, std::vector<HitPoint>& hits) {
+  planFreeRays(beams, beam_width_rad, voxel_m, rays);
+  planArcs(beams, beam_width_rad, voxel_m, tolerance_m, hits);
 }
 
 }  // namespace sonarmap

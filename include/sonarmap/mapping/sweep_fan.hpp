@@ -39,17 +39,30 @@ struct HitPoint {
   Eigen::Vector3d point_m;
 };
 
-/// Plans the free rays (in grid-angle order) and hit points of one sweep's beams, map frame.
-/// `rays` and `hits` are cleared first. Nothing is thrown.
+/// Plans the free rays of beams that share one pose (or nearly: each ray is placed with its own
+/// beam's pose), in grid-angle order; `rays` is cleared first. With width 0 every beam is one ray.
+/// Nothing is thrown.
+/// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
+void planFreeRays(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m,
+                  std::vector<FreeRay>& rays);
+
+/// Plans the hit points of a sweep's obstacles, map frame; `hits` is cleared first. The beams may
+/// each have their own pose (a moving vehicle). Nothing is thrown.
 ///
-/// An obstacle is the arc at its range across the beam's width. Where another beam of the sweep
-/// covers the same grid angle and clears farther than the arc's range plus `tolerance_m`, that
-/// point of the arc is dropped ("somewhere occupied, everywhere empty": Moravec & Elfes 1985,
-/// Elfes 1987): at oblique incidence the leading edge comes from the beam's near side, and its
-/// neighbours, which see the same wall farther away, carve the rest of the arc away. Rays of
-/// width 0 (one ray per beam) keep their single hit point.
+/// An obstacle is the arc at its range across the beam's width, points at most a voxel apart.
+/// A point of the arc is dropped where another beam of the sweep, from its own pose, saw water
+/// beyond it: the point lies inside that beam's wedge, nearer than the range up to which the beam
+/// saw water (its echo's leading edge, or its free range without one) less `tolerance_m`
+/// ("somewhere occupied, everywhere empty": Moravec & Elfes 1985, Elfes 1987). At oblique
+/// incidence the leading edge comes from the beam's near side, and the neighbours, which see the
+/// same wall farther away, carve the rest of the arc away. With width 0 each obstacle is one point.
 /// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0;
-/// @param tolerance_m    range tolerance, ≥ 0 (MapperOptions::range_tolerance_m).
+/// @param tolerance_m    how much farther than the arc another beam's water must reach, ≥ 0
+///                       (the range uncertainty of a leading edge: a bin plus half a voxel).
+void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
+              std::vector<HitPoint>& hits);
+
+/// planFreeRays and planArcs of beams that share one pose.
 void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
                std::vector<FreeRay>& rays, std::vector<HitPoint>& hits);
 

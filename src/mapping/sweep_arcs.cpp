@@ -1,0 +1,120 @@
+/// @file sweep_arcs.cpp
+/// A sweep's obstacle arcs, carved by the beams that saw water beyond them (see sweep_fan.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "sonarmap/mapping/sweep_fan.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// A beam as the carving test needs it: where it saw water, in its own sonar frame.
+struct WaterWedge {
+  Eigen::Isometry3d map_to_sonar;
+  Eigen::Vector3d origin_m;       ///< map frame
+  double azimuth_rad = 0.0;       ///< the beam's axis in the map frame, [0, 2π)
+  double left_x = 0.0, left_y = 0.0;    ///< the wedge's edges, sonar frame: bearing ± width / 2
+  double right_x = 0.0, right_y = 0.0;
+  double water_m = 0.0;           ///< water up to here: the echo's leading edge, or the free range
+};
+
+WaterWedge wedgeOf(const PlannedBeam& beam, double half_width_rad) {
+  WaterWedge wedge;
+  wedge.map_to_sonar = beam.sonar_to_map.inverse();
+  wedge.origin_m = beam.sonar_to_map.translation();
+  const Eigen::Vector3d axis = beam.sonar_to_map.linear() * Eigen::Vector3d(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
+  wedge.azimuth_rad = std::atan2(axis.y(), axis.x());
+  if (wedge.azimuth_rad < 0.0) wedge.azimuth_rad += kTwoPi;
+  wedge.left_x = std::cos(beam.bearing_rad + half_width_rad);
+  wedge.left_y = std::sin(beam.bearing_rad + half_width_rad);
+  wedge.right_x = std::cos(beam.bearing_rad - half_width_rad);
+  wedge.right_y = std::sin(beam.bearing_rad - half_width_rad);
+  wedge.water_m = beam.hit ? beam.hit_range_m : beam.free_range_m;
+  return wedge;
+}
+
+/// Is `point_m` (map frame) inside the wedge, nearer than `range_m` in the sonar's plane?
+bool inWedge(const WaterWedge& wedge, const Eigen::Vector3d& point_m, double range_m) {
+  const Eigen::Vector3d v = wedge.map_to_sonar * point_m;
+  if (v.x() * v.x() + v.y() * v.y() >= range_m * range_m) return false;
+  // Between the right edge and the left edge (the wedge is narrower than a half turn).
+  return wedge.right_x * v.y() - wedge.right_y * v.x() >= 0.0 && wedge.left_x * v.y() - wedge.left_y * v.x() <= 0.0;
+}
+
+/// Circular distance of two azimuths, [0, π].
+double azimuthGap_rad(double a_rad, double b_rad) {
+  const double d = std::fmod(std::abs(a_rad - b_rad), kTwoPi);
+  return std::min(d, kTwoPi - d);
+}
+
+}  // namespace
+
+void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
+              std::vector<HitPoint>& hits) {
+  hits.clear();
+  if (beam_width_rad <= 0.0) {  // one ray per beam: its single point
+    for (const PlannedBeam& beam : beams) {
+      if (beam.hit) {
+        hits.push_back({beam.sonar_to_map * Eigen::Vector3d(beam.hit_range_m * std::cos(beam.bearing_rad),
+                                                             beam.hit_range_m * std::sin(beam.bearing_rad), 0.0)});
+      }
+    }
+    return;
+  }
+  const double half_rad = 0.5 * beam_width_rad;
+  std::vector<WaterWedge> wedges;
+  wedges.reserve(beams.size());
+  for (const PlannedBeam& beam : beams) wedges.push_back(wedgeOf(beam, half_rad));
+  // The beams by azimuth, so that those that can overlap an arc are a window of this order.
+  std::vector<std::size_t> order(beams.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return wedges[a].azimuth_rad < wedges[b].azimuth_rad; });
+  double spread_m = 0.0;  // how far the sonar moved within the sweep (0 for a static sweep)
+  for (const WaterWedge& wedge : wedges) spread_m = std::max(spread_m, (wedge.origin_m - wedges.front().origin_m).norm());
+
+  std::vector<std::size_t> candidates;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t b = order[k];
+    const PlannedBeam& beam = beams[b];
+    if (!beam.hit) continue;
+    // Another beam can cover a point of this arc only if its axis is within a beam width, plus
+    // the parallax of the sonar's motion at this range.
+    const double parallax_rad = std::asin(std::min(1.0, 2.0 * spread_m / beam.hit_range_m));
+    const double window_rad = beam_width_rad + parallax_rad;
+    candidates.clear();
+    auto consider = [&](std::size_t n) {
+      if (n == b) return;
+      // It must have seen water beyond this arc, from wherever it was.
+      const double reach_m = wedges[n].water_m - tolerance_m;
+      if (reach_m <= beam.hit_range_m - (wedges[n].origin_m - wedges[b].origin_m).norm()) return;
+      candidates.push_back(n);
+    };
+    for (std::size_t step = 1; step < order.size(); ++step) {  // counter-clockwise, then clockwise
+      const std::size_t n = order[(k + step) % order.size()];
+      if (azimuthGap_rad(wedges[n].azimuth_rad, wedges[b].azimuth_rad) > window_rad) break;
+      consider(n);
+    }
+    for (std::size_t step = 1; step < order.size(); ++step) {
+      const std::size_t n = order[(k + order.size() - step) % order.size()];
+      if (azimuthGap_rad(wedges[n].azimuth_rad, wedges[b].azimuth_rad) > window_rad) break;
+      consider(n);
+    }
+    // The arc, points at most a voxel apart, each kept unless a candidate saw water beyond it.
+    const int intervals = std::max(1, static_cast<int>(std::ceil(beam_width_rad * beam.hit_range_m / voxel_m)));
+    for (int i = 0; i <= intervals; ++i) {
+      const double angle = beam.bearing_rad - half_rad + beam_width_rad * i / intervals;
+      const Eigen::Vector3d point_m =
+          beam.sonar_to_map * Eigen::Vector3d(beam.hit_range_m * std::cos(angle), beam.hit_range_m * std::sin(angle), 0.0);
+      const bool carved = std::any_of(candidates.begin(), candidates.end(), [&](std::size_t n) {
+        return inWedge(wedges[n], point_m, wedges[n].water_m - tolerance_m);
+      });
+      if (!carved) hits.push_back({point_m});
+    }
+  }
+}
+
+}  // namespace sonarmap
