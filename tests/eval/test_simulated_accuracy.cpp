@@ -40,24 +40,36 @@ TEST(evalSimulatedAccuracy, OpenWaterGivesNoFalseObstacleWithAnyHead) {
 TEST(evalSimulatedAccuracy, MicronTankAndHarbourMeetTheTargets) {
   for (const char* scene : {"tank", "harbour"}) {
     const SimulatedAccuracy a = runAndPrint(SimulatedRun{"micron", scene});
-    EXPECT_GE(a.truth.precision, 0.95) << scene;  // measured 0.971, 0.991
-    EXPECT_GE(a.truth.recall, 0.95) << scene;     // measured 1.000, 0.995
+    EXPECT_GE(a.truth.precision, 0.95) << scene;  // measured 0.966, 0.990
+    EXPECT_GE(a.truth.recall, 0.95) << scene;     // measured 1.000, 0.992
     EXPECT_GE(a.truth.free_accuracy, 0.99) << scene;
-    EXPECT_LE(a.worst_offset_m, 0.5 * a.resolution_m + 0.007) << scene;  // measured 0.010, 0.016
+    EXPECT_LE(a.worst_offset_m, 0.5 * a.resolution_m + 0.007) << scene;  // measured 0.010, 0.012
   }
 }
 
-// The worst rows of the table: long-range heads mapping thin piles and a hull with 2–3° beams. The
-// piles come out as arcs about a beam step wide (docs/accuracy.md): precision and offsets suffer.
+// The worst rows of the table: long-range heads mapping thin piles and a quay with 2–3° beams at
+// 20–30 m, where an echo's leading edge wanders by a bin or two along the oblique ramp of a wall
+// and the piles come out as arcs about a beam wide (docs/accuracy.md): precision and offsets suffer.
 TEST(evalSimulatedAccuracy, WorstRowsStayAsMeasured) {
   const SimulatedAccuracy seaking = runAndPrint(SimulatedRun{"seaking-30", "harbour"});
-  EXPECT_GE(seaking.truth.precision, 0.68);  // measured 0.726
+  EXPECT_GE(seaking.truth.precision, 0.75);  // measured 0.792
   EXPECT_GE(seaking.truth.recall, 0.90);     // measured 0.954
   EXPECT_LE(seaking.worst_offset_m, 0.08);   // measured 0.054 (half a voxel)
   const SimulatedAccuracy ping = runAndPrint(SimulatedRun{"ping360", "harbour"});
-  EXPECT_GE(ping.truth.precision, 0.69);     // measured 0.738
+  EXPECT_GE(ping.truth.precision, 0.83);     // measured 0.872
   EXPECT_GE(ping.truth.recall, 0.85);        // measured 1.000
   EXPECT_LE(ping.worst_offset_m, 0.25);      // measured 0.210 (a voxel)
+}
+
+// A moving vehicle (one range a minute): every beam has its own pose, and the arcs are still
+// carved by the beams that saw water beyond them (sweep_fan.hpp). Without that, the SeaKing's
+// precision here was 0.45.
+TEST(evalSimulatedAccuracy, MovingVehicleArcsAreCarved) {
+  SimulatedRun run{"seaking-30", "harbour"};
+  run.speed_range_per_min = 1.0;
+  const SimulatedAccuracy a = runAndPrint(run);
+  EXPECT_GE(a.truth.precision, 0.80);  // measured 0.853
+  EXPECT_GE(a.truth.recall, 0.80);     // measured 0.861
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // the range tolerance, the automatic resolution, the work budget, and the warnings a user sees.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -49,6 +50,33 @@ TEST(mappingSensorModel, ArcsAreCarvedWhereNeighboursSawWaterBeyond) {
   const std::vector<double> bearings = hitBearings(hits);
   EXPECT_LT(*std::min_element(bearings.begin(), bearings.end()), 8.9);  // 8.5° on a grid of 0.35°
   EXPECT_GT(*std::max_element(bearings.begin(), bearings.end()), 13.1);  // 13.5°
+}
+
+// A moving sonar: each beam carves with its own pose. The first beam, from the origin, hits at
+// 2 m straight along y: its arc spans x = −0.05 … 0.05 m. The second, taken from (0.5, 0) and
+// pointing back at 102.7°, sees water 3 m out; at y = 2 m its wedge covers x ≈ 0.00 … 0.10 m,
+// the arc's right half. Placed at the origin instead, its wedge would miss the arc entirely.
+TEST(mappingSensorModel, ArcsAreCarvedFromEachBeamsOwnPose) {
+  std::vector<HitPoint> hits;
+  const double tolerance_m = 0.02;
+  const PlannedBeam first = hitBeam(90.0, 2.0, tolerance_m);
+  PlannedBeam second = hitBeam(102.7, 3.0, tolerance_m);
+  auto firstArc = [&] {
+    std::vector<double> xs;
+    for (const HitPoint& hit : hits) {
+      if (hit.point_m.norm() < 2.5) xs.push_back(hit.point_m.x());
+    }
+    return xs;
+  };
+  planArcs({first, second}, 3.0 * kDegree, 0.02, tolerance_m, hits);  // both at the origin
+  std::vector<double> xs = firstArc();
+  EXPECT_GT(*std::max_element(xs.begin(), xs.end()), 0.045);  // whole arc kept
+  second.sonar_to_map = Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.0, 0.0));
+  planArcs({first, second}, 3.0 * kDegree, 0.02, tolerance_m, hits);
+  xs = firstArc();
+  ASSERT_FALSE(xs.empty());
+  EXPECT_LT(*std::max_element(xs.begin(), xs.end()), 0.01);    // the right half carved
+  EXPECT_LT(*std::min_element(xs.begin(), xs.end()), -0.045);  // the left half kept
 }
 
 // The range tolerance: a beam's free space ends before its obstacle, so an earlier sweep's echo of
