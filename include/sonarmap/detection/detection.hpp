@@ -12,12 +12,14 @@ struct BeamDetection {
   int obstacle_bin = -1;         ///< bin of the first obstacle, −1 when the beam saw none
   std::uint8_t intensity = 0;    ///< intensity at that bin (0…255)
   /// Range of the obstacle's leading edge along the beam, metres, > 0 when there is an obstacle:
-  /// where the echo rises out of the background, to a fraction of a bin (detectors.hpp).
+  /// the centre of the first bin where the echo comes within BackgroundOptions::leading_edge_db of its
+  /// peak (detectors.hpp).
   double range_m = 0.0;
   /// How far the beam is known to travel through water, metres: with an obstacle, its range; without
-  /// one, the start of the first bin whose echo rises to half the detection threshold above the
-  /// background (a weak echo the detector did not accept proves nothing beyond it), or the beam's
-  /// full range when there is none. The mapper clears a beam's free space up to here.
+  /// one, the start of the first bin at or beyond the minimum range whose echo reaches the detection
+  /// threshold above the background (an echo too short to be an obstacle still proves nothing beyond
+  /// it), the beam's full range when there is none, or 0 when the beam shows nothing at all beyond
+  /// the minimum range (its bins may be zeroed). The mapper clears a beam's free space up to here.
   double water_range_m = 0.0;
   /// How far behind the leading edge the echo reaches its peak, metres, ≥ 0: the pulse's length at
   /// normal incidence, the range spread across the beam at oblique incidence — how uncertain the

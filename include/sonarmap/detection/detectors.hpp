@@ -52,7 +52,8 @@ struct CannyOptions {
 
 /// Ours, the default: the first echo that rises above what the sweep records at the same range in
 /// most bearings, by more than the sweep's own noise allows (calibration.hpp):
-///   1. calibrate the sweep: background B(c), noise spread σ(c), threshold T(c), near field;
+///   1. calibrate the sweep: background B(c), threshold T from the speckle model and the
+///      false-alarm probability, near field (calibration.hpp);
 ///   2. the obstacle is the first bin c at or beyond the minimum range that starts a run of
 ///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along;
 ///   3. its range is the echo's leading edge, the nearest surface within the beam: from the foot of
@@ -82,7 +83,7 @@ struct DetectorOptions {
   Detector kind = Detector::kBackgroundSubtracted;
   /// Bins whose centre is nearer are never reported, metres, ≥ 0 (paper §8.2: "measurements that
   /// are close to the sonar ... are self-reflections"). Unset: the near-field clutter extent
-  /// estimated on each sweep (calibration.hpp: CRAS ≈ 0.8 m, the SeaNet sector log ≈ 0.6 m).
+  /// estimated on each sweep (calibration.hpp: CRAS ≈ 0.26 m, the SeaNet sector log ≈ 0.59 m).
   std::optional<double> min_range_m;
   /// dB span of the intensities 0…255, > 0. Unset: the log's (SeaNet's ADspan), else 45 dB.
   std::optional<double> intensity_span_db;
