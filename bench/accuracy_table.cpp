@@ -77,7 +77,8 @@ void printSimulatedTable() {
 }
 
 void printCrasTable(const std::string& path) {
-  std::printf("\n### Real CRAS tank (`%s`), rectangle measure at z = 0, 10 cm tolerance\n\n", path.c_str());
+  std::printf("\n### Real CRAS tank (`%s`), rectangle measure at z = 0, 10 cm tolerance\n\n",
+              std::filesystem::path(path).filename().c_str());
   if (!std::filesystem::exists(path)) {
     std::printf("(absent)\n");
     return;
@@ -107,7 +108,8 @@ void printCrasTable(const std::string& path) {
 }
 
 void printSeaNetRow(const std::string& path) {
-  std::printf("\n### Real SeaNet sector log (`%s`): the target's last position\n\n", path.c_str());
+  std::printf("\n### Real SeaNet sector log (`%s`): the target's last position\n\n",
+              std::filesystem::path(path).filename().c_str());
   if (!std::filesystem::exists(path)) {
     std::printf("(absent)\n");
     return;

@@ -101,7 +101,7 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "ray per beam (the paper)")
       ->capture_default_str();
   cmd.add_option("--range-tolerance", args.range_tolerance,
-                 "A beam's free space ends this many METRES before its obstacle, or auto: a bin plus half a voxel")
+                 "A beam's free space ends this many METRES before its obstacle, or auto: a bin plus half a voxel plus the echo's rise (leading edge to peak)")
       ->capture_default_str();
   cmd.add_option("--max-voxel-updates", args.max_voxel_updates,
                  "Refuse a log that needs more VOXEL UPDATES than this (estimated before mapping)")

@@ -36,7 +36,7 @@ struct MapArgs {
   std::string aggregation = "max";
   double max_range_m = MapperOptions{}.max_range_m;
   double beam_width_deg = MapperOptions{}.beam_width_rad * 180.0 / 3.14159265358979323846;
-  std::string range_tolerance = "auto";  ///< metres, or auto (a bin plus half a voxel)
+  std::string range_tolerance = "auto";  ///< metres, or auto (a bin plus half a voxel plus each echo's rise)
   double max_voxel_updates = MapperOptions{}.max_voxel_updates;
   double hit_probability = MapperOptions{}.octree.occupancy.prob_hit;
   bool quiet = false;

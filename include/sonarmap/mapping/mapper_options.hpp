@@ -71,14 +71,16 @@ struct MapperOptions {
   RayAlgorithm ray = RayAlgorithm::kDDA;
   /// Horizontal beam width in radians (Tritech Micron and SeaKing: 3°, Ping360: 2°), in [0, π).
   /// Each beam clears its wedge up to the detected range and its obstacle is the arc at that range
-  /// across the width — the MSIS inverse sensor model. The sweep's wedges are cast together as one
-  /// fan of rays at most one voxel apart (sweep_fan.hpp). 0 casts one ray per bearing (paper §6).
+  /// across the width, less where other beams saw water beyond it — the MSIS inverse sensor model.
+  /// The sweep's wedges are cast together as one fan of rays at most one voxel apart
+  /// (sweep_fan.hpp). 0 casts one ray per bearing (paper §6).
   double beam_width_rad = 3.0 * std::numbers::pi / 180.0;
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much
   /// before its obstacle, so the obstacle's range uncertainty (a bin, the pulse, a voxel) does not
   /// clear what the same surface gave in earlier sweeps; an arc point of the obstacle is dropped
-  /// where another beam of the sweep saw free water beyond it by more than this. Unset: one bin
-  /// plus half a voxel.
+  /// where another beam of the sweep saw water (up to its own leading edge) beyond it by more than
+  /// this (planArcs, sweep_fan.hpp). Unset: one bin plus half a voxel for the arcs, and for the free
+  /// space that plus each echo's rise (BeamDetection::rise_m: leading edge to peak).
   std::optional<double> range_tolerance_m;
   /// Work budget: mapSonarLog refuses a log whose estimated voxel updates (estimateVoxelUpdates)
   /// exceed this, before mapping, naming the resolution that would fit. > 0; +inf: no limit.

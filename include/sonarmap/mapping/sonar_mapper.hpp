@@ -125,7 +125,8 @@ class SonarMapper {
   /// With an automatic resolution, fixes it from the first sweep's reach (autoResolution_m) and
   /// starts the (still empty) map at that resolution.
   void resolveResolution(const PolarImage& polar);
-  /// MapperOptions::range_tolerance_m, or its automatic value for the sweep: a bin plus half a voxel.
+  /// MapperOptions::range_tolerance_m, or the sweep's part of its automatic value: a bin plus half a
+  /// voxel (each echo's rise is added per beam).
   double rangeTolerance_m(const PolarImage& polar) const;
   /// integrateSweep's body: `pose_of(row)` is the row's pose, or null to skip it without navigation.
   template <class PoseOfRow>
