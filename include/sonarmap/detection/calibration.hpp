@@ -5,7 +5,7 @@
 /// instead of fixed intensities.
 ///
 /// On a polar image of one sweep (rows = beams, columns = bins):
-///  - Background B(c): the `background_percentile` (default the median) of column c over the rows
+///  - Background B(c): the `background_percentile` (default the 25th) of column c over the rows
 ///    (all bearings at that range). What returns at the same range in most bearings — the
 ///    transducer's ringing, the surface or seabed entering the vertical aperture (the CRAS log's
 ///    ring at 1.56 m), the near-field reverberation of a high-gain head, the noise floor the TVG
@@ -34,9 +34,10 @@
 ///    of the far half (no band when that peak is not T above the quietest range after it). The near-field clutter then extends, contiguous with the band (gaps shorter
 ///    than max_gap_m bridged), over the ranges where at least `clutter_share` of the bearings rise
 ///    clutterLevelDb() above the background (the (1 − clutter_share) quantile of the column minus
-///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. On the CRAS log the
-///    band ends at ≈ 0.3 m and the vehicle's returns at ≈ 0.8 m; on the SeaNet sector log the band
-///    ends at ≈ 0.6 m and nothing follows it (its near-field reverberation is background).
+///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. Measured: on
+///    the CRAS log the band ends at 0.26 m and no clutter extends it (the vehicle's returns beyond
+///    it reach the clutter level in fewer than 10 % of the bearings); on the SeaNet sector log the
+///    band ends at 0.55–0.59 m and nothing follows it (its near-field reverberation is background).
 
 #include <vector>
 
