@@ -5,9 +5,10 @@
 //  2. The real CRAS tank log with each detector: the rectangle measure (eval/tank_quality.hpp) at
 //     a 10 cm tolerance.
 //  3. The real SeaNet sector log: is the target's last position occupied?
+//  4. With --analysis, where the errors come from (accuracy_analysis.hpp).
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR]   (DATA_DIR holds the shared logs; default: the
-//        SONARMAP_DATA environment variable, else the configured shared data folder)
+// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis]   (DATA_DIR holds the shared logs;
+//        default: the SONARMAP_DATA environment variable, else the configured shared data folder)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "accuracy_analysis.hpp"
 #include "sonarmap/eval/simulated_accuracy.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/formats/log_reader.hpp"
@@ -141,11 +143,25 @@ void printSeaNetRow(const std::string& path) {
 
 int main(int argc, char** argv) {
   const char* env = std::getenv("SONARMAP_DATA");
-  const std::string data = argc > 1 ? argv[1] : (env != nullptr ? env : SONARMAP_SHARED_DATA);
+  std::string data = env != nullptr ? env : SONARMAP_SHARED_DATA;
+  bool analysis = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--analysis") {
+      analysis = true;
+    } else {
+      data = argv[i];
+    }
+  }
   try {
     printSimulatedTable();
     printCrasTable(data + "/cras_micron_tank_static.mat");
     printSeaNetRow(data + "/seanet_sector_target.V4LOG");
+    if (analysis) {
+      sonarmap::bench::printLeadingEdgeTable();
+      sonarmap::bench::printIncidenceTable();
+      sonarmap::bench::printFalseAlarmTable();
+      sonarmap::bench::printNoiseTailTable(data);
+    }
   } catch (const std::exception& error) {
     std::fprintf(stderr, "sonarmap_accuracy_table: error: %s\n", error.what());
     return 1;
