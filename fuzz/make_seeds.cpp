@@ -53,6 +53,10 @@ void sonarSeeds() {
   const MsisSimulation run = smallRun();
   seed("beam_csv", "tank.csv", [&](std::ostream& out) { writeBeamCsv(out, run.log); });
   seed("map_beam_csv", "tank.csv", [&](std::ostream& out) { writeBeamCsv(out, run.log); });
+  SonarLog spanned = run.log;  // with the optional intensity_span_db column (a SeaNet log's AD span)
+  for (std::size_t i = 0; i < spanned.beams.size(); i += 2) spanned.beams[i].intensity_span_db = 46.7;
+  seed("beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
+  seed("map_beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("nav_csv", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
   seed("scene", "tank.scene", [&](std::ostream& out) { writeScene(out, run.scene); });
   seed("scene", "harbour.scene", [&](std::ostream& out) { writeScene(out, builtinScene("harbour")); });

@@ -20,6 +20,7 @@ namespace {
 
 constexpr std::size_t kFixedColumns = 3;  // time_s, bearing_deg, bin_length_m
 constexpr std::string_view kFixedNames[kFixedColumns] = {"time_s", "bearing_deg", "bin_length_m"};
+constexpr std::string_view kSpanName = "intensity_span_db";  // optional, after bin_length_m
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Bearing in [0, 2π) from any finite angle in degrees (the same arithmetic as readCrasMat).
@@ -51,13 +52,22 @@ std::string binColumnName(std::size_t bin) {
   return name;
 }
 
-/// Reads the header; @return the number of b-columns it declares.
-std::size_t readHeader(csv::LineReader& reader) {
+/// The columns a header declares.
+struct Header {
+  bool has_span = false;      ///< an intensity_span_db column after bin_length_m
+  std::size_t first_bin = 0;  ///< column of b0
+  std::size_t bins = 0;       ///< b-columns
+};
+
+Header readHeader(csv::LineReader& reader) {
   if (!reader.next()) reader.failFile("empty, expected the header row time_s,bearing_deg,bin_length_m,b0,b1,...");
   for (std::size_t c = 0; c < kFixedColumns; ++c) reader.expectName(c, kFixedNames[c]);
-  const std::size_t bins = reader.fields().size() - kFixedColumns;
-  for (std::size_t i = 0; i < bins; ++i) reader.expectName(kFixedColumns + i, binColumnName(i));
-  return bins;
+  Header header;
+  header.has_span = reader.fields().size() > kFixedColumns && reader.fields()[kFixedColumns] == kSpanName;
+  header.first_bin = kFixedColumns + (header.has_span ? 1 : 0);
+  header.bins = reader.fields().size() - header.first_bin;
+  for (std::size_t i = 0; i < header.bins; ++i) reader.expectName(header.first_bin + i, binColumnName(i));
+  return header;
 }
 
 std::uint8_t readIntensity(const csv::LineReader& reader, std::size_t column, std::size_t bin) {
@@ -73,15 +83,15 @@ std::uint8_t readIntensity(const csv::LineReader& reader, std::size_t column, st
   reader.failField(column, binColumnName(bin), what + ", expected an intensity 0...255");
 }
 
-Beam readBeam(const csv::LineReader& reader, std::size_t header_bins) {
+Beam readBeam(const csv::LineReader& reader, const Header& header) {
   const std::vector<std::string_view>& fields = reader.fields();
   if (fields.size() < kFixedColumns) {
     reader.fail(std::to_string(fields.size()) + " field(s), expected at least 3: time_s,bearing_deg,bin_length_m");
   }
-  std::size_t bins = fields.size() - kFixedColumns;
-  while (bins > 0 && fields[kFixedColumns + bins - 1].empty()) --bins;  // spreadsheet padding
-  if (bins > header_bins) {
-    reader.fail(std::to_string(bins) + " bins, more than the " + std::to_string(header_bins) +
+  std::size_t bins = fields.size() > header.first_bin ? fields.size() - header.first_bin : 0;
+  while (bins > 0 && fields[header.first_bin + bins - 1].empty()) --bins;  // spreadsheet padding
+  if (bins > header.bins) {
+    reader.fail(std::to_string(bins) + " bins, more than the " + std::to_string(header.bins) +
                 " b-columns the header declares");
   }
   Beam beam;
@@ -91,8 +101,13 @@ Beam readBeam(const csv::LineReader& reader, std::size_t header_bins) {
   if (!(beam.bin_length_m > 0.0)) {
     reader.failField(2, kFixedNames[2], csv::formatNumber(beam.bin_length_m) + " m, expected metres > 0");
   }
+  if (header.has_span && fields.size() > kFixedColumns && !fields[kFixedColumns].empty()) {  // empty: unknown
+    const double span_db = reader.finiteNumber(kFixedColumns, kSpanName, "dB > 0");
+    if (!(span_db > 0.0)) reader.failField(kFixedColumns, kSpanName, csv::formatNumber(span_db) + " dB, expected dB > 0");
+    beam.intensity_span_db = span_db;
+  }
   beam.intensities.resize(bins);
-  for (std::size_t i = 0; i < bins; ++i) beam.intensities[i] = readIntensity(reader, kFixedColumns + i, i);
+  for (std::size_t i = 0; i < bins; ++i) beam.intensities[i] = readIntensity(reader, header.first_bin + i, i);
   return beam;
 }
 
@@ -108,6 +123,10 @@ void checkWritable(const SonarLog& log) {
     if (!(beam.bin_length_m > 0.0 && std::isfinite(beam.bin_length_m))) {
       throw ValueError(where + "bin length " + csv::formatNumber(beam.bin_length_m) + " m, expected finite and > 0");
     }
+    if (beam.intensity_span_db && !(*beam.intensity_span_db > 0.0 && std::isfinite(*beam.intensity_span_db))) {
+      throw ValueError(where + "intensity span " + csv::formatNumber(*beam.intensity_span_db) +
+                       " dB, expected finite and > 0");
+    }
     if (i > 0 && beam.time_s < log.beams[i - 1].time_s) {
       throw ValueError(where + "time " + csv::formatNumber(beam.time_s) + " s is before the previous beam's " +
                        csv::formatNumber(log.beams[i - 1].time_s) + " s");
@@ -121,11 +140,11 @@ SonarLog readBeamCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw FileError("cannot open '" + path + "' for reading");
   csv::LineReader reader(in, path);
-  const std::size_t header_bins = readHeader(reader);
+  const Header header = readHeader(reader);
   SonarLog log;
   std::size_t previous_line = 0;
   while (reader.next()) {
-    Beam beam = readBeam(reader, header_bins);
+    Beam beam = readBeam(reader, header);
     if (!log.beams.empty() && beam.time_s < log.beams.back().time_s) {
       reader.failField(0, kFixedNames[0], "times go backwards: " + csv::formatNumber(beam.time_s) +
                                               " s is before the previous beam's " +
@@ -142,8 +161,13 @@ SonarLog readBeamCsv(const std::string& path) {
 void writeBeamCsv(std::ostream& out, const SonarLog& log) {
   checkWritable(log);
   std::size_t header_bins = 0;
-  for (const Beam& beam : log.beams) header_bins = std::max(header_bins, beam.intensities.size());
+  bool has_span = false;
+  for (const Beam& beam : log.beams) {
+    header_bins = std::max(header_bins, beam.intensities.size());
+    has_span = has_span || beam.intensity_span_db.has_value();
+  }
   std::string line = "time_s,bearing_deg,bin_length_m";
+  if (has_span) (line += ',') += kSpanName;
   for (std::size_t i = 0; i < header_bins; ++i) line += ',' + binColumnName(i);
   out << line << '\n';
   for (const Beam& beam : log.beams) {
@@ -153,6 +177,10 @@ void writeBeamCsv(std::ostream& out, const SonarLog& log) {
     csv::appendNumber(line, degreesFromBearing(beam.bearing_rad));
     line += ',';
     csv::appendNumber(line, beam.bin_length_m);
+    if (has_span) {
+      line += ',';
+      if (beam.intensity_span_db) csv::appendNumber(line, *beam.intensity_span_db);
+    }
     for (const std::uint8_t intensity : beam.intensities) {
       line += ',';
       line += std::to_string(intensity);

@@ -34,14 +34,20 @@ TEST_F(cliConvert, MatAsBeamCsvMapsToTheIdenticalOctree) {
   EXPECT_GT(fs::file_size(from_mat), 1000U);
 }
 
-TEST_F(cliConvert, SeaNetLogBecomesOneRowPerBeam) {
+// The SeaNet log records its intensity span (ADspan): the CSV keeps it, so the converted log is
+// calibrated on the same dB scale and maps to the identical octree.
+TEST_F(cliConvert, SeaNetLogBecomesOneRowPerBeamAndMapsToTheIdenticalOctree) {
   if (!fs::exists(kSeaNetLog)) GTEST_SKIP() << "shared data absent: " << kSeaNetLog;
   const fs::path csv = out_ / "seanet.csv";
   const ProgramRun converted = run({"convert", kSeaNetLog.string(), "-o", csv.string()});
   ASSERT_EQ(converted.exit_code, 0) << converted.err;
   const Names rows = linesOf(bytesOf(csv));
   ASSERT_EQ(rows.size(), 469U);  // header + 468 beams
-  EXPECT_EQ(rows[0].rfind("time_s,bearing_deg,bin_length_m,b0,b1,", 0), 0U) << rows[0];
+  EXPECT_EQ(rows[0].rfind("time_s,bearing_deg,bin_length_m,intensity_span_db,b0,b1,", 0), 0U) << rows[0];
+  const fs::path from_log = out_ / "v4.bt", from_csv = out_ / "csv.bt";
+  ASSERT_EQ(run({"map", kSeaNetLog.string(), "-o", from_log.string(), "-q"}).exit_code, 0);
+  ASSERT_EQ(run({"map", csv.string(), "-o", from_csv.string(), "-q"}).exit_code, 0);
+  EXPECT_EQ(bytesOf(from_log), bytesOf(from_csv));
 }
 
 TEST_F(cliConvert, BadArgumentsAndInputsFailWithOneLineAndWriteNothing) {

@@ -204,7 +204,7 @@ constexpr Seed kSeeds[] = {
     {"cras_small.mat", "map"},       {"cras_small_compressed.mat", "map"}, {"seanet_small.V4LOG", "map"},
     {"beams_small.csv", "map"},      {"nav_small.csv", "map --nav"},       {"scan_small.graph", "cloud"},
     {"points_small.xyz", "cloud"},   {"tree_small.bt", "eval"},            {"tree_small.ot", "eval"},
-    {"scene_small.txt", "simulate"},
+    {"scene_small.txt", "simulate"}, {"beams_span_small.csv", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -33,7 +34,7 @@ std::string readText(const std::string& path) {
 }
 
 Beam beam(double time_s, double bearing_rad, double bin_length_m, std::vector<std::uint8_t> intensities) {
-  return Beam{time_s, bearing_rad, bin_length_m, std::move(intensities)};
+  return Beam{time_s, bearing_rad, bin_length_m, std::move(intensities), std::nullopt};
 }
 
 void expectIdentical(const SonarLog& read, const SonarLog& written) {
@@ -46,6 +47,7 @@ void expectIdentical(const SonarLog& read, const SonarLog& written) {
     ASSERT_EQ(a.bearing_rad, b.bearing_rad) << "beam " << i;
     ASSERT_EQ(a.bin_length_m, b.bin_length_m) << "beam " << i;
     ASSERT_EQ(a.intensities, b.intensities) << "beam " << i;
+    ASSERT_EQ(a.intensity_span_db, b.intensity_span_db) << "beam " << i;
   }
 }
 
@@ -75,6 +77,27 @@ TEST(sonarBeamCsv, SyntheticRoundTripIsExact) {
   const std::string text = readText(dir.file("log.csv"));
   EXPECT_EQ(text.substr(0, text.find('\n')), "time_s,bearing_deg,bin_length_m,b0,b1,b2,b3,b4");
   EXPECT_NE(text.find("\n0.1,180,0.3333333333333333,1,2,3,4,5\n"), std::string::npos) << text;
+}
+
+// A log that records its intensity span (a SeaNet head's AD span) keeps it, so that a converted
+// log calibrates, detects and maps as its source does; a log without one writes no such column.
+TEST(sonarBeamCsv, IntensitySpanRoundTripsAndIsOptional) {
+  SonarLog log;
+  log.beams = {beam(0.1, 0.0, 0.05, {3, 200}), beam(0.2, 0.1, 0.05, {7})};
+  log.beams[0].intensity_span_db = 80.0 * 150 / 255;  // SeaNet ADspan 150
+  const TempDir dir;
+  expectIdentical(roundTrip(log, dir), log);  // the second beam's span stays unknown
+  const std::string text = readText(dir.file("log.csv"));
+  EXPECT_EQ(text.substr(0, text.find('\n')), "time_s,bearing_deg,bin_length_m,intensity_span_db,b0,b1");
+  EXPECT_NE(text.find("\n0.2,"), std::string::npos);
+  EXPECT_NE(text.find(",0.05,,7\n"), std::string::npos) << text;  // empty span field, then the bins
+  write(dir.file("span.csv"), "time_s,bearing_deg,bin_length_m,intensity_span_db,b0\n0,0,0.1,46.7,9\n1,0,0.1\n");
+  const SonarLog read = readBeamCsv(dir.file("span.csv"));
+  ASSERT_EQ(read.beams.size(), 2u);
+  EXPECT_EQ(read.beams[0].intensity_span_db, 46.7);
+  EXPECT_EQ(read.beams[0].intensities, std::vector<std::uint8_t>{9});
+  EXPECT_FALSE(read.beams[1].intensity_span_db.has_value());  // row ends before the span
+  EXPECT_TRUE(read.beams[1].intensities.empty());
 }
 
 TEST(sonarBeamCsv, CrasLogRoundTripIsExact) {
@@ -210,6 +233,12 @@ TEST(sonarBeamCsv, BrokenFilesNameLineAndField) {
   expectFileError(h + "0,0,inf,1\n", {"line 2", "field 'bin_length_m'", "not finite"});
   expectFileError(h + "0,0,1e999,1\n", {"line 2", "field 'bin_length_m'", "out of the range"});
   expectFileError(h + "0,0,0.1m,1\n", {"line 2", "field 'bin_length_m'", "'0.1m' is not a number"});
+  const std::string hs = "time_s,bearing_deg,bin_length_m,intensity_span_db,b0\n";
+  expectFileError(hs + "0,0,0.1,0,1\n", {"line 2", "field 'intensity_span_db' (column 4)", "expected dB > 0"});
+  expectFileError(hs + "0,0,0.1,-3,1\n", {"line 2", "field 'intensity_span_db'", "dB > 0"});
+  expectFileError(hs + "0,0,0.1,inf,1\n", {"line 2", "field 'intensity_span_db'", "not finite"});
+  expectFileError(hs + "0,0,0.1,45dB,1\n", {"line 2", "field 'intensity_span_db'", "not a number"});
+  expectFileError(hs + "0,0,0.1,45,1,2\n", {"line 2", "2 bins, more than the 1 b-columns"});
   expectFileError(h + "5,0,0.1,1\n\n4.5,0,0.1,1\n",
                   {"line 4", "field 'time_s'", "times go backwards",
                    "4.5 s is before the previous beam's 5 s (line 2)"});
@@ -239,6 +268,9 @@ TEST(sonarBeamCsv, WriterRejectsLogsTheReaderWouldReject) {
   expectValueError({beam(0.0, 0.0, 0.1, {}), beam(INFINITY, 0.0, 0.1, {})}, "beam 1: time or bearing");
   expectValueError({beam(0.0, 0.0, 0.0, {})}, "beam 0: bin length 0 m");
   expectValueError({beam(1.0, 0.0, 0.1, {}), beam(0.5, 0.0, 0.1, {})}, "beam 1: time 0.5 s is before");
+  Beam no_span = beam(0.0, 0.0, 0.1, {});
+  no_span.intensity_span_db = 0.0;
+  expectValueError({no_span}, "beam 0: intensity span 0 dB");
   EXPECT_EQ(readText(path), "keep me");  // nothing was written
   SonarLog one;
   one.beams = {beam(0.0, 0.0, 0.1, {1})};

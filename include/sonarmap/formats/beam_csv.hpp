@@ -11,6 +11,10 @@
 ///  - bearing_deg: degrees in the sonar frame of beam.hpp, 0 along the sonar's +x, counter-
 ///    clockwise positive seen from above; any finite value, wrapped to [0°, 360°).
 ///  - bin_length_m: metres, finite and > 0.
+///  - intensity_span_db (optional column, right after bin_length_m): the dB span of the
+///    intensities 0…255 (Beam::intensity_span_db, e.g. a SeaNet head's AD span), finite and > 0;
+///    an empty field leaves it unknown (the detector then assumes 45 dB). Written only when some
+///    beam has one, so that a converted log maps as its source does.
 ///  - b0…b<K-1>: echo intensity per bin, integers 0…255, b0 nearest. The header has as many
 ///    b-columns as the longest beam (K ≥ 0); a row may hold fewer bins than the header (trailing
 ///    empty fields, as spreadsheets pad short rows, count as absent bins), never more.
@@ -30,9 +34,9 @@ namespace sonarmap {
 /// @return the beams in file order.
 /// @throws FileError naming the file, the 1-based line and the field (column name and number)
 ///         when the file cannot be opened or is empty; the header is not
-///         `time_s,bearing_deg,bin_length_m,b0,b1,…` with consecutive b-columns; a row has fewer
-///         than 3 fields or more bins than the header declares; a number is malformed or not
-///         finite (a NaN bearing); a bin length is ≤ 0; an intensity is not an integer in 0…255;
+///         `time_s,bearing_deg,bin_length_m[,intensity_span_db],b0,b1,…` with consecutive
+///         b-columns; a row has fewer than 3 fields or more bins than the header declares; a
+///         number is malformed or not finite (a NaN bearing); a bin length or a span is ≤ 0; an intensity is not an integer in 0…255;
 ///         a time is before the previous row's ("times go backwards"); or there is no beam row.
 SonarLog readBeamCsv(const std::string& path);
 
@@ -47,7 +51,8 @@ SonarLog readBeamCsv(const std::string& path);
 /// double degree value; those read back within 1 ulp (< 9e-16 rad). A bearing outside [0, 2π)
 /// reads back wrapped into it. skipped_beams and skip_reasons are not written.
 /// @throws ValueError (before writing anything) when the log has no beam, or a beam has a
-///         non-finite time or bearing, a bin length that is not finite and > 0, or a time before
+///         non-finite time or bearing, a bin length or intensity span that is not finite and > 0,
+///         or a time before
 ///         the previous beam's: readBeamCsv would reject the file. The message names the beam's
 ///         index. @throws FileError when the file cannot be written.
 void writeBeamCsv(const std::string& path, const SonarLog& log);
