@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "accuracy_analysis.hpp"
+#include "sonarmap/eval/last_sweep.hpp"
 #include "sonarmap/eval/simulated_accuracy.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/formats/log_reader.hpp"
@@ -27,7 +28,6 @@
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
-#include "sonarmap/sonar/polar.hpp"
 
 namespace {
 
@@ -118,21 +118,12 @@ void printSeaNetRow(const std::string& path) {
   }
   const SonarLog log = readSonarLog(path);
   const SonarMapper mapper = mapSonarLog(log);
-  // The last sweep's detections, found again as the mapper found them.
-  const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), 20);
-  PolarImage last = makePolarImage(log.beams, sweeps.back().first, sweeps.back().last_exclusive);
-  const std::vector<BeamDetection> detections = mapper.detect(last);
   std::size_t echoes = 0, occupied = 0;
-  for (int r = 0; r < last.rows(); ++r) {
-    const BeamDetection& d = detections[static_cast<std::size_t>(r)];
-    if (!d.hasObstacle()) continue;
+  for (const LastSweepEcho& echo : lastSweepEchoes(log, mapper)) {
     ++echoes;
-    const double b = last.bearing_rad[static_cast<std::size_t>(r)];
-    occupied += mapper.map().occupancyAt({d.range_m * std::cos(b), d.range_m * std::sin(b), 0.0}) == Occupancy::kOccupied;
-    std::printf("- beam at %.1f°: echo at %.2f m, %s\n", b * 180.0 / std::numbers::pi, d.range_m,
-                mapper.map().occupancyAt({d.range_m * std::cos(b), d.range_m * std::sin(b), 0.0}) == Occupancy::kOccupied
-                    ? "occupied"
-                    : "NOT occupied");
+    occupied += echo.occupied;
+    std::printf("- beam at %.1f°: echo at %.2f m, %s\n", echo.bearing_rad * 180.0 / std::numbers::pi, echo.range_m,
+                echo.occupied ? "occupied" : "NOT occupied");
   }
   std::printf("\n%zu of the last sweep's %zu echoes are occupied cells in the final map (%zu sweeps, %zu obstacles, "
               "%.3g m voxels).\n",

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "sonarmap/eval/last_sweep.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
-#include "sonarmap/sonar/polar.hpp"
 
 namespace sonarmap {
 namespace {
@@ -22,21 +22,13 @@ TEST(mappingSeaNetTarget, TheTargetsLastPositionIsOccupied) {
   EXPECT_EQ(mapper.stats().sweeps, 17U);
   EXPECT_DOUBLE_EQ(mapper.map().resolution_m(), 0.05);  // automatic: 10.2 m of reach
   // The last sweep, detected as the mapper detected it.
-  const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), 20);
-  PolarImage last = makePolarImage(log.beams, sweeps.back().first, sweeps.back().last_exclusive);
-  const std::vector<BeamDetection> detections = mapper.detect(last);
   std::size_t echoes = 0, occupied = 0;
-  for (int r = 0; r < last.rows(); ++r) {
-    const BeamDetection& d = detections[static_cast<std::size_t>(r)];
-    if (!d.hasObstacle()) continue;
+  for (const LastSweepEcho& echo : lastSweepEchoes(log, mapper)) {
     ++echoes;
-    const double bearing = last.bearing_rad[static_cast<std::size_t>(r)];
-    const Eigen::Vector3d point(d.range_m * std::cos(bearing), d.range_m * std::sin(bearing), 0.0);
-    const bool is_occupied = mapper.map().occupancyAt(point) == Occupancy::kOccupied;
-    occupied += is_occupied;
-    std::printf("[ seanet ] last sweep: echo at %.1f deg, %.2f m: %s\n", bearing * 180.0 / 3.14159265358979,
-                d.range_m, is_occupied ? "occupied" : "not occupied");
-    EXPECT_NEAR(d.range_m, 1.9, 0.15);  // the target, nothing else (measured 1.86–1.89 m)
+    occupied += echo.occupied;
+    std::printf("[ seanet ] last sweep: echo at %.1f deg, %.2f m: %s\n", echo.bearing_rad * 180.0 / 3.14159265358979,
+                echo.range_m, echo.occupied ? "occupied" : "not occupied");
+    EXPECT_NEAR(echo.range_m, 1.9, 0.15);  // the target, nothing else (measured 1.86–1.89 m)
   }
   EXPECT_GE(echoes, 4U);  // measured 5 beams across the target
   EXPECT_EQ(occupied, echoes);
