@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "sonarmap/core/errors.hpp"
 
@@ -95,9 +96,37 @@ Scene openWaterScene(const SceneScale& scale) {
   return scene;
 }
 
+/// The 3D harbour corner `quay3d` (builtin_scenes.hpp), every length scaled by `s`.
+Scene quay3dScene(double s) {
+  // Seabed z = −2.5 − x / 8 (at s = 1): −2.0 m at x = −4, −3.0 m at x = +4.
+  auto seabed_z_m = [s](double x_m) { return -2.5 * s - x_m / 8.0; };
+  const double surface_m = 2.5 * s;
+  Scene scene;
+  scene.primitives.push_back(horizontalPlane(surface_m, 1.0));
+  scene.primitives.push_back(Plane{{0.0, 0.0, -2.5 * s}, Eigen::Vector3d(1.0, 0.0, 8.0).normalized(), 0.5});
+  // Quay: x ∈ [3.5, 8.5], y ∈ [−20, 20], z ∈ [−4.0, 3.5]: below the seabed (−3.56 m at x = 8.5) to
+  // 1 m above the surface.
+  scene.primitives.push_back(Box{{6.0 * s, 0.0, -0.25 * s}, {5.0 * s, 40.0 * s, 7.5 * s}, 0.0, 0.9});
+  for (const auto& [x, y] : {std::pair{2.0, -2.5}, std::pair{2.0, 2.5}, std::pair{-3.0, -2.5}}) {
+    scene.primitives.push_back(Cylinder{x * s, y * s, 0.2 * s, seabed_z_m(x * s) - 0.3 * s, 3.5 * s, 0.85});
+  }
+  // Boulder: 0.8 × 0.6 × 0.5 m, yawed 30°, its bottom 0.1 m below the seabed under its centre (the
+  // slope changes the seabed's height by less than 0.07 m over its footprint).
+  const double boulder_x_m = -1.5 * s, boulder_bottom_m = seabed_z_m(boulder_x_m) - 0.1 * s;
+  scene.primitives.push_back(Box{{boulder_x_m, -1.0 * s, boulder_bottom_m + 0.25 * s},
+                                 {0.8 * s, 0.6 * s, 0.5 * s},
+                                 30.0 * kDegree,
+                                 0.7});
+  // Pontoon: x ∈ [−1.25, 1.25], y ∈ [2.4, 3.6], z ∈ [−0.6, 2.8]: its underside overhangs water.
+  scene.primitives.push_back(Box{{0.0, 3.0 * s, 1.1 * s}, {2.5 * s, 1.2 * s, 3.4 * s}, 0.0, 0.9});
+  return scene;
+}
+
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() { return {"tank", "harbour", "hull", "soft", "open-water"}; }
+
+std::vector<std::string> builtinScene3dNames() { return {"quay3d"}; }
 
 Scene builtinScene(std::string_view name, double reach_m, double vertical_beam_width_rad) {
   if (!(std::isfinite(reach_m) && reach_m > 0.0)) {
@@ -117,8 +146,11 @@ Scene builtinScene(std::string_view name, double reach_m, double vertical_beam_w
   if (name == "hull") return hullScene(scale);
   if (name == "soft") return waterfrontScene(scale, Waterfront{0.06, 0.09, 0.3});
   if (name == "open-water") return openWaterScene(scale);
+  if (name == "quay3d") return quay3dScene(scale.across);
   std::string known;
-  for (const std::string& candidate : builtinSceneNames()) known += (known.empty() ? "" : ", ") + candidate;
+  for (const auto& names : {builtinSceneNames(), builtinScene3dNames()}) {
+    for (const std::string& candidate : names) known += (known.empty() ? "" : ", ") + candidate;
+  }
   throw ValueError("unknown scene '" + std::string(name) + "', expected one of: " + known);
 }
 

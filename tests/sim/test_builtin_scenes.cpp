@@ -14,6 +14,8 @@
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene.hpp"
 
+#include <Eigen/Geometry>
+
 namespace sonarmap {
 namespace {
 
@@ -193,6 +195,125 @@ TEST(simBuiltinScenes, EveryScenesSonarPlaneHoldsATargetExceptOpenWater) {
       }
     }
   }
+}
+
+TEST(simBuiltinScenes, Quay3dIsAThreeDimensionalSceneOutsideTheTwoDimensionalList) {
+  EXPECT_EQ(builtinScene3dNames(), (std::vector<std::string>{"quay3d"}));
+  const std::vector<std::string> names = builtinSceneNames();
+  EXPECT_EQ(std::find(names.begin(), names.end(), "quay3d"), names.end());
+  try {
+    builtinScene("pool");
+    FAIL() << "expected ValueError";
+  } catch (const ValueError& error) {
+    EXPECT_NE(std::string(error.what()).find("quay3d"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(builtinScene("quay3d", 0.0), ValueError);
+  EXPECT_THROW(builtinScene("quay3d", 5.0, std::numbers::pi), ValueError);
+}
+
+TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
+  for (const double r : {5.0, 2.0, 20.0, 50.0}) {
+    const double s = r / 5.0;
+    SCOPED_TRACE("reach " + std::to_string(r) + " m");
+    const Scene scene = builtinScene("quay3d", r);
+    ASSERT_EQ(scene.primitives.size(), 8U);
+    for (const Primitive& primitive : scene.primitives) EXPECT_NO_THROW(validatePrimitive(primitive));
+    // The vertical beam width changes nothing.
+    const Scene narrow = builtinScene("quay3d", r, 10.0 * kDegree);
+    for (std::size_t i = 0; i < scene.primitives.size(); ++i) {
+      EXPECT_EQ(distanceToSurface(scene.primitives[i], Eigen::Vector3d(0.3, 0.2, 0.1) * s),
+                distanceToSurface(narrow.primitives[i], Eigen::Vector3d(0.3, 0.2, 0.1) * s));
+    }
+    // Surface 2.5 m above: straight up from the origin.
+    const auto up = firstHit(scene, kOrigin, Eigen::Vector3d::UnitZ(), 10.0 * s);
+    ASSERT_TRUE(up);
+    EXPECT_EQ(up->primitive, 0U);
+    EXPECT_EQ(up->reflectivity, 1.0);
+    EXPECT_NEAR(up->surface.range_m, 2.5 * s, 1e-9 * s);
+    // The seabed slopes: −2.0 m under x = −4, −3.0 m under x = +4 (7.1°), seen from above.
+    const auto& seabed = std::get<Plane>(scene.primitives[1]);
+    EXPECT_NEAR(std::acos(std::abs(seabed.normal.normalized().z())), std::atan(1.0 / 8.0), 1e-12);
+    for (const auto& [x, depth] : {std::pair{-4.0, -2.0}, std::pair{4.0, -3.0}, std::pair{0.0, -2.5}}) {
+      const auto down = intersectRay(seabed, Eigen::Vector3d(x * s, 1.0 * s, 0.0), -Eigen::Vector3d::UnitZ());
+      ASSERT_TRUE(down) << x;
+      EXPECT_NEAR(-down->range_m, depth * s, 1e-9 * s) << x;
+    }
+    EXPECT_EQ(seabed.reflectivity, 0.5);
+    // A horizontal ray at z = 0 towards +x meets the quay face at 3.5 m.
+    const auto quay = firstHit(scene, kOrigin, Eigen::Vector3d::UnitX(), 10.0 * s);
+    ASSERT_TRUE(quay);
+    EXPECT_EQ(quay->primitive, 2U);
+    EXPECT_EQ(quay->reflectivity, 0.9);
+    EXPECT_NEAR(quay->surface.range_m, 3.5 * s, 1e-9 * s);
+    // The quay reaches below the seabed and above the surface: a vertical line at its face's
+    // foot meets the seabed before the quay's bottom.
+    const auto& quay_box = std::get<Box>(scene.primitives[2]);
+    EXPECT_LT(quay_box.center_m.z() - 0.5 * quay_box.size_m.z(), -2.5 * s - 8.5 * s / 8.0);
+    EXPECT_GT(quay_box.center_m.z() + 0.5 * quay_box.size_m.z(), 2.5 * s);
+    // Piles stand from below the seabed to above the surface: a horizontal ray at any height
+    // between them meets the pile at (2, −2.5).
+    for (const double z : {-2.4, -1.0, 0.0, 2.4}) {
+      const Eigen::Vector3d from(0.0, -2.5 * s, z * s);
+      const auto pile = firstHit(scene, from, Eigen::Vector3d::UnitX(), 10.0 * s);
+      ASSERT_TRUE(pile) << z;
+      EXPECT_EQ(pile->primitive, 3U) << z;
+      EXPECT_NEAR(pile->surface.range_m, 1.8 * s, 1e-9 * s) << z;
+      EXPECT_EQ(pile->reflectivity, 0.85);
+    }
+    for (std::size_t i = 3; i <= 5; ++i) {
+      const auto& pile = std::get<Cylinder>(scene.primitives[i]);
+      EXPECT_NEAR(pile.radius_m, 0.2 * s, 1e-12);
+      EXPECT_LT(pile.z_min_m, -2.5 * s - pile.center_x_m / 8.0);  // buried
+      EXPECT_GT(pile.z_max_m, 2.5 * s);
+    }
+    // The boulder rests on the seabed: straight down from above it meets the boulder's top at
+    // −1.9125 m, and its bottom lies below the seabed everywhere under it.
+    const auto boulder = firstHit(scene, Eigen::Vector3d(-1.5 * s, -1.0 * s, 0.0), -Eigen::Vector3d::UnitZ(), 10.0 * s);
+    ASSERT_TRUE(boulder);
+    EXPECT_EQ(boulder->primitive, 6U);
+    EXPECT_EQ(boulder->reflectivity, 0.7);
+    EXPECT_NEAR(-boulder->surface.range_m, -1.9125 * s, 1e-9 * s);
+    const auto& rock = std::get<Box>(scene.primitives[6]);
+    EXPECT_NEAR(rock.yaw_rad, 30.0 * kDegree, 1e-12);
+    const double rock_bottom_m = rock.center_m.z() - 0.5 * rock.size_m.z();
+    for (const double dx : {-0.5, 0.5}) EXPECT_LT(rock_bottom_m, -2.5 * s - (rock.center_m.x() + dx * s) / 8.0);
+    // The pontoon overhangs: a ray going up from below it meets its underside at z = −0.6 m, the
+    // face looking down, with water below.
+    const Eigen::Vector3d below(0.0, 3.0 * s, -1.5 * s);
+    const auto underside = firstHit(scene, below, Eigen::Vector3d::UnitZ(), 10.0 * s);
+    ASSERT_TRUE(underside);
+    EXPECT_EQ(underside->primitive, 7U);
+    EXPECT_EQ(underside->reflectivity, 0.9);
+    EXPECT_NEAR(underside->surface.range_m, 0.9 * s, 1e-9 * s);
+    EXPECT_NEAR(underside->surface.normal.z(), -1.0, 1e-12);
+    const auto to_seabed = firstHit(scene, below, -Eigen::Vector3d::UnitZ(), 10.0 * s);
+    ASSERT_TRUE(to_seabed);
+    EXPECT_EQ(to_seabed->primitive, 1U);
+    EXPECT_NEAR(to_seabed->surface.range_m, 1.0 * s, 1e-9 * s);
+    // Its top stands out of the water.
+    const auto& pontoon = std::get<Box>(scene.primitives[7]);
+    EXPECT_GT(pontoon.center_m.z() + 0.5 * pontoon.size_m.z(), 2.5 * s);
+    // Everything but the planes and the quay's long block lies within 4.2 m of the origin in plan.
+    for (std::size_t i = 3; i < scene.primitives.size(); ++i) {
+      if (const auto* pile = std::get_if<Cylinder>(&scene.primitives[i])) {
+        EXPECT_LE(std::hypot(pile->center_x_m, pile->center_y_m) + pile->radius_m, 4.2 * s) << i;
+        continue;
+      }
+      const auto& box = std::get<Box>(scene.primitives[i]);
+      for (const double sx : {-0.5, 0.5}) {
+        for (const double sy : {-0.5, 0.5}) {
+          const Eigen::Vector2d corner = box.center_m.head<2>() + Eigen::Rotation2Dd(box.yaw_rad) *
+                                                                      Eigen::Vector2d(sx * box.size_m.x(), sy * box.size_m.y());
+          EXPECT_LE(corner.norm(), 4.2 * s) << i;
+        }
+      }
+    }
+  }
+  // As designed at the Micron's 5 m, exactly.
+  const Scene micron = builtinScene("quay3d");
+  const auto& pontoon = std::get<Box>(micron.primitives[7]);
+  EXPECT_EQ(pontoon.center_m, Eigen::Vector3d(0.0, 3.0, 1.1));
+  EXPECT_EQ(pontoon.size_m, Eigen::Vector3d(2.5, 1.2, 3.4));
 }
 
 }  // namespace

@@ -52,6 +52,30 @@
 /// In every scene but `open-water` something crosses the sonar's plane z = 0 within reach (walls,
 /// quay or embankment face, hull side, piles: all vertical), and nothing that does is sloped, so a
 /// 2D map at z = 0 can be scored against the scene (eval/ground_truth.hpp).
+///
+/// The 3D scenes (builtinScene3dNames(); not in builtinSceneNames(), which lists the scenes of the
+/// 2D accuracy table) have height structure for 3D maps of a moving vehicle. Every length of them,
+/// heights and radii included, scales with s = R / 5 m; the vertical beam width changes nothing.
+/// At s = 1, in metres:
+///
+///  - `quay3d`: a harbour corner made to be mapped in 3D from a vehicle moving around the origin
+///    between 0 and 1 m depth (map z from 0 to −1 m), primitives in this order:
+///     0. the water surface, a horizontal plane at z = +2.5 m; reflectivity 1.0;
+///     1. a sloping seabed: the plane z = −2.5 − x / 8 (through (0, 0, −2.5), normal ∝ (1, 0, 8)),
+///        −2.0 m at x = −4, −3.0 m at x = +4: 7.1° down towards the quay; 0.5 (sand);
+///     2. a quay wall: a solid block x ∈ [3.5, 8.5], y ∈ [−20, 20], z ∈ [−4.0, 3.5] (from below
+///        the seabed to 1 m above the surface), its face along y at x = 3.5 m; 0.9 (concrete);
+///     3–5. three piles, cylinders of radius 0.2 m at (x, y) = (2.0, −2.5), (2.0, 2.5) and
+///        (−3.0, −2.5), each from 0.3 m below the seabed under its axis to z = 3.5 m; 0.85;
+///     6. a boulder: a 0.8 × 0.6 × 0.5 m box yawed 30°, centred at (−1.5, −1.0), its bottom 0.1 m
+///        below the seabed under its centre (z ∈ [−2.4125, −1.9125]), so it rests on the slope
+///        without a gap; 0.7 (rock);
+///     7. a floating pontoon (caisson) with an overhanging face: a box x ∈ [−1.25, 1.25],
+///        y ∈ [2.4, 3.6], z ∈ [−0.6, 2.8] (its top 0.3 m above the surface), whose underside, the
+///        face z = −0.6 m seen from below, overhangs 1.7–2.1 m of water above the seabed; 0.9.
+///    A vehicle at z ∈ [−1, 0] must keep clear of the pontoon's footprint at z above −0.6 m.
+///    Everything lies within 4.2 m of the origin in plan except the quay's long block and the
+///    planes; a horizontal ray from the origin towards +x meets the quay face at 3.5 m.
 
 #include <numbers>
 #include <string>
@@ -67,12 +91,17 @@ inline constexpr double kBuiltinSceneReach_m = 5.0;
 /// Vertical beam width the scenes' heights were set for (the Micron's 35°), radians.
 inline constexpr double kBuiltinSceneVerticalBeamWidth_rad = 35.0 * std::numbers::pi / 180.0;
 
-/// Names builtinScene() accepts, in a fixed order: "tank", "harbour", "hull", "soft", "open-water".
+/// Names of the scenes of the 2D accuracy table, which builtinScene() accepts, in a fixed order:
+/// "tank", "harbour", "hull", "soft", "open-water".
 std::vector<std::string> builtinSceneNames();
 
-/// The built-in scene called `name` for a head of range scale `reach_m` (metres, > 0) and vertical
-/// −3 dB beam width `vertical_beam_width_rad` (radians, in (0, π)); see the file's comment. The
-/// defaults give the scenes as first built, for the Micron (5 m, 35°).
+/// Names of the 3D scenes builtinScene() accepts as well, in a fixed order: "quay3d".
+std::vector<std::string> builtinScene3dNames();
+
+/// The built-in scene called `name` (one of builtinSceneNames() or builtinScene3dNames()) for a
+/// head of range scale `reach_m` (metres, > 0) and vertical −3 dB beam width
+/// `vertical_beam_width_rad` (radians, in (0, π); the 3D scenes ignore it once validated); see the
+/// file's comment. The defaults give the scenes as first built, for the Micron (5 m, 35°).
 /// @throws ValueError listing the known names when `name` is not one of them, or naming the
 ///         argument when reach_m or vertical_beam_width_rad is out of range or not finite.
 Scene builtinScene(std::string_view name, double reach_m = kBuiltinSceneReach_m,
