@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <unordered_set>
 
+#include <Eigen/LU>
+
 #include "sonarmap/core/errors.hpp"
+#include "surface_voxels.hpp"
 
 namespace sonarmap {
 
@@ -98,18 +102,49 @@ bool reachableInWater(const SceneRayCaster& caster, const std::vector<Eigen::Vec
   return false;
 }
 
-/// True when a sensor within `range_m` sees the surface near `point_m`: the first surface along
-/// the way is met no earlier than `slack_m` before the point.
-bool visibleSurface(const SceneRayCaster& caster, const std::vector<Eigen::Vector3d>& sensors,
+/// The sensors' field of view: their orientations (sonar → map) and half the vertical aperture,
+/// or no check when `orientations` is empty.
+struct FieldOfView {
+  const std::vector<Eigen::Matrix3d>& orientations;
+  double half_aperture_rad = 0.0;
+
+  /// True when the unit direction `to_unit` (map frame) from sensor `index` lies within the
+  /// aperture: its elevation in the sonar frame, asin of the sonar-frame z component, within
+  /// ±half_aperture_rad.
+  bool sees(std::size_t index, const Eigen::Vector3d& to_unit) const {
+    if (orientations.empty()) return true;
+    const double up = std::clamp(orientations[index].col(2).dot(to_unit), -1.0, 1.0);  // (Rᵀ · u).z
+    return std::abs(std::asin(up)) <= half_aperture_rad;
+  }
+};
+
+/// True when a sensor within `range_m` sees the surface near `point_m`: the point is within its
+/// field of view, and the first surface along the way is met no earlier than `slack_m` before it.
+bool visibleSurface(const SceneRayCaster& caster, const std::vector<Eigen::Vector3d>& sensors, const FieldOfView& view,
                     const Eigen::Vector3d& point_m, double range_m, double slack_m) {
-  for (const Eigen::Vector3d& sensor : sensors) {
-    const Eigen::Vector3d to = point_m - sensor;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    const Eigen::Vector3d to = point_m - sensors[i];
     const double distance_m = to.norm();
     if (distance_m > range_m || distance_m < 1e-9) continue;
-    const auto hit = caster.firstHit(sensor, to / distance_m, distance_m + slack_m);
+    const Eigen::Vector3d unit = to / distance_m;
+    if (!view.sees(i, unit)) continue;
+    const auto hit = caster.firstHit(sensors[i], unit, distance_m + slack_m);
     if (hit && hit->surface.range_m >= distance_m - slack_m) return true;
   }
   return false;
+}
+
+/// The value at fraction `p` ∈ [0, 1] of the sorted `values` by linear interpolation between the
+/// order statistics (rank (n − 1) · p, 0-based); 0 for no value. Reorders `values`.
+double percentile(std::vector<double>& values, double p) {
+  if (values.empty()) return 0.0;
+  const double rank = p * static_cast<double>(values.size() - 1);
+  const auto below = static_cast<std::size_t>(std::floor(rank));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(below), values.end());
+  const double low = values[below];
+  if (below + 1 >= values.size()) return low;
+  const double high = *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(below) + 1, values.end());
+  return low + (rank - static_cast<double>(below)) * (high - low);
 }
 
 /// True when an occupied voxel's centre lies within `tolerance_m` of the centre of `key`.
@@ -133,6 +168,8 @@ bool occupiedNear(const KeySet& occupied, const Key16& key, double tolerance_m, 
 void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
                    const GroundTruthOptions& options, GroundTruthReport& report) {
   std::vector<std::vector<double>> offsets(scene.primitives.size());
+  std::vector<double> distances;  // of every occupied voxel, for the surface error
+  distances.reserve(region.occupied.size());
   double sum = 0.0, sum_sq = 0.0;
   for (const Key16& key : region.occupied) {
     const Eigen::Vector3d center = map.coder().centerOf(key);
@@ -143,6 +180,7 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
       if (d < distance_m) std::tie(distance_m, nearest) = std::pair{d, i};
     }
     report.occupied_on_surface += distance_m <= report.tolerance_m ? 1 : 0;
+    distances.push_back(distance_m);
     if (distance_m > options.match_distance_m) continue;
     ++report.matched_voxels;
     sum += distance_m;
@@ -157,6 +195,8 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
   }
   report.occupied_voxels = region.occupied.size();
   report.precision = share(report.occupied_on_surface, report.occupied_voxels);
+  report.surface_error_median_m = percentile(distances, 0.5);
+  report.surface_error_p90_m = percentile(distances, 0.9);
   if (report.matched_voxels > 0) {
     report.mean_distance_m = sum / static_cast<double>(report.matched_voxels);
     report.rms_distance_m = std::sqrt(sum_sq / static_cast<double>(report.matched_voxels));
@@ -172,29 +212,30 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
   }
 }
 
-/// Recall: visible surface voxels of the region's box with an occupied voxel within tolerance.
+/// Recall and erosion: visible surface voxels of the region's box with an occupied voxel within
+/// tolerance, and those the map holds free.
 void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
                    const GroundTruthOptions& options, GroundTruthReport& report) {
   const KeySet occupied(region.occupied.begin(), region.occupied.end());
   const auto& coder = map.coder();
   const double res = map.resolution_m();
+  const FieldOfView view{options.sensor_orientations, 0.5 * options.vertical_aperture_rad.value_or(0.0)};
   // The known box grown horizontally by T: a wall just beyond the last known voxel still counts.
   const int grow = static_cast<int>(std::ceil(report.tolerance_m / res));
-  auto lower = [&](int axis) { return std::max(0, static_cast<int>(region.lo[axis]) - grow); };
-  auto upper = [&](int axis) { return std::min(0xFFFF, static_cast<int>(region.hi[axis]) + grow); };
-  for (int z = region.lo[2]; z <= region.hi[2]; ++z) {
-    for (int y = lower(1); y <= upper(1); ++y) {
-      for (int x = lower(0); x <= upper(0); ++x) {
-        const Key16 key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(z)}};
-        const Eigen::Vector3d center = coder.centerOf(key);
-        if (distanceToSurface(scene, center) > 0.5 * res) continue;
-        if (!visibleSurface(caster, options.sensor_positions_m, center, report.max_range_m, res)) continue;
-        ++report.surface_voxels;
-        report.surface_voxels_found += occupiedNear(occupied, key, report.tolerance_m, res) ? 1 : 0;
-      }
-    }
+  Key16 lo = region.lo, hi = region.hi;
+  for (int axis = 0; axis < 2; ++axis) {
+    lo[axis] = static_cast<std::uint16_t>(std::max(0, static_cast<int>(region.lo[axis]) - grow));
+    hi[axis] = static_cast<std::uint16_t>(std::min(0xFFFF, static_cast<int>(region.hi[axis]) + grow));
+  }
+  for (const Key16& key : detail::surfaceVoxels(coder, scene, lo, hi)) {
+    const Eigen::Vector3d center = coder.centerOf(key);
+    if (!visibleSurface(caster, options.sensor_positions_m, view, center, report.max_range_m, res)) continue;
+    ++report.surface_voxels;
+    report.surface_voxels_found += occupiedNear(occupied, key, report.tolerance_m, res) ? 1 : 0;
+    report.surface_voxels_free += map.occupancyOf(key) == Occupancy::kFree ? 1 : 0;
   }
   report.recall = share(report.surface_voxels_found, report.surface_voxels);
+  report.erosion = share(report.surface_voxels_free, report.surface_voxels);
 }
 
 /// Free accuracy: free voxels reachable through water from a sensor, or within tolerance of a surface.
@@ -235,6 +276,30 @@ void GroundTruthOptions::validate() const {
   if (sensor_positions_m.empty()) throw ValueError("ground-truth options: sensor_positions_m is empty");
   for (const Eigen::Vector3d& sensor : sensor_positions_m) {
     if (!sensor.allFinite()) throw ValueError("ground-truth options: a sensor position is not finite");
+  }
+  if (vertical_aperture_rad) {
+    const double aperture_rad = *vertical_aperture_rad;
+    if (!(std::isfinite(aperture_rad) && aperture_rad > 0.0 && aperture_rad < std::numbers::pi)) {
+      throw ValueError("ground-truth options: vertical_aperture_rad must be in (0, π), got " +
+                       std::to_string(aperture_rad));
+    }
+  }
+  if (vertical_aperture_rad.has_value() != !sensor_orientations.empty()) {
+    throw ValueError(
+        "ground-truth options: the field-of-view check needs both vertical_aperture_rad and sensor_orientations");
+  }
+  if (!sensor_orientations.empty() && sensor_orientations.size() != sensor_positions_m.size()) {
+    throw ValueError("ground-truth options: " + std::to_string(sensor_orientations.size()) +
+                     " sensor orientations for " + std::to_string(sensor_positions_m.size()) + " sensor positions");
+  }
+  for (std::size_t i = 0; i < sensor_orientations.size(); ++i) {
+    const Eigen::Matrix3d& rotation = sensor_orientations[i];
+    const bool rotation_ok = rotation.allFinite() &&
+                             (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-6 &&
+                             rotation.determinant() > 0.0;
+    if (!rotation_ok) {
+      throw ValueError("ground-truth options: sensor orientation " + std::to_string(i) + " is not a finite rotation");
+    }
   }
 }
 
