@@ -1,9 +1,15 @@
 #include "eval_command.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include <Eigen/Geometry>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/map_file.hpp"
@@ -12,10 +18,32 @@
 
 namespace sonarmap::cli {
 
+namespace {
+
+/// The built-in scenes' names, 2D then 3D, joined by `separator`.
+std::string builtinNames(const char* separator) {
+  std::string joined;
+  for (const auto& names : {builtinSceneNames(), builtinScene3dNames()}) {
+    for (const std::string& name : names) joined += (joined.empty() ? "" : separator) + name;
+  }
+  return joined;
+}
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+/// Sonar → map rotation of roll, pitch, yaw (radians) about the map's x, y, z axes: Rz·Ry·Rx.
+Eigen::Matrix3d sonarToMapRotation(double roll_rad, double pitch_rad, double yaw_rad) {
+  return (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+}  // namespace
+
 Command addEvalCommand(CLI::App& app, EvalArgs& args) {
-  CLI::App* cmd = app.add_subcommand("eval", "Score a map (.bt/.ot) against a ground-truth scene");
+  CLI::App* cmd = app.add_subcommand("eval", "Score a map (.bt/.ot) against a ground-truth scene, 2D or 3D");
   cmd->add_option("map", args.map, "Map to score: OctoMap binary (.bt) or full (.ot) tree")->required();
-  cmd->add_option("--truth", args.truth, "Scene file, or a built-in scene: tank | harbour")->required();
+  cmd->add_option("--truth", args.truth, "Scene file, or a built-in scene: " + builtinNames(" | "))->required();
   cmd->add_option("--z-min", args.z_min_m, "Lowest voxel centre scored, m (default: lowest known voxel)");
   cmd->add_option("--z-max", args.z_max_m, "Highest voxel centre scored, m (default: highest known voxel)");
   cmd->add_option("--tolerance", args.tolerance_m, "Match distance, m (never below one voxel diagonal)")
@@ -24,6 +52,15 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   cmd->add_option("--sensor", args.sensor, "Sonar position x,y,z in the map frame, m; repeatable (default: origin)")
       ->delimiter(',')
       ->allow_extra_args(false);
+  cmd->add_option("--sensor-pose", args.sensor_pose,
+                  "Sonar pose x,y,z,roll,pitch,yaw in the map frame (NWU, z up): position in m, angles in deg "
+                  "about the map's x, y, z axes (R = Rz(yaw) Ry(pitch) Rx(roll); positive pitch tilts the "
+                  "sonar's bearing 0 down); repeatable; instead of --sensor")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  cmd->add_option("--vertical-aperture", args.vertical_aperture_deg,
+                  "Sonar's vertical aperture, deg, in (0, 180): with --sensor-pose, a surface counts as seen only "
+                  "within +-half of it from the sonar's scan plane (default: no field-of-view check)");
   auto options = std::make_shared<GroundTruthOptions>();
   return {cmd, [cmd, &args, options] { *options = toGroundTruthOptions(*cmd, args); },
           [&args, options] { runEval(args, *options); }};
@@ -35,6 +72,9 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
   if (cmd.count("--z-min") > 0) options.z_min_m = args.z_min_m;
   if (cmd.count("--z-max") > 0) options.z_max_m = args.z_max_m;
   if (cmd.count("--max-range") > 0) options.max_range_m = args.max_range_m;
+  if (!args.sensor.empty() && !args.sensor_pose.empty()) {
+    throw ValueError("--sensor and --sensor-pose exclude each other: give every sonar's pose with --sensor-pose");
+  }
   if (!args.sensor.empty()) {
     if (args.sensor.size() % 3 != 0) throw ValueError("--sensor takes x,y,z: three numbers per position");
     options.sensor_positions_m.clear();
@@ -42,15 +82,40 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
       options.sensor_positions_m.emplace_back(args.sensor[i], args.sensor[i + 1], args.sensor[i + 2]);
     }
   }
+  std::vector<Eigen::Matrix3d> orientations;
+  if (!args.sensor_pose.empty()) {
+    if (args.sensor_pose.size() % 6 != 0) {
+      throw ValueError("--sensor-pose takes x,y,z,roll,pitch,yaw: six numbers per pose");
+    }
+    for (const double value : args.sensor_pose) {
+      if (!std::isfinite(value)) throw ValueError("--sensor-pose: every number must be finite");
+    }
+    options.sensor_positions_m.clear();
+    for (std::size_t i = 0; i < args.sensor_pose.size(); i += 6) {
+      const double* pose = args.sensor_pose.data() + i;
+      options.sensor_positions_m.emplace_back(pose[0], pose[1], pose[2]);
+      orientations.push_back(sonarToMapRotation(pose[3] * kDegree, pose[4] * kDegree, pose[5] * kDegree));
+    }
+  }
+  if (cmd.count("--vertical-aperture") > 0) {
+    const double aperture_deg = args.vertical_aperture_deg;
+    if (!(std::isfinite(aperture_deg) && aperture_deg > 0.0 && aperture_deg < 180.0)) {
+      throw ValueError("--vertical-aperture must be in (0, 180) degrees, got " + std::to_string(aperture_deg));
+    }
+    if (orientations.empty()) throw ValueError("--vertical-aperture needs the sonars' orientations: give --sensor-pose");
+    options.vertical_aperture_rad = aperture_deg * kDegree;
+    options.sensor_orientations = std::move(orientations);
+  }
   options.validate();
   return options;
 }
 
 namespace {
 
-/// A scene file when `truth` names an existing file, else a built-in scene of that name.
+/// A scene file when `truth` names an existing file, else a built-in scene (2D or 3D) of that name.
 Scene loadTruth(const std::string& truth) {
-  const std::vector<std::string> names = builtinSceneNames();
+  std::vector<std::string> names = builtinSceneNames();
+  for (std::string& name : builtinScene3dNames()) names.push_back(std::move(name));
   if (!std::filesystem::exists(truth) && std::find(names.begin(), names.end(), truth) != names.end()) {
     return builtinScene(truth);
   }
@@ -67,10 +132,14 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
               r.occupied_voxels);
   std::printf("recall %.4f (%zu of %zu visible surface voxels mapped)\n", r.recall, r.surface_voxels_found,
               r.surface_voxels);
+  std::printf("erosion %.4f (%zu of %zu visible surface voxels free)\n", r.erosion, r.surface_voxels_free,
+              r.surface_voxels);
   std::printf("free_accuracy %.4f (%zu of %zu free voxels in the water)\n", r.free_accuracy, r.free_in_water,
               r.free_voxels);
   std::printf("wall_error_mean_m %.4f rms_m %.4f (%zu occupied voxels within %.2f m of a surface)\n",
               r.mean_distance_m, r.rms_distance_m, r.matched_voxels, options.match_distance_m);
+  std::printf("surface_error_median_m %.4f p90_m %.4f (over %zu occupied voxels)\n", r.surface_error_median_m,
+              r.surface_error_p90_m, r.occupied_voxels);
   for (const SurfaceOffset& surface : r.surfaces) {
     std::printf("surface %zu %s median_offset_m %+.4f (%zu voxels)\n", surface.primitive,
                 primitiveKind(scene.primitives[surface.primitive]), surface.median_signed_offset_m, surface.voxels);

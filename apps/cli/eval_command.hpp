@@ -21,19 +21,30 @@ struct EvalArgs {
   double tolerance_m = 0.1;
   double max_range_m = 0.0;    ///< 0: the map's reach
   std::vector<double> sensor;  ///< x,y,z triples, map frame; empty: the origin
+  /// x,y,z,roll,pitch,yaw sextuples: the sonars' poses in the map frame (metres, degrees about the
+  /// map's x, y, z axes, R = Rz(yaw)·Ry(pitch)·Rx(roll)); empty: --sensor's positions
+  std::vector<double> sensor_pose;
+  double vertical_aperture_deg = 0.0;  ///< --vertical-aperture, degrees (set: field-of-view check)
 };
 
 /// Adds the `eval` subcommand to `app`; its options fill `args`.
 Command addEvalCommand(CLI::App& app, EvalArgs& args);
 
-/// Turns the arguments into evaluation options. @throws ValueError for a bad value (usage).
+/// Turns the arguments into evaluation options: --sensor positions, or --sensor-pose poses (their
+/// orientations enter the options only with --vertical-aperture, for the field-of-view check).
+/// @throws ValueError for a bad value (usage): a count that is not a multiple of 3 (--sensor) or 6
+///         (--sensor-pose), both given, a non-finite pose, an aperture outside (0, 180) degrees or
+///         without --sensor-pose, or options GroundTruthOptions::validate rejects.
 GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& args);
 
-/// Reads the map and the scene, scores and prints one line per metric on stdout:
+/// Reads the map and the scene (a scene file, or a built-in 2D or 3D scene's name), scores and
+/// prints one line per metric on stdout:
 ///   precision P (occupied on surface / occupied)
 ///   recall R (found / visible surface voxels)
+///   erosion E (free / visible surface voxels)
 ///   free_accuracy F (in water / free)
 ///   wall_error_mean_m M, wall_error_rms_m S (over N matched voxels)
+///   surface_error_median_m D, p90_m Q (over every occupied voxel)
 ///   surface I KIND median_offset_m O (N voxels), one line per primitive with matched voxels
 ///   region z [A, B] m, range R m, tolerance T m
 /// @throws sonarmap::Error for an unreadable map or scene, or a map with nothing known in the slab.

@@ -40,8 +40,10 @@ TEST_F(cliEval, ScoresAMapAgainstASceneFileLineByLine) {
   EXPECT_EQ(linesOf(result.out),
             (Names{"precision 1.0000 (5 of 5 occupied voxels on a surface)",
                    "recall 0.5833 (7 of 12 visible surface voxels mapped)",
+                   "erosion 0.0000 (0 of 12 visible surface voxels free)",
                    "free_accuracy 1.0000 (95 of 95 free voxels in the water)",
                    "wall_error_mean_m 0.1000 rms_m 0.1000 (5 occupied voxels within 0.50 m of a surface)",
+                   "surface_error_median_m 0.1000 p90_m 0.1000 (over 5 occupied voxels)",
                    "surface 0 plane median_offset_m +0.1000 (5 voxels)",
                    "region z [0.050, 0.050] m, range 1.226 m, tolerance 0.173 m"}));
   // A tighter tolerance (raised to the voxel diagonal) and a sensor behind the wall.
@@ -49,9 +51,49 @@ TEST_F(cliEval, ScoresAMapAgainstASceneFileLineByLine) {
       run({"eval", map.string(), "--truth", scene.string(), "--tolerance", "0.01", "--sensor", "2,0,0.05"});
   ASSERT_EQ(behind.exit_code, 0) << behind.err;
   const Names lines = linesOf(behind.out);
-  ASSERT_EQ(lines.size(), 6U) << behind.out;
-  EXPECT_EQ(lines[4], "surface 0 plane median_offset_m -0.1000 (5 voxels)");
-  EXPECT_EQ(lines[2], "free_accuracy 0.0526 (5 of 95 free voxels in the water)");  // only column 9 near the wall
+  ASSERT_EQ(lines.size(), 8U) << behind.out;
+  EXPECT_EQ(lines[6], "surface 0 plane median_offset_m -0.1000 (5 voxels)");
+  EXPECT_EQ(lines[3], "free_accuracy 0.0526 (5 of 95 free voxels in the water)");  // only column 9 near the wall
+}
+
+TEST_F(cliEval, SensorPosesAndTheVerticalApertureLimitWhatCountsAsSeen) {
+  const fs::path map = writeWallMap(root_ / "wall.bt");
+  const fs::path scene = root_ / "wall.scene";
+  std::ofstream(scene) << "plane 1.05 0 0  1 0 0  0.9\n";
+  // A pose without an aperture: the position only, as --sensor.
+  const ProgramRun pose = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,0,0"});
+  ASSERT_EQ(pose.exit_code, 0) << pose.err;
+  EXPECT_EQ(linesOf(pose.out)[1], "recall 0.5833 (7 of 12 visible surface voxels mapped)");
+  // Upright with a 35° aperture: the wall's layer is seen.
+  const ProgramRun level = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,0,0",
+                                "--vertical-aperture", "35"});
+  ASSERT_EQ(level.exit_code, 0) << level.err;
+  EXPECT_EQ(linesOf(level.out)[1], "recall 0.5833 (7 of 12 visible surface voxels mapped)");
+  // Tilted 30° down (positive pitch): the wall's layer, about 3° up, lies above its ±17.5°.
+  const ProgramRun down = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,30,0",
+                               "--vertical-aperture", "35"});
+  ASSERT_EQ(down.exit_code, 0) << down.err;
+  EXPECT_EQ(linesOf(down.out)[1], "recall 0.0000 (0 of 0 visible surface voxels mapped)");
+  // Two poses: the union.
+  const ProgramRun both = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,30,0",
+                               "--sensor-pose", "0,0,0,0,0,0", "--vertical-aperture", "35"});
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_EQ(linesOf(both.out)[1], "recall 0.5833 (7 of 12 visible surface voxels mapped)");
+}
+
+TEST_F(cliEval, AcceptsTheThreeDimensionalBuiltInScene) {
+  OcTree16 map(0.1);
+  map.updateNode(map.coder().keyOfChecked({3.45, 0.05, 0.05}), 2.0F);  // on the quay's face
+  map.updateNode(map.coder().keyOfChecked({2.45, 0.05, 0.05}), -2.0F);
+  const fs::path path = root_ / "quay.bt";
+  writeMapFile(map, path.string());
+  const ProgramRun result = run({"eval", path.string(), "--truth", "quay3d"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Names lines = linesOf(result.out);
+  ASSERT_GE(lines.size(), 7U) << result.out;
+  EXPECT_EQ(lines[0], "precision 1.0000 (1 of 1 occupied voxels on a surface)");
+  EXPECT_EQ(lines[5], "surface_error_median_m 0.0500 p90_m 0.0500 (over 1 occupied voxels)");
+  EXPECT_EQ(lines[6], "surface 2 box median_offset_m +0.0500 (1 voxels)");
 }
 
 TEST_F(cliEval, ScoresASimulatedTankAgainstTheBuiltInScene) {
@@ -76,6 +118,13 @@ TEST_F(cliEval, BadArgumentsAndInputsFailWithOneLine) {
   expectError(run({"eval", map.string(), "--truth", "tank", "--tolerance", "0"}), 2);     // not > 0
   expectError(run({"eval", map.string(), "--truth", "tank", "--sensor", "1,2"}), 2);      // not a triple
   expectError(run({"eval", map.string(), "--truth", "tank", "--z-min", "1", "--z-max", "0"}), 2);
+  expectError(run({"eval", map.string(), "--truth", "tank", "--sensor-pose", "0,0,0,0,0"}), 2);  // not six
+  expectError(run({"eval", map.string(), "--truth", "tank", "--sensor-pose", "0,0,0,0,0,0", "--sensor", "0,0,0"}), 2);
+  expectError(run({"eval", map.string(), "--truth", "tank", "--vertical-aperture", "35"}), 2);  // no pose
+  expectError(
+      run({"eval", map.string(), "--truth", "tank", "--sensor-pose", "0,0,0,0,0,0", "--vertical-aperture", "180"}), 2);
+  expectError(
+      run({"eval", map.string(), "--truth", "tank", "--sensor-pose", "0,0,0,0,0,0", "--vertical-aperture", "0"}), 2);
   expectError(run({"eval", (root_ / "missing.bt").string(), "--truth", "tank"}), 1);
   expectError(run({"eval", map.string(), "--truth", scene.string()}), 1);                 // invalid scene
   expectError(run({"eval", map.string(), "--truth", "lake"}), 1);                          // neither file nor name
