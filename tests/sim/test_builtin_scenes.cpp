@@ -7,12 +7,14 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene.hpp"
+#include "sonarmap/sim/scene_file.hpp"
 
 #include <Eigen/Geometry>
 
@@ -307,6 +309,19 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
           EXPECT_LE(corner.norm(), 4.2 * s) << i;
         }
       }
+    }
+  }
+  // The scene file format holds it (sloped plane, yawed boxes): written and read back, every
+  // distance is the same.
+  const Scene scene = builtinScene("quay3d");
+  std::stringstream file;
+  writeScene(file, scene);
+  const Scene read = readScene(file, "quay3d.scene");
+  ASSERT_EQ(read.primitives.size(), scene.primitives.size());
+  for (const Eigen::Vector3d& point : {Eigen::Vector3d(0.3, 2.9, -1.0), Eigen::Vector3d(-1.2, -0.8, -2.0),
+                                       Eigen::Vector3d(3.0, 0.0, -2.5), Eigen::Vector3d(1.9, -2.4, 0.3)}) {
+    for (std::size_t i = 0; i < scene.primitives.size(); ++i) {
+      EXPECT_NEAR(distanceToSurface(read.primitives[i], point), distanceToSurface(scene.primitives[i], point), 1e-12);
     }
   }
   // As designed at the Micron's 5 m, exactly.

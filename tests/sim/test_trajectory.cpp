@@ -8,7 +8,11 @@
 #include <numbers>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/trajectory.hpp"
 
 namespace sonarmap {
@@ -283,6 +287,68 @@ TEST(simTrajectory, BadPatternsThrow) {
   loop.depths_m = {0.0, HUGE_VAL};
   EXPECT_THROW(loopWaypoints(loop), ValueError);
   EXPECT_NO_THROW(loopWaypoints({}));
+}
+
+/// Range of the strongest bin of `beam` in [from_m, to_m).
+double peakRange(const Beam& beam, double from_m, double to_m) {
+  int best = -1;
+  double best_m = -1.0;
+  for (std::size_t i = 0; i < beam.intensities.size(); ++i) {
+    const double range_m = (static_cast<double>(i) + 0.5) * beam.bin_length_m;
+    if (range_m >= from_m && range_m < to_m && beam.intensities[i] > best) {
+      best = beam.intensities[i];
+      best_m = range_m;
+    }
+  }
+  return best_m;
+}
+
+TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
+  // A rectangle loop at 0.5 m depth with the sonar tilted 25° down (how an AUV maps the seabed
+  // with an MSIS), its first side heading south, up the seabed's slope.
+  LoopPattern loop;
+  loop.center_ne_m = {0.0, 1.0};
+  loop.heading_rad = kPi;
+  loop.length_m = 3.0;
+  loop.width_m = 2.0;
+  loop.depths_m = {0.5};
+  const std::vector<NavSample> points = loopWaypoints(loop);
+  MsisSimulationOptions options;
+  options.turns = 2;
+  options.echo.speckle_looks = 0;
+  options.echo.noise_level_db = -300.0;
+  options.trajectory = waypointTrajectory(points);
+  const double tilt_rad = 25.0 * kDegree;  // positive about the sonar's y (left) axis: +x down
+  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(tilt_rad, Eigen::Vector3d::UnitY());
+  const MsisSimulation run = simulateMsis(builtinScene("quay3d"), options);
+  ASSERT_FALSE(run.nav.empty());
+  const Trajectory expected = waypointTrajectory(points);
+  for (const NavSample& fix : run.nav) {
+    EXPECT_TRUE(fix.position_ned_m.isApprox(expected(fix.time_s).position_ned_m, 1e-12) ||
+                (fix.position_ned_m - expected(fix.time_s).position_ned_m).norm() < 1e-12);
+  }
+  // The vehicle starts at the loop's corner (1.5, 2) m NED, 0.5 m deep: map (1.5, −2, −0.5),
+  // heading south. The first beam (bearing 0) looks south 25° down and meets the seabed
+  // z = −2.5 − x / 8 where −0.5 − t sin 25° = −2.5 − (1.5 − t cos 25°) / 8: t = 4.08 m.
+  const Eigen::Isometry3d pose = sonarToMap(run.nav.front(), options.sonar_to_body);
+  EXPECT_TRUE(pose.translation().isApprox(Eigen::Vector3d(1.5, -2.0, -0.5), 1e-12));
+  const Beam& first = run.log.beams.front();
+  ASSERT_NEAR(first.bearing_rad, 0.0, 1e-9);
+  const Eigen::Vector3d down_south = pose.linear() * Eigen::Vector3d::UnitX();
+  EXPECT_TRUE(down_south.isApprox(Eigen::Vector3d(-std::cos(tilt_rad), 0.0, -std::sin(tilt_rad)), 1e-12));
+  const auto truth = firstHit(run.scene, pose.translation(), down_south, 5.0);
+  ASSERT_TRUE(truth);
+  EXPECT_EQ(truth->primitive, 1U);  // the seabed
+  EXPECT_NEAR(truth->surface.range_m, (2.0 + 1.5 / 8.0) / (std::sin(tilt_rad) + std::cos(tilt_rad) / 8.0), 1e-9);
+  // The beam is 35° tall: its lower edge, 42.5° down, meets the seabed first (2.85 m); the echo
+  // peaks between that range and the axis's.
+  const Eigen::Vector3d lower_edge = pose.linear() * Eigen::Vector3d(std::cos(17.5 * kDegree), 0.0, -std::sin(17.5 * kDegree));
+  const auto nearest = firstHit(run.scene, pose.translation(), lower_edge, 5.0);
+  ASSERT_TRUE(nearest);
+  EXPECT_EQ(nearest->primitive, 1U);
+  const double peak_m = peakRange(first, 1.0, 5.0);
+  EXPECT_GE(peak_m, nearest->surface.range_m - 0.05);
+  EXPECT_LE(peak_m, truth->surface.range_m);
 }
 
 }  // namespace
