@@ -109,6 +109,14 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--hit-probability", args.hit_probability,
                  "P(occupied | echo), a PROBABILITY in (0.5, 1): 0.9 lets one echo outweigh earlier free space")
       ->capture_default_str();
+  cmd.add_flag("--3d", args.volume,
+               "Map the whole beam volume (width x vertical aperture) into a 3D map instead of the sonar's plane");
+  cmd.add_option("--vertical-aperture", args.vertical_aperture_deg,
+                 "Vertical beam width in DEGREES for --3d (Micron 35, SeaKing 40, Ping360 25)")
+      ->capture_default_str();
+  cmd.add_option("--arc-evidence", args.arc_evidence,
+                 "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
+      ->capture_default_str();
   cmd.add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd.add_flag("--tank-report", args.tank_report,
                "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
@@ -160,6 +168,10 @@ MapperOptions toMapperOptions(const MapArgs& args) {
   options.max_voxel_updates = args.max_voxel_updates;
   requireWithin(args.hit_probability, 0.5, 1.0, true, true, "--hit-probability", "a probability in (0.5, 1)");
   options.octree.occupancy.prob_hit = args.hit_probability;
+  if (args.volume) options.beam_model = BeamModel::kVolume;
+  requireWithin(args.vertical_aperture_deg, 0.0, 180.0, true, true, "--vertical-aperture", "degrees in (0, 180)");
+  options.vertical_aperture_rad = args.vertical_aperture_deg * kRadPerDeg;
+  options.arc_evidence = parseArcEvidence(args.arc_evidence);
   options.validate();
   return options;
 }

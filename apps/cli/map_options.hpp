@@ -39,6 +39,9 @@ struct MapArgs {
   std::string range_tolerance = "auto";  ///< metres, or auto (a bin plus half a voxel plus each echo's rise)
   double max_voxel_updates = MapperOptions{}.max_voxel_updates;
   double hit_probability = MapperOptions{}.octree.occupancy.prob_hit;
+  bool volume = false;  ///< --3d: the beam-volume model
+  double vertical_aperture_deg = MapperOptions{}.vertical_aperture_rad * 180.0 / 3.14159265358979323846;
+  std::string arc_evidence = "whole";
   bool quiet = false;
   bool tank_report = false;
   std::string nav_csv;           ///< navigation CSV (empty: the sonar is static at the map origin)

@@ -121,6 +121,15 @@ class KeyMarks {
     }
   }
 
+  /// Whether `key` is in the set (false for a key outside the box).
+  bool contains(const KeyType& key) const {
+    if (!dense_) return sparse_.contains(key);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (key[axis] < lo_[axis] || static_cast<std::size_t>((key[axis] - lo_[axis]) >> 2) >= bricks_[axis]) return false;
+    }
+    return (bits_[word(key)] & rowBit(key)) != 0;
+  }
+
   /// Removes every key of `other`, reset with the same box and limit (so of the same kind), and
   /// returns the number of keys left (counted on the way: no extra pass).
   std::size_t subtract(const KeyMarks& other) {

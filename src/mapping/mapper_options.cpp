@@ -49,6 +49,12 @@ RayAlgorithm parseRayAlgorithm(std::string_view name) {
   throw ValueError("unknown ray algorithm '" + std::string(name) + "', expected dda or bresenham");
 }
 
+BeamModel parseBeamModel(std::string_view name) {
+  if (name == "planar") return BeamModel::kPlanar;
+  if (name == "volume") return BeamModel::kVolume;
+  throw ValueError("unknown beam model '" + std::string(name) + "', expected planar or volume");
+}
+
 void MapperOptions::validate() const {
   checkOptionalLength(resolution_m, "resolution", false);
   checkOptionalLength(self_reflection_range_m, "self-reflection range", true);
@@ -56,6 +62,9 @@ void MapperOptions::validate() const {
   if (!(max_range_m > 0.0)) throw ValueError("max range must be > 0 m, got " + std::to_string(max_range_m));
   if (!(beam_width_rad >= 0.0 && beam_width_rad < std::numbers::pi)) {
     throw ValueError("beam width must be within [0, pi) rad, got " + std::to_string(beam_width_rad));
+  }
+  if (beam_model == BeamModel::kVolume && !(vertical_aperture_rad > 0.0 && vertical_aperture_rad < std::numbers::pi)) {
+    throw ValueError("vertical aperture must be within (0, pi) rad, got " + std::to_string(vertical_aperture_rad));
   }
   if (!(max_voxel_updates > 0.0)) {
     throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));
@@ -107,7 +116,13 @@ double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
     if (!(range_m > 0.0)) continue;
     // The union of overlapping wedges grows by one bearing step per beam; a ray is a line of voxels.
     const double width_rad = std::min(std::max(options.beam_width_rad, voxel_m / range_m), stepAfter(log.beams, i));
-    updates += width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;
+    if (options.beam_model == BeamModel::kVolume) {
+      const double aperture_rad = std::max(options.vertical_aperture_rad, voxel_m / range_m);
+      updates += width_rad * aperture_rad * range_m * range_m * range_m / (3.0 * voxel_m * voxel_m * voxel_m) +
+                 aperture_rad * range_m * range_m / (voxel_m * voxel_m);
+    } else {
+      updates += width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;
+    }
   }
   return updates;
 }
@@ -157,9 +172,10 @@ std::vector<std::string> optionWarnings(const MapperOptions& options, const Sona
 void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
   const double updates = estimateVoxelUpdates(log, options);
   if (updates <= options.max_voxel_updates) return;
-  // Updates scale with 1 / resolution²: the finest resolution that fits.
+  // Updates scale with 1 / resolution² (planar) or 1 / resolution³ (volume): the finest that fits.
   const double voxel_m = options.resolution_m.value_or(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3)));
-  const double fits_m = voxel_m * std::sqrt(updates / options.max_voxel_updates);
+  const double power = options.beam_model == BeamModel::kVolume ? 1.0 / 3.0 : 0.5;
+  const double fits_m = voxel_m * std::pow(updates / options.max_voxel_updates, power);
   char text[400];
   std::snprintf(text, sizeof text,
                 "mapping this log at %s voxels needs about %.3g voxel updates, more than the budget of %.3g "

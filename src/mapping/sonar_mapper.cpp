@@ -31,10 +31,18 @@ struct SonarMapper::SweepWork {
   std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
-  std::vector<Key16> hits;                            ///< hit cells, one per arc point
+  struct KeyedHit {
+    Key16 key;
+    double weight;  ///< HitPoint::weight
+  };
+  std::vector<KeyedHit> hits;                         ///< hit cells, one per arc point
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
   double tolerance_m = 0.0;                           ///< the sweep's range tolerance
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
+  KeyMarks<16> outer;    ///< cells only the outer rays of the cones cross (the volume model)
+  /// The volume model: every cell that ever received a hit (a superset of the map's occupied
+  /// cells), so a sweep can protect them from the outer part of its cones.
+  absl::flat_hash_set<Key16, KeyHash<16>> occupied_keys;
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
 };
@@ -94,16 +102,33 @@ void SonarMapper::recordDetection(const SweepDetection& detection) {
 void SonarMapper::integrateFreeCells() {
   // First mark every cell the rays cross, then update each once, in tree order.
   SweepWork& work = *work_;
-  work.crossed.marking([&](auto mark) {
-    for (const FreeRay& ray : work.rays) {
-      if (options_.ray == RayAlgorithm::kDDA) {
-        traverseDDASteps(map_.coder(), ray.start_m, ray.end_m, mark);
-      } else {
-        traverseBresenham(map_.coder(), ray.start_m, ray.end_m, mark);
+  const bool volume = options_.beam_model == BeamModel::kVolume;
+  auto markRays = [&](KeyMarks<16>& marks, bool outer) {
+    marks.marking([&](auto mark) {
+      for (const FreeRay& ray : work.rays) {
+        if (ray.outer != outer) continue;
+        if (options_.ray == RayAlgorithm::kDDA) {
+          traverseDDASteps(map_.coder(), ray.start_m, ray.end_m, mark);
+        } else {
+          traverseBresenham(map_.coder(), ray.start_m, ray.end_m, mark);
+        }
       }
+    });
+  };
+  markRays(work.crossed, false);
+  if (volume) {
+    // A cone's quiet outer part may graze a surface without an echo: it does not clear a cell the
+    // map holds occupied unless the loud inner part of some cone of the sweep crosses it too.
+    work.outer.reset(work.box_lo, work.box_hi);
+    markRays(work.outer, true);
+    for (const Key16& key : work.occupied_keys) {
+      if (!work.outer.contains(key) || work.crossed.contains(key)) continue;
+      const std::optional<float> log_odds = map_.search(key);
+      if (log_odds && map_.model().isOccupied(*log_odds)) work.outer.erase(key);
     }
-  });
-  for (const Key16& hit : work.hits) work.crossed.erase(hit);  // an obstacle is never also a miss
+    work.crossed.merge(work.outer);
+  }
+  for (const auto& hit : work.hits) work.crossed.erase(hit.key);  // an obstacle is never also a miss
   // Brick by brick, leaves only; an eager tree then syncs its inner nodes once (the same tree).
   work.crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
     map_.updateBrick(corner, voxels, map_.model().miss);
@@ -113,13 +138,19 @@ void SonarMapper::integrateFreeCells() {
 }
 
 void SonarMapper::integrateHits() {
-  // One update per hit cell, however many arc points fell into it.
+  // One update per hit cell, however many arc points fell into it: the largest share among them.
   auto& hits = work_->hits;
-  std::sort(hits.begin(), hits.end(), [](const Key16& a, const Key16& b) { return KeyMarks<16>::visitLess(a, b); });
-  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
-  for (const Key16& key : hits) {
-    map_.updateNode(key, map_.model().hit);
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
+    if (a.key != b.key) return KeyMarks<16>::visitLess(a.key, b.key);
+    return a.weight > b.weight;
+  });
+  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.key == b.key; }), hits.end());
+  const double prob_hit = options_.octree.occupancy.prob_hit;
+  for (const auto& hit : hits) {
+    const float delta = hit.weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * hit.weight);
+    map_.updateNode(hit.key, delta);
     ++stats_.occupied_updates;
+    if (options_.beam_model == BeamModel::kVolume) work_->occupied_keys.insert(hit.key);
   }
 }
 
@@ -229,31 +260,46 @@ void SonarMapper::planBeams() {
     }
     return end;
   };
-  planArcs(beams, options_.beam_width_rad, voxel_m, work.tolerance_m, work.hit_points);  // each beam's own pose
+  const BeamShape shape = beamShape();
+  planArcs(beams, shape, voxel_m, work.tolerance_m, options_.arc_evidence, work.hit_points);  // each beam's own pose
   if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always
-    planFreeRays(beams, options_.beam_width_rad, voxel_m, work.rays);
+    planFreeRays(beams, shape, voxel_m, work.rays);
     return;
   }
   work.rays.clear();
   for (std::size_t first = 0, end = 0; first < beams.size(); first = end) {
     end = groupEnd(first);
     work.group.assign(beams.begin() + static_cast<std::ptrdiff_t>(first), beams.begin() + static_cast<std::ptrdiff_t>(end));
-    planFreeRays(work.group, options_.beam_width_rad, voxel_m, work.group_rays);
+    planFreeRays(work.group, shape, voxel_m, work.group_rays);
     work.rays.insert(work.rays.end(), work.group_rays.begin(), work.group_rays.end());
   }
 }
 
+BeamShape SonarMapper::beamShape() const {
+  return {options_.beam_width_rad,
+          options_.beam_model == BeamModel::kVolume ? options_.vertical_aperture_rad : 0.0};
+}
+
 bool SonarMapper::beamInsideMap(const PlannedBeam& beam) {
-  // The sonar and the wedge's far corners and middle; the map is a box, so the wedge is inside.
-  const double half = 0.5 * options_.beam_width_rad;
+  // The sonar and the wedge's (or cone's) far corners and middles; the map is a box, so the wedge
+  // is inside (a cone's far surface bulges by less than a voxel between these points at the
+  // resolutions a map this large can have; the traversal checks every key anyway).
+  const BeamShape shape = beamShape();
+  const double half = 0.5 * shape.width_rad;
+  const double half_aperture = 0.5 * shape.vertical_aperture_rad;
   const double reach_m = std::max(beam.free_range_m, beam.hit ? beam.hit_range_m : 0.0);
   bool inside = map_.coder().keyOf(beam.sonar_to_map.translation()).has_value();
   stats_.farthest_m = std::max(stats_.farthest_m, beam.sonar_to_map.translation().cwiseAbs().maxCoeff());
-  for (const double offset : {-half, 0.0, half}) {
-    const double angle = beam.bearing_rad + offset;
-    const Eigen::Vector3d end = beam.sonar_to_map * Eigen::Vector3d(reach_m * std::cos(angle), reach_m * std::sin(angle), 0.0);
-    stats_.farthest_m = std::max(stats_.farthest_m, end.cwiseAbs().maxCoeff());
-    inside = inside && map_.coder().keyOf(end).has_value();
+  for (const double elevation : {-half_aperture, 0.0, half_aperture}) {
+    for (const double offset : {-half, 0.0, half}) {
+      const double angle = beam.bearing_rad + offset;
+      const Eigen::Vector3d end =
+          beam.sonar_to_map * Eigen::Vector3d(reach_m * std::cos(elevation) * std::cos(angle),
+                                              reach_m * std::cos(elevation) * std::sin(angle), reach_m * std::sin(elevation));
+      stats_.farthest_m = std::max(stats_.farthest_m, end.cwiseAbs().maxCoeff());
+      inside = inside && map_.coder().keyOf(end).has_value();
+    }
+    if (half_aperture == 0.0) break;
   }
   return inside;
 }
@@ -270,7 +316,7 @@ void SonarMapper::keySweep() {
   }
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      work.hits.push_back(*key);
+      work.hits.push_back({*key, hit.weight});
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }

@@ -51,7 +51,100 @@ double azimuthGap_rad(double a_rad, double b_rad) {
   return std::min(d, kTwoPi - d);
 }
 
+/// A beam's cone as the carving test needs it (the volume model).
+struct WaterCone {
+  WaterWedge wedge;
+  Eigen::Vector3d axis;  ///< unit, map frame
+  double tan_half_aperture = 0.0;
+};
+
+/// Is `point_m` (map frame) inside the cone, nearer than `range_m` from its sonar?
+bool inCone(const WaterCone& cone, const Eigen::Vector3d& point_m, double range_m) {
+  const Eigen::Vector3d v = cone.wedge.map_to_sonar * point_m;
+  if (v.squaredNorm() >= range_m * range_m) return false;
+  const double horizontal_sq = v.x() * v.x() + v.y() * v.y();
+  if (v.z() * v.z() > cone.tan_half_aperture * cone.tan_half_aperture * horizontal_sq) return false;
+  const WaterWedge& w = cone.wedge;
+  return w.right_x * v.y() - w.right_y * v.x() >= 0.0 && w.left_x * v.y() - w.left_y * v.x() <= 0.0;
+}
+
+/// The two-way vertical pattern of a Gaussian beam of −3 dB width `aperture_rad` (ArcEvidence::kBeamPattern).
+double twoWayPattern(double elevation_rad, double aperture_rad) {
+  const double u = 2.0 * elevation_rad / aperture_rad;
+  return std::exp2(-2.0 * u * u);
+}
+
+/// planArcs of the beam-volume model (sweep_fan.hpp).
+void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
+                   ArcEvidence evidence, std::vector<HitPoint>& hits) {
+  const double half_rad = 0.5 * shape.width_rad;
+  const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
+  std::vector<WaterCone> cones;
+  cones.reserve(beams.size());
+  for (const PlannedBeam& beam : beams) {
+    WaterCone cone{wedgeOf(beam, half_rad), {}, std::tan(half_aperture_rad)};
+    cone.axis = beam.sonar_to_map.linear() * Eigen::Vector3d(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
+    cones.push_back(cone);
+  }
+  // A cone holds directions within this angle of its axis (both half-widths at once).
+  const double cone_radius_rad = std::hypot(half_rad, half_aperture_rad);
+  std::vector<std::size_t> candidates;
+  std::vector<HitPoint> shell;
+  std::vector<char> row_kept;
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    const PlannedBeam& beam = beams[b];
+    if (!beam.hit) continue;
+    const double range_m = beam.hit_range_m;
+    candidates.clear();
+    for (std::size_t n = 0; n < beams.size(); ++n) {
+      if (n == b) continue;
+      const double offset_m = (cones[n].wedge.origin_m - cones[b].wedge.origin_m).norm();
+      const double reach_m = cones[n].wedge.water_m - tolerance_m;
+      if (reach_m <= range_m - offset_m) continue;  // saw no water as far as this shell
+      // The two cones can share a direction only if their axes are within two cone radii, plus the
+      // parallax of the sonar's motion at this range.
+      const double parallax_rad = std::asin(std::min(1.0, 2.0 * offset_m / range_m));
+      if (cones[n].axis.dot(cones[b].axis) < std::cos(std::min(std::numbers::pi, 2.0 * cone_radius_rad + parallax_rad))) continue;
+      candidates.push_back(n);
+    }
+    const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * range_m / voxel_m)));
+    const int rows = std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
+    shell.clear();
+    row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
+    for (int r = 0; r <= rows; ++r) {
+      const double elevation = -half_aperture_rad + shape.vertical_aperture_rad * r / rows;
+      const double weight = evidence == ArcEvidence::kBeamPattern ? twoWayPattern(elevation, shape.vertical_aperture_rad) : 1.0;
+      for (int c = 0; c <= columns; ++c) {
+        const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
+        const Eigen::Vector3d point_m =
+            beam.sonar_to_map * Eigen::Vector3d(range_m * std::cos(elevation) * std::cos(angle),
+                                                range_m * std::cos(elevation) * std::sin(angle), range_m * std::sin(elevation));
+        const bool carved = std::any_of(candidates.begin(), candidates.end(), [&](std::size_t n) {
+          return inCone(cones[n], point_m, cones[n].wedge.water_m - tolerance_m);
+        });
+        if (carved) continue;
+        shell.push_back({point_m, weight});
+        row_kept[static_cast<std::size_t>(r)] = 1;
+      }
+    }
+    if (evidence == ArcEvidence::kSpreadUniform) {
+      const auto kept_rows = static_cast<double>(std::count(row_kept.begin(), row_kept.end(), 1));
+      for (HitPoint& point : shell) point.weight = 1.0 / kept_rows;
+    }
+    hits.insert(hits.end(), shell.begin(), shell.end());
+  }
+}
+
 }  // namespace
+
+void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
+              ArcEvidence evidence, std::vector<HitPoint>& hits) {
+  if (shape.vertical_aperture_rad <= 0.0 || shape.width_rad <= 0.0) {
+    return planArcs(beams, shape.width_rad, voxel_m, tolerance_m, hits);
+  }
+  hits.clear();
+  planShellArcs(beams, shape, voxel_m, tolerance_m, evidence, hits);
+}
 
 void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
               std::vector<HitPoint>& hits) {

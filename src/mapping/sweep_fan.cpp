@@ -4,6 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
 namespace {
@@ -42,37 +45,65 @@ void planSingleRays(const std::vector<PlannedBeam>& beams, std::vector<FreeRay>&
 
 void planFreeRays(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m,
                   std::vector<FreeRay>& rays) {
+  planFreeRays(beams, BeamShape{beam_width_rad, 0.0}, voxel_m, rays);
+}
+
+void planFreeRays(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m,
+                  std::vector<FreeRay>& rays) {
   rays.clear();
-  if (beam_width_rad <= 0.0) return planSingleRays(beams, rays);
+  if (shape.width_rad <= 0.0) return planSingleRays(beams, rays);
   double longest_m = voxel_m;
   for (const PlannedBeam& beam : beams) longest_m = std::max(longest_m, beam.free_range_m);
   int levels = 3;  // 2^levels grid angles per turn, at most one voxel apart at the longest range
   while (levels < 24 && kTwoPi * longest_m / std::ldexp(1.0, levels) > voxel_m) ++levels;
   const double step = kTwoPi / std::ldexp(1.0, levels);
+  // Elevation rows i · step, |i| ≤ rows_each_side: the same angular grid as the bearings, so the
+  // rays are at most a voxel apart at the longest range on both axes (0: the sonar's plane only).
+  const long rows_each_side = static_cast<long>(std::floor(0.5 * shape.vertical_aperture_rad / step));
 
   std::vector<Cover> cover(std::size_t{1} << levels);
   for (std::size_t b = 0; b < beams.size(); ++b) {
     const PlannedBeam& beam = beams[b];
-    forEachGridAngle(beam.bearing_rad, beam_width_rad, levels, [&](std::size_t j) {
+    forEachGridAngle(beam.bearing_rad, shape.width_rad, levels, [&](std::size_t j) {
       if (beam.free_range_m > cover[j].range_m) cover[j] = {beam.free_range_m, static_cast<int>(b)};
     });
   }
   const std::size_t n = cover.size();
+  // A grid index's level: its coarser neighbours lie 2^(levels − level) steps either side.
+  auto levelOf = [&](unsigned long index) { return index == 0 ? 0 : levels - std::countr_zero(index); };
+  // Where a ray of `level` starts: its coarser neighbours are less than a voxel apart before.
+  auto spreadOf = [&](int level) {
+    const double coarse_gap_rad = 2.0 * std::ldexp(step, levels - level);
+    return voxel_m / coarse_gap_rad - voxel_m;
+  };
   for (std::size_t j = 0; j < n; ++j) {
     if (cover[j].beam < 0) continue;
-    // Level k ray: its coarser neighbours lie 2^(levels−k) grid steps either side.
-    const int level = j == 0 ? 0 : levels - std::countr_zero(j);
-    double start_m = 0.0;
-    if (level > 1) {
-      const std::size_t offset = std::size_t{1} << (levels - level);
-      const double coarse_gap_rad = 2.0 * static_cast<double>(offset) * step;
-      const double spread_m = voxel_m / coarse_gap_rad - voxel_m;  // coarser rays < 1 voxel apart before
-      start_m = std::max(0.0, std::min({spread_m, cover[(j + n - offset) % n].range_m, cover[(j + offset) % n].range_m}));
-    }
+    const int azimuth_level = levelOf(j);
     const PlannedBeam& beam = beams[static_cast<std::size_t>(cover[j].beam)];
     const double angle = static_cast<double>(j) * step;
     const double end_m = cover[j].range_m;
-    rays.push_back({beam.sonar_to_map * inSonarPlane(angle, std::min(start_m, end_m)), beam.sonar_to_map * inSonarPlane(angle, end_m)});
+    // The azimuth neighbours' reach limits a ray of this grid angle's level (either of them may end
+    // sooner: beyond it the ray covers its cells alone).
+    double neighbours_m = end_m;
+    if (azimuth_level > 1) {
+      const std::size_t offset = std::size_t{1} << (levels - azimuth_level);
+      neighbours_m = std::min(cover[(j + n - offset) % n].range_m, cover[(j + offset) % n].range_m);
+    }
+    for (long i = -rows_each_side; i <= rows_each_side; ++i) {
+      const int elevation_level = levelOf(static_cast<unsigned long>(std::abs(i)));
+      const int level = std::max(azimuth_level, elevation_level);
+      double start_m = 0.0;
+      if (level > 1) {
+        // On the elevation axis the neighbours belong to the same beam: only the azimuth axis'
+        // neighbours can end sooner.
+        start_m = std::max(0.0, std::min(spreadOf(level), azimuth_level == level ? neighbours_m : end_m));
+      }
+      const double elevation = static_cast<double>(i) * step;
+      const Eigen::Vector3d direction(std::cos(elevation) * std::cos(angle), std::cos(elevation) * std::sin(angle),
+                                      std::sin(elevation));
+      rays.push_back({beam.sonar_to_map * (std::min(start_m, end_m) * direction), beam.sonar_to_map * (end_m * direction),
+                      std::abs(elevation) > 0.25 * shape.vertical_aperture_rad});
+    }
   }
 }
 
@@ -80,6 +111,13 @@ void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, dou
                std::vector<FreeRay>& rays, std::vector<HitPoint>& hits) {
   planFreeRays(beams, beam_width_rad, voxel_m, rays);
   planArcs(beams, beam_width_rad, voxel_m, tolerance_m, hits);
+}
+
+ArcEvidence parseArcEvidence(std::string_view name) {
+  if (name == "whole") return ArcEvidence::kWholeArc;
+  if (name == "uniform") return ArcEvidence::kSpreadUniform;
+  if (name == "pattern") return ArcEvidence::kBeamPattern;
+  throw ValueError("unknown arc evidence '" + std::string(name) + "', expected whole, uniform or pattern");
 }
 
 }  // namespace sonarmap

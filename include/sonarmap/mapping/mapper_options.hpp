@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
@@ -26,6 +27,19 @@ enum class RayAlgorithm {
 
 /// Parses "dda" or "bresenham". @throws ValueError for any other name.
 RayAlgorithm parseRayAlgorithm(std::string_view name);
+
+/// Which volume a beam updates (the inverse sensor model's geometry).
+enum class BeamModel {
+  /// The sonar's plane (z = 0 of the sonar frame): wedges and arcs, a 2D map (paper §6–§8).
+  kPlanar,
+  /// The whole beam: the cone of horizontal width × vertical aperture is free up to the obstacle,
+  /// and the obstacle is the shell across both (issue 11; Moravec & Elfes 1985, Elfes 1987,
+  /// Fairfield et al. 2007). A 3D map once the vehicle moves, turns or tilts the sonar.
+  kVolume,
+};
+
+/// Parses "planar" or "volume". @throws ValueError for any other name.
+BeamModel parseBeamModel(std::string_view name);
 
 /// OctoMap's defaults with lazy evaluation on.
 inline OctreeOptions lazyOctreeOptions() {
@@ -75,6 +89,14 @@ struct MapperOptions {
   /// The sweep's wedges are cast together as one fan of rays at most one voxel apart
   /// (sweep_fan.hpp). 0 casts one ray per bearing (paper §6).
   double beam_width_rad = 3.0 * std::numbers::pi / 180.0;
+  /// Planar (a 2D map in the sonar's plane) or the whole beam volume (a 3D map).
+  BeamModel beam_model = BeamModel::kPlanar;
+  /// Vertical −3 dB beam width of the volume model, radians, in (0, π) (Tritech Micron 35°,
+  /// SeaKing about 40°, Ping360 25°). Unused by the planar model.
+  double vertical_aperture_rad = 35.0 * std::numbers::pi / 180.0;
+  /// How the volume model shares an obstacle's evidence over its shell (sweep_fan.hpp). Unused by
+  /// the planar model (every arc point gets the whole hit).
+  ArcEvidence arc_evidence = ArcEvidence::kWholeArc;
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much
   /// before its obstacle, so the obstacle's range uncertainty (a bin, the pulse, a voxel) does not
   /// clear what the same surface gave in earlier sweeps; an arc point of the obstacle is dropped
@@ -117,6 +139,8 @@ MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
 /// Upper estimate of the voxel updates mapping `log` with `options` (resolution resolved) costs:
 /// the area each beam's wedge sweeps in the sonar's plane, max(beam width, bearing step to the
 /// next beam) × range² / 2, over the voxel's area, summed over the beams (a 360° sweep: π R² / res²).
+/// The volume model: the volume of that wedge's cone, × vertical aperture × range³ / 3, over the
+/// voxel's volume (a 360° sweep of a 35° beam: 2π · 0.61 · R³ / 3 / res³).
 double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options);
 
 /// Lines for the user about options that cannot work with `log` (a minimum range, self-reflection

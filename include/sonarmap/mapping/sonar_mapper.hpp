@@ -31,7 +31,6 @@
 
 namespace sonarmap {
 
-struct PlannedBeam;  // sonarmap/mapping/sweep_fan.hpp
 
 /// Counts gathered while mapping.
 struct MappingStats {
@@ -133,6 +132,8 @@ class SonarMapper {
   void integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
   void planBeams();
+  /// The beams' shape: the width, and the vertical aperture with the volume model (0: planar).
+  BeamShape beamShape() const;
   /// True when the sonar and the beam's wedge lie inside the map; records how far it reached.
   bool beamInsideMap(const PlannedBeam& beam);
   /// Turns the sweep's plan into keys: hit cells, the key box, the seen set primed with the hits.

@@ -10,8 +10,18 @@
 /// drift a voxel apart, or where the shorter of them ends — before that they cover its cells.
 /// Overlapping beams (3° wide every 1.8°) are thus cast once, not twice, and neighbouring rays are
 /// neighbours in memory. With w = 0 every beam is one ray from the sonar (paper §6).
+///
+/// The beam volume (issue 11): a beam of vertical aperture a is the cone bearing ± w/2 × elevation
+/// ± a/2 in its sonar frame (elevation above the sonar's x–y plane). Its free space is the cone up
+/// to the free range; its obstacle the shell at the hit range across both angles. The fan is then a
+/// 2D hierarchical grid (grid angle × elevation, the same angular step on both axes): a ray's level
+/// is the finer of its two indices' levels, and it starts where its coarser neighbours on that axis
+/// drift a voxel apart. The rays are at most one voxel apart at the longest range in both
+/// directions, and the cost grows with the volume swept, not with the number of beams. An aperture
+/// of 0 is the planar model (the sonar's plane, z = 0 of its frame), ray for ray.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -32,18 +42,59 @@ struct PlannedBeam {
 struct FreeRay {
   Eigen::Vector3d start_m;
   Eigen::Vector3d end_m;
+  /// The ray lies in the outer half of the vertical aperture (|elevation| > a/4), where the beam
+  /// is quieter (Gaussian two-way pattern below −1.5 dB) and a grazing surface may fail to echo:
+  /// its cells do not clear what the map holds occupied (SonarMapper). False in the planar model.
+  bool outer = false;
 };
 
 /// A point of an obstacle's arc, map frame.
 struct HitPoint {
   Eigen::Vector3d point_m;
+  /// Share of the obstacle's evidence this point gets, (0, 1]: its cell is updated with the
+  /// probability 0.5 + (P(hit) − 0.5) · weight (ArcEvidence). 1 for the planar model.
+  double weight = 1.0;
 };
+
+/// The shape of every beam of a sweep, sonar frame.
+struct BeamShape {
+  double width_rad = 0.0;              ///< horizontal −3 dB width, [0, π)
+  double vertical_aperture_rad = 0.0;  ///< vertical −3 dB width, [0, π); 0: the planar model
+};
+
+/// How an obstacle's evidence is shared over the points of its shell that no other beam carved
+/// away (the beam-volume model; the planar model always gives every point the whole hit). A beam
+/// says "the first surface in my cone is at range r"; where on the shell's vertical arc the echo
+/// came from, it does not say.
+enum class ArcEvidence {
+  /// Every remaining point gets the whole hit (stonefish_slam's sonar-cone insertion). Assumes the
+  /// whole arc is occupied; the arcs of other viewpoints carve the wrong parts away over the
+  /// sweeps ("somewhere occupied, everywhere empty": Moravec & Elfes 1985).
+  kWholeArc,
+  /// The hit is one echo from one place on the arc, equally likely anywhere on the elevation rows
+  /// that remain: each point gets 1 / (remaining rows) of it (Elfes 1987, the occupancy
+  /// probability spread over the beam's arc). Assumes a single reflector per echo.
+  kSpreadUniform,
+  /// Each point gets the two-way vertical beam pattern at its elevation, g(e) = p(e)², with the
+  /// one-way Gaussian p(e) = 2^−(2e/a)² (1 on the axis, 0.25 at the −3 dB edge ± a/2): an echo is
+  /// likelier from where the beam is loud (Elfes 1987's angular profile). Assumes the pattern is
+  /// Gaussian; nothing is spread.
+  kBeamPattern,
+};
+
+/// Parses "whole", "uniform" or "pattern". @throws ValueError for any other name.
+ArcEvidence parseArcEvidence(std::string_view name);
 
 /// Plans the free rays of beams that share one pose (or nearly: each ray is placed with its own
 /// beam's pose), in grid-angle order; `rays` is cleared first. With width 0 every beam is one ray.
 /// Nothing is thrown.
 /// @param beam_width_rad horizontal beam width, ≥ 0; @param voxel_m map resolution, > 0.
 void planFreeRays(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m,
+                  std::vector<FreeRay>& rays);
+
+/// As above for beams of any shape: with a vertical aperture, the sweep's cones as one 2D fan
+/// (bearing × elevation; see the file's comment). Nothing is thrown.
+void planFreeRays(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m,
                   std::vector<FreeRay>& rays);
 
 /// Plans the hit points of a sweep's obstacles, map frame; `hits` is cleared first. The beams may
@@ -61,6 +112,14 @@ void planFreeRays(const std::vector<PlannedBeam>& beams, double beam_width_rad, 
 ///                       (the range uncertainty of a leading edge: a bin plus half a voxel).
 void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
               std::vector<HitPoint>& hits);
+
+/// As above for beams of any shape. With a vertical aperture an obstacle is the shell at its range
+/// across width × aperture, points at most a voxel apart on both axes; a point is carved where it
+/// lies inside another beam's cone (bearing and elevation within its shape, sonar frame) nearer
+/// than that beam's water range less `tolerance_m` (3D distance from its sonar); the points left
+/// share the evidence as `evidence` says.
+void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
+              ArcEvidence evidence, std::vector<HitPoint>& hits);
 
 /// planFreeRays and planArcs of beams that share one pose.
 void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,

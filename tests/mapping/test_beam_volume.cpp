@@ -1,0 +1,259 @@
+// The beam-volume inverse sensor model (issue 11): a single beam's free cone and shell against a
+// brute-force classification of the voxels, evidence shares, one update per voxel and sweep, the
+// protection of occupied cells from a cone's quiet outer part, and a tilted mounting.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <unordered_set>
+#include <vector>
+
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/mapping/sweep_fan.hpp"
+#include "sonarmap/raycast/dda.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr double kVoxel = 0.02;
+const BeamShape kMicron{3.0 * kDegree, 35.0 * kDegree};
+
+using KeySet = std::unordered_set<Key16, KeyHash<16>>;
+
+/// The cells the planned free rays cross (as the mapper's traversal marks them).
+KeySet crossedCells(const KeyCoder<16>& coder, const std::vector<FreeRay>& rays) {
+  KeySet cells;
+  for (const FreeRay& ray : rays) {
+    traverseDDA(coder, ray.start_m, ray.end_m, [&](const Key16& key) { cells.insert(key); });
+  }
+  return cells;
+}
+
+/// Range, bearing and elevation of a map point in the sonar frame of `sonar_to_map`.
+struct SonarPolar {
+  double range_m, bearing_rad, elevation_rad;
+};
+SonarPolar toSonar(const Eigen::Isometry3d& sonar_to_map, const Eigen::Vector3d& point_m) {
+  const Eigen::Vector3d v = sonar_to_map.inverse() * point_m;
+  return {v.norm(), std::atan2(v.y(), v.x()), std::asin(v.z() / v.norm())};
+}
+
+/// A rotation with roll, pitch and yaw (radians): a tilted, turned sonar.
+Eigen::Isometry3d tiltedPose(const Eigen::Vector3d& origin_m, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  pose.translation() = origin_m;
+  return pose;
+}
+
+// Every voxel whose centre lies well inside the cone (a voxel diagonal from its surface) is
+// crossed; none whose centre lies a voxel diagonal outside it is. Checked on a tilted, turned pose.
+TEST(mappingBeamVolume, SingleBeamFreeConeMatchesBruteForce) {
+  const KeyCoder<16> coder(kVoxel);
+  const Eigen::Isometry3d pose = tiltedPose({0.31, -0.17, 0.05}, 0.2, -0.4, 0.7);
+  const PlannedBeam beam{pose, 40.0 * kDegree, 1.4, 1.5, true};
+  // 12° wide, so that many voxels lie a voxel diagonal inside the cone's sides.
+  const BeamShape shape{12.0 * kDegree, 35.0 * kDegree};
+  std::vector<FreeRay> rays;
+  planFreeRays({beam}, shape, kVoxel, rays);
+  const KeySet crossed = crossedCells(coder, rays);
+  const double diagonal_m = std::sqrt(3.0) * kVoxel;
+  std::size_t inside = 0, inside_crossed = 0, outside_crossed = 0;
+  const Key16 centre = *coder.keyOf(pose.translation());
+  const int reach = static_cast<int>(std::ceil(1.6 / kVoxel));
+  for (int dz = -reach; dz <= reach; ++dz) {
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const Key16 key{{static_cast<std::uint16_t>(centre[0] + dx), static_cast<std::uint16_t>(centre[1] + dy),
+                         static_cast<std::uint16_t>(centre[2] + dz)}};
+        const SonarPolar p = toSonar(pose, coder.centerOf(key));
+        if (p.range_m < 1e-9) continue;
+        const double bearing_off_m = std::abs(std::remainder(p.bearing_rad - beam.bearing_rad, 2.0 * std::numbers::pi)) -
+                                     0.5 * shape.width_rad;
+        const double elevation_off = std::abs(p.elevation_rad) - 0.5 * shape.vertical_aperture_rad;
+        // Angular distances to the cone's sides, as lengths at the point's range.
+        const double side_m = std::max(bearing_off_m * p.range_m * std::cos(p.elevation_rad), elevation_off * p.range_m);
+        const bool well_inside = p.range_m < beam.free_range_m - diagonal_m && side_m < -diagonal_m;
+        const bool well_outside = p.range_m > beam.free_range_m + diagonal_m || side_m > diagonal_m;
+        const bool is_crossed = crossed.contains(key);
+        if (well_inside) {
+          ++inside;
+          inside_crossed += is_crossed ? 1 : 0;
+        }
+        if (well_outside && is_crossed) ++outside_crossed;
+      }
+    }
+  }
+  ASSERT_GT(inside, 5000U);
+  EXPECT_EQ(outside_crossed, 0U);
+  // Rays at most a voxel apart can pass a voxel between them; measured: none is missed here.
+  EXPECT_GE(static_cast<double>(inside_crossed) / static_cast<double>(inside), 0.999) << inside_crossed << " of " << inside;
+}
+
+// The shell: every point at the hit range within the beam's width and aperture, at most a voxel
+// apart, and the whole aperture spanned (nothing carves a lone beam).
+TEST(mappingBeamVolume, SingleBeamShellSpansWidthAndAperture) {
+  const Eigen::Isometry3d pose = tiltedPose({0.0, 0.0, 0.0}, 0.0, 0.3, 0.0);
+  const PlannedBeam beam{pose, 10.0 * kDegree, 1.9, 2.0, true};
+  std::vector<HitPoint> hits;
+  planArcs({beam}, kMicron, kVoxel, 0.03, ArcEvidence::kWholeArc, hits);
+  ASSERT_FALSE(hits.empty());
+  double lowest = 1.0, highest = -1.0;
+  for (const HitPoint& hit : hits) {
+    const SonarPolar p = toSonar(pose, hit.point_m);
+    EXPECT_NEAR(p.range_m, 2.0, 1e-9);
+    EXPECT_LE(std::abs(p.bearing_rad - beam.bearing_rad), 0.5 * kMicron.width_rad + 1e-9);
+    lowest = std::min(lowest, p.elevation_rad);
+    highest = std::max(highest, p.elevation_rad);
+    EXPECT_EQ(hit.weight, 1.0);
+  }
+  EXPECT_NEAR(lowest, -17.5 * kDegree, 1e-9);
+  EXPECT_NEAR(highest, 17.5 * kDegree, 1e-9);
+  // Points per elevation row and rows at most a voxel apart: 2 m × 35° = 1.22 m → ≥ 62 rows.
+  EXPECT_GE(hits.size(), 62U * 2U);
+}
+
+// Another beam that saw water farther carves the part of the shell inside its cone; the evidence
+// of what is left is shared as ArcEvidence says.
+TEST(mappingBeamVolume, ShellIsCarvedAndEvidenceShared) {
+  const Eigen::Isometry3d level = Eigen::Isometry3d::Identity();
+  // Same bearing, the second sonar 0.5 m higher and tilted up 10°: its cone (−7.5° … 27.5° from
+  // 0.5 m up) covers the upper part of the first beam's shell at 2 m and saw water to 3 m.
+  const PlannedBeam first{level, 0.0, 1.9, 2.0, true};
+  const PlannedBeam second{tiltedPose({0.0, 0.0, 0.5}, 0.0, -10.0 * kDegree, 0.0), 0.0, 2.9, 3.0, true};
+  std::vector<HitPoint> hits;
+  planArcs({first, second}, kMicron, kVoxel, 0.03, ArcEvidence::kWholeArc, hits);
+  // On the first shell's middle column (bearing 0; its edge columns lie on the second cone's
+  // sides): the upper part carved away, the lower kept down to the aperture's edge.
+  double highest_first = -1.0, lowest_first = 1.0;
+  for (const HitPoint& hit : hits) {
+    if (hit.point_m.norm() < 2.0 + 1e-6 && std::abs(hit.point_m.y()) < 1e-9) {
+      highest_first = std::max(highest_first, std::asin(hit.point_m.z() / hit.point_m.norm()));
+      lowest_first = std::min(lowest_first, std::asin(hit.point_m.z() / hit.point_m.norm()));
+    }
+  }
+  EXPECT_LT(highest_first, 10.0 * kDegree);
+  EXPECT_GT(highest_first, 0.0);
+  EXPECT_NEAR(lowest_first, -17.5 * kDegree, 1e-9);
+  // Uniform spread: every kept point of the first shell gets 1 / (kept rows).
+  planArcs({first, second}, kMicron, kVoxel, 0.03, ArcEvidence::kSpreadUniform, hits);
+  std::set<double> weights;
+  for (const HitPoint& hit : hits) {
+    if (hit.point_m.norm() < 2.0 + 1e-6) weights.insert(hit.weight);
+  }
+  ASSERT_EQ(weights.size(), 1U);
+  EXPECT_LT(*weights.begin(), 1.0 / 20.0);  // dozens of rows kept
+  // Beam pattern: 1 on the axis, 0.25 at the −3 dB edges.
+  planArcs({first}, kMicron, kVoxel, 0.03, ArcEvidence::kBeamPattern, hits);
+  double axis_weight = 0.0, edge_weight = 1.0;
+  for (const HitPoint& hit : hits) {
+    const double elevation = std::asin(hit.point_m.z() / hit.point_m.norm());
+    if (std::abs(elevation) < 1e-9) axis_weight = hit.weight;
+    if (std::abs(std::abs(elevation) - 17.5 * kDegree) < 1e-9) edge_weight = hit.weight;
+  }
+  EXPECT_NEAR(axis_weight, 1.0, 1e-12);
+  EXPECT_NEAR(edge_weight, 0.25, 1e-12);
+}
+
+/// A sweep of `beams` beams over a full turn with `bins` bins of 2 cm.
+PolarImage makeSweep(int beams, int bins) {
+  PolarImage polar;
+  polar.intensities = cv::Mat::zeros(beams, bins, CV_8U);
+  polar.valid_bins.assign(static_cast<std::size_t>(beams), bins);
+  for (int i = 0; i < beams; ++i) {
+    polar.bearing_rad.push_back(2.0 * std::numbers::pi * i / beams);
+    polar.time_s.push_back(0.05 * i);
+  }
+  polar.bin_length_m = kVoxel;
+  return polar;
+}
+
+MapperOptions volumeOptions() {
+  MapperOptions options;
+  options.resolution_m = kVoxel;
+  options.beam_model = BeamModel::kVolume;
+  options.range_tolerance_m = 0.04;
+  return options;
+}
+
+// One sweep of 200 overlapping cones on an empty map: every known cell holds exactly one update
+// (a miss, or a hit), and the counts add up to the cells.
+TEST(mappingBeamVolume, EachVoxelIsUpdatedOncePerSweep) {
+  SonarMapper mapper(volumeOptions());
+  PolarImage polar = makeSweep(200, 100);
+  std::vector<BeamDetection> detections;
+  for (int i = 0; i < 200; ++i) {
+    const int bin = 50 + (i % 7) * 5;
+    detections.push_back({bin, 200, (bin + 0.5) * kVoxel});
+  }
+  mapper.integrateSweep(polar, detections);
+  const OcTree16& map = mapper.map();
+  std::size_t known = 0, other = 0;
+  map.forEachLeaf([&](const LeafView<16>& leaf) {
+    const auto edge = static_cast<std::size_t>(leaf.edgeVoxels());  // pruned leaves: their voxels
+    known += edge * edge * edge;
+    if (leaf.log_odds != map.model().miss && leaf.log_odds != map.model().hit) ++other;
+  });
+  EXPECT_EQ(other, 0U);
+  EXPECT_EQ(known, mapper.stats().free_updates + mapper.stats().occupied_updates);
+  EXPECT_GT(mapper.stats().free_updates, 100000U);  // a 3D volume, not a plane
+}
+
+// A cone whose quiet outer part crosses a cell the map holds occupied leaves it occupied; its loud
+// inner part clears it.
+TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
+  SonarMapper mapper(volumeOptions());
+  const Key16 target = *mapper.map().coder().keyOf(Eigen::Vector3d(2.0, 0.0, 0.0));
+  const Eigen::Vector3d target_m = mapper.map().coder().centerOf(target);
+  auto occupied = [&] {
+    const std::optional<float> log_odds = mapper.map().search(target);
+    return log_odds && mapper.map().model().isOccupied(*log_odds);
+  };
+  PolarImage polar = makeSweep(1, 200);
+  // First: a sonar 2 m back and 0.5 m lower, looking up 14° (0.5 / 2), maps an obstacle at the
+  // target with its axis.
+  const Eigen::Isometry3d below = tiltedPose(target_m + Eigen::Vector3d(-2.0, 0.0, -0.5), 0.0, -std::atan2(0.5, 2.0), 0.0);
+  const double range_m = std::hypot(2.0, 0.5);
+  const int bin = static_cast<int>(range_m / kVoxel);
+  for (int i = 0; i < 4; ++i) mapper.integrateSweep(polar, {BeamDetection{bin, 200, range_m}}, below);
+  ASSERT_TRUE(occupied());
+  // Then a level sonar 0.45 m higher sees water to 4 m: the target lies 12.7° below its axis, in
+  // the outer part (|e| > 35° / 4): the cell stays occupied, however often.
+  BeamDetection water;
+  water.water_range_m = 4.0;
+  const Eigen::Vector3d above_m = target_m + Eigen::Vector3d(-2.0, 0.0, 0.45);
+  for (int i = 0; i < 10; ++i) mapper.integrateSweep(polar, {water}, tiltedPose(above_m, 0.0, 0.0, 0.0));
+  EXPECT_TRUE(occupied());
+  // Tilted down onto it, the inner part clears it.
+  const Eigen::Isometry3d looking = tiltedPose(above_m, 0.0, std::atan2(0.45, 2.0), 0.0);
+  for (int i = 0; i < 10; ++i) mapper.integrateSweep(polar, {water}, looking);
+  EXPECT_FALSE(occupied());
+}
+
+// A sonar mounted tilted down: the cone follows the mounting (the free cells lie below the
+// sonar's level ahead of it), while the planar model maps the tilted plane only.
+TEST(mappingBeamVolume, TiltedMountingTilts3DCone) {
+  const Eigen::Isometry3d tilted = tiltedPose({0.0, 0.0, 0.0}, 0.0, 25.0 * kDegree, 0.0);  // nose down
+  PolarImage polar = makeSweep(1, 150);
+  polar.bearing_rad = {0.0};
+  BeamDetection water;
+  water.water_range_m = 3.0;
+  SonarMapper volume(volumeOptions());
+  volume.integrateSweep(polar, {water}, tilted);
+  double lowest_z = 0.0, highest_z = -1.0;
+  volume.map().forEachLeaf([&](const LeafView<16>& leaf) {
+    const double z = volume.map().coder().centerOf(leaf.key).z();
+    lowest_z = std::min(lowest_z, z);
+    highest_z = std::max(highest_z, z);
+  });
+  // Axis 25° down at 3 m: z = −1.27 m; the cone spans 7.5°…42.5° down: z from −0.39 to −2.03 m.
+  EXPECT_NEAR(lowest_z, -3.0 * std::sin(42.5 * kDegree), 0.05);
+  EXPECT_LT(highest_z, 0.05);  // nothing above the sonar's level
+}
+
+}  // namespace
+}  // namespace sonarmap
