@@ -114,6 +114,10 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--vertical-aperture", args.vertical_aperture_deg,
                  "Vertical beam width in DEGREES for --3d (Micron 35, SeaKing 40, Ping360 25)")
       ->capture_default_str();
+  cmd.add_option("--free-aperture", args.free_aperture,
+                 "--3d: vertical extent in DEGREES of the cone a beam clears (where its silence proves water), or "
+                 "auto: half the vertical aperture")
+      ->capture_default_str();
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();
@@ -172,6 +176,11 @@ MapperOptions toMapperOptions(const MapArgs& args) {
   requireWithin(args.vertical_aperture_deg, 0.0, 180.0, true, true, "--vertical-aperture", "degrees in (0, 180)");
   options.vertical_aperture_rad = args.vertical_aperture_deg * kRadPerDeg;
   options.arc_evidence = parseArcEvidence(args.arc_evidence);
+  if (const std::optional<double> free_deg = autoOr(args.free_aperture, "--free-aperture", "degrees", false)) {
+    requireWithin(*free_deg, 0.0, args.vertical_aperture_deg, true, false, "--free-aperture",
+                  "degrees in (0, the vertical aperture]");
+    options.free_vertical_aperture_rad = *free_deg * kRadPerDeg;
+  }
   options.validate();
   return options;
 }

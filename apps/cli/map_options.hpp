@@ -41,7 +41,8 @@ struct MapArgs {
   double hit_probability = MapperOptions{}.octree.occupancy.prob_hit;
   bool volume = false;  ///< --3d: the beam-volume model
   double vertical_aperture_deg = MapperOptions{}.vertical_aperture_rad * 180.0 / 3.14159265358979323846;
-  std::string arc_evidence = "whole";
+  std::string free_aperture = "auto";  ///< degrees, or auto (half the vertical aperture)
+  std::string arc_evidence = "pattern";
   bool quiet = false;
   bool tank_report = false;
   std::string nav_csv;           ///< navigation CSV (empty: the sonar is static at the map origin)

@@ -84,6 +84,7 @@ void DetectorOptions::validate() const {
   if (intensity_span_db && !(std::isfinite(*intensity_span_db) && *intensity_span_db > 0.0)) {
     throwOption("the intensity span must be a finite number of dB > 0");
   }
+  requireNonNegative(onset_length_m, "the echo onset length (m)");
   switch (kind) {
     case Detector::kThreshold:
       requireNonNegative(threshold.min_rise_db, "the threshold's rise (dB)");
@@ -181,6 +182,39 @@ DetectionDiagnostics diagnose(const PolarImage& polar, const detail::DetectionCo
 /// Sets each detection's water_range_m (detection.hpp): its range with an obstacle; without one, the
 /// start of the first bin at or beyond the minimum range whose residual above `calibration`'s
 /// background reaches the threshold (an echo too short to be an obstacle), or the row's end.
+/// Sets each detection's echo_onset_m (detection.hpp, DetectorOptions::onset_length_m): the start
+/// of the first window at or beyond the minimum range whose mean residual above the background
+/// reaches the onset level, at most the water range.
+void setEchoOnsets(const PolarImage& polar, const DetectorOptions& options, const detail::DetectionContext& context,
+                   const SweepCalibration& calibration, std::vector<BeamDetection>& detections) {
+  constexpr double kSpeckleMeanDb = 2.9;  // one-look speckle: mean dB above its 25th percentile
+  const int window = std::max(8, static_cast<int>(std::lround(options.onset_length_m / polar.bin_length_m)));
+  const double level_db =
+      kSpeckleMeanDb + std::max(0.0, calibration.threshold_db - kSpeckleMeanDb) / std::sqrt(static_cast<double>(window));
+  const double level = level_db * 255.0 / context.span_db * window;  // on the window's sum
+  for (int r = 0; r < polar.rows(); ++r) {
+    BeamDetection& detection = detections[static_cast<std::size_t>(r)];
+    const auto* row = polar.intensities.ptr<std::uint8_t>(r);
+    const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
+    const int last = std::min(end, static_cast<int>(std::ceil(detection.water_range_m / polar.bin_length_m)));
+    auto residual = [&](int c) { return static_cast<double>(row[c]) - calibration.background[static_cast<std::size_t>(c)]; };
+    double sum = 0.0;
+    int onset = -1;
+    for (int c = context.min_bin; c < end; ++c) {
+      sum += residual(c);
+      if (c - window >= context.min_bin) sum -= residual(c - window);
+      const int start = c - window + 1;
+      if (start >= context.min_bin && sum >= level) {
+        onset = start;
+        break;
+      }
+      if (start >= last) break;
+    }
+    detection.echo_onset_m = onset >= 0 ? std::min(onset * polar.bin_length_m, detection.water_range_m)
+                                        : detection.water_range_m;
+  }
+}
+
 void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& context,
                     const SweepCalibration& calibration, std::vector<BeamDetection>& detections) {
   for (int r = 0; r < polar.rows(); ++r) {
@@ -224,6 +258,7 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
                                          calibration.span_db};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
   setWaterRanges(polar, context, result.calibration, result.detections);
+  setEchoOnsets(polar, options, context, result.calibration, result.detections);
   result.diagnostics = diagnose(polar, context, result.calibration, result.detections);
   return result;
 }

@@ -55,6 +55,10 @@ BeamModel parseBeamModel(std::string_view name) {
   throw ValueError("unknown beam model '" + std::string(name) + "', expected planar or volume");
 }
 
+double freeVerticalAperture_rad(const MapperOptions& options) {
+  return options.free_vertical_aperture_rad.value_or(0.5 * options.vertical_aperture_rad);
+}
+
 void MapperOptions::validate() const {
   checkOptionalLength(resolution_m, "resolution", false);
   checkOptionalLength(self_reflection_range_m, "self-reflection range", true);
@@ -65,6 +69,11 @@ void MapperOptions::validate() const {
   }
   if (beam_model == BeamModel::kVolume && !(vertical_aperture_rad > 0.0 && vertical_aperture_rad < std::numbers::pi)) {
     throw ValueError("vertical aperture must be within (0, pi) rad, got " + std::to_string(vertical_aperture_rad));
+  }
+  if (free_vertical_aperture_rad &&
+      !(*free_vertical_aperture_rad > 0.0 && *free_vertical_aperture_rad <= vertical_aperture_rad)) {
+    throw ValueError("free vertical aperture must be within (0, vertical aperture] rad, got " +
+                     std::to_string(*free_vertical_aperture_rad));
   }
   if (!(max_voxel_updates > 0.0)) {
     throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));
@@ -117,8 +126,10 @@ double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
     // The union of overlapping wedges grows by one bearing step per beam; a ray is a line of voxels.
     const double width_rad = std::min(std::max(options.beam_width_rad, voxel_m / range_m), stepAfter(log.beams, i));
     if (options.beam_model == BeamModel::kVolume) {
+      // The free cone (its core) in volume, the shell (whole aperture) in area.
+      const double free_rad = std::max(freeVerticalAperture_rad(options), voxel_m / range_m);
       const double aperture_rad = std::max(options.vertical_aperture_rad, voxel_m / range_m);
-      updates += width_rad * aperture_rad * range_m * range_m * range_m / (3.0 * voxel_m * voxel_m * voxel_m) +
+      updates += width_rad * free_rad * range_m * range_m * range_m / (3.0 * voxel_m * voxel_m * voxel_m) +
                  aperture_rad * range_m * range_m / (voxel_m * voxel_m);
     } else {
       updates += width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;

@@ -32,6 +32,7 @@ struct SonarMapper::SweepWork {
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
   struct KeyedHit {
+    std::uint64_t code;  ///< KeyMarks<16>::visitCode(key): sorts as the tree is visited
     Key16 key;
     double weight;  ///< HitPoint::weight
   };
@@ -140,17 +141,18 @@ void SonarMapper::integrateFreeCells() {
 void SonarMapper::integrateHits() {
   // One update per hit cell, however many arc points fell into it: the largest share among them.
   auto& hits = work_->hits;
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
-    if (a.key != b.key) return KeyMarks<16>::visitLess(a.key, b.key);
-    return a.weight > b.weight;
-  });
-  hits.erase(std::unique(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.key == b.key; }), hits.end());
+  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.code < b.code; });
   const double prob_hit = options_.octree.occupancy.prob_hit;
-  for (const auto& hit : hits) {
-    const float delta = hit.weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * hit.weight);
-    map_.updateNode(hit.key, delta);
+  const bool volume = options_.beam_model == BeamModel::kVolume;
+  for (std::size_t i = 0; i < hits.size();) {
+    double weight = hits[i].weight;
+    std::size_t next = i + 1;
+    for (; next < hits.size() && hits[next].code == hits[i].code; ++next) weight = std::max(weight, hits[next].weight);
+    const float delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
+    map_.updateNode(hits[i].key, delta);
     ++stats_.occupied_updates;
-    if (options_.beam_model == BeamModel::kVolume) work_->occupied_keys.insert(hit.key);
+    if (volume) work_->occupied_keys.insert(hits[i].key);
+    i = next;
   }
 }
 
@@ -182,8 +184,14 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     }
     // Automatic tolerance: the sweep's (a bin plus half a voxel) plus the echo's own rise.
     const double beam_tolerance_m = tolerance_m + (options_.range_tolerance_m ? 0.0 : detection.rise_m);
-    const double free_range_m = hit ? std::max(0.0, range_m - beam_tolerance_m) : range_m;
-    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit};
+    double free_range_m = hit ? std::max(0.0, range_m - beam_tolerance_m) : range_m;
+    double water_m = -1.0;
+    if (options_.beam_model == BeamModel::kVolume && detection.echo_onset_m < range_m) {
+      // The cone met something before: a weak return it cannot call an obstacle, but no water.
+      water_m = detection.echo_onset_m;
+      free_range_m = std::min(free_range_m, std::max(0.0, water_m - tolerance_m));
+    }
+    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit, water_m};
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
       continue;
@@ -262,15 +270,18 @@ void SonarMapper::planBeams() {
   };
   const BeamShape shape = beamShape();
   planArcs(beams, shape, voxel_m, work.tolerance_m, options_.arc_evidence, work.hit_points);  // each beam's own pose
+  // The free space: the cone's loud core only (MapperOptions::free_vertical_aperture_rad).
+  BeamShape fshape = shape;
+  if (options_.beam_model == BeamModel::kVolume) fshape.vertical_aperture_rad = freeVerticalAperture_rad(options_);
   if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always
-    planFreeRays(beams, shape, voxel_m, work.rays);
+    planFreeRays(beams, fshape, voxel_m, work.rays);
     return;
   }
   work.rays.clear();
   for (std::size_t first = 0, end = 0; first < beams.size(); first = end) {
     end = groupEnd(first);
     work.group.assign(beams.begin() + static_cast<std::ptrdiff_t>(first), beams.begin() + static_cast<std::ptrdiff_t>(end));
-    planFreeRays(work.group, shape, voxel_m, work.group_rays);
+    planFreeRays(work.group, fshape, voxel_m, work.group_rays);
     work.rays.insert(work.rays.end(), work.group_rays.begin(), work.group_rays.end());
   }
 }
@@ -316,7 +327,7 @@ void SonarMapper::keySweep() {
   }
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      work.hits.push_back({*key, hit.weight});
+      work.hits.push_back({KeyMarks<16>::visitCode(*key), *key, hit.weight});
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }

@@ -33,7 +33,7 @@ WaterWedge wedgeOf(const PlannedBeam& beam, double half_width_rad) {
   wedge.left_y = std::sin(beam.bearing_rad + half_width_rad);
   wedge.right_x = std::cos(beam.bearing_rad - half_width_rad);
   wedge.right_y = std::sin(beam.bearing_rad - half_width_rad);
-  wedge.water_m = beam.hit ? beam.hit_range_m : beam.free_range_m;
+  wedge.water_m = beam.water_range_m >= 0.0 ? beam.water_range_m : (beam.hit ? beam.hit_range_m : beam.free_range_m);
   return wedge;
 }
 
@@ -91,6 +91,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   std::vector<std::size_t> candidates;
   std::vector<HitPoint> shell;
   std::vector<char> row_kept;
+  std::vector<Eigen::Vector2d> column_dirs;  // cos, sin of each column's bearing
   for (std::size_t b = 0; b < beams.size(); ++b) {
     const PlannedBeam& beam = beams[b];
     if (!beam.hit) continue;
@@ -111,14 +112,17 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
     const int rows = std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
     shell.clear();
     row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
+    column_dirs.clear();
+    for (int c = 0; c <= columns; ++c) {
+      const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
+      column_dirs.emplace_back(std::cos(angle), std::sin(angle));
+    }
     for (int r = 0; r <= rows; ++r) {
       const double elevation = -half_aperture_rad + shape.vertical_aperture_rad * r / rows;
       const double weight = evidence == ArcEvidence::kBeamPattern ? twoWayPattern(elevation, shape.vertical_aperture_rad) : 1.0;
-      for (int c = 0; c <= columns; ++c) {
-        const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
-        const Eigen::Vector3d point_m =
-            beam.sonar_to_map * Eigen::Vector3d(range_m * std::cos(elevation) * std::cos(angle),
-                                                range_m * std::cos(elevation) * std::sin(angle), range_m * std::sin(elevation));
+      const double horizontal_m = range_m * std::cos(elevation), vertical_m = range_m * std::sin(elevation);
+      for (const Eigen::Vector2d& dir : column_dirs) {
+        const Eigen::Vector3d point_m = beam.sonar_to_map * Eigen::Vector3d(horizontal_m * dir.x(), horizontal_m * dir.y(), vertical_m);
         const bool carved = std::any_of(candidates.begin(), candidates.end(), [&](std::size_t n) {
           return inCone(cones[n], point_m, cones[n].wedge.water_m - tolerance_m);
         });

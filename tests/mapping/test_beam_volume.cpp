@@ -183,7 +183,9 @@ MapperOptions volumeOptions() {
 // One sweep of 200 overlapping cones on an empty map: every known cell holds exactly one update
 // (a miss, or a hit), and the counts add up to the cells.
 TEST(mappingBeamVolume, EachVoxelIsUpdatedOncePerSweep) {
-  SonarMapper mapper(volumeOptions());
+  MapperOptions options = volumeOptions();
+  options.arc_evidence = ArcEvidence::kWholeArc;  // every hit the same update
+  SonarMapper mapper(options);
   PolarImage polar = makeSweep(200, 100);
   std::vector<BeamDetection> detections;
   for (int i = 0; i < 200; ++i) {
@@ -206,7 +208,9 @@ TEST(mappingBeamVolume, EachVoxelIsUpdatedOncePerSweep) {
 // A cone whose quiet outer part crosses a cell the map holds occupied leaves it occupied; its loud
 // inner part clears it.
 TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
-  SonarMapper mapper(volumeOptions());
+  MapperOptions options = volumeOptions();
+  options.free_vertical_aperture_rad = options.vertical_aperture_rad;  // clear the whole cone
+  SonarMapper mapper(options);
   const Key16 target = *mapper.map().coder().keyOf(Eigen::Vector3d(2.0, 0.0, 0.0));
   const Eigen::Vector3d target_m = mapper.map().coder().centerOf(target);
   auto occupied = [&] {
@@ -235,24 +239,76 @@ TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
 }
 
 // A sonar mounted tilted down: the cone follows the mounting (the free cells lie below the
-// sonar's level ahead of it), while the planar model maps the tilted plane only.
-TEST(mappingBeamVolume, TiltedMountingTilts3DCone) {
+// sonar's level ahead of it). By default only the central half of the aperture is cleared.
+TEST(mappingBeamVolume, TiltedMountingTiltsTheCone) {
   const Eigen::Isometry3d tilted = tiltedPose({0.0, 0.0, 0.0}, 0.0, 25.0 * kDegree, 0.0);  // nose down
   PolarImage polar = makeSweep(1, 150);
-  polar.bearing_rad = {0.0};
   BeamDetection water;
   water.water_range_m = 3.0;
-  SonarMapper volume(volumeOptions());
-  volume.integrateSweep(polar, {water}, tilted);
-  double lowest_z = 0.0, highest_z = -1.0;
-  volume.map().forEachLeaf([&](const LeafView<16>& leaf) {
-    const double z = volume.map().coder().centerOf(leaf.key).z();
-    lowest_z = std::min(lowest_z, z);
-    highest_z = std::max(highest_z, z);
-  });
-  // Axis 25° down at 3 m: z = −1.27 m; the cone spans 7.5°…42.5° down: z from −0.39 to −2.03 m.
-  EXPECT_NEAR(lowest_z, -3.0 * std::sin(42.5 * kDegree), 0.05);
-  EXPECT_LT(highest_z, 0.05);  // nothing above the sonar's level
+  auto zExtent = [&](const MapperOptions& options) {
+    SonarMapper mapper(options);
+    mapper.integrateSweep(polar, {water}, tilted);
+    double lowest_z = 0.0, highest_z = -1.0;
+    mapper.map().forEachLeaf([&](const LeafView<16>& leaf) {
+      const double z = mapper.map().coder().centerOf(leaf.key).z();
+      lowest_z = std::min(lowest_z, z);
+      highest_z = std::max(highest_z, z);
+    });
+    return std::pair{lowest_z, highest_z};
+  };
+  // Axis 25° down at 3 m; the free core spans 16.25°…33.75° down: z down to −1.67 m.
+  const auto [core_low, core_high] = zExtent(volumeOptions());
+  EXPECT_NEAR(core_low, -3.0 * std::sin(33.75 * kDegree), 0.05);
+  EXPECT_LT(core_high, 0.05);  // nothing above the sonar's level
+  // Clearing the whole aperture: 7.5°…42.5° down, to z = −2.03 m.
+  MapperOptions whole = volumeOptions();
+  whole.free_vertical_aperture_rad = whole.vertical_aperture_rad;
+  EXPECT_NEAR(zExtent(whole).first, -3.0 * std::sin(42.5 * kDegree), 0.05);
+}
+
+// A weak extended return (8.8 dB over the background: a grazing seabed) ahead of a strong wall is no
+// obstacle, but it sets the echo onset, and the volume model clears its cones only up to there.
+TEST(mappingBeamVolume, WeakReturnStopsTheFreeCone) {
+  PolarImage polar = makeSweep(60, 200);  // 4 m of 2 cm bins, 60 beams: a background to estimate
+  for (int r = 0; r < 60; ++r) {
+    for (int c = 10; c < 200; ++c) polar.intensities.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(c % 3);  // quiet
+  }
+  for (int c = 100; c < 200; ++c) polar.intensities.at<std::uint8_t>(0, c) = 50;  // 8.8 dB at 45 dB per 255
+  for (int c = 150; c < 160; ++c) polar.intensities.at<std::uint8_t>(0, c) = 230;  // the wall
+  MapperOptions options = volumeOptions();
+  SonarMapper mapper(options);
+  PolarImage detected = polar;
+  const std::vector<BeamDetection> detections = mapper.detect(detected);
+  ASSERT_TRUE(detections[0].hasObstacle());
+  EXPECT_NEAR(detections[0].range_m, 3.0, 0.05);
+  EXPECT_NEAR(detections[0].echo_onset_m, 2.0, 0.03);
+  EXPECT_FALSE(detections[1].hasObstacle());
+  EXPECT_NEAR(detections[1].echo_onset_m, detections[1].water_range_m, 1e-12);  // nothing rises
+  mapper.integrateSweep(detected, detections);
+  // Along beam 0's axis: free before the onset, unknown between the onset and the wall.
+  const auto classify = [&](double x_m) {
+    const std::optional<float> log_odds = mapper.map().search(*mapper.map().coder().keyOf(Eigen::Vector3d(x_m, 0.001, 0.001)));
+    return log_odds ? mapper.map().model().classify(*log_odds) : Occupancy::kUnknown;
+  };
+  EXPECT_EQ(classify(1.5), Occupancy::kFree);
+  EXPECT_EQ(classify(2.5), Occupancy::kUnknown);
+}
+
+// Options: the free aperture must lie within the aperture; the volume model's aperture in (0, π).
+TEST(mappingBeamVolume, ApertureOptionsAreChecked) {
+  MapperOptions options = volumeOptions();
+  options.free_vertical_aperture_rad = options.vertical_aperture_rad * 1.01;
+  EXPECT_THROW(options.validate(), ValueError);
+  options.free_vertical_aperture_rad = 0.0;
+  EXPECT_THROW(options.validate(), ValueError);
+  options.free_vertical_aperture_rad.reset();
+  options.vertical_aperture_rad = std::numbers::pi;
+  EXPECT_THROW(options.validate(), ValueError);
+  options.beam_model = BeamModel::kPlanar;  // unused by the planar model
+  EXPECT_NO_THROW(options.validate());
+  EXPECT_EQ(parseBeamModel("volume"), BeamModel::kVolume);
+  EXPECT_EQ(parseArcEvidence("pattern"), ArcEvidence::kBeamPattern);
+  EXPECT_THROW(parseArcEvidence("all"), ValueError);
 }
 
 }  // namespace

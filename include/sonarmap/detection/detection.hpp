@@ -3,6 +3,7 @@
 /// The result of obstacle detection along a beam (paper §6, §8.2).
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace sonarmap {
@@ -25,6 +26,13 @@ struct BeamDetection {
   /// normal incidence, the range spread across the beam at oblique incidence — how uncertain the
   /// surface's range is within this echo (the mapper's automatic range tolerance uses it).
   double rise_m = 0.0;
+  /// Where the beam's echo first rises above the background at all, metres: the start of the first
+  /// stretch of DetectorOptions::onset_length_m whose mean rise reaches onset_db, at or beyond the
+  /// minimum range; at most the obstacle's range (or water_range_m without one). Weak extended
+  /// returns below the obstacle threshold (a grazing seabed) start here: the beam-volume model
+  /// clears its cone no farther (Elfes 1987: only an empty return proves empty space). +∞ when
+  /// not measured (a detection made by hand).
+  double echo_onset_m = std::numeric_limits<double>::infinity();
   bool hasObstacle() const { return obstacle_bin >= 0; }
 };
 

@@ -91,6 +91,16 @@ struct DetectorOptions {
   CannyOptions canny;
   BackgroundOptions background;
   CfarOptions cfar;
+  /// Echo onset (BeamDetection::echo_onset_m), whatever the detector: the first window of
+  /// max(onset_length_m, 8 bins) at or beyond the minimum range whose mean rise above the sweep's
+  /// background B(c) (intensity counts, signed) reaches L = m + (T_dB − m) / √N dB, N the window's
+  /// bins, T_dB the sweep's obstacle threshold (calibration.hpp) and m = 2.9 dB the mean of
+  /// one-look speckle in dB above its 25th percentile (E[10 log₁₀ X] − 10 log₁₀ q₀.₂₅ for
+  /// exponential X): the threshold's margin over the noise, shrunk as averaging N bins shrinks the
+  /// noise's spread. Far below an obstacle's threshold: weak, extended returns (a seabed at grazing
+  /// incidence, the edge of the beam on a wall) are not obstacles, but they prove the beam met
+  /// something there, so the beam-volume model clears no farther.
+  double onset_length_m = 0.2;  ///< metres, ≥ 0
 
   /// @throws ValueError naming the option when the minimum range, the span or the chosen
   ///         detector's options are outside their documented ranges.

@@ -36,6 +36,9 @@ struct PlannedBeam {
                         ///< tolerance, or the beam's full range without one
   double hit_range_m;   ///< range of the obstacle's arc (the echo's leading edge); unused without a hit
   bool hit;             ///< the beam ends in an obstacle
+  /// How far the beam saw water, for carving other beams' arcs, metres; < 0: the hit range, or
+  /// the free range without a hit (the beam-volume model sets its echo onset here).
+  double water_range_m = -1.0;
 };
 
 /// A segment to traverse, map frame. Every cell it crosses is free unless it is a hit cell.

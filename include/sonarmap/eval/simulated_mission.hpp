@@ -1,0 +1,74 @@
+#pragma once
+/// @file simulated_mission.hpp
+/// The 3D accuracy missions of docs/accuracy.md (issue 11): a simulated head (sonar_presets.hpp)
+/// on a moving vehicle over a built-in 3D scene (builtin_scenes.hpp, `quay3d`), mapped with the
+/// given MapperOptions and scored in 3D against the scene (ground_truth.hpp) with the head's field
+/// of view.
+///
+/// Missions, at the preset's scale s = range / 5 m (NED, metres; navigation.hpp), at 0.2 · s m/s
+/// with turns in place at 0.5 rad/s (trajectory.hpp):
+///  - `lawnmower`: three 4 s m legs northwards and back, 1.5 s m apart, centred on the origin, at
+///    0.5 s m and then 1.0 s m depth (two depths: the wide beam sees each surface from two
+///    heights); the sonar upright (its scan plane level).
+///  - `tilted-loop`: a 4 s × 3 s m rectangle at 0.5 s m depth with the sonar tilted 25° down
+///    (how AUVs map the seabed with an MSIS): its scan is a cone opening downwards.
+/// The scene's pontoon (footprint x ∈ [−1.25, 1.25] s, y ∈ [2.4, 3.6] s) stays clear of both.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/eval/ground_truth.hpp"
+#include "sonarmap/mapping/mapper_options.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+
+namespace sonarmap {
+
+/// A mission to simulate and score; see the file's comment.
+struct SimulatedMission {
+  std::string preset = "micron";        ///< sonarPresetNames()
+  std::string scene = "quay3d";         ///< a built-in scene, built for the preset's range
+  std::string mission = "tilted-loop";  ///< simulatedMissionNames()
+  std::uint64_t seed = 1;
+};
+
+/// "lawnmower", "tilted-loop".
+std::vector<std::string> simulatedMissionNames();
+
+/// A mission simulated: the log, navigation and scene, and how the sonar was mounted.
+struct MissionRun {
+  MsisSimulationOptions options;  ///< head, echo model, trajectory and mounting used
+  MsisSimulation simulation;      ///< log, navigation fixes, scene
+};
+
+/// Simulates `mission`: the vehicle flies it once, the head turning throughout.
+/// @throws ValueError for an unknown preset, scene or mission.
+MissionRun simulateMission(const SimulatedMission& mission);
+
+/// The ground-truth options for scoring a map of `run`: 24 sonar poses sampled evenly along its
+/// navigation (positions and orientations) and the head's vertical beam width as the field of
+/// view, tolerance `tolerance_m`.
+GroundTruthOptions missionTruthOptions(const MissionRun& run, double tolerance_m = 0.1);
+
+/// The scores of one mission mapped with one set of options.
+struct MissionAccuracy {
+  SimulatedMission mission;
+  double resolution_m = 0.0;
+  std::size_t beams = 0;
+  std::size_t obstacles = 0;
+  std::size_t voxel_updates = 0;  ///< free and occupied cell updates
+  double seconds_mapping = 0.0;   ///< mapSonarLog's wall time
+  GroundTruthReport truth;
+  /// The harmonic mean of precision and recall (0 when both are 0).
+  double f1() const;
+};
+
+/// Simulates `mission`, maps it with `options` (the head's horizontal and vertical beam widths
+/// replace the options' ones, as a user states their sonar) through mapSonarLog with the
+/// simulated navigation and mounting, and scores the map with missionTruthOptions().
+/// @throws ValueError for an unknown preset, scene or mission, invalid options, or an empty map.
+MissionAccuracy evaluateMission(const SimulatedMission& mission, const MapperOptions& options);
+
+}  // namespace sonarmap
