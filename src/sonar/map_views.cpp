@@ -49,7 +49,8 @@ struct ProjectedMap {
   std::vector<unsigned char> free;
   static constexpr long kNone = std::numeric_limits<long>::min();
   std::size_t index(long u, long v) const {
-    return static_cast<std::size_t>(v - min_v + 1) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(u - min_u + 1);
+    return static_cast<std::size_t>(v - min_v + 1) * static_cast<std::size_t>(cols) +
+           static_cast<std::size_t>(u - min_u + 1);
   }
 };
 
@@ -126,12 +127,16 @@ void drawLegend(cv::Mat& image, int x0, const MapView& view, const char* title) 
   }
 }
 
-MapView render(const OcTree16& map, const Projection& p) {
+MapView render(const OcTree16& map, const Projection& p, int max_side_px) {
   const ProjectedMap projected = project(map, p);
   const auto& coder = map.coder();
   MapView view;
-  view.view_cols = projected.cols;
-  view.view_rows = projected.rows;
+  if (max_side_px > 0) {
+    view.pixels_per_voxel = std::clamp(max_side_px / std::max(projected.cols, projected.rows), 1, kMaxPixelsPerVoxel);
+  }
+  const int f = view.pixels_per_voxel;
+  view.view_cols = projected.cols * f;
+  view.view_rows = projected.rows * f;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const long shown : projected.shown) {
     if (shown == ProjectedMap::kNone) continue;
@@ -144,12 +149,12 @@ MapView render(const OcTree16& map, const Projection& p) {
     view.scale_min_m = lo;
     view.scale_max_m = hi;
   }
-  view.image = cv::Mat(std::max(projected.rows, kLegendMinRows), projected.cols + kLegendCols, CV_8UC3,
-                       cv::Scalar::all(255));
+  cv::Mat pixels(projected.rows, projected.cols, CV_8UC3, cv::Scalar::all(255));
   for (int j = 0; j < projected.rows; ++j) {
     for (int i = 0; i < projected.cols; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(projected.cols) + static_cast<std::size_t>(i);
-      cv::Vec3b& pixel = view.image.at<cv::Vec3b>(projected.rows - 1 - j, i);  // +v up
+      const std::size_t k =
+          static_cast<std::size_t>(j) * static_cast<std::size_t>(projected.cols) + static_cast<std::size_t>(i);
+      cv::Vec3b& pixel = pixels.at<cv::Vec3b>(projected.rows - 1 - j, i);  // +v up
       if (projected.shown[k] != ProjectedMap::kNone) {
         pixel = scaleColour(coder.centerOf(static_cast<Key16::Index>(projected.shown[k])), view.scale_min_m,
                             view.scale_max_m);
@@ -158,8 +163,16 @@ MapView render(const OcTree16& map, const Projection& p) {
       }
     }
   }
-  cv::rectangle(view.image, cv::Rect(0, 0, projected.cols, projected.rows), cv::Scalar::all(kFrameGrey));
-  drawLegend(view.image, projected.cols, view, p.title);
+  view.image = cv::Mat(std::max(view.view_rows, kLegendMinRows), view.view_cols + kLegendCols, CV_8UC3,
+                       cv::Scalar::all(255));
+  cv::Mat target = view.image(cv::Rect(0, 0, view.view_cols, view.view_rows));
+  if (f == 1) {
+    pixels.copyTo(target);
+  } else {
+    cv::resize(pixels, target, target.size(), 0.0, 0.0, cv::INTER_NEAREST);
+  }
+  cv::rectangle(view.image, cv::Rect(0, 0, view.view_cols, view.view_rows), cv::Scalar::all(kFrameGrey));
+  drawLegend(view.image, view.view_cols, view, p.title);
   return view;
 }
 
@@ -182,8 +195,12 @@ std::optional<HeightExtent> occupiedHeightExtent(const OcTree16& map) {
   return HeightExtent{coder.centerOf(static_cast<Key16::Index>(lo)), coder.centerOf(static_cast<Key16::Index>(hi))};
 }
 
-MapView renderTopView(const OcTree16& map) { return render(map, {0, 1, 2, true, "z (m)"}); }
+MapView renderTopView(const OcTree16& map, int max_side_px) {
+  return render(map, {0, 1, 2, true, "z (m)"}, max_side_px);
+}
 
-MapView renderSideView(const OcTree16& map) { return render(map, {0, 2, 1, false, "y (m)"}); }
+MapView renderSideView(const OcTree16& map, int max_side_px) {
+  return render(map, {0, 2, 1, false, "y (m)"}, max_side_px);
+}
 
 }  // namespace sonarmap

@@ -83,10 +83,31 @@ TEST(sonarMapViews, PrunedLeavesDrawAsTheirVoxels) {
   const OcTree16 pruned = pool(true), unpruned = pool(false);
   ASSERT_LT(pruned.counts().leaves, unpruned.counts().leaves);
   for (const auto render : {&renderTopView, &renderSideView}) {
-    const cv::Mat a = render(pruned).image, b = render(unpruned).image;
+    const cv::Mat a = render(pruned, 0).image, b = render(unpruned, 0).image;
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
   }
+}
+
+TEST(sonarMapViews, MagnifiedViewDrawsEachVoxelAsASquare) {
+  const OcTree16 map = pool(true);
+  const MapView plain = renderTopView(map), big = renderTopView(map, 50);  // 12 × 8 voxels: 4 pixels each
+  EXPECT_EQ(plain.pixels_per_voxel, 1);
+  ASSERT_EQ(big.pixels_per_voxel, 4);
+  EXPECT_EQ(big.view_cols, 48);
+  EXPECT_EQ(big.view_rows, 32);
+  EXPECT_EQ(big.image.cols, 48 + kLegendCols);
+  EXPECT_EQ(big.occupied_pixels, plain.occupied_pixels);  // voxels, not screen pixels
+  for (int row = 1; row < 7; ++row) {
+    for (int col = 1; col < 11; ++col) {
+      for (const int d : {0, 3}) {
+        EXPECT_EQ(big.image.at<cv::Vec3b>(row * 4 + d, col * 4 + 3 - d), plain.image.at<cv::Vec3b>(row, col))
+            << row << ", " << col;
+      }
+    }
+  }
+  EXPECT_EQ(renderSideView(map, 10000).pixels_per_voxel, kMaxPixelsPerVoxel);
+  EXPECT_EQ(renderSideView(map, 5).pixels_per_voxel, 1);
 }
 
 TEST(sonarMapViews, HeightExtentOfTheOccupiedVoxels) {
