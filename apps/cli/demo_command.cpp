@@ -1,16 +1,26 @@
 #include "demo_command.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
 
 #include "map_command.hpp"
 #include "map_outputs.hpp"
 #include "output_dir.hpp"
 #include "simulate_command.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/eval/simulated_mission.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 
 namespace sonarmap::cli {
 namespace {
+
+/// The 3D run's folder inside the demo's output folder.
+constexpr const char* k3dFolder = "3d-mission";
 
 void check(const DemoArgs& args) {
   if (std::filesystem::exists(args.output_dir) && !std::filesystem::is_directory(args.output_dir)) {
@@ -30,6 +40,88 @@ MapArgs demoMapArgs(const OutputDir& dir, bool quiet) {
   return args;
 }
 
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+/// The 3D run: the moving mission with the tilted sonar (eval/simulated_mission.hpp).
+const SimulatedMission k3dMission{"micron", "quay3d", "tilted-loop"};
+constexpr const char* k3dResolution_m = "0.05";
+
+/// `map --3d` with its defaults at 5 cm, the head's beam widths, and the top view, writing into
+/// `dir` (the 3D run's folder) under the name "map"; input and nav_csv name the simulated files
+/// written beside it (for the command printed to remake the map).
+MapArgs demo3dMapArgs(const OutputDir& dir, const MsisHeadOptions& head, bool quiet) {
+  MapArgs args;
+  args.input = dir.file("beams.csv");
+  args.nav_csv = dir.file("nav.csv");
+  args.output_bt = dir.file("map.bt");
+  args.map_png = dir.file("map_top.png");
+  args.volume = true;
+  args.resolution = k3dResolution_m;
+  args.beam_width_deg = head.horizontal_beam_width_rad * kDegPerRad;
+  args.vertical_aperture_deg = head.vertical_beam_width_rad * kDegPerRad;
+  args.quiet = quiet;
+  return args;
+}
+
+/// x,y,z,roll,pitch,yaw of a pose (rotation `r`, translation `t`): metres, then the Z-Y-X Euler
+/// angles of r = Rz(yaw)·Ry(pitch)·Rx(roll) in degrees: the form of map --mounting and eval
+/// --sensor-pose.
+std::string poseText(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) {
+  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
+  const double roll = std::atan2(r(2, 1), r(2, 2));
+  const double yaw = std::atan2(r(1, 0), r(0, 0));
+  char text[160];
+  // + 0.0 turns a negative zero into 0.
+  std::snprintf(text, sizeof text, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", t.x() + 0.0, t.y() + 0.0, t.z() + 0.0,
+                roll * kDegPerRad + 0.0, pitch * kDegPerRad + 0.0, yaw * kDegPerRad + 0.0);
+  return text;
+}
+
+/// The eval options that score the map as docs/accuracy.md does (missionTruthOptions): the
+/// sonar's poses along the mission and its vertical aperture, for the field-of-view check.
+std::string fieldOfViewOptions(const MissionRun& mission) {
+  const GroundTruthOptions truth = missionTruthOptions(mission);
+  char aperture[64];
+  std::snprintf(aperture, sizeof aperture, "--vertical-aperture %.6g",
+                truth.vertical_aperture_rad.value_or(0.0) * kDegPerRad);
+  std::string options = aperture;
+  for (std::size_t i = 0; i < truth.sensor_positions_m.size(); ++i) {
+    options += " --sensor-pose " + poseText(truth.sensor_orientations[i], truth.sensor_positions_m[i]);
+  }
+  return options;
+}
+
+/// The line that introduces the 3D run: what was simulated and where it went.
+void print3dHeader(const MissionRun& mission, const std::string& folder) {
+  // The sonar's bearing 0 in the body frame (z down): its angle below the vehicle's horizontal plane.
+  const double tilt_deg = std::asin(std::clamp(mission.options.sonar_to_body.linear()(2, 0), -1.0, 1.0)) * kDegPerRad;
+  std::printf("3d: %s flying the %s mission over %s, sonar tilted %.0f deg down, mapped with --3d at %s m -> %s\n",
+              k3dMission.preset.c_str(), k3dMission.mission.c_str(), k3dMission.scene.c_str(), tilt_deg,
+              k3dResolution_m, folder.c_str());
+}
+
+/// The lines that tell the user how to score the 3D run's map and how to make it again.
+void print3dCommands(const MapArgs& map_args, const std::string& side_png, const std::string& scene,
+                     const MissionRun& mission) {
+  const Eigen::Isometry3d& sonar_to_body = mission.options.sonar_to_body;
+  const std::string mounting = poseText(sonar_to_body.linear(), sonar_to_body.translation());
+  std::printf("3d: score it:  sonarmap eval %s --truth %s\n", map_args.output_bt.c_str(), scene.c_str());
+  std::printf("3d: score what the sonar could see (docs/accuracy.md):  sonarmap eval %s --truth %s %s\n",
+              map_args.output_bt.c_str(), scene.c_str(), fieldOfViewOptions(mission).c_str());
+  std::printf("3d: map it again:  sonarmap map %s --nav %s --mounting %s --3d --resolution %s "
+              "--beam-width %g --vertical-aperture %g -o %s --png %s --side-png %s\n",
+              map_args.input.c_str(), map_args.nav_csv.c_str(), mounting.c_str(),
+              map_args.resolution.c_str(), map_args.beam_width_deg, map_args.vertical_aperture_deg,
+              map_args.output_bt.c_str(), map_args.map_png.c_str(), side_png.c_str());
+}
+
+void printRun(const MappedLog& mapped, const std::string& output_bt, bool with_nav) {
+  const std::vector<std::string> warnings =
+      mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
+  printWarnings(warnings);
+  printMapSummary(mapped, output_bt, with_nav, warnings.size());
+}
+
 void run(const DemoArgs& args) {
   MsisSimulationOptions simulation_options;  // static head, 28 turns, seed 1
   simulation_options.nav_rate_hz = 0.0;      // static: the map needs no navigation
@@ -40,25 +132,49 @@ void run(const DemoArgs& args) {
   const MappedLog mapped = mapWithProgress(
       [&](const ProgressCallback& progress) { return mapSonarLog(simulation.log, mapper_options, progress); },
       args.quiet);
+
+  // The 3D run in its own folder: the moving mission, mapped in 3D as `map --3d --nav` maps it.
+  const MissionRun mission = simulateMission(k3dMission);
+  const std::string folder_3d = dir.file(k3dFolder);
+  OutputDir dir_3d(folder_3d);
+  const MapArgs map_args_3d = demo3dMapArgs(dir_3d, mission.options.head, args.quiet);
+  const std::string side_png = dir_3d.file("map_side.png");
+  const MapperOptions mapper_options_3d = toMapperOptions(map_args_3d);
+  const MsisSimulation& simulation_3d = mission.simulation;
+  const MappedLog mapped_3d = mapWithProgress(
+      [&](const ProgressCallback& progress) {
+        return mapSonarLog(simulation_3d.log, simulation_3d.nav, mission.options.sonar_to_body, mapper_options_3d,
+                           progress);
+      },
+      args.quiet);
+
   FileTransaction outputs;
   stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapped.mapper.map().resolution_m());
   stageSimulation(outputs, args.output_dir, simulation);
+  stageMapOutputs(outputs, map_args_3d, simulation_3d.log, mapped_3d.mapper.map(),
+                  mapped_3d.mapper.map().resolution_m(), side_png);
+  stageSimulation(outputs, folder_3d, simulation_3d);
   outputs.commit();
   dir.keep();
-  const std::vector<std::string> warnings =
-      mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
-  printWarnings(warnings);
-  printMapSummary(mapped, map_args.output_bt, false, warnings.size());
+  dir_3d.keep();
+  printRun(mapped, map_args.output_bt, false);
   printTankReport(mapped.mapper.map());
+  print3dHeader(mission, folder_3d);
+  printRun(mapped_3d, map_args_3d.output_bt, true);
+  print3dCommands(map_args_3d, side_png, dir_3d.file("scene.txt"), mission);
 }
 
 }  // namespace
 
 Command addDemoCommand(CLI::App& app, DemoArgs& args) {
-  CLI::App* cmd = app.add_subcommand("demo", "Simulate the built-in tank and map it (needs no data)");
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "Simulate the built-in tank and map it, and a moving 3D mission and map it in 3D (needs no data)");
   cmd->add_option("-o,--output", args.output_dir,
-                  "Output folder (created when missing): tank.bt, tank.png, tank_polar.png, tank_cartesian.png, "
-                  "beams.csv, scene.txt")
+                  "Output folder (created when missing): the static tank (tank.bt, tank.png, tank_polar.png, "
+                  "tank_cartesian.png, beams.csv, scene.txt), and in 3d-mission/ the Micron flying a loop over the "
+                  "quay3d scene with its sonar tilted 25 degrees down, mapped with --3d at 5 cm (map.bt, "
+                  "map_top.png, map_side.png, beams.csv, nav.csv, scene.txt); it prints how to score that map "
+                  "with sonarmap eval")
       ->required();
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};

@@ -16,7 +16,20 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, beam .csv) into an occupancy octree (.bt)");
   cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG or beam .csv")->required();
   cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
-  cmd->add_option("--png", args.map_png, "Top view of the map at z = 0 (PNG)");
+  // MapArgs (map_options.hpp) has no field for the side view: it lives beside the checked options.
+  struct Checked {
+    MapperOptions options;
+    Eigen::Isometry3d sonar_to_body;
+    std::string side_png;
+  };
+  auto checked = std::make_shared<Checked>();
+  cmd->add_option("--png", args.map_png,
+                  "Top view of the map (PNG): the slice at z = 0; with --3d each column's highest occupied voxel "
+                  "coloured by its height (viridis, legend in metres), free columns light grey, unknown white");
+  cmd->add_option("--side-png", checked->side_png,
+                  "With --3d: side view of the map (PNG), looking along +y (x to the right, z up), each occupied "
+                  "voxel nearest the viewer coloured by its y (viridis, legend in metres): walls' heights, the "
+                  "seabed's slope");
   cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
   cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
   addMappingOptions(*cmd, args);
@@ -30,16 +43,16 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,180,0,0")
       ->delimiter(',')
       ->expected(6);
-  struct Checked {
-    MapperOptions options;
-    Eigen::Isometry3d sonar_to_body;
-  };
-  auto checked = std::make_shared<Checked>();
   auto check = [&args, checked] {
     if (!args.mounting.empty() && args.nav_csv.empty()) throw ValueError("--mounting needs --nav");
-    *checked = {toMapperOptions(args), toSonarToBody(args.mounting)};
+    if (!checked->side_png.empty() && !args.volume) {
+      throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
+    }
+    checked->options = toMapperOptions(args);
+    checked->sonar_to_body = toSonarToBody(args.mounting);
   };
-  return {cmd, check, [&args, checked] { runMap(args, checked->options, checked->sonar_to_body); }};
+  return {cmd, check,
+          [&args, checked] { runMap(args, checked->options, checked->sonar_to_body, checked->side_png); }};
 }
 
 Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) {
@@ -73,12 +86,13 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
 
 }  // namespace
 
-void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
+void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
+            const std::string& side_png) {
   const SonarLog log = readSonarLog(args.input);
   printWarnings(optionWarnings(options, log));
   const MappedLog mapped = mapLog(args, log, options, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
-  stageMapOutputs(outputs, args, log, mapped.mapper.map(), mapped.mapper.map().resolution_m());
+  stageMapOutputs(outputs, args, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png);
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());

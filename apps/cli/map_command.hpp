@@ -25,10 +25,11 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting);
 
 /// Reads, maps and writes. Prints the warnings about the options and the mapping (mappingWarnings)
 /// on stderr and the one-line summary on stdout. With args.nav_csv, each beam is placed with the
-/// vehicle's pose at its time and `sonar_to_body`.
+/// vehicle's pose at its time and `sonar_to_body`. A non-empty `side_png` (--side-png) receives the
+/// side view of the map (stageMapOutputs).
 /// @throws sonarmap::Error (or std::exception) for bad data, a log beyond the work budget, a map no
 ///         beam fits in, or a failed write.
 void runMap(const MapArgs& args, const MapperOptions& options,
-            const Eigen::Isometry3d& sonar_to_body = defaultSonarToBody());
+            const Eigen::Isometry3d& sonar_to_body = defaultSonarToBody(), const std::string& side_png = {});
 
 }  // namespace sonarmap::cli

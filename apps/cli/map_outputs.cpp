@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "progress.hpp"
@@ -11,11 +12,15 @@
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/sonar/polar.hpp"
+#include "sonarmap/sonar/map_views.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap::cli {
 namespace {
+
+/// The 3D views are magnified by whole pixels per voxel up to this many pixels on their larger side.
+constexpr int kViewSide_px = 640;
 
 /// The polar image of the largest (last, on ties) sweep: the one drawn in the PNGs.
 PolarImage lastFullSweep(const SonarLog& log) {
@@ -43,9 +48,13 @@ MappedLog mapWithProgress(const MapCall& map, bool quiet) {
 }
 
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
-                     double pixel_m) {
+                     double pixel_m, const std::string& side_png) {
   outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
-  if (!args.map_png.empty()) outputs.stageBytes(args.map_png, encodePng(renderSlice(map, 0.0)));
+  if (!args.map_png.empty()) {
+    const cv::Mat top = args.volume ? renderTopView(map, kViewSide_px).image : renderSlice(map, 0.0);
+    outputs.stageBytes(args.map_png, encodePng(top));
+  }
+  if (!side_png.empty()) outputs.stageBytes(side_png, encodePng(renderSideView(map, kViewSide_px).image));
   if (args.polar_png.empty() && args.cartesian_png.empty()) return;
   const PolarImage polar = lastFullSweep(log);
   if (!args.polar_png.empty()) outputs.stageBytes(args.polar_png, encodePng(polar.intensities));
@@ -68,11 +77,15 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
   const NodeCounts counts = map.counts();
   std::printf("%zu beams used, %zu skipped, ", stats.beams_used, stats.beams_skipped + stats.out_of_map);
   if (with_nav) std::printf("%zu without navigation, ", stats.beams_without_nav);
-  std::printf("%zu sweeps, %zu obstacles%s, %g m voxels, min range %.2f m, threshold %.1f dB on %.0f dB, "
-              "%zu map nodes (%zu leaves), %.1f KiB, %.3f s",
-              stats.sweeps, stats.obstacles, stats.obstacles == 0 ? " (EMPTY MAP)" : "", map.resolution_m(),
-              calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes, counts.leaves,
-              static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
+  std::printf("%zu sweeps, %zu obstacles%s, ", stats.sweeps, stats.obstacles,
+              stats.obstacles == 0 ? " (EMPTY MAP)" : "");
+  if (const std::optional<HeightExtent> extent = occupiedHeightExtent(map)) {
+    std::printf("occupied z %.2f .. %.2f m, ", extent->min_m, extent->max_m);
+  }
+  std::printf("%g m voxels, min range %.2f m, threshold %.1f dB on %.0f dB, %zu map nodes (%zu leaves), %.1f KiB, "
+              "%.3f s",
+              map.resolution_m(), calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes,
+              counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
   if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");
   std::printf(" -> %s\n", output_bt.c_str());
 }

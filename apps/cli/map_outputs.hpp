@@ -28,12 +28,15 @@ using MapCall = std::function<SonarMapper(const ProgressCallback&)>;
 MappedLog mapWithProgress(const MapCall& map, bool quiet);
 
 /// Stages args.output_bt (OctoMap binary) and the images whose paths are not empty:
-/// args.map_png (top view at z = 0), args.polar_png and args.cartesian_png (the largest sweep;
-/// Cartesian pixels of `pixel_m` metres, each beam spread over args.beam_width_deg, or 3° when 0).
+/// args.map_png (the planar model: the slice at z = 0, map_slice.hpp; with args.volume: the top
+/// view coloured by height, sonar/map_views.hpp), `side_png` (the side view, map_views.hpp, any
+/// model; both views magnified by whole pixels per voxel up to 640 pixels on their larger side),
+/// args.polar_png and args.cartesian_png (the largest sweep; Cartesian pixels of `pixel_m` metres,
+/// each beam spread over args.beam_width_deg, or 3° when 0).
 /// @throws FileError when a file cannot be staged; ValueError when images are wanted from a log
 ///         without beams.
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
-                     double pixel_m);
+                     double pixel_m, const std::string& side_png = {});
 
 /// Prints each warning as one line on stderr: "sonarmap: warning: ...".
 void printWarnings(const std::vector<std::string>& warnings);
@@ -41,7 +44,9 @@ void printWarnings(const std::vector<std::string>& warnings);
 /// Prints the one-line summary of a mapping run on stdout: beams used and skipped (with
 /// `with_nav`, also those without navigation), sweeps, obstacles (EMPTY MAP when none), the
 /// resolution, the detector's minimum range and threshold (the calibration of the last sweep), map
-/// nodes and leaves, memory, time, how many warnings were printed, and the .bt written.
+/// nodes and leaves, memory, time, how many warnings were printed, and the .bt written. After the
+/// obstacles comes the map's height extent, "occupied z LO .. HI m": the lowest and highest
+/// occupied voxel centres (occupiedHeightExtent), left out when nothing is occupied.
 void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav = false, std::size_t warnings = 0);
 
 /// Prints one line on stdout: the rectangle fitted to the occupied cells at z = 0 and the map's

@@ -17,7 +17,8 @@ namespace sonarmap::test {
 namespace {
 
 const Names kSimulationFiles{"beams.csv", "nav.csv", "scene.txt"};
-const Names kDemoFiles{"beams.csv", "scene.txt", "tank.bt", "tank.png", "tank_cartesian.png", "tank_polar.png"};
+const Names kDemoFiles{"3d-mission", "beams.csv",          "scene.txt",     "tank.bt",
+                       "tank.png",   "tank_cartesian.png", "tank_polar.png"};
 
 /// Occupied leaves of the .bt at `path` (read by OctoMap) whose centre is within a voxel of z = 0.
 std::size_t occupiedLeavesAtZ0(const fs::path& path) {
@@ -167,7 +168,7 @@ TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
   EXPECT_EQ(result.err, "");
   EXPECT_EQ(listDir(dir), kDemoFiles);
   const Names lines = linesOf(result.out);
-  ASSERT_EQ(lines.size(), 2U) << result.out;
+  ASSERT_EQ(lines.size(), 7U) << result.out;  // the tank's two, then the 3D run's (test_cli_3d.cpp)
   std::size_t used = 0, skipped = 0, sweeps = 0;
   ASSERT_EQ(std::sscanf(lines[0].c_str(), "%zu beams used, %zu skipped, %zu sweeps", &used, &skipped, &sweeps), 3)
       << lines[0];
@@ -229,14 +230,16 @@ TEST_F(cliSim, DataAndOutputErrorsExitOneAndWriteNothing) {
 }
 
 TEST_F(cliSim, FailureAfterTheWorkLeavesNoFileBehind) {
-  // The first file each command commits is a folder: every output is computed and staged, the
-  // first rename fails, and no other file is renamed into place.
+  // A file a command commits is a folder: every output is computed and staged, that rename fails,
+  // and no file stays renamed into place (simulate: the first file; demo: a file after several).
   fs::create_directories(out_ / "sim" / "scene.txt");
   expectError(run({"simulate", "tank", "--turns", "1", "-o", (out_ / "sim").string()}), 1);
   EXPECT_EQ(listDir(out_ / "sim"), Names{"scene.txt"});
-  fs::create_directories(out_ / "demo" / "tank.bt");
+  // The demo's 3D map is committed after the tank's files: they are rolled back.
+  fs::create_directories(out_ / "demo" / "3d-mission" / "map.bt");
   expectError(run({"demo", "-q", "-o", (out_ / "demo").string()}), 1);
-  EXPECT_EQ(listDir(out_ / "demo"), Names{"tank.bt"});
+  EXPECT_EQ(listDir(out_ / "demo"), Names{"3d-mission"});
+  EXPECT_EQ(listDir(out_ / "demo" / "3d-mission"), Names{"map.bt"});
 }
 
 }  // namespace

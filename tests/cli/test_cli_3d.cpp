@@ -1,0 +1,189 @@
+// End-to-end tests of the 3D outputs (issue 11): `sonarmap map --3d` with the top view coloured by
+// height (--png) and the side view (--side-png), the summary's height extent, and the demo's 3D
+// run, scored by `sonarmap eval` and remade by the command it prints. No shared data needed.
+#include <gtest/gtest.h>
+
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "cli_fixture.hpp"
+
+namespace sonarmap::test {
+namespace {
+
+using cli3d = CliTest;
+
+/// "occupied z LO .. HI m" of a summary line. Fails the test when it is missing.
+std::pair<double, double> heightExtent(const std::string& line) {
+  double lo = 0.0, hi = 0.0;
+  const std::size_t at = line.find("occupied z ");
+  EXPECT_NE(at, std::string::npos) << line;
+  if (at == std::string::npos) return {0.0, 0.0};
+  EXPECT_EQ(std::sscanf(line.c_str() + at, "occupied z %lf .. %lf m, ", &lo, &hi), 2) << line;
+  return {lo, hi};
+}
+
+/// Distinct colours of the pixels of `image` (BGR) that are not a shade of grey, in its first
+/// `cols` columns (the view, left of the legend).
+std::set<std::tuple<int, int, int>> colours(const cv::Mat& image, int cols) {
+  std::set<std::tuple<int, int, int>> found;
+  for (int row = 0; row < image.rows; ++row) {
+    for (int col = 0; col < cols; ++col) {
+      const cv::Vec3b p = image.at<cv::Vec3b>(row, col);
+      if (p[0] != p[1] || p[1] != p[2]) found.emplace(p[0], p[1], p[2]);
+    }
+  }
+  return found;
+}
+
+/// The arguments of the command in `line` after "PREFIX  sonarmap ", split at spaces.
+Names commandArgs(const std::string& line, const std::string& prefix) {
+  const std::string marker = prefix + "  sonarmap ";
+  EXPECT_EQ(line.rfind(marker, 0), 0U) << line;
+  std::istringstream words(line.substr(marker.size()));
+  Names args;
+  for (std::string word; words >> word;) args.push_back(word);
+  return args;
+}
+
+TEST_F(cli3d, MapWritesTopAndSideViewsAndTheHeightExtent) {
+  const fs::path sim = root_ / "sim";
+  ASSERT_EQ(run({"simulate", "tank", "-o", sim.string(), "--turns", "1", "--nav-rate", "0"}).exit_code, 0);
+  const std::string beams = (sim / "beams.csv").string();
+  const fs::path bt = out_ / "map.bt", top = out_ / "top.png", side = out_ / "side.png";
+  const ProgramRun result = run({"map", beams, "-o", bt.string(), "--3d", "--resolution", "0.05", "--png",
+                                 top.string(), "--side-png", side.string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  const Names lines = linesOf(result.out);
+  ASSERT_EQ(lines.size(), 1U) << result.out;
+  // A static head cannot tell elevation: the tank's walls, about 2.1 m away, are bands of about
+  // ±2.1 · tan(17.5°) = ±0.66 m around the sonar's plane.
+  const auto [lo, hi] = heightExtent(lines[0]);
+  EXPECT_LT(lo, -0.3) << lines[0];
+  EXPECT_GT(hi, 0.3) << lines[0];
+  EXPECT_EQ(listDir(out_), (Names{"map.bt", "side.png", "top.png"}));
+
+  // OctoMap reads the map and finds occupied voxels over that height.
+  octomap::OcTree tree(0.1);
+  ASSERT_TRUE(tree.readBinary(bt.string()));
+  double tree_lo = 1e9, tree_hi = -1e9;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    if (!tree.isNodeOccupied(*it)) continue;
+    tree_lo = std::min(tree_lo, it.getZ());
+    tree_hi = std::max(tree_hi, it.getZ());
+  }
+  EXPECT_LT(tree_lo, -0.3);
+  EXPECT_GT(tree_hi, 0.3);
+
+  for (const fs::path& png : {top, side}) {
+    SCOPED_TRACE(png.filename().string());
+    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(image.empty());
+    EXPECT_EQ(image.channels(), 3);
+    // The view (the legend is the right 76 columns) has many colours: heights, or depths along y.
+    EXPECT_GT(colours(image, image.cols - 76).size(), 10U);
+    EXPECT_GT(image.cols, 200);  // a 5 m tank at 5 cm, magnified
+  }
+  // The slice of the planar model is grey levels only; the 3D top view differs from it.
+  const ProgramRun planar = run({"map", beams, "-o", (root_ / "planar.bt").string(), "--resolution", "0.05", "--png",
+                                 (root_ / "slice.png").string(), "-q"});
+  ASSERT_EQ(planar.exit_code, 0) << planar.err;
+  EXPECT_EQ(cv::imread((root_ / "slice.png").string(), cv::IMREAD_UNCHANGED).channels(), 1);
+  // The planar map is one layer of voxels: its extent is that layer's centre.
+  const auto [planar_lo, planar_hi] = heightExtent(linesOf(planar.out).at(0));
+  EXPECT_LT(std::abs(planar_lo), 0.05);  // the voxels at z = 0.025 m
+  EXPECT_DOUBLE_EQ(planar_hi, planar_lo);
+}
+
+TEST_F(cli3d, SidePngWithoutThe3dModelIsAUsageError) {
+  const ProgramRun result = run({"map", (root_ / "beams.csv").string(), "-o", (out_ / "map.bt").string(),
+                                 "--side-png", (out_ / "side.png").string()});
+  expectError(result, 2);
+  EXPECT_NE(result.err.find("--3d"), std::string::npos) << result.err;
+  EXPECT_EQ(listDir(out_), Names{});
+  const ProgramRun help = run({"map", "--help"});
+  EXPECT_NE(help.out.find("--side-png"), std::string::npos);
+}
+
+TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
+  const fs::path dir = out_ / "demo";
+  const ProgramRun result = run({"demo", "-o", dir.string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  const fs::path mission = dir / "3d-mission";
+  EXPECT_EQ(listDir(mission), (Names{"beams.csv", "map.bt", "map_side.png", "map_top.png", "nav.csv", "scene.txt"}));
+  for (const char* png : {"map_top.png", "map_side.png"}) {
+    const cv::Mat image = cv::imread((mission / png).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(image.empty()) << png;
+    EXPECT_GT(colours(image, image.cols - 76).size(), 10U) << png;
+  }
+  // tank summary, tank report, the 3D run's header, its summary, three commands.
+  const Names lines = linesOf(result.out);
+  ASSERT_EQ(lines.size(), 7U) << result.out;
+  EXPECT_EQ(lines[2], "3d: micron flying the tilted-loop mission over quay3d, sonar tilted 25 deg down, mapped with "
+                      "--3d at 0.05 m -> " + mission.string());
+  std::size_t used = 0, skipped = 0, without_nav = 0;
+  ASSERT_EQ(std::sscanf(lines[3].c_str(), "%zu beams used, %zu skipped, %zu without navigation", &used, &skipped,
+                        &without_nav),
+            3)
+      << lines[3];
+  EXPECT_GT(used, 1000U);
+  EXPECT_EQ(without_nav, 0U);
+  const auto [lo, hi] = heightExtent(lines[3]);
+  EXPECT_LT(lo, -1.5) << "the seabed, 2 m or more below the sonar";
+  EXPECT_GT(hi, lo + 1.0);
+  EXPECT_NE(lines[3].find("0.05 m voxels"), std::string::npos) << lines[3];
+  EXPECT_NE(lines[3].find("-> " + (mission / "map.bt").string()), std::string::npos) << lines[3];
+
+  // The plain eval command it prints works and scores the 3D map.
+  const Names eval_args = commandArgs(lines[4], "3d: score it:");
+  EXPECT_EQ(eval_args,
+            (Names{"eval", (mission / "map.bt").string(), "--truth", (mission / "scene.txt").string()}));
+  const ProgramRun scored = run(eval_args);
+  ASSERT_EQ(scored.exit_code, 0) << scored.err;
+  const Names metrics = linesOf(scored.out);
+  ASSERT_GE(metrics.size(), 6U) << scored.out;
+  double precision = 0.0, recall = 0.0, erosion = 1.0;
+  EXPECT_EQ(std::sscanf(metrics[0].c_str(), "precision %lf", &precision), 1) << metrics[0];
+  EXPECT_EQ(std::sscanf(metrics[1].c_str(), "recall %lf", &recall), 1) << metrics[1];
+  EXPECT_EQ(std::sscanf(metrics[2].c_str(), "erosion %lf", &erosion), 1) << metrics[2];
+  EXPECT_EQ(metrics[5].rfind("surface_error_median_m ", 0), 0U) << metrics[5];
+  EXPECT_GT(precision, 0.3);
+  EXPECT_GT(recall, 0.0);
+  EXPECT_LT(erosion, 0.2);
+  // The field-of-view command names the sonar's poses along the mission (missionTruthOptions:
+  // about 24) and its aperture; eval accepts them.
+  const Names fov_args = commandArgs(lines[5], "3d: score what the sonar could see (docs/accuracy.md):");
+  ASSERT_GT(fov_args.size(), 6U);
+  EXPECT_EQ(Names(fov_args.begin(), fov_args.begin() + 6),
+            (Names{"eval", (mission / "map.bt").string(), "--truth", (mission / "scene.txt").string(),
+                   "--vertical-aperture", "35"}));
+  EXPECT_GE(std::count(fov_args.begin(), fov_args.end(), "--sensor-pose"), 20);
+  const ProgramRun seen = run(fov_args);
+  ASSERT_EQ(seen.exit_code, 0) << seen.err;
+  ASSERT_GE(linesOf(seen.out).size(), 3U) << seen.out;
+  EXPECT_EQ(linesOf(seen.out)[2].rfind("erosion ", 0), 0U) << seen.out;
+
+  // The map command it prints makes the same map and pictures from the files it wrote.
+  const std::string map_bt = readFile(mission / "map.bt"), top = readFile(mission / "map_top.png"),
+                    side = readFile(mission / "map_side.png");
+  Names map_args = commandArgs(lines[6], "3d: map it again:");
+  map_args.push_back("-q");
+  const ProgramRun remade = run(map_args);
+  ASSERT_EQ(remade.exit_code, 0) << remade.err;
+  EXPECT_TRUE(readFile(mission / "map.bt") == map_bt) << "the remade map differs";
+  EXPECT_TRUE(readFile(mission / "map_top.png") == top) << "the remade top view differs";
+  EXPECT_TRUE(readFile(mission / "map_side.png") == side) << "the remade side view differs";
+}
+
+}  // namespace
+}  // namespace sonarmap::test
