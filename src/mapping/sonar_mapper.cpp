@@ -18,6 +18,15 @@
 namespace sonarmap {
 
 namespace {
+/// A key as one integer (hashing and comparing it is cheaper than the array) and back.
+std::uint64_t packedKey(const Key16& key) {
+  return std::uint64_t{key[0]} | (std::uint64_t{key[1]} << 16) | (std::uint64_t{key[2]} << 32);
+}
+Key16 unpackedKey(std::uint64_t packed) {
+  return Key16{{static_cast<std::uint16_t>(packed), static_cast<std::uint16_t>(packed >> 16),
+                static_cast<std::uint16_t>(packed >> 32)}};
+}
+
 /// The map's resolution until the first sweep fixes an automatic one (the map is empty until then).
 constexpr double kUnresolvedResolution_m = 0.02;
 
@@ -32,7 +41,7 @@ struct SonarMapper::SweepWork {
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
   struct KeyedHit {
-    std::uint64_t code;  ///< KeyMarks<16>::visitCode(key): sorts as the tree is visited
+    std::uint64_t code;  ///< packedKey(key): sorting groups a cell's points, z-slices in order
     Key16 key;
     double weight;  ///< HitPoint::weight
   };
@@ -43,7 +52,8 @@ struct SonarMapper::SweepWork {
   KeyMarks<16> outer;    ///< cells only the outer rays of the cones cross (the volume model)
   /// The volume model: every cell that ever received a hit (a superset of the map's occupied
   /// cells), so a sweep can protect them from the outer part of its cones.
-  absl::flat_hash_set<Key16, KeyHash<16>> occupied_keys;
+  std::vector<std::uint64_t> occupied_keys;  ///< packedKey() of each, sorted, unique
+  std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
 };
@@ -122,7 +132,8 @@ void SonarMapper::integrateFreeCells() {
     // map holds occupied unless the loud inner part of some cone of the sweep crosses it too.
     work.outer.reset(work.box_lo, work.box_hi);
     markRays(work.outer, true);
-    for (const Key16& key : work.occupied_keys) {
+    for (const std::uint64_t packed : work.occupied_keys) {
+      const Key16 key = unpackedKey(packed);
       if (!work.outer.contains(key) || work.crossed.contains(key)) continue;
       const std::optional<float> log_odds = map_.search(key);
       if (log_odds && map_.model().isOccupied(*log_odds)) work.outer.erase(key);
@@ -144,6 +155,8 @@ void SonarMapper::integrateHits() {
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.code < b.code; });
   const double prob_hit = options_.octree.occupancy.prob_hit;
   const bool volume = options_.beam_model == BeamModel::kVolume;
+  SweepWork& work = *work_;
+  work.merged_keys.clear();
   for (std::size_t i = 0; i < hits.size();) {
     double weight = hits[i].weight;
     std::size_t next = i + 1;
@@ -151,8 +164,16 @@ void SonarMapper::integrateHits() {
     const float delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
     map_.updateNode(hits[i].key, delta);
     ++stats_.occupied_updates;
-    if (volume) work_->occupied_keys.insert(hits[i].key);
+    if (volume) work.merged_keys.push_back(hits[i].code);
     i = next;
+  }
+  if (volume) {  // the sweep's hit cells (sorted, unique) joined to those of earlier sweeps
+    const std::size_t sweep_keys = work.merged_keys.size();
+    work.merged_keys.resize(sweep_keys + work.occupied_keys.size());
+    std::copy(work.occupied_keys.begin(), work.occupied_keys.end(), work.merged_keys.begin() + static_cast<std::ptrdiff_t>(sweep_keys));
+    std::inplace_merge(work.merged_keys.begin(), work.merged_keys.begin() + static_cast<std::ptrdiff_t>(sweep_keys), work.merged_keys.end());
+    work.merged_keys.erase(std::unique(work.merged_keys.begin(), work.merged_keys.end()), work.merged_keys.end());
+    std::swap(work.occupied_keys, work.merged_keys);
   }
 }
 
@@ -327,7 +348,7 @@ void SonarMapper::keySweep() {
   }
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      work.hits.push_back({KeyMarks<16>::visitCode(*key), *key, hit.weight});
+      work.hits.push_back({packedKey(*key), *key, hit.weight});
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }

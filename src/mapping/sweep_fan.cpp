@@ -76,11 +76,17 @@ void planFreeRays(const std::vector<PlannedBeam>& beams, const BeamShape& shape,
     const double coarse_gap_rad = 2.0 * std::ldexp(step, levels - level);
     return voxel_m / coarse_gap_rad - voxel_m;
   };
+  std::vector<double> cos_elevation, sin_elevation;  // of rows −rows_each_side … rows_each_side
+  for (long i = -rows_each_side; i <= rows_each_side; ++i) {
+    cos_elevation.push_back(std::cos(static_cast<double>(i) * step));
+    sin_elevation.push_back(std::sin(static_cast<double>(i) * step));
+  }
   for (std::size_t j = 0; j < n; ++j) {
     if (cover[j].beam < 0) continue;
     const int azimuth_level = levelOf(j);
     const PlannedBeam& beam = beams[static_cast<std::size_t>(cover[j].beam)];
     const double angle = static_cast<double>(j) * step;
+    const double cos_angle = std::cos(angle), sin_angle = std::sin(angle);
     const double end_m = cover[j].range_m;
     // The azimuth neighbours' reach limits a ray of this grid angle's level (either of them may end
     // sooner: beyond it the ray covers its cells alone).
@@ -98,11 +104,10 @@ void planFreeRays(const std::vector<PlannedBeam>& beams, const BeamShape& shape,
         // neighbours can end sooner.
         start_m = std::max(0.0, std::min(spreadOf(level), azimuth_level == level ? neighbours_m : end_m));
       }
-      const double elevation = static_cast<double>(i) * step;
-      const Eigen::Vector3d direction(std::cos(elevation) * std::cos(angle), std::cos(elevation) * std::sin(angle),
-                                      std::sin(elevation));
+      const auto row = static_cast<std::size_t>(i + rows_each_side);
+      const Eigen::Vector3d direction(cos_elevation[row] * cos_angle, cos_elevation[row] * sin_angle, sin_elevation[row]);
       rays.push_back({beam.sonar_to_map * (std::min(start_m, end_m) * direction), beam.sonar_to_map * (end_m * direction),
-                      std::abs(elevation) > 0.25 * shape.vertical_aperture_rad});
+                      std::abs(static_cast<double>(i) * step) > 0.25 * shape.vertical_aperture_rad});
     }
   }
 }
