@@ -121,6 +121,9 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();
+  cmd.add_option("--threads", args.threads, "Threads tracing each sweep's free rays (the map is identical for any count)")
+      ->capture_default_str()
+      ->check(CLI::Range(1U, 64U));
   cmd.add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd.add_flag("--tank-report", args.tank_report,
                "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
@@ -172,6 +175,7 @@ MapperOptions toMapperOptions(const MapArgs& args) {
   options.max_voxel_updates = args.max_voxel_updates;
   requireWithin(args.hit_probability, 0.5, 1.0, true, true, "--hit-probability", "a probability in (0.5, 1)");
   options.octree.occupancy.prob_hit = args.hit_probability;
+  options.threads = args.threads;
   if (args.volume) options.beam_model = BeamModel::kVolume;
   requireWithin(args.vertical_aperture_deg, 0.0, 180.0, true, true, "--vertical-aperture", "degrees in (0, 180)");
   options.vertical_aperture_rad = args.vertical_aperture_deg * kRadPerDeg;

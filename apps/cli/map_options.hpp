@@ -41,6 +41,7 @@ struct MapArgs {
   double hit_probability = MapperOptions{}.octree.occupancy.prob_hit;
   bool volume = false;  ///< --3d: the beam-volume model
   double vertical_aperture_deg = MapperOptions{}.vertical_aperture_rad * 180.0 / 3.14159265358979323846;
+  unsigned threads = 1;  ///< threads tracing a sweep's free rays
   std::string free_aperture = "auto";  ///< degrees, or auto (half the vertical aperture)
   std::string arc_evidence = "pattern";
   bool quiet = false;

@@ -78,6 +78,7 @@ void MapperOptions::validate() const {
   if (!(max_voxel_updates > 0.0)) {
     throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));
   }
+  if (threads == 0) throw ValueError("the mapper needs at least one thread");
   smoothing.validate();
   detector.validate();
   octree.occupancy.validate();

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <future>
+#include <thread>
 #include <optional>
 #include <string>
 
@@ -50,6 +52,7 @@ struct SonarMapper::SweepWork {
   double tolerance_m = 0.0;                           ///< the sweep's range tolerance
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
   KeyMarks<16> outer;    ///< cells only the outer rays of the cones cross (the volume model)
+  std::vector<KeyMarks<16>> parts;  ///< with several threads: the other threads' marks
   /// The volume model: every cell that ever received a hit (a superset of the map's occupied
   /// cells), so a sweep can protect them from the outer part of its cones.
   std::vector<std::uint64_t> occupied_keys;  ///< packedKey() of each, sorted, unique
@@ -114,9 +117,11 @@ void SonarMapper::integrateFreeCells() {
   // First mark every cell the rays cross, then update each once, in tree order.
   SweepWork& work = *work_;
   const bool volume = options_.beam_model == BeamModel::kVolume;
-  auto markRays = [&](KeyMarks<16>& marks, bool outer) {
+  // Rays [first, last) of one kind (inner or outer) into `marks`.
+  auto markRange = [&](KeyMarks<16>& marks, bool outer, std::size_t first, std::size_t last) {
     marks.marking([&](auto mark) {
-      for (const FreeRay& ray : work.rays) {
+      for (std::size_t r = first; r < last; ++r) {
+        const FreeRay& ray = work.rays[r];
         if (ray.outer != outer) continue;
         if (options_.ray == RayAlgorithm::kDDA) {
           traverseDDASteps(map_.coder(), ray.start_m, ray.end_m, mark);
@@ -125,6 +130,34 @@ void SonarMapper::integrateFreeCells() {
         }
       }
     });
+  };
+  // With several threads each traces a share of the rays into its own set; the union is the same
+  // whatever the split, so the map is identical.
+  auto markRays = [&](KeyMarks<16>& marks, bool outer) {
+    const std::size_t n = work.rays.size();
+    const auto threads = static_cast<unsigned>(std::clamp<std::size_t>(n / 256, 1, options_.threads));
+    if (threads <= 1) return markRange(marks, outer, 0, n);
+    work.parts.resize(threads - 1);
+    std::vector<std::exception_ptr> errors(threads);
+    {
+      std::vector<std::jthread> workers;  // joined on every exit path
+      const auto run = [&](unsigned t, KeyMarks<16>& part) {
+        try {
+          markRange(part, outer, n * t / threads, n * (t + 1) / threads);
+        } catch (...) {
+          errors[t] = std::current_exception();
+        }
+      };
+      for (unsigned t = 1; t < threads; ++t) {
+        work.parts[t - 1].reset(work.box_lo, work.box_hi);
+        workers.emplace_back(run, t, std::ref(work.parts[t - 1]));
+      }
+      run(0, marks);
+    }
+    for (const std::exception_ptr& error : errors) {
+      if (error) std::rethrow_exception(error);
+    }
+    for (unsigned t = 1; t < threads; ++t) marks.merge(work.parts[t - 1]);
   };
   markRays(work.crossed, false);
   if (volume) {

@@ -4,7 +4,11 @@
 // model cannot, clears almost nothing that is not water, and erodes a bounded share.
 #include <gtest/gtest.h>
 
+#include <tuple>
+#include <vector>
+
 #include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
 
 namespace sonarmap {
 namespace {
@@ -29,6 +33,28 @@ TEST(evalSimulatedMission, VolumeModelMapsTheTiltedLoopIn3D) {
   EXPECT_LT(volume.truth.surface_error_median_m, 0.1);  // two voxels
   // A 3D map: occupied voxels across metres of height, not one layer.
   EXPECT_GT(volume.truth.z_max_m - volume.truth.z_min_m, 2.0);
+}
+
+/// Every leaf of a map: key, depth and log-odds, in visit order.
+std::vector<std::tuple<Key16, int, float>> leavesOf(const OcTree16& map) {
+  std::vector<std::tuple<Key16, int, float>> leaves;
+  map.forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
+  return leaves;
+}
+
+// Two threads tracing the free rays give the identical map, for both models, on a moving, tilted
+// sonar (the cones of the tilted loop).
+TEST(evalSimulatedMission, TwoThreadsGiveTheIdenticalMap) {
+  const MissionRun run = simulateMission(SimulatedMission{"micron", "quay3d", "tilted-loop"});
+  for (const BeamModel model : {BeamModel::kPlanar, BeamModel::kVolume}) {
+    MapperOptions options = atFiveCentimetres(model);
+    const SonarMapper serial = mapSonarLog(run.simulation.log, run.simulation.nav, run.options.sonar_to_body, options);
+    options.threads = 2;
+    const SonarMapper parallel = mapSonarLog(run.simulation.log, run.simulation.nav, run.options.sonar_to_body, options);
+    ASSERT_GT(serial.stats().free_updates, 10000U);
+    EXPECT_EQ(parallel.stats().free_updates, serial.stats().free_updates);
+    EXPECT_EQ(leavesOf(parallel.map()), leavesOf(serial.map()));
+  }
 }
 
 TEST(evalSimulatedMission, UnknownMissionIsAnError) {

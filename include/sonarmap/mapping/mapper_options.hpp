@@ -124,11 +124,14 @@ struct MapperOptions {
   /// mapSonarLog: clean and detect sweep i+1 on a second thread while sweep i is integrated. The
   /// map is the same either way (detection does not depend on the map).
   bool pipeline_detection = true;
+  /// Threads that trace a sweep's free rays (each its share into its own cell set, then merged),
+  /// ≥ 1. The map is identical for any count; the tree updates stay on one thread.
+  unsigned threads = 1;
 
   /// @throws ValueError naming the option for a resolution that is set but not finite and > 0, a
   ///         self-reflection range or range tolerance that is set but not finite and ≥ 0, a max
   ///         range that is NaN or ≤ 0, a beam width outside [0, π), a budget that is NaN or ≤ 0,
-  ///         invalid smoothing or detector options, or invalid occupancy parameters.
+  ///         invalid smoothing or detector options, invalid occupancy parameters, or 0 threads.
   void validate() const;
 };
 
