@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sonarmap/mapping/sonar_mapper.hpp"
+#include "polar_fixtures.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/raycast/dda.hpp"
 
@@ -159,18 +160,8 @@ TEST(mappingBeamVolume, ShellIsCarvedAndEvidenceShared) {
   EXPECT_NEAR(edge_weight, 0.25, 1e-12);
 }
 
-/// A sweep of `beams` beams over a full turn with `bins` bins of 2 cm.
-PolarImage makeSweep(int beams, int bins) {
-  PolarImage polar;
-  polar.intensities = cv::Mat::zeros(beams, bins, CV_8U);
-  polar.valid_bins.assign(static_cast<std::size_t>(beams), bins);
-  for (int i = 0; i < beams; ++i) {
-    polar.bearing_rad.push_back(2.0 * std::numbers::pi * i / beams);
-    polar.time_s.push_back(0.05 * i);
-  }
-  polar.bin_length_m = kVoxel;
-  return polar;
-}
+/// A sweep of `beams` beams over a full turn, all with `bins` bins of 2 cm.
+PolarImage makeSweep(int beams, int bins) { return testing::makeFullTurnSweep(beams, bins, kVoxel); }
 
 MapperOptions volumeOptions() {
   MapperOptions options;

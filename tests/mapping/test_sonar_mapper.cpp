@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "sonarmap/mapping/sonar_mapper.hpp"
+#include "polar_fixtures.hpp"
 
 namespace sonarmap {
 namespace {
@@ -13,17 +14,7 @@ namespace {
 constexpr double kBin = 0.02;
 
 /// A sweep of `beams` beams over a full turn, all with `bins` bins of 2 cm.
-PolarImage makeSweep(int beams, int bins) {
-  PolarImage polar;
-  polar.intensities = cv::Mat::zeros(beams, bins, CV_8U);
-  polar.valid_bins.assign(static_cast<std::size_t>(beams), bins);
-  for (int i = 0; i < beams; ++i) {
-    polar.bearing_rad.push_back(2.0 * std::numbers::pi * i / beams);
-    polar.time_s.push_back(0.05 * i);
-  }
-  polar.bin_length_m = kBin;
-  return polar;
-}
+PolarImage makeSweep(int beams, int bins) { return testing::makeFullTurnSweep(beams, bins, kBin); }
 
 /// An obstacle whose leading edge is at the centre of `bin` (2 cm bins).
 BeamDetection obstacleAt(int bin, std::uint8_t intensity = 200) { return {bin, intensity, (bin + 0.5) * kBin}; }
