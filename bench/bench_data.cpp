@@ -33,6 +33,14 @@ MapperOptions mapperOptions(Variant variant) {
   return options;
 }
 
+MapperOptions volumeOptions(double resolution_m, bool pipeline_detection) {
+  MapperOptions options;
+  options.beam_model = BeamModel::kVolume;
+  options.resolution_m = resolution_m;
+  options.pipeline_detection = pipeline_detection;
+  return options;
+}
+
 std::string crasPath() {
   const char* folder = std::getenv("SONARMAP_DATA");
   const std::filesystem::path base = (folder != nullptr && *folder != '\0') ? folder : SONARMAP_SHARED_DATA;

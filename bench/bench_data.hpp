@@ -35,6 +35,11 @@ enum class Variant {
 /// MapperOptions of a variant.
 MapperOptions mapperOptions(Variant variant);
 
+/// The beam-volume model (issue 11): MapperOptions{} with beam_model = BeamModel::kVolume and
+/// `resolution_m` set, every other option at its default (the Micron's 3° × 35° cone, the default
+/// free aperture and arc evidence, detection pipelined unless `pipeline_detection` is false).
+MapperOptions volumeOptions(double resolution_m, bool pipeline_detection = true);
+
 /// Path of the CRAS log: $SONARMAP_DATA (a folder) if set, else the SONARMAP_SHARED_DATA folder
 /// given at compile time, joined with cras_micron_tank_static.mat.
 std::string crasPath();

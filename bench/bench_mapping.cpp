@@ -1,6 +1,13 @@
 /// @file bench_mapping.cpp
 /// sonarmap alone: the whole pipeline as the CLI runs it (BM_MapCras, BM_MapSynthetic), the same
 /// split into stages (BM_CrasStages, BM_SyntheticStages) and reading the .mat log (BM_ReadCras).
+/// The planar model (the 2D map, paper §6–§8) at 2 cm, and the beam-volume model (issue 11: the 3D
+/// map, BeamModel::kVolume, every other option at its default) at 2 cm and 5 cm: BM_MapCras/volume_*
+/// (detection included, on a second thread as the CLI does), BM_MapCras/volume_*_one_thread (the
+/// same on one thread: pipeline_detection off), BM_CrasStages/integrate_volume_* (the integration
+/// alone, on one thread).
+/// voxel_updates/s is the mapper's free + occupied cell updates (MappingStats, after the per-sweep
+/// deduplication) over the time of the whole case, detection included where it is timed.
 ///
 /// Maps are freed outside the timed region (the CLI does not time that either); every other step
 /// runs inside it, from the log in memory to a map consistent after its last sweep.
@@ -34,14 +41,16 @@ void reportMapper(benchmark::State& state, const SonarMapper& mapper) {
   state.counters["obstacles"] = benchmark::Counter(static_cast<double>(mapper.stats().obstacles));
   state.counters["free_updates"] = benchmark::Counter(static_cast<double>(mapper.stats().free_updates));
   state.counters["hit_updates"] = benchmark::Counter(static_cast<double>(mapper.stats().occupied_updates));
+  const auto updates = static_cast<double>(mapper.stats().free_updates + mapper.stats().occupied_updates);
+  state.counters["voxel_updates/s"] = benchmark::Counter(updates, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 /// mapSonarLog(log, options) per iteration: sweep splitting, polar images, self-reflection
-/// removal, smoothing, detection, ray casting and octree updates. File reading is not included.
-void mapWholeLog(benchmark::State& state, Source source, Variant variant) {
+/// removal, smoothing, detection (of the next sweep on a second thread while one is integrated:
+/// MapperOptions::pipeline_detection), ray casting and octree updates. File reading is not included.
+void mapWholeLog(benchmark::State& state, Source source, const MapperOptions& options) {
   const SonarLog* log = logOrSkip(state, source);
   if (log == nullptr) return;
-  const MapperOptions options = mapperOptions(variant);
   std::optional<SonarMapper> last;
   for (auto _ : state) {
     SonarMapper mapper = mapSonarLog(*log, options);
@@ -53,13 +62,20 @@ void mapWholeLog(benchmark::State& state, Source source, Variant variant) {
   reportMapper(state, *last);
 }
 
-void BM_MapCras(benchmark::State& state, Variant variant) { mapWholeLog(state, Source::kCras, variant); }
-void BM_MapSynthetic(benchmark::State& state, Variant variant) { mapWholeLog(state, Source::kSynthetic, variant); }
+void BM_MapCras(benchmark::State& state, Variant variant) { mapWholeLog(state, Source::kCras, mapperOptions(variant)); }
+void BM_MapCras(benchmark::State& state, const MapperOptions& options) { mapWholeLog(state, Source::kCras, options); }
+void BM_MapSynthetic(benchmark::State& state, Variant variant) {
+  mapWholeLog(state, Source::kSynthetic, mapperOptions(variant));
+}
 
 BENCHMARK_CAPTURE(BM_MapCras, dda_fan3deg, Variant::kDefault)->Apply(configure);
 BENCHMARK_CAPTURE(BM_MapCras, single_ray, Variant::kSingleRay)->Apply(configure);
 BENCHMARK_CAPTURE(BM_MapCras, bresenham_fan3deg, Variant::kBresenham)->Apply(configure);
 BENCHMARK_CAPTURE(BM_MapCras, eager_octree, Variant::kEager)->Apply(configure);
+BENCHMARK_CAPTURE(BM_MapCras, volume_2cm, volumeOptions(0.02))->Apply(configure);
+BENCHMARK_CAPTURE(BM_MapCras, volume_5cm, volumeOptions(0.05))->Apply(configure);
+BENCHMARK_CAPTURE(BM_MapCras, volume_2cm_one_thread, volumeOptions(0.02, false))->Apply(configure);
+BENCHMARK_CAPTURE(BM_MapCras, volume_5cm_one_thread, volumeOptions(0.05, false))->Apply(configure);
 BENCHMARK_CAPTURE(BM_MapSynthetic, dda_fan3deg, Variant::kDefault)->Apply(configure);
 BENCHMARK_CAPTURE(BM_MapSynthetic, single_ray, Variant::kSingleRay)->Apply(configure);
 
@@ -101,10 +117,9 @@ std::size_t walkRays(const PreparedSweeps& prepared, const MapperOptions& option
   return visited;
 }
 
-void mapStage(benchmark::State& state, Source source, Stage stage, Variant variant) {
+void mapStage(benchmark::State& state, Source source, Stage stage, const MapperOptions& options) {
   const SonarLog* log = logOrSkip(state, source);
   if (log == nullptr) return;
-  const MapperOptions options = mapperOptions(variant);
   const PreparedSweeps prepared = prepareSweeps(*log, options);
   state.counters["sweeps"] = benchmark::Counter(static_cast<double>(prepared.polar.size()));
   state.counters["beams/s"] =
@@ -158,10 +173,13 @@ void mapStage(benchmark::State& state, Source source, Stage stage, Variant varia
 }
 
 void BM_CrasStages(benchmark::State& state, Stage stage, Variant variant) {
-  mapStage(state, Source::kCras, stage, variant);
+  mapStage(state, Source::kCras, stage, mapperOptions(variant));
+}
+void BM_CrasStages(benchmark::State& state, Stage stage, const MapperOptions& options) {
+  mapStage(state, Source::kCras, stage, options);
 }
 void BM_SyntheticStages(benchmark::State& state, Stage stage, Variant variant) {
-  mapStage(state, Source::kSynthetic, stage, variant);
+  mapStage(state, Source::kSynthetic, stage, mapperOptions(variant));
 }
 
 BENCHMARK_CAPTURE(BM_CrasStages, polar_images, Stage::kPolarImages, Variant::kDefault)->Apply(configure);
@@ -174,6 +192,8 @@ BENCHMARK_CAPTURE(BM_CrasStages, integrate_bresenham_fan3deg, Stage::kIntegrate,
 BENCHMARK_CAPTURE(BM_CrasStages, raycast_only_bresenham_fan3deg, Stage::kRaycast, Variant::kBresenham)
     ->Apply(configure);
 BENCHMARK_CAPTURE(BM_CrasStages, integrate_eager_octree, Stage::kIntegrate, Variant::kEager)->Apply(configure);
+BENCHMARK_CAPTURE(BM_CrasStages, integrate_volume_2cm, Stage::kIntegrate, volumeOptions(0.02))->Apply(configure);
+BENCHMARK_CAPTURE(BM_CrasStages, integrate_volume_5cm, Stage::kIntegrate, volumeOptions(0.05))->Apply(configure);
 BENCHMARK_CAPTURE(BM_SyntheticStages, integrate_dda_fan3deg, Stage::kIntegrate, Variant::kDefault)->Apply(configure);
 
 /// readSonarLog on the CRAS .mat: libmatio parsing and per-beam validation.
