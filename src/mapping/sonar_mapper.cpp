@@ -42,12 +42,9 @@ struct SonarMapper::SweepWork {
   std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
-  struct KeyedHit {
-    std::uint64_t code;  ///< packedKey(key): sorting groups a cell's points, z-slices in order
-    Key16 key;
-    double weight;  ///< HitPoint::weight
-  };
-  std::vector<KeyedHit> hits;                         ///< hit cells, one per arc point
+  /// Hit cells, one per arc point: packedKey(key) << 16 | (65535 − the point's weight in 1/65535),
+  /// so that sorting the integers groups a cell's points with the largest weight first.
+  std::vector<std::uint64_t> hits;
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
   double tolerance_m = 0.0;                           ///< the sweep's range tolerance
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
@@ -173,7 +170,7 @@ void SonarMapper::integrateFreeCells() {
     }
     work.crossed.merge(work.outer);
   }
-  for (const auto& hit : work.hits) work.crossed.erase(hit.key);  // an obstacle is never also a miss
+  for (const std::uint64_t hit : work.hits) work.crossed.erase(unpackedKey(hit >> 16));  // never also a miss
   // Brick by brick, leaves only; an eager tree then syncs its inner nodes once (the same tree).
   work.crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
     map_.updateBrick(corner, voxels, map_.model().miss);
@@ -185,19 +182,20 @@ void SonarMapper::integrateFreeCells() {
 void SonarMapper::integrateHits() {
   // One update per hit cell, however many arc points fell into it: the largest share among them.
   auto& hits = work_->hits;
-  std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.code < b.code; });
+  std::sort(hits.begin(), hits.end());
   const double prob_hit = options_.octree.occupancy.prob_hit;
   const bool volume = options_.beam_model == BeamModel::kVolume;
   SweepWork& work = *work_;
   work.merged_keys.clear();
   for (std::size_t i = 0; i < hits.size();) {
-    double weight = hits[i].weight;
+    const std::uint64_t cell = hits[i] >> 16;
+    const double weight = static_cast<double>(0xFFFF - (hits[i] & 0xFFFF)) / 0xFFFF;  // the cell's largest
     std::size_t next = i + 1;
-    for (; next < hits.size() && hits[next].code == hits[i].code; ++next) weight = std::max(weight, hits[next].weight);
+    while (next < hits.size() && hits[next] >> 16 == cell) ++next;
     const float delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
-    map_.updateNode(hits[i].key, delta);
+    map_.updateNode(unpackedKey(cell), delta);
     ++stats_.occupied_updates;
-    if (volume) work.merged_keys.push_back(hits[i].code);
+    if (volume) work.merged_keys.push_back(cell);
     i = next;
   }
   if (volume) {  // the sweep's hit cells (sorted, unique) joined to those of earlier sweeps
@@ -381,7 +379,8 @@ void SonarMapper::keySweep() {
   }
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      work.hits.push_back({packedKey(*key), *key, hit.weight});
+      const auto weight = static_cast<std::uint64_t>(std::lround(std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF));
+      work.hits.push_back(packedKey(*key) << 16 | (0xFFFF - weight));
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }
