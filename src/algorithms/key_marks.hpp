@@ -173,13 +173,6 @@ class KeyMarks {
     }
   }
 
-  /// An integer in visitLess order (for Depth ≤ 16): sorting these sorts the keys as forEachBrick
-  /// visits them, without comparing arrays.
-  static std::uint64_t visitCode(const KeyType& key) {
-    return (std::uint64_t{key[2]} >> 2 << 34) | (std::uint64_t{key[1]} >> 2 << 20) | (std::uint64_t{key[0]} >> 2 << 6) |
-           bitIndex(key);
-  }
-
   /// Orders keys as forEachBrick visits them: by brick z, y, x, then Morton order in the brick.
   static bool visitLess(const KeyType& a, const KeyType& b) {
     const auto brick = [](const KeyType& k) { return std::tuple(k[2] >> 2, k[1] >> 2, k[0] >> 2); };

@@ -20,15 +20,6 @@
 namespace sonarmap {
 
 namespace {
-/// A key as one integer (hashing and comparing it is cheaper than the array) and back.
-std::uint64_t packedKey(const Key16& key) {
-  return std::uint64_t{key[0]} | (std::uint64_t{key[1]} << 16) | (std::uint64_t{key[2]} << 32);
-}
-Key16 unpackedKey(std::uint64_t packed) {
-  return Key16{{static_cast<std::uint16_t>(packed), static_cast<std::uint16_t>(packed >> 16),
-                static_cast<std::uint16_t>(packed >> 32)}};
-}
-
 /// The map's resolution until the first sweep fixes an automatic one (the map is empty until then).
 constexpr double kUnresolvedResolution_m = 0.02;
 
@@ -42,7 +33,7 @@ struct SonarMapper::SweepWork {
   std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
-  /// Hit cells, one per arc point: packedKey(key) << 16 | (65535 − the point's weight in 1/65535),
+  /// Hit cells, one per arc point: packKey(key) << 16 | (65535 − the point's weight in 1/65535),
   /// so that sorting the integers groups a cell's points with the largest weight first.
   std::vector<std::uint64_t> hits;
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
@@ -52,7 +43,7 @@ struct SonarMapper::SweepWork {
   std::vector<KeyMarks<16>> parts;  ///< with several threads: the other threads' marks
   /// The volume model: every cell that ever received a hit (a superset of the map's occupied
   /// cells), so a sweep can protect them from the outer part of its cones.
-  std::vector<std::uint64_t> occupied_keys;  ///< packedKey() of each, sorted, unique
+  std::vector<std::uint64_t> occupied_keys;  ///< packKey() of each, sorted, unique
   std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
@@ -163,14 +154,14 @@ void SonarMapper::integrateFreeCells() {
     work.outer.reset(work.box_lo, work.box_hi);
     markRays(work.outer, true);
     for (const std::uint64_t packed : work.occupied_keys) {
-      const Key16 key = unpackedKey(packed);
+      const Key16 key = unpackKey<16>(packed);
       if (!work.outer.contains(key) || work.crossed.contains(key)) continue;
       const std::optional<float> log_odds = map_.search(key);
       if (log_odds && map_.model().isOccupied(*log_odds)) work.outer.erase(key);
     }
     work.crossed.merge(work.outer);
   }
-  for (const std::uint64_t hit : work.hits) work.crossed.erase(unpackedKey(hit >> 16));  // never also a miss
+  for (const std::uint64_t hit : work.hits) work.crossed.erase(unpackKey<16>(hit >> 16));  // never also a miss
   // Brick by brick, leaves only; an eager tree then syncs its inner nodes once (the same tree).
   work.crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
     map_.updateBrick(corner, voxels, map_.model().miss);
@@ -193,7 +184,7 @@ void SonarMapper::integrateHits() {
     std::size_t next = i + 1;
     while (next < hits.size() && hits[next] >> 16 == cell) ++next;
     const float delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
-    map_.updateNode(unpackedKey(cell), delta);
+    map_.updateNode(unpackKey<16>(cell), delta);
     ++stats_.occupied_updates;
     if (volume) work.merged_keys.push_back(cell);
     i = next;
@@ -380,7 +371,7 @@ void SonarMapper::keySweep() {
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
       const auto weight = static_cast<std::uint64_t>(std::lround(std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF));
-      work.hits.push_back(packedKey(*key) << 16 | (0xFFFF - weight));
+      work.hits.push_back(packKey(*key) << 16 | (0xFFFF - weight));
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }

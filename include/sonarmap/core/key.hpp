@@ -71,16 +71,32 @@ constexpr void growKeyBox(Key<Depth>& lo, Key<Depth>& hi, const Key<Depth>& key)
   }
 }
 
-/// Hash of a key, for unordered sets of keys. For depth ≤ 21 the three components pack without
-/// loss into one 64-bit word (48 bits for OctoMap's depth 16, paper §5.1).
+/// A key of depth ≤ 21 packed without loss into one 64-bit word: x | y << Depth | z << 2 Depth
+/// (48 bits for OctoMap's depth 16, paper §5.1). Cheaper to hash, compare and sort than the array;
+/// sorting packed keys orders them by z, then y, then x.
+template <int Depth>
+  requires(Depth <= 21)
+constexpr std::uint64_t packKey(const Key<Depth>& key) noexcept {
+  return static_cast<std::uint64_t>(key[0]) | (static_cast<std::uint64_t>(key[1]) << Depth) |
+         (static_cast<std::uint64_t>(key[2]) << (2 * Depth));
+}
+
+/// The key packKey() packed.
+template <int Depth>
+  requires(Depth <= 21)
+constexpr Key<Depth> unpackKey(std::uint64_t packed) noexcept {
+  constexpr std::uint64_t mask = (std::uint64_t{1} << Depth) - 1;
+  using Index = typename Key<Depth>::Index;
+  return Key<Depth>{{static_cast<Index>(packed & mask), static_cast<Index>((packed >> Depth) & mask),
+                     static_cast<Index>((packed >> (2 * Depth)) & mask)}};
+}
+
+/// Hash of a key, for unordered sets of keys (packKey() for depth ≤ 21).
 template <int Depth>
 struct KeyHash {
   std::size_t operator()(const Key<Depth>& key) const noexcept {
     if constexpr (Depth <= 21) {
-      const std::uint64_t packed = static_cast<std::uint64_t>(key[0]) |
-                                   (static_cast<std::uint64_t>(key[1]) << Depth) |
-                                   (static_cast<std::uint64_t>(key[2]) << (2 * Depth));
-      return static_cast<std::size_t>(packed * 0x9E3779B97F4A7C15ULL);
+      return static_cast<std::size_t>(packKey(key) * 0x9E3779B97F4A7C15ULL);
     } else {
       std::size_t h = 0;
       for (int axis = 0; axis < 3; ++axis) {
