@@ -4,15 +4,25 @@
 // field of view: precision, recall, F1, surface error (median, 90th percentile), erosion, free
 // accuracy; obstacles, voxel updates and mapping time.
 //
-// Usage: sonarmap_accuracy_3d [RESOLUTION_M] [PRESET ...]   (defaults: 0.05, micron)
+// With a log (an argument ending in .mat, .V4LOG or .csv, e.g. the CRAS tank), that log is mapped
+// in 3D with the defaults at RESOLUTION_M instead, and its occupied voxels are tabled by horizontal
+// range from the sonar (0.25 m rings): count and height extent against 2 r tan(aperture / 2), the
+// vertical band a static head must give (docs/mapping-3d.md).
+//
+// Usage: sonarmap_accuracy_3d [RESOLUTION_M] [PRESET ... | LOG]   (defaults: 0.05, micron)
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
 
 namespace {
 
@@ -24,10 +34,66 @@ struct Model {
   ArcEvidence evidence;
 };
 
+bool isLog(const std::string& argument) {
+  for (const char* extension : {".mat", ".V4LOG", ".csv"}) {
+    const std::string ending(extension);
+    if (argument.size() > ending.size() && argument.compare(argument.size() - ending.size(), ending.size(), ending) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// A static log mapped in 3D: occupied voxels by horizontal range from the sonar.
+void printBands(const std::string& path, double resolution_m) {
+  MapperOptions options;
+  options.resolution_m = resolution_m;
+  options.beam_model = BeamModel::kVolume;
+  const SonarMapper mapper = mapSonarLog(readSonarLog(path), options);
+  const OcTree16& map = mapper.map();
+  struct Band {
+    std::size_t voxels = 0;
+    double z_min_m = INFINITY, z_max_m = -INFINITY;
+  };
+  std::map<int, Band> bands;  // by 0.25 m ring
+  map.forEachLeaf([&](const LeafView<16>& leaf) {
+    if (map.model().classify(leaf.log_odds) != Occupancy::kOccupied) return;
+    const auto edge = static_cast<int>(leaf.edgeVoxels());
+    for (int dz = 0; dz < edge; ++dz) {
+      for (int dy = 0; dy < edge; ++dy) {
+        for (int dx = 0; dx < edge; ++dx) {
+          const Key16 key{{static_cast<std::uint16_t>(leaf.key[0] + dx), static_cast<std::uint16_t>(leaf.key[1] + dy),
+                           static_cast<std::uint16_t>(leaf.key[2] + dz)}};
+          const Eigen::Vector3d centre = map.coder().centerOf(key);
+          Band& band = bands[static_cast<int>(std::floor(std::hypot(centre.x(), centre.y()) / 0.25))];
+          ++band.voxels;
+          band.z_min_m = std::min(band.z_min_m, centre.z());
+          band.z_max_m = std::max(band.z_max_m, centre.z());
+        }
+      }
+    }
+  });
+  std::printf("| range (m) | occupied voxels | height (m) | 2 r tan(aperture / 2) (m) |\n|---|---:|---:|---:|\n");
+  for (const auto& [ring, band] : bands) {
+    const double middle_m = 0.25 * ring + 0.125;
+    std::printf("| %.2f–%.2f | %zu | %.2f | %.2f |\n", 0.25 * ring, 0.25 * ring + 0.25, band.voxels,
+                band.z_max_m - band.z_min_m, 2.0 * middle_m * std::tan(0.5 * options.vertical_aperture_rad));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const double resolution_m = argc > 1 ? std::atof(argv[1]) : 0.05;
+  if (argc > 2 && isLog(argv[2])) {
+    try {
+      printBands(argv[2], resolution_m);
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "sonarmap_accuracy_3d: %s\n", error.what());
+      return 1;
+    }
+    return 0;
+  }
   std::vector<std::string> presets;
   for (int i = 2; i < argc; ++i) presets.emplace_back(argv[i]);
   if (presets.empty()) presets = {"micron"};

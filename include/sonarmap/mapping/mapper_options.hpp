@@ -102,8 +102,7 @@ struct MapperOptions {
   /// Vertical extent of the cone the volume model clears, radians, in (0, vertical_aperture_rad].
   /// A beam without an echo proves water only where it is loud: towards the −3 dB edges of the
   /// aperture a grazing seabed or surface returns too little to rise above the noise, and clearing
-  /// there erased them (on the simulated Micron lawnmower, with a fixed 6 dB echo onset: erosion
-  /// 0.43 clearing the full aperture against 0.03 clearing its central half; docs/accuracy.md). The obstacle's shell and the carving of other
+  /// there erased them (erosion on the simulated missions, before and after: docs/accuracy.md). The obstacle's shell and the carving of other
   /// beams' shells still use the whole aperture. Unset: half the vertical aperture (the Gaussian
   /// two-way pattern above −1.5 dB).
   std::optional<double> free_vertical_aperture_rad;
