@@ -1,6 +1,7 @@
 // sonarmap_accuracy_3d: the 3D accuracy table of docs/accuracy.md (issue 11). Each simulated
 // mission (eval/simulated_mission.hpp) mapped with the planar model and with the beam-volume model
-// under each arc-evidence rule, at 5 cm voxels, scored in 3D against the scene with the head's
+// under each arc-evidence rule (and the default rule with silent beams clearing, as before issue
+// 11's no-echo rule), at 5 cm voxels, scored in 3D against the scene with the head's
 // field of view: precision, recall, F1, surface error (median, 90th percentile), erosion, free
 // accuracy; obstacles, voxel updates and mapping time.
 //
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <exception>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sim/scene.hpp"
 
 namespace {
 
@@ -32,7 +35,23 @@ struct Model {
   const char* name;
   BeamModel beam;
   ArcEvidence evidence;
+  std::optional<bool> clear_without_obstacle;  ///< unset: the model's default
 };
+
+/// Table rows of the mission's recall and erosion per scene primitive.
+std::string recallBySurface(const std::string& preset, const std::string& mission, const MissionAccuracy& accuracy) {
+  const Scene scene = simulateMission(accuracy.mission).simulation.scene;
+  std::string rows;
+  for (const SurfaceRecall& surface : accuracy.truth.recall_by_surface) {
+    const auto share = [&](std::size_t n) { return static_cast<double>(n) / static_cast<double>(surface.visible_voxels); };
+    char row[256];
+    std::snprintf(row, sizeof row, "| %s | %s | %zu (%s) | %zu | %.3f | %.3f |\n", preset.c_str(), mission.c_str(),
+                  surface.primitive, primitiveKind(scene.primitives[surface.primitive]), surface.visible_voxels,
+                  share(surface.found_voxels), share(surface.free_voxels));
+    rows += row;
+  }
+  return rows;
+}
 
 bool isLog(const std::string& argument) {
   for (const char* extension : {".mat", ".V4LOG", ".csv"}) {
@@ -100,10 +119,12 @@ int main(int argc, char** argv) {
   const Model models[] = {{"planar", BeamModel::kPlanar, ArcEvidence::kWholeArc},
                           {"volume, whole arc", BeamModel::kVolume, ArcEvidence::kWholeArc},
                           {"volume, uniform spread", BeamModel::kVolume, ArcEvidence::kSpreadUniform},
-                          {"volume, beam pattern", BeamModel::kVolume, ArcEvidence::kBeamPattern}};
+                          {"volume, beam pattern", BeamModel::kVolume, ArcEvidence::kBeamPattern},
+                          {"volume, beam pattern, silent beams clear", BeamModel::kVolume, ArcEvidence::kBeamPattern, true}};
   std::printf("| head | mission | model | occupied | precision | recall | F1 | surface error median / p90 (m) | "
               "erosion | free accuracy | obstacles | voxel updates | mapping (s) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::string by_surface;  // the default model's recall and erosion per scene primitive
   for (const std::string& preset : presets) {
     for (const std::string& mission : simulatedMissionNames()) {
       for (const Model& model : models) {
@@ -111,6 +132,7 @@ int main(int argc, char** argv) {
         options.resolution_m = resolution_m;
         options.beam_model = model.beam;
         options.arc_evidence = model.evidence;
+        options.clear_without_obstacle = model.clear_without_obstacle;
         try {
           const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
           const GroundTruthReport& t = a.truth;
@@ -118,6 +140,10 @@ int main(int argc, char** argv) {
                       preset.c_str(), mission.c_str(), model.name, t.occupied_voxels, t.precision, t.recall, a.f1(),
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
                       static_cast<double>(a.voxel_updates), a.seconds_mapping);
+          if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
+              !model.clear_without_obstacle) {
+            by_surface += recallBySurface(preset, mission, a);
+          }
         } catch (const std::exception& error) {
           std::printf("| %s | %s | %s | %s |\n", preset.c_str(), mission.c_str(), model.name, error.what());
         }
@@ -125,5 +151,9 @@ int main(int argc, char** argv) {
       }
     }
   }
+  std::printf("\nRecall and erosion of the default volume model by surface (visible surface voxels nearest each "
+              "primitive of the scene, builtin_scenes.hpp):\n\n| head | mission | primitive | visible voxels | "
+              "recall | erosion |\n|---|---|---|---:|---:|---:|\n%s",
+              by_surface.c_str());
   return 0;
 }

@@ -118,6 +118,11 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "--3d: vertical extent in DEGREES of the cone a beam clears (where its silence proves water), or "
                  "auto: half the vertical aperture")
       ->capture_default_str();
+  cmd.add_option("--clear-without-obstacle", args.clear_without_obstacle,
+                 "Whether a beam without an obstacle clears its wedge or cone up to where its echo shows water: yes | no | "
+                 "auto (yes for the plane, no for --3d, where a grazing seabed returns below any threshold)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "yes", "no"}));
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();
@@ -185,6 +190,7 @@ MapperOptions toMapperOptions(const MapArgs& args) {
                   "degrees in (0, the vertical aperture]");
     options.free_vertical_aperture_rad = *free_deg * kRadPerDeg;
   }
+  if (args.clear_without_obstacle != "auto") options.clear_without_obstacle = args.clear_without_obstacle == "yes";
   options.validate();
   return options;
 }

@@ -43,6 +43,7 @@ struct MapArgs {
   double vertical_aperture_deg = MapperOptions{}.vertical_aperture_rad * 180.0 / 3.14159265358979323846;
   unsigned threads = 1;  ///< threads tracing a sweep's free rays
   std::string free_aperture = "auto";  ///< degrees, or auto (half the vertical aperture)
+  std::string clear_without_obstacle = "auto";  ///< yes, no, or auto (planar yes, --3d no)
   std::string arc_evidence = "pattern";
   bool quiet = false;
   bool tank_report = false;

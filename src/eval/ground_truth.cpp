@@ -164,6 +164,17 @@ bool occupiedNear(const KeySet& occupied, const Key16& key, double tolerance_m, 
   return false;
 }
 
+/// The distance from `point_m` to the nearest surface of the scene (metres) and that primitive's
+/// index (the first of equals).
+std::pair<double, std::size_t> nearestPrimitive(const Scene& scene, const Eigen::Vector3d& point_m) {
+  std::pair<double, std::size_t> nearest{std::numeric_limits<double>::infinity(), 0};
+  for (std::size_t i = 0; i < scene.primitives.size(); ++i) {
+    const double d = distanceToSurface(scene.primitives[i], point_m);
+    if (d < nearest.first) nearest = {d, i};
+  }
+  return nearest;
+}
+
 /// Precision and wall-position error over the occupied voxels.
 void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
                    const GroundTruthOptions& options, GroundTruthReport& report) {
@@ -173,12 +184,7 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
   double sum = 0.0, sum_sq = 0.0;
   for (const Key16& key : region.occupied) {
     const Eigen::Vector3d center = map.coder().centerOf(key);
-    std::size_t nearest = 0;
-    double distance_m = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < scene.primitives.size(); ++i) {
-      const double d = distanceToSurface(scene.primitives[i], center);
-      if (d < distance_m) std::tie(distance_m, nearest) = std::pair{d, i};
-    }
+    const auto [distance_m, nearest] = nearestPrimitive(scene, center);
     report.occupied_on_surface += distance_m <= report.tolerance_m ? 1 : 0;
     distances.push_back(distance_m);
     if (distance_m > options.match_distance_m) continue;
@@ -227,12 +233,33 @@ void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster
     lo[axis] = static_cast<std::uint16_t>(std::max(0, static_cast<int>(region.lo[axis]) - grow));
     hi[axis] = static_cast<std::uint16_t>(std::min(0xFFFF, static_cast<int>(region.hi[axis]) + grow));
   }
+  if (options.surface_box_m) {  // the caller's box, clipped to the keys the map can hold
+    const double first_m = coder.centerOf(std::uint16_t{0}), last_m = coder.centerOf(std::uint16_t{0xFFFF});
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto indexOf = [&](double v_m) { return *coder.indexOf(std::clamp(v_m, first_m, last_m)); };
+      lo[axis] = indexOf(options.surface_box_m->min()[axis]);
+      hi[axis] = indexOf(options.surface_box_m->max()[axis]);
+    }
+  }
+  std::vector<SurfaceRecall> by_primitive(scene.primitives.size());
   for (const Key16& key : detail::surfaceVoxels(coder, scene, lo, hi)) {
     const Eigen::Vector3d center = coder.centerOf(key);
     if (!visibleSurface(caster, options.sensor_positions_m, view, center, report.max_range_m, res)) continue;
-    ++report.surface_voxels;
-    report.surface_voxels_found += occupiedNear(occupied, key, report.tolerance_m, res) ? 1 : 0;
-    report.surface_voxels_free += map.occupancyOf(key) == Occupancy::kFree ? 1 : 0;
+    const bool found = occupiedNear(occupied, key, report.tolerance_m, res);
+    const bool free = map.occupancyOf(key) == Occupancy::kFree;
+    SurfaceRecall& nearest = by_primitive[nearestPrimitive(scene, center).second];
+    ++nearest.visible_voxels;
+    nearest.found_voxels += found ? 1 : 0;
+    nearest.free_voxels += free ? 1 : 0;
+  }
+  for (std::size_t i = 0; i < by_primitive.size(); ++i) {
+    SurfaceRecall& counts = by_primitive[i];
+    if (counts.visible_voxels == 0) continue;
+    counts.primitive = i;
+    report.surface_voxels += counts.visible_voxels;
+    report.surface_voxels_found += counts.found_voxels;
+    report.surface_voxels_free += counts.free_voxels;
+    report.recall_by_surface.push_back(counts);
   }
   report.recall = share(report.surface_voxels_found, report.surface_voxels);
   report.erosion = share(report.surface_voxels_free, report.surface_voxels);
@@ -283,6 +310,9 @@ void GroundTruthOptions::validate() const {
       throw ValueError("ground-truth options: vertical_aperture_rad must be in (0, π), got " +
                        std::to_string(aperture_rad));
     }
+  }
+  if (surface_box_m && (surface_box_m->isEmpty() || !surface_box_m->min().allFinite() || !surface_box_m->max().allFinite())) {
+    throw ValueError("ground-truth options: surface_box_m must be a finite, non-empty box");
   }
   if (vertical_aperture_rad.has_value() != !sensor_orientations.empty()) {
     throw ValueError(

@@ -91,6 +91,12 @@ GroundTruthOptions missionTruthOptions(const MissionRun& run, double tolerance_m
     truth.sensor_orientations.push_back(sonar_to_map.linear());
   }
   truth.vertical_aperture_rad = run.options.head.vertical_beam_width_rad;
+  // The truth the sonar could reach, whatever the map: every sensor position grown by the range.
+  const double range_m = run.options.head.range_m;
+  truth.max_range_m = range_m;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& position : truth.sensor_positions_m) box.extend(position);
+  truth.surface_box_m = Eigen::AlignedBox3d(box.min().array() - range_m, box.max().array() + range_m);
   return truth;
 }
 

@@ -59,6 +59,10 @@ double freeVerticalAperture_rad(const MapperOptions& options) {
   return options.free_vertical_aperture_rad.value_or(0.5 * options.vertical_aperture_rad);
 }
 
+bool clearsWithoutObstacle(const MapperOptions& options) {
+  return options.clear_without_obstacle.value_or(options.beam_model == BeamModel::kPlanar);
+}
+
 void MapperOptions::validate() const {
   checkOptionalLength(resolution_m, "resolution", false);
   checkOptionalLength(self_reflection_range_m, "self-reflection range", true);

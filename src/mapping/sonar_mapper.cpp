@@ -206,6 +206,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
   SweepWork& work = *work_;
   work.beams.clear();
   const double tolerance_m = work.tolerance_m = rangeTolerance_m(polar);
+  const bool clears_without_obstacle = clearsWithoutObstacle(options_);
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const Eigen::Isometry3d* sonar_to_map = pose_of(row);
     if (sonar_to_map == nullptr) {
@@ -215,6 +216,10 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     const BeamDetection& detection = detections[row];
     if (detection.hasObstacle() && !(std::isfinite(detection.range_m) && detection.range_m > 0.0)) {
       throw ValueError("detection of beam " + std::to_string(row) + " has an obstacle at a range that is not > 0 m");
+    }
+    if (!detection.hasObstacle() && !clears_without_obstacle) {  // silence is no proof of water here
+      ++stats_.beams_without_evidence;
+      continue;
     }
     // Without an obstacle a beam clears only as far as its echo shows water (detection.hpp).
     double range_m = detection.hasObstacle() ? detection.range_m

@@ -67,6 +67,53 @@ TEST(evalGroundTruth3d, ErosionIsTheShareOfVisibleSurfaceVoxelsMappedFree) {
   EXPECT_DOUBLE_EQ(short_range.erosion, 1.0 / 6.0);
 }
 
+TEST(evalGroundTruth3d, RecallAndErosionSplitByNearestSurface) {
+  // Two walls seen from the origin: x = 1.05 m (primitive 0, mapped, three voxels cleared) and
+  // y = 1.05 m (primitive 1, cleared wherever known).
+  const Scene scene{{Plane{{1.05, 0.0, 0.0}, Eigen::Vector3d::UnitX(), 0.9},
+                     Plane{{0.0, 1.05, 0.0}, Eigen::Vector3d::UnitY(), 0.9}}};
+  OcTree16 map(kRes);
+  for (int j = -5; j < 10; ++j) {
+    for (int i = -5; i < 10; ++i) setFree(map, i, j);
+  }
+  for (int j = -5; j < -2; ++j) setFree(map, 10, j);
+  for (int j = -2; j < 10; ++j) setOccupied(map, 10, j);
+  for (int i = -5; i < 10; ++i) setFree(map, i, 10);
+  const GroundTruthReport r = evaluateAgainstScene(map, scene);
+  ASSERT_EQ(r.recall_by_surface.size(), 2U);
+  const SurfaceRecall& x_wall = r.recall_by_surface[0];
+  const SurfaceRecall& y_wall = r.recall_by_surface[1];
+  EXPECT_EQ(x_wall.primitive, 0U);
+  EXPECT_EQ(y_wall.primitive, 1U);
+  EXPECT_EQ(x_wall.visible_voxels + y_wall.visible_voxels, r.surface_voxels);
+  EXPECT_EQ(x_wall.found_voxels + y_wall.found_voxels, r.surface_voxels_found);
+  EXPECT_EQ(x_wall.free_voxels + y_wall.free_voxels, r.surface_voxels_free);
+  EXPECT_EQ(x_wall.free_voxels, 3U);   // rows −5…−3 of column 10
+  EXPECT_EQ(y_wall.free_voxels, 15U);  // row 10, columns −5…9
+  EXPECT_GT(x_wall.found_voxels, 10U);
+  EXPECT_LE(y_wall.found_voxels, 2U);  // only next to the corner's occupied voxels
+}
+
+// With surface_box_m the surface voxels are sought in the caller's box, not in the map's own known
+// box: a map known in one layer is scored against the wall's visible height too.
+TEST(evalGroundTruth3d, SurfaceBoxMakesTheTruthIndependentOfTheMap) {
+  OcTree16 map(kRes);
+  for (int j = -5; j < 5; ++j) {
+    for (int i = 0; i < 10; ++i) setFree(map, i, j);
+    setOccupied(map, 10, j);
+  }
+  GroundTruthOptions options;
+  options.max_range_m = 1.5;
+  const GroundTruthReport plain = evaluateAgainstScene(map, wallScene(), options);
+  options.surface_box_m = Eigen::AlignedBox3d(Eigen::Vector3d(-2.0, -2.0, -0.5), Eigen::Vector3d(2.0, 2.0, 0.5));
+  const GroundTruthReport boxed = evaluateAgainstScene(map, wallScene(), options);
+  EXPECT_GT(boxed.surface_voxels, 5 * plain.surface_voxels);  // ten layers instead of one, more rows
+  EXPECT_LT(boxed.recall, 0.5 * plain.recall);
+  EXPECT_EQ(boxed.occupied_voxels, plain.occupied_voxels);  // precision: the map's own voxels
+  options.surface_box_m = Eigen::AlignedBox3d(Eigen::Vector3d(1.0, 1.0, 1.0), Eigen::Vector3d(0.0, 0.0, 0.0));
+  EXPECT_THROW(evaluateAgainstScene(map, wallScene(), options), ValueError);
+}
+
 TEST(evalGroundTruth3d, SurfaceErrorIsTheMedianAndNinetiethPercentileOverOccupiedVoxels) {
   OcTree16 map(kRes);
   for (int j = 0; j < 5; ++j) setOccupied(map, 10, j);  // 5 on the wall: 0 m

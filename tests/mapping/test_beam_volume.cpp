@@ -201,6 +201,7 @@ TEST(mappingBeamVolume, EachVoxelIsUpdatedOncePerSweep) {
 TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
   MapperOptions options = volumeOptions();
   options.free_vertical_aperture_rad = options.vertical_aperture_rad;  // clear the whole cone
+  options.clear_without_obstacle = true;  // the water beams below clear (not the 3D default)
   SonarMapper mapper(options);
   const Key16 target = *mapper.map().coder().keyOf(Eigen::Vector3d(2.0, 0.0, 0.0));
   const Eigen::Vector3d target_m = mapper.map().coder().centerOf(target);
@@ -236,7 +237,8 @@ TEST(mappingBeamVolume, TiltedMountingTiltsTheCone) {
   PolarImage polar = makeSweep(1, 150);
   BeamDetection water;
   water.water_range_m = 3.0;
-  auto zExtent = [&](const MapperOptions& options) {
+  auto zExtent = [&](MapperOptions options) {
+    options.clear_without_obstacle = true;  // a beam of water clears (not the 3D default)
     SonarMapper mapper(options);
     mapper.integrateSweep(polar, {water}, tilted);
     double lowest_z = 0.0, highest_z = -1.0;
@@ -255,6 +257,34 @@ TEST(mappingBeamVolume, TiltedMountingTiltsTheCone) {
   MapperOptions whole = volumeOptions();
   whole.free_vertical_aperture_rad = whole.vertical_aperture_rad;
   EXPECT_NEAR(zExtent(whole).first, -3.0 * std::sin(42.5 * kDegree), 0.05);
+}
+
+// Without an obstacle a cone clears nothing by default (MapperOptions::clear_without_obstacle):
+// its silence may hide a grazing seabed. The planar model, or the option set, clears as before.
+TEST(mappingBeamVolume, BeamWithoutObstacleClearsNothingByDefault) {
+  PolarImage polar = makeSweep(1, 150);
+  BeamDetection water;
+  water.water_range_m = 3.0;
+  auto freeCells = [&](const MapperOptions& options) {
+    SonarMapper mapper(options);
+    mapper.integrateSweep(polar, {water}, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(mapper.stats().beams_without_evidence + mapper.stats().beams_used, 1U);
+    return mapper.stats().free_updates;
+  };
+  MapperOptions volume = volumeOptions();
+  EXPECT_EQ(freeCells(volume), 0U);
+  volume.clear_without_obstacle = true;
+  EXPECT_GT(freeCells(volume), 1000U);  // the cone's core to 3 m
+  MapperOptions planar = volumeOptions();
+  planar.beam_model = BeamModel::kPlanar;
+  EXPECT_GT(freeCells(planar), 50U);  // the wedge to 3 m
+  planar.clear_without_obstacle = false;
+  EXPECT_EQ(freeCells(planar), 0U);
+  // A beam with an obstacle clears up to it either way.
+  SonarMapper mapper(volumeOptions());
+  mapper.integrateSweep(polar, {BeamDetection{120, 200, 120 * kVoxel}}, Eigen::Isometry3d::Identity());
+  EXPECT_GT(mapper.stats().free_updates, 1000U);
+  EXPECT_EQ(mapper.stats().beams_without_evidence, 0U);
 }
 
 // A weak extended return (8.8 dB over the background: a grazing seabed) ahead of a strong wall is no

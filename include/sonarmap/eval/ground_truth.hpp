@@ -27,7 +27,7 @@
 ///    / occupied voxels of the region.
 ///  - Surface voxels: the voxels of the map's grid inside the region's box (the horizontal bounding
 ///    box of the region's known voxels, grown by T on each side, × the z extent of the region's
-///    known voxels) whose centre is within res / 2 of a scene surface (the surface sampled at the
+///    known voxels; or GroundTruthOptions::surface_box_m when set) whose centre is within res / 2 of a scene surface (the surface sampled at the
 ///    map's resolution), that are within R of a sensor and visible from it: within its field of
 ///    view (above) and the first surface along the ray from the sensor towards the centre is met
 ///    no earlier than one voxel (res) before the centre. Surfaces hidden behind others (the wall
@@ -68,6 +68,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sim/scene.hpp"
@@ -90,9 +91,14 @@ struct GroundTruthOptions {
   /// Vertical aperture of the sensors, radians, in (0, π): a surface voxel counts as seen only
   /// within ±half of it from the sonar's scan plane (see the file's comment). Unset: no check.
   std::optional<double> vertical_aperture_rad;
+  /// Box (map frame, metres) in which the surface voxels of recall and erosion are sought instead
+  /// of the known voxels' box grown by T (see the file's comment): with it, and max_range_m set,
+  /// the recall's denominator no longer depends on how far the map reaches (a model that clears
+  /// less must not shrink its own truth). Unset: the known box.
+  std::optional<Eigen::AlignedBox3d> surface_box_m;
 
   /// @throws ValueError naming the field when a number is not finite, a distance is not > 0,
-  ///         z_min_m > z_max_m, there is no sensor position, vertical_aperture_rad is not in
+  ///         z_min_m > z_max_m, surface_box_m is empty or not finite, there is no sensor position, vertical_aperture_rad is not in
   ///         (0, π), only one of vertical_aperture_rad and sensor_orientations is set, their
   ///         counts differ from sensor_positions_m's, or an orientation is not a rotation
   ///         (RᵀR = I within 1e-6, det > 0).
@@ -104,6 +110,15 @@ struct SurfaceOffset {
   std::size_t primitive = 0;           ///< index into Scene::primitives
   std::size_t voxels = 0;              ///< matched occupied voxels whose nearest surface it is
   double median_signed_offset_m = 0.0; ///< > 0: in front of the surface (sensor side), < 0: behind
+};
+
+/// Recall and erosion of one scene primitive: the visible surface voxels whose nearest surface it
+/// is (the seabed, a quay wall, a pile: which surfaces the sonar finds and which it misses).
+struct SurfaceRecall {
+  std::size_t primitive = 0;       ///< index into Scene::primitives
+  std::size_t visible_voxels = 0;  ///< visible surface voxels nearest this primitive
+  std::size_t found_voxels = 0;    ///< of those, with an occupied voxel within T
+  std::size_t free_voxels = 0;     ///< of those, held free by the map
 };
 
 /// What evaluateAgainstScene() measured. Shares are in [0, 1] and 0 when their denominator is 0.
@@ -133,6 +148,9 @@ struct GroundTruthReport {
   double surface_error_median_m = 0.0;  ///< over every occupied voxel of the region, metres
   double surface_error_p90_m = 0.0;     ///< its 90th percentile, metres
   std::vector<SurfaceOffset> surfaces;  ///< primitives with at least one matched voxel, in scene order
+  /// The recall and erosion above split by nearest primitive: those with at least one visible
+  /// surface voxel, in scene order (their counts sum to the totals above).
+  std::vector<SurfaceRecall> recall_by_surface;
 };
 
 /// Scores `map` against the ground truth `scene` (both in the map frame); definitions in the

@@ -49,7 +49,9 @@ MissionRun simulateMission(const SimulatedMission& mission);
 
 /// The ground-truth options for scoring a map of `run`: 24 sonar poses sampled evenly along its
 /// navigation (positions and orientations) and the head's vertical beam width as the field of
-/// view, tolerance `tolerance_m`.
+/// view, tolerance `tolerance_m`; the head's range as the reach and the box of those positions
+/// grown by it as where surfaces are sought (ground_truth.hpp: the truth does not depend on the map).
+/// Note: the vertical slab (z) of precision and free accuracy is still the map's own known extent.
 GroundTruthOptions missionTruthOptions(const MissionRun& run, double tolerance_m = 0.1);
 
 /// The scores of one mission mapped with one set of options.

@@ -43,6 +43,9 @@ struct MappingStats {
   std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
   std::size_t beams_clipped = 0;         ///< beams longer than max_range_m (used up to it, obstacle dropped)
   std::size_t beams_without_nav = 0;     ///< beams without a pose: their time lies outside the navigation (skipped)
+  /// Beams without an obstacle that clear nothing (MapperOptions::clear_without_obstacle: the
+  /// volume model's default): not in beams_used.
+  std::size_t beams_without_evidence = 0;
   /// Why beams found no obstacle, summed over the sweeps detected by this mapper (detectors.hpp).
   DetectionDiagnostics detection;
   /// The last detected sweep's calibration (calibration.hpp): what the mapper derived from the log.
