@@ -14,6 +14,7 @@
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/polar_units.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
+#include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "../algorithms/key_marks.hpp"
 
@@ -383,50 +384,13 @@ void SonarMapper::keySweep() {
   work.crossed.reset(work.box_lo, work.box_hi);
 }
 
-std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams) {
-  std::vector<SweepRange> merged;
-  for (const SweepRange& sweep : sweeps) {
-    if (!merged.empty() && (sweep.size() < min_beams || merged.back().size() < min_beams)) {
-      merged.back().last_exclusive = sweep.last_exclusive;
-    } else {
-      merged.push_back(sweep);
-    }
-  }
-  return merged;
-}
-
 namespace {
-/// A sweep cleaned and searched, ready to integrate.
-struct DetectedSweep {
-  PolarImage polar;
-  SweepDetection detection;
-};
-
-/// mapSonarLog's body: `integrate(mapper, polar, detections)` places each detected sweep.
-template <class Integrate>
-SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress,
-                      Integrate&& integrate) {
-  const MapperOptions resolved = resolveForLog(options, log);
-  checkWorkBudget(log, resolved);
-  SonarMapper mapper(resolved);
+/// mapSonarLog's body: every beam of the log through `online` (an OnlineMapper), in order.
+SonarMapper mapThroughOnline(const SonarLog& log, OnlineMapper& online) {
+  for (const Beam& beam : log.beams) online.addBeam(beam);
+  online.finish();
+  SonarMapper mapper = std::move(online).release();
   mapper.stats().beams_skipped = log.skipped_beams;
-  const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
-  const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), min_beams);
-  auto detectSweep = [&](std::size_t i) {
-    DetectedSweep sweep{makePolarImage(log.beams, sweeps[i].first, sweeps[i].last_exclusive), {}};
-    sweep.detection = mapper.detectSweep(sweep.polar);
-    return sweep;
-  };
-  const auto launch = options.pipeline_detection ? std::launch::async : std::launch::deferred;
-  std::future<DetectedSweep> next;
-  if (!sweeps.empty()) next = std::async(launch, detectSweep, 0);
-  for (std::size_t i = 0; i < sweeps.size(); ++i) {
-    DetectedSweep sweep = next.get();  // rethrows what the detection threw
-    if (i + 1 < sweeps.size()) next = std::async(launch, detectSweep, i + 1);
-    mapper.recordDetection(sweep.detection);
-    integrate(mapper, sweep.polar, sweep.detection.detections);
-    if (progress) progress(i + 1, sweeps.size());
-  }
   const MappingStats& stats = mapper.stats();
   if (stats.beams_used == 0 && stats.out_of_map > 0) {  // an empty map is no answer
     throw ValueError("no beam could be mapped: " +
@@ -435,27 +399,30 @@ SonarMapper mapSweeps(const SonarLog& log, const MapperOptions& options, const P
   return mapper;
 }
 
+/// Reports progress as (sweeps done, sweeps the log holds), when asked.
+OnlineMapper::SweepCallback progressOf(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
+  if (!progress) return {};
+  const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
+  const std::size_t total = mergeShortSweeps(splitSweeps(log.beams), min_beams).size();
+  return [progress, total](std::size_t done) { progress(done, total); };
+}
 }  // namespace
 
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
-  return mapSweeps(log, options, progress, [](SonarMapper& mapper, const PolarImage& polar, const auto& detections) {
-    mapper.integrateSweep(polar, detections);
-  });
+  const MapperOptions resolved = resolveForLog(options, log);
+  checkWorkBudget(log, resolved);
+  OnlineMapper online(resolved, progressOf(log, options, progress));
+  return mapThroughOnline(log, online);
 }
 
 SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
                         const MapperOptions& options, const ProgressCallback& progress) {
-  const NavInterpolator interpolator(nav);  // checks the track once: throws ValueError when it is invalid
-  const Eigen::Isometry3d ned_to_map = nedToMap();
-  std::vector<std::optional<Eigen::Isometry3d>> poses;
-  return mapSweeps(log, options, progress, [&](SonarMapper& mapper, const PolarImage& polar, const auto& detections) {
-    poses.clear();
-    for (const double time_s : polar.time_s) {
-      const std::optional<Eigen::Isometry3d> body_to_ned = interpolator.bodyToNedAt(time_s);
-      poses.push_back(body_to_ned ? std::optional(ned_to_map * *body_to_ned * sonar_to_body) : std::nullopt);
-    }
-    mapper.integrateSweep(polar, detections, poses);
-  });
+  const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
+  const MapperOptions resolved = resolveForLog(options, log);
+  checkWorkBudget(log, resolved);
+  OnlineMapper online(resolved, sonar_to_body, progressOf(log, options, progress));
+  for (const NavSample& fix : nav) online.addNavFix(fix);
+  return mapThroughOnline(log, online);
 }
 
 }  // namespace sonarmap

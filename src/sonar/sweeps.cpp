@@ -1,10 +1,11 @@
 /// @file sweeps.cpp
-/// splitSweeps (see sweeps.hpp).
+/// splitSweeps, SweepSplitter, SweepGrouper, mergeShortSweeps (see sweeps.hpp).
 
 #include "sonarmap/sonar/sweeps.hpp"
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace sonarmap {
 namespace {
@@ -20,41 +21,74 @@ double wrappedStep(double from_rad, double to_rad) {
   return step <= -std::numbers::pi ? step + kTwoPi : step;
 }
 
-/// State of the sweep being built.
-struct SweepState {
-  int direction = 0;        ///< +1 counter-clockwise, −1 clockwise, 0 not known yet
-  double turned_rad = 0.0;  ///< accumulated |step| since the sweep's first beam
-};
-
-/// Whether beam `next` (reached from `prev` by `step`) starts a new sweep.
-bool startsNewSweep(const SweepState& state, double step, const Beam& prev, const Beam& next) {
-  if (next.bin_length_m != prev.bin_length_m) return true;
-  const int sign = step > 0.0 ? 1 : (step < 0.0 ? -1 : 0);
-  if (sign != 0 && state.direction != 0 && sign != state.direction) return true;
-  return state.turned_rad + std::abs(step) >= kTwoPi - kFullTurnSlack_rad;
-}
-
 }  // namespace
+
+bool SweepSplitter::startsSweep(const Beam& beam) {
+  if (!previous_) {
+    previous_ = Previous{beam.bearing_rad, beam.bin_length_m};
+    return false;
+  }
+  const double step = wrappedStep(previous_->bearing_rad, beam.bearing_rad);
+  const int sign = step > 0.0 ? 1 : (step < 0.0 ? -1 : 0);
+  const bool starts = beam.bin_length_m != previous_->bin_length_m ||
+                      (sign != 0 && direction_ != 0 && sign != direction_) ||
+                      turned_rad_ + std::abs(step) >= kTwoPi - kFullTurnSlack_rad;
+  previous_ = Previous{beam.bearing_rad, beam.bin_length_m};
+  if (starts) {
+    direction_ = 0;
+    turned_rad_ = 0.0;
+    return true;
+  }
+  if (direction_ == 0 && sign != 0) direction_ = sign;
+  turned_rad_ += std::abs(step);
+  return false;
+}
 
 std::vector<SweepRange> splitSweeps(const std::vector<Beam>& beams) {
   std::vector<SweepRange> sweeps;
-  if (beams.empty()) return sweeps;
-  SweepRange current{0, 1};
-  SweepState state;
-  for (std::size_t i = 1; i < beams.size(); ++i) {
-    const double step = wrappedStep(beams[i - 1].bearing_rad, beams[i].bearing_rad);
-    if (startsNewSweep(state, step, beams[i - 1], beams[i])) {
-      sweeps.push_back(current);
-      current = SweepRange{i, i + 1};
-      state = SweepState{};
-      continue;
-    }
-    if (state.direction == 0 && step != 0.0) state.direction = step > 0.0 ? 1 : -1;
-    state.turned_rad += std::abs(step);
-    current.last_exclusive = i + 1;
+  SweepSplitter splitter;
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    if (splitter.startsSweep(beams[i]) || sweeps.empty()) sweeps.push_back(SweepRange{i, i});
+    sweeps.back().last_exclusive = i + 1;
   }
-  sweeps.push_back(current);
   return sweeps;
+}
+
+SweepGrouper::SweepGrouper(std::size_t min_beams) : min_beams_(min_beams) {}
+
+std::size_t SweepGrouper::add(bool starts_sweep) {
+  if (starts_sweep) closeCurrent();
+  ++current_;
+  if (pending_ >= min_beams_ && current_ >= min_beams_) {  // current will not join pending: it is final
+    return std::exchange(pending_, 0);
+  }
+  return 0;
+}
+
+std::size_t SweepGrouper::finish() {
+  closeCurrent();
+  return std::exchange(pending_, 0);
+}
+
+void SweepGrouper::closeCurrent() {
+  // A sweep joins the group before it when either is short (both long: the group left in add()).
+  pending_ += std::exchange(current_, 0);
+}
+
+std::vector<SweepRange> mergeShortSweeps(const std::vector<SweepRange>& sweeps, std::size_t min_beams) {
+  std::vector<SweepRange> merged;
+  SweepGrouper grouper(min_beams);
+  std::size_t next = sweeps.empty() ? 0 : sweeps.front().first;
+  const auto take = [&](std::size_t beams) {
+    if (beams == 0) return;
+    merged.push_back(SweepRange{next, next + beams});
+    next += beams;
+  };
+  for (const SweepRange& sweep : sweeps) {
+    for (std::size_t i = sweep.first; i < sweep.last_exclusive; ++i) take(grouper.add(i == sweep.first));
+  }
+  take(grouper.finish());
+  return merged;
 }
 
 }  // namespace sonarmap

@@ -156,9 +156,6 @@ class SonarMapper {
 /// Progress callback: (sweeps done, sweeps in total).
 using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
 
-/// Joins a sweep of fewer than `min_beams` beams (a log that starts or ends mid-turn) to its
-/// neighbour, so the detector's per-sweep background is always estimated over enough beams.
-std::vector<SweepRange> mergeShortSweeps(std::vector<SweepRange> sweeps, std::size_t min_beams);
 
 /// Maps every sweep of `log` (split where the head completes a turn or reverses, short fragments
 /// joined to their neighbour) with the sonar static at the map origin, options left on "auto"

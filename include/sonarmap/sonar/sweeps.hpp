@@ -3,6 +3,7 @@
 /// Splitting a beam log into sweeps (paper §2.1: "a scan has beams that span 360° around the AUV").
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "sonarmap/sonar/beam.hpp"
@@ -36,5 +37,47 @@ struct SweepRange {
 /// @param beams  beams in recording order; bearings in radians (any value; differences are wrapped).
 /// @return       sweeps covering all beams in order, without gaps; empty when `beams` is empty.
 std::vector<SweepRange> splitSweeps(const std::vector<Beam>& beams);
+
+/// splitSweeps one beam at a time, for beams arriving from a sonar (OnlineMapper): the same rules,
+/// the same sweeps.
+class SweepSplitter {
+ public:
+  /// True when `beam`, the next beam in recording order, starts a new sweep (never the first beam).
+  bool startsSweep(const Beam& beam);
+
+ private:
+  struct Previous {
+    double bearing_rad = 0.0;
+    double bin_length_m = 0.0;
+  };
+  std::optional<Previous> previous_;  ///< the last beam seen
+  int direction_ = 0;                 ///< +1 counter-clockwise, −1 clockwise, 0 not known yet
+  double turned_rad_ = 0.0;           ///< accumulated |step| since the sweep's first beam
+};
+
+/// mergeShortSweeps one beam at a time: says when the oldest beams held form a final group, a sweep
+/// (or sweeps joined) that no later beam can join. A sweep joins the group before it when either
+/// has fewer than `min_beams` beams, so a group is final once the sweep after it has `min_beams`
+/// beams, or at the end of the stream.
+class SweepGrouper {
+ public:
+  explicit SweepGrouper(std::size_t min_beams);
+  /// The next beam, `starts_sweep` as SweepSplitter said. Returns the number of beams, oldest first
+  /// and not counting this one, that now form a final group; 0 when none.
+  std::size_t add(bool starts_sweep);
+  /// The end of the stream: the size of the last group (0 when no beam is held).
+  std::size_t finish();
+
+ private:
+  void closeCurrent();
+  std::size_t min_beams_;
+  std::size_t pending_ = 0;  ///< beams of the group before the current sweep, not yet final
+  std::size_t current_ = 0;  ///< beams of the sweep being received
+};
+
+/// Joins a sweep of fewer than `min_beams` beams (a log that starts or ends mid-turn) to its
+/// neighbour, so the detector's per-sweep background is always estimated over enough beams.
+/// `sweeps` must be contiguous (splitSweeps' output); the same groups as SweepGrouper.
+std::vector<SweepRange> mergeShortSweeps(const std::vector<SweepRange>& sweeps, std::size_t min_beams);
 
 }  // namespace sonarmap

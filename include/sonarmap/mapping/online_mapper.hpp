@@ -1,0 +1,109 @@
+#pragma once
+/// @file online_mapper.hpp
+/// Mapping beams as they arrive from a sonar (issue 12): the one mapping path. The batch
+/// mapSonarLog (sonar_mapper.hpp) is a loop over an OnlineMapper fed the log's beams, so a live
+/// run and a log give the same map.
+///
+/// Fed one beam at a time (in recording order) and, for a moving vehicle, navigation fixes as they
+/// arrive, the mapper forms sweeps itself with splitSweeps' rules (SweepSplitter: a full turn, a
+/// sector head's reversal, a range change) and mergeShortSweeps' joining of short fragments
+/// (SweepGrouper: a sweep is final once the next one has the detector's min_beams beams, or at
+/// finish()). A final sweep is detected (calibration, cleaning, first obstacle per beam: the
+/// detector needs the whole sweep for its per-sweep background) and integrated as soon as the
+/// navigation covers its last beam (a fix at or after its time), or at finish(). Detection runs on
+/// a second thread while the previous sweep is integrated when MapperOptions::pipeline_detection
+/// is set (the batch's throughput; a sweep is then integrated when the next one is final);
+/// without it each final sweep is detected and integrated at once (the least latency).
+///
+/// Another thread may read the map at any time through mapSnapshot() / statsSnapshot(): they copy
+/// under a shared lock that the feeding thread holds exclusively only while it integrates one sweep.
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <future>
+#include <memory>
+#include <optional>
+#include <shared_mutex>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap {
+
+class OnlineMapper {
+ public:
+  /// Called on the feeding thread after each sweep is integrated, with the count so far.
+  using SweepCallback = std::function<void(std::size_t sweeps_integrated)>;
+
+  /// A static sonar at the map origin (identity pose), as mapSonarLog without navigation.
+  /// @throws ValueError when `options` is invalid (MapperOptions::validate).
+  explicit OnlineMapper(const MapperOptions& options, SweepCallback on_sweep = {});
+  /// A moving vehicle: each beam placed at nedToMap() · bodyToNed(t) · sonar_to_body, bodyToNed
+  /// interpolated from the fixes given to addNavFix (as mapSonarLog with a NavTrack); a beam
+  /// outside the fixes' time span is skipped and counted (MappingStats::beams_without_nav).
+  /// @param sonar_to_body  the sonar's mounting: sonar frame (beam.hpp) → body frame (FRD).
+  /// @throws ValueError when `options` is invalid or the mounting is not finite.
+  OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, SweepCallback on_sweep = {});
+  ~OnlineMapper();
+  OnlineMapper(const OnlineMapper&) = delete;
+  OnlineMapper& operator=(const OnlineMapper&) = delete;
+
+  /// The next navigation fix (NED, body FRD; navigation.hpp), on the beams' clock; may integrate
+  /// sweeps that were waiting for it. Only with the navigation constructor.
+  /// @throws ValueError for a fix that is not finite or not strictly after the previous one, or
+  ///         without the navigation constructor; rethrows what integrating a waiting sweep threw.
+  void addNavFix(const NavSample& fix);
+  /// The next beam in recording order (time_s, bearing_rad, bin_length_m > 0, intensities); may
+  /// integrate a sweep it completes.
+  /// @throws ValueError for a beam whose bin length is not finite and > 0,
+  ///         after finish(), or what detecting or integrating a sweep threw (a sweep that mixes
+  ///         bin lengths).
+  void addBeam(Beam beam);
+  /// The end of the stream: the last sweep is final, every held sweep is integrated (beams beyond
+  /// the last fix counted without navigation). Further beams are refused. Idempotent.
+  /// @throws ValueError  what detecting or integrating a sweep threw.
+  void finish();
+
+  /// Sweeps integrated so far.
+  std::size_t sweepsIntegrated() const;
+  /// Beams received and not yet in an integrated sweep (feeding thread only).
+  std::size_t beamsPending() const { return held_.size() + waiting_beams_; }
+
+  /// A copy of the map as of the last integrated sweep; safe from any thread.
+  OcTree16 mapSnapshot() const;
+  /// A copy of the counts as of the last integrated sweep; safe from any thread.
+  MappingStats statsSnapshot() const;
+  /// The mapper itself: only on the feeding thread (no lock).
+  const SonarMapper& mapper() const { return mapper_; }
+  SonarMapper& mapper() { return mapper_; }
+  /// Moves the mapper out (after finish()); the OnlineMapper is then empty.
+  SonarMapper release() &&;
+
+ private:
+  struct DetectedSweep;
+  void emitGroup(std::size_t beams);
+  void processReady();
+  void integrate(DetectedSweep sweep);
+  bool navigationCovers(const std::vector<Beam>& group) const;
+
+  SonarMapper mapper_;
+  SweepCallback on_sweep_;
+  std::optional<Eigen::Isometry3d> sonar_to_body_;  ///< set: navigation mode
+  NavTrack fixes_;
+  SweepSplitter splitter_;
+  SweepGrouper grouper_;
+  std::deque<Beam> held_;                        ///< beams of groups not yet final
+  std::deque<std::vector<Beam>> ready_;          ///< final groups waiting for navigation
+  std::size_t waiting_beams_ = 0;                ///< beams of final groups not yet integrated
+  std::unique_ptr<std::future<DetectedSweep>> in_flight_;  ///< detection running beside integration
+  std::size_t sweeps_ = 0;
+  bool finished_ = false;
+  mutable std::shared_mutex map_mutex_;  ///< exclusive while a sweep is integrated
+};
+
+}  // namespace sonarmap

@@ -1,0 +1,166 @@
+// OnlineMapper: beams fed one at a time give mapSonarLog's map (the batch is a loop over it), a
+// sweep is integrated as soon as it is final and the navigation covers it, the map can be read
+// from another thread while beams arrive, and bad input is refused.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/mapping/online_mapper.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap {
+namespace {
+
+/// Three turns of the simulated Micron in the tank, moving north at 0.1 m/s while turning.
+MsisSimulation movingRun(std::size_t turns = 3) {
+  MsisSimulationOptions options;
+  options.turns = turns;
+  options.trajectory = constantVelocityTrajectory(NavSample{}, Eigen::Vector3d(0.1, 0.0, 0.0), 0.02);
+  return simulateMsis(builtinScene("tank"), options);
+}
+
+std::vector<std::tuple<Key16, int, float>> leavesOf(const OcTree16& map) {
+  std::vector<std::tuple<Key16, int, float>> leaves;
+  map.forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
+  return leaves;
+}
+
+MapperOptions atTwoCentimetres(bool pipeline) {
+  MapperOptions options;
+  options.resolution_m = 0.02;
+  options.pipeline_detection = pipeline;
+  return options;
+}
+
+// Fed beam by beam, with the fixes first or interleaved with the beams (each fix as soon as its
+// time has come), with or without pipelined detection: the batch's map, leaf for leaf.
+TEST(mappingOnlineMapper, BeamByBeamGivesTheBatchMap) {
+  const MsisSimulation run = movingRun();
+  const Eigen::Isometry3d mounting = defaultSonarToBody();
+  const SonarMapper batch = mapSonarLog(run.log, run.nav, mounting, atTwoCentimetres(true));
+  const auto expected = leavesOf(batch.map());
+  ASSERT_GT(expected.size(), 1000U);
+  for (const bool pipeline : {false, true}) {
+    OnlineMapper online(atTwoCentimetres(pipeline), mounting);
+    std::size_t next_fix = 0;
+    for (const Beam& beam : run.log.beams) {
+      while (next_fix < run.nav.size() && run.nav[next_fix].time_s <= beam.time_s) online.addNavFix(run.nav[next_fix++]);
+      online.addBeam(beam);
+    }
+    while (next_fix < run.nav.size()) online.addNavFix(run.nav[next_fix++]);
+    online.finish();
+    EXPECT_EQ(online.sweepsIntegrated(), batch.stats().sweeps) << "pipeline " << pipeline;
+    EXPECT_EQ(online.beamsPending(), 0U);
+    EXPECT_EQ(leavesOf(online.mapper().map()), expected) << "pipeline " << pipeline;
+    EXPECT_EQ(online.mapper().stats().beams_used, batch.stats().beams_used);
+  }
+}
+
+// Without pipelining a sweep is integrated once the next sweep has the detector's min_beams
+// beams (it can no longer be joined to it), not at the end of the stream.
+TEST(mappingOnlineMapper, SweepIsIntegratedWhenTheNextOneCannotJoinIt) {
+  const MsisSimulation run = movingRun(2);
+  MapperOptions options = atTwoCentimetres(false);
+  const std::size_t min_beams = static_cast<std::size_t>(options.detector.background.min_beams);
+  const std::vector<SweepRange> sweeps = splitSweeps(run.log.beams);
+  ASSERT_EQ(sweeps.size(), 2U);
+  OnlineMapper online(options);
+  for (std::size_t i = 0; i < sweeps[1].first + min_beams - 1; ++i) online.addBeam(run.log.beams[i]);
+  EXPECT_EQ(online.sweepsIntegrated(), 0U);  // the second sweep might still end short
+  EXPECT_EQ(online.beamsPending(), sweeps[1].first + min_beams - 1);
+  online.addBeam(run.log.beams[sweeps[1].first + min_beams - 1]);
+  EXPECT_EQ(online.sweepsIntegrated(), 1U);
+  EXPECT_EQ(online.beamsPending(), min_beams);
+  EXPECT_GT(online.mapSnapshot().counts().leaves, 100U);
+  online.finish();
+  EXPECT_EQ(online.sweepsIntegrated(), 2U);
+}
+
+// With navigation a final sweep waits for a fix at or after its last beam.
+TEST(mappingOnlineMapper, SweepWaitsForNavigationThatCoversIt) {
+  const MsisSimulation run = movingRun(2);
+  const std::vector<SweepRange> sweeps = splitSweeps(run.log.beams);
+  OnlineMapper online(atTwoCentimetres(false), defaultSonarToBody());
+  online.addNavFix(run.nav.front());
+  for (const Beam& beam : run.log.beams) online.addBeam(beam);
+  EXPECT_EQ(online.sweepsIntegrated(), 0U);  // the first sweep is final, but not covered
+  const double first_sweep_end_s = run.log.beams[sweeps[0].last_exclusive - 1].time_s;
+  for (const NavSample& fix : run.nav) {
+    if (fix.time_s <= run.nav.front().time_s) continue;
+    online.addNavFix(fix);
+    if (fix.time_s < first_sweep_end_s) {
+      EXPECT_EQ(online.sweepsIntegrated(), 0U);
+    }
+  }
+  EXPECT_EQ(online.sweepsIntegrated(), 1U);
+  online.finish();
+  EXPECT_EQ(online.sweepsIntegrated(), 2U);
+  EXPECT_EQ(online.mapper().stats().beams_without_nav, 0U);
+}
+
+// A second thread reads the map while beams arrive: every snapshot is a whole number of sweeps
+// (its known voxels never shrink), and the last equals the final map.
+TEST(mappingOnlineMapper, MapCanBeReadFromAnotherThreadWhileBeamsArrive) {
+  const MsisSimulation run = movingRun();
+  OnlineMapper online(atTwoCentimetres(true), defaultSonarToBody());
+  for (const NavSample& fix : run.nav) online.addNavFix(fix);
+  std::atomic<bool> done{false};
+  std::size_t snapshots = 0;
+  bool shrank = false;
+  std::thread reader([&] {
+    std::size_t previous = 0;
+    while (!done.load()) {
+      const OcTree16 map = online.mapSnapshot();
+      std::size_t known = 0;
+      map.forEachLeaf([&](const LeafView<16>& leaf) { known += static_cast<std::size_t>(leaf.edgeVoxels()) * leaf.edgeVoxels(); });
+      shrank = shrank || known < previous;
+      previous = known;
+      ++snapshots;
+      std::this_thread::yield();
+    }
+  });
+  for (const Beam& beam : run.log.beams) online.addBeam(beam);
+  online.finish();
+  done = true;
+  reader.join();
+  EXPECT_GT(snapshots, 0U);
+  EXPECT_FALSE(shrank);
+  EXPECT_EQ(leavesOf(online.mapSnapshot()), leavesOf(online.mapper().map()));
+  EXPECT_EQ(online.statsSnapshot().sweeps, 3U);
+}
+
+TEST(mappingOnlineMapper, BadInputIsRefused) {
+  OnlineMapper still(atTwoCentimetres(false));
+  EXPECT_THROW(still.addNavFix(NavSample{}), ValueError);  // no navigation constructor
+  Beam beam;
+  beam.bin_length_m = 0.0;
+  beam.intensities.assign(10, 0);
+  EXPECT_THROW(still.addBeam(beam), ValueError);
+  beam.bin_length_m = 0.01;
+  still.addBeam(beam);
+  still.finish();
+  EXPECT_THROW(still.addBeam(beam), ValueError);  // after finish()
+
+  OnlineMapper moving(atTwoCentimetres(false), defaultSonarToBody());
+  NavSample fix;
+  fix.time_s = 1.0;
+  moving.addNavFix(fix);
+  EXPECT_THROW(moving.addNavFix(fix), ValueError);  // not after the previous one
+  fix.time_s = 2.0;
+  fix.yaw_rad = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(moving.addNavFix(fix), ValueError);
+  Eigen::Isometry3d broken = Eigen::Isometry3d::Identity();
+  broken(0, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(OnlineMapper(atTwoCentimetres(false), broken), ValueError);
+}
+
+}  // namespace
+}  // namespace sonarmap
