@@ -53,7 +53,9 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
         histogram.add(column[r]);
       }
     }
-    if (histogram.total() >= min_water) {
+    if (!context.measure_background) {
+      // The given calibration's background, as measured on an earlier sweep.
+    } else if (histogram.total() >= min_water) {
       water.background[i] = histogram.percentile(calibration.background_percentile);
     } else if (c > context.min_bin) {
       water.background[i] = water.background[i - 1];
@@ -101,7 +103,7 @@ BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const Det
 std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
                                                       const BackgroundOptions& options, SweepCalibration& water) {
   std::vector<BeamDetection> detections(static_cast<std::size_t>(polar.rows()));
-  if (polar.rows() < options.min_beams || polar.cols() == 0) return detections;
+  if ((context.measure_background && polar.rows() < options.min_beams) || polar.cols() == 0) return detections;
   const std::vector<int> first = outwardPass(polar, context, options, water);
   for (int r = 0; r < polar.rows(); ++r) {
     const int bin = first[static_cast<std::size_t>(r)];

@@ -13,6 +13,10 @@ namespace sonarmap::detail {
 struct DetectionContext {
   int min_bin = 0;         ///< first bin whose centre is at or beyond the minimum range
   double span_db = 45.0;   ///< dB span of the intensities 0…255
+  /// The background detector measures the background again over the rows still in water (a whole
+  /// sweep); false: it uses the given calibration's as it is (a few rows of a sweep in progress,
+  /// detectRows).
+  bool measure_background = true;
 };
 
 /// The detection of `bin` in `row`, with the image's intensity there and the bin's centre as range.

@@ -244,7 +244,11 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
   return detectSweep(polar, options, calibrateSweep(polar, options.background.calibration, span_db));
 }
 
-SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration) {
+namespace {
+/// detectSweep and detectRows: the detections of `polar` with `calibration`, the background measured
+/// again over the rows or not.
+SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration,
+                          bool measure_background) {
   checkImage(polar);
   options.validate();
   const auto cols = static_cast<std::size_t>(polar.cols());
@@ -255,12 +259,21 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
   SweepDetection result;
   result.min_range_m = options.min_range_m.value_or(calibration.near_field_end_m);
   const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
-                                         calibration.span_db};
+                                         calibration.span_db, measure_background};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
   setWaterRanges(polar, context, result.calibration, result.detections);
   setEchoOnsets(polar, options, context, result.calibration, result.detections);
   result.diagnostics = diagnose(polar, context, result.calibration, result.detections);
   return result;
+}
+}  // namespace
+
+SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration) {
+  return detectWith(polar, options, calibration, true);
+}
+
+SweepDetection detectRows(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration) {
+  return detectWith(polar, options, calibration, false);
 }
 
 std::vector<BeamDetection> detectObstacles(const PolarImage& polar, const DetectorOptions& options) {

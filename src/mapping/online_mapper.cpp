@@ -27,11 +27,12 @@ std::size_t minBeams(const MapperOptions& options) {
 }
 }  // namespace
 
-OnlineMapper::OnlineMapper(const MapperOptions& options, SweepCallback on_sweep)
-    : mapper_(options), on_sweep_(std::move(on_sweep)), grouper_(minBeams(options)) {}
+OnlineMapper::OnlineMapper(const MapperOptions& options, OnlineIntegration integration, SweepCallback on_sweep)
+    : mapper_(options), integration_(integration), on_sweep_(std::move(on_sweep)), grouper_(minBeams(options)) {}
 
-OnlineMapper::OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, SweepCallback on_sweep)
-    : OnlineMapper(options, std::move(on_sweep)) {
+OnlineMapper::OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
+                           OnlineIntegration integration, SweepCallback on_sweep)
+    : OnlineMapper(options, integration, std::move(on_sweep)) {
   if (!sonar_to_body.matrix().allFinite()) throw ValueError("online mapper: the sonar's mounting is not finite");
   sonar_to_body_ = sonar_to_body;
 }
@@ -51,6 +52,7 @@ void OnlineMapper::addNavFix(const NavSample& fix) {
   }
   fixes_.push_back(fix);
   processReady();
+  processBeamQueue();
 }
 
 void OnlineMapper::addBeam(Beam beam) {
@@ -58,7 +60,12 @@ void OnlineMapper::addBeam(Beam beam) {
   if (!(std::isfinite(beam.bin_length_m) && beam.bin_length_m > 0.0)) {
     throw ValueError("online mapper: beam at " + std::to_string(beam.time_s) + " s has a bin length that is not > 0 m");
   }
-  const std::size_t final_beams = grouper_.add(splitter_.startsSweep(beam));
+  const bool starts_sweep = splitter_.startsSweep(beam);
+  if (integration_ == OnlineIntegration::kBeam) {
+    addLiveBeam(std::move(beam), starts_sweep);
+    return;
+  }
+  const std::size_t final_beams = grouper_.add(starts_sweep);
   if (final_beams > 0) emitGroup(final_beams);
   held_.push_back(std::move(beam));
   processReady();
@@ -67,8 +74,10 @@ void OnlineMapper::addBeam(Beam beam) {
 void OnlineMapper::finish() {
   if (finished_) return;
   finished_ = true;
+  if (integration_ == OnlineIntegration::kBeam) closeLiveSweep(true);
   if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last);
   processReady();
+  processBeamQueue();
   if (in_flight_) {
     std::unique_ptr<std::future<DetectedSweep>> last = std::move(in_flight_);
     integrate(last->get());
@@ -84,15 +93,21 @@ void OnlineMapper::emitGroup(std::size_t beams) {
   ready_.push_back(std::move(group));
 }
 
-bool OnlineMapper::navigationCovers(const std::vector<Beam>& group) const {
+bool OnlineMapper::navigationCovers(double time_s) const {
   if (!sonar_to_body_ || finished_) return true;
-  double latest_s = -std::numeric_limits<double>::infinity();
-  for (const Beam& beam : group) latest_s = std::max(latest_s, beam.time_s);
-  return !fixes_.empty() && fixes_.back().time_s >= latest_s;
+  return !fixes_.empty() && fixes_.back().time_s >= time_s;
 }
 
+namespace {
+double latestTime_s(const std::vector<Beam>& beams) {
+  double latest_s = -std::numeric_limits<double>::infinity();
+  for (const Beam& beam : beams) latest_s = std::max(latest_s, beam.time_s);
+  return latest_s;
+}
+}  // namespace
+
 void OnlineMapper::processReady() {
-  while (!ready_.empty() && navigationCovers(ready_.front())) {
+  while (!ready_.empty() && navigationCovers(latestTime_s(ready_.front()))) {
     std::vector<Beam> group = std::move(ready_.front());
     ready_.pop_front();
     auto detect = [this, group = std::move(group)]() {
@@ -100,7 +115,7 @@ void OnlineMapper::processReady() {
       sweep.detection = mapper_.detectSweep(sweep.polar);  // const: touches no mapper state
       return sweep;
     };
-    if (!mapper_.options().pipeline_detection) {
+    if (!mapper_.options().pipeline_detection || integration_ == OnlineIntegration::kBeam) {
       integrate(detect());
       continue;
     }
@@ -118,24 +133,97 @@ void OnlineMapper::integrate(DetectedSweep sweep) {
     if (!sonar_to_body_) {
       mapper_.integrateSweep(sweep.polar, sweep.detection.detections);
     } else {
-      std::vector<std::optional<Eigen::Isometry3d>> poses;
-      poses.reserve(sweep.polar.time_s.size());
-      if (fixes_.empty()) {
-        poses.assign(sweep.polar.time_s.size(), std::nullopt);
-      } else {
-        const NavInterpolator interpolator(fixes_);
-        const Eigen::Isometry3d ned_to_map = nedToMap();
-        for (const double time_s : sweep.polar.time_s) {
-          const std::optional<Eigen::Isometry3d> body_to_ned = interpolator.bodyToNedAt(time_s);
-          poses.push_back(body_to_ned ? std::optional(ned_to_map * *body_to_ned * *sonar_to_body_) : std::nullopt);
-        }
-      }
-      mapper_.integrateSweep(sweep.polar, sweep.detection.detections, poses);
+      mapper_.integrateSweep(sweep.polar, sweep.detection.detections, posesAt(sweep.polar.time_s));
     }
     ++sweeps_;
     waiting_beams_ -= static_cast<std::size_t>(sweep.polar.rows());
   }
+  if (integration_ == OnlineIntegration::kBeam) {  // the calibration the next beams are detected with
+    live_calibration_ = std::move(sweep.detection.calibration);
+    live_bin_length_m_ = sweep.polar.bin_length_m;
+  }
   if (on_sweep_) on_sweep_(sweeps_);
+}
+
+std::vector<std::optional<Eigen::Isometry3d>> OnlineMapper::posesAt(const std::vector<double>& times_s) const {
+  std::vector<std::optional<Eigen::Isometry3d>> poses;
+  poses.reserve(times_s.size());
+  if (!sonar_to_body_) {
+    poses.assign(times_s.size(), Eigen::Isometry3d::Identity());
+    return poses;
+  }
+  if (fixes_.empty()) {
+    poses.assign(times_s.size(), std::nullopt);
+    return poses;
+  }
+  const NavInterpolator interpolator(fixes_);
+  const Eigen::Isometry3d ned_to_map = nedToMap();
+  for (const double time_s : times_s) {
+    const std::optional<Eigen::Isometry3d> body_to_ned = interpolator.bodyToNedAt(time_s);
+    poses.push_back(body_to_ned ? std::optional(ned_to_map * *body_to_ned * *sonar_to_body_) : std::nullopt);
+  }
+  return poses;
+}
+
+void OnlineMapper::addLiveBeam(Beam beam, bool starts_sweep) {
+  if (starts_sweep) {
+    closeLiveSweep(false);
+    processReady();  // a whole sweep that ended calibrates this beam
+  }
+  const bool per_beam = live_calibration_ && !live_whole_ && beam.bin_length_m == live_bin_length_m_;
+  if (!per_beam) live_whole_ = true;  // no calibration for it yet: the sweep is integrated whole
+  live_sweep_.push_back(beam);        // the raw sweep, for the next calibration
+  if (per_beam) beam_queue_.push_back(std::move(beam));
+  processReady();
+  processBeamQueue();
+}
+
+void OnlineMapper::closeLiveSweep(bool at_end) {
+  if (live_sweep_.empty()) return;
+  if (live_whole_) {
+    // Too short to calibrate on: it joins the next sweep (unless the stream ends).
+    if (!at_end && live_sweep_.size() < minBeams(mapper_.options())) return;
+    waiting_beams_ += live_sweep_.size();
+    ready_.push_back(std::exchange(live_sweep_, {}));
+    live_whole_ = false;
+    return;
+  }
+  std::vector<Beam> sweep = std::exchange(live_sweep_, {});
+  if (sweep.size() >= minBeams(mapper_.options())) {
+    // Its beams are (or will be) integrated one by one; calibrate the next ones on it.
+    PolarImage polar = makePolarImage(sweep, 0, sweep.size());
+    SweepDetection detection = mapper_.detectSweep(polar);
+    live_calibration_ = std::move(detection.calibration);
+    live_bin_length_m_ = polar.bin_length_m;
+  }
+  const std::unique_lock lock(map_mutex_);
+  ++mapper_.stats().sweeps;
+  ++sweeps_;
+}
+
+void OnlineMapper::processBeamQueue() {
+  while (ready_.empty() && !beam_queue_.empty() && navigationCovers(beam_queue_.front().time_s)) {
+    const Beam beam = std::move(beam_queue_.front());
+    beam_queue_.pop_front();
+    integrateLiveBeam(beam);
+  }
+}
+
+void OnlineMapper::integrateLiveBeam(const Beam& beam) {
+  // One row with the calibration's columns (a longer beam is cut at its last one).
+  const SweepCalibration& calibration = *live_calibration_;
+  PolarImage row = makePolarImage(std::vector<Beam>{beam}, 0, 1);
+  const int cols = static_cast<int>(calibration.background.size());
+  if (row.cols() != cols) {
+    cv::Mat resized = cv::Mat::zeros(1, cols, CV_8UC1);
+    row.intensities.colRange(0, std::min(cols, row.cols())).copyTo(resized.colRange(0, std::min(cols, row.cols())));
+    row.intensities = resized;
+    row.valid_bins[0] = std::min(row.valid_bins[0], cols);
+  }
+  const SweepDetection detection = mapper_.detectRows(row, calibration);
+  const std::unique_lock lock(map_mutex_);
+  mapper_.recordDetection(detection);
+  mapper_.integrateBeams(row, detection.detections, posesAt(row.time_s));
 }
 
 std::size_t OnlineMapper::sweepsIntegrated() const {

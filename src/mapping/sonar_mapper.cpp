@@ -87,6 +87,15 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
   return sonarmap::detectSweep(polar, detector, smoothed);
 }
 
+SweepDetection SonarMapper::detectRows(PolarImage& rows, const SweepCalibration& calibration) const {
+  DetectorOptions detector = options_.detector;
+  const double self_reflection_m = options_.self_reflection_range_m.value_or(calibration.band_end_m);
+  removeSelfReflection(rows, self_reflection_m);
+  detector.min_range_m = std::max(detector.min_range_m.value_or(calibration.near_field_end_m), self_reflection_m);
+  if (options_.smoothing.kind != Smoothing::kNone) smooth(rows, options_.smoothing);
+  return sonarmap::detectRows(rows, detector, calibration);
+}
+
 std::vector<BeamDetection> SonarMapper::detect(PolarImage& polar) const { return detectSweep(polar).detections; }
 
 std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen::Isometry3d& sonar_to_map) {
@@ -202,7 +211,7 @@ void SonarMapper::integrateHits() {
 
 template <class PoseOfRow>
 void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
-                                PoseOfRow&& pose_of) {
+                                PoseOfRow&& pose_of, bool whole_sweep) {
   resolveResolution(polar);
   SweepWork& work = *work_;
   work.beams.clear();
@@ -254,7 +263,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
   integrateFreeCells();
   integrateHits();
   if (options_.octree.lazy) map_.updateInnerOccupancy();
-  ++stats_.sweeps;
+  if (whole_sweep) ++stats_.sweeps;
 }
 
 namespace {
@@ -277,24 +286,38 @@ double poseDisplacementBound_m(const Eigen::Isometry3d& a, const Eigen::Isometry
 void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                                  const Eigen::Isometry3d& sonar_to_map) {
   checkRows(polar, detections.size(), "detections");
-  integrateRows(polar, detections, [&](std::size_t) { return &sonar_to_map; });
+  integrateRows(polar, detections, [&](std::size_t) { return &sonar_to_map; }, true);
 }
 
 void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                                  const std::vector<Eigen::Isometry3d>& sonar_to_map_per_row) {
   checkRows(polar, detections.size(), "detections");
   checkRows(polar, sonar_to_map_per_row.size(), "poses");
-  integrateRows(polar, detections, [&](std::size_t row) { return &sonar_to_map_per_row[row]; });
+  integrateRows(polar, detections, [&](std::size_t row) { return &sonar_to_map_per_row[row]; }, true);
 }
 
 void SonarMapper::integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                                  const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row) {
+  integratePosedRows(polar, detections, sonar_to_map_per_row, true);
+}
+
+void SonarMapper::integrateBeams(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                 const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row) {
+  integratePosedRows(polar, detections, sonar_to_map_per_row, false);
+}
+
+void SonarMapper::integratePosedRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                     const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row,
+                                     bool whole_sweep) {
   checkRows(polar, detections.size(), "detections");
   checkRows(polar, sonar_to_map_per_row.size(), "poses");
-  integrateRows(polar, detections, [&](std::size_t row) -> const Eigen::Isometry3d* {
-    const auto& pose = sonar_to_map_per_row[row];
-    return pose ? &*pose : nullptr;
-  });
+  integrateRows(
+      polar, detections,
+      [&](std::size_t row) -> const Eigen::Isometry3d* {
+        const auto& pose = sonar_to_map_per_row[row];
+        return pose ? &*pose : nullptr;
+      },
+      whole_sweep);
 }
 
 void SonarMapper::planBeams() {
@@ -411,7 +434,7 @@ OnlineMapper::SweepCallback progressOf(const SonarLog& log, const MapperOptions&
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
   const MapperOptions resolved = resolveForLog(options, log);
   checkWorkBudget(log, resolved);
-  OnlineMapper online(resolved, progressOf(log, options, progress));
+  OnlineMapper online(resolved, OnlineIntegration::kSweep, progressOf(log, options, progress));
   return mapThroughOnline(log, online);
 }
 
@@ -420,7 +443,7 @@ SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::I
   const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
   const MapperOptions resolved = resolveForLog(options, log);
   checkWorkBudget(log, resolved);
-  OnlineMapper online(resolved, sonar_to_body, progressOf(log, options, progress));
+  OnlineMapper online(resolved, sonar_to_body, OnlineIntegration::kSweep, progressOf(log, options, progress));
   for (const NavSample& fix : nav) online.addNavFix(fix);
   return mapThroughOnline(log, online);
 }

@@ -35,6 +35,21 @@
 
 namespace sonarmap {
 
+/// When an OnlineMapper integrates what it receives.
+enum class OnlineIntegration {
+  /// Each sweep once it is final (see the file's comment): mapSonarLog's map, byte for byte; a
+  /// beam waits up to a turn of the head.
+  kSweep,
+  /// Each beam as it arrives (and the navigation covers it): detected with the calibration of the
+  /// last whole sweep (SonarMapper::detectRows: its water background, threshold and near field),
+  /// integrated on its own (SonarMapper::integrateBeams: a cell is updated once per beam, so the
+  /// overlap of neighbouring wedges is updated twice, unlike a sweep). The first sweep, and a sweep
+  /// after a range change, are integrated whole once they end, to calibrate; a sweep shorter than
+  /// the detector's min_beams joins the next. Detection is never pipelined. Live mapping: the
+  /// latency of a beam, not of a turn.
+  kBeam,
+};
+
 class OnlineMapper {
  public:
   /// Called on the feeding thread after each sweep is integrated, with the count so far.
@@ -42,13 +57,15 @@ class OnlineMapper {
 
   /// A static sonar at the map origin (identity pose), as mapSonarLog without navigation.
   /// @throws ValueError when `options` is invalid (MapperOptions::validate).
-  explicit OnlineMapper(const MapperOptions& options, SweepCallback on_sweep = {});
+  explicit OnlineMapper(const MapperOptions& options, OnlineIntegration integration = OnlineIntegration::kSweep,
+                        SweepCallback on_sweep = {});
   /// A moving vehicle: each beam placed at nedToMap() · bodyToNed(t) · sonar_to_body, bodyToNed
   /// interpolated from the fixes given to addNavFix (as mapSonarLog with a NavTrack); a beam
   /// outside the fixes' time span is skipped and counted (MappingStats::beams_without_nav).
   /// @param sonar_to_body  the sonar's mounting: sonar frame (beam.hpp) → body frame (FRD).
   /// @throws ValueError when `options` is invalid or the mounting is not finite.
-  OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, SweepCallback on_sweep = {});
+  OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
+               OnlineIntegration integration = OnlineIntegration::kSweep, SweepCallback on_sweep = {});
   ~OnlineMapper();
   OnlineMapper(const OnlineMapper&) = delete;
   OnlineMapper& operator=(const OnlineMapper&) = delete;
@@ -69,10 +86,10 @@ class OnlineMapper {
   /// @throws ValueError  what detecting or integrating a sweep threw.
   void finish();
 
-  /// Sweeps integrated so far.
+  /// Sweeps integrated so far (kBeam: sweeps whose beams are all integrated).
   std::size_t sweepsIntegrated() const;
-  /// Beams received and not yet in an integrated sweep (feeding thread only).
-  std::size_t beamsPending() const { return held_.size() + waiting_beams_; }
+  /// Beams received and not yet integrated (feeding thread only).
+  std::size_t beamsPending() const { return held_.size() + waiting_beams_ + beam_queue_.size() + (live_whole_ ? live_sweep_.size() : 0); }
 
   /// A copy of the map as of the last integrated sweep; safe from any thread.
   OcTree16 mapSnapshot() const;
@@ -89,9 +106,17 @@ class OnlineMapper {
   void emitGroup(std::size_t beams);
   void processReady();
   void integrate(DetectedSweep sweep);
-  bool navigationCovers(const std::vector<Beam>& group) const;
+  bool navigationCovers(double time_s) const;
+  /// The poses of `times_s` (navigation mode: nullopt outside the fixes).
+  std::vector<std::optional<Eigen::Isometry3d>> posesAt(const std::vector<double>& times_s) const;
+  // kBeam
+  void addLiveBeam(Beam beam, bool starts_sweep);
+  void closeLiveSweep(bool at_end);
+  void processBeamQueue();
+  void integrateLiveBeam(const Beam& beam);
 
   SonarMapper mapper_;
+  OnlineIntegration integration_;
   SweepCallback on_sweep_;
   std::optional<Eigen::Isometry3d> sonar_to_body_;  ///< set: navigation mode
   NavTrack fixes_;
@@ -103,6 +128,13 @@ class OnlineMapper {
   std::unique_ptr<std::future<DetectedSweep>> in_flight_;  ///< detection running beside integration
   std::size_t sweeps_ = 0;
   bool finished_ = false;
+  // kBeam: the calibration of the last whole sweep, the raw sweep being received, the beams waiting
+  // for navigation.
+  std::optional<SweepCalibration> live_calibration_;
+  double live_bin_length_m_ = 0.0;
+  std::vector<Beam> live_sweep_;
+  bool live_whole_ = false;  ///< the sweep being received is integrated whole when it ends
+  std::deque<Beam> beam_queue_;
   mutable std::shared_mutex map_mutex_;  ///< exclusive while a sweep is integrated
 };
 

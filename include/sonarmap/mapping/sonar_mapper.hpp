@@ -86,6 +86,13 @@ class SonarMapper {
 
   /// detectSweep(polar).detections.
   std::vector<BeamDetection> detect(PolarImage& polar) const;
+  /// Cleans and searches a few beams of a sweep in progress (live mapping: OnlineMapper's per-beam
+  /// integration) with `calibration`, what an earlier sweep was detected with
+  /// (SweepDetection::calibration): self-reflection removal up to the option or its band's end,
+  /// smoothing (each call's rows alone), detection by detectRows (detectors.hpp): its background is
+  /// not measured again. `rows` must have the calibration's columns. Thread-safe as detectSweep.
+  /// @throws ValueError  as detectRows.
+  SweepDetection detectRows(PolarImage& rows, const SweepCalibration& calibration) const;
 
   /// Adds a sweep's diagnostics to stats().detection and keeps its calibration in
   /// stats().calibration (mapSweep and mapSonarLog call it for every sweep they detect).
@@ -117,6 +124,12 @@ class SonarMapper {
   void integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                       const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row);
 
+  /// As the overload above for a few beams of a sweep in progress (OnlineMapper's per-beam
+  /// integration): the same updates for these rows, but a cell is updated at most once per call,
+  /// not once per sweep (neighbouring calls' wedges overlap), and no sweep is counted.
+  /// @throws ValueError when `detections` or the poses differ in length from the polar image.
+  void integrateBeams(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                      const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row);
   const OcTree16& map() const { return map_; }
   OcTree16& map() { return map_; }
   const MappingStats& stats() const { return stats_; }
@@ -130,9 +143,14 @@ class SonarMapper {
   /// MapperOptions::range_tolerance_m, or the sweep's part of its automatic value: a bin plus half a
   /// voxel (each echo's rise is added per beam).
   double rangeTolerance_m(const PolarImage& polar) const;
-  /// integrateSweep's body: `pose_of(row)` is the row's pose, or null to skip it without navigation.
+  /// integrateSweep's body: `pose_of(row)` is the row's pose, or null to skip it without navigation;
+  /// `whole_sweep`: count a sweep (false for integrateBeams).
   template <class PoseOfRow>
-  void integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);
+  void integrateRows(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of,
+                     bool whole_sweep);
+  /// integrateSweep and integrateBeams with optional poses; `whole_sweep` counts a sweep.
+  void integratePosedRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                          const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row, bool whole_sweep);
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
   void planBeams();
   /// The beams' shape: the width, and the vertical aperture with the volume model (0: planar).
