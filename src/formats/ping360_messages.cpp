@@ -14,6 +14,9 @@ namespace {
 
 constexpr std::size_t kHeaderBytes = 8;    // 'B' 'R', payload length, message id, source, destination
 constexpr std::size_t kChecksumBytes = 2;
+/// Ping Viewer's parser takes messages shorter than its 10,240-byte buffer (pingparserext.h); an
+/// auto_device_data of 1,200 samples is 1,230 bytes. The cap also bounds the checksum work per candidate.
+constexpr std::size_t kMaxMessageBytes = 10240;
 constexpr std::size_t kPayloadLengthAt = 2;
 constexpr std::size_t kMessageIdAt = 4;
 constexpr std::uint16_t kDeviceData = 2300;
@@ -39,6 +42,10 @@ FrameProbe probeMessage(std::span<const unsigned char> stream, std::size_t at) {
   };
   if (available < kHeaderBytes) return cut("header");
   const std::size_t size = kHeaderBytes + u16At(stream, at + kPayloadLengthAt) + kChecksumBytes;
+  if (size >= kMaxMessageBytes) {
+    return {FrameProbe::Kind::kNotAFrame, 0,
+            "declares " + std::to_string(size) + " bytes, expected fewer than " + std::to_string(kMaxMessageBytes)};
+  }
   if (size > available) return cut("declares " + std::to_string(size) + " bytes");
   std::uint32_t sum = 0;
   for (std::size_t i = at; i < at + size - kChecksumBytes; ++i) sum += stream[i];

@@ -32,7 +32,8 @@ struct Ping360Messages {
 };
 
 /// Frames the ping-protocol messages of `stream` (frame_scanner.hpp: garbage runs, a message cut
-/// by the end, bad checksums are skipped and counted) and decodes device_data and
+/// by the end, bad checksums, messages of 10,240 bytes or more (beyond Ping Viewer's parser) are
+/// skipped and counted) and decodes device_data and
 /// auto_device_data into beams: `bearing_rad` = 2π · ((400 − angle) mod 400) / 400 (the Ping360
 /// counts gradians clockwise seen from above, beam.hpp counter-clockwise; head zero at +x),
 /// `bin_length_m` = sample_period × 25 ns × sound_speed_m_s / 2, `intensities` = the data array

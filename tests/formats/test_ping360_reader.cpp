@@ -98,6 +98,13 @@ TEST(formatsPing360, SkipsBadChecksumsOtherMessagesAndNoise) {
                                                 std::to_string(corrupted_at) + ": checksum "))
       << log.skip_reasons[2];
   EXPECT_TRUE(contains(log.skip_reasons[3], ": 1 bytes outside any message")) << log.skip_reasons[3];
+
+  // A message longer than Ping Viewer's parser takes (10,240 bytes) is not one.
+  const std::string huge = pingMessage(3, std::string(10231, 'a'));
+  const SonarLog after_huge = parseStream(huge + ping360Message({}));
+  ASSERT_EQ(after_huge.beams.size(), 1u);
+  EXPECT_TRUE(contains(after_huge.skip_reasons.at(0), "(at byte 0: declares 10241 bytes, expected fewer than 10240)"))
+      << after_huge.skip_reasons.at(0);
 }
 
 TEST(formatsPing360, AStreamCutInsideItsLastMessageKeepsTheWholeOnes) {

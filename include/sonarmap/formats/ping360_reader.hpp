@@ -56,8 +56,9 @@ SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& s
 /// Skipped and counted (`skipped_beams`, one line each in `skip_reasons` with the byte offset and
 /// why): messages with other ids (ack, nack, ascii_text, device_information, …); device data whose
 /// data length does not fill the payload, with an angle ≥ 400, a sample period of 0 or no samples;
-/// each run of bytes outside any message (noise, a message with a bad checksum: the run names its
-/// first rejected message and why); a final message cut short by the end of the stream.
+/// each run of bytes outside any message (noise, a message with a bad checksum or of 10,240 bytes
+/// or more, beyond Ping Viewer's parser: the run names its first rejected message and why); a
+/// final message cut short by the end of the stream.
 /// @param bytes   the whole stream.
 /// @param source  name used in messages (the path).
 /// @throws FileError  naming `source` when the stream holds no beam, with the first skip reason.
