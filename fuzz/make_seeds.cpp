@@ -11,6 +11,7 @@
 
 #include "formats/mat_fixture.hpp"
 #include "formats/v4log_fixture.hpp"
+#include "formats/wire_fixture.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/io/scan_graph.hpp"
@@ -76,6 +77,28 @@ void sonarSeeds() {
   test::writeCrasMat(mat.string(), beams);
 }
 
+/// Raw wire captures: SeaNet packets (8- and 4-bit bins, an mtAlive, noise), a Ping360 stream
+/// (device_data, auto_device_data, an ack, noise) and the same messages in a Ping Viewer log.
+void wireSeeds() {
+  test::SeaNetHeadPacket four_bit;
+  four_bit.head_control = 0x230C;
+  four_bit.bearing = 3264;
+  seed("seanet", "three.seanet", [&](std::ostream& out) {
+    out << "\r\n" << test::seanetHeadData({}) << test::seanetOther(4, 8) << test::seanetHeadData(four_bit);
+  });
+  test::Ping360Data sector;
+  sector.auto_device_data = true;
+  sector.angle = 17;
+  const std::string stream = test::ping360Message({}) + test::pingMessage(1, std::string("\xB0\x04", 2)) +
+                             test::ping360Message(sector);
+  seed("ping360", "stream.bin", [&](std::ostream& out) { out << "xx" << stream; });
+  seed("ping360", "viewer.bin", [&](std::ostream& out) {
+    out << test::pingViewerLog({{"00:00:00.100", stream.substr(0, 20)}, {"00:00:00.150", stream.substr(20)}});
+  });
+  seed("ping360", "viewer_utf16.bin",
+       [&](std::ostream& out) { out << test::pingViewerLog({{"00:00:00.100", stream}}, true); });
+}
+
 void cloudSeeds() {
   Scan scan;
   for (int i = 0; i < 8; ++i) scan.points_m.emplace_back(0.5 * i, 1.0, -0.25 * i);
@@ -96,6 +119,7 @@ int main(int argc, char** argv) {
   }
   g_out = argv[1];
   sonarSeeds();
+  wireSeeds();
   cloudSeeds();
   return 0;
 }

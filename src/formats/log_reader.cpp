@@ -1,24 +1,82 @@
 #include "sonarmap/formats/log_reader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <filesystem>
+#include <utility>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/mat_reader.hpp"
+#include "sonarmap/formats/ping360_reader.hpp"
+#include "sonarmap/formats/seanet_capture.hpp"
 #include "sonarmap/formats/v4log_reader.hpp"
 
 namespace sonarmap {
+namespace {
+
+struct FormatNames {
+  LogFormat format;
+  std::string_view name;
+  std::string_view extension;  ///< lower case, with the dot
+};
+
+constexpr std::array<FormatNames, 5> kFormats{{{LogFormat::kMat, "mat", ".mat"},
+                                               {LogFormat::kCsv, "csv", ".csv"},
+                                               {LogFormat::kV4Log, "v4log", ".v4log"},
+                                               {LogFormat::kSeaNet, "seanet", ".seanet"},
+                                               {LogFormat::kPing360, "ping360", ".bin"}}};
+
+std::string lowerCase(std::string_view text) {
+  std::string lower(text);
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower;
+}
+
+}  // namespace
+
+LogFormat parseLogFormat(std::string_view name) {
+  const std::string lower = lowerCase(name);
+  for (const FormatNames& entry : kFormats) {
+    if (entry.name == lower) return entry.format;
+  }
+  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet or ping360");
+}
+
+std::string_view logFormatName(LogFormat format) {
+  for (const FormatNames& entry : kFormats) {
+    if (entry.format == format) return entry.name;
+  }
+  return "unknown";
+}
+
+std::optional<LogFormat> logFormatOfPath(const std::string& path) {
+  const std::string extension = lowerCase(std::filesystem::path(path).extension().string());
+  for (const FormatNames& entry : kFormats) {
+    if (entry.extension == extension) return entry.format;
+  }
+  return std::nullopt;
+}
+
+SonarLog readSonarLog(const std::string& path, LogFormat format) {
+  switch (format) {
+    case LogFormat::kMat: return readCrasMat(path);
+    case LogFormat::kCsv: return readBeamCsv(path);
+    case LogFormat::kV4Log: return readSeaNetV4Log(path);
+    case LogFormat::kSeaNet: return readSeaNetCapture(path);
+    case LogFormat::kPing360: return readPing360(path);
+  }
+  throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
+}
 
 SonarLog readSonarLog(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".mat") return readCrasMat(path);
-  if (extension == ".csv") return readBeamCsv(path);
-  if (extension == ".v4log") return readSeaNetV4Log(path);
-  throw FileError("'" + path + "': unknown sonar log type '" + extension + "', expected .mat, .csv or .V4LOG");
+  const std::optional<LogFormat> format = logFormatOfPath(path);
+  if (!format) {
+    throw FileError("'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() +
+                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture) or .bin (Ping360)");
+  }
+  return readSonarLog(path, *format);
 }
 
 }  // namespace sonarmap

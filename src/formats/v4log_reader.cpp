@@ -4,24 +4,19 @@
 #include "sonarmap/formats/v4log_reader.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "../io/byte_io.hpp"
+#include "reader_support.hpp"
+#include "seanet_head_data.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
 namespace {
-
-/// SeaNet's AD span and low level count 1/255 of 80 dB (rock-drivers SeaNetTypes; tritech_micron).
-constexpr double kAdScale_db = 80.0;
 
 using detail::ByteCursor;
 
@@ -29,19 +24,8 @@ constexpr std::string_view kMagic = "SeaNetV4 Log File V1";
 constexpr std::size_t kMagicBytes = 32;
 /// Record length, OLE date, tx node, rx node, message type: the least a record can hold.
 constexpr std::size_t kMinRecordBytes = 2 + 8 + 3;
-constexpr std::uint8_t kMtHeadData = 2;
 constexpr std::size_t kRecordDateAt = 2;  // offset of the OLE date in a record
-constexpr std::uint32_t kBearingUnitsPerTurn = 6400;  // 1/16 gradian
-constexpr double kAdIntervalUnit_s = 640e-9;
 constexpr double kSecondsPerDay = 86400.0;
-// HdCtrl bits (Tritech mtHeadCommand/mtHeadData).
-constexpr std::uint16_t kHdCtrlAdc8On = 1U << 0;
-
-std::uint16_t u16(ByteCursor& in, std::string_view what) {
-  in.require(2, what);
-  const std::uint16_t low = in.u8(what);
-  return static_cast<std::uint16_t>(low | (in.u8(what) << 8));
-}
 
 std::string recordName(std::uint32_t index) { return "record " + std::to_string(index); }
 
@@ -90,72 +74,16 @@ FileHeader readFileHeader(std::span<const unsigned char> bytes, const std::strin
   return header;
 }
 
-/// Unpacks the data bytes of one beam: copied (8-bit) or two 4-bit bins per byte, high nibble
-/// first, scaled ×17 onto 0…255.
-std::vector<std::uint8_t> unpackBins(std::span<const unsigned char> data, bool eight_bit) {
-  if (eight_bit) return {data.begin(), data.end()};
-  std::vector<std::uint8_t> bins;
-  bins.reserve(2 * data.size());
-  for (const unsigned char byte : data) {
-    bins.push_back(static_cast<std::uint8_t>((byte >> 4) * 17));
-    bins.push_back(static_cast<std::uint8_t>((byte & 0x0F) * 17));
-  }
-  return bins;
-}
-
-/// SeaNet bearing (1/16 gradian, clockwise) → beam.hpp's radians in [0, 2π), counter-clockwise.
-double bearingRad(std::uint16_t bearing) {
-  const std::uint32_t ccw = (kBearingUnitsPerTurn - bearing) % kBearingUnitsPerTurn;
-  return 2.0 * std::numbers::pi * static_cast<double>(ccw) / kBearingUnitsPerTurn;
-}
-
-/// Reads the mtHeadData message of one record (cursor just after the message type) into a beam
-/// without a time; std::nullopt when it has no data bytes.
-std::optional<Beam> readHeadData(ByteCursor& in, std::span<const unsigned char> record, std::uint32_t index,
-                                 double sound_speed_m_s) {
-  in.u8("sequence");
-  in.u8("node");
-  u16(in, "packed size");
-  in.u8("device type");
-  in.u8("head status");
-  in.u8("sweep code");
-  const std::uint16_t head_control = u16(in, "HdCtrl");
-  u16(in, "range scale");
-  in.u32("TxN");
-  in.u8("gain");
-  u16(in, "slope");
-  const std::uint8_t ad_span = in.u8("AD span");
-  in.u8("AD low");
-  u16(in, "heading offset");
-  const std::size_t interval_at = in.offset();
-  const std::uint16_t ad_interval = u16(in, "ADInterval");
-  u16(in, "left limit");
-  u16(in, "right limit");
-  in.u8("step");
-  const std::size_t bearing_at = in.offset();
-  const std::uint16_t bearing = u16(in, "bearing");
-  const std::size_t count_at = in.offset();
-  const std::uint16_t data_bytes = u16(in, "data byte count");
-  auto name = [index] { return recordName(index); };  // built only for a message
-  if (ad_interval == 0) {
-    in.failAt(interval_at, "ADInterval of " + name() + " is 0, expected > 0 (units of 640 ns; bin length 0 m)");
-  }
-  if (bearing >= kBearingUnitsPerTurn) {
-    in.failAt(bearing_at, "bearing of " + name() + " is " + std::to_string(bearing) + ", expected 0…6399 (1/16 gradian)");
-  }
-  if (data_bytes > in.remaining()) {
-    in.failAt(count_at, "data byte count of " + name() + " is " + std::to_string(data_bytes) + " but the record holds " +
-                            std::to_string(in.remaining()) + " bytes after its " +
-                            std::to_string(kV4LogHeadDataHeaderBytes) + "-byte header");
-  }
-  if (data_bytes == 0) return std::nullopt;
-  Beam beam;
-  beam.bearing_rad = bearingRad(bearing);
-  beam.bin_length_m = ad_interval * kAdIntervalUnit_s * sound_speed_m_s / 2.0;
-  beam.intensities = unpackBins(record.subspan(kV4LogHeadDataHeaderBytes, data_bytes), (head_control & kHdCtrlAdc8On) != 0);
-  // ADspan counts 80/255 dB (SeaNet's 0…80 dB scale); 0 would be no span at all: leave it unknown.
-  if (ad_span > 0) beam.intensity_span_db = ad_span * kAdScale_db / 255.0;
-  return beam;
+/// Decodes the mtHeadData message of one record (starting at byte `at`, at least
+/// kV4LogHeadDataHeaderBytes long): a beam without a time, or a skip reason when it has no data
+/// bytes. @throws FileError for a field the shared decoder rejects.
+detail::SeaNetHeadData readHeadData(std::span<const unsigned char> record, std::size_t at, std::uint32_t index,
+                                 const std::string& source, double sound_speed_m_s) {
+  constexpr std::size_t kBodyAt = kV4LogHeadDataHeaderBytes - detail::kSeaNetHeadDataFieldBytes;
+  detail::SeaNetHeadData decoded = detail::decodeSeaNetHeadData(
+      record.subspan(kBodyAt), at + kBodyAt, {recordName(index), "record", kV4LogHeadDataHeaderBytes}, sound_speed_m_s);
+  if (!decoded.defect.empty()) ByteCursor(record, source, at).failAt(decoded.defect_at, decoded.defect);
+  return decoded;
 }
 
 /// The bytes of record `index`, which starts at byte `at`: its length field is checked against
@@ -163,7 +91,7 @@ std::optional<Beam> readHeadData(ByteCursor& in, std::span<const unsigned char> 
 std::span<const unsigned char> recordAt(std::span<const unsigned char> bytes, std::size_t at, std::uint32_t index,
                                         const std::string& source) {
   ByteCursor in(bytes.subspan(at), source, at);
-  const std::uint16_t length = u16(in, "record length");
+  const std::uint16_t length = in.u16("record length");
   if (length < kMinRecordBytes) {
     in.failAt(at, "length of " + recordName(index) + " is " + std::to_string(length) + ", expected at least " +
                       std::to_string(kMinRecordBytes));
@@ -185,13 +113,13 @@ struct ParsedRecord {
 ParsedRecord readRecord(std::span<const unsigned char> record, std::size_t at, std::uint32_t index,
                         const std::string& source, double sound_speed_m_s) {
   ByteCursor in(record, source, at);
-  u16(in, "record length");
+  in.u16("record length");
   ParsedRecord parsed;
   parsed.date_days = in.finiteF64("record date");
   in.u8("tx node");
   in.u8("rx node");
   const std::uint8_t type = in.u8("message type");
-  if (type != kMtHeadData) {
+  if (type != detail::kSeaNetMtHeadData) {
     parsed.skip_reason = "message type " + std::to_string(type) + ", not mtHeadData (2)";
     return parsed;
   }
@@ -199,8 +127,9 @@ ParsedRecord readRecord(std::span<const unsigned char> record, std::size_t at, s
     in.failAt(at, "length of " + recordName(index) + " is " + std::to_string(record.size()) + ", expected at least " +
                       std::to_string(kV4LogHeadDataHeaderBytes) + " for mtHeadData");
   }
-  parsed.beam = readHeadData(in, record, index, sound_speed_m_s);
-  if (!parsed.beam) parsed.skip_reason = "mtHeadData with no data bytes";
+  detail::SeaNetHeadData decoded = readHeadData(record, at, index, source, sound_speed_m_s);
+  parsed.beam = std::move(decoded.beam);
+  parsed.skip_reason = std::move(decoded.skip_reason);
   return parsed;
 }
 
@@ -216,10 +145,7 @@ void checkTimeOrder(double time_s, double previous_s, std::size_t at, std::uint3
 }  // namespace
 
 SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::string& source, const V4LogOptions& options) {
-  if (!(std::isfinite(options.sound_speed_m_s) && options.sound_speed_m_s > 0.0)) {
-    throw ValueError("parseSeaNetV4Log: sound speed is " + std::to_string(options.sound_speed_m_s) +
-                     " m/s, expected a positive finite number");
-  }
+  detail::checkSoundSpeed(options.sound_speed_m_s, "parseSeaNetV4Log");
   const FileHeader header = readFileHeader(bytes, source);
   SonarLog log;
   log.beams.reserve(header.record_count);
@@ -251,14 +177,7 @@ SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::strin
 }
 
 SonarLog readSeaNetV4Log(const std::string& path, const V4LogOptions& options) {
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  std::ifstream in(path, std::ios::binary);
-  if (error || !in) throw FileError("cannot open '" + path + "' for reading");
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (in.gcount() != static_cast<std::streamsize>(bytes.size())) throw FileError(path + ": reading failed");
-  return parseSeaNetV4Log(bytes, path, options);
+  return parseSeaNetV4Log(detail::readFileBytes(path), path, options);
 }
 
 }  // namespace sonarmap

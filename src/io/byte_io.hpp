@@ -49,6 +49,12 @@ class ByteCursor {
     require(1, what);
     return data_[position_++];
   }
+  std::uint16_t u16(std::string_view what) {
+    require(2, what);
+    const auto value = static_cast<std::uint16_t>(data_[position_] | (data_[position_ + 1] << 8));
+    position_ += 2;
+    return value;
+  }
   std::uint32_t u32(std::string_view what) {
     require(4, what);
     std::uint32_t value = 0;

@@ -8,7 +8,9 @@ corpus (CSV, x y z, scene) are written by hand and are not touched. The committe
 the test reads; rerunning this script rewrites the same bytes.
 
 Layouts: ../shared/docs/formats.md and the readers' headers (MAT-file level 5: MathWorks'
-"MAT-File Format" document; SeaNet V4LOG: include/sonarmap/sonar/v4log_reader.hpp).
+"MAT-File Format" document; SeaNet V4LOG: include/sonarmap/formats/v4log_reader.hpp; SeaNet wire
+packets: include/sonarmap/formats/seanet_capture.hpp; Ping360 ping-protocol messages and Ping Viewer
+logs: include/sonarmap/formats/ping360_reader.hpp).
 """
 
 import pathlib
@@ -159,6 +161,98 @@ def v4_files():
     }, {"seanet_small.V4LOG": good}
 
 
+# ---- SeaNet wire capture -------------------------------------------------------------------------
+
+
+def seanet_frame(message):
+    """'@', the length as 4 hex digits and as uint16 (it counts itself and the message), message, LF."""
+    length = len(message) + 2
+    return b"@" + b"%04X" % length + struct.pack("<H", length) + message + b"\n"
+
+
+def seanet_head(ad_interval=33, bearing=3200, data=b"\x0a\x14\x1e\x28", head_control=0x230D):
+    """An imaging head's mtHeadData packet: source, destination, byte count, type 2, sequence, node, fields, data."""
+    message = struct.pack("<BBBBBBHBBBHHIBHBBHHHHBHH", 2, 255, 0, 2, 0x80, 2, len(data) + 31, 11, 0x10, 0,
+                          head_control, 100, 0, 60, 125, 80, 0, 0, ad_interval, 2400, 4000, 16, bearing, len(data))
+    return seanet_frame(message + data)
+
+
+def seanet_alive():
+    return seanet_frame(struct.pack("<BBBBBB", 2, 255, 11, 4, 0x80, 2) + b"\x07" * 8)
+
+
+def seanet_files():
+    good = b"\r\n" + seanet_head() + seanet_alive() + seanet_head(bearing=3216, head_control=0x230C) + b"noise"
+    no_lf = bytearray(seanet_head())
+    no_lf[-1] = 0x0D
+    lengths_differ = bytearray(seanet_head())
+    lengths_differ[5] += 1
+    return {
+        "seanet_empty.seanet": b"",
+        "seanet_text.seanet": b"time,angle\n1,2\n",
+        "seanet_only_alive.seanet": seanet_alive() * 3,
+        "seanet_zero_adinterval.seanet": seanet_head(ad_interval=0),
+        "seanet_bearing_out_of_range.seanet": seanet_head(bearing=6400),
+        "seanet_cut_short.seanet": seanet_head()[:30],
+        "seanet_no_lf.seanet": bytes(no_lf),
+        "seanet_lengths_differ.seanet": bytes(lengths_differ),
+    }, {"seanet_small.seanet": good}
+
+
+# ---- Ping360 ping-protocol and Ping Viewer logs ---------------------------------------------------
+
+
+def ping_message(message_id, payload, checksum_delta=0):
+    """'B' 'R', payload length, id, source 2, destination 0, payload, checksum (byte sum mod 65536)."""
+    out = b"BR" + struct.pack("<HHBB", len(payload), message_id, 2, 0) + payload
+    return out + struct.pack("<H", (sum(out) + checksum_delta) & 0xFFFF)
+
+
+def ping360_data(angle=0, sample_period=80, data=b"\x01\x02\xfa", auto=False):
+    """device_data (2300) or auto_device_data (2301, with its sector fields)."""
+    payload = struct.pack("<BBHHHH", 1, 0, angle, 32, sample_period, 750)
+    if auto:
+        payload += struct.pack("<HHBB", 0, 399, 1, 0)
+    payload += struct.pack("<HH", len(data), len(data)) + data
+    return ping_message(2301 if auto else 2300, payload)
+
+
+def qt_string(text, utf16=False):
+    """A QDataStream QString as Ping Viewer logs hold it: big-endian byte length, UTF-8 or UTF-16BE."""
+    data = text.encode("utf-16-be" if utf16 else "utf-8")
+    return struct.pack(">I", len(data)) + data
+
+
+def viewer_header(version=1, utf16=False):
+    out = qt_string("PingViewer sensor log file", utf16) + struct.pack(">i", version)
+    out += b"".join(qt_string(t, utf16) for t in ("1ed4508", "2025-08-07", "v2.4.1", "Debian GNU/Linux 12", "12"))
+    return out + struct.pack(">ii", 1, 2)
+
+
+def viewer_log(records, utf16=False, **header):
+    return viewer_header(utf16=utf16, **header) + b"".join(
+        qt_string(time, utf16) + struct.pack(">I", len(data)) + data for time, data in records)
+
+
+def ping360_files():
+    stream = ping360_data() + ping_message(1, b"\xb0\x04") + ping360_data(angle=17, auto=True)
+    return {
+        "ping_empty.bin": b"",
+        "ping_text.bin": b"time,angle\n1,2\n",
+        "ping_bad_checksum.bin": ping360_data()[:-2] + b"\x00\x00",
+        "ping_only_ack.bin": ping_message(1, b"\xb0\x04") * 2,
+        "ping_angle_out_of_range.bin": ping360_data(angle=400),
+        "ping_zero_sample_period.bin": ping360_data(sample_period=0),
+        "ping_cut_short.bin": ping360_data()[:20],
+        "viewer_wrong_version.bin": viewer_log([("00:00:00.100", stream)], version=2),
+        "viewer_truncated_header.bin": viewer_header()[:40],
+        "viewer_no_messages.bin": viewer_log([("00:00:00.100", b"")]),
+        "viewer_bad_time.bin": viewer_log([("later", stream)]),
+    }, {"ping_small.bin": b"xx" + stream,
+        "viewer_small.bin": viewer_log([("00:00:00.100", stream[:20]), ("00:00:00.150", stream[20:])]),
+        "viewer_small_utf16.bin": viewer_log([("00:00:00.100", stream)], utf16=True)}
+
+
 # ---- OctoMap scan graph --------------------------------------------------------------------------
 
 
@@ -256,7 +350,7 @@ def ot_files():
 def main():
     for folder in (BROKEN, VALID):
         folder.mkdir(exist_ok=True)
-    for make in (mat_files, v4_files, graph_files, bt_files, ot_files):
+    for make in (mat_files, v4_files, seanet_files, ping360_files, graph_files, bt_files, ot_files):
         broken, valid = make()
         for name, data in broken.items():
             (BROKEN / name).write_bytes(data)

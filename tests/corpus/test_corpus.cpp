@@ -205,6 +205,8 @@ constexpr Seed kSeeds[] = {
     {"beams_small.csv", "map"},      {"nav_small.csv", "map --nav"},       {"scan_small.graph", "cloud"},
     {"points_small.xyz", "cloud"},   {"tree_small.bt", "eval"},            {"tree_small.ot", "eval"},
     {"scene_small.txt", "simulate"}, {"beams_span_small.csv", "map"},
+    {"seanet_small.seanet", "map"},  {"ping_small.bin", "map"},           {"viewer_small.bin", "map"},
+    {"viewer_small_utf16.bin", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,41 @@ inline void setU32(std::string& bytes, std::size_t at, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xFF);
 }
 
+/// The mtHeadData fields of an imaging head from the packed size to the data bytes, then
+/// `extra_bytes` bytes: what a V4LOG record and a wire packet both hold after their node byte
+/// (src/formats/seanet_head_data.hpp). Defaults are the sample's settings.
+struct HeadDataFields {
+  std::uint16_t head_control = 0x230D;  // adc8on, scanright, invert, raw, hasmot, replyASL
+  std::uint16_t ad_interval = 33;       // 640 ns units
+  std::uint8_t ad_span = 149;
+  std::uint16_t bearing = 3200;         // 1/16 gradian, clockwise
+  std::vector<std::uint8_t> data = {10, 20, 30};
+  std::optional<std::uint16_t> data_count;  // the data byte count field, when not data.size()
+  std::size_t extra_bytes = 0;              // counted in the packed size (a wire packet's)
+};
+
+inline std::string headDataFields(const HeadDataFields& f) {
+  std::string out;
+  putU16(out, static_cast<std::uint16_t>(f.data.size() + f.extra_bytes + 31));  // packed size
+  out += {'\x02', '\x10', '\x00'};  // device type, head status, sweep code
+  putU16(out, f.head_control);
+  putU16(out, 100);         // range scale: 10 m
+  putU32(out, 0x02999999);  // TxN
+  out += '\x58';            // gain
+  putU16(out, 90);          // slope
+  out += static_cast<char>(f.ad_span);
+  out += '\x0E';   // AD low
+  putU16(out, 0);  // heading offset
+  putU16(out, f.ad_interval);
+  putU16(out, 2400);  // left limit
+  putU16(out, 4000);  // right limit
+  out += '\x40';      // step 64
+  putU16(out, f.bearing);
+  putU16(out, f.data_count.value_or(static_cast<std::uint16_t>(f.data.size())));
+  out.append(f.data.begin(), f.data.end());
+  return out + std::string(f.extra_bytes, '\x55');
+}
+
 /// One record of a synthetic log; defaults are the sample's settings.
 struct V4Record {
   double date_days = kV4FirstDate_days;
@@ -59,23 +95,12 @@ inline std::string v4RecordBytes(const V4Record& r) {
   if (r.type != 2) {
     out += std::string(12, '\x07');  // some other message body
   } else {
-    putU16(out, static_cast<std::uint16_t>(r.data.size() + 31));  // packed size
-    out += {'\x02', '\x10', '\x00'};                              // device type, head status, sweep code
-    putU16(out, r.head_control);
-    putU16(out, 100);         // range scale: 10 m
-    putU32(out, 0x02999999);  // TxN
-    out += '\x58';            // gain
-    putU16(out, 90);          // slope
-    out += {'\x95', '\x0E'};  // AD span, AD low
-    putU16(out, 0);           // heading offset
-    putU16(out, r.ad_interval);
-    putU16(out, 2400);  // left limit
-    putU16(out, 4000);  // right limit
-    out += '\x40';      // step 64
-    putU16(out, r.bearing);
-    putU16(out, static_cast<std::uint16_t>(r.data.size()));
-    out.append(r.data.begin(), r.data.end());
-    out += std::string(r.appended_bytes, '\x55');
+    HeadDataFields fields;
+    fields.head_control = r.head_control;
+    fields.ad_interval = r.ad_interval;
+    fields.bearing = r.bearing;
+    fields.data = r.data;
+    out += headDataFields(fields) + std::string(r.appended_bytes, '\x55');
   }
   setU16(out, 0, static_cast<std::uint16_t>(out.size()));
   return out;

@@ -1,0 +1,125 @@
+/// @file ping360_messages.cpp
+/// readPing360Messages: ping-protocol messages → Ping360 beams (see ping360_messages.hpp).
+
+#include "ping360_messages.hpp"
+
+#include <cstdint>
+#include <numbers>
+#include <optional>
+
+#include "frame_scanner.hpp"
+
+namespace sonarmap::detail {
+namespace {
+
+constexpr std::size_t kHeaderBytes = 8;    // 'B' 'R', payload length, message id, source, destination
+constexpr std::size_t kChecksumBytes = 2;
+/// Ping Viewer's parser takes messages shorter than its 10,240-byte buffer (pingparserext.h); an
+/// auto_device_data of 1,200 samples is 1,230 bytes. The cap also bounds the checksum work per candidate.
+constexpr std::size_t kMaxMessageBytes = 10240;
+constexpr std::size_t kPayloadLengthAt = 2;
+constexpr std::size_t kMessageIdAt = 4;
+constexpr std::uint16_t kDeviceData = 2300;
+constexpr std::uint16_t kAutoDeviceData = 2301;
+constexpr std::uint32_t kGradiansPerTurn = 400;
+constexpr double kSamplePeriodUnit_s = 25e-9;
+
+// Payload offsets shared by both messages, and where each one's sample count and data begin.
+constexpr std::size_t kAngleAt = 2;
+constexpr std::size_t kSamplePeriodAt = 6;
+constexpr std::size_t kDeviceDataLengthAt = 12;      // device_data: after number_of_samples
+constexpr std::size_t kAutoDeviceDataLengthAt = 18;  // auto_device_data: after the sector fields
+
+std::uint16_t u16At(std::span<const unsigned char> bytes, std::size_t at) {
+  return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8));
+}
+
+FrameProbe probeMessage(std::span<const unsigned char> stream, std::size_t at) {
+  const std::size_t available = stream.size() - at;
+  const auto cut = [&](const std::string& what) {
+    return FrameProbe{FrameProbe::Kind::kCutShort, 0,
+                      what + ", the capture ends " + std::to_string(available) + " bytes after its start"};
+  };
+  if (available < kHeaderBytes) return cut("header");
+  const std::size_t size = kHeaderBytes + u16At(stream, at + kPayloadLengthAt) + kChecksumBytes;
+  if (size >= kMaxMessageBytes) {
+    return {FrameProbe::Kind::kNotAFrame, 0,
+            "declares " + std::to_string(size) + " bytes, expected fewer than " + std::to_string(kMaxMessageBytes)};
+  }
+  if (size > available) return cut("declares " + std::to_string(size) + " bytes");
+  std::uint32_t sum = 0;
+  for (std::size_t i = at; i < at + size - kChecksumBytes; ++i) sum += stream[i];
+  const std::uint16_t checksum = u16At(stream, at + size - kChecksumBytes);
+  if (checksum != (sum & 0xFFFFU)) {
+    return {FrameProbe::Kind::kNotAFrame, 0,
+            "checksum " + std::to_string(checksum) + " but its bytes sum to " + std::to_string(sum & 0xFFFFU) +
+                " (mod 65536)"};
+  }
+  return {FrameProbe::Kind::kFrame, size, {}};
+}
+
+/// The beam of a device_data / auto_device_data payload (time unset), or why there is none.
+std::optional<Beam> decodeDeviceData(std::span<const unsigned char> payload, std::size_t length_at,
+                                     double sound_speed_m_s, std::string& why) {
+  const std::size_t data_at = length_at + 2;
+  if (payload.size() < data_at) {
+    why = "payload of " + std::to_string(payload.size()) + " bytes, expected at least " + std::to_string(data_at);
+    return std::nullopt;
+  }
+  const std::uint16_t angle = u16At(payload, kAngleAt);
+  const std::uint16_t sample_period = u16At(payload, kSamplePeriodAt);
+  const std::size_t samples = u16At(payload, length_at);
+  if (data_at + samples != payload.size()) {
+    why = "data length " + std::to_string(samples) + " but the payload holds " +
+          std::to_string(payload.size() - data_at) + " bytes after its fields";
+  } else if (angle >= kGradiansPerTurn) {
+    why = "angle " + std::to_string(angle) + ", expected 0…399 gradians";
+  } else if (sample_period == 0) {
+    why = "sample period 0, expected > 0 (units of 25 ns)";
+  } else if (samples == 0) {
+    why = "no samples";
+  } else {
+    Beam beam;
+    const std::uint32_t ccw = (kGradiansPerTurn - angle) % kGradiansPerTurn;
+    beam.bearing_rad = 2.0 * std::numbers::pi * static_cast<double>(ccw) / kGradiansPerTurn;
+    beam.bin_length_m = sample_period * kSamplePeriodUnit_s * sound_speed_m_s / 2.0;
+    beam.intensities.assign(payload.begin() + static_cast<std::ptrdiff_t>(data_at), payload.end());
+    return beam;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Ping360Messages readPing360Messages(std::span<const unsigned char> stream, const std::string& source,
+                                    double sound_speed_m_s, const std::function<std::string(std::size_t)>& where) {
+  Ping360Messages result;
+  FrameScan scan;
+  scan.start = "BR";
+  scan.noun = "message";
+  scan.where = where;
+  scan.probe = [&](std::size_t at) { return probeMessage(stream, at); };
+  scan.on_frame = [&](std::size_t at, std::size_t size) {
+    const std::uint16_t id = u16At(stream, at + kMessageIdAt);
+    const std::string name = "message at " + where(at);
+    if (id != kDeviceData && id != kAutoDeviceData) {
+      addSkip(result.log, source, name + ": id " + std::to_string(id) +
+                                      ", not device_data (2300) or auto_device_data (2301)");
+      return;
+    }
+    const std::span<const unsigned char> payload = stream.subspan(at + kHeaderBytes, size - kHeaderBytes - kChecksumBytes);
+    std::string why;
+    std::optional<Beam> beam = decodeDeviceData(payload, id == kDeviceData ? kDeviceDataLengthAt : kAutoDeviceDataLengthAt,
+                                                sound_speed_m_s, why);
+    if (!beam) {
+      addSkip(result.log, source, name + " (" + (id == kDeviceData ? "device_data" : "auto_device_data") + "): " + why);
+      return;
+    }
+    result.log.beams.push_back(std::move(*beam));
+    result.beam_ends.push_back(at + size);
+  };
+  scanFrames(stream, scan, source, result.log);
+  return result;
+}
+
+}  // namespace sonarmap::detail

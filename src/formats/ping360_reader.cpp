@@ -1,0 +1,31 @@
+/// @file ping360_reader.cpp
+/// readPing360 / parsePing360Stream: raw ping-protocol streams of a Ping360 → SonarLog (see
+/// ping360_reader.hpp; Ping Viewer logs: ping_viewer_log.cpp).
+
+#include "sonarmap/formats/ping360_reader.hpp"
+
+#include "ping360_messages.hpp"
+#include "reader_support.hpp"
+
+namespace sonarmap {
+
+SonarLog parsePing360Stream(std::span<const unsigned char> bytes, const std::string& source,
+                            const CaptureOptions& options) {
+  detail::checkSoundSpeed(options.sound_speed_m_s, "parsePing360Stream");
+  detail::checkBeamInterval(options.beam_interval_s, "parsePing360Stream");
+  detail::Ping360Messages messages = detail::readPing360Messages(
+      bytes, source, options.sound_speed_m_s, [](std::size_t offset) { return "byte " + std::to_string(offset); });
+  detail::finishClocklessCapture(messages.log, bytes.size(), source,
+                                 "Ping360 device_data messages ('B' 'R' ... checksum)", options.beam_interval_s);
+  return std::move(messages.log);
+}
+
+SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& source, const CaptureOptions& options) {
+  return isPingViewerLog(bytes) ? parsePingViewerLog(bytes, source, options) : parsePing360Stream(bytes, source, options);
+}
+
+SonarLog readPing360(const std::string& path, const CaptureOptions& options) {
+  return parsePing360(detail::readFileBytes(path), path, options);
+}
+
+}  // namespace sonarmap

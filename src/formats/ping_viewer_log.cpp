@@ -1,0 +1,196 @@
+/// @file ping_viewer_log.cpp
+/// isPingViewerLog / parsePingViewerLog: Ping Viewer sensor logs (`.bin`) → SonarLog (layout in
+/// ping360_reader.hpp, from Ping Viewer's LogSensorStruct and FileLink).
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "ping360_messages.hpp"
+#include "reader_support.hpp"
+#include "frame_scanner.hpp"
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/ping360_reader.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr std::string_view kHeader = "PingViewer sensor log file";
+constexpr std::int32_t kVersion = 1;
+constexpr std::uint32_t kNull = 0xFFFFFFFFU;  // QDataStream's length of a null string or array
+/// "hh:mm:ss.zzz" is 12 characters: 24 bytes in UTF-16.
+constexpr std::size_t kMaxTimeBytes = 24;
+
+std::optional<std::uint32_t> beU32(std::span<const unsigned char> bytes, std::size_t at) {
+  if (bytes.size() < 4 || at > bytes.size() - 4) return std::nullopt;
+  return (std::uint32_t{bytes[at]} << 24) | (std::uint32_t{bytes[at + 1]} << 16) | (std::uint32_t{bytes[at + 2]} << 8) |
+         bytes[at + 3];
+}
+
+/// `text` as Ping Viewer writes it: UTF-8 bytes, or UTF-16BE (each character after a zero byte).
+bool sameText(std::span<const unsigned char> bytes, std::string_view text, bool utf16) {
+  if (bytes.size() != text.size() * (utf16 ? 2 : 1)) return false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (utf16 ? (bytes[2 * i] != 0 || bytes[2 * i + 1] != static_cast<unsigned char>(text[i]))
+              : bytes[i] != static_cast<unsigned char>(text[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The characters of a string of ASCII text in either encoding (UTF-16: the low bytes).
+std::string asciiOf(std::span<const unsigned char> bytes, bool utf16) {
+  std::string text;
+  for (std::size_t i = utf16 ? 1 : 0; i < bytes.size(); i += utf16 ? 2 : 1) text += static_cast<char>(bytes[i]);
+  return text;
+}
+
+/// "hh:mm:ss.zzz" → seconds, or nullopt.
+std::optional<double> secondsOf(const std::string& time) {
+  static constexpr std::string_view kPattern = "00:00:00.000";
+  if (time.size() != kPattern.size()) return std::nullopt;
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    const bool digit = time[i] >= '0' && time[i] <= '9';
+    if (kPattern[i] == '0' ? !digit : time[i] != kPattern[i]) return std::nullopt;
+  }
+  const auto number = [&](std::size_t at, std::size_t digits) { return std::stoi(time.substr(at, digits)); };
+  if (number(3, 2) > 59 || number(6, 2) > 59) return std::nullopt;
+  return number(0, 2) * 3600.0 + number(3, 2) * 60.0 + number(6, 2) + number(9, 3) / 1000.0;
+}
+
+/// Reads the header; returns the offset of the first record and whether strings are UTF-16.
+/// @throws FileError naming the byte and the field.
+std::pair<std::size_t, bool> readHeader(std::span<const unsigned char> bytes, const std::string& source) {
+  const auto fail = [&](std::size_t at, const std::string& what) {
+    throw FileError(source + ": byte " + std::to_string(at) + ": " + what);
+  };
+  const std::optional<std::uint32_t> length = beU32(bytes, 0);
+  const bool utf16 = length && *length == 2 * kHeader.size();
+  if (!isPingViewerLog(bytes)) {
+    fail(0, "no Ping Viewer header string '" + std::string(kHeader) + "' (not a Ping Viewer log)");
+  }
+  std::size_t at = 4 + *length;
+  const std::optional<std::uint32_t> version = beU32(bytes, at);
+  if (!version) fail(at, "file ends, expected the log version (int32)");
+  if (static_cast<std::int32_t>(*version) != kVersion) {
+    fail(at, "log version is " + std::to_string(static_cast<std::int32_t>(*version)) + ", expected 1");
+  }
+  at += 4;
+  for (const char* field : {"git hash", "build date", "tag", "OS name", "OS version"}) {
+    const std::optional<std::uint32_t> size = beU32(bytes, at);
+    const std::size_t string_bytes = size && *size != kNull ? *size : 0;
+    if (!size || string_bytes > bytes.size() - at - 4) fail(at, std::string("file ends inside the ") + field + " string");
+    at += 4 + string_bytes;
+  }
+  if (bytes.size() - at < 8) fail(at, "file ends, expected the sensor family and type (two int32)");
+  return {at + 8, utf16};
+}
+
+/// The data of the records as one stream, with where each record's data begins.
+struct RecordStream {
+  std::vector<unsigned char> stream;
+  struct Chunk {
+    std::size_t stream_at;  ///< where its data begin in `stream`
+    std::size_t file_at;    ///< where its data begin in the file
+    std::size_t record;     ///< record index
+    double time_s;
+  };
+  std::vector<Chunk> chunks;
+
+  const Chunk& chunkOf(std::size_t stream_offset) const {
+    const auto after = std::upper_bound(chunks.begin(), chunks.end(), stream_offset,
+                                        [](std::size_t offset, const Chunk& c) { return offset < c.stream_at; });
+    return *(after - 1);
+  }
+};
+
+/// Reads the records from `at`; stops (one skipped item for the rest) at a record cut short or
+/// whose time is empty or too long.
+RecordStream readRecords(std::span<const unsigned char> bytes, std::size_t at, bool utf16, const std::string& source,
+                         SonarLog& log) {
+  RecordStream records;
+  for (std::size_t index = 0; at < bytes.size(); ++index) {
+    const std::string name = "record " + std::to_string(index) + " at byte " + std::to_string(at);
+    const auto stop = [&](const std::string& why) {
+      detail::addSkip(log, source, name + ": " + why + "; the last " + std::to_string(bytes.size() - at) + " bytes skipped");
+    };
+    const std::optional<std::uint32_t> time_bytes = beU32(bytes, at);
+    if (!time_bytes) {
+      stop("cut short in its time length");
+      return records;
+    }
+    if (*time_bytes == 0 || *time_bytes == kNull) {
+      stop("empty time (Ping Viewer stops reading here)");
+      return records;
+    }
+    if (*time_bytes > kMaxTimeBytes) {
+      stop("time of " + std::to_string(*time_bytes) + " bytes, expected hh:mm:ss.zzz");
+      return records;
+    }
+    const std::size_t data_length_at = at + 4 + *time_bytes;
+    const std::optional<std::uint32_t> data_bytes = beU32(bytes, data_length_at);
+    if (!data_bytes) {
+      stop("cut short before its data length");
+      return records;
+    }
+    const std::size_t data_size = *data_bytes == kNull ? 0 : *data_bytes;
+    if (data_size > bytes.size() - data_length_at - 4) {
+      stop("data of " + std::to_string(data_size) + " bytes, the file ends " +
+           std::to_string(bytes.size() - data_length_at - 4) + " bytes after their start");
+      return records;
+    }
+    const std::span<const unsigned char> data = bytes.subspan(data_length_at + 4, data_size);
+    const std::string time = asciiOf(bytes.subspan(at + 4, *time_bytes), utf16);
+    const std::optional<double> time_s = secondsOf(time);
+    if (!time_s) {
+      detail::addSkip(log, source, name + ": time '" + time + "' is not hh:mm:ss.zzz; its " +
+                                       std::to_string(data_size) + " data bytes skipped");
+    } else if (!data.empty()) {
+      records.chunks.push_back({records.stream.size(), data_length_at + 4, index, *time_s});
+      records.stream.insert(records.stream.end(), data.begin(), data.end());
+    }
+    at = data_length_at + 4 + data_size;
+  }
+  return records;
+}
+
+}  // namespace
+
+bool isPingViewerLog(std::span<const unsigned char> bytes) {
+  const std::optional<std::uint32_t> length = beU32(bytes, 0);
+  if (!length || (*length != kHeader.size() && *length != 2 * kHeader.size()) || bytes.size() - 4 < *length) return false;
+  return sameText(bytes.subspan(4, *length), kHeader, *length != kHeader.size());
+}
+
+SonarLog parsePingViewerLog(std::span<const unsigned char> bytes, const std::string& source,
+                            const CaptureOptions& options) {
+  detail::checkSoundSpeed(options.sound_speed_m_s, "parsePingViewerLog");
+  const auto [first_record, utf16] = readHeader(bytes, source);
+  SonarLog log;
+  const RecordStream records = readRecords(bytes, first_record, utf16, source, log);
+  const auto where = [&](std::size_t offset) {
+    const RecordStream::Chunk& chunk = records.chunkOf(offset);
+    return "byte " + std::to_string(chunk.file_at + offset - chunk.stream_at) + " (record " +
+           std::to_string(chunk.record) + ")";
+  };
+  detail::Ping360Messages messages = detail::readPing360Messages(records.stream, source, options.sound_speed_m_s, where);
+  for (std::size_t i = 0; i < messages.log.beams.size(); ++i) {
+    Beam& beam = messages.log.beams[i];
+    beam.time_s = records.chunkOf(messages.beam_ends[i] - 1).time_s;
+    if (!log.beams.empty() && beam.time_s < log.beams.back().time_s) {
+      detail::addSkip(log, source, "beam of the message ending at " + where(messages.beam_ends[i] - 1) +
+                                       ": time before the previous beam's");
+      continue;
+    }
+    log.beams.push_back(std::move(beam));
+  }
+  log.skipped_beams += messages.log.skipped_beams;
+  log.skip_reasons.insert(log.skip_reasons.end(), messages.log.skip_reasons.begin(), messages.log.skip_reasons.end());
+  detail::requireBeams(log, bytes.size(), source, "Ping360 device_data messages in the records");
+  return log;
+}
+
+}  // namespace sonarmap

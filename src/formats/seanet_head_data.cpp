@@ -1,0 +1,102 @@
+/// @file seanet_head_data.cpp
+/// decodeSeaNetHeadData: one mtHeadData body → Beam (see seanet_head_data.hpp).
+
+#include "seanet_head_data.hpp"
+
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+namespace sonarmap::detail {
+namespace {
+
+/// SeaNet's AD span and low level count 1/255 of 80 dB (rock-drivers SeaNetTypes; tritech_micron).
+constexpr double kAdScale_db = 80.0;
+constexpr std::uint32_t kBearingUnitsPerTurn = 6400;  // 1/16 gradian
+constexpr double kAdIntervalUnit_s = 640e-9;
+// HdCtrl bits (Tritech mtHeadCommand/mtHeadData).
+constexpr std::uint16_t kHdCtrlAdc8On = 1U << 0;
+
+// Field offsets in the body (from the byte after the message type).
+constexpr std::size_t kHeadControlAt = 7;
+constexpr std::size_t kAdSpanAt = 18;
+constexpr std::size_t kAdIntervalAt = 22;
+constexpr std::size_t kBearingAt = 29;
+constexpr std::size_t kDataBytesAt = 31;
+
+std::uint16_t u16At(std::span<const unsigned char> body, std::size_t at) {
+  return static_cast<std::uint16_t>(body[at] | (body[at + 1] << 8));
+}
+
+/// Unpacks the data bytes of one beam: copied (8-bit) or two 4-bit bins per byte, high nibble
+/// first, scaled ×17 onto 0…255.
+std::vector<std::uint8_t> unpackBins(std::span<const unsigned char> data, bool eight_bit) {
+  if (eight_bit) return {data.begin(), data.end()};
+  std::vector<std::uint8_t> bins;
+  bins.reserve(2 * data.size());
+  for (const unsigned char byte : data) {
+    bins.push_back(static_cast<std::uint8_t>((byte >> 4) * 17));
+    bins.push_back(static_cast<std::uint8_t>((byte & 0x0F) * 17));
+  }
+  return bins;
+}
+
+/// SeaNet bearing (1/16 gradian, clockwise) → beam.hpp's radians in [0, 2π), counter-clockwise.
+double bearingRad(std::uint16_t bearing) {
+  const std::uint32_t ccw = (kBearingUnitsPerTurn - bearing) % kBearingUnitsPerTurn;
+  return 2.0 * std::numbers::pi * static_cast<double>(ccw) / kBearingUnitsPerTurn;
+}
+
+SeaNetHeadData defectAt(std::size_t at, std::string message) {
+  SeaNetHeadData result;
+  result.defect = std::move(message);
+  result.defect_at = at;
+  return result;
+}
+
+}  // namespace
+
+SeaNetHeadData decodeSeaNetHeadData(std::span<const unsigned char> body, std::size_t body_at,
+                                    const SeaNetMessageName& name, double sound_speed_m_s) {
+  if (body.size() < kSeaNetHeadDataFieldBytes) {
+    return defectAt(body_at, "length of " + name.name + " leaves " + std::to_string(body.size()) +
+                                 " bytes after the message type, expected at least " +
+                                 std::to_string(kSeaNetHeadDataFieldBytes) + " for mtHeadData");
+  }
+  const std::uint16_t head_control = u16At(body, kHeadControlAt);
+  const std::uint8_t ad_span = body[kAdSpanAt];
+  const std::uint16_t ad_interval = u16At(body, kAdIntervalAt);
+  const std::uint16_t bearing = u16At(body, kBearingAt);
+  const std::uint16_t data_bytes = u16At(body, kDataBytesAt);
+  const std::size_t left = body.size() - kSeaNetHeadDataFieldBytes;
+  if (ad_interval == 0) {
+    return defectAt(body_at + kAdIntervalAt,
+                    "ADInterval of " + name.name + " is 0, expected > 0 (units of 640 ns; bin length 0 m)");
+  }
+  if (bearing >= kBearingUnitsPerTurn) {
+    return defectAt(body_at + kBearingAt, "bearing of " + name.name + " is " + std::to_string(bearing) +
+                                              ", expected 0…6399 (1/16 gradian)");
+  }
+  if (data_bytes > left) {
+    return defectAt(body_at + kDataBytesAt, "data byte count of " + name.name + " is " + std::to_string(data_bytes) +
+                                                " but the " + std::string(name.container) + " holds " +
+                                                std::to_string(left) + " bytes after its " +
+                                                std::to_string(name.header_bytes) + "-byte header");
+  }
+  SeaNetHeadData result;
+  if (data_bytes == 0) {
+    result.skip_reason = "mtHeadData with no data bytes";
+    return result;
+  }
+  Beam beam;
+  beam.bearing_rad = bearingRad(bearing);
+  beam.bin_length_m = ad_interval * kAdIntervalUnit_s * sound_speed_m_s / 2.0;
+  beam.intensities = unpackBins(body.subspan(kSeaNetHeadDataFieldBytes, data_bytes), (head_control & kHdCtrlAdc8On) != 0);
+  // ADspan counts 80/255 dB (SeaNet's 0…80 dB scale); 0 would be no span at all: leave it unknown.
+  if (ad_span > 0) beam.intensity_span_db = ad_span * kAdScale_db / 255.0;
+  result.beam = std::move(beam);
+  result.trailing_bytes = left - data_bytes;
+  return result;
+}
+
+}  // namespace sonarmap::detail
