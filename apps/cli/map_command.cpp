@@ -88,9 +88,11 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
 
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
-  const SonarLog log = readSonarLog(args.input);
-  printWarnings(optionWarnings(options, log));
-  const MappedLog mapped = mapLog(args, log, options, sonar_to_body);
+  const LogFormat format = inputFormat(args.input, args.format);
+  const SonarLog log = readSonarLog(args.input, format);
+  const MapperOptions sonar_options = withSonarBeam(options, args, format);
+  printWarnings(optionWarnings(sonar_options, log));
+  const MappedLog mapped = mapLog(args, log, sonar_options, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
   stageMapOutputs(outputs, args, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png);
   outputs.commit();

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -96,10 +97,15 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--max-range", args.max_range_m,
                  "Use beams up to this range in METRES: longer ones clear free space up to it, their obstacle dropped")
       ->capture_default_str();
-  cmd.add_option("--beam-width", args.beam_width_deg,
-                 "Horizontal beam width in DEGREES (Micron, SeaKing 3; Ping360 2): each beam clears its wedge; 0 = one "
-                 "ray per beam (the paper)")
+  cmd.add_option("--format", args.format,
+                 "Log format: auto (by extension: .mat, .csv, .V4LOG, .seanet, .bin) | mat | csv | v4log | seanet | "
+                 "ping360 (a raw capture of any name)")
       ->capture_default_str();
+  cmd.add_option("--beam-width", args.beam_width_deg,
+                 "Horizontal beam width in DEGREES (default the sonar's: Tritech 3, Ping360 2): each beam clears its "
+                 "wedge; 0 = one ray per beam (the paper)")
+      ->capture_default_str()
+      ->each([&args](const std::string&) { args.beam_width_given = true; });
   cmd.add_option("--range-tolerance", args.range_tolerance,
                  "A beam's free space ends this many METRES before its obstacle, or auto: a bin plus half a voxel plus the echo's rise (leading edge to peak)")
       ->capture_default_str();
@@ -112,8 +118,9 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_flag("--3d", args.volume,
                "Map the whole beam volume (width x vertical aperture) into a 3D map instead of the sonar's plane");
   cmd.add_option("--vertical-aperture", args.vertical_aperture_deg,
-                 "Vertical beam width in DEGREES for --3d (Micron 35, SeaKing 40, Ping360 25)")
-      ->capture_default_str();
+                 "Vertical beam width in DEGREES for --3d (default the sonar's: Tritech 35, Ping360 25; SeaKing 40)")
+      ->capture_default_str()
+      ->each([&args](const std::string&) { args.vertical_aperture_given = true; });
   cmd.add_option("--free-aperture", args.free_aperture,
                  "--3d: vertical extent in DEGREES of the cone a beam clears (where its silence proves water), or "
                  "auto: half the vertical aperture")
@@ -132,6 +139,26 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd.add_flag("--tank-report", args.tank_report,
                "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
+}
+
+LogFormat inputFormat(const std::string& input, const std::string& format) {
+  if (format != "auto") return parseLogFormat(format);
+  if (const std::optional<LogFormat> by_extension = logFormatOfPath(input)) return *by_extension;
+  throw FileError("'" + input + "': unknown sonar log type '" + std::filesystem::path(input).extension().string() +
+                  "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture) or .bin (Ping360), or name it with "
+                  "--format");
+}
+
+MapperOptions withSonarBeam(MapperOptions options, const MapArgs& args, LogFormat format) {
+  const NominalBeam beam = nominalBeam(format);
+  if (!args.beam_width_given) options.beam_width_rad = beam.width_rad;
+  if (!args.vertical_aperture_given) options.vertical_aperture_rad = beam.vertical_aperture_rad;
+  if (options.free_vertical_aperture_rad && *options.free_vertical_aperture_rad > options.vertical_aperture_rad) {
+    throw ValueError("--free-aperture " + std::to_string(*options.free_vertical_aperture_rad / kRadPerDeg) +
+                     " is wider than the vertical aperture");
+  }
+  options.validate();
+  return options;
 }
 
 MapperOptions toMapperOptions(const MapArgs& args) {

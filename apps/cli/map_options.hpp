@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
 
 namespace sonarmap::cli {
@@ -35,7 +36,10 @@ struct MapArgs {
   std::string ray = "dda";
   std::string aggregation = "max";
   double max_range_m = MapperOptions{}.max_range_m;
+  std::string format = "auto";  ///< log format (parseLogFormat), or auto: by the input's extension
   double beam_width_deg = MapperOptions{}.beam_width_rad * 180.0 / 3.14159265358979323846;
+  bool beam_width_given = false;         ///< --beam-width was on the command line
+  bool vertical_aperture_given = false;  ///< --vertical-aperture was on the command line
   std::string range_tolerance = "auto";  ///< metres, or auto (a bin plus half a voxel plus each echo's rise)
   double max_voxel_updates = MapperOptions{}.max_voxel_updates;
   double hit_probability = MapperOptions{}.octree.occupancy.prob_hit;
@@ -53,6 +57,14 @@ struct MapArgs {
 
 /// Adds the mapping options (everything but the input, outputs, --nav and --mounting) to `cmd`.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
+
+/// The input's log format: --format, or by the input's extension.
+/// @throws ValueError (usage) for an unknown --format name; FileError for an unknown extension.
+LogFormat inputFormat(const std::string& input, const std::string& format);
+
+/// `options` with the beam widths of the sonar that writes `format` (nominalBeam) where the user
+/// gave none (--beam-width, --vertical-aperture), and the free aperture following the vertical one.
+MapperOptions withSonarBeam(MapperOptions options, const MapArgs& args, LogFormat format);
 
 /// Turns the arguments into mapper options, checking each value's range with the option's name.
 /// @throws ValueError (usage) naming the option, its unit and its range.

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <filesystem>
+#include <numbers>
 #include <utility>
 
 #include "sonarmap/core/errors.hpp"
@@ -42,6 +43,12 @@ LogFormat parseLogFormat(std::string_view name) {
     if (entry.name == lower) return entry.format;
   }
   throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet or ping360");
+}
+
+NominalBeam nominalBeam(LogFormat format) {
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  if (format == LogFormat::kPing360) return {2.0 * kDegree, 25.0 * kDegree};
+  return {3.0 * kDegree, 35.0 * kDegree};
 }
 
 std::string_view logFormatName(LogFormat format) {
