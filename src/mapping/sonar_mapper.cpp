@@ -363,19 +363,46 @@ bool SonarMapper::beamInsideMap(const PlannedBeam& beam) {
   return inside;
 }
 
+namespace {
+/// Grows the key box [lo, hi] to hold the key of every end point of `rays` inside the map.
+void growKeyBoxByRays(const KeyCoder<16>& coder, const std::vector<FreeRay>& rays, Key16& lo, Key16& hi) {
+  // Keys are monotone in each coordinate, axis by axis: when the corners of the rays' bounding box
+  // have keys, their keys bound every end point's key. Otherwise (a ray leaving the map, whose
+  // traversal is skipped) the end points inside the map, one by one.
+  if (rays.empty()) return;
+  Eigen::Vector3d min_m = rays.front().start_m, max_m = min_m;
+  for (const FreeRay& ray : rays) {
+    min_m = min_m.cwiseMin(ray.start_m).cwiseMin(ray.end_m);
+    max_m = max_m.cwiseMax(ray.start_m).cwiseMax(ray.end_m);
+  }
+  const std::optional<Key16> min_key = coder.keyOf(min_m), max_key = coder.keyOf(max_m);
+  if (min_key && max_key) {
+    growKeyBox(lo, hi, *min_key);
+    growKeyBox(lo, hi, *max_key);
+    return;
+  }
+  for (const FreeRay& ray : rays) {
+    for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
+      if (const auto key = coder.keyOf(*point)) growKeyBox(lo, hi, *key);
+    }
+  }
+}
+}  // namespace
+
 void SonarMapper::keySweep() {
   SweepWork& work = *work_;
   work.hits.clear();
   if (work.beams.empty()) return;
   work.box_lo = work.box_hi = *map_.coder().keyOf(work.beams.front().sonar_to_map.translation());
-  for (const FreeRay& ray : work.rays) {
-    for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
-      if (const auto key = map_.coder().keyOf(*point)) growKeyBox(work.box_lo, work.box_hi, *key);
-    }
-  }
+  growKeyBoxByRays(map_.coder(), work.rays, work.box_lo, work.box_hi);
+  work.hits.reserve(work.hit_points.size());
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      const auto weight = static_cast<std::uint64_t>(std::lround(std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF));
+      // std::lround of a value in [0, 65535], without its library call: the integer part, plus one
+      // from a fraction of one half (exact: subtracting the integer part rounds nothing).
+      const double scaled = std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF;
+      const auto whole = static_cast<std::uint64_t>(scaled);
+      const std::uint64_t weight = whole + (scaled - static_cast<double>(whole) >= 0.5 ? 1 : 0);
       work.hits.push_back(mortonCode(*key) << 16 | weight);
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
