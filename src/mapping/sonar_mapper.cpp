@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <future>
+#include <limits>
 #include <thread>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "../algorithms/key_marks.hpp"
+#include "../algorithms/radix_sort.hpp"
 
 namespace sonarmap {
 
@@ -34,9 +36,12 @@ struct SonarMapper::SweepWork {
   std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
   std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
   std::vector<HitPoint> hit_points;
-  /// Hit cells, one per arc point: packKey(key) << 16 | (65535 − the point's weight in 1/65535),
-  /// so that sorting the integers groups a cell's points with the largest weight first.
+  /// Hit cells: mortonCode(key) << 16 | the largest weight among the cell's arc points, in
+  /// 1/65535. keySweep gathers one per arc point, then sorts them (tree order) and keeps one per cell.
   std::vector<std::uint64_t> hits;
+  std::vector<std::uint64_t> sort_scratch;            ///< radixSortHighBits' working memory
+  /// Log-odds of a hit of each weight code (hits' low 16 bits), NaN until first needed.
+  std::vector<float> hit_log_odds;
   Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
   double tolerance_m = 0.0;                           ///< the sweep's range tolerance
   KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
@@ -44,7 +49,7 @@ struct SonarMapper::SweepWork {
   std::vector<KeyMarks<16>> parts;  ///< with several threads: the other threads' marks
   /// The volume model: every cell that ever received a hit (a superset of the map's occupied
   /// cells), so a sweep can protect them from the outer part of its cones.
-  std::vector<std::uint64_t> occupied_keys;  ///< packKey() of each, sorted, unique
+  std::vector<std::uint64_t> occupied_keys;  ///< mortonCode() of each, sorted, unique
   std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
@@ -163,15 +168,15 @@ void SonarMapper::integrateFreeCells() {
     // map holds occupied unless the loud inner part of some cone of the sweep crosses it too.
     work.outer.reset(work.box_lo, work.box_hi);
     markRays(work.outer, true);
-    for (const std::uint64_t packed : work.occupied_keys) {
-      const Key16 key = unpackKey<16>(packed);
+    for (const std::uint64_t code : work.occupied_keys) {
+      const Key16 key = keyOfMortonCode<16>(code);
       if (!work.outer.contains(key) || work.crossed.contains(key)) continue;
       const std::optional<float> log_odds = map_.search(key);
       if (log_odds && map_.model().isOccupied(*log_odds)) work.outer.erase(key);
     }
     work.crossed.merge(work.outer);
   }
-  for (const std::uint64_t hit : work.hits) work.crossed.erase(unpackKey<16>(hit >> 16));  // never also a miss
+  for (const std::uint64_t hit : work.hits) work.crossed.erase(keyOfMortonCode<16>(hit >> 16));  // never also a miss
   // Brick by brick, leaves only; an eager tree then syncs its inner nodes once (the same tree).
   work.crossed.forEachBrick([&](const Key16& corner, std::uint64_t voxels) {
     map_.updateBrick(corner, voxels, map_.model().miss);
@@ -181,23 +186,23 @@ void SonarMapper::integrateFreeCells() {
 }
 
 void SonarMapper::integrateHits() {
-  // One update per hit cell, however many arc points fell into it: the largest share among them.
-  auto& hits = work_->hits;
-  std::sort(hits.begin(), hits.end());
+  // One update per hit cell (keySweep kept the largest share among its arc points), in tree order:
+  // each descent starts where the previous cell's path parts from it.
+  SweepWork& work = *work_;
   const double prob_hit = options_.octree.occupancy.prob_hit;
   const bool volume = options_.beam_model == BeamModel::kVolume;
-  SweepWork& work = *work_;
+  if (work.hit_log_odds.empty()) work.hit_log_odds.assign(0x10000, std::numeric_limits<float>::quiet_NaN());
   work.merged_keys.clear();
-  for (std::size_t i = 0; i < hits.size();) {
-    const std::uint64_t cell = hits[i] >> 16;
-    const double weight = static_cast<double>(0xFFFF - (hits[i] & 0xFFFF)) / 0xFFFF;  // the cell's largest
-    std::size_t next = i + 1;
-    while (next < hits.size() && hits[next] >> 16 == cell) ++next;
-    const float delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
-    map_.updateNode(unpackKey<16>(cell), delta);
+  for (const std::uint64_t hit : work.hits) {
+    const std::uint64_t cell = hit >> 16;
+    float& delta = work.hit_log_odds[hit & 0xFFFF];
+    if (std::isnan(delta)) {
+      const double weight = static_cast<double>(hit & 0xFFFF) / 0xFFFF;
+      delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
+    }
+    map_.updateNode(keyOfMortonCode<16>(cell), delta);
     ++stats_.occupied_updates;
     if (volume) work.merged_keys.push_back(cell);
-    i = next;
   }
   if (volume) {  // the sweep's hit cells (sorted, unique) joined to those of earlier sweeps
     const std::size_t sweep_keys = work.merged_keys.size();
@@ -387,24 +392,60 @@ bool SonarMapper::beamInsideMap(const PlannedBeam& beam) {
   return inside;
 }
 
+namespace {
+/// Grows the key box [lo, hi] to hold the key of every end point of `rays` inside the map.
+void growKeyBoxByRays(const KeyCoder<16>& coder, const std::vector<FreeRay>& rays, Key16& lo, Key16& hi) {
+  // Keys are monotone in each coordinate, axis by axis: when the corners of the rays' bounding box
+  // have keys, their keys bound every end point's key. Otherwise (a ray leaving the map, whose
+  // traversal is skipped) the end points inside the map, one by one.
+  if (rays.empty()) return;
+  Eigen::Vector3d min_m = rays.front().start_m, max_m = min_m;
+  for (const FreeRay& ray : rays) {
+    min_m = min_m.cwiseMin(ray.start_m).cwiseMin(ray.end_m);
+    max_m = max_m.cwiseMax(ray.start_m).cwiseMax(ray.end_m);
+  }
+  const std::optional<Key16> min_key = coder.keyOf(min_m), max_key = coder.keyOf(max_m);
+  if (min_key && max_key) {
+    growKeyBox(lo, hi, *min_key);
+    growKeyBox(lo, hi, *max_key);
+    return;
+  }
+  for (const FreeRay& ray : rays) {
+    for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
+      if (const auto key = coder.keyOf(*point)) growKeyBox(lo, hi, *key);
+    }
+  }
+}
+}  // namespace
+
 void SonarMapper::keySweep() {
   SweepWork& work = *work_;
   work.hits.clear();
   if (work.beams.empty()) return;
   work.box_lo = work.box_hi = *map_.coder().keyOf(work.beams.front().sonar_to_map.translation());
-  for (const FreeRay& ray : work.rays) {
-    for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
-      if (const auto key = map_.coder().keyOf(*point)) growKeyBox(work.box_lo, work.box_hi, *key);
-    }
-  }
+  growKeyBoxByRays(map_.coder(), work.rays, work.box_lo, work.box_hi);
+  work.hits.reserve(work.hit_points.size());
   for (const HitPoint& hit : work.hit_points) {
     if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      const auto weight = static_cast<std::uint64_t>(std::lround(std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF));
-      work.hits.push_back(packKey(*key) << 16 | (0xFFFF - weight));
+      // std::lround of a value in [0, 65535], without its library call: the integer part, plus one
+      // from a fraction of one half (exact: subtracting the integer part rounds nothing).
+      const double scaled = std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF;
+      const auto whole = static_cast<std::uint64_t>(scaled);
+      const std::uint64_t weight = whole + (scaled - static_cast<double>(whole) >= 0.5 ? 1 : 0);
+      work.hits.push_back(mortonCode(*key) << 16 | weight);
       growKeyBox(work.box_lo, work.box_hi, *key);
     }
   }
   work.crossed.reset(work.box_lo, work.box_hi);
+  // The arc points in tree order (by cell only, stable), then one entry per cell with its largest weight.
+  radixSortHighBits(work.hits, 16, work.sort_scratch);
+  std::size_t cells = 0;
+  for (std::size_t i = 0; i < work.hits.size(); ++cells) {
+    std::uint64_t cell = work.hits[i++];
+    for (; i < work.hits.size() && work.hits[i] >> 16 == cell >> 16; ++i) cell = std::max(cell, work.hits[i]);
+    work.hits[cells] = cell;
+  }
+  work.hits.resize(cells);
 }
 
 namespace {

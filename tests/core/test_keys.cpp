@@ -77,6 +77,22 @@ TEST(ChildIndex, XIsBit0YBit1ZBit2) {
   EXPECT_EQ(childIndex(key, 14), 0U);
 }
 
+TEST(MortonCode, RoundTripsAndOrdersAsTheTreeIsWalked) {
+  const Key16 key{{0xFFFF, 0x1234, 0x8001}};
+  EXPECT_EQ(keyOfMortonCode<16>(mortonCode(key)), key);
+  EXPECT_EQ(mortonCode(Key<21>{{0x1FFFFF, 0x1FFFFF, 0x1FFFFF}}), (std::uint64_t{1} << 63) - 1);
+  // Level by level, the code's top three bits are the child index: a depth-first walk's order.
+  const Key16 a{{0x7FFF, 0xFFFF, 0x7FFF}};  // child 2 at level 0
+  const Key16 b{{0x8000, 0x0000, 0x0000}};  // child 1 at level 0
+  EXPECT_EQ(childIndex(a, 0), 2U);
+  EXPECT_EQ(childIndex(b, 0), 1U);
+  EXPECT_LT(mortonCode(b), mortonCode(a));
+  EXPECT_EQ(mortonCode(Key16{{1, 0, 0}}), 1U);
+  EXPECT_EQ(mortonCode(Key16{{0, 1, 0}}), 2U);
+  EXPECT_EQ(mortonCode(Key16{{0, 0, 1}}), 4U);
+  EXPECT_EQ(mortonCode(Key16{{2, 0, 0}}), 8U);
+}
+
 TEST(LogOdds, OctoMapDefaults) {
   const LogOddsModel model = LogOddsModel::from({});
   EXPECT_NEAR(model.hit, 0.8473, 1e-4);

@@ -91,6 +91,51 @@ constexpr Key<Depth> unpackKey(std::uint64_t packed) noexcept {
                      static_cast<Index>((packed >> (2 * Depth)) & mask)}};
 }
 
+namespace detail {
+/// The low 21 bits of `v` moved to every third bit: bit i goes to bit 3i.
+constexpr std::uint64_t spreadEveryThirdBit(std::uint64_t v) noexcept {
+  v &= 0x1FFFFF;
+  v = (v | v << 32) & 0x1F00000000FFFFULL;
+  v = (v | v << 16) & 0x1F0000FF0000FFULL;
+  v = (v | v << 8) & 0x100F00F00F00F00FULL;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+/// The inverse of spreadEveryThirdBit: bit 3i of `v` goes to bit i (the other bits are ignored).
+constexpr std::uint64_t gatherEveryThirdBit(std::uint64_t v) noexcept {
+  v &= 0x1249249249249249ULL;
+  v = (v ^ (v >> 2)) & 0x10C30C30C30C30C3ULL;
+  v = (v ^ (v >> 4)) & 0x100F00F00F00F00FULL;
+  v = (v ^ (v >> 8)) & 0x1F0000FF0000FFULL;
+  v = (v ^ (v >> 16)) & 0x1F00000000FFFFULL;
+  v = (v ^ (v >> 32)) & 0x1FFFFF;
+  return v;
+}
+}  // namespace detail
+
+/// A key of depth ≤ 21 as its Morton code (Z-order, Morton 1966): bit 3i + a of the code is bit i
+/// of axis a (x = 0, y = 1, z = 2), 48 bits for depth 16. Ascending codes are the order in which a
+/// depth-first walk of the octree meets the voxels (children 0 … 7 at every level, childIndex()),
+/// so keys updated in this order share the longest paths from the root.
+template <int Depth>
+  requires(Depth <= 21)
+constexpr std::uint64_t mortonCode(const Key<Depth>& key) noexcept {
+  return detail::spreadEveryThirdBit(key[0]) | (detail::spreadEveryThirdBit(key[1]) << 1) |
+         (detail::spreadEveryThirdBit(key[2]) << 2);
+}
+
+/// The key whose mortonCode() is `code`.
+template <int Depth>
+  requires(Depth <= 21)
+constexpr Key<Depth> keyOfMortonCode(std::uint64_t code) noexcept {
+  using Index = typename Key<Depth>::Index;
+  return Key<Depth>{{static_cast<Index>(detail::gatherEveryThirdBit(code)),
+                     static_cast<Index>(detail::gatherEveryThirdBit(code >> 1)),
+                     static_cast<Index>(detail::gatherEveryThirdBit(code >> 2))}};
+}
+
 /// Hash of a key, for unordered sets of keys (packKey() for depth ≤ 21).
 template <int Depth>
 struct KeyHash {

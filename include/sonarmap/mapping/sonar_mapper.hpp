@@ -157,10 +157,12 @@ class SonarMapper {
   BeamShape beamShape() const;
   /// True when the sonar and the beam's wedge lie inside the map; records how far it reached.
   bool beamInsideMap(const PlannedBeam& beam);
-  /// Turns the sweep's plan into keys: hit cells, the key box, the seen set primed with the hits.
+  /// Turns the sweep's plan into keys: the key box, and the hit cells in tree order (Morton code),
+  /// one per cell with the largest weight among its arc points.
   void keySweep();
   /// Updates every cell the planned rays cross once, free, unless it is a hit cell of the sweep.
   void integrateFreeCells();
+  /// Updates every hit cell of the sweep once, in tree order; the volume model also records them.
   void integrateHits();
 
   struct SweepWork;  // the sweep's plan and cells, reused from sweep to sweep

@@ -1,0 +1,40 @@
+// radixSortHighBits (private to the algorithms layer): the order of std::stable_sort by the high
+// bits, with and without bytes shared by every value.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "algorithms/radix_sort.hpp"
+
+namespace sonarmap {
+namespace {
+
+void expectStableSortByHighBits(std::vector<std::uint64_t> values, int low_bit) {
+  std::vector<std::uint64_t> expected = values;
+  const auto high = [low_bit](std::uint64_t v) { return low_bit >= 64 ? 0 : v >> low_bit; };
+  std::stable_sort(expected.begin(), expected.end(), [&](std::uint64_t a, std::uint64_t b) { return high(a) < high(b); });
+  std::vector<std::uint64_t> scratch;
+  radixSortHighBits(values, low_bit, scratch);
+  EXPECT_EQ(values, expected) << "low bit " << low_bit;
+}
+
+TEST(RadixSort, MatchesStableSortByTheHighBits) {
+  std::mt19937_64 random(7);
+  std::vector<std::uint64_t> wide(5000), narrow(5000);
+  for (std::uint64_t& v : wide) v = random();
+  // Cell codes of a small box: most high bytes are the same in every value; many equal cells.
+  for (std::uint64_t& v : narrow) v = (0xABCD00000000ULL | (random() % 300)) << 16 | (random() & 0xFFFF);
+  for (const int low_bit : {0, 16, 40, 64}) {
+    expectStableSortByHighBits(wide, low_bit);
+    expectStableSortByHighBits(narrow, low_bit);
+  }
+  expectStableSortByHighBits({}, 16);
+  expectStableSortByHighBits({42}, 16);
+  expectStableSortByHighBits(std::vector<std::uint64_t>(100, 0x123456789ULL), 0);
+}
+
+}  // namespace
+}  // namespace sonarmap
