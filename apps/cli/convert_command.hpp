@@ -13,6 +13,8 @@ namespace sonarmap::cli {
 struct ConvertArgs {
   std::string input;
   std::string output;
+  std::string format = "auto";    ///< input format, or auto (by extension)
+  double sound_speed_m_s = 1500;  ///< for wire captures written or read
 };
 
 /// Adds the `convert` subcommand to `app`; its options fill `args`.

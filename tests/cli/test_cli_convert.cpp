@@ -50,10 +50,36 @@ TEST_F(cliConvert, SeaNetLogBecomesOneRowPerBeamAndMapsToTheIdenticalOctree) {
   EXPECT_EQ(bytesOf(from_log), bytesOf(from_csv));
 }
 
+// The SeaNet log as the packets its head sent (a .seanet wire capture), and under another name with
+// --format: the identical octree. The CRAS log as a Ping360 stream maps with the Ping360's 2° beam
+// by default, as with --beam-width 2 given.
+TEST_F(cliConvert, LogsAsWireCapturesMapLikeTheLogs) {
+  if (!fs::exists(kSeaNetLog) || !fs::exists(kCrasLog)) GTEST_SKIP() << "shared data absent";
+  const fs::path capture = out_ / "sector.seanet", renamed = out_ / "sector.raw";
+  ASSERT_EQ(run({"convert", kSeaNetLog.string(), "-o", capture.string()}).exit_code, 0);
+  fs::copy_file(capture, renamed);
+  const fs::path from_log = out_ / "v4.bt", from_wire = out_ / "wire.bt", from_raw = out_ / "raw.bt";
+  ASSERT_EQ(run({"map", kSeaNetLog.string(), "-o", from_log.string(), "-q"}).exit_code, 0);
+  ASSERT_EQ(run({"map", capture.string(), "-o", from_wire.string(), "-q"}).exit_code, 0);
+  ASSERT_EQ(run({"map", renamed.string(), "--format", "seanet", "-o", from_raw.string(), "-q"}).exit_code, 0);
+  EXPECT_EQ(bytesOf(from_log), bytesOf(from_wire));
+  EXPECT_EQ(bytesOf(from_log), bytesOf(from_raw));
+  expectError(run({"map", renamed.string(), "-o", (out_ / "no.bt").string(), "-q"}), 1);  // unknown extension
+
+  const fs::path ping = out_ / "cras.bin";
+  ASSERT_EQ(run({"convert", kCrasLog.string(), "-o", ping.string()}).exit_code, 0);
+  const fs::path by_default = out_ / "p.bt", two = out_ / "p2.bt", three = out_ / "p3.bt";
+  ASSERT_EQ(run({"map", ping.string(), "-o", by_default.string(), "-q"}).exit_code, 0);
+  ASSERT_EQ(run({"map", ping.string(), "--beam-width", "2", "-o", two.string(), "-q"}).exit_code, 0);
+  ASSERT_EQ(run({"map", ping.string(), "--beam-width", "3", "-o", three.string(), "-q"}).exit_code, 0);
+  EXPECT_EQ(bytesOf(by_default), bytesOf(two));
+  EXPECT_NE(bytesOf(by_default), bytesOf(three));
+}
+
 TEST_F(cliConvert, BadArgumentsAndInputsFailWithOneLineAndWriteNothing) {
   const fs::path input = root_ / "broken.csv";
   std::ofstream(input) << "time_s,bearing_deg,bin_length_m,b0\n0,10,0.01,300\n";  // 300 > 255
-  expectError(run({"convert", input.string(), "-o", (out_ / "x.bt").string()}), 2);   // not a .csv output
+  expectError(run({"convert", input.string(), "-o", (out_ / "x.bt").string()}), 2);   // not a .csv, .seanet or .bin output
   expectError(run({"convert", input.string(), "-o", (out_ / "x.csv").string()}), 1);  // bad intensity
   expectError(run({"convert", (root_ / "missing.mat").string(), "-o", (out_ / "y.csv").string()}), 1);
   EXPECT_TRUE(fs::is_empty(out_));

@@ -1,0 +1,121 @@
+/// @file wire_encoder.cpp
+/// encodeSeaNetCapture, encodePing360Stream (see wire_encoder.hpp).
+
+#include "sonarmap/formats/wire_encoder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include "reader_support.hpp"
+#include "sonarmap/core/errors.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr std::size_t kMaxBins = 65000;
+
+void putU16(std::vector<std::uint8_t>& out, unsigned value) {
+  out.push_back(static_cast<std::uint8_t>(value & 0xFF));
+  out.push_back(static_cast<std::uint8_t>((value >> 8) & 0xFF));
+}
+
+void putU32(std::vector<std::uint8_t>& out, std::uint32_t value) {
+  putU16(out, value & 0xFFFF);
+  putU16(out, value >> 16);
+}
+
+/// The beam's bin length as a whole number of `tick_s` of two-way travel, 1…65535.
+unsigned sampleTicks(const Beam& beam, double tick_s, double sound_speed_m_s, const char* function) {
+  const double ticks = std::round(2.0 * beam.bin_length_m / (sound_speed_m_s * tick_s));
+  if (!(std::isfinite(beam.bin_length_m) && beam.bin_length_m > 0.0 && ticks >= 1.0 && ticks <= 65535.0)) {
+    throw ValueError(std::string(function) + ": a bin length of " + std::to_string(beam.bin_length_m) +
+                     " m is no sample interval of 1 to 65535 ticks");
+  }
+  return static_cast<unsigned>(ticks);
+}
+
+void checkBins(const Beam& beam, const char* function) {
+  if (beam.intensities.size() > kMaxBins) {
+    throw ValueError(std::string(function) + ": a beam of " + std::to_string(beam.intensities.size()) +
+                     " bins does not fit one message (at most 65000)");
+  }
+}
+
+/// `bearing_rad` (counter-clockwise, beam.hpp) as `steps` per turn clockwise seen from above.
+unsigned clockwiseSteps(double bearing_rad, unsigned steps) {
+  const long step = std::lround(bearing_rad * steps / (2.0 * std::numbers::pi));
+  return static_cast<unsigned>(((static_cast<long>(steps) - step) % steps + steps) % steps);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, const CaptureOptions& options) {
+  detail::checkSoundSpeed(options.sound_speed_m_s, "encodeSeaNetCapture");
+  std::vector<std::uint8_t> out;
+  for (const Beam& beam : beams) {
+    checkBins(beam, "encodeSeaNetCapture");
+    const unsigned ad_interval = sampleTicks(beam, 640e-9, options.sound_speed_m_s, "encodeSeaNetCapture");
+    const auto bins = static_cast<unsigned>(beam.intensities.size());
+    const double span_db = beam.intensity_span_db.value_or(0.0);
+    const auto ad_span = static_cast<unsigned>(std::clamp(std::lround(span_db * 255.0 / 80.0), 0L, 255L));
+    std::vector<std::uint8_t> message = {0x02, 0xFF, 0x00, 0x02, 0x80, 0x02};  // source, destination, count, mtHeadData, sequence, node
+    putU16(message, bins + 31);                    // packed size
+    message.insert(message.end(), {0x02, 0x10, 0x00});  // device type, head status, sweep code
+    putU16(message, 0x0001);                       // HdCtrl: adc8on (8-bit bins)
+    putU16(message, static_cast<unsigned>(std::lround(std::min(6553.5, bins * beam.bin_length_m * 10.0))));  // range, dm
+    putU32(message, 0);                            // TxN
+    message.push_back(0);                          // gain
+    putU16(message, 0);                            // slope
+    message.push_back(static_cast<std::uint8_t>(ad_span));
+    message.push_back(0);                          // AD low
+    putU16(message, 0);                            // heading offset
+    putU16(message, ad_interval);
+    putU16(message, 0);                            // left limit
+    putU16(message, 6399);                         // right limit
+    message.push_back(32);                         // step: 1.8°
+    putU16(message, clockwiseSteps(beam.bearing_rad, 6400));
+    putU16(message, bins);
+    message.insert(message.end(), beam.intensities.begin(), beam.intensities.end());
+    const std::size_t length = message.size() + 2;  // from its binary copy to the byte before the LF
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "%04zX", length);
+    out.push_back('@');
+    out.insert(out.end(), hex, hex + 4);
+    putU16(out, static_cast<unsigned>(length));
+    out.insert(out.end(), message.begin(), message.end());
+    out.push_back('\n');
+  }
+  return out;
+}
+
+std::vector<std::uint8_t> encodePing360Stream(const std::vector<Beam>& beams, const CaptureOptions& options) {
+  detail::checkSoundSpeed(options.sound_speed_m_s, "encodePing360Stream");
+  std::vector<std::uint8_t> out;
+  for (const Beam& beam : beams) {
+    checkBins(beam, "encodePing360Stream");
+    const unsigned sample_period = sampleTicks(beam, 25e-9, options.sound_speed_m_s, "encodePing360Stream");
+    const auto bins = static_cast<unsigned>(beam.intensities.size());
+    const std::size_t start = out.size();
+    out.insert(out.end(), {'B', 'R'});
+    putU16(out, 14 + bins);  // payload length
+    putU16(out, 2300);       // device_data
+    out.insert(out.end(), {0x02, 0x00});  // source device, destination
+    out.insert(out.end(), {0x01, 0x00});  // mode 1, gain setting 0
+    putU16(out, clockwiseSteps(beam.bearing_rad, 400));
+    putU16(out, 32);  // transmit duration, µs
+    putU16(out, sample_period);
+    putU16(out, 750);  // transmit frequency, kHz
+    putU16(out, bins);  // number of samples
+    putU16(out, bins);  // data length
+    out.insert(out.end(), beam.intensities.begin(), beam.intensities.end());
+    unsigned sum = 0;
+    for (std::size_t i = start; i < out.size(); ++i) sum += out[i];
+    putU16(out, sum & 0xFFFF);
+  }
+  return out;
+}
+
+}  // namespace sonarmap
