@@ -1,0 +1,157 @@
+// sonarmap_live_latency: how long a beam takes from its last byte to the map that contains it
+// (issue 12), on one core for the mapping: a sonar log encoded as the head sends it (a SeaNet
+// capture, wire_encoder.hpp) is replayed beam by beam at the head's own beam rate (the log's
+// median beam interval) and at RATE times it by a producer thread; the mapping thread decodes
+// each beam's bytes as they arrive, maps the beam at once (OnlineMapper, OnlineIntegration::kBeam)
+// and stamps it. Latency = the stamp − the time the beam's last byte was handed over. The beams
+// of the first sweep wait for its end (the calibration) and are reported apart; "late" counts
+// beams still waiting when the next one arrives (a backlog; nothing is dropped: the queue holds
+// every beam, so a backlog shows as latency). At most 30 s of replay per row (at the head's own
+// rate: its first sweeps).
+//
+// Usage: sonarmap_live_latency LOG [RATE ...]   (default rates: 1 20; LOG e.g. the CRAS .mat)
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/seanet_capture.hpp"
+#include "sonarmap/formats/wire_encoder.hpp"
+#include "sonarmap/mapping/online_mapper.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace {
+
+using namespace sonarmap;
+using Clock = std::chrono::steady_clock;
+
+struct Case {
+  const char* name;
+  BeamModel model;
+  double resolution_m;
+};
+
+/// The median interval between consecutive beams of the log, seconds (0.043 s on the CRAS Micron).
+double beamInterval_s(const SonarLog& log) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < log.beams.size(); ++i) steps.push_back(log.beams[i].time_s - log.beams[i - 1].time_s);
+  if (steps.empty()) return 0.05;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  return std::max(1e-4, steps[steps.size() / 2]);
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  const auto at = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(at), values.end());
+  return values[at];
+}
+
+struct Arrival {
+  std::vector<std::uint8_t> bytes;  // one beam's packet
+  Clock::time_point sent;
+};
+
+/// Replays `packets` every `interval_s` seconds into a mapper; prints one table row.
+void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size_t first_sweep_beams, double interval_s,
+            double rate, const Case& c) {
+  // At most 30 s of replay: at the head's own rate, the first few sweeps.
+  const auto beams = std::min(all_packets.size(), static_cast<std::size_t>(30.0 * rate / interval_s));
+  const std::vector<std::vector<std::uint8_t>> packets(all_packets.begin(), all_packets.begin() + static_cast<std::ptrdiff_t>(beams));
+  std::mutex mutex;
+  std::condition_variable ready;
+  std::deque<Arrival> queue;
+  bool done = false;
+  std::thread producer([&] {
+    const Clock::time_point start = Clock::now();
+    for (std::size_t i = 0; i < packets.size(); ++i) {
+      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(static_cast<double>(i) * interval_s / rate)));
+      const std::lock_guard lock(mutex);
+      queue.push_back({packets[i], Clock::now()});
+      ready.notify_one();
+    }
+    const std::lock_guard lock(mutex);
+    done = true;
+    ready.notify_one();
+  });
+  MapperOptions options;
+  options.beam_model = c.model;
+  options.resolution_m = c.resolution_m;
+  options.pipeline_detection = false;
+  OnlineMapper mapper(options, OnlineIntegration::kBeam);
+  std::vector<Clock::time_point> sent;
+  std::vector<double> latency_ms, warmup_ms;
+  std::size_t late = 0, pending_before = 0;
+  for (;;) {
+    Arrival arrival;
+    {
+      std::unique_lock lock(mutex);
+      ready.wait(lock, [&] { return done || !queue.empty(); });
+      if (queue.empty()) break;
+      arrival = std::move(queue.front());
+      queue.pop_front();
+      late += queue.empty() ? 0 : 1;
+    }
+    const SonarLog decoded = parseSeaNetCapture(std::span(arrival.bytes.data(), arrival.bytes.size()), "wire");
+    for (const Beam& beam : decoded.beams) {
+      sent.push_back(arrival.sent);
+      mapper.addBeam(beam);
+    }
+    // Every beam no longer pending is in the map now.
+    const Clock::time_point now = Clock::now();
+    const std::size_t pending = mapper.beamsPending();
+    const std::size_t integrated = sent.size() - pending;
+    for (std::size_t i = sent.size() - decoded.beams.size() - pending_before; i < integrated; ++i) {
+      const double ms = std::chrono::duration<double, std::milli>(now - sent[i]).count();
+      (i < first_sweep_beams ? warmup_ms : latency_ms).push_back(ms);
+    }
+    pending_before = pending;
+  }
+  producer.join();
+  mapper.finish();
+  std::printf("| %s | %.0f× (%.0f beams/s) | %zu | %.3f | %.3f | %.3f | %.0f | %zu | %zu |\n", c.name, rate,
+              rate / interval_s, latency_ms.size(), percentile(latency_ms, 0.5), percentile(latency_ms, 0.99),
+              latency_ms.empty() ? 0.0 : *std::max_element(latency_ms.begin(), latency_ms.end()),
+              percentile(warmup_ms, 0.5), late, mapper.mapper().stats().beams_used);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: sonarmap_live_latency LOG [RATE ...]\n");
+    return 2;
+  }
+  try {
+    const SonarLog log = readSonarLog(argv[1]);
+    std::vector<double> rates;
+    for (int i = 2; i < argc; ++i) rates.push_back(std::stod(argv[i]));
+    if (rates.empty()) rates = {1.0, 20.0};
+    std::vector<std::vector<std::uint8_t>> packets;
+    for (const Beam& beam : log.beams) packets.push_back(encodeSeaNetCapture({beam}));
+    const std::size_t first_sweep = mergeShortSweeps(splitSweeps(log.beams), 20).front().size();
+    const double interval_s = beamInterval_s(log);
+    std::printf("| model | replay rate | beams timed | median (ms) | 99th pct (ms) | max (ms) | first sweep median (ms) | "
+                "late | beams mapped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    const Case cases[] = {{"planar, 2 cm", BeamModel::kPlanar, 0.02},
+                          {"volume, 5 cm", BeamModel::kVolume, 0.05},
+                          {"volume, 2 cm", BeamModel::kVolume, 0.02}};
+    for (const Case& c : cases) {
+      for (const double rate : rates) replay(packets, first_sweep, interval_s, rate, c);
+    }
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "sonarmap_live_latency: %s\n", error.what());
+    return 1;
+  }
+  return 0;
+}
