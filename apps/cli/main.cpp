@@ -10,6 +10,7 @@
 #include "convert_command.hpp"
 #include "demo_command.hpp"
 #include "eval_command.hpp"
+#include "live_command.hpp"
 #include "map_command.hpp"
 #include "simulate_command.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -32,7 +33,9 @@ int main(int argc, char** argv) {
   sonarmap::cli::SimulateArgs simulate_args;
   sonarmap::cli::DemoArgs demo_args;
   sonarmap::cli::EvalArgs eval_args;
+  sonarmap::cli::LiveArgs live_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
+                                                     sonarmap::cli::addLiveCommand(app, live_args),
                                                      sonarmap::cli::addCloudCommand(app, cloud_args),
                                                      sonarmap::cli::addConvertCommand(app, convert_args),
                                                      sonarmap::cli::addSimulateCommand(app, simulate_args),

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "frame_scanner.hpp"
+#include "wire_protocols.hpp"
 
 namespace sonarmap::detail {
 namespace {
@@ -34,22 +35,23 @@ std::uint16_t u16At(std::span<const unsigned char> bytes, std::size_t at) {
   return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8));
 }
 
-FrameProbe probeMessage(std::span<const unsigned char> stream, std::size_t at) {
-  const std::size_t available = stream.size() - at;
+/// Ping-protocol framing of `stream` (from a 'B' 'R' to the last byte received).
+FrameProbe probeMessage(std::span<const unsigned char> stream, std::size_t /*at*/) {
+  const std::size_t available = stream.size();
   const auto cut = [&](const std::string& what) {
     return FrameProbe{FrameProbe::Kind::kCutShort, 0,
                       what + ", the capture ends " + std::to_string(available) + " bytes after its start"};
   };
   if (available < kHeaderBytes) return cut("header");
-  const std::size_t size = kHeaderBytes + u16At(stream, at + kPayloadLengthAt) + kChecksumBytes;
+  const std::size_t size = kHeaderBytes + u16At(stream, kPayloadLengthAt) + kChecksumBytes;
   if (size >= kMaxMessageBytes) {
     return {FrameProbe::Kind::kNotAFrame, 0,
             "declares " + std::to_string(size) + " bytes, expected fewer than " + std::to_string(kMaxMessageBytes)};
   }
   if (size > available) return cut("declares " + std::to_string(size) + " bytes");
   std::uint32_t sum = 0;
-  for (std::size_t i = at; i < at + size - kChecksumBytes; ++i) sum += stream[i];
-  const std::uint16_t checksum = u16At(stream, at + size - kChecksumBytes);
+  for (std::size_t i = 0; i < size - kChecksumBytes; ++i) sum += stream[i];
+  const std::uint16_t checksum = u16At(stream, size - kChecksumBytes);
   if (checksum != (sum & 0xFFFFU)) {
     return {FrameProbe::Kind::kNotAFrame, 0,
             "checksum " + std::to_string(checksum) + " but its bytes sum to " + std::to_string(sum & 0xFFFFU) +
@@ -91,34 +93,39 @@ std::optional<Beam> decodeDeviceData(std::span<const unsigned char> payload, std
 
 }  // namespace
 
-Ping360Messages readPing360Messages(std::span<const unsigned char> stream, const std::string& source,
-                                    double sound_speed_m_s, const std::function<std::string(std::size_t)>& where) {
-  Ping360Messages result;
+FrameScan ping360FrameScan(const std::string& source, double sound_speed_m_s,
+                           const std::function<std::string(std::size_t)>& where, Ping360Messages& out) {
   FrameScan scan;
   scan.start = "BR";
   scan.noun = "message";
   scan.where = where;
-  scan.probe = [&](std::size_t at) { return probeMessage(stream, at); };
-  scan.on_frame = [&](std::size_t at, std::size_t size) {
-    const std::uint16_t id = u16At(stream, at + kMessageIdAt);
+  scan.probe = probeMessage;
+  scan.on_frame = [source, sound_speed_m_s, &where, &out](std::span<const unsigned char> message, std::size_t at) {
+    const std::uint16_t id = u16At(message, kMessageIdAt);
     const std::string name = "message at " + where(at);
     if (id != kDeviceData && id != kAutoDeviceData) {
-      addSkip(result.log, source, name + ": id " + std::to_string(id) +
-                                      ", not device_data (2300) or auto_device_data (2301)");
+      addSkip(out.log, source, name + ": id " + std::to_string(id) +
+                                   ", not device_data (2300) or auto_device_data (2301)");
       return;
     }
-    const std::span<const unsigned char> payload = stream.subspan(at + kHeaderBytes, size - kHeaderBytes - kChecksumBytes);
+    const std::span<const unsigned char> payload = message.subspan(kHeaderBytes, message.size() - kHeaderBytes - kChecksumBytes);
     std::string why;
     std::optional<Beam> beam = decodeDeviceData(payload, id == kDeviceData ? kDeviceDataLengthAt : kAutoDeviceDataLengthAt,
                                                 sound_speed_m_s, why);
     if (!beam) {
-      addSkip(result.log, source, name + " (" + (id == kDeviceData ? "device_data" : "auto_device_data") + "): " + why);
+      addSkip(out.log, source, name + " (" + (id == kDeviceData ? "device_data" : "auto_device_data") + "): " + why);
       return;
     }
-    result.log.beams.push_back(std::move(*beam));
-    result.beam_ends.push_back(at + size);
+    out.log.beams.push_back(std::move(*beam));
+    out.beam_ends.push_back(at + message.size());
   };
-  scanFrames(stream, scan, source, result.log);
+  return scan;
+}
+
+Ping360Messages readPing360Messages(std::span<const unsigned char> stream, const std::string& source,
+                                    double sound_speed_m_s, const std::function<std::string(std::size_t)>& where) {
+  Ping360Messages result;
+  scanFrames(stream, ping360FrameScan(source, sound_speed_m_s, where, result), source, result.log);
   return result;
 }
 

@@ -4,7 +4,7 @@
 
 #include "sonarmap/formats/ping360_reader.hpp"
 
-#include "ping360_messages.hpp"
+#include "sonarmap/formats/wire_stream.hpp"
 #include "reader_support.hpp"
 
 namespace sonarmap {
@@ -13,11 +13,10 @@ SonarLog parsePing360Stream(std::span<const unsigned char> bytes, const std::str
                             const CaptureOptions& options) {
   detail::checkSoundSpeed(options.sound_speed_m_s, "parsePing360Stream");
   detail::checkBeamInterval(options.beam_interval_s, "parsePing360Stream");
-  detail::Ping360Messages messages = detail::readPing360Messages(
-      bytes, source, options.sound_speed_m_s, [](std::size_t offset) { return "byte " + std::to_string(offset); });
-  detail::finishClocklessCapture(messages.log, bytes.size(), source,
-                                 "Ping360 device_data messages ('B' 'R' ... checksum)", options.beam_interval_s);
-  return std::move(messages.log);
+  SonarLog log = WireStreamDecoder(LogFormat::kPing360, options, source).decodeAll(bytes);
+  detail::finishClocklessCapture(log, bytes.size(), source, "Ping360 device_data messages ('B' 'R' ... checksum)",
+                                 options.beam_interval_s);
+  return log;
 }
 
 SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& source, const CaptureOptions& options) {

@@ -11,6 +11,8 @@
 #include "frame_scanner.hpp"
 #include "reader_support.hpp"
 #include "seanet_head_data.hpp"
+#include "sonarmap/formats/wire_stream.hpp"
+#include "wire_protocols.hpp"
 
 namespace sonarmap {
 namespace {
@@ -34,19 +36,19 @@ FrameProbe cutShort(std::size_t available, const std::string& what) {
           what + ", the capture ends " + std::to_string(available) + " bytes after its start"};
 }
 
-/// SeaNet framing at `at` (an '@'): hex and binary lengths equal, at least the smallest packet,
-/// LF at the end.
+/// SeaNet framing of `bytes` (from an '@' at stream offset `at` to the last byte received): hex
+/// and binary lengths equal, at least the smallest packet, LF at the end.
 FrameProbe probePacket(std::span<const unsigned char> bytes, std::size_t at) {
-  const std::size_t available = bytes.size() - at;
+  const std::size_t available = bytes.size();
   std::size_t hex_length = 0;
   for (std::size_t i = kHexLengthAt; i < kHexLengthAt + 4; ++i) {
     if (i >= available) return cutShort(available, "header");
-    const unsigned char digit = bytes[at + i];
+    const unsigned char digit = bytes[i];
     if (!std::isxdigit(digit)) return {FrameProbe::Kind::kNotAFrame, 0, "length is not 4 ASCII hex digits"};
     hex_length = 16 * hex_length + static_cast<std::size_t>(std::isdigit(digit) ? digit - '0' : std::tolower(digit) - 'a' + 10);
   }
   if (available < kBinaryLengthAt + 2) return cutShort(available, "header");
-  const std::size_t length = bytes[at + kBinaryLengthAt] | (bytes[at + kBinaryLengthAt + 1] << 8);
+  const std::size_t length = bytes[kBinaryLengthAt] | (bytes[kBinaryLengthAt + 1] << 8);
   if (length != hex_length) {
     return {FrameProbe::Kind::kNotAFrame, 0,
             "hex length " + std::to_string(hex_length) + " and binary length " + std::to_string(length) + " differ"};
@@ -57,7 +59,7 @@ FrameProbe probePacket(std::span<const unsigned char> bytes, std::size_t at) {
             "length " + std::to_string(length) + ", expected at least " + std::to_string(kMinPacketBytes - kUncountedBytes)};
   }
   if (size > available) return cutShort(available, "declares " + std::to_string(size) + " bytes");
-  if (bytes[at + size - 1] != kPacketEnd) {
+  if (bytes[size - 1] != kPacketEnd) {
     return {FrameProbe::Kind::kNotAFrame, 0, "no LF at its end (byte " + std::to_string(at + size - 1) + ")"};
   }
   return {FrameProbe::Kind::kFrame, size, {}};
@@ -90,19 +92,26 @@ void readPacket(std::span<const unsigned char> packet, std::size_t at, const std
 
 }  // namespace
 
+namespace detail {
+
+FrameScan seaNetFrameScan(const std::string& source, double sound_speed_m_s, SonarLog& log) {
+  FrameScan scan;
+  scan.start = "@";
+  scan.noun = "packet";
+  scan.probe = probePacket;
+  scan.on_frame = [source, sound_speed_m_s, &log](std::span<const unsigned char> packet, std::size_t at) {
+    readPacket(packet, at, source, sound_speed_m_s, log);
+  };
+  return scan;
+}
+
+}  // namespace detail
+
 SonarLog parseSeaNetCapture(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
   detail::checkSoundSpeed(options.sound_speed_m_s, "parseSeaNetCapture");
   detail::checkBeamInterval(options.beam_interval_s, "parseSeaNetCapture");
-  SonarLog log;
-  detail::FrameScan scan;
-  scan.start = "@";
-  scan.noun = "packet";
-  scan.probe = [&](std::size_t at) { return probePacket(bytes, at); };
-  scan.on_frame = [&](std::size_t at, std::size_t size) {
-    readPacket(bytes.subspan(at, size), at, source, options.sound_speed_m_s, log);
-  };
-  detail::scanFrames(bytes, scan, source, log);
+  SonarLog log = WireStreamDecoder(LogFormat::kSeaNet, options, source).decodeAll(bytes);
   detail::finishClocklessCapture(log, bytes.size(), source, "SeaNet mtHeadData packets ('@', hex length, ..., LF)",
                                  options.beam_interval_s);
   return log;

@@ -1,0 +1,226 @@
+#include "live_command.hpp"
+
+#include <poll.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <deque>
+#include <vector>
+
+#include "live_source.hpp"
+#include "map_command.hpp"
+#include "map_outputs.hpp"
+#include "sonarmap/formats/wire_stream.hpp"
+#include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/online_mapper.hpp"
+#include "sonarmap/nav/navigation.hpp"
+
+namespace sonarmap::cli {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;  // set by SIGINT / SIGTERM: finish and write the map
+
+extern "C" void onStopSignal(int) { g_stop = 1; }
+
+/// SIGINT and SIGTERM set g_stop and interrupt poll() (no SA_RESTART).
+void catchStopSignals() {
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// The median of `values` (0 when empty); reorders them.
+double median(std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+/// The mapper fed by the stream, with each beam's arrival kept until it is integrated.
+class LiveMapping {
+ public:
+  LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, Clock::time_point start)
+      : start_(start) {
+    const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
+    if (args.map.nav_csv.empty()) {
+      mapper_ = std::make_unique<OnlineMapper>(options, integration);
+    } else {
+      const NavTrack nav = readNavCsv(args.map.nav_csv);
+      mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
+      for (const NavSample& fix : nav) mapper_->addNavFix(fix);
+    }
+  }
+
+  /// Maps `beams`, whose last bytes arrived at `arrival_s` (seconds since the start).
+  void add(std::vector<Beam> beams, double arrival_s) {
+    for (Beam& beam : beams) {
+      beam.time_s = arrival_s;  // the raw protocols carry no clock: the arrival is the beam's time
+      arrivals_.push_back(arrival_s);
+      mapper_->addBeam(std::move(beam));
+      ++beams_;
+      collect();
+    }
+  }
+  void finish() {
+    mapper_->finish();
+    collect();
+  }
+
+  OnlineMapper& mapper() { return *mapper_; }
+  std::size_t beams() const { return beams_; }
+  /// Latencies (s) of the beams integrated since the last call, and of the whole run.
+  std::vector<double> takeRecentLatencies() { return std::exchange(recent_, {}); }
+  std::vector<double>& allLatencies() { return all_; }
+
+ private:
+  /// The beams integrated since the last call: the oldest arrivals (the mapper keeps beam order).
+  void collect() {
+    const std::size_t pending = mapper_->beamsPending();
+    if (arrivals_.size() <= pending) return;
+    const double now_s = secondsSince(start_);
+    while (arrivals_.size() > pending) {
+      const double latency_s = now_s - arrivals_.front();
+      arrivals_.pop_front();
+      recent_.push_back(latency_s);
+      all_.push_back(latency_s);
+    }
+  }
+
+  Clock::time_point start_;
+  std::unique_ptr<OnlineMapper> mapper_;
+  std::deque<double> arrivals_;
+  std::vector<double> recent_;
+  std::vector<double> all_;
+  std::size_t beams_ = 0;
+};
+
+void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double elapsed_s, double rate_per_s) {
+  std::vector<double> recent = live.takeRecentLatencies();
+  const OnlineMapper& mapper = live.mapper();
+  std::fprintf(stderr,
+               "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
+               "latency median %.1f ms\n",
+               elapsed_s, decoder.bytesFed(), live.beams(), rate_per_s, decoder.skippedItems(), mapper.sweepsIntegrated(),
+               mapper.mapper().map().counts().nodes, 1000.0 * median(recent));
+}
+
+void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
+  const LogFormat format = parseLogFormat(args.map.format);
+  const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
+  const Clock::time_point start = Clock::now();
+  LiveMapping live(args, sonar_options, sonar_to_body, start);
+  g_stop = 0;
+  catchStopSignals();
+  LiveSource source(args.map.input, args.baud);
+  if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: reading %s\n", source.description().c_str());
+  WireStreamDecoder decoder(format, {}, args.map.input);
+
+  const auto writeMap = [&] { writeMapFile(live.mapper().mapper().map(), args.map.output_bt); };
+  std::array<std::uint8_t, 65536> buffer{};
+  double next_write_s = args.write_every_s;
+  double last_status_s = 0.0;
+  double last_byte_s = 0.0;
+  std::size_t beams_at_status = 0;
+  while (g_stop == 0) {
+    pollfd waiting{source.fd(), POLLIN, 0};
+    const int ready = ::poll(&waiting, 1, 100);
+    const double now_s = secondsSince(start);
+    if (ready > 0) {
+      const long got = source.read(buffer);
+      if (got == 0) break;  // end of the stream
+      if (got > 0) {
+        last_byte_s = secondsSince(start);
+        live.add(decoder.feed(std::span(buffer.data(), static_cast<std::size_t>(got))), last_byte_s);
+      }
+    }
+    if (args.idle_timeout_s > 0.0 && now_s - last_byte_s >= args.idle_timeout_s) break;
+    if (now_s >= next_write_s) {
+      if (live.mapper().sweepsIntegrated() > 0) writeMap();  // the map exists from the first sweep on
+      next_write_s = now_s + args.write_every_s;
+    }
+    if (now_s >= last_status_s + 1.0) {
+      const double rate_per_s = static_cast<double>(live.beams() - beams_at_status) / (now_s - last_status_s);
+      if (!args.map.quiet) printStatus(live, decoder, now_s, rate_per_s);
+      beams_at_status = live.beams();
+      last_status_s = now_s;
+    }
+  }
+  live.add(decoder.finish(), secondsSince(start));
+  if (live.beams() == 0) {
+    throw FileError(args.map.input + ": no beam received in " + std::to_string(decoder.bytesFed()) + " bytes" +
+                    (decoder.skippedItems() > 0 ? " (" + decoder.takeSkipReasons().front() + ")" : ""));
+  }
+  live.finish();
+  const double seconds = secondsSince(start);
+  if (!args.map.quiet) printStatus(live, decoder, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9));
+  MappedLog run{std::move(live.mapper()).release(), seconds};
+  run.mapper.stats().beams_skipped = decoder.skippedItems();
+  writeMapFile(run.mapper.map(), args.map.output_bt);
+  const std::vector<std::string> warnings =
+      mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
+  printWarnings(warnings);
+  printMapSummary(run, args.map.output_bt, /*with_nav=*/!args.map.nav_csv.empty(), warnings.size());
+}
+
+}  // namespace
+
+Command addLiveCommand(CLI::App& app, LiveArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "live", "Map beams as they arrive from a sonar (SeaNet or Ping360 wire stream) into an occupancy octree (.bt)");
+  cmd->add_option("source", args.map.input,
+                  "Where the bytes come from: a serial device (/dev/ttyUSB0), udp://HOST:PORT (bound; port 0 picks "
+                  "one, printed), tcp://HOST:PORT (connected), - for standard input, or a capture file (a replay)")
+      ->required();
+  cmd->add_option("-o,--output", args.map.output_bt,
+                  "Output map, OctoMap binary tree (.bt): rewritten atomically every --write-every seconds and at the end")
+      ->required();
+  addMappingOptions(*cmd, args.map);
+  cmd->add_option("--baud", args.baud, "Serial devices: bits per second (8N1, raw)")->capture_default_str();
+  cmd->add_option("--integrate", args.integrate,
+                  "beam: each beam is mapped on arrival (the least latency; the first sweep calibrates) | sweep: each "
+                  "sweep once complete (the map of `sonarmap map` on the same bytes, byte for byte)")
+      ->check(CLI::IsMember({"beam", "sweep"}))
+      ->capture_default_str();
+  cmd->add_option("--write-every", args.write_every_s, "SECONDS between map writes (> 0)")->capture_default_str();
+  cmd->add_option("--idle-timeout", args.idle_timeout_s,
+                  "End the stream after this many SECONDS without a byte (0: never; UDP has no end of stream)")
+      ->capture_default_str();
+  cmd->add_option("--nav", args.map.nav_csv,
+                  "Navigation CSV loaded at the start (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad): its times are "
+                  "seconds since `live` started, the clock beams are stamped with on arrival");
+  cmd->add_option("--mounting", args.map.mounting,
+                  "With --nav: the sonar in the body frame as X,Y,Z,ROLL,PITCH,YAW (metres, DEGREES), as for `map`")
+      ->delimiter(',')
+      ->expected(6);
+  struct Checked {
+    MapperOptions options;
+    Eigen::Isometry3d sonar_to_body;
+  };
+  auto checked = std::make_shared<Checked>();
+  auto check = [&args, checked] {
+    if (args.map.format != "seanet" && args.map.format != "ping360") {
+      throw ValueError("live needs --format seanet or --format ping360 (a raw wire stream), got '" + args.map.format + "'");
+    }
+    if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
+    if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
+    if (!args.map.mounting.empty() && args.map.nav_csv.empty()) throw ValueError("--mounting needs --nav");
+    checked->options = toMapperOptions(args.map);
+    checked->sonar_to_body = toSonarToBody(args.map.mounting);
+  };
+  return {cmd, check, [&args, checked] { runLive(args, checked->options, checked->sonar_to_body); }};
+}
+
+}  // namespace sonarmap::cli

@@ -1,0 +1,255 @@
+/// End-to-end tests of `sonarmap live`: a simulated tank run encoded byte by byte as a raw SeaNet
+/// capture (wire_fixture.hpp), with line noise and a final packet cut short, is replayed over a
+/// pseudo-terminal (a serial device), loopback UDP and standard input; with --integrate sweep the
+/// final map equals `sonarmap map` of the same bytes byte for byte. SIGTERM mid-stream ends the run
+/// with exit 0 and a readable map; bad usage is one error line.
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/ioctl.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <regex>
+#include <thread>
+
+#include "cli_fixture.hpp"
+#include "formats/wire_fixture.hpp"
+#include "sonarmap/io/map_file.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+
+extern char** environ;
+
+namespace sonarmap::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// A 360° head turning 4 times in the tank, each beam an mtHeadData packet (8-bit bins), with noise
+/// (a false '@' among it) after every 150th packet and the stream cut inside a last packet.
+const std::string& tankCapture() {
+  static const std::string capture = [] {
+    MsisSimulationOptions options;
+    options.turns = 4;
+    options.nav_rate_hz = 0.0;
+    const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
+    std::string out;
+    for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
+      const Beam& beam = run.log.beams[i];
+      SeaNetHeadPacket packet;
+      const long units = std::lround(beam.bearing_rad / (2.0 * std::numbers::pi) * 6400.0);
+      packet.bearing = static_cast<std::uint16_t>((6400 - units % 6400) % 6400);
+      packet.ad_interval = static_cast<std::uint16_t>(std::lround(beam.bin_length_m * 2.0 / 1500.0 / 640e-9));
+      packet.data = beam.intensities;
+      out += seanetHeadData(packet);
+      if (i % 150 == 7) out += std::string("\x13\x37@00zz noise \xff", 15);
+    }
+    return out + seanetHeadData(SeaNetHeadPacket{}).substr(0, 20);
+  }();
+  return capture;
+}
+
+/// A child process whose stdout and stderr go to files in `dir`.
+class Child {
+ public:
+  Child(const Names& args, const fs::path& dir, int stdin_fd) : dir_(dir) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (stdin_fd >= 0) {
+      posix_spawn_file_actions_adddup2(&actions, stdin_fd, STDIN_FILENO);
+    } else {
+      posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    }
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, (dir / "live.out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, (dir / "live.err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> argv_text{SONARMAP_CLI};
+    argv_text.insert(argv_text.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& arg : argv_text) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    if (posix_spawn(&pid_, SONARMAP_CLI, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  ~Child() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  pid_t pid() const { return pid_; }
+  std::string err() const { return readFile(dir_ / "live.err"); }
+  /// Waits for the exit (killing the child after 20 s) and collects its streams.
+  ProgramRun wait() {
+    ProgramRun run;
+    int status = 0;
+    const auto deadline = std::chrono::steady_clock::now() + 20s;
+    while (::waitpid(pid_, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, &status, 0);
+        break;
+      }
+      std::this_thread::sleep_for(5ms);
+    }
+    pid_ = -1;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    run.out = readFile(dir_ / "live.out");
+    run.err = readFile(dir_ / "live.err");
+    return run;
+  }
+
+ private:
+  fs::path dir_;
+  pid_t pid_ = -1;
+};
+
+/// Writes all of `bytes` to `fd` in chunks of `chunk` bytes.
+void writeAll(int fd, const std::string& bytes, std::size_t chunk = 4096) {
+  for (std::size_t at = 0; at < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + at, std::min(chunk, bytes.size() - at));
+    ASSERT_GT(n, 0) << std::strerror(errno);
+    at += static_cast<std::size_t>(n);
+  }
+}
+
+class CliLive : public CliTest {
+ protected:
+  /// `sonarmap map` of the capture: the map live --integrate sweep must give.
+  std::string batchMap() {
+    writeFile(root_ / "capture.seanet", tankCapture());
+    const ProgramRun run = this->run({"map", (root_ / "capture.seanet").string(), "--format", "seanet", "-q", "-o",
+                                      (root_ / "batch.bt").string()});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return readFile(root_ / "batch.bt");
+  }
+  Names liveArgs(const std::string& source, const std::string& integrate = "sweep") const {
+    return {"live", source, "--format", "seanet", "--integrate", integrate, "-o", (out_ / "live.bt").string()};
+  }
+  static void expectFinished(const ProgramRun& run) {
+    EXPECT_EQ(run.signal, 0);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("beams used"), std::string::npos) << run.out;
+    EXPECT_EQ(linesOf(run.out).size(), 1u) << run.out;
+  }
+};
+
+TEST_F(CliLive, StandardInputGivesTheBatchMapByteForByte) {
+  const std::string batch = batchMap();
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);  // the child inherits only its stdin
+  Child child(liveArgs("-"), root_, pipe_fds[0]);
+  ::close(pipe_fds[0]);
+  writeAll(pipe_fds[1], tankCapture(), 1000);
+  ::close(pipe_fds[1]);
+  const ProgramRun run = child.wait();
+  expectFinished(run);
+  EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
+  EXPECT_NE(run.err.find("sonarmap: live: reading standard input"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("latency median"), std::string::npos) << run.err;  // the final status line
+}
+
+TEST_F(CliLive, APseudoTerminalIsReadAsASerialDevice) {
+  const std::string batch = batchMap();
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  const std::string slave_path = ::ptsname(master);
+  // The test holds the slave open too, raw from the start: bytes written before `live` sets it raw
+  // are not cooked, and the line is not hung up before `live` opens it.
+  const int slave = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+  ASSERT_GE(slave, 0);
+  termios raw{};
+  ASSERT_EQ(::tcgetattr(slave, &raw), 0);
+  ::cfmakeraw(&raw);
+  ASSERT_EQ(::tcsetattr(slave, TCSANOW, &raw), 0);
+  Names args = liveArgs(slave_path);
+  args.insert(args.end(), {"--baud", "115200"});
+  Child child(args, root_, -1);
+  writeAll(master, tankCapture(), 512);
+  for (int unread = 1; unread > 0;) {  // `live` has read every byte: then hang up
+    ASSERT_EQ(::ioctl(slave, FIONREAD, &unread), 0);
+    std::this_thread::sleep_for(2ms);
+  }
+  ::close(master);
+  const ProgramRun run = child.wait();
+  ::close(slave);
+  expectFinished(run);
+  EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
+  EXPECT_NE(run.err.find("at 115200 baud"), std::string::npos) << run.err;
+}
+
+TEST_F(CliLive, LoopbackUdpDatagramsGiveTheBatchMap) {
+  const std::string batch = batchMap();
+  Names args = liveArgs("udp://127.0.0.1:0");
+  args.insert(args.end(), {"--idle-timeout", "0.5"});
+  Child child(args, root_, -1);
+  std::smatch bound;
+  const std::regex bound_line("reading udp://127\\.0\\.0\\.1:([0-9]+)");
+  for (int i = 0; i < 1000; ++i) {  // the port `live` bound (port 0: the system's choice)
+    const std::string err = child.err();
+    if (std::regex_search(err, bound, bound_line)) break;
+    std::this_thread::sleep_for(5ms);
+  }
+  ASSERT_FALSE(bound.empty()) << child.err();
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(std::stoi(bound[1].str())));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const std::string& capture = tankCapture();
+  for (std::size_t at = 0, sent = 0; at < capture.size(); ++sent) {  // paced: no datagram is dropped
+    const std::size_t n = std::min<std::size_t>(1400, capture.size() - at);
+    ASSERT_EQ(::sendto(sender, capture.data() + at, n, 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
+              static_cast<ssize_t>(n));
+    at += n;
+    if (sent % 8 == 7) std::this_thread::sleep_for(1ms);
+  }
+  ::close(sender);
+  const ProgramRun run = child.wait();
+  expectFinished(run);
+  EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
+}
+
+TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);  // the child inherits only its stdin
+  Names args = liveArgs("-", "beam");
+  args.insert(args.end(), {"--write-every", "0.1"});
+  Child child(args, root_, pipe_fds[0]);
+  ::close(pipe_fds[0]);
+  const std::string& capture = tankCapture();
+  writeAll(pipe_fds[1], capture.substr(0, capture.size() / 2));  // two turns; the pipe stays open
+  for (int i = 0; i < 1000 && !fs::exists(out_ / "live.bt"); ++i) std::this_thread::sleep_for(5ms);
+  ASSERT_TRUE(fs::exists(out_ / "live.bt")) << "no periodic write: " << child.err();
+  EXPECT_FALSE(readMapFile((out_ / "live.bt").string()).empty());  // a whole map between writes
+  ::kill(child.pid(), SIGTERM);
+  const ProgramRun run = child.wait();
+  ::close(pipe_fds[1]);
+  expectFinished(run);
+  EXPECT_FALSE(readMapFile((out_ / "live.bt").string()).empty());
+  EXPECT_EQ(listDir(out_), Names{"live.bt"});  // no temporary file left
+}
+
+TEST_F(CliLive, RejectsAFileFormatAndNoBeamIsAnError) {
+  expectError(run({"live", "-", "--format", "mat", "-o", (out_ / "m.bt").string()}), 2);
+  expectError(run({"live", "-", "--format", "seanet", "--integrate", "turn", "-o", (out_ / "m.bt").string()}), 2);
+  expectError(run({"live", "udp://127.0.0.1", "--format", "seanet", "-o", (out_ / "m.bt").string()}), 1);
+  expectError(run({"live", "-", "--format", "ping360", "-q", "-o", (out_ / "m.bt").string()}), 1);  // /dev/null: no beam
+  EXPECT_TRUE(listDir(out_).empty());
+}
+
+}  // namespace
+}  // namespace sonarmap::test
