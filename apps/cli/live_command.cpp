@@ -5,11 +5,17 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <deque>
+#include <exception>
+#include <mutex>
+#include <stop_token>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "live_source.hpp"
@@ -41,12 +47,12 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-/// The median of `values` (0 when empty); reorders them.
-double median(std::vector<double>& values) {
+/// The value at fraction `p` of the sorted `values` (nearest rank below; 0 when empty); reorders them.
+double quantile(std::vector<double>& values, double p) {
   if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(p * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
 }
 
 /// The mapper fed by the stream, with each beam's arrival kept until it is integrated.
@@ -68,7 +74,7 @@ class LiveMapping {
   void add(std::vector<Beam> beams, double arrival_s) {
     for (Beam& beam : beams) {
       beam.time_s = arrival_s;  // the raw protocols carry no clock: the arrival is the beam's time
-      arrivals_.push_back(arrival_s);
+      arrivals_.push_back({arrival_s, mapper_->sweepsIntegrated() == 0});
       mapper_->addBeam(std::move(beam));
       ++beams_;
       collect();
@@ -83,7 +89,9 @@ class LiveMapping {
   std::size_t beams() const { return beams_; }
   /// Latencies (s) of the beams integrated since the last call, and of the whole run.
   std::vector<double> takeRecentLatencies() { return std::exchange(recent_, {}); }
+  /// Latencies (s) of the beams that arrived after the first sweep was integrated, and before.
   std::vector<double>& allLatencies() { return all_; }
+  std::vector<double>& firstSweepLatencies() { return first_sweep_; }
 
  private:
   /// The beams integrated since the last call: the oldest arrivals (the mapper keeps beam order).
@@ -92,30 +100,68 @@ class LiveMapping {
     if (arrivals_.size() <= pending) return;
     const double now_s = secondsSince(start_);
     while (arrivals_.size() > pending) {
-      const double latency_s = now_s - arrivals_.front();
+      const auto [arrival_s, calibrating] = arrivals_.front();
       arrivals_.pop_front();
-      recent_.push_back(latency_s);
-      all_.push_back(latency_s);
+      recent_.push_back(now_s - arrival_s);
+      (calibrating ? first_sweep_ : all_).push_back(now_s - arrival_s);
     }
   }
 
   Clock::time_point start_;
   std::unique_ptr<OnlineMapper> mapper_;
-  std::deque<double> arrivals_;
+  struct Arrival {
+    double arrival_s = 0.0;
+    bool calibrating = false;  ///< arrived before the first sweep was integrated
+  };
+  std::deque<Arrival> arrivals_;
   std::vector<double> recent_;
-  std::vector<double> all_;
+  std::vector<double> all_;          ///< after the first sweep
+  std::vector<double> first_sweep_;  ///< waiting for the first sweep's calibration
   std::size_t beams_ = 0;
 };
 
-void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double elapsed_s, double rate_per_s) {
+/// One status line: the latencies since the last line, or with `whole_run` those of every beam after
+/// the first sweep (the median and the 99th percentile; the first sweep's beams wait for its end).
+void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double elapsed_s, double rate_per_s,
+                 bool whole_run = false) {
   std::vector<double> recent = live.takeRecentLatencies();
+  std::vector<double>& latencies = whole_run ? live.allLatencies() : recent;
   const OnlineMapper& mapper = live.mapper();
   std::fprintf(stderr,
                "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
-               "latency median %.1f ms\n",
+               "latency median %.1f ms",
                elapsed_s, decoder.bytesFed(), live.beams(), rate_per_s, decoder.skippedItems(), mapper.sweepsIntegrated(),
-               mapper.mapper().map().counts().nodes, 1000.0 * median(recent));
+               mapper.mapper().map().counts().nodes, 1000.0 * quantile(latencies, 0.5));
+  if (whole_run) {
+    std::fprintf(stderr, ", 99th percentile %.1f ms (from read to map, after the first sweep; its beams waited %.0f ms)",
+                 1000.0 * quantile(latencies, 0.99), 1000.0 * quantile(live.firstSweepLatencies(), 0.5));
+  }
+  std::fputc('\n', stderr);
 }
+
+/// Rewrites the map atomically every `every_s` seconds from a snapshot (OnlineMapper::mapSnapshot),
+/// on its own thread, so that writing a large map never holds up the beams.
+class PeriodicWriter {
+ public:
+  PeriodicWriter(const OnlineMapper& mapper, std::string path, double every_s)
+      : thread_([this, &mapper, path = std::move(path), every_s](std::stop_token stop) {
+          std::mutex mutex;
+          std::unique_lock lock(mutex);
+          while (!wake_.wait_for(lock, stop, std::chrono::duration<double>(every_s), [] { return false; })) {
+            if (stop.stop_requested()) return;
+            if (mapper.sweepsIntegrated() == 0) continue;  // a map from the first sweep on
+            try {
+              writeMapFile(mapper.mapSnapshot(), path);
+            } catch (const std::exception& error) {  // the last good map stays; the final write reports for good
+              std::fprintf(stderr, "sonarmap: warning: periodic map write failed: %s\n", error.what());
+            }
+          }
+        }) {}
+
+ private:
+  std::condition_variable_any wake_;
+  std::jthread thread_;  // last: stopped and joined first
+};
 
 void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const LogFormat format = parseLogFormat(args.map.format);
@@ -128,9 +174,8 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: reading %s\n", source.description().c_str());
   WireStreamDecoder decoder(format, {}, args.map.input);
 
-  const auto writeMap = [&] { writeMapFile(live.mapper().mapper().map(), args.map.output_bt); };
+  std::optional<PeriodicWriter> writer(std::in_place, live.mapper(), args.map.output_bt, args.write_every_s);
   std::array<std::uint8_t, 65536> buffer{};
-  double next_write_s = args.write_every_s;
   double last_status_s = 0.0;
   double last_byte_s = 0.0;
   std::size_t beams_at_status = 0;
@@ -147,10 +192,6 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
       }
     }
     if (args.idle_timeout_s > 0.0 && now_s - last_byte_s >= args.idle_timeout_s) break;
-    if (now_s >= next_write_s) {
-      if (live.mapper().sweepsIntegrated() > 0) writeMap();  // the map exists from the first sweep on
-      next_write_s = now_s + args.write_every_s;
-    }
     if (now_s >= last_status_s + 1.0) {
       const double rate_per_s = static_cast<double>(live.beams() - beams_at_status) / (now_s - last_status_s);
       if (!args.map.quiet) printStatus(live, decoder, now_s, rate_per_s);
@@ -163,9 +204,10 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
     throw FileError(args.map.input + ": no beam received in " + std::to_string(decoder.bytesFed()) + " bytes" +
                     (decoder.skippedItems() > 0 ? " (" + decoder.takeSkipReasons().front() + ")" : ""));
   }
+  writer.reset();  // no periodic write races the final one
   live.finish();
   const double seconds = secondsSince(start);
-  if (!args.map.quiet) printStatus(live, decoder, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9));
+  if (!args.map.quiet) printStatus(live, decoder, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9), true);
   MappedLog run{std::move(live.mapper()).release(), seconds};
   run.mapper.stats().beams_skipped = decoder.skippedItems();
   writeMapFile(run.mapper.map(), args.map.output_bt);
