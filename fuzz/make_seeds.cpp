@@ -97,6 +97,11 @@ void wireSeeds() {
   });
   seed("ping360", "viewer_utf16.bin",
        [&](std::ostream& out) { out << test::pingViewerLog({{"00:00:00.100", stream}}, true); });
+  // The stream decoder's harness: byte 0 even for SeaNet, odd for Ping360, then the stream.
+  seed("wire_stream", "seanet.bin", [&](std::ostream& out) {
+    out << '\x00' << "\r\n" << test::seanetHeadData({}) << test::seanetOther(4, 8) << test::seanetHeadData(four_bit);
+  });
+  seed("wire_stream", "ping360.bin", [&](std::ostream& out) { out << '\x01' << "xx" << stream; });
 }
 
 void cloudSeeds() {

@@ -60,6 +60,30 @@ const std::string& tankCapture() {
   return capture;
 }
 
+/// The same run as Ping360 device_data messages (1 gradian bearings, 25 ns sample periods), with
+/// noise (a false 'BR') after every 150th message and the stream cut inside a last message.
+const std::string& tankPing360Capture() {
+  static const std::string capture = [] {
+    MsisSimulationOptions options;
+    options.turns = 4;
+    options.nav_rate_hz = 0.0;
+    const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
+    std::string out;
+    for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
+      const Beam& beam = run.log.beams[i];
+      Ping360Data message;
+      const long units = std::lround(beam.bearing_rad / (2.0 * std::numbers::pi) * 400.0);
+      message.angle = static_cast<std::uint16_t>((400 - units % 400) % 400);
+      message.sample_period = static_cast<std::uint16_t>(std::lround(beam.bin_length_m * 2.0 / 1500.0 / 25e-9));
+      message.data = beam.intensities;
+      out += ping360Message(message);
+      if (i % 150 == 7) out += std::string("\x13\x37BRzz noise \xff", 15);
+    }
+    return out + ping360Message(Ping360Data{}).substr(0, 12);
+  }();
+  return capture;
+}
+
 /// A child process whose stdout and stderr go to files in `dir`.
 class Child {
  public:
@@ -127,15 +151,45 @@ void writeAll(int fd, const std::string& bytes, std::size_t chunk = 4096) {
 class CliLive : public CliTest {
  protected:
   /// `sonarmap map` of the capture: the map live --integrate sweep must give.
-  std::string batchMap() {
-    writeFile(root_ / "capture.seanet", tankCapture());
-    const ProgramRun run = this->run({"map", (root_ / "capture.seanet").string(), "--format", "seanet", "-q", "-o",
+  std::string batchMap(const std::string& capture = tankCapture(), const std::string& format = "seanet") {
+    writeFile(root_ / "capture.raw", capture);
+    const ProgramRun run = this->run({"map", (root_ / "capture.raw").string(), "--format", format, "-q", "-o",
                                       (root_ / "batch.bt").string()});
     EXPECT_EQ(run.exit_code, 0) << run.err;
     return readFile(root_ / "batch.bt");
   }
-  Names liveArgs(const std::string& source, const std::string& integrate = "sweep") const {
-    return {"live", source, "--format", "seanet", "--integrate", integrate, "-o", (out_ / "live.bt").string()};
+  Names liveArgs(const std::string& source, const std::string& integrate = "sweep",
+                 const std::string& format = "seanet") const {
+    return {"live", source, "--format", format, "--integrate", integrate, "-o", (out_ / "live.bt").string()};
+  }
+  /// `live` on udp://127.0.0.1:0 fed `capture` in datagrams of 1400 bytes, paced: its final run.
+  ProgramRun replayOverUdp(const std::string& capture, const std::string& format) {
+    Names args = liveArgs("udp://127.0.0.1:0", "sweep", format);
+    args.insert(args.end(), {"--idle-timeout", "0.5"});
+    Child child(args, root_, -1);
+    std::smatch bound;
+    const std::regex bound_line("reading udp://127\\.0\\.0\\.1:([0-9]+)");
+    for (int i = 0; i < 1000; ++i) {  // the port `live` bound (port 0: the system's choice)
+      const std::string err = child.err();
+      if (std::regex_search(err, bound, bound_line)) break;
+      std::this_thread::sleep_for(5ms);
+    }
+    EXPECT_FALSE(bound.empty()) << child.err();
+    if (bound.empty()) return child.wait();
+    const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(static_cast<std::uint16_t>(std::stoi(bound[1].str())));
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    for (std::size_t at = 0, sent = 0; at < capture.size(); ++sent) {  // paced: no datagram is dropped
+      const std::size_t n = std::min<std::size_t>(1400, capture.size() - at);
+      EXPECT_EQ(::sendto(sender, capture.data() + at, n, 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
+                static_cast<ssize_t>(n));
+      at += n;
+      if (sent % 8 == 7) std::this_thread::sleep_for(1ms);
+    }
+    ::close(sender);
+    return child.wait();
   }
   static void expectFinished(const ProgramRun& run) {
     EXPECT_EQ(run.signal, 0);
@@ -193,32 +247,16 @@ TEST_F(CliLive, APseudoTerminalIsReadAsASerialDevice) {
 
 TEST_F(CliLive, LoopbackUdpDatagramsGiveTheBatchMap) {
   const std::string batch = batchMap();
-  Names args = liveArgs("udp://127.0.0.1:0");
-  args.insert(args.end(), {"--idle-timeout", "0.5"});
-  Child child(args, root_, -1);
-  std::smatch bound;
-  const std::regex bound_line("reading udp://127\\.0\\.0\\.1:([0-9]+)");
-  for (int i = 0; i < 1000; ++i) {  // the port `live` bound (port 0: the system's choice)
-    const std::string err = child.err();
-    if (std::regex_search(err, bound, bound_line)) break;
-    std::this_thread::sleep_for(5ms);
-  }
-  ASSERT_FALSE(bound.empty()) << child.err();
-  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(static_cast<std::uint16_t>(std::stoi(bound[1].str())));
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const std::string& capture = tankCapture();
-  for (std::size_t at = 0, sent = 0; at < capture.size(); ++sent) {  // paced: no datagram is dropped
-    const std::size_t n = std::min<std::size_t>(1400, capture.size() - at);
-    ASSERT_EQ(::sendto(sender, capture.data() + at, n, 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
-              static_cast<ssize_t>(n));
-    at += n;
-    if (sent % 8 == 7) std::this_thread::sleep_for(1ms);
-  }
-  ::close(sender);
-  const ProgramRun run = child.wait();
+  const ProgramRun run = replayOverUdp(tankCapture(), "seanet");
+  expectFinished(run);
+  EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
+}
+
+// A Ping360's messages over UDP: the map of the same bytes read by `sonarmap map --format ping360`.
+TEST_F(CliLive, Ping360OverUdpGivesTheBatchMap) {
+  const std::string batch = batchMap(tankPing360Capture(), "ping360");
+  ASSERT_GT(batch.size(), 1000u);
+  const ProgramRun run = replayOverUdp(tankPing360Capture(), "ping360");
   expectFinished(run);
   EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
 }
