@@ -61,8 +61,10 @@ class LiveMapping {
   LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, Clock::time_point start)
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
-    if (args.map.nav_csv.empty()) {
+    if (args.map.nav_csv.empty() && args.nav_stream.empty()) {
       mapper_ = std::make_unique<OnlineMapper>(options, integration);
+    } else if (args.map.nav_csv.empty()) {  // the fixes arrive on their own stream
+      mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
     } else {
       const NavTrack nav = readNavCsv(args.map.nav_csv);
       mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
@@ -83,6 +85,17 @@ class LiveMapping {
   void finish() {
     mapper_->finish();
     collect();
+  }
+
+  /// Adds navigation fixes whose rows arrived at `arrival_s`: the stream's clock is aligned to the
+  /// arrival of its first fix (a constant offset), so fixes and beams share the arrival clock.
+  void addFixes(std::vector<NavSample> fixes, double arrival_s) {
+    for (NavSample& fix : fixes) {
+      if (!nav_offset_s_) nav_offset_s_ = arrival_s - fix.time_s;
+      fix.time_s += *nav_offset_s_;
+      mapper_->addNavFix(fix);
+      collect();
+    }
   }
 
   OnlineMapper& mapper() { return *mapper_; }
@@ -118,6 +131,7 @@ class LiveMapping {
   std::vector<double> all_;          ///< after the first sweep
   std::vector<double> first_sweep_;  ///< waiting for the first sweep's calibration
   std::size_t beams_ = 0;
+  std::optional<double> nav_offset_s_;  ///< arrival clock − the navigation stream's clock
 };
 
 /// One status line: the latencies since the last line, or with `whole_run` those of every beam after
@@ -179,11 +193,26 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   double last_status_s = 0.0;
   double last_byte_s = 0.0;
   std::size_t beams_at_status = 0;
+  std::optional<LiveSource> nav_source;
+  std::optional<NavCsvStream> nav_rows;
+  if (!args.nav_stream.empty()) {
+    nav_source.emplace(args.nav_stream, args.baud);
+    nav_rows.emplace(nav_source->description());
+    if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: navigation from %s\n", nav_source->description().c_str());
+  }
   while (g_stop == 0) {
-    pollfd waiting{source.fd(), POLLIN, 0};
-    const int ready = ::poll(&waiting, 1, 100);
+    std::array<pollfd, 2> waiting{pollfd{source.fd(), POLLIN, 0}, pollfd{nav_source ? nav_source->fd() : -1, POLLIN, 0}};
+    const int ready = ::poll(waiting.data(), nav_source ? 2 : 1, 100);
     const double now_s = secondsSince(start);
-    if (ready > 0) {
+    if (ready > 0 && nav_source && (waiting[1].revents & (POLLIN | POLLHUP)) != 0) {
+      const long got = nav_source->read(buffer);
+      if (got == 0) {
+        nav_source.reset();  // the navigation ended: the sonar goes on (beams beyond the last fix wait, then count)
+      } else if (got > 0) {
+        live.addFixes(nav_rows->feed(std::span(buffer.data(), static_cast<std::size_t>(got))), secondsSince(start));
+      }
+    }
+    if (ready > 0 && (waiting[0].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
       const long got = source.read(buffer);
       if (got == 0) break;  // end of the stream
       if (got > 0) {
@@ -204,6 +233,10 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
     throw FileError(args.map.input + ": no beam received in " + std::to_string(decoder.bytesFed()) + " bytes" +
                     (decoder.skippedItems() > 0 ? " (" + decoder.takeSkipReasons().front() + ")" : ""));
   }
+  if (nav_rows && nav_rows->skippedRows() > 0) {
+    std::fprintf(stderr, "sonarmap: warning: %zu navigation rows skipped, the last: %s\n", nav_rows->skippedRows(),
+                 nav_rows->lastSkipReason().c_str());
+  }
   writer.reset();  // no periodic write races the final one
   live.finish();
   const double seconds = secondsSince(start);
@@ -214,7 +247,8 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   const std::vector<std::string> warnings =
       mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
-  printMapSummary(run, args.map.output_bt, /*with_nav=*/!args.map.nav_csv.empty(), warnings.size());
+  printMapSummary(run, args.map.output_bt, /*with_nav=*/!args.map.nav_csv.empty() || !args.nav_stream.empty(),
+                  warnings.size());
 }
 
 }  // namespace
@@ -243,8 +277,13 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   cmd->add_option("--nav", args.map.nav_csv,
                   "Navigation CSV loaded at the start (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad): its times are "
                   "seconds since `live` started, the clock beams are stamped with on arrival");
+  cmd->add_option("--nav-stream", args.nav_stream,
+                  "A second SOURCE (serial, udp://, tcp://, a file) of navigation CSV rows as they are sent: each fix "
+                  "timed on the arrival clock (the stream's own clock aligned at its first row); bad rows skipped")
+      ->excludes("--nav");
   cmd->add_option("--mounting", args.map.mounting,
-                  "With --nav: the sonar in the body frame as X,Y,Z,ROLL,PITCH,YAW (metres, DEGREES), as for `map`")
+                  "With --nav or --nav-stream: the sonar in the body frame as X,Y,Z,ROLL,PITCH,YAW (metres, DEGREES), as "
+                  "for `map`")
       ->delimiter(',')
       ->expected(6);
   struct Checked {
@@ -258,7 +297,9 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     }
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
-    if (!args.map.mounting.empty() && args.map.nav_csv.empty()) throw ValueError("--mounting needs --nav");
+    if (!args.map.mounting.empty() && args.map.nav_csv.empty() && args.nav_stream.empty()) {
+      throw ValueError("--mounting needs --nav or --nav-stream");
+    }
     checked->options = toMapperOptions(args.map);
     checked->sonar_to_body = toSonarToBody(args.map.mounting);
   };

@@ -19,6 +19,7 @@ struct LiveArgs {
   std::string integrate = "beam";  ///< beam (OnlineIntegration::kBeam) | sweep (kSweep)
   double write_every_s = 10.0;     ///< seconds between map writes (> 0)
   double idle_timeout_s = 0.0;     ///< end the stream after this many seconds without a byte (0: never)
+  std::string nav_stream;          ///< a second source of navigation CSV rows (empty: none)
 };
 
 /// Adds the `live` subcommand to `app`; its options fill `args`.

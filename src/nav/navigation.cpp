@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "../io/csv_fields.hpp"
@@ -157,6 +158,44 @@ Eigen::Isometry3d defaultSonarToBody() {
 
 Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body) {
   return nedToMap() * bodyToNed(fix) * sonar_to_body;
+}
+
+}  // namespace sonarmap
+
+namespace sonarmap {
+
+NavCsvStream::NavCsvStream(std::string source) : source_(std::move(source)) {}
+
+std::vector<NavSample> NavCsvStream::feed(std::span<const std::uint8_t> bytes) {
+  std::vector<NavSample> fixes;
+  partial_.append(bytes.begin(), bytes.end());
+  std::size_t start = 0;
+  for (std::size_t end; (end = partial_.find('\n', start)) != std::string::npos; start = end + 1) {
+    std::istringstream line(partial_.substr(start, end - start));
+    csv::LineReader reader(line, source_);
+    if (!reader.next()) continue;  // a blank line
+    ++rows_;
+    if (!reader.fields().empty() && reader.fields()[0] == kColumns[0]) continue;  // the header row
+    try {
+      const NavSample fix = readFix(reader);
+      if (last_time_s_ && !(fix.time_s > *last_time_s_)) {
+        throw FileError("'" + source_ + "': a fix at " + csv::formatNumber(fix.time_s) +
+                        " s is not after the previous one");
+      }
+      last_time_s_ = fix.time_s;
+      fixes.push_back(fix);
+    } catch (const FileError& error) {
+      ++skipped_;
+      last_reason_ = error.what();
+    }
+  }
+  partial_.erase(0, start);
+  if (partial_.size() > 4096) {  // no newline in sight: noise, not a row
+    ++skipped_;
+    last_reason_ = "'" + source_ + "': 4096 bytes without a line end";
+    partial_.clear();
+  }
+  return fixes;
 }
 
 }  // namespace sonarmap

@@ -162,33 +162,40 @@ class CliLive : public CliTest {
                  const std::string& format = "seanet") const {
     return {"live", source, "--format", format, "--integrate", integrate, "-o", (out_ / "live.bt").string()};
   }
-  /// `live` on udp://127.0.0.1:0 fed `capture` in datagrams of 1400 bytes, paced: its final run.
-  ProgramRun replayOverUdp(const std::string& capture, const std::string& format) {
-    Names args = liveArgs("udp://127.0.0.1:0", "sweep", format);
-    args.insert(args.end(), {"--idle-timeout", "0.5"});
-    Child child(args, root_, -1);
+  /// The UDP port `child` printed after `what` ("reading", "navigation from"), or 0 when it did not.
+  static int boundPort(Child& child, const std::string& what) {
     std::smatch bound;
-    const std::regex bound_line("reading udp://127\\.0\\.0\\.1:([0-9]+)");
+    const std::regex bound_line(what + " udp://127\\.0\\.0\\.1:([0-9]+)");
     for (int i = 0; i < 1000; ++i) {  // the port `live` bound (port 0: the system's choice)
       const std::string err = child.err();
-      if (std::regex_search(err, bound, bound_line)) break;
+      if (std::regex_search(err, bound, bound_line)) return std::stoi(bound[1].str());
       std::this_thread::sleep_for(5ms);
     }
-    EXPECT_FALSE(bound.empty()) << child.err();
-    if (bound.empty()) return child.wait();
+    ADD_FAILURE() << child.err();
+    return 0;
+  }
+  /// `bytes` to 127.0.0.1:`port` in datagrams of at most 1400 bytes, paced: none is dropped.
+  static void sendUdp(int port, const std::string& bytes) {
     const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in to{};
     to.sin_family = AF_INET;
-    to.sin_port = htons(static_cast<std::uint16_t>(std::stoi(bound[1].str())));
+    to.sin_port = htons(static_cast<std::uint16_t>(port));
     to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    for (std::size_t at = 0, sent = 0; at < capture.size(); ++sent) {  // paced: no datagram is dropped
-      const std::size_t n = std::min<std::size_t>(1400, capture.size() - at);
-      EXPECT_EQ(::sendto(sender, capture.data() + at, n, 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
+    for (std::size_t at = 0, sent = 0; at < bytes.size(); ++sent) {
+      const std::size_t n = std::min<std::size_t>(1400, bytes.size() - at);
+      EXPECT_EQ(::sendto(sender, bytes.data() + at, n, 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
                 static_cast<ssize_t>(n));
       at += n;
       if (sent % 8 == 7) std::this_thread::sleep_for(1ms);
     }
     ::close(sender);
+  }
+  /// `live` on udp://127.0.0.1:0 fed `capture` over UDP: its final run.
+  ProgramRun replayOverUdp(const std::string& capture, const std::string& format) {
+    Names args = liveArgs("udp://127.0.0.1:0", "sweep", format);
+    args.insert(args.end(), {"--idle-timeout", "0.5"});
+    Child child(args, root_, -1);
+    if (const int port = boundPort(child, "reading"); port > 0) sendUdp(port, capture);
     return child.wait();
   }
   static void expectFinished(const ProgramRun& run) {
@@ -259,6 +266,37 @@ TEST_F(CliLive, Ping360OverUdpGivesTheBatchMap) {
   const ProgramRun run = replayOverUdp(tankPing360Capture(), "ping360");
   expectFinished(run);
   EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
+}
+
+// Navigation rows on a second UDP stream place the beams: a vehicle held 5.013 m north of the origin
+// (off the voxel grid: the interpolation's rounding cannot move the sonar across a voxel border)
+// gives the map of `sonarmap map --nav` with that pose (its clock does not matter for a constant
+// pose), not the static one; a malformed row is skipped with a warning.
+TEST_F(CliLive, NavigationStreamPlacesTheBeams) {
+  const std::string static_map = batchMap();
+  writeFile(root_ / "nav.csv", "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n-1,5.013,0,0,0,0,0\n100000,5.013,0,0,0,0,0\n");
+  ASSERT_EQ(run({"map", (root_ / "capture.raw").string(), "--format", "seanet", "--nav", (root_ / "nav.csv").string(),
+                 "-q", "-o", (root_ / "moved.bt").string()})
+                .exit_code,
+            0);
+  const std::string moved_map = readFile(root_ / "moved.bt");
+  ASSERT_NE(moved_map, static_map);
+  Names args = liveArgs("udp://127.0.0.1:0");
+  args.insert(args.end(), {"--idle-timeout", "0.5", "--nav-stream", "udp://127.0.0.1:0"});
+  Child child(args, root_, -1);
+  const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
+  ASSERT_GT(sonar_port, 0);
+  ASSERT_GT(nav_port, 0);
+  sendUdp(nav_port, "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,5.013,0,0,0,0,0\n1,5.013,0,oops,0,0,0\n");
+  std::this_thread::sleep_for(50ms);  // the first fix comes before the first beam
+  sendUdp(nav_port, "100000,5.013,0,0,0,0,0\n");
+  std::this_thread::sleep_for(50ms);
+  sendUdp(sonar_port, tankCapture());
+  const ProgramRun run = child.wait();
+  expectFinished(run);
+  EXPECT_NE(run.out.find("0 without navigation"), std::string::npos) << run.out;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == moved_map) << "live map differs from `sonarmap map --nav`";
+  EXPECT_NE(run.err.find("1 navigation rows skipped"), std::string::npos) << run.err;
 }
 
 TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {

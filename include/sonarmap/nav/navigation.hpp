@@ -13,8 +13,11 @@
 ///    the vehicle, on a vehicle at the NED origin with zero attitude, has the identity pose in the
 ///    map, so a static log maps the same with or without navigation.
 
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <iosfwd>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -87,6 +90,30 @@ class NavInterpolator {
 ///         fields, a value that is not a number or not finite, or a time not after the previous
 ///         row's; the file has a header row only ("no fixes").
 NavTrack readNavCsv(const std::string& path);
+
+/// Navigation CSV rows arriving as a stream (a vehicle's navigation sent over UDP, TCP or a serial
+/// line to `sonarmap live`): bytes in, whole fixes out. Rows as readNavCsv reads them (the header
+/// row is optional and skipped); a row cut by the end of a chunk waits for the rest. A malformed
+/// row, or one whose time is not after the previous fix's, is skipped and counted, not thrown: a
+/// live run goes on.
+class NavCsvStream {
+ public:
+  /// @param source  name used in skip reasons (e.g. "udp://0.0.0.0:5000").
+  explicit NavCsvStream(std::string source);
+  /// The fixes whose rows `bytes` completed, in order, times strictly increasing.
+  std::vector<NavSample> feed(std::span<const std::uint8_t> bytes);
+  std::size_t skippedRows() const { return skipped_; }
+  /// Why the last row was skipped (empty when none was).
+  const std::string& lastSkipReason() const { return last_reason_; }
+
+ private:
+  std::string source_;
+  std::string partial_;  ///< bytes of a row not yet ended by its newline
+  std::optional<double> last_time_s_;
+  std::size_t rows_ = 0;
+  std::size_t skipped_ = 0;
+  std::string last_reason_;
+};
 
 /// Writes a navigation CSV readable by readNavCsv, numbers in their shortest exact decimal form
 /// (reading back gives the identical doubles). Written atomically: temporary file + rename, so
