@@ -59,6 +59,12 @@ void sonarSeeds() {
   seed("beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("map_beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("nav_csv", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
+  // The stream harness: byte 0 seeds the chunk sizes, then rows as a vehicle sends them.
+  seed("nav_stream", "tank_nav.bin", [&](std::ostream& out) {
+    out << '\x05';
+    writeNavCsv(out, run.nav);
+    out << "1e9,1,2,x,0,0,0\n0,0,0,0,0,0,0\r\n";  // a bad row, a time going back
+  });
   seed("scene", "tank.scene", [&](std::ostream& out) { writeScene(out, run.scene); });
   seed("scene", "harbour.scene", [&](std::ostream& out) { writeScene(out, builtinScene("harbour")); });
   seed("v4log", "three.V4LOG", [](std::ostream& out) {
