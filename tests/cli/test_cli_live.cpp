@@ -1,7 +1,8 @@
 /// End-to-end tests of `sonarmap live`: a simulated tank run encoded byte by byte as a raw SeaNet
-/// capture (wire_fixture.hpp), with line noise and a final packet cut short, is replayed over a
-/// pseudo-terminal (a serial device), loopback UDP and standard input; with --integrate sweep the
-/// final map equals `sonarmap map` of the same bytes byte for byte. SIGTERM mid-stream ends the run
+/// capture and as a Ping360 stream (wire_fixture.hpp), with line noise and a final frame cut short,
+/// is replayed over a pseudo-terminal (a serial device), loopback UDP and standard input, and the
+/// shared SeaNet log's packets over UDP; with --integrate sweep the final map equals `sonarmap map`
+/// of the same bytes byte for byte. Navigation on a second stream places the beams. SIGTERM mid-stream ends the run
 /// with exit 0 and a readable map; bad usage is one error line.
 
 #include <gtest/gtest.h>
@@ -190,6 +191,34 @@ class CliLive : public CliTest {
     }
     ::close(sender);
   }
+  /// `live` on a pseudo-terminal (a serial device at 115200 baud) fed `capture`, then hung up.
+  ProgramRun replayOverPty(const std::string& capture, const std::string& format) {
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+    EXPECT_GE(master, 0);
+    EXPECT_EQ(::grantpt(master), 0);
+    EXPECT_EQ(::unlockpt(master), 0);
+    const std::string slave_path = ::ptsname(master);
+    // The test holds the slave open too, raw from the start: bytes written before `live` sets it
+    // raw are not cooked, and the line is not hung up before `live` opens it.
+    const int slave = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+    EXPECT_GE(slave, 0);
+    termios raw{};
+    EXPECT_EQ(::tcgetattr(slave, &raw), 0);
+    ::cfmakeraw(&raw);
+    EXPECT_EQ(::tcsetattr(slave, TCSANOW, &raw), 0);
+    Names args = liveArgs(slave_path, "sweep", format);
+    args.insert(args.end(), {"--baud", "115200"});
+    Child child(args, root_, -1);
+    writeAll(master, capture, 512);
+    for (int unread = 1; unread > 0;) {  // `live` has read every byte: then hang up
+      EXPECT_EQ(::ioctl(slave, FIONREAD, &unread), 0);
+      std::this_thread::sleep_for(2ms);
+    }
+    ::close(master);
+    ProgramRun run = child.wait();
+    ::close(slave);
+    return run;
+  }
   /// `live` on udp://127.0.0.1:0 fed `capture` over UDP: its final run.
   ProgramRun replayOverUdp(const std::string& capture, const std::string& format) {
     Names args = liveArgs("udp://127.0.0.1:0", "sweep", format);
@@ -223,33 +252,29 @@ TEST_F(CliLive, StandardInputGivesTheBatchMapByteForByte) {
 
 TEST_F(CliLive, APseudoTerminalIsReadAsASerialDevice) {
   const std::string batch = batchMap();
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
-  ASSERT_GE(master, 0);
-  ASSERT_EQ(::grantpt(master), 0);
-  ASSERT_EQ(::unlockpt(master), 0);
-  const std::string slave_path = ::ptsname(master);
-  // The test holds the slave open too, raw from the start: bytes written before `live` sets it raw
-  // are not cooked, and the line is not hung up before `live` opens it.
-  const int slave = ::open(slave_path.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
-  ASSERT_GE(slave, 0);
-  termios raw{};
-  ASSERT_EQ(::tcgetattr(slave, &raw), 0);
-  ::cfmakeraw(&raw);
-  ASSERT_EQ(::tcsetattr(slave, TCSANOW, &raw), 0);
-  Names args = liveArgs(slave_path);
-  args.insert(args.end(), {"--baud", "115200"});
-  Child child(args, root_, -1);
-  writeAll(master, tankCapture(), 512);
-  for (int unread = 1; unread > 0;) {  // `live` has read every byte: then hang up
-    ASSERT_EQ(::ioctl(slave, FIONREAD, &unread), 0);
-    std::this_thread::sleep_for(2ms);
-  }
-  ::close(master);
-  const ProgramRun run = child.wait();
-  ::close(slave);
+  const ProgramRun run = replayOverPty(tankCapture(), "seanet");
   expectFinished(run);
   EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
   EXPECT_NE(run.err.find("at 115200 baud"), std::string::npos) << run.err;
+}
+
+TEST_F(CliLive, Ping360OverAPseudoTerminalGivesTheBatchMap) {
+  const std::string batch = batchMap(tankPing360Capture(), "ping360");
+  const ProgramRun run = replayOverPty(tankPing360Capture(), "ping360");
+  expectFinished(run);
+  EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
+}
+
+// The shared SeaNet log's packets as its head sent them (`sonarmap convert` to a .seanet capture),
+// over UDP: the map of the log itself.
+TEST_F(CliLive, SharedSeaNetLogPacketsGiveTheLogsMap) {
+  const fs::path log = fs::path(SONARMAP_SHARED_DATA) / "seanet_sector_target.V4LOG";
+  if (!fs::exists(log)) GTEST_SKIP() << "shared data absent: " << log;
+  ASSERT_EQ(run({"convert", log.string(), "-o", (root_ / "sector.seanet").string()}).exit_code, 0);
+  ASSERT_EQ(run({"map", log.string(), "-q", "-o", (root_ / "log.bt").string()}).exit_code, 0);
+  const ProgramRun live = replayOverUdp(readFile(root_ / "sector.seanet"), "seanet");
+  expectFinished(live);
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "log.bt")) << "live map differs from the log's";
 }
 
 TEST_F(CliLive, LoopbackUdpDatagramsGiveTheBatchMap) {
