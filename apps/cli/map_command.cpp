@@ -94,7 +94,9 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   printWarnings(optionWarnings(sonar_options, log));
   const MappedLog mapped = mapLog(args, log, sonar_options, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
-  stageMapOutputs(outputs, args, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png);
+  MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
+  shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
+  stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png);
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
