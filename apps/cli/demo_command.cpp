@@ -78,12 +78,13 @@ std::string poseText(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) {
 }
 
 /// The eval options that score the map as docs/accuracy.md does (missionTruthOptions): the
-/// sonar's poses along the mission and its vertical aperture, for the field-of-view check.
+/// sonar's poses along the mission and its vertical aperture, for the field-of-view check, and its
+/// range, which also bounds where the truth is sought.
 std::string fieldOfViewOptions(const MissionRun& mission) {
   const GroundTruthOptions truth = missionTruthOptions(mission);
   char aperture[64];
-  std::snprintf(aperture, sizeof aperture, "--vertical-aperture %.6g",
-                truth.vertical_aperture_rad.value_or(0.0) * kDegPerRad);
+  std::snprintf(aperture, sizeof aperture, "--vertical-aperture %.6g --max-range %.6g",
+                truth.vertical_aperture_rad.value_or(0.0) * kDegPerRad, truth.max_range_m.value_or(0.0));
   std::string options = aperture;
   for (std::size_t i = 0; i < truth.sensor_positions_m.size(); ++i) {
     options += " --sensor-pose " + poseText(truth.sensor_orientations[i], truth.sensor_positions_m[i]);

@@ -48,7 +48,9 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   cmd->add_option("--z-max", args.z_max_m, "Highest voxel centre scored, m (default: highest known voxel)");
   cmd->add_option("--tolerance", args.tolerance_m, "Match distance, m (never below one voxel diagonal)")
       ->capture_default_str();
-  cmd->add_option("--max-range", args.max_range_m, "Sonar reach, m (default: farthest known voxel)");
+  cmd->add_option("--max-range", args.max_range_m,
+                  "Sonar reach, m (default: farthest known voxel); with it, recall and erosion seek the truth within "
+                  "this reach of the sonar positions, whatever the map reaches");
   cmd->add_option("--sensor", args.sensor, "Sonar position x,y,z in the map frame, m; repeatable (default: origin)")
       ->delimiter(',')
       ->allow_extra_args(false);
@@ -107,6 +109,11 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
     options.sensor_orientations = std::move(orientations);
   }
   options.validate();
+  if (options.max_range_m) {  // the truth within the reach of every sonar position, not the map's own box
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& position : options.sensor_positions_m) box.extend(position);
+    options.surface_box_m = Eigen::AlignedBox3d(box.min().array() - *options.max_range_m, box.max().array() + *options.max_range_m);
+  }
   return options;
 }
 
