@@ -78,7 +78,7 @@ const std::string& tankPing360Capture() {
       message.sample_period = static_cast<std::uint16_t>(std::lround(beam.bin_length_m * 2.0 / 1500.0 / 25e-9));
       message.data = beam.intensities;
       out += ping360Message(message);
-      if (i % 150 == 7) out += std::string("\x13\x37BRzz noise \xff", 15);
+      if (i % 150 == 7) out += std::string("\x13\x37" "BRzz noise \xff");  // a false start among noise
     }
     return out + ping360Message(Ping360Data{}).substr(0, 12);
   }();
