@@ -62,6 +62,15 @@ int openSocket(const std::string& spec, bool udp, std::string& description) {
       why = systemError();
       continue;
     }
+    if (udp) {
+      // A sonar's datagrams come in bursts and nothing resends a lost one: room for seconds of them
+      // while a sweep is detected or the map written (SO_RCVBUFFORCE passes net.core.rmem_max when
+      // privileged; else the request is capped there).
+      constexpr int kReceiveBuffer = 8 << 20;
+      if (::setsockopt(fd, SOL_SOCKET, SO_RCVBUFFORCE, &kReceiveBuffer, sizeof kReceiveBuffer) != 0) {
+        ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &kReceiveBuffer, sizeof kReceiveBuffer);
+      }
+    }
     const int done = udp ? ::bind(fd, address->ai_addr, address->ai_addrlen) : ::connect(fd, address->ai_addr, address->ai_addrlen);
     if (done != 0) {
       why = systemError();
