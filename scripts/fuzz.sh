@@ -14,7 +14,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 names=(v4log seanet ping360 wire_stream mat beam_csv nav_csv nav_stream scan_graph point_text octomap_bt octomap_ot scene map_beam_csv)
-# Files of the hand-made corpus (tests/corpus/valid and broken) each harness also starts from.
+# Files of the hand-made corpus each harness also starts from: tests/corpus/make_corpus.py builds
+# it (binary files generated, text files copied) into build-fuzz/corpus.
 declare -A corpus_glob=([v4log]='*.V4LOG' [seanet]='*.seanet' [ping360]='*.bin' [wire_stream]='*_small.seanet' [mat]='*.mat' [beam_csv]='beams*.csv' [nav_csv]='nav*.csv' [nav_stream]='nav*.csv'
   [scan_graph]='*.graph' [point_text]='*.xyz' [octomap_bt]='*.bt' [octomap_ot]='*.ot'
   [scene]='scene*' [map_beam_csv]='beams*.csv')
@@ -37,8 +38,9 @@ build() {
     -DSONARMAP_BUILD_FUZZERS=ON -DSONARMAP_BUILD_TESTS=OFF -DSONARMAP_BUILD_BENCHMARKS=OFF \
     -DSONARMAP_BUILD_CLI=OFF >/dev/null
   cmake --build "$build"
-  rm -rf "$build"/seeds
+  rm -rf "$build"/seeds "$build"/corpus
   "$build"/fuzz/sonarmap_fuzz_seeds "$build"/seeds  # generated, not committed
+  python3 tests/corpus/make_corpus.py "$build"/corpus
 }
 
 replay() {
@@ -55,7 +57,8 @@ replay() {
 
 # The hand-made corpus files for harness $1.
 handmade() {
-  find tests/corpus/valid tests/corpus/broken -name "${corpus_glob[$1]}" -type f
+  [ -d "$build"/corpus ] || python3 tests/corpus/make_corpus.py "$build"/corpus >/dev/null
+  find "$build"/corpus/valid "$build"/corpus/broken -name "${corpus_glob[$1]}" -type f
 }
 
 run() {

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Writes the binary files of the broken-input corpus (tests/corpus/broken/) and the small valid
-seeds (tests/corpus/valid/) that test_corpus truncates and flips.
+"""Builds the broken-input corpus and the small valid seeds that test_corpus truncates and flips,
+into a folder of the build tree: `python3 tests/corpus/make_corpus.py OUT` writes OUT/broken/ and
+OUT/valid/. CMake runs it for test_corpus, and scripts/fuzz.sh for the fuzzers' hand-made seeds.
 
-Run once from anywhere: `python3 tests/corpus/make_corpus.py`. Python 3 standard library only;
-every file is built here byte by byte (nothing is copied from real data). The text files of the
-corpus (CSV, x y z, scene) are written by hand and are not touched. The committed files are what
-the test reads; rerunning this script rewrites the same bytes.
+Python 3 standard library only. Every binary file is built here byte by byte (nothing is copied
+from real data) and none is committed; the hand-written text files of the corpus (CSV, x y z,
+scene, broken/MANIFEST.tsv) are kept in tests/corpus/broken and valid and copied beside them.
 
 Layouts: ../shared/docs/formats.md and the readers' headers (MAT-file level 5: MathWorks'
 "MAT-File Format" document; SeaNet V4LOG: include/sonarmap/formats/v4log_reader.hpp; SeaNet wire
@@ -14,12 +14,12 @@ logs: include/sonarmap/formats/ping360_reader.hpp).
 """
 
 import pathlib
+import shutil
 import struct
+import sys
 import zlib
 
 HERE = pathlib.Path(__file__).resolve().parent
-BROKEN = HERE / "broken"
-VALID = HERE / "valid"
 
 HUGE = 1_000_000_000  # a count no tiny file can hold
 
@@ -347,15 +347,30 @@ def ot_files():
     }, {"tree_small.ot": octomap_header(OT, 12) + ot_records(OT_TREE)}
 
 
+# ---- text readers fed bytes that are not text ------------------------------------------------------
+
+def binary_text_files():
+    return {
+        "beams_binary.csv": b"\x00\x01\x02\xff\xfe,\x80\x81\n\x10\x11,\x12\n",
+        "points_binary.xyz": b"\x00\x01\x02\xff\xfe \x80\x81 \x7f\n",
+        "scene_binary.txt": b"\x00\x01plane\xff 1 2\n",
+    }, {}
+
+
 def main():
-    for folder in (BROKEN, VALID):
-        folder.mkdir(exist_ok=True)
-    for make in (mat_files, v4_files, seanet_files, ping360_files, graph_files, bt_files, ot_files):
-        broken, valid = make()
-        for name, data in broken.items():
-            (BROKEN / name).write_bytes(data)
-        for name, data in valid.items():
-            (VALID / name).write_bytes(data)
+    if len(sys.argv) != 2:
+        sys.exit("usage: make_corpus.py OUT  (writes OUT/broken and OUT/valid)")
+    out = pathlib.Path(sys.argv[1])
+    for kind in ("broken", "valid"):
+        folder = out / kind
+        folder.mkdir(parents=True, exist_ok=True)
+        for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
+            shutil.copyfile(text, folder / text.name)
+    for make in (mat_files, v4_files, seanet_files, ping360_files, graph_files, bt_files, ot_files,
+                 binary_text_files):
+        for kind, files in zip(("broken", "valid"), make()):
+            for name, data in files.items():
+                (out / kind / name).write_bytes(data)
 
 
 if __name__ == "__main__":
