@@ -116,10 +116,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> presets;
   for (int i = 2; i < argc; ++i) presets.emplace_back(argv[i]);
   if (presets.empty()) presets = {"micron"};
-  const Model models[] = {{"planar", BeamModel::kPlanar, ArcEvidence::kWholeArc},
-                          {"volume, whole arc", BeamModel::kVolume, ArcEvidence::kWholeArc},
-                          {"volume, uniform spread", BeamModel::kVolume, ArcEvidence::kSpreadUniform},
-                          {"volume, beam pattern", BeamModel::kVolume, ArcEvidence::kBeamPattern},
+  const Model models[] = {{"planar", BeamModel::kPlanar, ArcEvidence::kWholeArc, std::nullopt},
+                          {"volume, whole arc", BeamModel::kVolume, ArcEvidence::kWholeArc, std::nullopt},
+                          {"volume, uniform spread", BeamModel::kVolume, ArcEvidence::kSpreadUniform, std::nullopt},
+                          {"volume, beam pattern", BeamModel::kVolume, ArcEvidence::kBeamPattern, std::nullopt},
                           {"volume, beam pattern, silent beams clear", BeamModel::kVolume, ArcEvidence::kBeamPattern, true}};
   std::printf("| head | mission | model | occupied | precision | recall | F1 | surface error median / p90 (m) | "
               "erosion | free accuracy | obstacles | voxel updates | mapping (s) |\n");

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "sonarmap/core/statistics.hpp"
 #include "sonarmap/eval/simulated_accuracy.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
@@ -25,13 +26,8 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr int kTurns = 8;  // as the table's runs
 
-/// The `q` quantile (0…1) by the nearest rank; 0 for no values.
-double quantile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
+/// The `q` quantile (0…1) of a copy of `values`; 0 for no values.
+double quantile(std::vector<double> values, double q) { return percentile(values, q); }
 
 struct Simulated {
   SonarPreset preset;

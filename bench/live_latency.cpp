@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "sonarmap/core/statistics.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/seanet_capture.hpp"
 #include "sonarmap/formats/wire_encoder.hpp"
@@ -48,12 +49,8 @@ double beamInterval_s(const SonarLog& log) {
   return std::max(1e-4, steps[steps.size() / 2]);
 }
 
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  const auto at = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(at), values.end());
-  return values[at];
-}
+/// The fraction `p` percentile of a copy of `values` (they are printed in arrival order later).
+double percentileOf(std::vector<double> values, double p) { return percentile(values, p); }
 
 struct Arrival {
   std::vector<std::uint8_t> bytes;  // one beam's packet
@@ -119,9 +116,9 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
   producer.join();
   mapper.finish();
   std::printf("| %s | %.0f× (%.0f beams/s) | %zu | %.3f | %.3f | %.3f | %.0f | %zu | %zu |\n", c.name, rate,
-              rate / interval_s, latency_ms.size(), percentile(latency_ms, 0.5), percentile(latency_ms, 0.99),
+              rate / interval_s, latency_ms.size(), percentileOf(latency_ms, 0.5), percentileOf(latency_ms, 0.99),
               latency_ms.empty() ? 0.0 : *std::max_element(latency_ms.begin(), latency_ms.end()),
-              percentile(warmup_ms, 0.5), late, mapper.mapper().stats().beams_used);
+              percentileOf(warmup_ms, 0.5), late, mapper.mapper().stats().beams_used);
   std::fflush(stdout);
 }
 

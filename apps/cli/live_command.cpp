@@ -21,6 +21,7 @@
 #include "live_source.hpp"
 #include "map_command.hpp"
 #include "map_outputs.hpp"
+#include "sonarmap/core/statistics.hpp"
 #include "sonarmap/formats/wire_stream.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
@@ -46,14 +47,6 @@ void catchStopSignals() {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-/// The value at fraction `p` of the sorted `values` (nearest rank below; 0 when empty); reorders them.
-double quantile(std::vector<double>& values, double p) {
-  if (values.empty()) return 0.0;
-  const auto at = values.begin() + static_cast<std::ptrdiff_t>(p * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), at, values.end());
-  return *at;
-}
 
 /// The mapper fed by the stream, with each beam's arrival kept until it is integrated.
 class LiveMapping {
@@ -145,10 +138,10 @@ void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double ela
                "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
                "latency median %.1f ms",
                elapsed_s, decoder.bytesFed(), live.beams(), rate_per_s, decoder.skippedItems(), mapper.sweepsIntegrated(),
-               mapper.mapper().map().counts().nodes, 1000.0 * quantile(latencies, 0.5));
+               mapper.mapper().map().counts().nodes, 1000.0 * percentile(latencies, 0.5));
   if (whole_run) {
     std::fprintf(stderr, ", 99th percentile %.1f ms (from read to map, after the first sweep; its beams waited %.0f ms)",
-                 1000.0 * quantile(latencies, 0.99), 1000.0 * quantile(live.firstSweepLatencies(), 0.5));
+                 1000.0 * percentile(latencies, 0.99), 1000.0 * percentile(live.firstSweepLatencies(), 0.5));
   }
   std::fputc('\n', stderr);
 }

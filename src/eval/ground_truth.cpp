@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/core/statistics.hpp"
 #include "surface_voxels.hpp"
 
 namespace sonarmap {
@@ -134,19 +135,6 @@ bool visibleSurface(const SceneRayCaster& caster, const std::vector<Eigen::Vecto
   return false;
 }
 
-/// The value at fraction `p` ∈ [0, 1] of the sorted `values` by linear interpolation between the
-/// order statistics (rank (n − 1) · p, 0-based); 0 for no value. Reorders `values`.
-double percentile(std::vector<double>& values, double p) {
-  if (values.empty()) return 0.0;
-  const double rank = p * static_cast<double>(values.size() - 1);
-  const auto below = static_cast<std::size_t>(std::floor(rank));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(below), values.end());
-  const double low = values[below];
-  if (below + 1 >= values.size()) return low;
-  const double high = *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(below) + 1, values.end());
-  return low + (rank - static_cast<double>(below)) * (high - low);
-}
-
 /// True when an occupied voxel's centre lies within `tolerance_m` of the centre of `key`.
 bool occupiedNear(const KeySet& occupied, const Key16& key, double tolerance_m, double res_m) {
   const int reach = static_cast<int>(std::floor(tolerance_m / res_m));
@@ -210,11 +198,7 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
   for (std::size_t i = 0; i < offsets.size(); ++i) {
     std::vector<double>& values = offsets[i];
     if (values.empty()) continue;
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    double median = *middle;
-    if (values.size() % 2 == 0) median = 0.5 * (median + *std::max_element(values.begin(), middle));
-    report.surfaces.push_back({i, values.size(), median});
+    report.surfaces.push_back({i, values.size(), percentile(values, 0.5)});
   }
 }
 

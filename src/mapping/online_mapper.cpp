@@ -156,7 +156,7 @@ std::vector<std::optional<Eigen::Isometry3d>> OnlineMapper::posesAt(const std::v
     poses.assign(times_s.size(), std::nullopt);
     return poses;
   }
-  const NavInterpolator interpolator(fixes_);
+  const NavInterpolator interpolator(fixes_, NavInterpolator::Prechecked{});  // addNavFix checked each fix
   const Eigen::Isometry3d ned_to_map = nedToMap();
   for (const double time_s : times_s) {
     const std::optional<Eigen::Isometry3d> body_to_ned = interpolator.bodyToNedAt(time_s);

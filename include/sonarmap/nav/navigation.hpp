@@ -71,6 +71,12 @@ class NavInterpolator {
  public:
   /// @throws ValueError as interpolateBodyToNed for an invalid track.
   explicit NavInterpolator(const NavTrack& track);
+  /// Tag: the track was already checked, fix by fix as it grew (OnlineMapper::addNavFix checks
+  /// each fix's values and order), so the O(fixes) check is skipped: a live mapper interpolates
+  /// once per beam on a track that keeps growing. Not empty; a track that breaks the rules gives
+  /// undefined poses.
+  struct Prechecked {};
+  NavInterpolator(const NavTrack& track, Prechecked) : track_(track) {}
   /// As interpolateBodyToNed(track, time_s).
   std::optional<Eigen::Isometry3d> bodyToNedAt(double time_s) const;
 
