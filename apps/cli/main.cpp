@@ -2,6 +2,7 @@
 // Exit codes: 0 success, 1 bad data or failed output, 2 bad usage. Errors are one line on stderr.
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -26,6 +27,7 @@ int fail(int code, const char* message) {
 
 int main(int argc, char** argv) {
   CLI::App app{"sonarmap: probabilistic 3D occupancy maps from mechanically scanned imaging sonar and point clouds"};
+  app.set_version_flag("--version", std::string("sonarmap ") + SONARMAP_VERSION);
   app.require_subcommand(1);
   sonarmap::cli::MapArgs map_args;
   sonarmap::cli::CloudArgs cloud_args;
@@ -47,6 +49,8 @@ int main(int argc, char** argv) {
     return app.exit(help);
   } catch (const CLI::CallForAllHelp& help) {
     return app.exit(help);
+  } catch (const CLI::CallForVersion& version) {
+    return app.exit(version);
   } catch (const CLI::ParseError& error) {
     return fail(2, error.what());
   }

@@ -1,17 +1,54 @@
 #!/usr/bin/env bash
-# Installs the build into a temporary prefix (not /usr/local, where a compiler looks anyway) and
-# builds and runs tests/consumer against it, as a user's project would find the package.
-# Usage: run_consumer_test.sh BUILD_DIR SOURCE_DIR
+# Builds and runs tests/consumer against an installed sonarmap, as a user's project would find the
+# package (find_package with the prefix on CMAKE_PREFIX_PATH, nothing else).
+# Usage: run_consumer_test.sh install BUILD_DIR SOURCE_DIR
+#          `cmake --install` into a temporary prefix (not /usr/local, where a compiler looks anyway)
+#        run_consumer_test.sh deb BUILD_DIR SOURCE_DIR
+#          `cpack -G DEB`, the package's control fields and files checked, then unpacked into a
+#          temporary root (dpkg -x) and used from its /usr: the consumer, the CLI, the Python module
 set -euo pipefail
-build=$1
-source_dir=$2
-prefix=$(mktemp -d)
-trap 'rm -rf "$prefix"' EXIT
-cmake --install "$build" --prefix "$prefix/install" >/dev/null
+mode=$1
+build=$(cd "$2" && pwd)
+source_dir=$3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "run_consumer_test.sh ($mode): $*" >&2; exit 1; }
+
+case "$mode" in
+  install)
+    cmake --install "$build" --prefix "$tmp/install" >/dev/null
+    prefix=$tmp/install
+    ;;
+  deb)
+    command -v dpkg-deb >/dev/null || { echo "SKIPPED: dpkg-deb is absent (not a Debian system)"; exit 77; }
+    (cd "$tmp" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$tmp/package" >/dev/null)
+    deb=$(ls "$tmp"/package/sonarmap_*.deb)
+    depends=$(dpkg-deb -f "$deb" Depends)
+    for needed in libopencv-dev libeigen3-dev libmatio-dev libopencv-core406; do
+      [[ ",$depends," == *"$needed"* ]] || fail "Depends lacks $needed: $depends"
+    done
+    files=$(dpkg-deb -c "$deb" | awk '{print $6}')
+    for needed in ./usr/bin/sonarmap ./usr/include/sonarmap/io/octomap_binary.hpp \
+                  ./usr/lib/cmake/sonarmap/sonarmapConfig.cmake ./usr/lib/libsonarmap.a; do
+      grep -qxF "$needed" <<<"$files" || fail "the package lacks $needed"
+    done
+    dpkg -x "$deb" "$tmp/root"
+    prefix=$tmp/root/usr
+    "$prefix/bin/sonarmap" --version >/dev/null || fail "the packaged CLI does not run"
+    if grep -q "^./usr/lib/python3/dist-packages/sonarmap/" <<<"$files"; then
+      [[ ",$depends," == *"python3-numpy"* ]] || fail "Depends lacks python3-numpy: $depends"
+      PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" /usr/bin/python3 -c \
+        "import sonarmap, os; assert os.path.dirname(sonarmap.__file__).startswith('$tmp'), sonarmap.__file__" ||
+        fail "the packaged Python module does not import"
+    fi
+    ;;
+  *) fail "mode must be install or deb" ;;
+esac
+
 # The build's own compiler flags (a sanitizer build's library needs the sanitizer runtime too).
 cached() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
-cmake -S "$source_dir/tests/consumer" -B "$prefix/build" -G Ninja -DCMAKE_BUILD_TYPE="$(cached CMAKE_BUILD_TYPE)" \
+cmake -S "$source_dir/tests/consumer" -B "$tmp/build" -G Ninja -DCMAKE_BUILD_TYPE="$(cached CMAKE_BUILD_TYPE)" \
   -DCMAKE_CXX_FLAGS="$(cached CMAKE_CXX_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(cached CMAKE_EXE_LINKER_FLAGS)" \
-  -DCMAKE_PREFIX_PATH="$prefix/install" >/dev/null
-cmake --build "$prefix/build" >/dev/null
-"$prefix/build/consumer" "$prefix/map.bt"
+  -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build "$tmp/build" >/dev/null
+"$tmp/build/consumer" "$tmp/map.bt"

@@ -1,0 +1,27 @@
+# The Debian package (issue 13, item 4): `cpack -G DEB` in the build folder writes
+# sonarmap_<version>_<arch>.deb with everything `cmake --install` installs under /usr: the
+# library (static), its headers and CMake package (find_package(sonarmap)), the `sonarmap` CLI
+# and, when built, the Python module (/usr/lib/python3/dist-packages/sonarmap).
+# `apt-get install ./sonarmap_*.deb` pulls what it needs from Debian: the shared libraries the
+# CLI and the module link (dpkg-shlibdeps) and, since the library is static and its headers
+# include OpenCV and Eigen, the -dev packages a consumer's build links (sonarmapConfig.cmake's
+# find_dependency list). tests/consumer/run_package_test.sh checks the package.
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME sonarmap)
+set(CPACK_PACKAGE_VENDOR "sonarmap")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+  "Probabilistic 3D occupancy maps from mechanically scanned imaging sonar (library, CLI, Python)")
+set(CPACK_PACKAGE_DESCRIPTION
+  "sonarmap turns MSIS logs (Tritech Micron/SeaKing, Blue Robotics Ping360) into OctoMap-compatible occupancy octrees: a C++ library with its CMake package, the sonarmap command-line tool and the sonarmap Python module.")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_MAINTAINER "sonarmap developers <sonarmap@localhost>")
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS
+  "libopencv-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, pkg-config")
+if(TARGET _sonarmap)
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}), python3 (<< ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}.999), python3-numpy")
+endif()
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake, g++, octovis, chromium")
+include(CPack)
