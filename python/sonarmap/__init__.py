@@ -48,6 +48,15 @@ from ._sonarmap import (  # noqa: F401  (re-exported)
     write_nav_csv,
 )
 
+# The classes and exceptions are defined in the extension; name them by the package users import.
+for _name in ("Error", "FileError", "ValueError", "OutOfMapError", "InsertStats", "MappingStats", "OccupancyMap",
+              "OnlineMapper", "PolarImage", "Scene", "Simulation", "SonarLog"):
+    try:
+        globals()[_name].__module__ = __name__
+    except (AttributeError, TypeError):  # a type that refuses it keeps "sonarmap._sonarmap"
+        pass
+del _name
+
 # sonarmap.ValueError is left out of __all__ so that `from sonarmap import *` does not shadow the
 # builtin ValueError (it subclasses it: `except ValueError` catches both).
 __all__ = [

@@ -134,7 +134,7 @@ cannot be written (an existing file is then left untouched).)doc")
           "The mapper's counts (sonarmap.MappingStats) for a map made by map_sonar_log or OnlineMapper; None otherwise.")
       .def(
           "insert_point_cloud",
-          [](OccupancyMap& map, const py::handle& points, const py::handle& origin, double max_range, bool discretize,
+          [](OccupancyMap& map, const py::object& points, const py::object& origin, double max_range, bool discretize,
              bool lazy_eval) {
             const PointsView view = requirePoints(points, "points");
             const Eigen::Vector3d origin_m = requirePoint(origin, "origin");
@@ -164,7 +164,7 @@ Returns sonarmap.InsertStats. Raises sonarmap.ValueError for a bad array, sonarm
 when the origin lies outside the map. Points outside the map are counted (out_of_map), never wrapped.)doc")
       .def(
           "insert_ray",
-          [](OccupancyMap& map, const py::handle& origin, const py::handle& end, double max_range) {
+          [](OccupancyMap& map, const py::object& origin, const py::object& end, double max_range) {
             const Eigen::Vector3d origin_m = requirePoint(origin, "origin");
             const Eigen::Vector3d end_m = requirePoint(end, "end");
             py::gil_scoped_release release;
@@ -178,7 +178,7 @@ which is a hit (map frame, metres). max_range > 0: free space stops there and no
 Returns False, changing nothing, when the origin or the (clipped) end lies outside the map.)doc")
       .def(
           "classify",
-          [](const OccupancyMap& map, const py::handle& points) {
+          [](const OccupancyMap& map, const py::object& points) {
             const PointsView view = requirePoints(points, "points", true);
             py::array_t<std::int8_t> out(static_cast<py::ssize_t>(view.size()));
             std::int8_t* labels = out.mutable_data();
@@ -199,7 +199,7 @@ Returns int8 (N,): -1 unknown (never observed, or outside the map), 0 free, 1 oc
 map's occupancy threshold. Raises sonarmap.ValueError for a bad shape, dtype or NaN/inf.)doc")
       .def(
           "occupancy",
-          [](const OccupancyMap& map, const py::handle& points) {
+          [](const OccupancyMap& map, const py::object& points) {
             const PointsView view = requirePoints(points, "points", true);
             py::array_t<double> out(static_cast<py::ssize_t>(view.size()));
             double* probability_out = out.mutable_data();
@@ -220,7 +220,7 @@ Returns float64 (N,) in [clamping_thres_min, clamping_thres_max]; NaN where unkn
 observed, or outside the map). Raises sonarmap.ValueError for a bad shape, dtype or NaN/inf.)doc")
       .def(
           "log_odds",
-          [](const OccupancyMap& map, const py::handle& points) {
+          [](const OccupancyMap& map, const py::object& points) {
             const PointsView view = requirePoints(points, "points", true);
             py::array_t<double> out(static_cast<py::ssize_t>(view.size()));
             double* log_odds_out = out.mutable_data();
@@ -256,7 +256,7 @@ leaf covering 2^k voxels per edge). Depth-first order.)doc")
           "Every leaf as (centers (M, 3) float64 m, sizes (M,) float64 m, log_odds (M,) float32).")
       .def(
           "cast_ray",
-          [](const OccupancyMap& map, const py::handle& origin, const py::handle& direction, bool ignore_unknown,
+          [](const OccupancyMap& map, const py::object& origin, const py::object& direction, bool ignore_unknown,
              double max_range) -> py::object {
             const Eigen::Vector3d origin_m = requirePoint(origin, "origin");
             const Eigen::Vector3d direction_v = requirePoint(direction, "direction");

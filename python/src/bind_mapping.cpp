@@ -231,7 +231,7 @@ TypeError for an unknown keyword.)doc");
 seconds, NED metres, radians (body FRD, Z-Y-X). Raises sonarmap.FileError naming the line and field.)doc");
   m.def(
       "write_nav_csv",
-      [](const std::string& path, const py::handle& nav) { writeNavCsv(path, navTrackOf(py::reinterpret_borrow<py::object>(nav))); },
+      [](const std::string& path, const py::object& nav) { writeNavCsv(path, navTrackOf(py::reinterpret_borrow<py::object>(nav))); },
       py::arg("path"), py::arg("nav"),
       "Writes an (N, 7) navigation array as a navigation CSV, atomically. Raises sonarmap.ValueError, sonarmap.FileError.");
 }

@@ -32,7 +32,7 @@ std::unique_ptr<OnlineMapper> makeMapper(bool nav, const py::object& mounting, c
   return std::make_unique<OnlineMapper>(options, sonarToBodyOfMounting(values), integrationOf(integration));
 }
 
-Beam beamOf(double time_s, double bearing_rad, double bin_length_m, const py::handle& intensities,
+Beam beamOf(double time_s, double bearing_rad, double bin_length_m, const py::object& intensities,
             std::optional<double> intensity_span_db) {
   const py::array_t<std::uint8_t> bins = requireBytes1d(intensities, "intensities");
   Beam beam;
@@ -67,7 +67,7 @@ apply when beam_width / vertical_aperture are not given ("csv": Tritech 3° × 3
 Raises sonarmap.ValueError for invalid options; TypeError for an unknown keyword.)doc")
       .def(
           "add_beam",
-          [](OnlineMapper& mapper, double time_s, double bearing_rad, double bin_length_m, const py::handle& intensities,
+          [](OnlineMapper& mapper, double time_s, double bearing_rad, double bin_length_m, const py::object& intensities,
              std::optional<double> intensity_span_db) {
             Beam beam = beamOf(time_s, bearing_rad, bin_length_m, intensities, intensity_span_db);
             py::gil_scoped_release release;

@@ -1,6 +1,7 @@
 // The 3D model side: ground-truth scenes (sim/scene.hpp, scene_file.hpp, builtin_scenes.hpp), the
 // MSIS simulator (sim/msis_simulator.hpp, with `sonarmap simulate`'s arguments:
 // sim/simulation_arguments.hpp) and the scoring of a map against a scene (eval/ground_truth.hpp).
+#include <filesystem>
 #include <numbers>
 #include <variant>
 
@@ -86,7 +87,7 @@ py::dict reportDict(const GroundTruthReport& r) {
   return d;
 }
 
-Scene sceneArgument(const py::handle& scene, const MsisHeadOptions& head) {
+Scene sceneArgument(const py::object& scene, const MsisHeadOptions& head) {
   if (py::isinstance<Scene>(scene)) return scene.cast<Scene>();
   if (!py::isinstance<py::str>(scene)) throwValueError("scene expects a sonarmap.Scene, a built-in scene name or a scene file path");
   return sceneOf(scene.cast<std::string>(), head);
@@ -109,7 +110,7 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
           "The primitives as dicts (kind, geometry in metres/radians, reflectivity), in scene order.")
       .def(
           "distance",
-          [](const Scene& scene, const py::handle& points) {
+          [](const Scene& scene, const py::object& points) {
             const PointsView view = requirePoints(points, "points", true);
             py::array_t<double> out(static_cast<py::ssize_t>(view.size()));
             double* distance = out.mutable_data();
@@ -157,7 +158,7 @@ the names for an unknown one.)doc");
   const SimulationArguments defaults{};
   m.def(
       "simulate",
-      [](const py::handle& scene, const std::string& sonar, std::size_t turns, std::uint64_t seed, double sector,
+      [](const py::object& scene, const std::string& sonar, std::size_t turns, std::uint64_t seed, double sector,
          double sector_center, double speed, double heading, double nav_rate) {
         SimulationArguments args;
         args.sonar = sonar;
@@ -199,9 +200,11 @@ scene or preset; sonarmap.FileError for a bad scene file.)doc");
 
   m.def(
       "evaluate",
-      [](const OccupancyMap& map, const py::handle& scene, double tolerance, std::optional<double> z_min,
+      [](const OccupancyMap& map, const py::object& scene, double tolerance, std::optional<double> z_min,
          std::optional<double> z_max, std::optional<double> max_range, const py::object& sensor) {
-        const Scene truth = sceneArgument(scene, MsisHeadOptions{});
+        // As `sonarmap eval --truth`: an existing file wins over a built-in name (built Micron-sized).
+        const bool is_file = py::isinstance<py::str>(scene) && std::filesystem::exists(scene.cast<std::string>());
+        const Scene truth = is_file ? readScene(scene.cast<std::string>()) : sceneArgument(scene, MsisHeadOptions{});
         GroundTruthOptions options;
         options.tolerance_m = tolerance;
         options.z_min_m = z_min;
@@ -224,7 +227,8 @@ scene or preset; sonarmap.FileError for a bad scene file.)doc");
       py::arg("z_max") = py::none(), py::arg("max_range") = py::none(), py::arg("sensor") = py::none(),
       R"doc(Scores a map against a ground-truth scene, as ``sonarmap eval`` (eval/ground_truth.hpp).
 
-map: sonarmap.OccupancyMap. scene: sonarmap.Scene, built-in name (Micron-sized) or scene file.
+map: sonarmap.OccupancyMap. scene: sonarmap.Scene, a scene file, or a built-in name (Micron-sized;
+an existing file of that name wins, as in the CLI).
 tolerance: match distance, metres (raised to one voxel diagonal). z_min, z_max: the evaluated slab,
 map frame, metres (default: the known voxels'). max_range: sonar reach, metres (default: the map's
 reach). sensor: (K, 3) float64 sonar positions, map frame (default: the origin).

@@ -48,14 +48,14 @@ namespace {
 
 /// A read-only numpy view of `data` (shape `shape`) owned by the Python object `owner`.
 template <class T>
-py::array readOnlyView(const std::vector<T>& data, std::vector<py::ssize_t> shape, const py::handle& owner) {
+py::array readOnlyView(const std::vector<T>& data, std::vector<py::ssize_t> shape, const py::object& owner) {
   py::array_t<T> view(shape, data.data(), owner);
   view.attr("setflags")(py::arg("write") = false);
   return view;
 }
 
 /// A PolarImage's intensities as a writable (rows, cols) uint8 view of its cv::Mat, owned by `owner`.
-py::array matView(cv::Mat& mat, const py::handle& owner) {
+py::array matView(cv::Mat& mat, const py::object& owner) {
   if (!mat.isContinuous()) mat = mat.clone();
   return py::array_t<std::uint8_t>({static_cast<py::ssize_t>(mat.rows), static_cast<py::ssize_t>(mat.cols)},
                                     {static_cast<py::ssize_t>(mat.step[0]), py::ssize_t{1}}, mat.ptr<std::uint8_t>(),
@@ -95,14 +95,14 @@ PySonarLog readLog(const std::string& path, const std::string& format) {
 }
 
 /// A SonarLog from arrays (copied into the library's beams).
-PySonarLog logFromArrays(const py::handle& intensities, const py::handle& time_s, const py::handle& bearing_rad,
-                         const py::handle& bin_length_m, const py::object& valid_bins, const std::string& format) {
+PySonarLog logFromArrays(const py::object& intensities, const py::object& time_s, const py::object& bearing_rad,
+                         const py::object& bin_length_m, const py::object& valid_bins, const std::string& format) {
   py::array image = py::array::ensure(intensities);
   if (!image || !image.dtype().equal(py::dtype::of<std::uint8_t>()) || image.ndim() != 2) {
     throwValueError("intensities must be a (beams, bins) uint8 array");
   }
   const auto rows = static_cast<std::size_t>(image.shape(0));
-  auto column = [&](const py::handle& values, const char* name) {
+  auto column = [&](const py::object& values, const char* name) {
     py::array_t<double, py::array::c_style> array = requireFloat64(values, name, 1);
     if (static_cast<std::size_t>(array.shape(0)) != rows) {
       throwValueError(std::string(name) + " must have one value per beam (" + std::to_string(rows) + "), got " +
@@ -184,7 +184,7 @@ PolarImage polarOf(const PySonarLog& log, const std::optional<std::int64_t>& swe
   return makePolarImage(log.log.beams, from, to);
 }
 
-PolarImage polarFromArrays(const py::handle& intensities, const py::handle& bearing_rad, double bin_length_m,
+PolarImage polarFromArrays(const py::object& intensities, const py::object& bearing_rad, double bin_length_m,
                            const py::object& time_s, const std::optional<double>& intensity_span_db) {
   py::array image = py::array::ensure(intensities);
   if (!image || !image.dtype().equal(py::dtype::of<std::uint8_t>()) || image.ndim() != 2) {
