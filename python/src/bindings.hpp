@@ -24,6 +24,7 @@ void bindSonar(py::module_& m);     // bind_sonar.cpp: SonarLog, polar and Carte
 void bindMapping(py::module_& m);   // bind_mapping.cpp: map_sonar_log, MappingStats, navigation
 void bindOnline(py::module_& m);    // bind_online.cpp: OnlineMapper
 void bindSimEval(py::module_& m);   // bind_sim_eval.cpp: Scene, simulate, evaluate
+void bindViews(py::module_& m);     // bind_views.cpp: slices and top/side views of a map as arrays
 
 }  // namespace sonarmap::python
 

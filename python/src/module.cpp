@@ -10,4 +10,5 @@ PYBIND11_MODULE(_sonarmap, m) {
   sonarmap::python::bindMapping(m);
   sonarmap::python::bindOnline(m);
   sonarmap::python::bindSimEval(m);
+  sonarmap::python::bindViews(m);
 }

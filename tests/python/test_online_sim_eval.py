@@ -103,3 +103,20 @@ def test_map_options_errors(simulated_tank):
         sonarmap.map_sonar_log(simulated_tank.log, nav=np.zeros((3, 6)))
     with pytest.raises(sonarmap.ValueError, match="mounting"):
         sonarmap.map_sonar_log(simulated_tank.log, mounting=[0, 0, 0, 180, 0, 0])
+
+
+def test_map_pictures_for_notebooks(simulated_tank):
+    m = sonarmap.map_sonar_log(simulated_tank.log)
+    cells = m.slice_cells(0.0)
+    assert cells.dtype == np.float64 and cells.shape[1] == 2 and len(cells) > 0
+    assert np.all(m.classify(np.column_stack([cells, np.zeros(len(cells))])) == 1)
+    free = m.slice_cells(0.0, "free")
+    assert len(free) > len(cells)
+    image = m.render_slice(0.0)
+    assert image.dtype == np.uint8 and image.ndim == 2
+    assert (image == 0).sum() == len(cells) and (image == 255).sum() == len(free)
+    top = m.render_top_view(max_side_px=400)
+    assert top["image"].ndim == 3 and top["image"].shape[2] == 3 and top["occupied_pixels"] > 0
+    assert m.render_side_view()["image"].dtype == np.uint8
+    with pytest.raises(sonarmap.ValueError, match="occupancy"):
+        m.slice_cells(0.0, "maybe")
