@@ -88,6 +88,9 @@ OctoMap-python names: insertPointCloud -> insert_point_cloud, getLabels -> class
 extractPointCloud -> occupied_voxels / free_voxels, writeBinary -> write("x.bt"),
 readBinary / read -> OccupancyMap.read, castRay -> cast_ray, size -> num_nodes,
 getNumLeafNodes -> num_leaf_nodes, memoryUsage -> memory_bytes, getResolution -> resolution.
+
+The GIL is released during insertions, queries and file I/O: several threads may query one map
+at once, but a map must not be modified while another thread reads or modifies it.
 )doc")
       .def(py::init([](double resolution, double prob_hit, double prob_miss, double clamping_thres_min,
                        double clamping_thres_max, double occupancy_thres) {

@@ -154,8 +154,9 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
                     const py::object& progress, const py::kwargs& kwargs) {
   const MappingArguments args = mappingArguments(kwargs, {"format"});
   NominalBeam beam = log.beam;
-  if (kwargs.contains("format") && !kwargs["format"].is_none() && kwargs["format"].cast<std::string>() != "auto") {
-    beam = nominalBeam(parseLogFormat(kwargs["format"].cast<std::string>()));
+  if (kwargs.contains("format") && !kwargs["format"].is_none()) {
+    const std::string format = text(kwargs["format"], "format");
+    if (format != "auto") beam = nominalBeam(parseLogFormat(format));
   }
   const MapperOptions options = withSonarBeam(toMapperOptions(args), args, beam);
   if (!mounting.is_none() && nav.is_none()) throwValueError("mounting needs nav (the sonar's mounting on a moving vehicle)");

@@ -114,8 +114,10 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
             const PointsView view = requirePoints(points, "points", true);
             py::array_t<double> out(static_cast<py::ssize_t>(view.size()));
             double* distance = out.mutable_data();
-            py::gil_scoped_release release;
-            for (std::size_t i = 0; i < view.size(); ++i) distance[i] = distanceToSurface(scene, view[i]);
+            {
+              py::gil_scoped_release release;
+              for (std::size_t i = 0; i < view.size(); ++i) distance[i] = distanceToSurface(scene, view[i]);
+            }
             return out;
           },
           py::arg("points"), "Distance of each point (N, 3) float64 m, map frame) to the nearest surface: float64 (N,), metres.")
