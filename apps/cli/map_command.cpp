@@ -55,19 +55,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
           [&args, checked] { runMap(args, checked->options, checked->sonar_to_body, checked->side_png); }};
 }
 
-Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) {
-  if (mounting.empty()) return defaultSonarToBody();
-  if (mounting.size() != 6 || !std::all_of(mounting.begin(), mounting.end(), [](double v) { return std::isfinite(v); })) {
-    throw ValueError("--mounting expects six finite numbers X,Y,Z,ROLL,PITCH,YAW (metres, degrees)");
-  }
-  constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-  NavSample pose;  // the sonar's pose in the body frame, built as a fix's body pose in NED
-  pose.position_ned_m = Eigen::Vector3d(mounting[0], mounting[1], mounting[2]);
-  pose.roll_rad = mounting[3] * kRadPerDeg;
-  pose.pitch_rad = mounting[4] * kRadPerDeg;
-  pose.yaw_rad = mounting[5] * kRadPerDeg;
-  return bodyToNed(pose);
-}
+Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) { return sonarToBodyOfMounting(mounting); }
 
 namespace {
 

@@ -21,13 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-
-bool isBuiltinScene(const std::string& name) {
-  const std::vector<std::string> names = builtinSceneNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
 /// "a, b, c".
 std::string joined(const std::vector<std::string>& names, const char* separator) {
   std::string text;
@@ -38,36 +31,9 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
 /// A built-in name wins over a file of the same name (write ./tank for the file).
 /// @throws ValueError (usage) when `scene` is neither a built-in name nor an existing file.
 void checkScene(const std::string& scene) {
-  if (isBuiltinScene(scene) || fs::exists(scene)) return;
+  if (isBuiltinSceneName(scene) || fs::exists(scene)) return;
   throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(builtinSceneNames(), ", ") +
                    ") nor a scene file");
-}
-
-/// The simulation options of the arguments. @throws ValueError for a value out of range (usage).
-MsisSimulationOptions toSimulationOptions(const SimulateArgs& args) {
-  if (args.turns < 1) throw ValueError("--turns must be at least 1");
-  if (!std::isfinite(args.speed_mps)) throw ValueError("--speed must be finite");
-  if (!std::isfinite(args.heading_deg)) throw ValueError("--heading must be finite");
-  if (!(std::isfinite(args.sector_deg) && args.sector_deg > 0.0 && args.sector_deg <= 360.0)) {
-    throw ValueError("--sector must be in (0, 360] degrees");
-  }
-  if (!std::isfinite(args.sector_center_deg)) throw ValueError("--sector-center must be finite");
-  const SonarPreset preset = sonarPreset(args.sonar);
-  MsisSimulationOptions options;
-  options.head = preset.head;
-  options.echo = preset.echo;
-  options.head.sector_width_rad = args.sector_deg == 360.0 ? 2.0 * std::numbers::pi : args.sector_deg * kDegree;
-  options.head.sector_center_rad = args.sector_center_deg * kDegree;
-  options.turns = args.turns;
-  options.seed = args.seed;
-  options.nav_rate_hz = args.nav_rate_hz;
-  NavSample start;
-  start.yaw_rad = args.heading_deg * std::numbers::pi / 180.0;
-  const Eigen::Vector3d velocity_ned_mps(args.speed_mps * std::cos(start.yaw_rad),
-                                         args.speed_mps * std::sin(start.yaw_rad), 0.0);
-  options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);
-  options.validate();
-  return options;
 }
 
 void check(const SimulateArgs& args, MsisSimulationOptions& options) {
@@ -80,9 +46,7 @@ void check(const SimulateArgs& args, MsisSimulationOptions& options) {
 
 void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   const MsisHeadOptions& head = options.head;
-  const Scene scene = isBuiltinScene(args.scene)
-                          ? builtinScene(args.scene, head.range_m, head.vertical_beam_width_rad)
-                          : readScene(args.scene);
+  const Scene scene = sceneOf(args.scene, head);
   const MsisSimulation simulation = simulateMsis(scene, options);
   OutputDir dir(args.output_dir);
   FileTransaction outputs;

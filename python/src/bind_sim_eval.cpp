@@ -1,0 +1,243 @@
+// The 3D model side: ground-truth scenes (sim/scene.hpp, scene_file.hpp, builtin_scenes.hpp), the
+// MSIS simulator (sim/msis_simulator.hpp, with `sonarmap simulate`'s arguments:
+// sim/simulation_arguments.hpp) and the scoring of a map against a scene (eval/ground_truth.hpp).
+#include <filesystem>
+#include <numbers>
+#include <variant>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "navigation_arrays.hpp"
+#include "numpy_checks.hpp"
+#include "sonarmap/eval/ground_truth.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/scene_file.hpp"
+#include "sonarmap/sim/simulation_arguments.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
+
+namespace sonarmap::python {
+namespace {
+
+/// A simulated run as Python sees it.
+struct PySimulation {
+  PySonarLog log;
+  NavTrack nav;
+  Scene scene;
+};
+
+py::dict primitiveDict(const Primitive& primitive) {
+  py::dict d;
+  d["kind"] = primitiveKind(primitive);
+  std::visit(
+      [&d](const auto& p) {
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, Plane>) {
+          d["point_m"] = std::vector<double>{p.point_m.x(), p.point_m.y(), p.point_m.z()};
+          d["normal"] = std::vector<double>{p.normal.x(), p.normal.y(), p.normal.z()};
+        } else if constexpr (std::is_same_v<T, Box>) {
+          d["center_m"] = std::vector<double>{p.center_m.x(), p.center_m.y(), p.center_m.z()};
+          d["size_m"] = std::vector<double>{p.size_m.x(), p.size_m.y(), p.size_m.z()};
+          d["yaw_rad"] = p.yaw_rad;
+        } else {
+          d["center_x_m"] = p.center_x_m;
+          d["center_y_m"] = p.center_y_m;
+          d["radius_m"] = p.radius_m;
+          d["z_min_m"] = p.z_min_m;
+          d["z_max_m"] = p.z_max_m;
+        }
+        d["reflectivity"] = p.reflectivity;
+      },
+      primitive);
+  return d;
+}
+
+py::dict reportDict(const GroundTruthReport& r) {
+  py::dict d;
+  d["precision"] = r.precision;
+  d["recall"] = r.recall;
+  d["erosion"] = r.erosion;
+  d["free_accuracy"] = r.free_accuracy;
+  d["occupied_voxels"] = r.occupied_voxels;
+  d["occupied_on_surface"] = r.occupied_on_surface;
+  d["surface_voxels"] = r.surface_voxels;
+  d["surface_voxels_found"] = r.surface_voxels_found;
+  d["surface_voxels_free"] = r.surface_voxels_free;
+  d["free_voxels"] = r.free_voxels;
+  d["free_in_water"] = r.free_in_water;
+  d["matched_voxels"] = r.matched_voxels;
+  d["wall_error_mean_m"] = r.mean_distance_m;
+  d["wall_error_rms_m"] = r.rms_distance_m;
+  d["surface_error_median_m"] = r.surface_error_median_m;
+  d["surface_error_p90_m"] = r.surface_error_p90_m;
+  d["tolerance_m"] = r.tolerance_m;
+  d["z_min_m"] = r.z_min_m;
+  d["z_max_m"] = r.z_max_m;
+  d["max_range_m"] = r.max_range_m;
+  py::list surfaces;
+  for (const SurfaceOffset& s : r.surfaces) {
+    py::dict e;
+    e["primitive"] = s.primitive;
+    e["voxels"] = s.voxels;
+    e["median_signed_offset_m"] = s.median_signed_offset_m;
+    surfaces.append(e);
+  }
+  d["surfaces"] = surfaces;
+  return d;
+}
+
+Scene sceneArgument(const py::object& scene, const MsisHeadOptions& head) {
+  if (py::isinstance<Scene>(scene)) return scene.cast<Scene>();
+  if (!py::isinstance<py::str>(scene)) throwValueError("scene expects a sonarmap.Scene, a built-in scene name or a scene file path");
+  return sceneOf(scene.cast<std::string>(), head);
+}
+
+}  // namespace
+
+void bindSimEval(py::module_& m) {
+  py::class_<Scene>(m, "Scene", R"doc(
+A ground-truth scene: planes, boxes and vertical cylinders in the map frame (metres; C++
+sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evaluate take it.
+)doc")
+      .def_property_readonly(
+          "primitives",
+          [](const Scene& scene) {
+            py::list out;
+            for (const Primitive& p : scene.primitives) out.append(primitiveDict(p));
+            return out;
+          },
+          "The primitives as dicts (kind, geometry in metres/radians, reflectivity), in scene order.")
+      .def(
+          "distance",
+          [](const Scene& scene, const py::object& points) {
+            const PointsView view = requirePoints(points, "points", true);
+            py::array_t<double> out(static_cast<py::ssize_t>(view.size()));
+            double* distance = out.mutable_data();
+            {
+              py::gil_scoped_release release;
+              for (std::size_t i = 0; i < view.size(); ++i) distance[i] = distanceToSurface(scene, view[i]);
+            }
+            return out;
+          },
+          py::arg("points"), "Distance of each point (N, 3) float64 m, map frame) to the nearest surface: float64 (N,), metres.")
+      .def(
+          "write",
+          [](const Scene& scene, const std::string& path) { writeScene(path, scene); }, py::arg("path"),
+          "Writes the scene file (scene_file.hpp format), atomically. Raises sonarmap.FileError, sonarmap.ValueError.")
+      .def("__len__", [](const Scene& scene) { return scene.primitives.size(); })
+      .def("__repr__", [](const Scene& scene) { return "Scene(" + std::to_string(scene.primitives.size()) + " primitives)"; });
+
+  m.def(
+      "builtin_scene",
+      [](const std::string& name, double reach_m, double vertical_beam_width_deg) {
+        return builtinScene(name, reach_m, vertical_beam_width_deg * std::numbers::pi / 180.0);
+      },
+      py::arg("name"), py::arg("reach_m") = kBuiltinSceneReach_m, py::arg("vertical_beam_width_deg") = 35.0,
+      R"doc(A built-in scene ("tank", "harbour", "hull", "soft", "open-water", 3D: "quay3d") built for a head of
+range scale reach_m (metres) and vertical beam width (degrees). Raises sonarmap.ValueError listing
+the names for an unknown one.)doc");
+  m.def("builtin_scene_names", [] {
+    std::vector<std::string> names = builtinSceneNames();
+    for (const std::string& name : builtinScene3dNames()) names.push_back(name);
+    return names;
+  }, "Names builtin_scene and simulate accept.");
+  m.def("sonar_preset_names", &sonarPresetNames, "Head presets simulate accepts (its sonar= argument).");
+  m.def(
+      "read_scene", [](const std::string& path) { return readScene(path); }, py::arg("path"),
+      "Reads a scene file. Raises sonarmap.FileError naming the line and field.");
+
+  py::class_<PySimulation>(m, "Simulation", "A simulated MSIS run: its log, navigation track and scene.")
+      .def_readonly("log", &PySimulation::log, "sonarmap.SonarLog of the simulated beams (format \"simulated\").")
+      .def_property_readonly("nav", [](const PySimulation& s) { return navArray(s.nav); },
+                             "float64 (N, 7) navigation fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED, FRD).")
+      .def_readonly("scene", &PySimulation::scene, "sonarmap.Scene that was scanned (map frame).")
+      .def("__repr__", [](const PySimulation& s) {
+        return "Simulation(" + std::to_string(s.log.log.beams.size()) + " beams, " + std::to_string(s.nav.size()) +
+               " nav fixes, " + std::to_string(s.scene.primitives.size()) + " primitives)";
+      });
+
+  const SimulationArguments defaults{};
+  m.def(
+      "simulate",
+      [](const py::object& scene, const std::string& sonar, std::size_t turns, std::uint64_t seed, double sector,
+         double sector_center, double speed, double heading, double nav_rate) {
+        SimulationArguments args;
+        args.sonar = sonar;
+        args.turns = turns;
+        args.seed = seed;
+        args.sector_deg = sector;
+        args.sector_center_deg = sector_center;
+        args.speed_mps = speed;
+        args.heading_deg = heading;
+        args.nav_rate_hz = nav_rate;
+        const MsisSimulationOptions options = toSimulationOptions(args);
+        const Scene ground_truth = sceneArgument(scene, options.head);
+        PySimulation out;
+        {
+          py::gil_scoped_release release;
+          MsisSimulation run = simulateMsis(ground_truth, options);
+          out.log.log = std::move(run.log);
+          out.nav = std::move(run.nav);
+          out.scene = std::move(run.scene);
+        }
+        out.log.format = "simulated";
+        out.log.beam = NominalBeam{options.head.horizontal_beam_width_rad, options.head.vertical_beam_width_rad};
+        return out;
+      },
+      py::arg("scene"), py::arg("sonar") = defaults.sonar, py::arg("turns") = defaults.turns,
+      py::arg("seed") = defaults.seed, py::arg("sector") = defaults.sector_deg,
+      py::arg("sector_center") = defaults.sector_center_deg, py::arg("speed") = defaults.speed_mps,
+      py::arg("heading") = defaults.heading_deg, py::arg("nav_rate") = defaults.nav_rate_hz,
+      R"doc(Simulates an MSIS scanning a scene, as ``sonarmap simulate`` (the same arguments, the same run).
+
+scene: a built-in scene name (built for the preset's range), a scene file path, or a sonarmap.Scene.
+sonar: head preset (sonar_preset_names()). turns: full turns (or sector passes), >= 1. seed: of the
+speckle and noise (a seed always gives the same beams). sector: scanned width in degrees, (0, 360].
+sector_center: degrees, counter-clockwise from the sonar's x. speed: m/s along heading (degrees
+clockwise from north). nav_rate: fixes per second (0: none).
+Returns sonarmap.Simulation (log, nav, scene). ``simulate(...).log.write_csv(p)`` writes the file
+the CLI writes as beams.csv. Raises sonarmap.ValueError for a value out of range or an unknown
+scene or preset; sonarmap.FileError for a bad scene file.)doc");
+
+  m.def(
+      "evaluate",
+      [](const OccupancyMap& map, const py::object& scene, double tolerance, std::optional<double> z_min,
+         std::optional<double> z_max, std::optional<double> max_range, const py::object& sensor) {
+        // As `sonarmap eval --truth`: an existing file wins over a built-in name (built Micron-sized).
+        const bool is_file = py::isinstance<py::str>(scene) && std::filesystem::exists(scene.cast<std::string>());
+        const Scene truth = is_file ? readScene(scene.cast<std::string>()) : sceneArgument(scene, MsisHeadOptions{});
+        GroundTruthOptions options;
+        options.tolerance_m = tolerance;
+        options.z_min_m = z_min;
+        options.z_max_m = z_max;
+        options.max_range_m = max_range;
+        if (!sensor.is_none()) {
+          const PointsView view = requirePoints(sensor, "sensor", true);
+          options.sensor_positions_m.clear();
+          for (std::size_t i = 0; i < view.size(); ++i) options.sensor_positions_m.push_back(view[i]);
+        }
+        options.validate();
+        GroundTruthReport report;
+        {
+          py::gil_scoped_release release;
+          report = evaluateAgainstScene(map.tree, truth, options);
+        }
+        return reportDict(report);
+      },
+      py::arg("map"), py::arg("scene"), py::arg("tolerance") = 0.1, py::arg("z_min") = py::none(),
+      py::arg("z_max") = py::none(), py::arg("max_range") = py::none(), py::arg("sensor") = py::none(),
+      R"doc(Scores a map against a ground-truth scene, as ``sonarmap eval`` (eval/ground_truth.hpp).
+
+map: sonarmap.OccupancyMap. scene: sonarmap.Scene, a scene file, or a built-in name (Micron-sized;
+an existing file of that name wins, as in the CLI).
+tolerance: match distance, metres (raised to one voxel diagonal). z_min, z_max: the evaluated slab,
+map frame, metres (default: the known voxels'). max_range: sonar reach, metres (default: the map's
+reach). sensor: (K, 3) float64 sonar positions, map frame (default: the origin).
+Returns a dict: precision, recall, erosion, free_accuracy (fractions), voxel counts,
+wall_error_mean_m, wall_error_rms_m, surface_error_median_m, surface_error_p90_m, the tolerance,
+slab and range used, and per-surface offsets. Raises sonarmap.ValueError for invalid options or a
+map with nothing known in the slab.)doc");
+}
+
+}  // namespace sonarmap::python

@@ -1,0 +1,66 @@
+#pragma once
+// The parts of the `_sonarmap` extension, one per layer of the library; module.cpp calls each.
+
+#include <optional>
+
+#include <pybind11/pybind11.h>
+
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/octree/occupancy_octree.hpp"
+
+namespace sonarmap::python {
+
+namespace py = pybind11;
+
+/// The map object Python sees: an OcTree16 and, for a map made by the sonar mapper, its counts.
+struct OccupancyMap {
+  OcTree16 tree;
+  std::optional<MappingStats> stats;
+};
+
+void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses
+void bindMap(py::module_& m);       // bind_map.cpp: OccupancyMap (octree, queries, files)
+void bindSonar(py::module_& m);     // bind_sonar.cpp: SonarLog, polar and Cartesian images, detectors
+void bindMapping(py::module_& m);   // bind_mapping.cpp: map_sonar_log, MappingStats, navigation
+void bindOnline(py::module_& m);    // bind_online.cpp: OnlineMapper
+void bindSimEval(py::module_& m);   // bind_sim_eval.cpp: Scene, simulate, evaluate
+void bindViews(py::module_& m);     // bind_views.cpp: slices and top/side views of a map as arrays
+
+}  // namespace sonarmap::python
+
+#include <string>
+#include <vector>
+
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/mapping/mapping_arguments.hpp"
+#include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/polar_image.hpp"
+
+namespace sonarmap::python {
+
+/// A sonar log as Python sees it: the library's SonarLog, the beam of the sonar that recorded it
+/// (for the mapper's default beam widths), and the beams as contiguous arrays, built once on first
+/// access (the library stores each beam's bins in its own vector).
+struct PySonarLog {
+  SonarLog log;
+  std::string format;  ///< "mat", "csv", … (parseLogFormat's names) or "simulated"
+  NominalBeam beam;    ///< the sonar's nominal beam widths
+  // Contiguous copies for numpy, filled by cache().
+  bool cached = false;
+  int bins = 0;
+  std::vector<std::uint8_t> intensities;  ///< beams × bins, row-major, 0 beyond each beam's bins
+  std::vector<std::int32_t> valid_bins;
+  std::vector<double> time_s, bearing_rad, bin_length_m, intensity_span_db;
+  void cache();
+};
+
+/// The mapping keyword arguments (the command line's option names, '-' as '_', see
+/// mapping_arguments.hpp) as MappingArguments. `allowed_extra` names further keywords the caller
+/// handles itself (skipped here).
+/// @throws TypeError for an unknown keyword; sonarmap.ValueError for a value of the wrong kind.
+MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra = {});
+
+/// The keyword names mappingArguments accepts.
+std::vector<std::string> mappingArgumentNames();
+
+}  // namespace sonarmap::python

@@ -1,0 +1,76 @@
+#include "sonarmap/sim/simulation_arguments.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <vector>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/scene_file.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
+#include "sonarmap/sim/trajectory.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+/// "a, b, c".
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+std::vector<std::string> allBuiltinSceneNames() {
+  std::vector<std::string> names = builtinSceneNames();
+  for (const std::string& name : builtinScene3dNames()) names.push_back(name);
+  return names;
+}
+
+}  // namespace
+
+MsisSimulationOptions toSimulationOptions(const SimulationArguments& args) {
+  if (args.turns < 1) throw ValueError("--turns must be at least 1");
+  if (!std::isfinite(args.speed_mps)) throw ValueError("--speed must be finite");
+  if (!std::isfinite(args.heading_deg)) throw ValueError("--heading must be finite");
+  if (!(std::isfinite(args.sector_deg) && args.sector_deg > 0.0 && args.sector_deg <= 360.0)) {
+    throw ValueError("--sector must be in (0, 360] degrees");
+  }
+  if (!std::isfinite(args.sector_center_deg)) throw ValueError("--sector-center must be finite");
+  const SonarPreset preset = sonarPreset(args.sonar);
+  MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  options.head.sector_width_rad = args.sector_deg == 360.0 ? 2.0 * std::numbers::pi : args.sector_deg * kRadPerDeg;
+  options.head.sector_center_rad = args.sector_center_deg * kRadPerDeg;
+  options.turns = args.turns;
+  options.seed = args.seed;
+  options.nav_rate_hz = args.nav_rate_hz;
+  NavSample start;
+  start.yaw_rad = args.heading_deg * kRadPerDeg;
+  const Eigen::Vector3d velocity_ned_mps(args.speed_mps * std::cos(start.yaw_rad),
+                                         args.speed_mps * std::sin(start.yaw_rad), 0.0);
+  options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);
+  options.validate();
+  return options;
+}
+
+bool isBuiltinSceneName(const std::string& name) {
+  const std::vector<std::string> names = allBuiltinSceneNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+Scene sceneOf(const std::string& scene, const MsisHeadOptions& head) {
+  if (isBuiltinSceneName(scene)) return builtinScene(scene, head.range_m, head.vertical_beam_width_rad);
+  if (!std::filesystem::exists(scene)) {
+    throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(allBuiltinSceneNames()) +
+                     ") nor a scene file");
+  }
+  return readScene(scene);
+}
+
+}  // namespace sonarmap

@@ -1,0 +1,122 @@
+"""The online mapper, the simulator and the evaluation against the ground truth."""
+
+import numpy as np
+import pytest
+
+import sonarmap
+
+
+def _bytes_of(m, path):
+    m.write(str(path))
+    return path.read_bytes()
+
+
+def test_online_mapper_gives_map_sonar_logs_map(simulated_tank, tmp_path):
+    log = simulated_tank.log
+    batch = sonarmap.map_sonar_log(log, resolution=0.05)
+    online = sonarmap.OnlineMapper(resolution=0.05)
+    for i in range(len(log)):  # beam by beam, as from a live sonar
+        online.add_beam(log.time_s[i], log.bearing_rad[i], log.bin_length_m[i],
+                        log.intensities[i, : log.valid_bins[i]])
+    assert online.beams_pending > 0  # the last sweep waits for the end of the stream
+    online.finish()
+    m = online.map()
+    assert online.sweeps_integrated == batch.stats.sweeps == m.stats.sweeps
+    assert _bytes_of(m, tmp_path / "online.bt") == _bytes_of(batch, tmp_path / "batch.bt")
+    with pytest.raises(sonarmap.ValueError):
+        online.add_beam(0.0, 0.0, 0.01, np.zeros(10, dtype=np.uint8))  # after finish()
+
+
+def test_online_mapper_with_navigation(tmp_path):
+    run = sonarmap.simulate("harbour", turns=2, speed=0.1, heading=45)
+    batch = sonarmap.map_sonar_log(run.log, nav=run.nav, resolution=0.05)
+    online = sonarmap.OnlineMapper(nav=True, resolution=0.05, format="csv")
+    online.add_nav(run.nav)
+    online.add_beams(run.log)
+    online.finish()
+    assert _bytes_of(online.map(), tmp_path / "online.bt") == _bytes_of(batch, tmp_path / "batch.bt")
+    with pytest.raises(sonarmap.ValueError):
+        sonarmap.OnlineMapper().add_nav_fix(0.0, 0.0, 0.0, 0.0)  # no navigation mode
+
+
+def test_online_mapper_bad_beams():
+    online = sonarmap.OnlineMapper(integration="beam")
+    with pytest.raises(sonarmap.ValueError, match="uint8"):
+        online.add_beam(0.0, 0.0, 0.01, np.zeros(10, dtype=np.float32))
+    with pytest.raises(sonarmap.ValueError):
+        online.add_beam(0.0, 0.0, -0.01, np.zeros(10, dtype=np.uint8))
+    with pytest.raises(sonarmap.ValueError, match="integration"):
+        sonarmap.OnlineMapper(integration="sometimes")
+
+
+def test_simulate_then_evaluate_is_sane(simulated_tank):
+    m = sonarmap.map_sonar_log(simulated_tank.log)
+    report = sonarmap.evaluate(m, simulated_tank.scene, z_min=-0.01, z_max=0.01)
+    assert 0.7 < report["precision"] <= 1.0
+    assert 0.5 < report["recall"] <= 1.0
+    assert report["occupied_voxels"] > 0 and report["wall_error_rms_m"] < 0.1
+    by_name = sonarmap.evaluate(m, "tank", z_min=-0.01, z_max=0.01)
+    assert by_name["precision"] == report["precision"]
+
+
+def test_simulation_outputs(simulated_tank, tmp_path):
+    assert simulated_tank.nav.shape[1] == 7 and simulated_tank.nav.dtype == np.float64
+    scene = simulated_tank.scene
+    assert len(scene) == len(scene.primitives) > 0
+    path = tmp_path / "scene.txt"
+    scene.write(str(path))
+    again = sonarmap.read_scene(str(path))
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.5, 0.0]])
+    assert np.allclose(again.distance(points), scene.distance(points))
+    assert "quay3d" in sonarmap.builtin_scene_names() and "micron" in sonarmap.sonar_preset_names()
+    with pytest.raises(sonarmap.ValueError, match="scene"):
+        sonarmap.simulate("atlantis")
+    with pytest.raises(sonarmap.ValueError, match="turns"):
+        sonarmap.simulate("tank", turns=0)
+    bad = tmp_path / "bad_scene.txt"
+    bad.write_text("sphere 1 2 3\n")
+    with pytest.raises(sonarmap.FileError, match="line 1"):
+        sonarmap.read_scene(str(bad))
+
+
+def test_3d_mission_maps_in_volume(tmp_path):
+    run = sonarmap.simulate("quay3d", turns=2, speed=0.1)
+    m = sonarmap.map_sonar_log(run.log, nav=run.nav, volume=True, resolution=0.1)
+    centers, sizes = m.occupied_voxels()
+    assert len(sizes) > 0 and np.ptp(centers[:, 2]) > 0.2  # a 3D map: occupied voxels at several heights
+
+
+def test_progress_and_warnings(simulated_tank):
+    calls = []
+    sonarmap.map_sonar_log(simulated_tank.log, progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1][0] == calls[-1][1]
+    with pytest.warns(RuntimeWarning):
+        sonarmap.map_sonar_log(simulated_tank.log, min_range=4.5)  # beyond most echoes: no obstacles
+
+
+def test_map_options_errors(simulated_tank):
+    with pytest.raises(sonarmap.ValueError, match="resolution"):
+        sonarmap.map_sonar_log(simulated_tank.log, resolution=-1)
+    with pytest.raises(sonarmap.ValueError, match="hit-probability"):
+        sonarmap.map_sonar_log(simulated_tank.log, hit_probability=0.2)
+    with pytest.raises(sonarmap.ValueError, match="nav"):
+        sonarmap.map_sonar_log(simulated_tank.log, nav=np.zeros((3, 6)))
+    with pytest.raises(sonarmap.ValueError, match="mounting"):
+        sonarmap.map_sonar_log(simulated_tank.log, mounting=[0, 0, 0, 180, 0, 0])
+
+
+def test_map_pictures_for_notebooks(simulated_tank):
+    m = sonarmap.map_sonar_log(simulated_tank.log)
+    cells = m.slice_cells(0.0)
+    assert cells.dtype == np.float64 and cells.shape[1] == 2 and len(cells) > 0
+    assert np.all(m.classify(np.column_stack([cells, np.zeros(len(cells))])) == 1)
+    free = m.slice_cells(0.0, "free")
+    assert len(free) > len(cells)
+    image = m.render_slice(0.0)
+    assert image.dtype == np.uint8 and image.ndim == 2
+    assert (image == 0).sum() == len(cells) and (image == 255).sum() == len(free)
+    top = m.render_top_view(max_side_px=400)
+    assert top["image"].ndim == 3 and top["image"].shape[2] == 3 and top["occupied_pixels"] > 0
+    assert m.render_side_view()["image"].dtype == np.uint8
+    with pytest.raises(sonarmap.ValueError, match="occupancy"):
+        m.slice_cells(0.0, "maybe")
