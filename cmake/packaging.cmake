@@ -20,7 +20,7 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
   "libopencv-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, pkg-config")
-if(TARGET _sonarmap)
+if(TARGET sonarmap_python)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}), python3 (<< ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}.999), python3-numpy")
 endif()
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake, g++, octovis, chromium")

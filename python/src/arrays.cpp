@@ -126,7 +126,9 @@ py::array_t<double> navArray(const NavTrack& track) {
 }
 
 NavTrack navTrackOf(const py::object& nav) {
-  if (py::isinstance<py::str>(nav)) return readNavCsv(nav.cast<std::string>());
+  if (py::isinstance<py::str>(nav) || py::hasattr(nav, "__fspath__")) {  // a path: str or os.PathLike
+    return readNavCsv(py::module_::import("os").attr("fspath")(nav).cast<std::string>());
+  }
   const auto array = requireFloat64(nav, "nav", 2);
   if (array.shape(1) != 7) {
     throwValueError("nav must have shape (N, 7): time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad; got " +

@@ -111,9 +111,9 @@ Raises sonarmap.ValueError for a resolution that is not finite and > 0, or proba
 (0, 1) or out of order (prob_miss < 0.5 < prob_hit, clamping_thres_min <= occupancy_thres <= clamping_thres_max).)doc")
       .def_static(
           "read",
-          [](const std::string& path) {
+          [](const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            return OccupancyMap{readMapFile(path), std::nullopt};
+            return OccupancyMap{readMapFile(path.string()), std::nullopt};
           },
           py::arg("path"), R"doc(Reads a map file: ``.bt`` (OctoMap binary: free leaves get the lower, occupied the
 upper clamping log-odds) or ``.ot`` (OctoMap full tree, exact log-odds), chosen by the extension
@@ -122,9 +122,9 @@ a file that cannot be opened, or a malformed/truncated file (naming the field or
 sonarmap.ValueError for a resolution that is not finite and > 0.)doc")
       .def(
           "write",
-          [](const OccupancyMap& map, const std::string& path) {
+          [](const OccupancyMap& map, const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            writeMapFile(map.tree, path);
+            writeMapFile(map.tree, path.string());
           },
           py::arg("path"), R"doc(Writes the map to ``path`` atomically in the format its extension names: ``.bt``
 (maximum likelihood, as OctoMap's writeBinary) or ``.ot`` (full log-odds). The map is not modified

@@ -227,12 +227,12 @@ exceeds max_voxel_updates, or a bad navigation track; sonarmap.FileError for an 
 TypeError for an unknown keyword.)doc");
 
   m.def(
-      "read_nav_csv", [](const std::string& path) { return navArray(readNavCsv(path)); }, py::arg("path"),
+      "read_nav_csv", [](const std::filesystem::path& path) { return navArray(readNavCsv(path.string())); }, py::arg("path"),
       R"doc(Reads a navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad) as an (N, 7) float64 array:
 seconds, NED metres, radians (body FRD, Z-Y-X). Raises sonarmap.FileError naming the line and field.)doc");
   m.def(
       "write_nav_csv",
-      [](const std::string& path, const py::object& nav) { writeNavCsv(path, navTrackOf(py::reinterpret_borrow<py::object>(nav))); },
+      [](const std::filesystem::path& path, const py::object& nav) { writeNavCsv(path.string(), navTrackOf(py::reinterpret_borrow<py::object>(nav))); },
       py::arg("path"), py::arg("nav"),
       "Writes an (N, 7) navigation array as a navigation CSV, atomically. Raises sonarmap.ValueError, sonarmap.FileError.");
 }

@@ -89,8 +89,10 @@ py::dict reportDict(const GroundTruthReport& r) {
 
 Scene sceneArgument(const py::object& scene, const MsisHeadOptions& head) {
   if (py::isinstance<Scene>(scene)) return scene.cast<Scene>();
-  if (!py::isinstance<py::str>(scene)) throwValueError("scene expects a sonarmap.Scene, a built-in scene name or a scene file path");
-  return sceneOf(scene.cast<std::string>(), head);
+  if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__")) {
+    throwValueError("scene expects a sonarmap.Scene, a built-in scene name or a scene file path");
+  }
+  return sceneOf(py::module_::import("os").attr("fspath")(scene).cast<std::string>(), head);
 }
 
 }  // namespace
@@ -123,7 +125,7 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
           py::arg("points"), "Distance of each point (N, 3) float64 m, map frame) to the nearest surface: float64 (N,), metres.")
       .def(
           "write",
-          [](const Scene& scene, const std::string& path) { writeScene(path, scene); }, py::arg("path"),
+          [](const Scene& scene, const std::filesystem::path& path) { writeScene(path.string(), scene); }, py::arg("path"),
           "Writes the scene file (scene_file.hpp format), atomically. Raises sonarmap.FileError, sonarmap.ValueError.")
       .def("__len__", [](const Scene& scene) { return scene.primitives.size(); })
       .def("__repr__", [](const Scene& scene) { return "Scene(" + std::to_string(scene.primitives.size()) + " primitives)"; });
@@ -144,7 +146,7 @@ the names for an unknown one.)doc");
   }, "Names builtin_scene and simulate accept.");
   m.def("sonar_preset_names", &sonarPresetNames, "Head presets simulate accepts (its sonar= argument).");
   m.def(
-      "read_scene", [](const std::string& path) { return readScene(path); }, py::arg("path"),
+      "read_scene", [](const std::filesystem::path& path) { return readScene(path.string()); }, py::arg("path"),
       "Reads a scene file. Raises sonarmap.FileError naming the line and field.");
 
   py::class_<PySimulation>(m, "Simulation", "A simulated MSIS run: its log, navigation track and scene.")

@@ -82,7 +82,8 @@ py::array_t<std::int64_t> sweepArray(const std::vector<SweepRange>& sweeps) {
   return out;
 }
 
-PySonarLog readLog(const std::string& path, const std::string& format) {
+PySonarLog readLog(const std::filesystem::path& file, const std::string& format) {
+  const std::string path = file.string();
   PySonarLog out;
   const LogFormat log_format = inputFormat(path, format);
   {
@@ -326,9 +327,9 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
           "The sweeps (a full turn, a sector pass, a range change) as int64 (S, 2) [first, last_exclusive) beam indices.")
       .def(
           "write_csv",
-          [](const PySonarLog& log, const std::string& path) {
+          [](const PySonarLog& log, const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            writeBeamCsv(path, log.log);
+            writeBeamCsv(path.string(), log.log);
           },
           py::arg("path"), "Writes the beams as a beam CSV (docs/formats.md), atomically. Raises sonarmap.FileError.")
       .def("__len__", [](const PySonarLog& log) { return log.log.beams.size(); })

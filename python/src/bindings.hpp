@@ -4,6 +4,7 @@
 #include <optional>
 
 #include <pybind11/pybind11.h>
+#include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike (pathlib.Path)
 
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"

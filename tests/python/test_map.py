@@ -137,3 +137,14 @@ def test_copy_is_deep(small_map):
     twin.insert_point_cloud(np.array([[-1.0, 0.0, 0.0]]), np.zeros(3))
     assert small_map.classify(np.array([[-1.0, 0.0, 0.0]]))[0] == -1
     assert twin.classify(np.array([[-1.0, 0.0, 0.0]]))[0] == 1
+
+
+def test_paths_may_be_pathlib_paths(small_map, tmp_path):
+    """Every file argument takes str or os.PathLike (pathlib.Path), as Python's own open() does."""
+    path = tmp_path / "map.bt"
+    small_map.write(path)
+    assert sonarmap.OccupancyMap.read(path).num_leaf_nodes() == small_map.num_leaf_nodes()
+    with pytest.raises(sonarmap.FileError):
+        sonarmap.read_sonar_log(tmp_path / "missing.mat")
+    with pytest.raises(sonarmap.FileError):
+        sonarmap.read_nav_csv(tmp_path / "missing.csv")
