@@ -21,7 +21,9 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
   "libopencv-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, pkg-config")
 if(TARGET sonarmap_python)
-  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}), python3 (<< ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}.999), python3-numpy")
+  # the extension is built for one Python minor version (its ABI)
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS
+    ", python3 (>= ${SONARMAP_PYTHON_VERSION}), python3 (<< ${SONARMAP_PYTHON_VERSION}.999), python3-numpy")
 endif()
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake, g++, octovis, chromium")
 include(CPack)
