@@ -65,11 +65,12 @@ BrowserCheck checkInChromium(const fs::path& page, const fs::path& screenshot, c
   char webgl[8] = {};
   std::size_t leaves = 0;
   int level = 0;
-  const int read = std::sscanf(check.message.c_str(),
-                               "boxes=%zu stated=%zu leaves=%zu level=%d box_px=%zu painted=%zu webgl=%7s %15s",
-                               &check.boxes, &check.stated, &leaves, &level, &check.box_px, &check.page_painted_px,
-                               webgl, status);
-  check.ok = read == 8 && std::string(webgl) == "yes" && std::string(status) == "ok";
+  const int read = std::sscanf(
+      check.message.c_str(), "boxes=%zu stated=%zu leaves=%zu level=%d bands=%zu unseen=%zu missing_px=%zu box_px=%zu painted=%zu "
+      "webgl=%7s %15s",
+      &check.boxes, &check.stated, &leaves, &level, &check.bands, &check.unseen_bands, &check.missing_px,
+      &check.box_px, &check.page_painted_px, webgl, status);
+  check.ok = read == 11 && std::string(webgl) == "yes" && std::string(status) == "ok";
 
   args = chromiumArgs(page, work_dir);
   args.insert(args.end() - 1, "--screenshot=" + fs::absolute(screenshot).string());

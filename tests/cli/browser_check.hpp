@@ -16,9 +16,12 @@ struct BrowserCheck {
   std::string message;   ///< the page's check line, or why the check could not run
   std::size_t boxes = 0;            ///< boxes the page drew (`boxes=`)
   std::size_t stated = 0;           ///< boxes the page was given (`stated=`)
+  std::size_t bands = 0;         ///< height bands holding boxes (`bands=`)
+  std::size_t unseen_bands = 0;  ///< of those, bands that painted nothing when drawn alone (`unseen=`)
+  std::size_t missing_px = 0;    ///< pixels bands paint alone but not together (`missing_px=`)
   std::size_t box_px = 0;           ///< pixels of a frame of the boxes alone not background (`box_px=`)
   std::size_t page_painted_px = 0;  ///< pixels of its first frame not background (`painted=`)
-  bool ok = false;                  ///< the page saw WebGL and drew the boxes it was given
+  bool ok = false;  ///< the page saw WebGL, drew the boxes it was given, and saw every band
   /// Pixels of the screenshot's centre (x 400…879, y 250…749, clear of the page's panels) that are
   /// not background, and of those the saturated ones (max − min channel > 60: boxes, not the grey grid).
   std::size_t centre_painted_px = 0;

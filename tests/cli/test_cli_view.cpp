@@ -45,6 +45,9 @@ class cliView : public CliTest {
     EXPECT_EQ(check.boxes, expected_boxes) << check.message;
     EXPECT_EQ(check.stated, expected_boxes) << check.message;
     EXPECT_TRUE(check.ok) << check.message;
+    EXPECT_GE(check.bands, 1U) << check.message;
+    EXPECT_EQ(check.unseen_bands, 0U) << check.message << " (a height band's mesh drew nothing)";
+    EXPECT_LE(check.missing_px * 100, check.box_px) << check.message << " (meshes drew each other's boxes)";
     // The boxes alone cover pixels of the page's own frame; the screenshot is not blank: its centre
     // shows coloured boxes, not only the grey grid, and the page has many colours.
     EXPECT_GT(check.box_px, 1000U) << check.message;
@@ -104,9 +107,9 @@ TEST_F(cliView, BadArgumentsAndInputsFailWithOneLineAndWriteNothing) {
   EXPECT_EQ(listDir(out_), Names{"keep.html"});
 }
 
-// The simulated 3D mission of `sonarmap demo`: its map.html (with the trajectory) and tank.html
-// show every occupied leaf of their maps.
-TEST_F(cliView, DemoPagesShowEveryOccupiedLeafInChromium) {
+// The pages of `sonarmap demo`: the simulated 3D mission's map.html (with the trajectory), and the
+// simulated tank's tank.html, show every occupied leaf of their maps.
+TEST_F(cliView, DemoMissionPageShowsEveryOccupiedLeafInChromium) {
   const fs::path dir = out_ / "demo";
   const ProgramRun demo = run({"demo", "-o", dir.string(), "-q"});
   ASSERT_EQ(demo.exit_code, 0) << demo.err;
@@ -114,6 +117,12 @@ TEST_F(cliView, DemoPagesShowEveryOccupiedLeafInChromium) {
   ASSERT_TRUE(fs::exists(mission / "map.html"));
   EXPECT_NE(readFile(mission / "map.html").find("\"trajectory_source\":\"nav.csv\""), std::string::npos);
   expectShown(mission / "map.html", occupiedLeaves(mission / "map.bt"), root_ / "mission.png");
+}
+
+TEST_F(cliView, DemoTankPageShowsEveryOccupiedLeafInChromium) {
+  const fs::path dir = out_ / "demo";
+  const ProgramRun demo = run({"demo", "-o", dir.string(), "-q"});
+  ASSERT_EQ(demo.exit_code, 0) << demo.err;
   expectShown(dir / "tank.html", occupiedLeaves(dir / "tank.bt"), root_ / "tank.png");
 }
 

@@ -8,11 +8,14 @@
 /// origin, the sonar's trajectory as a line. Map frame: x north, y west, z up, metres.
 ///
 /// The page checks itself once its first frame is drawn: the element `<pre id="check">` then reads
-/// `boxes=B stated=S leaves=L level=D box_px=X painted=P webgl=yes ok` — B boxes drawn (instances
-/// of the occupied meshes), S boxes the page was given (HtmlView::occupied.boxes), L occupied leaves
-/// of the map, D the octree depth drawn (16: one box per leaf), X pixels that differ from the
-/// background in a frame of the boxes alone, P in the full first frame (boxes, grid, axes,
-/// trajectory); `ok` when B == S, else `MISMATCH`; `webgl=no` when WebGL is unavailable.
+/// `boxes=B stated=S leaves=L level=D bands=N unseen=U missing_px=M box_px=X painted=P webgl=yes ok`:
+/// B boxes drawn (instances of the occupied meshes), S boxes the page was given
+/// (HtmlView::occupied.boxes), L occupied leaves of the map, D the octree depth drawn (16: one box
+/// per leaf), N height bands holding boxes, U of them that paint no pixel when drawn alone, M pixels
+/// painted by some band drawn alone but not by all bands drawn together, X pixels that differ from
+/// the background in the frame of all boxes, P in the full first frame (boxes, grid, axes,
+/// trajectory); `ok` when B == S, U == 0 and M ≤ 1 % of the pixels the bands paint alone, else
+/// `MISMATCH`; `webgl=no` without WebGL.
 ///
 /// The page is a function of its inputs only (no time stamp, no random number): the same map and
 /// options give the same bytes.
