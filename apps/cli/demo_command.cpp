@@ -12,6 +12,7 @@
 #include "map_outputs.hpp"
 #include "output_dir.hpp"
 #include "simulate_command.hpp"
+#include "view_command.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -155,6 +156,20 @@ void run(const DemoArgs& args) {
   stageMapOutputs(outputs, map_args_3d, simulation_3d.log, mapped_3d.mapper.map(),
                   mapped_3d.mapper.map().resolution_m(), side_png);
   stageSimulation(outputs, folder_3d, simulation_3d);
+  // The 3D viewer's pages (sonarmap view) beside each map, the 3D run's with the vehicle's path;
+  // left out, with a warning, by a tool built without three.js.
+  if (viewerAvailable()) {
+    HtmlViewOptions tank_view;
+    tank_view.title = "tank.bt";
+    stageView(outputs, dir.file("tank.html"), mapped.mapper.map(), tank_view);
+    HtmlViewOptions mission_view;
+    mission_view.title = std::string(k3dFolder) + "/map.bt";
+    mission_view.trajectory_m = trajectoryInMap(simulation_3d.nav);
+    mission_view.trajectory_source = "nav.csv";
+    stageView(outputs, dir_3d.file("map.html"), mapped_3d.mapper.map(), mission_view);
+  } else {
+    printWarnings({"this sonarmap was built without three.js: no tank.html, no 3d-mission/map.html"});
+  }
   outputs.commit();
   dir.keep();
   dir_3d.keep();
@@ -171,10 +186,10 @@ Command addDemoCommand(CLI::App& app, DemoArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "demo", "Simulate the built-in tank and map it, and a moving 3D mission and map it in 3D (needs no data)");
   cmd->add_option("-o,--output", args.output_dir,
-                  "Output folder (created when missing): the static tank (tank.bt, tank.png, tank_polar.png, "
+                  "Output folder (created when missing): the static tank (tank.bt, tank.html, tank.png, tank_polar.png, "
                   "tank_cartesian.png, beams.csv, scene.txt), and in 3d-mission/ the Micron flying a loop over the "
                   "quay3d scene with its sonar tilted 25 degrees down, mapped with --3d at 5 cm (map.bt, "
-                  "map_top.png, map_side.png, beams.csv, nav.csv, scene.txt); it prints how to score that map "
+                  "map.html, map_top.png, map_side.png, beams.csv, nav.csv, scene.txt); it prints how to score that map "
                   "with sonarmap eval")
       ->required();
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");

@@ -14,6 +14,7 @@
 #include "live_command.hpp"
 #include "map_command.hpp"
 #include "simulate_command.hpp"
+#include "view_command.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace {
@@ -36,13 +37,15 @@ int main(int argc, char** argv) {
   sonarmap::cli::DemoArgs demo_args;
   sonarmap::cli::EvalArgs eval_args;
   sonarmap::cli::LiveArgs live_args;
+  sonarmap::cli::ViewArgs view_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
                                                      sonarmap::cli::addLiveCommand(app, live_args),
                                                      sonarmap::cli::addCloudCommand(app, cloud_args),
                                                      sonarmap::cli::addConvertCommand(app, convert_args),
                                                      sonarmap::cli::addSimulateCommand(app, simulate_args),
                                                      sonarmap::cli::addDemoCommand(app, demo_args),
-                                                     sonarmap::cli::addEvalCommand(app, eval_args)};
+                                                     sonarmap::cli::addEvalCommand(app, eval_args),
+                                                     sonarmap::cli::addViewCommand(app, view_args)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {

@@ -17,8 +17,8 @@ namespace sonarmap::test {
 namespace {
 
 const Names kSimulationFiles{"beams.csv", "nav.csv", "scene.txt"};
-const Names kDemoFiles{"3d-mission", "beams.csv",          "scene.txt",     "tank.bt",
-                       "tank.png",   "tank_cartesian.png", "tank_polar.png"};
+const Names kDemoFiles{"3d-mission", "beams.csv",          "scene.txt",      "tank.bt",
+                       "tank.html",  "tank.png",           "tank_cartesian.png", "tank_polar.png"};
 
 /// Occupied leaves of the .bt at `path` (read by OctoMap) whose centre is within a voxel of z = 0.
 std::size_t occupiedLeavesAtZ0(const fs::path& path) {
