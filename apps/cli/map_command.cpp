@@ -71,14 +71,13 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) {
 
 namespace {
 
-/// Maps the log, static or with navigation, drawing a progress bar unless args.quiet.
-MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options,
+/// Maps the log, static (`nav` empty) or with navigation, drawing a progress bar unless args.quiet.
+MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options, const NavTrack& nav,
                  const Eigen::Isometry3d& sonar_to_body) {
   if (args.nav_csv.empty()) {
     return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(log, options, progress); },
                            args.quiet);
   }
-  const NavTrack nav = readNavCsv(args.nav_csv);
   return mapWithProgress(
       [&](const ProgressCallback& progress) { return mapSonarLog(log, nav, sonar_to_body, options, progress); },
       args.quiet);
@@ -92,11 +91,13 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const SonarLog log = readSonarLog(args.input, format);
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
-  const MappedLog mapped = mapLog(args, log, sonar_options, sonar_to_body);
+  const NavTrack nav = args.nav_csv.empty() ? NavTrack{} : readNavCsv(args.nav_csv);
+  const MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
-  stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png);
+  stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
+                  nav.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()} : sonarTrack(nav, sonar_to_body, log));
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());

@@ -27,6 +27,7 @@ struct SimulateArgs {
   double speed_mps = 0.0;   ///< vehicle speed over ground, metres per second
   double heading_deg = 0.0; ///< vehicle heading, degrees clockwise from north (NED yaw)
   double nav_rate_hz = 10.0;///< navigation fixes per second, ≥ 0; 0 writes no nav.csv
+  bool quiet = false;       ///< -q: no progress bar
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.
