@@ -19,7 +19,7 @@ namespace {
 constexpr int kTitleBand = 46;
 constexpr int kLeftBand = 84;
 constexpr int kBottomBand = 62;
-constexpr int kLegendBand = 200;
+constexpr int kMinLegendBand = 200;  // wider when a legend text needs it
 constexpr int kMinCanvasRows = 360;  // room for the legend under a flat plot
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
@@ -178,10 +178,18 @@ void drawLegend(cv::Mat& canvas, const FigureSpec& spec, const cv::Rect& plot) {
     cv::line(canvas, cv::Point(right + 1, row), cv::Point(right + 5, row), kFrame, 1);
     putText(canvas, tickText(value, step), cv::Point(right + 8, row + 5), kTickScale);
   }
-  if (bar.clipped_high) {
-    putText(canvas, ">= " + tickText(bar.max, step / 10.0), cv::Point(right + 8, top - 4 < y + 20 ? top + 5 : top - 4),
-            kTickScale);
+  if (bar.clipped_high) {  // beside the bar's top row, above the highest tick
+    putText(canvas, ">= " + tickText(bar.max, step / 10.0), cv::Point(right + 8, top + 5), kTickScale);
   }
+}
+
+/// Width of the legend panel: room for its widest text.
+int legendBand(const FigureSpec& spec) {
+  int widest = 0;  // from the panel's left edge (22 px right of the plot)
+  for (const LegendSwatch& swatch : spec.swatches) widest = std::max(widest, 28 + textSize(swatch.label, kLabelScale).width);
+  for (const FigureLine& line : spec.lines) widest = std::max(widest, 28 + textSize(line.label, kLabelScale).width);
+  if (spec.colour_bar) widest = std::max(widest, textSize(spec.colour_bar->label, kLabelScale).width);
+  return std::max(kMinLegendBand, 22 + widest + 16);
 }
 
 }  // namespace
@@ -198,7 +206,8 @@ std::vector<double> niceTicks(double lo, double hi, int wanted) {
   }
   for (;;) {
     ticks.clear();
-    for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step) ticks.push_back(t);
+    const double first = std::ceil(lo / step - 1e-9);
+    for (double k = first; k * step <= hi + step * 1e-9; k += 1.0) ticks.push_back(k * step);
     if (ticks.size() >= 2) return ticks;
     step /= 2.0;  // a narrow range between two steps: halve until two ticks fit
   }
@@ -235,7 +244,7 @@ cv::Mat composeFigure(const FigureSpec& spec) {
   }
   const FigureLayout layout = figureLayout(spec.raster.rows, spec.raster.cols, spec.equal_aspect);
   const cv::Rect& plot = layout.plot;
-  cv::Mat canvas(std::max(kMinCanvasRows, plot.y + plot.height + kBottomBand), plot.x + plot.width + kLegendBand,
+  cv::Mat canvas(std::max(kMinCanvasRows, plot.y + plot.height + kBottomBand), plot.x + plot.width + legendBand(spec),
                  CV_8UC3, cv::Scalar::all(255));
   cv::Mat colour;
   if (spec.raster.channels() == 1) {
