@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "cli_fixture.hpp"
+#include "figure_checks.hpp"
 
 namespace sonarmap::test {
 namespace {
@@ -196,6 +197,16 @@ TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
   EXPECT_GT(free_inside, 0.8) << lines[1];
   EXPECT_LT(occupied_inside, 0.02) << lines[1];
   EXPECT_EQ(occupiedLeavesAtZ0(dir / "tank.bt"), cells);
+
+  // The tank's figures: >= 800 px with a title and axes; the walls near-black over light-grey
+  // water, the static sonar a red dot at the origin.
+  const cv::Mat tank = readFigure(dir / "tank.png");
+  ASSERT_FALSE(tank.empty());
+  EXPECT_GT(pixelsOf(tank, kOccupiedBgr), static_cast<int>(cells) * 9);  // at least 3 × 3 pixels a voxel
+  EXPECT_GT(pixelsOf(tank, kFreeBgr), pixelsOf(tank, kOccupiedBgr));
+  EXPECT_GT(pixelsOf(tank, kTrackBgr), 20);
+  readFigure(dir / "tank_polar.png");
+  readFigure(dir / "tank_cartesian.png");
 }
 
 TEST_F(cliSim, UsageErrorsExitTwoAndWriteNothing) {
