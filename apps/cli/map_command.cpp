@@ -24,14 +24,18 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   };
   auto checked = std::make_shared<Checked>();
   cmd->add_option("--png", args.map_png,
-                  "Top view of the map (PNG): the slice at z = 0; with --3d each column's highest occupied voxel "
-                  "coloured by its height (viridis, legend in metres), free columns light grey, unknown white");
+                  "Top view of the map (PNG figure, >= 800 px, axes in metres, title, legend, the sonar's track "
+                  "from --nav in red): the slice at z = 0, occupied near-black, free light grey, unknown white; "
+                  "with --3d each column's highest occupied voxel coloured by its height (viridis, legend in "
+                  "metres), free columns light grey, unknown white");
   cmd->add_option("--side-png", checked->side_png,
                   "With --3d: side view of the map (PNG), looking along +y (x to the right, z up), each occupied "
                   "voxel nearest the viewer coloured by its y (viridis, legend in metres): walls' heights, the "
                   "seabed's slope");
-  cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
-  cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
+  cmd->add_option("--polar-png", args.polar_png,
+                  "Polar image of the largest sweep (PNG figure: range in m across, bearing in degrees up)");
+  cmd->add_option("--cartesian-png", args.cartesian_png,
+                  "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0)");
   addMappingOptions(*cmd, args);
   cmd->add_option("--nav", args.nav_csv,
                   "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, the log's "
