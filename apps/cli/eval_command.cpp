@@ -1,6 +1,7 @@
 #include "eval_command.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -142,6 +143,7 @@ Scene loadTruth(const std::string& truth) {
 void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
   const OcTree16 map = readMapFile(args.map);
   const Scene scene = loadTruth(args.truth);
+  const auto start = std::chrono::steady_clock::now();
   const GroundTruthReport r = [&] {
     ProgressBar bar("scoring");
     return evaluateAgainstScene(map, scene, options, [&](std::size_t done, std::size_t total) {
@@ -173,6 +175,10 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
   }
   std::printf("region z [%.3f, %.3f] m, range %.3f m, tolerance %.3f m\n", r.z_min_m, r.z_max_m, r.max_range_m,
               r.tolerance_m);
+  std::printf("scored %zu occupied, %zu surface and %zu free voxels of %s in %.3f s%s%s\n", r.occupied_voxels,
+              r.surface_voxels, r.free_voxels, args.map.c_str(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              args.png.empty() ? "" : " -> ", args.png.c_str());
 }
 
 }  // namespace sonarmap::cli

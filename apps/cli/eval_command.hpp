@@ -49,6 +49,7 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
 ///   surface_error_median_m D, p90_m Q (over every occupied voxel)
 ///   surface I KIND median_offset_m O (N voxels), one line per primitive with matched voxels
 ///   region z [A, B] m, range R m, tolerance T m
+///   scored N occupied, M surface and K free voxels of MAP in S s [-> PNG]   (the summary line)
 /// With args.png, also writes the top view of the occupied voxels coloured by their distance to
 /// the truth (surfaceErrorFigure, render/map_figures.hpp; the sensors drawn). A progress bar runs
 /// on stderr while scoring when it is a terminal, unless args.quiet.

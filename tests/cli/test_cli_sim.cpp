@@ -42,6 +42,12 @@ TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
   // 2 turns of 200 beams, 43 ms apart: 17.157 s of fixes at 10 Hz, 0 s to 17.2 s.
   EXPECT_EQ(linesOf(result.out),
             Names{"micron: 400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string()});
+  // -q (no progress bar, which is drawn only on a terminal anyway): the same files and summary.
+  const fs::path quiet = out_ / "quiet";
+  const ProgramRun quiet_run = run({"simulate", "tank", "-o", quiet.string(), "--turns", "2", "--seed", "7", "-q"});
+  ASSERT_EQ(quiet_run.exit_code, 0) << quiet_run.err;
+  EXPECT_EQ(quiet_run.err, "");
+  EXPECT_EQ(readFile(quiet / "beams.csv"), readFile(dir / "beams.csv"));
   EXPECT_EQ(listDir(dir), kSimulationFiles);
   const Names rows = linesOf(readFile(dir / "beams.csv"));
   ASSERT_EQ(rows.size(), 401U);  // header + 400 beams
