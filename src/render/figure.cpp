@@ -150,7 +150,11 @@ void drawLegend(cv::Mat& canvas, const FigureSpec& spec, const cv::Rect& plot) {
   }
   for (const FigureLine& line : spec.lines) {
     if (line.label.empty()) continue;
-    cv::line(canvas, cv::Point(x0, y + 9), cv::Point(x0 + 18, y + 9), scalarOf(line.colour), 2, cv::LINE_AA);
+    if (line.points.size() == 1) {  // drawn as a dot
+      cv::circle(canvas, cv::Point(x0 + 9, y + 9), 5, scalarOf(line.colour), cv::FILLED, cv::LINE_AA);
+    } else {
+      cv::line(canvas, cv::Point(x0, y + 9), cv::Point(x0 + 18, y + 9), scalarOf(line.colour), 2, cv::LINE_AA);
+    }
     putText(canvas, line.label, cv::Point(x0 + 28, y + 15), kLabelScale);
     y += 28;
   }
