@@ -69,8 +69,9 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
                   "Sonar's vertical aperture, deg, in (0, 180): with --sensor-pose, a surface counts as seen only "
                   "within +-half of it from the sonar's scan plane (default: no field-of-view check)");
   cmd->add_option("--png", args.png,
-                  "Also write a PNG: the map seen from above, each column's occupied voxels coloured by their "
-                  "largest distance to the truth (blue 0 m to red, legend in metres), the sonar positions drawn");
+                  "Also write a PNG: the map seen from above (and, for a 3D map, from the side), each column's "
+                  "occupied voxels coloured by their largest distance to the truth (blue 0 m to red, legend in "
+                  "metres), the sonar positions drawn");
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   auto options = std::make_shared<GroundTruthOptions>();
   return {cmd, [cmd, &args, options] { *options = toGroundTruthOptions(*cmd, args); },
@@ -152,7 +153,7 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
   }();
   if (!args.png.empty()) {
     char title[512];
-    std::snprintf(title, sizeof title, "%s vs truth %s  |  %g m voxels  |  distance of occupied voxels to the truth, top view",
+    std::snprintf(title, sizeof title, "%s vs truth %s  |  %g m voxels  |  occupied voxels by distance to the truth",
                   std::filesystem::path(args.map).filename().c_str(), std::filesystem::path(args.truth).filename().c_str(),
                   map.resolution_m());
     writeBytesAtomically(args.png, encodePng(surfaceErrorFigure(map, r, title, options.sensor_positions_m)));

@@ -50,8 +50,9 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
 ///   surface I KIND median_offset_m O (N voxels), one line per primitive with matched voxels
 ///   region z [A, B] m, range R m, tolerance T m
 ///   scored N occupied, M surface and K free voxels of MAP in S s [-> PNG]   (the summary line)
-/// With args.png, also writes the top view of the occupied voxels coloured by their distance to
-/// the truth (surfaceErrorFigure, render/map_figures.hpp; the sensors drawn). A progress bar runs
+/// With args.png, also writes the top view (over the side view for a slab of several layers) of
+/// the occupied voxels coloured by their distance to the truth (surfaceErrorFigure,
+/// render/map_figures.hpp; the sensors drawn). A progress bar runs
 /// on stderr while scoring when it is a terminal, unless args.quiet.
 /// @throws sonarmap::Error for an unreadable map or scene, or a map with nothing known in the slab.
 void runEval(const EvalArgs& args, const GroundTruthOptions& options);

@@ -67,6 +67,45 @@ cv::Mat viewFigure(const MapView& view, const std::string& title, const char* v_
   return composeFigure(spec);
 }
 
+/// The view recoloured by the distance to the truth (surfaceErrorFigure): each pixel showing an
+/// occupied voxel of report.occupied_errors gets the largest distance among those projecting onto
+/// it along the view's depth; `v` is the map axis drawn up (1: y, top view; 2: z, side view).
+cv::Mat errorFigure(const MapView& view, const GroundTruthReport& report, int v, const std::string& title,
+                    const char* v_label, const std::vector<Eigen::Vector3d>& sensors_m) {
+  static_assert(kFreeGrey == 200, "the views' free grey is the figures' kFreeBgr");
+  FigureSpec spec;
+  spec.raster = viewRaster(view);
+  spec.extent = extentOf(view);
+  // Pixels with an occupied voxel were coloured by height or depth: known, so light grey until scored.
+  for (auto it = spec.raster.begin<cv::Vec3b>(); it != spec.raster.end<cv::Vec3b>(); ++it) {
+    if (!isGrey(*it)) *it = kFreeBgr;
+  }
+  double largest = 0.0;
+  for (const OccupiedVoxelError& voxel : report.occupied_errors) largest = std::max(largest, voxel.distance_m);
+  const double scale_max = std::max(2.0 * report.tolerance_m, report.surface_error_p90_m);
+  cv::Mat worst(spec.raster.size(), CV_64F, cv::Scalar(-1.0));  // the largest distance of each pixel
+  for (const OccupiedVoxelError& voxel : report.occupied_errors) {
+    const int col = static_cast<int>(std::floor((voxel.centre_m.x() - view.left_m) / view.voxel_m));
+    const int row = worst.rows - 1 - static_cast<int>(std::floor((voxel.centre_m[v] - view.bottom_m) / view.voxel_m));
+    if (col < 0 || row < 0 || col >= worst.cols || row >= worst.rows) continue;
+    double& cell = worst.at<double>(row, col);
+    cell = std::max(cell, voxel.distance_m);
+  }
+  for (int row = 0; row < worst.rows; ++row) {
+    for (int col = 0; col < worst.cols; ++col) {
+      const double d = worst.at<double>(row, col);
+      if (d >= 0.0) spec.raster.at<cv::Vec3b>(row, col) = colourOnScale(cv::COLORMAP_TURBO, d, 0.0, scale_max);
+    }
+  }
+  spec.title = title;
+  spec.x_label = "x (m)";
+  spec.y_label = v_label;
+  spec.swatches = {{kFreeBgr, "known, unscored"}, {kUnknownBgr, "unknown"}};
+  spec.colour_bar = ColourBar{cv::COLORMAP_TURBO, 0.0, scale_max, "distance to truth (m)", largest > scale_max};
+  spec.lines = trackLines(sensors_m, 0, v, "sonar positions");
+  return composeFigure(spec);
+}
+
 }  // namespace
 
 cv::Mat sliceFigure(const OcTree16& map, double z_m, const std::string& title,
@@ -100,39 +139,15 @@ cv::Mat sideViewFigure(const OcTree16& map, const std::string& title, const std:
 
 cv::Mat surfaceErrorFigure(const OcTree16& map, const GroundTruthReport& report, const std::string& title,
                            const std::vector<Eigen::Vector3d>& sensors_m) {
-  const MapView view = renderTopView(map);
-  FigureSpec spec;
-  spec.raster = viewRaster(view);
-  spec.extent = extentOf(view);
-  // Columns with an occupied voxel were coloured by height: known, so light grey until scored below.
-  for (auto it = spec.raster.begin<cv::Vec3b>(); it != spec.raster.end<cv::Vec3b>(); ++it) {
-    if (!isGrey(*it)) *it = cv::Vec3b(kFreeGrey, kFreeGrey, kFreeGrey);
-  }
-  static_assert(kFreeGrey == 200, "the views' free grey is the figures' kFreeBgr");
-  double largest = 0.0;
-  for (const OccupiedVoxelError& voxel : report.occupied_errors) largest = std::max(largest, voxel.distance_m);
-  const double scale_max = std::max(2.0 * report.tolerance_m, report.surface_error_p90_m);
-  cv::Mat worst(spec.raster.size(), CV_64F, cv::Scalar(-1.0));  // the largest distance of each column
-  for (const OccupiedVoxelError& voxel : report.occupied_errors) {
-    const int col = static_cast<int>(std::floor((voxel.centre_m.x() - view.left_m) / view.voxel_m));
-    const int row = spec.raster.rows - 1 - static_cast<int>(std::floor((voxel.centre_m.y() - view.bottom_m) / view.voxel_m));
-    if (col < 0 || row < 0 || col >= spec.raster.cols || row >= spec.raster.rows) continue;
-    double& cell = worst.at<double>(row, col);
-    cell = std::max(cell, voxel.distance_m);
-  }
-  for (int row = 0; row < worst.rows; ++row) {
-    for (int col = 0; col < worst.cols; ++col) {
-      const double d = worst.at<double>(row, col);
-      if (d >= 0.0) spec.raster.at<cv::Vec3b>(row, col) = colourOnScale(cv::COLORMAP_TURBO, d, 0.0, scale_max);
-    }
-  }
-  spec.title = title;
-  spec.x_label = "x (m)";
-  spec.y_label = "y (m)";
-  spec.swatches = {{kFreeBgr, "known, unscored"}, {kUnknownBgr, "unknown"}};
-  spec.colour_bar = ColourBar{cv::COLORMAP_TURBO, 0.0, scale_max, "distance to truth (m)", largest > scale_max};
-  spec.lines = trackLines(sensors_m, 0, 1, "sonar positions");
-  return composeFigure(spec);
+  cv::Mat top = errorFigure(renderTopView(map), report, 1, title + ", top view", "y (m)", sensors_m);
+  if (!(report.z_max_m > report.z_min_m)) return top;  // one layer: a side view would be a line
+  cv::Mat side = errorFigure(renderSideView(map), report, 2, title + ", side view along +y", "z (m)", sensors_m);
+  const int cols = std::max(top.cols, side.cols);  // stacked on a white page as wide as the wider
+  cv::copyMakeBorder(top, top, 0, 0, 0, cols - top.cols, cv::BORDER_CONSTANT, cv::Scalar::all(255));
+  cv::copyMakeBorder(side, side, 0, 0, 0, cols - side.cols, cv::BORDER_CONSTANT, cv::Scalar::all(255));
+  cv::Mat both;
+  cv::vconcat(top, side, both);
+  return both;
 }
 
 }  // namespace sonarmap

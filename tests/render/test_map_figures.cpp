@@ -65,6 +65,18 @@ TEST(renderMapFigures, SurfaceErrorFigureColoursEachColumnByItsDistance) {
   const cv::Vec3b expected = colourOnScale(cv::COLORMAP_TURBO, 0.1, 0.0, scale_max);
   EXPECT_EQ(countOf(figure(layout.plot), expected), 10 * 67 * 67);
   EXPECT_EQ(countOf(figure(layout.plot), kOccupiedBgr), 0);
+
+  // A second layer of the wall: the side view is stacked under the top view, coloured alike.
+  OcTree16 tall = map;
+  for (int j = -5; j < 5; ++j) tall.updateNode(tall.coder().keyOfChecked({0.95, (j + 0.5) * kVoxel_m, 0.15}), 2.0F);
+  const GroundTruthReport tall_report = evaluateAgainstScene(tall, scene);
+  ASSERT_EQ(tall_report.occupied_errors.size(), 20U);
+  const cv::Mat stacked = surfaceErrorFigure(tall, tall_report, "errors");
+  EXPECT_GT(stacked.rows, figure.rows + 300);
+  const cv::Vec3b tall_colour = colourOnScale(cv::COLORMAP_TURBO, 0.1, 0.0,
+                                              std::max(2.0 * tall_report.tolerance_m, tall_report.surface_error_p90_m));
+  EXPECT_GT(countOf(stacked(cv::Rect(0, figure.rows, stacked.cols, stacked.rows - figure.rows)), tall_colour), 1000)
+      << "the wall in the side view";
 }
 
 }  // namespace

@@ -34,12 +34,14 @@ cv::Mat topViewFigure(const OcTree16& map, const std::string& title, const std::
 /// coloured by its y (colour bar "y (m)"); axes x (m) and z (m); the track's (x, z).
 cv::Mat sideViewFigure(const OcTree16& map, const std::string& title, const std::vector<Eigen::Vector3d>& track_m = {});
 
-/// Where the map is wrong, seen from above: every (x, y) column holding an occupied voxel of the
-/// evaluated region is coloured by the largest distance to the truth among them
-/// (GroundTruthReport::occupied_errors; COLORMAP_TURBO from 0 m, blue, to max(2 T,
-/// surface_error_p90_m), red, larger distances in red and the bar's top labelled ">="); other
-/// known columns light grey, unknown white. `sensors_m`, e.g. eval's --sensor-pose positions, are
-/// drawn as the track ("sonar positions").
+/// Where the map is wrong: the top view, each (x, y) column holding an occupied voxel of the
+/// evaluated region coloured by the largest distance to the truth among them
+/// (GroundTruthReport::occupied_errors; COLORMAP_TURBO from 0 m, dark blue, to max(2 T,
+/// surface_error_p90_m), dark red, larger distances in dark red and the bar's top labelled ">="),
+/// other known columns light grey, unknown white. When the evaluated slab spans more than one
+/// layer (z_max_m > z_min_m), the side view along +y, each (x, z) pixel coloured alike, is stacked
+/// under it. The titles are `title` + ", top view" / ", side view along +y". `sensors_m`, e.g.
+/// eval's --sensor-pose positions, are drawn as the track ("sonar positions").
 cv::Mat surfaceErrorFigure(const OcTree16& map, const GroundTruthReport& report, const std::string& title,
                            const std::vector<Eigen::Vector3d>& sensors_m = {});
 
