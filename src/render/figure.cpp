@@ -180,6 +180,7 @@ void drawLegend(cv::Mat& canvas, const FigureSpec& spec, const cv::Rect& plot) {
   for (const double value : ticks) {
     const int row = bottom - static_cast<int>(std::lround((value - bar.min) / (bar.max - bar.min) * (bottom - top)));
     cv::line(canvas, cv::Point(right + 1, row), cv::Point(right + 5, row), kFrame, 1);
+    if (bar.clipped_high && row < top + 16) continue;  // the ">=" label below takes the top
     putText(canvas, tickText(value, step), cv::Point(right + 8, row + 5), kTickScale);
   }
   if (bar.clipped_high) {  // beside the bar's top row, above the highest tick
