@@ -32,6 +32,7 @@ void check(const DemoArgs& args) {
 /// `map` with its defaults and every image, writing into `dir` under the name "tank".
 MapArgs demoMapArgs(const OutputDir& dir, bool quiet) {
   MapArgs args;
+  args.input = dir.file("beams.csv");  // the simulated log written beside the map (the figures' titles)
   args.output_bt = dir.file("tank.bt");
   args.map_png = dir.file("tank.png");
   args.polar_png = dir.file("tank_polar.png");
@@ -151,10 +152,12 @@ void run(const DemoArgs& args) {
       args.quiet);
 
   FileTransaction outputs;
-  stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapped.mapper.map().resolution_m());
+  stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), {},
+                  {Eigen::Vector3d::Zero()});  // the static sonar at the map origin
   stageSimulation(outputs, args.output_dir, simulation);
   stageMapOutputs(outputs, map_args_3d, simulation_3d.log, mapped_3d.mapper.map(),
-                  mapped_3d.mapper.map().resolution_m(), side_png);
+                  mapped_3d.mapper.map().resolution_m(), side_png,
+                  sonarTrack(simulation_3d.nav, mission.options.sonar_to_body, simulation_3d.log));
   stageSimulation(outputs, folder_3d, simulation_3d);
   // The 3D viewer's pages (sonarmap view) beside each map, the 3D run's with the vehicle's path;
   // left out, with a warning, by a tool built without three.js.

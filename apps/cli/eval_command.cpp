@@ -1,6 +1,7 @@
 #include "eval_command.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,8 +12,12 @@
 
 #include <Eigen/Geometry>
 
+#include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/io/map_file.hpp"
+#include "sonarmap/render/map_figures.hpp"
+#include "sonarmap/sonar/png_writer.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 
@@ -63,6 +68,11 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   cmd->add_option("--vertical-aperture", args.vertical_aperture_deg,
                   "Sonar's vertical aperture, deg, in (0, 180): with --sensor-pose, a surface counts as seen only "
                   "within +-half of it from the sonar's scan plane (default: no field-of-view check)");
+  cmd->add_option("--png", args.png,
+                  "Also write a PNG: the map seen from above (and, for a 3D map, from the side), each column's "
+                  "occupied voxels coloured by their largest distance to the truth (blue 0 m to red, legend in "
+                  "metres), the sonar positions drawn");
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   auto options = std::make_shared<GroundTruthOptions>();
   return {cmd, [cmd, &args, options] { *options = toGroundTruthOptions(*cmd, args); },
           [&args, options] { runEval(args, *options); }};
@@ -134,7 +144,20 @@ Scene loadTruth(const std::string& truth) {
 void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
   const OcTree16 map = readMapFile(args.map);
   const Scene scene = loadTruth(args.truth);
-  const GroundTruthReport r = evaluateAgainstScene(map, scene, options);
+  const auto start = std::chrono::steady_clock::now();
+  const GroundTruthReport r = [&] {
+    ProgressBar bar("scoring");
+    return evaluateAgainstScene(map, scene, options, [&](std::size_t done, std::size_t total) {
+      if (!args.quiet) bar.update(done, total);
+    });
+  }();
+  if (!args.png.empty()) {
+    char title[512];
+    std::snprintf(title, sizeof title, "%s vs truth %s  |  %g m voxels  |  occupied voxels by distance to the truth",
+                  std::filesystem::path(args.map).filename().c_str(), std::filesystem::path(args.truth).filename().c_str(),
+                  map.resolution_m());
+    writeBytesAtomically(args.png, encodePng(surfaceErrorFigure(map, r, title, options.sensor_positions_m)));
+  }
   std::printf("precision %.4f (%zu of %zu occupied voxels on a surface)\n", r.precision, r.occupied_on_surface,
               r.occupied_voxels);
   std::printf("recall %.4f (%zu of %zu visible surface voxels mapped)\n", r.recall, r.surface_voxels_found,
@@ -153,6 +176,10 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
   }
   std::printf("region z [%.3f, %.3f] m, range %.3f m, tolerance %.3f m\n", r.z_min_m, r.z_max_m, r.max_range_m,
               r.tolerance_m);
+  std::printf("scored %zu occupied, %zu surface and %zu free voxels of %s in %.3f s%s%s\n", r.occupied_voxels,
+              r.surface_voxels, r.free_voxels, args.map.c_str(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              args.png.empty() ? "" : " -> ", args.png.c_str());
 }
 
 }  // namespace sonarmap::cli

@@ -25,6 +25,8 @@ struct EvalArgs {
   /// map's x, y, z axes, R = Rz(yaw)·Ry(pitch)·Rx(roll)); empty: --sensor's positions
   std::vector<double> sensor_pose;
   double vertical_aperture_deg = 0.0;  ///< --vertical-aperture, degrees (set: field-of-view check)
+  std::string png;             ///< --png: the occupied voxels coloured by their distance to the truth
+  bool quiet = false;          ///< -q: no progress bar
 };
 
 /// Adds the `eval` subcommand to `app`; its options fill `args`.
@@ -47,6 +49,11 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
 ///   surface_error_median_m D, p90_m Q (over every occupied voxel)
 ///   surface I KIND median_offset_m O (N voxels), one line per primitive with matched voxels
 ///   region z [A, B] m, range R m, tolerance T m
+///   scored N occupied, M surface and K free voxels of MAP in S s [-> PNG]   (the summary line)
+/// With args.png, also writes the top view (over the side view for a slab of several layers) of
+/// the occupied voxels coloured by their distance to the truth (surfaceErrorFigure,
+/// render/map_figures.hpp; the sensors drawn). A progress bar runs
+/// on stderr while scoring when it is a terminal, unless args.quiet.
 /// @throws sonarmap::Error for an unreadable map or scene, or a map with nothing known in the slab.
 void runEval(const EvalArgs& args, const GroundTruthOptions& options);
 

@@ -24,14 +24,18 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   };
   auto checked = std::make_shared<Checked>();
   cmd->add_option("--png", args.map_png,
-                  "Top view of the map (PNG): the slice at z = 0; with --3d each column's highest occupied voxel "
-                  "coloured by its height (viridis, legend in metres), free columns light grey, unknown white");
+                  "Top view of the map (PNG figure, >= 800 px, axes in metres, title, legend, the sonar's track "
+                  "from --nav in red): the slice at z = 0, occupied near-black, free light grey, unknown white; "
+                  "with --3d each column's highest occupied voxel coloured by its height (viridis, legend in "
+                  "metres), free columns light grey, unknown white");
   cmd->add_option("--side-png", checked->side_png,
                   "With --3d: side view of the map (PNG), looking along +y (x to the right, z up), each occupied "
                   "voxel nearest the viewer coloured by its y (viridis, legend in metres): walls' heights, the "
                   "seabed's slope");
-  cmd->add_option("--polar-png", args.polar_png, "Polar image of the last full sweep (PNG)");
-  cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the last full sweep (PNG)");
+  cmd->add_option("--polar-png", args.polar_png,
+                  "Polar image of the largest sweep (PNG figure: range in m across, bearing in degrees up)");
+  cmd->add_option("--cartesian-png", args.cartesian_png,
+                  "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0)");
   addMappingOptions(*cmd, args);
   cmd->add_option("--nav", args.nav_csv,
                   "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, the log's "
@@ -59,14 +63,13 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) { return so
 
 namespace {
 
-/// Maps the log, static or with navigation, drawing a progress bar unless args.quiet.
-MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options,
+/// Maps the log, static (`nav` empty) or with navigation, drawing a progress bar unless args.quiet.
+MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options, const NavTrack& nav,
                  const Eigen::Isometry3d& sonar_to_body) {
   if (args.nav_csv.empty()) {
     return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(log, options, progress); },
                            args.quiet);
   }
-  const NavTrack nav = readNavCsv(args.nav_csv);
   return mapWithProgress(
       [&](const ProgressCallback& progress) { return mapSonarLog(log, nav, sonar_to_body, options, progress); },
       args.quiet);
@@ -80,11 +83,13 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const SonarLog log = readSonarLog(args.input, format);
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
-  const MappedLog mapped = mapLog(args, log, sonar_options, sonar_to_body);
+  const NavTrack nav = args.nav_csv.empty() ? NavTrack{} : readNavCsv(args.nav_csv);
+  const MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body);
   FileTransaction outputs;  // nothing appears unless every output could be written
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
-  stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png);
+  stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
+                  nav.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()} : sonarTrack(nav, sonar_to_body, log));
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());

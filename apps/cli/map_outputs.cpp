@@ -1,7 +1,9 @@
 #include "map_outputs.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -11,16 +13,15 @@
 #include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
-#include "sonarmap/sonar/polar.hpp"
+#include "sonarmap/render/map_figures.hpp"
+#include "sonarmap/render/sonar_figures.hpp"
 #include "sonarmap/sonar/map_views.hpp"
+#include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap::cli {
 namespace {
-
-/// The 3D views are magnified by whole pixels per voxel up to this many pixels on their larger side.
-constexpr int kViewSide_px = 640;
 
 /// The polar image of the largest (last, on ties) sweep: the one drawn in the PNGs.
 PolarImage lastFullSweep(const SonarLog& log) {
@@ -31,6 +32,20 @@ PolarImage lastFullSweep(const SonarLog& log) {
     if (sweep.size() >= best->size()) best = &sweep;
   }
   return makePolarImage(log.beams, best->first, best->last_exclusive);
+}
+
+/// The input's file name, for the figures' titles.
+std::string inputName(const MapArgs& args) {
+  return args.input.empty() ? "simulated log" : std::filesystem::path(args.input).filename().string();
+}
+
+/// "beams.csv | 0.05 m voxels | detector background | " then `what`: the map figures' title line.
+std::string figureTitle(const MapArgs& args, double resolution_m, const std::string& what) {
+  const std::string input = inputName(args);
+  char text[256];
+  std::snprintf(text, sizeof text, "%s  |  %g m voxels  |  detector %s  |  %s", input.c_str(), resolution_m,
+                args.detector.c_str(), what.c_str());
+  return text;
 }
 
 }  // namespace
@@ -47,21 +62,47 @@ MappedLog mapWithProgress(const MapCall& map, bool quiet) {
   return {std::move(mapper), std::chrono::duration<double>(Clock::now() - start).count()};
 }
 
+std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const SonarLog& log) {
+  std::vector<Eigen::Vector3d> track;
+  if (log.beams.empty()) return track;
+  const auto [first, last] = std::minmax_element(log.beams.begin(), log.beams.end(),
+                                                 [](const Beam& a, const Beam& b) { return a.time_s < b.time_s; });
+  for (const NavSample& fix : nav) {
+    if (fix.time_s >= first->time_s && fix.time_s <= last->time_s) {
+      track.push_back(sonarToMap(fix, sonar_to_body).translation());
+    }
+  }
+  return track;
+}
+
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
-                     double pixel_m, const std::string& side_png) {
+                     double pixel_m, const std::string& side_png, const std::vector<Eigen::Vector3d>& track_m) {
   outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
+  const double res = map.resolution_m();
   if (!args.map_png.empty()) {
-    const cv::Mat top = args.volume ? renderTopView(map, kViewSide_px).image : renderSlice(map, 0.0);
+    const cv::Mat top = args.volume ? topViewFigure(map, figureTitle(args, res, "3D map, top view"), track_m)
+                                    : sliceFigure(map, 0.0, figureTitle(args, res, "2D map, slice z = 0"), track_m);
     outputs.stageBytes(args.map_png, encodePng(top));
   }
-  if (!side_png.empty()) outputs.stageBytes(side_png, encodePng(renderSideView(map, kViewSide_px).image));
+  if (!side_png.empty()) {
+    outputs.stageBytes(side_png, encodePng(sideViewFigure(map, figureTitle(args, res, "3D map, side view"), track_m)));
+  }
   if (args.polar_png.empty() && args.cartesian_png.empty()) return;
   const PolarImage polar = lastFullSweep(log);
-  if (!args.polar_png.empty()) outputs.stageBytes(args.polar_png, encodePng(polar.intensities));
+  char sweep[96];
+  std::snprintf(sweep, sizeof sweep, "largest sweep: %d beams x %d bins of %.3f m", polar.rows(), polar.cols(),
+                polar.bin_length_m);
+  const std::string input = inputName(args);
+  if (!args.polar_png.empty()) {
+    outputs.stageBytes(args.polar_png, encodePng(polarFigure(polar, input + "  |  polar image, " + sweep)));
+  }
   if (!args.cartesian_png.empty()) {
     // With single rays (width 0) the image still spreads each beam over the Micron's 3°.
     const double width_deg = args.beam_width_deg > 0.0 ? args.beam_width_deg : 3.0;
-    const cv::Mat cartesian = makeCartesianImage(polar, pixel_m, width_deg * std::numbers::pi / 180.0);
+    char what[64];
+    std::snprintf(what, sizeof what, "  |  %g m pixels, beams %g deg wide  |  ", pixel_m, width_deg);
+    const cv::Mat cartesian = cartesianFigure(polar, pixel_m, width_deg * std::numbers::pi / 180.0,
+                                              input + what + sweep);
     outputs.stageBytes(args.cartesian_png, encodePng(cartesian));
   }
 }

@@ -8,7 +8,10 @@
 
 #include "map_command.hpp"
 
+#include <Eigen/Geometry>
+
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sonar/beam.hpp"
 
@@ -27,16 +30,20 @@ using MapCall = std::function<SonarMapper(const ProgressCallback&)>;
 /// @throws whatever `map` throws (ValueError from mapSonarLog).
 MappedLog mapWithProgress(const MapCall& map, bool quiet);
 
-/// Stages args.output_bt (OctoMap binary) and the images whose paths are not empty:
-/// args.map_png (the planar model: the slice at z = 0, map_slice.hpp; with args.volume: the top
-/// view coloured by height, sonar/map_views.hpp), `side_png` (the side view, map_views.hpp, any
-/// model; both views magnified by whole pixels per voxel up to 640 pixels on their larger side),
-/// args.polar_png and args.cartesian_png (the largest sweep; Cartesian pixels of `pixel_m` metres,
-/// each beam spread over args.beam_width_deg, or 3° when 0).
+/// The sonar's positions in the map frame (metres) at the navigation fixes within the log's time
+/// span: the track drawn on the map figures.
+std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const SonarLog& log);
+
+/// Stages args.output_bt (OctoMap binary) and the figures (render/*_figures.hpp: ≥ 800 pixels on
+/// their long side, axes, a title line with the input's name, the resolution and the detector, a
+/// legend) whose paths are not empty: args.map_png (the planar model: the slice at z = 0; with
+/// args.volume: the top view coloured by height), `side_png` (the side view), each with `track_m`
+/// (map frame, metres; empty: none), args.polar_png and args.cartesian_png (the largest sweep;
+/// Cartesian pixels of `pixel_m` metres, each beam spread over args.beam_width_deg, or 3° when 0).
 /// @throws FileError when a file cannot be staged; ValueError when images are wanted from a log
 ///         without beams.
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
-                     double pixel_m, const std::string& side_png = {});
+                     double pixel_m, const std::string& side_png = {}, const std::vector<Eigen::Vector3d>& track_m = {});
 
 /// Prints each warning as one line on stderr: "sonarmap: warning: ...".
 void printWarnings(const std::vector<std::string>& warnings);

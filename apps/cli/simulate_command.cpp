@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "output_dir.hpp"
+#include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -47,7 +48,12 @@ void check(const SimulateArgs& args, MsisSimulationOptions& options) {
 void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   const MsisHeadOptions& head = options.head;
   const Scene scene = sceneOf(args.scene, head);
-  const MsisSimulation simulation = simulateMsis(scene, options);
+  const MsisSimulation simulation = [&] {
+    ProgressBar bar("simulating");
+    return simulateMsis(scene, options, [&](std::size_t done, std::size_t total) {
+      if (!args.quiet) bar.update(done, total);
+    });
+  }();
   OutputDir dir(args.output_dir);
   FileTransaction outputs;
   stageSimulation(outputs, args.output_dir, simulation);
@@ -106,6 +112,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->capture_default_str();
   cmd->add_option("--nav-rate", args.nav_rate_hz, "Navigation fixes per second in nav.csv; 0: no nav.csv")
       ->capture_default_str();
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   auto options = std::make_shared<MsisSimulationOptions>();
   return {cmd, [&args, options] { check(args, *options); }, [&args, options] { run(args, *options); }};
 }

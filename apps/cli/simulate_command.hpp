@@ -21,6 +21,7 @@ namespace sonarmap::cli {
 struct SimulateArgs : SimulationArguments {
   std::string scene;  ///< a built-in scene name or a scene file (sceneOf)
   std::string output_dir;
+  bool quiet = false;  ///< -q: no progress bar
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.

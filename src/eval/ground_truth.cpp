@@ -19,6 +19,26 @@ namespace {
 
 using KeySet = std::unordered_set<Key16, KeyHash<16>>;
 
+/// Reports the scoring as three equal stages (occupied voxels, surface voxels, free voxels) of
+/// kStageUnits units each, calling the callback only when the count of units changes.
+class StageProgress {
+ public:
+  static constexpr std::size_t kStages = 3, kStageUnits = 1000;
+  explicit StageProgress(const ProgressCallback& callback) : callback_(callback) {}
+  /// `done` of `total` items of stage `stage` (0, 1, 2) are scored.
+  void operator()(std::size_t stage, std::size_t done, std::size_t total) {
+    if (!callback_) return;
+    const std::size_t units = stage * kStageUnits + (total == 0 ? kStageUnits : done * kStageUnits / total);
+    if (units == last_) return;
+    last_ = units;
+    callback_(units, kStages * kStageUnits);
+  }
+
+ private:
+  const ProgressCallback& callback_;
+  std::size_t last_ = static_cast<std::size_t>(-1);
+};
+
 /// Known finest voxels of the evaluated slab.
 struct RegionVoxels {
   std::vector<Key16> occupied;
@@ -165,16 +185,19 @@ std::pair<double, std::size_t> nearestPrimitive(const Scene& scene, const Eigen:
 
 /// Precision and wall-position error over the occupied voxels.
 void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
-                   const GroundTruthOptions& options, GroundTruthReport& report) {
+                   const GroundTruthOptions& options, GroundTruthReport& report, StageProgress& progress) {
   std::vector<std::vector<double>> offsets(scene.primitives.size());
   std::vector<double> distances;  // of every occupied voxel, for the surface error
   distances.reserve(region.occupied.size());
+  report.occupied_errors.reserve(region.occupied.size());
   double sum = 0.0, sum_sq = 0.0;
   for (const Key16& key : region.occupied) {
+    progress(0, report.occupied_errors.size(), region.occupied.size());
     const Eigen::Vector3d center = map.coder().centerOf(key);
     const auto [distance_m, nearest] = nearestPrimitive(scene, center);
     report.occupied_on_surface += distance_m <= report.tolerance_m ? 1 : 0;
     distances.push_back(distance_m);
+    report.occupied_errors.push_back({center, distance_m});
     if (distance_m > options.match_distance_m) continue;
     ++report.matched_voxels;
     sum += distance_m;
@@ -205,7 +228,7 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
 /// Recall and erosion: visible surface voxels of the region's box with an occupied voxel within
 /// tolerance, and those the map holds free.
 void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
-                   const GroundTruthOptions& options, GroundTruthReport& report) {
+                   const GroundTruthOptions& options, GroundTruthReport& report, StageProgress& progress) {
   const KeySet occupied(region.occupied.begin(), region.occupied.end());
   const auto& coder = map.coder();
   const double res = map.resolution_m();
@@ -226,7 +249,10 @@ void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster
     }
   }
   std::vector<SurfaceRecall> by_primitive(scene.primitives.size());
-  for (const Key16& key : detail::surfaceVoxels(coder, scene, lo, hi)) {
+  const auto candidates = detail::surfaceVoxels(coder, scene, lo, hi);
+  std::size_t done = 0;
+  for (const Key16& key : candidates) {
+    progress(1, done++, candidates.size());
     const Eigen::Vector3d center = coder.centerOf(key);
     if (!visibleSurface(caster, options.sensor_positions_m, view, center, report.max_range_m, res)) continue;
     const bool found = occupiedNear(occupied, key, report.tolerance_m, res);
@@ -251,8 +277,10 @@ void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster
 
 /// Free accuracy: free voxels reachable through water from a sensor, or within tolerance of a surface.
 void scoreFree(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
-               const GroundTruthOptions& options, GroundTruthReport& report) {
+               const GroundTruthOptions& options, GroundTruthReport& report, StageProgress& progress) {
+  std::size_t done = 0;
   for (const Key16& key : region.free) {
+    progress(2, done++, region.free.size());
     const Eigen::Vector3d center = map.coder().centerOf(key);
     const bool in_water = distanceToSurface(scene, center) <= report.tolerance_m ||
                           reachableInWater(caster, options.sensor_positions_m, center);
@@ -317,7 +345,8 @@ void GroundTruthOptions::validate() const {
   }
 }
 
-GroundTruthReport evaluateAgainstScene(const OcTree16& map, const Scene& scene, const GroundTruthOptions& options) {
+GroundTruthReport evaluateAgainstScene(const OcTree16& map, const Scene& scene, const GroundTruthOptions& options,
+                                       const ProgressCallback& callback) {
   options.validate();
   if (scene.primitives.empty()) throw ValueError("the ground-truth scene holds no primitive");
   validateScene(scene);
@@ -328,9 +357,11 @@ GroundTruthReport evaluateAgainstScene(const OcTree16& map, const Scene& scene, 
   report.max_range_m =
       options.max_range_m.value_or(reachOf(map, region, options.sensor_positions_m) + report.tolerance_m);
   const SceneRayCaster caster(scene);
-  scoreOccupied(map, scene, caster, region, options, report);
-  scoreSurfaces(map, scene, caster, region, options, report);
-  scoreFree(map, scene, caster, region, options, report);
+  StageProgress progress(callback);
+  scoreOccupied(map, scene, caster, region, options, report, progress);
+  scoreSurfaces(map, scene, caster, region, options, report, progress);
+  scoreFree(map, scene, caster, region, options, report, progress);
+  progress(StageProgress::kStages - 1, 1, 1);
   return report;
 }
 

@@ -32,7 +32,9 @@ std::vector<Eigen::Vector2d> cellsInSlice(const OcTree16& map, double z_m, Occup
   return cells;
 }
 
-cv::Mat renderSlice(const OcTree16& map, double z_m) {
+cv::Mat renderSlice(const OcTree16& map, double z_m) { return renderSliceView(map, z_m).image; }
+
+SliceView renderSliceView(const OcTree16& map, double z_m) {
   long min_x = std::numeric_limits<long>::max(), min_y = min_x, max_x = std::numeric_limits<long>::min(), max_y = max_x;
   forEachLeafInSlice(map, z_m, [&](long x0, long y0, long edge, Occupancy) {
     min_x = std::min(min_x, x0);
@@ -40,7 +42,8 @@ cv::Mat renderSlice(const OcTree16& map, double z_m) {
     max_x = std::max(max_x, x0 + edge - 1);
     max_y = std::max(max_y, y0 + edge - 1);
   });
-  if (min_x > max_x) return cv::Mat(1, 1, CV_8U, cv::Scalar(128));
+  const double res = map.resolution_m();
+  if (min_x > max_x) return {cv::Mat(1, 1, CV_8U, cv::Scalar(128)), -res / 2.0, -res / 2.0, res};
   const int cols = static_cast<int>(max_x - min_x + 3);
   const int rows = static_cast<int>(max_y - min_y + 3);
   cv::Mat image(rows, cols, CV_8U, cv::Scalar(128));
@@ -50,7 +53,10 @@ cv::Mat renderSlice(const OcTree16& map, double z_m) {
     const int top = rows - 1 - static_cast<int>(y0 + edge - 1 - min_y + 1);  // +y up
     image(cv::Rect(left, top, static_cast<int>(edge), static_cast<int>(edge))) = value;
   });
-  return image;
+  // Column 0 and the last row are the border voxel before min_x and min_y.
+  const auto& coder = map.coder();
+  return {image, coder.centerOf(static_cast<Key16::Index>(min_x)) - 1.5 * res,
+          coder.centerOf(static_cast<Key16::Index>(min_y)) - 1.5 * res, res};
 }
 
 }  // namespace sonarmap

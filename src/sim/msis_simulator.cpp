@@ -137,7 +137,7 @@ void MsisSimulationOptions::validate() const {
           "MSIS simulation: sonar_to_body must be a finite rigid transform (rotation + translation)");
 }
 
-MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options) {
+MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options, const ProgressCallback& progress) {
   options.validate();
   validateScene(scene);
   MsisSimulation run;
@@ -159,6 +159,7 @@ MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& opt
     tracer.trace(sonarToMap(fix, options.sonar_to_body), beam.bearing_rad, energy);
     receiver.receive(energy, random, beam.intensities);
     run.log.beams.push_back(std::move(beam));
+    if (progress) progress(i + 1, beams);
   }
   if (beams > 0) {
     run.nav = sampleTrajectory(options.trajectory, run.log.beams.front().time_s, run.log.beams.back().time_s,

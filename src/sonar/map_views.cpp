@@ -135,6 +135,9 @@ MapView render(const OcTree16& map, const Projection& p, int max_side_px) {
     view.pixels_per_voxel = std::clamp(max_side_px / std::max(projected.cols, projected.rows), 1, kMaxPixelsPerVoxel);
   }
   const int f = view.pixels_per_voxel;
+  view.voxel_m = map.resolution_m();
+  view.left_m = coder.centerOf(static_cast<Key16::Index>(projected.min_u)) - 1.5 * view.voxel_m;
+  view.bottom_m = coder.centerOf(static_cast<Key16::Index>(projected.min_v)) - 1.5 * view.voxel_m;
   view.view_cols = projected.cols * f;
   view.view_rows = projected.rows * f;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;

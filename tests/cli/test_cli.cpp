@@ -17,6 +17,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_fixture.hpp"
+#include "figure_checks.hpp"
 
 namespace sonarmap::test {
 namespace {
@@ -69,12 +70,15 @@ TEST_F(cliMap, WritesMapAndImagesAndPrintsOneSummaryLine) {
 
   ASSERT_TRUE(fs::is_regular_file(bt));
   EXPECT_EQ(readFile(bt).rfind("# Octomap OcTree binary file", 0), 0u);
-  for (const char* name : {"slice.png", "polar.png", "cartesian.png"}) {
-    const cv::Mat image = cv::imread((out_ / name).string(), cv::IMREAD_UNCHANGED);
-    EXPECT_FALSE(image.empty()) << name << " does not decode";
-    EXPECT_GT(image.rows, 0) << name;
-    EXPECT_GT(image.cols, 0) << name;
-  }
+  // Figures a person can read: >= 800 px, a title, axes; the walls near-black, the sonar a red dot.
+  for (const char* name : {"slice.png", "polar.png", "cartesian.png"}) readFigure(out_ / name);
+  const cv::Mat slice = readFigure(out_ / "slice.png");
+  EXPECT_GT(pixelsOf(slice, kOccupiedBgr), 9000) << "the walls, over a thousand voxels of 3 x 3 pixels or more";
+  EXPECT_GT(pixelsOf(slice, kFreeBgr), 200000);
+  EXPECT_GT(pixelsOf(slice, kTrackBgr), 20) << "the sonar at the origin";
+  // The polar image of a full turn: range along x (399 bins magnified), 200 beams up.
+  const cv::Mat polar = cv::imread((out_ / "polar.png").string());
+  EXPECT_GT(polar.cols, polar.rows);
   // Atomic writes leave no temporary file behind.
   EXPECT_EQ(listDir(out_), (Names{"MAP.bt", "cartesian.png", "polar.png", "slice.png"}));
 }

@@ -15,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_fixture.hpp"
+#include "figure_checks.hpp"
 
 namespace sonarmap::test {
 namespace {
@@ -31,14 +32,18 @@ std::pair<double, double> heightExtent(const std::string& line) {
   return {lo, hi};
 }
 
-/// Distinct colours of the pixels of `image` (BGR) that are not a shade of grey, in its first
-/// `cols` columns (the view, left of the legend).
-std::set<std::tuple<int, int, int>> colours(const cv::Mat& image, int cols) {
+/// The figures' legend panel is at least this wide (render/figure.cpp) and right of the plot.
+constexpr int kLegendCols = 200;
+
+/// Distinct colours of the pixels of `image` (BGR) that are neither a shade of grey nor a shade of
+/// the track's red, left of the legend panel (the plot, the axes and the title).
+std::set<std::tuple<int, int, int>> colours(const cv::Mat& image) {
   std::set<std::tuple<int, int, int>> found;
   for (int row = 0; row < image.rows; ++row) {
-    for (int col = 0; col < cols; ++col) {
+    for (int col = 0; col < image.cols - kLegendCols; ++col) {
       const cv::Vec3b p = image.at<cv::Vec3b>(row, col);
-      if (p[0] != p[1] || p[1] != p[2]) found.emplace(p[0], p[1], p[2]);
+      const bool reddish = p[0] == p[1] && p[2] > p[1];  // the track blended with white or grey
+      if ((p[0] != p[1] || p[1] != p[2]) && !reddish) found.emplace(p[0], p[1], p[2]);
     }
   }
   return found;
@@ -86,18 +91,20 @@ TEST_F(cli3d, MapWritesTopAndSideViewsAndTheHeightExtent) {
 
   for (const fs::path& png : {top, side}) {
     SCOPED_TRACE(png.filename().string());
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat image = readFigure(png);  // >= 800 px, a title, axes
     ASSERT_FALSE(image.empty());
-    EXPECT_EQ(image.channels(), 3);
-    // The view (the legend is the right 76 columns) has many colours: heights, or depths along y.
-    EXPECT_GT(colours(image, image.cols - 76).size(), 10U);
-    EXPECT_GT(image.cols, 200);  // a 5 m tank at 5 cm, magnified
+    // The view (left of the legend) has many colours: heights, or depths along y; nothing is
+    // drawn in the planar map's near-black.
+    EXPECT_GT(colours(image).size(), 10U);
+    EXPECT_EQ(pixelsOf(image, kOccupiedBgr), 0);
   }
-  // The slice of the planar model is grey levels only; the 3D top view differs from it.
+  // The slice of the planar model shows occupied voxels near-black, no colour scale.
   const ProgramRun planar = run({"map", beams, "-o", (root_ / "planar.bt").string(), "--resolution", "0.05", "--png",
                                  (root_ / "slice.png").string(), "-q"});
   ASSERT_EQ(planar.exit_code, 0) << planar.err;
-  EXPECT_EQ(cv::imread((root_ / "slice.png").string(), cv::IMREAD_UNCHANGED).channels(), 1);
+  const cv::Mat slice = readFigure(root_ / "slice.png");
+  EXPECT_GT(pixelsOf(slice, kOccupiedBgr), 1000);
+  EXPECT_EQ(colours(slice).size(), 0U);
   // The planar map is one layer of voxels: its extent is that layer's centre.
   const auto [planar_lo, planar_hi] = heightExtent(linesOf(planar.out).at(0));
   EXPECT_LT(std::abs(planar_lo), 0.05);  // the voxels at z = 0.025 m
@@ -122,9 +129,11 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
   const fs::path mission = dir / "3d-mission";
   EXPECT_EQ(listDir(mission), (Names{"beams.csv", "map.bt", "map.html", "map_side.png", "map_top.png", "nav.csv", "scene.txt"}));
   for (const char* png : {"map_top.png", "map_side.png"}) {
-    const cv::Mat image = cv::imread((mission / png).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat image = readFigure(mission / png);
     ASSERT_FALSE(image.empty()) << png;
-    EXPECT_GT(colours(image, image.cols - 76).size(), 10U) << png;
+    EXPECT_GT(colours(image).size(), 10U) << png;
+    // The vehicle's loop, 4 × 3 m seen from above, a line at z = −0.5 m from the side: red.
+    EXPECT_GT(pixelsOf(image, kTrackBgr), std::string(png) == "map_top.png" ? 2000 : 500) << png;
   }
   // tank summary, tank report, the 3D run's header, its summary, three commands.
   const Names lines = linesOf(result.out);

@@ -2,10 +2,12 @@
 // line per metric, and the CLI's error contract.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 
 #include "cli_fixture.hpp"
+#include "figure_checks.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -37,7 +39,13 @@ TEST_F(cliEval, ScoresAMapAgainstASceneFileLineByLine) {
   const ProgramRun result = run({"eval", map.string(), "--truth", scene.string()});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.err, "");
-  EXPECT_EQ(linesOf(result.out),
+  Names lines = linesOf(result.out);
+  ASSERT_EQ(lines.size(), 9U) << result.out;
+  // The summary line last: the voxels scored, the time (not compared), the map.
+  EXPECT_EQ(lines.back().rfind("scored 5 occupied, 12 surface and 95 free voxels of " + map.string() + " in ", 0), 0U)
+      << lines.back();
+  lines.pop_back();
+  EXPECT_EQ(lines,
             (Names{"precision 1.0000 (5 of 5 occupied voxels on a surface)",
                    "recall 0.5833 (7 of 12 visible surface voxels mapped)",
                    "erosion 0.0000 (0 of 12 visible surface voxels free)",
@@ -50,10 +58,34 @@ TEST_F(cliEval, ScoresAMapAgainstASceneFileLineByLine) {
   const ProgramRun behind =
       run({"eval", map.string(), "--truth", scene.string(), "--tolerance", "0.01", "--sensor", "2,0,0.05"});
   ASSERT_EQ(behind.exit_code, 0) << behind.err;
-  const Names lines = linesOf(behind.out);
-  ASSERT_EQ(lines.size(), 8U) << behind.out;
+  lines = linesOf(behind.out);
+  ASSERT_EQ(lines.size(), 9U) << behind.out;
   EXPECT_EQ(lines[6], "surface 0 plane median_offset_m -0.1000 (5 voxels)");
   EXPECT_EQ(lines[3], "free_accuracy 0.0526 (5 of 95 free voxels in the water)");  // only column 9 near the wall
+}
+
+TEST_F(cliEval, PngColoursTheOccupiedVoxelsByTheirDistanceToTheTruth) {
+  const fs::path map = writeWallMap(root_ / "wall.bt");
+  const fs::path scene = root_ / "wall.scene";
+  std::ofstream(scene) << "plane 1.05 0 0  1 0 0  0.9\n";
+  const fs::path png = out_ / "errors.png";
+  const ProgramRun result = run({"eval", map.string(), "--truth", scene.string(), "--png", png.string(), "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_EQ(linesOf(result.out).at(0), "precision 1.0000 (5 of 5 occupied voxels on a surface)");
+  EXPECT_NE(linesOf(result.out).back().find(" s -> " + png.string()), std::string::npos) << result.out;
+  EXPECT_EQ(listDir(out_), Names{"errors.png"});
+  const cv::Mat figure = readFigure(png);
+  ASSERT_FALSE(figure.empty());
+  // The five wall voxels, 0.1 m from the truth, on a scale from 0 to 2 T = 0.346 m (turbo).
+  const cv::Vec3b wall = colourOnScale(cv::COLORMAP_TURBO, 0.1, 0.0, 2.0 * std::sqrt(3.0) * 0.1);
+  EXPECT_GT(pixelsOf(figure, wall), 5 * 60 * 60);
+  EXPECT_GT(pixelsOf(figure, kFreeBgr), 40 * 60 * 60) << "the water, known";
+  EXPECT_EQ(pixelsOf(figure, kOccupiedBgr), 0);
+  // Without --png nothing is written; a PNG in a missing folder is an error.
+  EXPECT_EQ(run({"eval", map.string(), "--truth", scene.string()}).exit_code, 0);
+  EXPECT_EQ(listDir(out_), Names{"errors.png"});
+  expectError(run({"eval", map.string(), "--truth", scene.string(), "--png", (out_ / "no" / "e.png").string()}), 1);
 }
 
 TEST_F(cliEval, SensorPosesAndTheVerticalApertureLimitWhatCountsAsSeen) {
@@ -107,7 +139,7 @@ TEST_F(cliEval, ScoresASimulatedTankAgainstTheBuiltInScene) {
   EXPECT_GT(std::atof(lines[0].c_str() + 10), 0.8);  // library test: 0.859
   ASSERT_EQ(lines[1].rfind("recall ", 0), 0U) << lines[1];
   EXPECT_GT(std::atof(lines[1].c_str() + 7), 0.88);  // 0.932
-  EXPECT_EQ(lines.back().rfind("region z [0.000, 0.020] m", 0), 0U) << lines.back();
+  EXPECT_EQ(lines[lines.size() - 2].rfind("region z [0.000, 0.020] m", 0), 0U) << lines[lines.size() - 2];
 }
 
 TEST_F(cliEval, BadArgumentsAndInputsFailWithOneLine) {

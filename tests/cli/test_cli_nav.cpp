@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "cli_fixture.hpp"
+#include "figure_checks.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -76,6 +77,24 @@ TEST_F(cliNav, MovingRunMapsToTheLibrarysOctreeAndReportsNoBeamWithoutNavigation
   const fs::path still = out_ / "still.bt";
   ASSERT_EQ(run({"map", beams_.string(), "-o", still.string(), "-q"}).exit_code, 0);
   EXPECT_NE(readFile(still), readFile(bt));
+}
+
+TEST_F(cliNav, PngDrawsTheSonarsTrack) {
+  const fs::path moving = out_ / "moving.png", still = out_ / "still.png";
+  ASSERT_EQ(run({"map", beams_.string(), "--nav", nav_.string(), "-o", (out_ / "m.bt").string(), "--png",
+                 moving.string(), "-q"})
+                .exit_code,
+            0);
+  ASSERT_EQ(run({"map", beams_.string(), "-o", (out_ / "s.bt").string(), "--png", still.string(), "-q"}).exit_code, 0);
+  const cv::Mat with_track = readFigure(moving), dot = readFigure(still);
+  ASSERT_FALSE(with_track.empty());
+  ASSERT_FALSE(dot.empty());
+  // 1.7 m north (map +x) from (−0.8, 0.4) m, 2 px wide, and a circle at its start; the static
+  // sonar is a dot of radius 5 px. Both have the legend's 18 × 2 px line beside them.
+  const int track = pixelsOf(with_track, kTrackBgr), sonar = pixelsOf(dot, kTrackBgr);
+  EXPECT_GT(track, 600);
+  EXPECT_GT(sonar, 60);
+  EXPECT_LT(sonar, 200);
 }
 
 TEST_F(cliNav, BeamsOutsideTheNavigationAreCountedInTheSummary) {

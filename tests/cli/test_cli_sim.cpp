@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "cli_fixture.hpp"
+#include "figure_checks.hpp"
 
 namespace sonarmap::test {
 namespace {
@@ -41,6 +42,12 @@ TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
   // 2 turns of 200 beams, 43 ms apart: 17.157 s of fixes at 10 Hz, 0 s to 17.2 s.
   EXPECT_EQ(linesOf(result.out),
             Names{"micron: 400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string()});
+  // -q (no progress bar, which is drawn only on a terminal anyway): the same files and summary.
+  const fs::path quiet = out_ / "quiet";
+  const ProgramRun quiet_run = run({"simulate", "tank", "-o", quiet.string(), "--turns", "2", "--seed", "7", "-q"});
+  ASSERT_EQ(quiet_run.exit_code, 0) << quiet_run.err;
+  EXPECT_EQ(quiet_run.err, "");
+  EXPECT_EQ(readFile(quiet / "beams.csv"), readFile(dir / "beams.csv"));
   EXPECT_EQ(listDir(dir), kSimulationFiles);
   const Names rows = linesOf(readFile(dir / "beams.csv"));
   ASSERT_EQ(rows.size(), 401U);  // header + 400 beams
@@ -196,6 +203,16 @@ TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
   EXPECT_GT(free_inside, 0.8) << lines[1];
   EXPECT_LT(occupied_inside, 0.02) << lines[1];
   EXPECT_EQ(occupiedLeavesAtZ0(dir / "tank.bt"), cells);
+
+  // The tank's figures: >= 800 px with a title and axes; the walls near-black over light-grey
+  // water, the static sonar a red dot at the origin.
+  const cv::Mat tank = readFigure(dir / "tank.png");
+  ASSERT_FALSE(tank.empty());
+  EXPECT_GT(pixelsOf(tank, kOccupiedBgr), static_cast<int>(cells) * 9);  // at least 3 × 3 pixels a voxel
+  EXPECT_GT(pixelsOf(tank, kFreeBgr), pixelsOf(tank, kOccupiedBgr));
+  EXPECT_GT(pixelsOf(tank, kTrackBgr), 20);
+  readFigure(dir / "tank_polar.png");
+  readFigure(dir / "tank_cartesian.png");
 }
 
 TEST_F(cliSim, UsageErrorsExitTwoAndWriteNothing) {

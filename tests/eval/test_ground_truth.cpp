@@ -71,6 +71,27 @@ TEST(evalGroundTruth, HandMadeWallGivesExactFigures) {
   EXPECT_EQ(r.surfaces[0].primitive, 0U);
   EXPECT_EQ(r.surfaces[0].voxels, 6U);
   EXPECT_NEAR(r.surfaces[0].median_signed_offset_m, 0.1, 1e-9);  // five in front, one behind
+  // Every occupied voxel with its distance: six at 0.1 m, the clutter at 0.7 m.
+  ASSERT_EQ(r.occupied_errors.size(), 7U);
+  int near_wall = 0;
+  for (const OccupiedVoxelError& voxel : r.occupied_errors) {
+    const bool clutter = std::abs(voxel.centre_m.x() - 0.35) < 1e-9;
+    EXPECT_NEAR(voxel.distance_m, clutter ? 0.7 : 0.1, 1e-9);
+    near_wall += clutter ? 0 : 1;
+  }
+  EXPECT_EQ(near_wall, 6);
+  // The progress callback climbs through the three stages to 3000 of 3000; the report is the same.
+  std::size_t last = 0, calls = 0;
+  const GroundTruthReport counted =
+      evaluateAgainstScene(map, wallScene(), {}, [&](std::size_t done, std::size_t total) {
+        EXPECT_EQ(total, 3000U);
+        if (calls > 0) EXPECT_GT(done, last);  // from 0, each call further on
+        last = done;
+        ++calls;
+      });
+  EXPECT_EQ(last, 3000U);
+  EXPECT_GT(calls, 3U);
+  EXPECT_EQ(counted.recall, r.recall);
 }
 
 TEST(evalGroundTruth, WallBehindTheMapIsBehindInTheSignedOffset) {

@@ -23,6 +23,13 @@ TEST(mappingSlice, CellsAndImageFollowTheMap) {
   EXPECT_EQ(image.at<unsigned char>(1, 4), 0);    // occupied, rightmost
   EXPECT_EQ(image.at<unsigned char>(1, 1), 255);  // free, leftmost
   EXPECT_EQ(image.at<unsigned char>(1, 2), 128);  // unknown between
+
+  // Where it lies: column 0 is the border voxel left of x = −0.3 m, the last row the one below y = 0.
+  const SliceView view = renderSliceView(map, 0.0);
+  EXPECT_EQ(cv::countNonZero(view.image != image), 0);
+  EXPECT_NEAR(view.left_m, -0.4, 1e-9);
+  EXPECT_NEAR(view.bottom_m, -0.1, 1e-9);
+  EXPECT_DOUBLE_EQ(view.pixel_m, 0.1);
 }
 
 TEST(mappingSlice, PrunedLeavesContributeEveryVoxel) {

@@ -110,6 +110,17 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
   }
   // The ground truth travels with the log.
   EXPECT_EQ(run.scene.primitives.size(), builtinScene("tank").primitives.size());
+
+  // The progress callback counts the beams; the log is the same with it.
+  std::vector<std::size_t> done;
+  const MsisSimulation counted = simulateMsis(builtinScene("tank"), turns(2), [&](std::size_t n, std::size_t total) {
+    EXPECT_EQ(total, 400U);
+    done.push_back(n);
+  });
+  ASSERT_EQ(done.size(), 400U);
+  EXPECT_EQ(done.front(), 1U);
+  EXPECT_EQ(done.back(), 400U);
+  EXPECT_EQ(counted.log.beams.back().intensities, run.log.beams.back().intensities);
 }
 
 TEST(simMsis, DefaultTankAndHarbourLogsAreUnchanged) {

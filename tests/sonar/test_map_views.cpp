@@ -42,6 +42,10 @@ TEST(sonarMapViews, TopViewShowsEachColumnsHighestOccupiedVoxelByHeight) {
   // x 0…9 and y 0…5 plus the border.
   ASSERT_EQ(view.view_cols, 12);
   ASSERT_EQ(view.view_rows, 8);
+  // Its edges in metres: x index 0 starts at 0 m, y index 0 at 0 m; one border voxel before each.
+  EXPECT_NEAR(view.left_m, -kVoxel_m, 1e-9);
+  EXPECT_NEAR(view.bottom_m, -kVoxel_m, 1e-9);
+  EXPECT_DOUBLE_EQ(view.voxel_m, kVoxel_m);
   EXPECT_EQ(view.image.type(), CV_8UC3);
   EXPECT_EQ(view.image.cols, 12 + kLegendCols);
   EXPECT_EQ(view.image.rows, kLegendMinRows);

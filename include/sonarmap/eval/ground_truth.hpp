@@ -70,6 +70,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "sonarmap/core/progress.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sim/scene.hpp"
 
@@ -121,6 +122,13 @@ struct SurfaceRecall {
   std::size_t free_voxels = 0;     ///< of those, held free by the map
 };
 
+/// One occupied voxel of the evaluated region and its distance to the nearest scene surface: the
+/// values behind the surface error, for pictures of where the map is wrong (render/map_figures.hpp).
+struct OccupiedVoxelError {
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();  ///< voxel centre, map frame, metres
+  double distance_m = 0.0;                              ///< to the nearest surface (distanceToSurface), metres
+};
+
 /// What evaluateAgainstScene() measured. Shares are in [0, 1] and 0 when their denominator is 0.
 struct GroundTruthReport {
   double tolerance_m = 0.0;  ///< T actually used
@@ -151,12 +159,17 @@ struct GroundTruthReport {
   /// The recall and erosion above split by nearest primitive: those with at least one visible
   /// surface voxel, in scene order (their counts sum to the totals above).
   std::vector<SurfaceRecall> recall_by_surface;
+  /// Every occupied voxel of the region with its distance to the truth (occupied_voxels entries,
+  /// in no particular order): the surface error's sample.
+  std::vector<OccupiedVoxelError> occupied_errors;
 };
 
 /// Scores `map` against the ground truth `scene` (both in the map frame); definitions in the
-/// file's comment.
+/// file's comment. `progress`, when set, is called as the scoring advances: (done, 3000), three
+/// equal stages of 1000 units (occupied voxels, surface voxels, free voxels), ending at 3000.
 /// @throws ValueError for invalid options, an empty or invalid scene (validateScene), or when the
 ///         map has no known voxel in the evaluated slab.
-GroundTruthReport evaluateAgainstScene(const OcTree16& map, const Scene& scene, const GroundTruthOptions& options = {});
+GroundTruthReport evaluateAgainstScene(const OcTree16& map, const Scene& scene, const GroundTruthOptions& options = {},
+                                       const ProgressCallback& progress = {});
 
 }  // namespace sonarmap

@@ -16,6 +16,18 @@ namespace sonarmap {
 /// @throws OutOfMapError when z_m is outside the map.
 std::vector<Eigen::Vector2d> cellsInSlice(const OcTree16& map, double z_m, Occupancy wanted);
 
+/// A slice's top view and where it lies.
+struct SliceView {
+  cv::Mat image;         ///< CV_8U, renderSlice's picture
+  double left_m = 0.0;   ///< x of the left edge of column 0, metres, map frame
+  double bottom_m = 0.0; ///< y of the lower edge of the last row, metres, map frame
+  double pixel_m = 0.0;  ///< edge of a pixel: the map's resolution, metres
+};
+
+/// renderSlice's image with its position in the map frame (for axes in metres, figure.hpp).
+/// @throws OutOfMapError when z_m is outside the map.
+SliceView renderSliceView(const OcTree16& map, double z_m);
+
 /// Top view of the slice at `z_m`, one pixel per voxel: occupied 0 (black), free 255 (white),
 /// unknown 128 (grey). +x to the right, +y up. The image spans the known voxels of the slice
 /// plus a one-voxel border; an empty slice gives a 1 × 1 grey image. CV_8U, rows × cols.

@@ -20,6 +20,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/core/progress.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -173,8 +174,7 @@ class SonarMapper {
   std::unique_ptr<SweepWork> work_;
 };
 
-/// Progress callback: (sweeps done, sweeps in total).
-using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
+// Progress callbacks (core/progress.hpp) count sweeps here: (sweeps done, sweeps in total).
 
 
 /// Maps every sweep of `log` (split where the head completes a turn or reverses, short fragments

@@ -61,6 +61,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/core/progress.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/scene.hpp"
 #include "sonarmap/sim/trajectory.hpp"
@@ -186,8 +187,10 @@ struct MsisSimulation {
 /// Cost: about beams × horizontal.rays × vertical.rays × (1 + 2 with multipath) ray–scene
 /// queries; the default 28-turn tank run (5,600 beams) takes about 0.3 s on one core, a 400-beam
 /// turn of the other presets (400–700 rays a beam) 0.02–0.11 s in the built-in scenes.
+/// `progress`, when set, is called after each beam: (beams simulated, beams in total).
 /// @throws ValueError for invalid options (MsisSimulationOptions::validate) or an invalid scene
 ///         (validateScene).
-MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options = {});
+MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options = {},
+                            const ProgressCallback& progress = {});
 
 }  // namespace sonarmap

@@ -38,6 +38,9 @@ struct MapView {
   double scale_min_m = 0.0;         ///< value drawn at the scale's low end, metres
   double scale_max_m = 0.0;         ///< value drawn at the scale's high end (== min when one value)
   std::size_t occupied_pixels = 0;  ///< pixels of the view showing an occupied voxel
+  double left_m = 0.0;    ///< map coordinate (x) of the view's left edge, metres (its border included)
+  double bottom_m = 0.0;  ///< map coordinate of its lower edge (y top view, z side view), metres
+  double voxel_m = 0.0;   ///< the map's resolution: a voxel's edge, metres (pixels_per_voxel pixels)
 };
 
 /// Light grey of the pixels with free voxels and no occupied one; 255 (white) is unknown.
