@@ -85,7 +85,9 @@ TEST(evalGroundTruth, HandMadeWallGivesExactFigures) {
   const GroundTruthReport counted =
       evaluateAgainstScene(map, wallScene(), {}, [&](std::size_t done, std::size_t total) {
         EXPECT_EQ(total, 3000U);
-        if (calls > 0) EXPECT_GT(done, last);  // from 0, each call further on
+        if (calls > 0) {
+          EXPECT_GT(done, last);  // from 0, each call further on
+        }
         last = done;
         ++calls;
       });
