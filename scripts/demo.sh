@@ -6,5 +6,6 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh -DSONARMAP_BUILD_TESTS=OFF -DSONARMAP_BUILD_BENCHMARKS=OFF  # the tool only: faster
 ./build/apps/cli/sonarmap demo -o out/demo "$@"
-echo "wrote out/demo/tank.bt (open it with octovis), tank.png, tank_polar.png, tank_cartesian.png," \
-  "and the simulated input: beams.csv, scene.txt (its ground truth)"
+echo "wrote out/demo/tank.bt (open it with octovis), tank.html (open it in a browser), tank.png," \
+  "tank_polar.png, tank_cartesian.png, the simulated input: beams.csv, scene.txt (its ground truth)," \
+  "and the 3D mission in out/demo/3d-mission/ (map.html, map.bt, map_top.png, map_side.png)"
