@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 
 /// Chromium's options for a page: headless, software WebGL (SwiftShader through ANGLE), its own
 /// profile, a fixed window, and time for the page's script to run before the DOM or pixels are read.
-std::vector<std::string> chromiumArgs(const fs::path& page, const fs::path& work_dir) {
+/// `fragment` is appended to the page's URL ("#selfcheck" runs the page's own drawing check).
+std::vector<std::string> chromiumArgs(const fs::path& page, const fs::path& work_dir, const std::string& fragment = "") {
   return {"--headless=new",
           "--no-sandbox",
           "--use-angle=swiftshader",
@@ -28,7 +29,7 @@ std::vector<std::string> chromiumArgs(const fs::path& page, const fs::path& work
           "--user-data-dir=" + (work_dir / "chromium-profile").string(),
           "--window-size=1280,800",
           "--virtual-time-budget=20000",
-          "file://" + fs::absolute(page).string()};
+          "file://" + fs::absolute(page).string() + fragment};
 }
 
 /// The text of `<pre id="check">` in the dumped DOM, or "".
@@ -52,7 +53,7 @@ BrowserCheck checkInChromium(const fs::path& page, const fs::path& screenshot, c
                     "'): install Debian's chromium and configure again to run the browser tests";
     return check;
   }
-  std::vector<std::string> args = chromiumArgs(page, work_dir);
+  std::vector<std::string> args = chromiumArgs(page, work_dir, "#selfcheck");
   args.insert(args.end() - 1, "--dump-dom");
   const ProgramRun dom = runProgram(chromium, args, work_dir);
   check.message = checkLine(dom.out);

@@ -37,14 +37,22 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// A 360° head turning 4 times in the tank, each beam an mtHeadData packet (8-bit bins), with noise
-/// (a false '@' among it) after every 150th packet and the stream cut inside a last packet.
-const std::string& tankCapture() {
-  static const std::string capture = [] {
+/// The simulated run both captures encode: a static head turning 4 times in the built-in tank.
+const MsisSimulation& tankRun() {
+  static const MsisSimulation run = [] {
     MsisSimulationOptions options;
     options.turns = 4;
     options.nav_rate_hz = 0.0;
-    const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
+    return simulateMsis(builtinScene("tank"), options);
+  }();
+  return run;
+}
+
+/// The run, each beam an mtHeadData packet (8-bit bins), with noise (a false '@' among it) after
+/// every 150th packet and the stream cut inside a last packet.
+const std::string& tankCapture() {
+  static const std::string capture = [] {
+    const MsisSimulation& run = tankRun();
     std::string out;
     for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
       const Beam& beam = run.log.beams[i];
@@ -65,10 +73,7 @@ const std::string& tankCapture() {
 /// noise (a false 'BR') after every 150th message and the stream cut inside a last message.
 const std::string& tankPing360Capture() {
   static const std::string capture = [] {
-    MsisSimulationOptions options;
-    options.turns = 4;
-    options.nav_rate_hz = 0.0;
-    const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
+    const MsisSimulation& run = tankRun();
     std::string out;
     for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
       const Beam& beam = run.log.beams[i];

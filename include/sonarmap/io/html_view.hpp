@@ -7,7 +7,9 @@
 /// toggle; a grid at the map's floor with cells of a round number of metres, axes from the map's
 /// origin, the sonar's trajectory as a line. Map frame: x north, y west, z up, metres.
 ///
-/// The page checks itself once its first frame is drawn: the element `<pre id="check">` then reads
+/// Opened as `MAP.html#selfcheck`, the page checks itself once its first frame is drawn (it draws
+/// the map thirteen times, so a plain opening skips it and reads `boxes=B stated=S leaves=L (open
+/// as #selfcheck ...)`): the element `<pre id="check">` then reads
 /// `boxes=B stated=S leaves=L level=D bands=N unseen=U missing_px=M box_px=X painted=P webgl=yes ok`:
 /// B boxes drawn (instances of the occupied meshes), S boxes the page was given
 /// (HtmlView::occupied.boxes), L occupied leaves of the map, D the octree depth drawn (16: one box
