@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages sonarmap needs to build and test, when any is missing.
+# Installs the Debian 12 packages sonarmap needs to build, when any is missing; `install-deps.sh test`
+# also what its tests need (the notebook's runner, pytest, headless Chromium).
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
   libopencv-dev libmatio-dev zlib1g-dev libcli11-dev libeigen3-dev libabsl-dev
   libgtest-dev libbenchmark-dev liboctomap-dev
-  # the Python module, its tests and the example notebook (Debian's python3, not PyPI)
-  python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib jupyter-nbconvert python3-ipykernel
-  # sonarmap view: three.js inlined into the HTML, and headless Chromium for its browser test
-  libjs-three chromium)
+  # the Python module and its examples (Debian's python3, not PyPI)
+  python3-dev pybind11-dev python3-numpy python3-matplotlib
+  # sonarmap view: three.js, compiled into the tool and inlined into each page
+  libjs-three)
+if [ "${1:-}" = test ]; then
+  # pytest, the notebook run by nbconvert, and headless Chromium for the viewer's browser tests
+  packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
