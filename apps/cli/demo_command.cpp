@@ -1,6 +1,7 @@
 #include "demo_command.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "view_command.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 
 namespace sonarmap::cli {
@@ -69,13 +71,9 @@ MapArgs demo3dMapArgs(const OutputDir& dir, const MsisHeadOptions& head, bool qu
 /// angles of r = Rz(yaw)·Ry(pitch)·Rx(roll) in degrees: the form of map --mounting and eval
 /// --sensor-pose.
 std::string poseText(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) {
-  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(r(2, 1), r(2, 2));
-  const double yaw = std::atan2(r(1, 0), r(0, 0));
+  const std::array<double, 6> pose = mountingOfPose(r, t);
   char text[160];
-  // + 0.0 turns a negative zero into 0.
-  std::snprintf(text, sizeof text, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", t.x() + 0.0, t.y() + 0.0, t.z() + 0.0,
-                roll * kDegPerRad + 0.0, pitch * kDegPerRad + 0.0, yaw * kDegPerRad + 0.0);
+  std::snprintf(text, sizeof text, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", pose[0], pose[1], pose[2], pose[3], pose[4], pose[5]);
   return text;
 }
 

@@ -25,6 +25,7 @@ from ._sonarmap import (  # noqa: F401  (re-exported)
     FileError,
     InsertStats,
     MappingStats,
+    Mission,
     OccupancyMap,
     OnlineMapper,
     OutOfMapError,
@@ -39,18 +40,20 @@ from ._sonarmap import (  # noqa: F401  (re-exported)
     detect_obstacles,
     evaluate,
     map_sonar_log,
+    mission_names,
     polar_image,
     read_nav_csv,
     read_scene,
     read_sonar_log,
     simulate,
+    simulate_mission,
     sonar_preset_names,
     write_nav_csv,
 )
 
 # The classes and exceptions are defined in the extension; name them by the package users import.
-for _name in ("Error", "FileError", "ValueError", "OutOfMapError", "InsertStats", "MappingStats", "OccupancyMap",
-              "OnlineMapper", "PolarImage", "Scene", "Simulation", "SonarLog"):
+for _name in ("Error", "FileError", "ValueError", "OutOfMapError", "InsertStats", "MappingStats", "Mission",
+              "OccupancyMap", "OnlineMapper", "PolarImage", "Scene", "Simulation", "SonarLog"):
     try:
         globals()[_name].__module__ = __name__
     except (AttributeError, TypeError):  # a type that refuses it keeps "sonarmap._sonarmap"
@@ -64,6 +67,7 @@ __all__ = [
     "FileError",
     "InsertStats",
     "MappingStats",
+    "Mission",
     "OccupancyMap",
     "OnlineMapper",
     "OutOfMapError",
@@ -78,11 +82,13 @@ __all__ = [
     "detect_obstacles",
     "evaluate",
     "map_sonar_log",
+    "mission_names",
     "polar_image",
     "read_nav_csv",
     "read_scene",
     "read_sonar_log",
     "simulate",
+    "simulate_mission",
     "sonar_preset_names",
     "write_nav_csv",
 ]

@@ -1,6 +1,7 @@
 // The 3D model side: ground-truth scenes (sim/scene.hpp, scene_file.hpp, builtin_scenes.hpp), the
 // MSIS simulator (sim/msis_simulator.hpp, with `sonarmap simulate`'s arguments:
 // sim/simulation_arguments.hpp) and the scoring of a map against a scene (eval/ground_truth.hpp).
+#include <array>
 #include <filesystem>
 #include <numbers>
 #include <variant>
@@ -12,6 +13,8 @@
 #include "navigation_arrays.hpp"
 #include "numpy_checks.hpp"
 #include "sonarmap/eval/ground_truth.hpp"
+#include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
@@ -25,6 +28,14 @@ struct PySimulation {
   PySonarLog log;
   NavTrack nav;
   Scene scene;
+};
+
+/// A simulated 3D mission (eval/simulated_mission.hpp) as Python sees it: the run without its log
+/// (moved into `log`), which missionTruthOptions needs to score a map of it.
+struct PyMission {
+  PySonarLog log;
+  MissionRun run;
+  std::string name;
 };
 
 py::dict primitiveDict(const Primitive& primitive) {
@@ -201,6 +212,83 @@ clockwise from north). nav_rate: fixes per second (0: none).
 Returns sonarmap.Simulation (log, nav, scene). ``simulate(...).log.write_csv(p)`` writes the file
 the CLI writes as beams.csv. Raises sonarmap.ValueError for a value out of range or an unknown
 scene or preset; sonarmap.FileError for a bad scene file.)doc");
+
+  py::class_<PyMission>(m, "Mission",
+                        "A simulated 3D mission (simulate_mission): its log, navigation, scene and the sonar's mounting.")
+      .def_readonly("log", &PyMission::log, "sonarmap.SonarLog of the simulated beams (format \"simulated\").")
+      .def_property_readonly("nav", [](const PyMission& s) { return navArray(s.run.simulation.nav); },
+                             "float64 (N, 7) navigation fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED, FRD).")
+      .def_property_readonly("scene", [](const PyMission& s) { return s.run.simulation.scene; },
+                             "sonarmap.Scene that was scanned (map frame).")
+      .def_property_readonly(
+          "mounting",
+          [](const PyMission& s) {
+            const Eigen::Isometry3d& pose = s.run.options.sonar_to_body;
+            const std::array<double, 6> mounting = mountingOfPose(pose.linear(), pose.translation());
+            return std::vector<double>(mounting.begin(), mounting.end());
+          },
+          "The sonar in the body frame as map_sonar_log's mounting= takes it: [x_m, y_m, z_m, roll_deg, pitch_deg, "
+          "yaw_deg] (the CLI's --mounting).")
+      .def_property_readonly(
+          "beam_width", [](const PyMission& s) { return s.run.options.head.horizontal_beam_width_rad * 180.0 / std::numbers::pi; },
+          "The head's horizontal beam width, degrees (map_sonar_log's beam_width=).")
+      .def_property_readonly(
+          "vertical_aperture", [](const PyMission& s) { return s.run.options.head.vertical_beam_width_rad * 180.0 / std::numbers::pi; },
+          "The head's vertical beam width, degrees (map_sonar_log's vertical_aperture=).")
+      .def_property_readonly("range", [](const PyMission& s) { return s.run.options.head.range_m; },
+                             "The head's range, metres.")
+      .def(
+          "evaluate",
+          [](const PyMission& s, const OccupancyMap& map, double tolerance) {
+            const GroundTruthOptions options = missionTruthOptions(s.run, tolerance);
+            GroundTruthReport report;
+            {
+              py::gil_scoped_release release;
+              report = evaluateAgainstScene(map.tree, s.run.simulation.scene, options);
+            }
+            return reportDict(report);
+          },
+          py::arg("map"), py::arg("tolerance") = 0.1,
+          R"doc(Scores a map of this mission as docs/accuracy.md does (eval/simulated_mission.hpp,
+missionTruthOptions): against the scene, seen from 24 sonar poses along the navigation with the
+head's vertical aperture and range as the field of view, so that only what the sonar could see
+counts. tolerance: match distance, metres. Returns evaluate()'s dict. Raises sonarmap.ValueError
+for a map with nothing known.)doc")
+      .def("__repr__", [](const PyMission& s) {
+        return "Mission(" + s.name + ", " + std::to_string(s.log.log.beams.size()) + " beams, " +
+               std::to_string(s.run.simulation.nav.size()) + " nav fixes)";
+      });
+
+  m.def("mission_names", &simulatedMissionNames, "The simulated 3D missions: \"lawnmower\", \"tilted-loop\".");
+  const SimulatedMission mission_defaults{};
+  m.def(
+      "simulate_mission",
+      [](const std::string& mission, const std::string& sonar, const std::string& scene, std::uint64_t seed) {
+        PyMission out;
+        out.name = mission;
+        {
+          py::gil_scoped_release release;
+          out.run = simulateMission(SimulatedMission{sonar, scene, mission, seed});
+          out.log.log = std::move(out.run.simulation.log);
+          out.run.simulation.log = SonarLog{};
+        }
+        out.log.format = "simulated";
+        const MsisHeadOptions& head = out.run.options.head;
+        out.log.beam = NominalBeam{head.horizontal_beam_width_rad, head.vertical_beam_width_rad};
+        return out;
+      },
+      py::arg("mission") = mission_defaults.mission, py::arg("sonar") = mission_defaults.preset,
+      py::arg("scene") = mission_defaults.scene, py::arg("seed") = mission_defaults.seed,
+      R"doc(Simulates one of the 3D missions of docs/accuracy.md (eval/simulated_mission.hpp): a head
+preset on a moving vehicle over a built-in 3D scene, as ``sonarmap demo`` does for its 3D run.
+
+mission: mission_names() ("tilted-loop": a rectangle with the sonar tilted 25 degrees down;
+"lawnmower": legs at two depths, the sonar upright). sonar: sonar_preset_names(). scene: a
+built-in scene ("quay3d"), built for the head's range. seed: of the speckle and noise.
+Map it with ``map_sonar_log(m.log, nav=m.nav, mounting=m.mounting, volume=True,
+beam_width=m.beam_width, vertical_aperture=m.vertical_aperture, resolution=...)`` and score the map
+with ``m.evaluate(map)``. Returns sonarmap.Mission. Raises sonarmap.ValueError for an unknown
+mission, preset or scene.)doc");
 
   m.def(
       "evaluate",

@@ -149,4 +149,12 @@ Eigen::Isometry3d sonarToBodyOfMounting(const std::vector<double>& mounting) {
   return bodyToNed(pose);
 }
 
+std::array<double, 6> mountingOfPose(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) {
+  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
+  const double roll = std::atan2(r(2, 1), r(2, 2));
+  const double yaw = std::atan2(r(1, 0), r(0, 0));
+  // + 0.0 turns a negative zero into 0.
+  return {t.x() + 0.0, t.y() + 0.0, t.z() + 0.0, roll / kRadPerDeg + 0.0, pitch / kRadPerDeg + 0.0, yaw / kRadPerDeg + 0.0};
+}
+
 }  // namespace sonarmap

@@ -76,3 +76,16 @@ def test_cras_log_same_bt_as_cli(cli, shared_file, tmp_path):
     m = sonarmap.map_sonar_log(log)
     m.write(str(tmp_path / "py.bt"))
     assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
+
+
+def test_demo_3d_mission_same_bt_from_python(cli, tmp_path):
+    """The demo's 3D run (tilted loop over quay3d, sonar 25 degrees down, --3d at 5 cm) made from
+    Python with the mission's navigation, mounting and beam: the same bytes as the demo's map.bt."""
+    cli("demo", "-o", tmp_path / "demo", "-q")
+    mission = sonarmap.simulate_mission("tilted-loop", sonar="micron", scene="quay3d")
+    assert mission.mounting == pytest.approx([0.0, 0.0, 0.0, 180.0, -25.0, 0.0])
+    m = sonarmap.map_sonar_log(mission.log, nav=mission.nav, mounting=mission.mounting, volume=True,
+                               resolution=0.05, beam_width=mission.beam_width,
+                               vertical_aperture=mission.vertical_aperture)
+    m.write(tmp_path / "map.bt")
+    assert (tmp_path / "map.bt").read_bytes() == (tmp_path / "demo" / "3d-mission" / "map.bt").read_bytes()

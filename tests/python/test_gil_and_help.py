@@ -8,36 +8,45 @@ import numpy as np
 import sonarmap
 
 
-def _increments_during(work):
-    """How often a Python thread increments a counter while `work()` runs in this thread."""
-    count = [0]
+def _longest_pause_during(work):
+    """The longest time a Python thread, stepping in a loop, did not step while `work()` ran in
+    this thread, and how long `work()` took (seconds). A call that holds the GIL stops that thread
+    for its whole length; one that releases it lets the thread step on."""
+    longest = [0.0]
+    running = threading.Event()
     stop = threading.Event()
 
     def spin():
+        last = time.perf_counter()
+        running.set()
         while not stop.is_set():
-            count[0] += 1
+            now = time.perf_counter()
+            longest[0] = max(longest[0], now - last)
+            last = now
 
     thread = threading.Thread(target=spin)
     thread.start()
+    running.wait()
     time.sleep(0.02)
-    before = count[0]
+    longest[0] = 0.0
     start = time.perf_counter()
     work()
     seconds = time.perf_counter() - start
-    during = count[0] - before
+    pause = longest[0]
     stop.set()
     thread.join()
-    return during, seconds
+    return pause, seconds
 
 
 def test_mapping_and_queries_release_the_gil(simulated_tank):
-    during, seconds = _increments_during(lambda: sonarmap.map_sonar_log(simulated_tank.log, resolution=0.01))
-    assert seconds > 0.02
-    assert during > 1000, f"a Python thread ran only {during} steps in {seconds:.3f} s of mapping"
+    pause, seconds = _longest_pause_during(lambda: sonarmap.map_sonar_log(simulated_tank.log, resolution=0.002))
+    assert seconds > 0.1, "the mapping must take long enough to tell"
+    assert pause < 0.5 * seconds, f"a Python thread stood still {pause:.3f} s of {seconds:.3f} s of mapping"
     m = sonarmap.map_sonar_log(simulated_tank.log)
-    points = np.random.default_rng(0).uniform(-2, 2, size=(2_000_000, 3))
-    during, seconds = _increments_during(lambda: m.classify(points))
-    assert during > 1000, f"a Python thread ran only {during} steps in {seconds:.3f} s of queries"
+    points = np.random.default_rng(0).uniform(-2, 2, size=(4_000_000, 3))
+    pause, seconds = _longest_pause_during(lambda: m.classify(points))
+    assert seconds > 0.1, "the queries must take long enough to tell"
+    assert pause < 0.5 * seconds, f"a Python thread stood still {pause:.3f} s of {seconds:.3f} s of queries"
 
 
 def test_help_shows_shapes_dtypes_units_and_frames():

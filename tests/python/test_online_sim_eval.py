@@ -120,3 +120,23 @@ def test_map_pictures_for_notebooks(simulated_tank):
     assert m.render_side_view()["image"].dtype == np.uint8
     with pytest.raises(sonarmap.ValueError, match="occupancy"):
         m.slice_cells(0.0, "maybe")
+
+
+def test_simulated_mission_reproduces_the_accuracy_table():
+    """The tilted loop mapped from Python as sonarmap_accuracy_3d maps it (--3d, 5 cm, the head's
+    beam) and scored with the head's field of view: docs/accuracy.md's row, P 0.490, R 0.107,
+    median surface error 0.118 m, free accuracy 1.000."""
+    assert sonarmap.mission_names() == ["lawnmower", "tilted-loop"]
+    mission = sonarmap.simulate_mission("tilted-loop", sonar="micron")
+    assert len(mission.log) > 0 and mission.nav.shape[1] == 7 and mission.range == pytest.approx(5.0)
+    assert mission.beam_width == pytest.approx(mission.log.nominal_beam_deg[0])
+    m = sonarmap.map_sonar_log(mission.log, nav=mission.nav, mounting=mission.mounting, volume=True,
+                               resolution=0.05, beam_width=mission.beam_width,
+                               vertical_aperture=mission.vertical_aperture)
+    score = mission.evaluate(m)
+    assert score["precision"] == pytest.approx(0.490, abs=5e-4)
+    assert score["recall"] == pytest.approx(0.107, abs=5e-4)
+    assert score["surface_error_median_m"] == pytest.approx(0.118, abs=5e-4)
+    assert score["free_accuracy"] == pytest.approx(1.0, abs=5e-4)
+    with pytest.raises(sonarmap.ValueError):
+        sonarmap.simulate_mission("spiral")

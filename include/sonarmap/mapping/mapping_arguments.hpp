@@ -7,6 +7,7 @@
 /// Python module, so both map a log with the same options identically. Defaults are the library's
 /// (MapperOptions{}), not copies.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -80,5 +81,10 @@ double parseOptionNumber(const std::string& text, const char* option, const char
 /// mounting, upright and aligned (defaultSonarToBody()).
 /// @throws ValueError when the list is neither empty nor six finite numbers.
 Eigen::Isometry3d sonarToBodyOfMounting(const std::vector<double>& mounting);
+
+/// The inverse of sonarToBodyOfMounting for any rigid pose (rotation `r`, translation `t`): X, Y, Z
+/// in metres, then ROLL, PITCH, YAW in degrees of r = Rz(yaw)·Ry(pitch)·Rx(roll) (pitch in
+/// [−90°, 90°]); the numbers of map --mounting and eval --sensor-pose.
+std::array<double, 6> mountingOfPose(const Eigen::Matrix3d& r, const Eigen::Vector3d& t);
 
 }  // namespace sonarmap
