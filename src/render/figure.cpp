@@ -7,8 +7,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <mutex>
 
 #include "sonarmap/core/errors.hpp"
 
@@ -46,22 +44,6 @@ std::string tickText(double value, double step) {
   char text[32];
   std::snprintf(text, sizeof text, "%.*f", decimals, std::abs(value) < step * 1e-6 ? 0.0 : value);
   return text;
-}
-
-/// The 256 colours of an OpenCV colour map, low end first (cached per map).
-const std::array<cv::Vec3b, 256>& colourTable(cv::ColormapTypes colormap) {
-  static std::mutex mutex;
-  static std::map<int, std::array<cv::Vec3b, 256>> tables;
-  const std::lock_guard<std::mutex> lock(mutex);
-  auto [it, inserted] = tables.try_emplace(static_cast<int>(colormap));
-  if (inserted) {
-    cv::Mat ramp(256, 1, CV_8U);
-    for (int i = 0; i < 256; ++i) ramp.at<unsigned char>(i) = static_cast<unsigned char>(i);
-    cv::Mat coloured;
-    cv::applyColorMap(ramp, coloured, colormap);
-    for (int i = 0; i < 256; ++i) it->second[static_cast<std::size_t>(i)] = coloured.at<cv::Vec3b>(i);
-  }
-  return it->second;
 }
 
 /// Where an axis value falls along the plot: pixels from the plot's left (or top) edge.
@@ -216,11 +198,6 @@ std::vector<double> niceTicks(double lo, double hi, int wanted) {
     if (ticks.size() >= 2) return ticks;
     step /= 2.0;  // a narrow range between two steps: halve until two ticks fit
   }
-}
-
-cv::Vec3b colourOnScale(cv::ColormapTypes colormap, double value, double min, double max) {
-  const double t = max > min ? std::clamp((value - min) / (max - min), 0.0, 1.0) : 0.5;
-  return colourTable(colormap)[static_cast<std::size_t>(std::lround(t * 255.0))];
 }
 
 FigureLayout figureLayout(int rows, int cols, bool equal_aspect) {

@@ -13,22 +13,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "sonarmap/sonar/colour_scale.hpp"
+
 namespace sonarmap {
 namespace {
-
-/// The 256 colours of COLORMAP_VIRIDIS, low end first.
-const std::array<cv::Vec3b, 256>& viridis() {
-  static const std::array<cv::Vec3b, 256> colours = [] {
-    cv::Mat ramp(256, 1, CV_8U);
-    for (int i = 0; i < 256; ++i) ramp.at<unsigned char>(i) = static_cast<unsigned char>(i);
-    cv::Mat coloured;
-    cv::applyColorMap(ramp, coloured, cv::COLORMAP_VIRIDIS);
-    std::array<cv::Vec3b, 256> table{};
-    for (int i = 0; i < 256; ++i) table[static_cast<std::size_t>(i)] = coloured.at<cv::Vec3b>(i);
-    return table;
-  }();
-  return colours;
-}
 
 /// How a view projects the map: the voxel-key axes drawn to the right (u) and up (v), the axis
 /// looked along (depth), and which occupied voxel of a pixel's line of sight is shown.
@@ -182,8 +170,7 @@ MapView render(const OcTree16& map, const Projection& p, int max_side_px) {
 }  // namespace
 
 cv::Vec3b scaleColour(double value_m, double min_m, double max_m) {
-  const double t = max_m > min_m ? std::clamp((value_m - min_m) / (max_m - min_m), 0.0, 1.0) : 0.5;
-  return viridis()[static_cast<std::size_t>(std::lround(t * 255.0))];
+  return colourOnScale(cv::COLORMAP_VIRIDIS, value_m, min_m, max_m);
 }
 
 std::optional<HeightExtent> occupiedHeightExtent(const OcTree16& map) {

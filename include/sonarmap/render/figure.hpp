@@ -15,6 +15,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "sonarmap/sonar/colour_scale.hpp"  // colourOnScale, for the colour bars
+
 namespace sonarmap {
 
 /// The long side of a figure's plot area is at least this many pixels (the raster is magnified by
@@ -99,9 +101,6 @@ FigureLayout figureLayout(int rows, int cols, bool equal_aspect);
 ///         with left < right and bottom < top.
 cv::Mat composeFigure(const FigureSpec& spec);
 
-/// The BGR colour of `value` on a scale from `min` to `max` through `colormap` (values outside
-/// are clamped; the middle colour when min == max).
-cv::Vec3b colourOnScale(cv::ColormapTypes colormap, double value, double min, double max);
 
 /// Tick values of "nice" steps (1, 2 or 5 × 10ⁿ) inside [lo, hi], about `wanted` of them (≥ 2
 /// for any hi > lo).
