@@ -207,7 +207,7 @@ BeamOrReason readBeam(matvar_t* data, std::size_t index) {
   }
   auto intensities = readIntensities(field("intensities"), out.reason);
   if (!intensities) return out;
-  out.beam = Beam{*time_s, bearingFromCrasAngle(*angle_deg), *bin_length_m, std::move(*intensities)};
+  out.beam = Beam{*time_s, bearingFromCrasAngle(*angle_deg), *bin_length_m, std::move(*intensities), {}, {}};
   return out;
 }
 

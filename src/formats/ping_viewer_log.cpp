@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ping360_messages.hpp"
+#include "ping_viewer_time.hpp"
 #include "reader_support.hpp"
 #include "frame_scanner.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -20,8 +21,10 @@ namespace {
 constexpr std::string_view kHeader = "PingViewer sensor log file";
 constexpr std::int32_t kVersion = 1;
 constexpr std::uint32_t kNull = 0xFFFFFFFFU;  // QDataStream's length of a null string or array
-/// "hh:mm:ss.zzz" is 12 characters: 24 bytes in UTF-16.
-constexpr std::size_t kMaxTimeBytes = 24;
+/// "hh:mm:ss.zzz" is 12 characters, 24 bytes in UTF-16 (36 in UTF-8 with 3-byte digits); a longer
+/// time is no time stamp of Ping Viewer's and the reader has lost its place.
+constexpr std::size_t kMaxTimeBytes = 64;
+constexpr double kDay_s = 86400.0;
 
 std::optional<std::uint32_t> beU32(std::span<const unsigned char> bytes, std::size_t at) {
   if (bytes.size() < 4 || at > bytes.size() - 4) return std::nullopt;
@@ -39,26 +42,6 @@ bool sameText(std::span<const unsigned char> bytes, std::string_view text, bool 
     }
   }
   return true;
-}
-
-/// The characters of a string of ASCII text in either encoding (UTF-16: the low bytes).
-std::string asciiOf(std::span<const unsigned char> bytes, bool utf16) {
-  std::string text;
-  for (std::size_t i = utf16 ? 1 : 0; i < bytes.size(); i += utf16 ? 2 : 1) text += static_cast<char>(bytes[i]);
-  return text;
-}
-
-/// "hh:mm:ss.zzz" → seconds, or nullopt.
-std::optional<double> secondsOf(const std::string& time) {
-  static constexpr std::string_view kPattern = "00:00:00.000";
-  if (time.size() != kPattern.size()) return std::nullopt;
-  for (std::size_t i = 0; i < time.size(); ++i) {
-    const bool digit = time[i] >= '0' && time[i] <= '9';
-    if (kPattern[i] == '0' ? !digit : time[i] != kPattern[i]) return std::nullopt;
-  }
-  const auto number = [&](std::size_t at, std::size_t digits) { return std::stoi(time.substr(at, digits)); };
-  if (number(3, 2) > 59 || number(6, 2) > 59) return std::nullopt;
-  return number(0, 2) * 3600.0 + number(3, 2) * 60.0 + number(6, 2) + number(9, 3) / 1000.0;
 }
 
 /// Reads the header; returns the offset of the first record and whether strings are UTF-16.
@@ -112,10 +95,20 @@ struct RecordStream {
 RecordStream readRecords(std::span<const unsigned char> bytes, std::size_t at, bool utf16, const std::string& source,
                          SonarLog& log) {
   RecordStream records;
+  std::optional<double> last_time_s;
+  double day_offset_s = 0.0;
+  std::size_t unreadable = 0;
+  std::string first_unreadable;
+  const auto note = [&] {
+    if (unreadable == 0) return;
+    log.notes.push_back(source + ": " + std::to_string(unreadable) + " record time(s) unreadable, their data kept at the previous record's time (the first: " +
+                        first_unreadable + ")");
+  };
   for (std::size_t index = 0; at < bytes.size(); ++index) {
     const std::string name = "record " + std::to_string(index) + " at byte " + std::to_string(at);
     const auto stop = [&](const std::string& why) {
       detail::addSkip(log, source, name + ": " + why + "; the last " + std::to_string(bytes.size() - at) + " bytes skipped");
+      note();
     };
     const std::optional<std::uint32_t> time_bytes = beU32(bytes, at);
     if (!time_bytes) {
@@ -143,17 +136,25 @@ RecordStream readRecords(std::span<const unsigned char> bytes, std::size_t at, b
       return records;
     }
     const std::span<const unsigned char> data = bytes.subspan(data_length_at + 4, data_size);
-    const std::string time = asciiOf(bytes.subspan(at + 4, *time_bytes), utf16);
-    const std::optional<double> time_s = secondsOf(time);
-    if (!time_s) {
-      detail::addSkip(log, source, name + ": time '" + time + "' is not hh:mm:ss.zzz; its " +
-                                       std::to_string(data_size) + " data bytes skipped");
-    } else if (!data.empty()) {
+    const std::span<const unsigned char> time_text = bytes.subspan(at + 4, *time_bytes);
+    std::optional<double> time_s = detail::pingViewerTime_s(time_text, utf16);
+    if (time_s) {
+      // QTime wraps at midnight: a log longer than a day starts again at 00:00:00.000.
+      if (last_time_s && *time_s + day_offset_s < *last_time_s - kDay_s / 2.0) day_offset_s += kDay_s;
+      *time_s += day_offset_s;
+      last_time_s = time_s;
+    } else {
+      // The bytes are the sensor's stream, whatever the time says: a message may continue here.
+      time_s = last_time_s.value_or(0.0);
+      if (unreadable++ == 0) first_unreadable = name + ": '" + detail::pingViewerText(time_text, utf16) + "'";
+    }
+    if (!data.empty()) {
       records.chunks.push_back({records.stream.size(), data_length_at + 4, index, *time_s});
       records.stream.insert(records.stream.end(), data.begin(), data.end());
     }
     at = data_length_at + 4 + data_size;
   }
+  note();
   return records;
 }
 

@@ -247,7 +247,7 @@ def ping360_files():
         "viewer_wrong_version.bin": viewer_log([("00:00:00.100", stream)], version=2),
         "viewer_truncated_header.bin": viewer_header()[:40],
         "viewer_no_messages.bin": viewer_log([("00:00:00.100", b"")]),
-        "viewer_bad_time.bin": viewer_log([("later", stream)]),
+        "viewer_time_too_long.bin": viewer_log([("0" * 65, stream)]),
     }, {"ping_small.bin": b"xx" + stream,
         "viewer_small.bin": viewer_log([("00:00:00.100", stream[:20]), ("00:00:00.150", stream[20:])]),
         "viewer_small_utf16.bin": viewer_log([("00:00:00.100", stream)], utf16=True)}

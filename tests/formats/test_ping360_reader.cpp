@@ -173,22 +173,68 @@ TEST(formatsPingViewerLog, ReadsMessagesWithTheirRecordTimes) {
   }
 }
 
-TEST(formatsPingViewerLog, SkipsBadRecordsAndStopsAtACutOne) {
+TEST(formatsPingViewerLog, KeepsRecordsWithUnreadableTimesAndStopsAtACutOne) {
   Ping360Data later;
   later.angle = 10;
+  // A one-digit hour reads; a time that is no time keeps its data (the stream goes on through it)
+  // at the previous record's time, with a note.
   const std::string good = pingViewerLog({{"00:00:00.100", ping360Message({})},
                                           {"0:00:00.200", ping360Message({})},
+                                          {"soon", ping360Message({})},
                                           {"00:00:00.300", ping360Message(later)}});
   const SonarLog log = parseLog(good + test::qtString("00:00:00.400", false) + test::qtByteArray("BR").substr(0, 5));
-  ASSERT_EQ(log.beams.size(), 2u);
-  EXPECT_DOUBLE_EQ(log.beams[1].time_s, 0.3);
-  ASSERT_EQ(log.skip_reasons.size(), 2u);
-  EXPECT_TRUE(contains(log.skip_reasons[0], "record 1 at byte ")) << log.skip_reasons[0];
-  EXPECT_TRUE(contains(log.skip_reasons[0], ": time '0:00:00.200' is not hh:mm:ss.zzz; its 27 data bytes skipped"))
-      << log.skip_reasons[0];
-  EXPECT_TRUE(contains(log.skip_reasons[1], "record 3 at byte " + std::to_string(good.size()) +
+  ASSERT_EQ(log.beams.size(), 4u);
+  EXPECT_DOUBLE_EQ(log.beams[1].time_s, 0.2);
+  EXPECT_DOUBLE_EQ(log.beams[2].time_s, 0.2);
+  EXPECT_DOUBLE_EQ(log.beams[3].time_s, 0.3);
+  ASSERT_EQ(log.notes.size(), 1u);
+  EXPECT_TRUE(contains(log.notes[0], "viewer.bin: 1 record time(s) unreadable, their data kept at the previous record's time (the first: record 2 at byte "))
+      << log.notes[0];
+  EXPECT_TRUE(contains(log.notes[0], ": 'soon')")) << log.notes[0];
+  ASSERT_EQ(log.skip_reasons.size(), 1u);
+  EXPECT_TRUE(contains(log.skip_reasons[0], "record 4 at byte " + std::to_string(good.size()) +
                                                 ": data of 2 bytes, the file ends 1 bytes after their start"))
-      << log.skip_reasons[1];
+      << log.skip_reasons[0];
+}
+
+TEST(formatsPingViewerLog, ReadsTimeStampsWrittenWithTheDigitsOfAnyLocale) {
+  // Qt writes the time with the recording computer's locale digits: Persian (U+06F0…), Arabic-Indic
+  // (U+0660…), Devanagari (U+0966…), as UTF-16BE on Windows and UTF-8 elsewhere.
+  const auto digits = [](char32_t zero, const std::string& ascii, bool utf16) {
+    std::string bytes;
+    for (const char c : ascii) {
+      const char32_t code = c >= '0' && c <= '9' ? zero + static_cast<char32_t>(c - '0') : static_cast<char32_t>(c);
+      if (utf16) {
+        bytes += static_cast<char>(code >> 8);
+        bytes += static_cast<char>(code & 0xFF);
+      } else if (code < 0x80) {
+        bytes += static_cast<char>(code);
+      } else {  // two or three UTF-8 bytes
+        if (code < 0x800) {
+          bytes += static_cast<char>(0xC0 | (code >> 6));
+        } else {
+          bytes += static_cast<char>(0xE0 | (code >> 12));
+          bytes += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
+        }
+        bytes += static_cast<char>(0x80 | (code & 0x3F));
+      }
+    }
+    std::string out;
+    test::putBigU32(out, static_cast<std::uint32_t>(bytes.size()));
+    return out + bytes;
+  };
+  for (const bool utf16 : {true, false}) {
+    for (const char32_t zero : {U'\u06F0', U'\u0660', U'\u0966', U'0'}) {
+      const std::string log_bytes = test::pingViewerHeader(utf16) + digits(zero, "00:01:02.394", utf16) +
+                                    test::qtByteArray(ping360Message({})) + digits(zero, "01:00:00.005", utf16) +
+                                    test::qtByteArray(ping360Message({}));
+      const SonarLog log = parseLog(log_bytes);
+      ASSERT_EQ(log.beams.size(), 2u) << static_cast<int>(zero);
+      EXPECT_DOUBLE_EQ(log.beams[0].time_s, 62.394);
+      EXPECT_DOUBLE_EQ(log.beams[1].time_s, 3600.005);
+      EXPECT_TRUE(log.notes.empty());
+    }
+  }
 }
 
 TEST(formatsPingViewerLog, RejectsAForeignHeader) {

@@ -23,6 +23,10 @@ struct Beam {
   /// dB span the intensities 0…255 cover, when the format records it (SeaNet: ADspan × 80 / 255);
   /// unset otherwise (polar_units.hpp then assumes kDefaultIntensitySpan_db).
   std::optional<double> intensity_span_db;
+  /// The receiver gain setting the head reports, in the head's own units, when the format records
+  /// it (Ping360 device_data gain_setting: 0 low, 1 normal, 2 high; SeaNet mtHeadData: the gain
+  /// byte). Beams of different settings are not calibrated together (sweeps.hpp).
+  std::optional<int> gain_setting;
 };
 
 /// Beams read from a file, in recording order, with the count of beams the reader rejected.
@@ -30,6 +34,13 @@ struct SonarLog {
   std::vector<Beam> beams;
   std::size_t skipped_beams = 0;         ///< malformed beams that were dropped (not in `beams`)
   std::vector<std::string> skip_reasons;  ///< one line per skipped beam, for the user
+  /// What the file says of the sonar that recorded it, when it says anything (a Ping Viewer log's
+  /// device_information and recorder: "Ping360 (firmware 3.1.1), recorded by Ping Viewer v2.1.0 on
+  /// Windows 7 SP 1"); empty otherwise.
+  std::string sonar;
+  /// Lines for the user about data the reader kept but had to interpret (a time stamp it could not
+  /// read, a clock that wrapped); not skips.
+  std::vector<std::string> notes;
 };
 
 }  // namespace sonarmap
