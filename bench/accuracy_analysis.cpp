@@ -55,7 +55,7 @@ MapperOptions headOptions(const SonarPreset& preset) {
 Eigen::Vector3d inPlane(double bearing_rad) { return {std::cos(bearing_rad), std::sin(bearing_rad), 0.0}; }
 
 /// The sweeps of a log as mapSonarLog splits them.
-std::vector<SweepRange> sweepsOf(const SonarLog& log) { return mergeShortSweeps(splitSweeps(log.beams), 20); }
+std::vector<SweepRange> sweepsOf(const SonarLog& log) { return groupSweeps(log.beams, 20); }
 
 }  // namespace
 

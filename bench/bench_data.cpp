@@ -133,7 +133,7 @@ std::vector<PolarImage> rawSweeps(const SonarLog& log, const MapperOptions& opti
   // As mapSonarLog(): split at full turns, short fragments joined to their neighbour.
   const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
   std::vector<PolarImage> images;
-  for (const SweepRange& sweep : mergeShortSweeps(splitSweeps(log.beams), min_beams)) {
+  for (const SweepRange& sweep : groupSweeps(log.beams, min_beams)) {
     images.push_back(makePolarImage(log.beams, sweep.first, sweep.last_exclusive));
   }
   return images;

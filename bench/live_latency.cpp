@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
     if (rates.empty()) rates = {1.0, 20.0};
     std::vector<std::vector<std::uint8_t>> packets;
     for (const Beam& beam : log.beams) packets.push_back(encodeSeaNetCapture({beam}));
-    const std::size_t first_sweep = mergeShortSweeps(splitSweeps(log.beams), 20).front().size();
+    const std::size_t first_sweep = groupSweeps(log.beams, 20).front().size();
     const double interval_s = beamInterval_s(log);
     std::printf("| model | replay rate | beams timed | median (ms) | 99th pct (ms) | max (ms) | first sweep median (ms) | "
                 "late | beams mapped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n");

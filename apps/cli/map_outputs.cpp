@@ -118,6 +118,7 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
   const NodeCounts counts = map.counts();
   std::printf("%zu beams used, %zu skipped, ", stats.beams_used, stats.beams_skipped + stats.out_of_map);
   if (with_nav) std::printf("%zu without navigation, ", stats.beams_without_nav);
+  if (stats.beams_uncalibrated > 0) std::printf("%zu uncalibrated, ", stats.beams_uncalibrated);
   if (stats.beams_without_evidence > 0) std::printf("%zu without obstacle (clearing nothing), ", stats.beams_without_evidence);
   std::printf("%zu sweeps, %zu obstacles%s, ", stats.sweeps, stats.obstacles,
               stats.obstacles == 0 ? " (EMPTY MAP)" : "");

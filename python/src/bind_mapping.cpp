@@ -137,6 +137,7 @@ py::dict statsDict(const MappingStats& s) {
   d["out_of_map"] = s.out_of_map;
   d["beams_clipped"] = s.beams_clipped;
   d["beams_without_nav"] = s.beams_without_nav;
+  d["beams_uncalibrated"] = s.beams_uncalibrated;
   d["beams_without_evidence"] = s.beams_without_evidence;
   d["farthest_m"] = s.farthest_m;
   return d;
@@ -194,6 +195,8 @@ void bindMapping(py::module_& m) {
       .def_readonly("out_of_map", &MappingStats::out_of_map, "beams whose end lies outside the map (skipped)")
       .def_readonly("beams_clipped", &MappingStats::beams_clipped, "beams longer than max_range (obstacle dropped)")
       .def_readonly("beams_without_nav", &MappingStats::beams_without_nav, "beams outside the navigation's time span")
+      .def_readonly("beams_uncalibrated", &MappingStats::beams_uncalibrated,
+                    "beams of a range scale or gain used for too few beams in a row to calibrate on (skipped)")
       .def_readonly("beams_without_evidence", &MappingStats::beams_without_evidence,
                     "beams without an obstacle that clear nothing (the volume model's default)")
       .def_readonly("farthest_m", &MappingStats::farthest_m, "largest |x|, |y| or |z| a beam reached, metres, map frame")

@@ -13,7 +13,7 @@ namespace sonarmap {
 std::vector<LastSweepEcho> lastSweepEchoes(const SonarLog& log, const SonarMapper& mapper) {
   std::vector<LastSweepEcho> echoes;
   const auto min_beams = static_cast<std::size_t>(std::max(1, mapper.options().detector.background.min_beams));
-  const std::vector<SweepRange> sweeps = mergeShortSweeps(splitSweeps(log.beams), min_beams);
+  const std::vector<SweepRange> sweeps = groupSweeps(log.beams, min_beams);
   if (sweeps.empty()) return echoes;
   PolarImage last = makePolarImage(log.beams, sweeps.back().first, sweeps.back().last_exclusive);
   const std::vector<BeamDetection> detections = mapper.detect(last);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <string_view>
 
 #include "../io/csv_fields.hpp"
@@ -21,6 +22,7 @@ namespace {
 constexpr std::size_t kFixedColumns = 3;  // time_s, bearing_deg, bin_length_m
 constexpr std::string_view kFixedNames[kFixedColumns] = {"time_s", "bearing_deg", "bin_length_m"};
 constexpr std::string_view kSpanName = "intensity_span_db";  // optional, after bin_length_m
+constexpr std::string_view kGainName = "gain_setting";       // optional, after the span (or bin_length_m)
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Bearing in [0, 2π) from any finite angle in degrees (the same arithmetic as readCrasMat).
@@ -55,6 +57,7 @@ std::string binColumnName(std::size_t bin) {
 /// The columns a header declares.
 struct Header {
   bool has_span = false;      ///< an intensity_span_db column after bin_length_m
+  std::optional<std::size_t> gain_column;  ///< the gain_setting column, when there is one
   std::size_t first_bin = 0;  ///< column of b0
   std::size_t bins = 0;       ///< b-columns
 };
@@ -63,8 +66,12 @@ Header readHeader(csv::LineReader& reader) {
   if (!reader.next()) reader.failFile("empty, expected the header row time_s,bearing_deg,bin_length_m,b0,b1,...");
   for (std::size_t c = 0; c < kFixedColumns; ++c) reader.expectName(c, kFixedNames[c]);
   Header header;
-  header.has_span = reader.fields().size() > kFixedColumns && reader.fields()[kFixedColumns] == kSpanName;
+  const auto named = [&](std::size_t column, std::string_view name) {
+    return reader.fields().size() > column && reader.fields()[column] == name;
+  };
+  header.has_span = named(kFixedColumns, kSpanName);
   header.first_bin = kFixedColumns + (header.has_span ? 1 : 0);
+  if (named(header.first_bin, kGainName)) header.gain_column = header.first_bin++;
   header.bins = reader.fields().size() - header.first_bin;
   for (std::size_t i = 0; i < header.bins; ++i) reader.expectName(header.first_bin + i, binColumnName(i));
   return header;
@@ -105,6 +112,15 @@ Beam readBeam(const csv::LineReader& reader, const Header& header) {
     const double span_db = reader.finiteNumber(kFixedColumns, kSpanName, "dB > 0");
     if (!(span_db > 0.0)) reader.failField(kFixedColumns, kSpanName, csv::formatNumber(span_db) + " dB, expected dB > 0");
     beam.intensity_span_db = span_db;
+  }
+  if (header.gain_column && fields.size() > *header.gain_column && !fields[*header.gain_column].empty()) {
+    const std::string_view token = fields[*header.gain_column];
+    int gain = 0;
+    const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), gain);
+    if (error != std::errc() || stop != token.data() + token.size()) {
+      reader.failField(*header.gain_column, kGainName, detail::quotedForMessage(token) + " is not an integer, expected the head's gain setting");
+    }
+    beam.gain_setting = gain;
   }
   beam.intensities.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) beam.intensities[i] = readIntensity(reader, header.first_bin + i, i);
@@ -161,13 +177,15 @@ SonarLog readBeamCsv(const std::string& path) {
 void writeBeamCsv(std::ostream& out, const SonarLog& log) {
   checkWritable(log);
   std::size_t header_bins = 0;
-  bool has_span = false;
+  bool has_span = false, has_gain = false;
   for (const Beam& beam : log.beams) {
     header_bins = std::max(header_bins, beam.intensities.size());
     has_span = has_span || beam.intensity_span_db.has_value();
+    has_gain = has_gain || beam.gain_setting.has_value();
   }
   std::string line = "time_s,bearing_deg,bin_length_m";
   if (has_span) (line += ',') += kSpanName;
+  if (has_gain) (line += ',') += kGainName;
   for (std::size_t i = 0; i < header_bins; ++i) line += ',' + binColumnName(i);
   out << line << '\n';
   for (const Beam& beam : log.beams) {
@@ -180,6 +198,10 @@ void writeBeamCsv(std::ostream& out, const SonarLog& log) {
     if (has_span) {
       line += ',';
       if (beam.intensity_span_db) csv::appendNumber(line, *beam.intensity_span_db);
+    }
+    if (has_gain) {
+      line += ',';
+      if (beam.gain_setting) line += std::to_string(*beam.gain_setting);
     }
     for (const std::uint8_t intensity : beam.intensities) {
       line += ',';

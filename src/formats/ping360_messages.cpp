@@ -20,12 +20,14 @@ constexpr std::size_t kChecksumBytes = 2;
 constexpr std::size_t kMaxMessageBytes = 10240;
 constexpr std::size_t kPayloadLengthAt = 2;
 constexpr std::size_t kMessageIdAt = 4;
+constexpr std::uint16_t kDeviceInformation = 4;
 constexpr std::uint16_t kDeviceData = 2300;
 constexpr std::uint16_t kAutoDeviceData = 2301;
 constexpr std::uint32_t kGradiansPerTurn = 400;
 constexpr double kSamplePeriodUnit_s = 25e-9;
 
 // Payload offsets shared by both messages, and where each one's sample count and data begin.
+constexpr std::size_t kGainSettingAt = 1;
 constexpr std::size_t kAngleAt = 2;
 constexpr std::size_t kSamplePeriodAt = 6;
 constexpr std::size_t kDeviceDataLengthAt = 12;      // device_data: after number_of_samples
@@ -86,9 +88,17 @@ std::optional<Beam> decodeDeviceData(std::span<const unsigned char> payload, std
     beam.bearing_rad = 2.0 * std::numbers::pi * static_cast<double>(ccw) / kGradiansPerTurn;
     beam.bin_length_m = sample_period * kSamplePeriodUnit_s * sound_speed_m_s / 2.0;
     beam.intensities.assign(payload.begin() + static_cast<std::ptrdiff_t>(data_at), payload.end());
+    beam.gain_setting = payload[kGainSettingAt];
     return beam;
   }
   return std::nullopt;
+}
+
+/// device_information (common message 4): u8 device_type (1 Ping echosounder, 2 Ping360), u8
+/// device_revision, u8 firmware major, minor, patch, u8 reserved.
+std::string deviceName(std::span<const unsigned char> payload) {
+  const std::string type = payload[0] == 2 ? "Ping360" : (payload[0] == 1 ? "Ping echosounder" : "ping-protocol device type " + std::to_string(payload[0]));
+  return type + " (firmware " + std::to_string(payload[2]) + "." + std::to_string(payload[3]) + "." + std::to_string(payload[4]) + ")";
 }
 
 }  // namespace
@@ -103,6 +113,10 @@ FrameScan ping360FrameScan(const std::string& source, double sound_speed_m_s,
   scan.on_frame = [source, sound_speed_m_s, &where, &out](std::span<const unsigned char> message, std::size_t at) {
     const std::uint16_t id = u16At(message, kMessageIdAt);
     const std::string name = "message at " + where(at);
+    if (id == kDeviceInformation && message.size() >= kHeaderBytes + 5 + kChecksumBytes) {
+      out.device = deviceName(message.subspan(kHeaderBytes, message.size() - kHeaderBytes - kChecksumBytes));
+      return;
+    }
     if (id != kDeviceData && id != kAutoDeviceData) {
       addSkip(out.log, source, name + ": id " + std::to_string(id) +
                                    ", not device_data (2300) or auto_device_data (2301)");

@@ -29,6 +29,9 @@ namespace sonarmap::detail {
 struct Ping360Messages {
   SonarLog log;                        ///< beams without times, skipped items
   std::vector<std::size_t> beam_ends;  ///< per beam: offset one past its message in the stream
+  /// The last device_information message's device and firmware ("Ping360 (firmware 3.1.1)"), when
+  /// there is one.
+  std::string device;
 };
 
 /// Frames the ping-protocol messages of `stream` (frame_scanner.hpp: garbage runs, a message cut
@@ -37,8 +40,9 @@ struct Ping360Messages {
 /// auto_device_data into beams: `bearing_rad` = 2π · ((400 − angle) mod 400) / 400 (the Ping360
 /// counts gradians clockwise seen from above, beam.hpp counter-clockwise; head zero at +x),
 /// `bin_length_m` = sample_period × 25 ns × sound_speed_m_s / 2, `intensities` = the data array
-/// (bin 0 nearest), no `intensity_span_db` (the protocol gives none). Skipped and counted: other
-/// message ids; device data whose data length does not fill the payload, whose angle is ≥ 400, whose
+/// (bin 0 nearest), `gain_setting` = gain_setting (0 low, 1 normal, 2 high), no
+/// `intensity_span_db` (the protocol gives none). device_information (common message 4) names the
+/// device (Ping360Messages::device). Skipped and counted: other message ids; device data whose data length does not fill the payload, whose angle is ≥ 400, whose
 /// sample period is 0 or that has no samples.
 /// @param where  names an offset of `stream` in skip lines ("byte 120").
 /// Never throws for any bytes (only std::bad_alloc).

@@ -44,14 +44,23 @@ bool sameText(std::span<const unsigned char> bytes, std::string_view text, bool 
   return true;
 }
 
-/// Reads the header; returns the offset of the first record and whether strings are UTF-16.
+/// What the header gives: where the records begin, the strings' encoding and the recorder.
+struct Header {
+  std::size_t first_record = 0;
+  bool utf16 = false;
+  std::string recorder;  ///< "Ping Viewer v2.1.0 on Windows 7 SP 1 (6.1)"
+  std::int32_t sensor_type = 0;
+};
+
+/// Reads the header.
 /// @throws FileError naming the byte and the field.
-std::pair<std::size_t, bool> readHeader(std::span<const unsigned char> bytes, const std::string& source) {
+Header readHeader(std::span<const unsigned char> bytes, const std::string& source) {
   const auto fail = [&](std::size_t at, const std::string& what) {
     throw FileError(source + ": byte " + std::to_string(at) + ": " + what);
   };
   const std::optional<std::uint32_t> length = beU32(bytes, 0);
-  const bool utf16 = length && *length == 2 * kHeader.size();
+  Header header;
+  header.utf16 = length && *length == 2 * kHeader.size();
   if (!isPingViewerLog(bytes)) {
     fail(0, "no Ping Viewer header string '" + std::string(kHeader) + "' (not a Ping Viewer log)");
   }
@@ -62,14 +71,19 @@ std::pair<std::size_t, bool> readHeader(std::span<const unsigned char> bytes, co
     fail(at, "log version is " + std::to_string(static_cast<std::int32_t>(*version)) + ", expected 1");
   }
   at += 4;
+  std::vector<std::string> texts;
   for (const char* field : {"git hash", "build date", "tag", "OS name", "OS version"}) {
     const std::optional<std::uint32_t> size = beU32(bytes, at);
     const std::size_t string_bytes = size && *size != kNull ? *size : 0;
     if (!size || string_bytes > bytes.size() - at - 4) fail(at, std::string("file ends inside the ") + field + " string");
+    texts.push_back(detail::pingViewerText(bytes.subspan(at + 4, string_bytes), header.utf16));
     at += 4 + string_bytes;
   }
   if (bytes.size() - at < 8) fail(at, "file ends, expected the sensor family and type (two int32)");
-  return {at + 8, utf16};
+  header.recorder = "Ping Viewer " + (texts[2].empty() ? texts[0] : texts[2]) + (texts[3].empty() ? "" : " on " + texts[3]);
+  header.sensor_type = static_cast<std::int32_t>(*beU32(bytes, at + 4));
+  header.first_record = at + 8;
+  return header;
 }
 
 /// The data of the records as one stream, with where each record's data begins.
@@ -169,9 +183,9 @@ bool isPingViewerLog(std::span<const unsigned char> bytes) {
 SonarLog parsePingViewerLog(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
   detail::checkSoundSpeed(options.sound_speed_m_s, "parsePingViewerLog");
-  const auto [first_record, utf16] = readHeader(bytes, source);
+  const Header header = readHeader(bytes, source);
   SonarLog log;
-  const RecordStream records = readRecords(bytes, first_record, utf16, source, log);
+  const RecordStream records = readRecords(bytes, header.first_record, header.utf16, source, log);
   const auto where = [&](std::size_t offset) {
     const RecordStream::Chunk& chunk = records.chunkOf(offset);
     return "byte " + std::to_string(chunk.file_at + offset - chunk.stream_at) + " (record " +
@@ -190,6 +204,11 @@ SonarLog parsePingViewerLog(std::span<const unsigned char> bytes, const std::str
   }
   log.skipped_beams += messages.log.skipped_beams;
   log.skip_reasons.insert(log.skip_reasons.end(), messages.log.skip_reasons.begin(), messages.log.skip_reasons.end());
+  // The header's sensor type: 2 is a Ping360, 1 a Ping echosounder (Ping Viewer's SensorInfo).
+  const std::string device = !messages.device.empty() ? messages.device
+                             : header.sensor_type == 2 ? "Ping360"
+                                                       : "ping-protocol sensor type " + std::to_string(header.sensor_type);
+  log.sonar = device + ", recorded by " + header.recorder;
   detail::requireBeams(log, bytes.size(), source, "Ping360 device_data messages in the records");
   return log;
 }

@@ -19,6 +19,7 @@ constexpr std::uint16_t kHdCtrlAdc8On = 1U << 0;
 
 // Field offsets in the body (from the byte after the message type).
 constexpr std::size_t kHeadControlAt = 7;
+constexpr std::size_t kGainAt = 15;
 constexpr std::size_t kAdSpanAt = 18;
 constexpr std::size_t kAdIntervalAt = 22;
 constexpr std::size_t kBearingAt = 29;
@@ -92,6 +93,7 @@ SeaNetHeadData decodeSeaNetHeadData(std::span<const unsigned char> body, std::si
   beam.bearing_rad = bearingRad(bearing);
   beam.bin_length_m = ad_interval * kAdIntervalUnit_s * sound_speed_m_s / 2.0;
   beam.intensities = unpackBins(body.subspan(kSeaNetHeadDataFieldBytes, data_bytes), (head_control & kHdCtrlAdc8On) != 0);
+  beam.gain_setting = body[kGainAt];
   // ADspan counts 80/255 dB (SeaNet's 0…80 dB scale); 0 would be no span at all: leave it unknown.
   if (ad_span > 0) beam.intensity_span_db = ad_span * kAdScale_db / 255.0;
   result.beam = std::move(beam);

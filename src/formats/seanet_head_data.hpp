@@ -58,6 +58,7 @@ struct SeaNetHeadData {
 ///   - `intensities`: 8-bit bins (HdCtrl bit 0 `adc8on`) copied; else two 4-bit bins per byte,
 ///     high nibble first, ×17 onto 0…255.
 ///   - `intensity_span_db` = ADspan × 80 / 255 dB, unset when ADspan is 0.
+///   - `gain_setting` = the gain byte.
 /// Checks, in this order (the first failing one is the result's `defect`): the body holds the
 /// 33 field bytes; ADInterval > 0; bearing < 6400; the data byte count fits in the body. A
 /// message with no data bytes gives `skip_reason` "mtHeadData with no data bytes".

@@ -50,6 +50,9 @@ unsigned clockwiseSteps(double bearing_rad, unsigned steps) {
   return static_cast<unsigned>(((static_cast<long>(steps) - step) % steps + steps) % steps);
 }
 
+/// The beam's gain setting as the wire's byte (0 when unknown).
+std::uint8_t gainByte(const Beam& beam) { return static_cast<std::uint8_t>(std::clamp(beam.gain_setting.value_or(0), 0, 255)); }
+
 }  // namespace
 
 std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, const CaptureOptions& options) {
@@ -67,7 +70,7 @@ std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, co
     putU16(message, 0x0001);                       // HdCtrl: adc8on (8-bit bins)
     putU16(message, static_cast<unsigned>(std::lround(std::min(6553.5, bins * beam.bin_length_m * 10.0))));  // range, dm
     putU32(message, 0);                            // TxN
-    message.push_back(0);                          // gain
+    message.push_back(gainByte(beam));             // gain
     putU16(message, 0);                            // slope
     message.push_back(static_cast<std::uint8_t>(ad_span));
     message.push_back(0);                          // AD low
@@ -103,7 +106,7 @@ std::vector<std::uint8_t> encodePing360Stream(const std::vector<Beam>& beams, co
     putU16(out, 14 + bins);  // payload length
     putU16(out, 2300);       // device_data
     out.insert(out.end(), {0x02, 0x00});  // source device, destination
-    out.insert(out.end(), {0x01, 0x00});  // mode 1, gain setting 0
+    out.insert(out.end(), {0x01, gainByte(beam)});  // mode 1, gain setting
     putU16(out, clockwiseSteps(beam.bearing_rad, 400));
     putU16(out, 32);  // transmit duration, µs
     putU16(out, sample_period);

@@ -70,6 +70,7 @@ std::vector<Beam> WireStreamDecoder::finish() {
 
 std::size_t WireStreamDecoder::bytesFed() const { return state_->frames->bytesFed(); }
 std::size_t WireStreamDecoder::beamsDecoded() const { return state_->beams; }
+std::string WireStreamDecoder::device() const { return state_->sink.device; }
 std::size_t WireStreamDecoder::skippedItems() const { return state_->sink.log.skipped_beams; }
 
 std::vector<std::string> WireStreamDecoder::takeSkipReasons() {
@@ -85,6 +86,7 @@ SonarLog WireStreamDecoder::decodeAll(std::span<const std::uint8_t> bytes) {
   log.beams.insert(log.beams.end(), std::make_move_iterator(last.begin()), std::make_move_iterator(last.end()));
   log.skipped_beams = skippedItems();
   log.skip_reasons = takeSkipReasons();
+  log.sonar = device();
   return log;
 }
 

@@ -32,7 +32,7 @@ SonarMapper mapThroughOnline(const SonarLog& log, OnlineMapper& online) {
 OnlineMapper::SweepCallback progressOf(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
   if (!progress) return {};
   const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
-  const std::size_t total = mergeShortSweeps(splitSweeps(log.beams), min_beams).size();
+  const std::size_t total = groupSweeps(log.beams, min_beams).size();
   return [progress, total](std::size_t done) { progress(done, total); };
 }
 }  // namespace

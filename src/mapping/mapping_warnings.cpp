@@ -78,6 +78,12 @@ std::vector<std::string> mappingWarnings(const MappingStats& stats, const Mapper
                            "and lose their obstacles (--max-range)",
                            stats.beams_clipped, stats.beams_used, options.max_range_m));
   }
+  if (stats.beams_uncalibrated > 0) {
+    lines.push_back(format("%zu beams were not mapped: their range scale or gain was used for fewer than %d beams in a "
+                           "row before any whole sweep of it, too few bearings to calibrate on (the range knob's "
+                           "passing stops)",
+                           stats.beams_uncalibrated, options.detector.background.min_beams));
+  }
   if (stats.beams_without_nav > 0) {
     lines.push_back(format("%zu beams lie outside the navigation's time span and were skipped", stats.beams_without_nav));
   }

@@ -19,11 +19,25 @@ namespace sonarmap {
 struct OnlineMapper::DetectedSweep {
   PolarImage polar;
   SweepDetection detection;
+  HeadSetting setting;  ///< of its beams
 };
 
 namespace {
 std::size_t minBeams(const MapperOptions& options) {
   return static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
+}
+
+/// `polar` with the calibration's columns: a longer row is cut at its last one, a shorter one padded
+/// with zeros beyond its valid bins.
+PolarImage fitToCalibration(PolarImage polar, const SweepCalibration& calibration) {
+  const int cols = static_cast<int>(calibration.background.size());
+  if (polar.cols() == cols) return polar;
+  cv::Mat resized = cv::Mat::zeros(polar.rows(), cols, CV_8UC1);
+  const int kept = std::min(cols, polar.cols());
+  polar.intensities.colRange(0, kept).copyTo(resized.colRange(0, kept));
+  polar.intensities = resized;
+  for (int& valid : polar.valid_bins) valid = std::min(valid, cols);
+  return polar;
 }
 }  // namespace
 
@@ -65,7 +79,7 @@ void OnlineMapper::addBeam(Beam beam) {
     addLiveBeam(std::move(beam), starts_sweep);
     return;
   }
-  const std::size_t final_beams = grouper_.add(starts_sweep);
+  const std::size_t final_beams = grouper_.add(starts_sweep, headSettingOf(beam));
   if (final_beams > 0) emitGroup(final_beams);
   held_.push_back(std::move(beam));
   processReady();
@@ -74,7 +88,7 @@ void OnlineMapper::addBeam(Beam beam) {
 void OnlineMapper::finish() {
   if (finished_) return;
   finished_ = true;
-  if (integration_ == OnlineIntegration::kBeam) closeLiveSweep(true);
+  if (integration_ == OnlineIntegration::kBeam) closeLiveSweep(std::nullopt);
   if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last);
   processReady();
   processBeamQueue();
@@ -110,8 +124,12 @@ void OnlineMapper::processReady() {
   while (!ready_.empty() && navigationCovers(latestTime_s(ready_.front()))) {
     std::vector<Beam> group = std::move(ready_.front());
     ready_.pop_front();
+    if (group.size() < minBeams(mapper_.options())) {
+      processShortGroup(std::move(group));
+      continue;
+    }
     auto detect = [this, group = std::move(group)]() {
-      DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}};
+      DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, headSettingOf(group.front())};
       sweep.detection = mapper_.detectSweep(sweep.polar);  // const: touches no mapper state
       return sweep;
     };
@@ -126,7 +144,46 @@ void OnlineMapper::processReady() {
   }
 }
 
-void OnlineMapper::integrate(DetectedSweep sweep) {
+void OnlineMapper::processShortGroup(std::vector<Beam> group) {
+  // Too few bearings to measure a background on: detected with the calibration of the last whole
+  // sweep of its head setting, which must be known first.
+  if (in_flight_) {
+    std::unique_ptr<std::future<DetectedSweep>> previous = std::move(in_flight_);
+    integrate(previous->get());
+  }
+  const HeadSetting setting = headSettingOf(group.front());
+  const SweepCalibration* calibration = calibrationOf(setting);
+  if (calibration == nullptr) {
+    const std::unique_lock lock(map_mutex_);
+    mapper_.stats().beams_uncalibrated += group.size();
+    waiting_beams_ -= group.size();
+    return;
+  }
+  DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, setting};
+  PolarImage rows = fitToCalibration(sweep.polar, *calibration);
+  sweep.detection = mapper_.detectRows(rows, *calibration);
+  sweep.polar = std::move(rows);
+  integrate(std::move(sweep), false);
+}
+
+const SweepCalibration* OnlineMapper::calibrationOf(const HeadSetting& setting) const {
+  for (const auto& [known, calibration] : calibrations_) {
+    if (known == setting) return &calibration;
+  }
+  return nullptr;
+}
+
+void OnlineMapper::keepCalibration(const HeadSetting& setting, SweepCalibration calibration) {
+  for (auto& [known, kept] : calibrations_) {
+    if (known == setting) {
+      kept = std::move(calibration);
+      return;
+    }
+  }
+  calibrations_.emplace_back(setting, std::move(calibration));
+}
+
+void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
   {
     const std::unique_lock lock(map_mutex_);
     mapper_.recordDetection(sweep.detection);
@@ -138,10 +195,8 @@ void OnlineMapper::integrate(DetectedSweep sweep) {
     ++sweeps_;
     waiting_beams_ -= static_cast<std::size_t>(sweep.polar.rows());
   }
-  if (integration_ == OnlineIntegration::kBeam) {  // the calibration the next beams are detected with
-    live_calibration_ = std::move(sweep.detection.calibration);
-    live_bin_length_m_ = sweep.polar.bin_length_m;
-  }
+  // The calibration later beams of this setting are detected with (short groups; kBeam's beams).
+  if (calibrates) keepCalibration(sweep.setting, std::move(sweep.detection.calibration));
   if (on_sweep_) on_sweep_(sweeps_);
 }
 
@@ -166,11 +221,12 @@ std::vector<std::optional<Eigen::Isometry3d>> OnlineMapper::posesAt(const std::v
 }
 
 void OnlineMapper::addLiveBeam(Beam beam, bool starts_sweep) {
+  const HeadSetting setting = headSettingOf(beam);
   if (starts_sweep) {
-    closeLiveSweep(false);
+    closeLiveSweep(setting);
     processReady();  // a whole sweep that ended calibrates this beam
   }
-  const bool per_beam = live_calibration_ && !live_whole_ && beam.bin_length_m == live_bin_length_m_;
+  const bool per_beam = !live_whole_ && calibrationOf(setting) != nullptr;
   if (!per_beam) live_whole_ = true;  // no calibration for it yet: the sweep is integrated whole
   live_sweep_.push_back(beam);        // the raw sweep, for the next calibration
   if (per_beam) beam_queue_.push_back(std::move(beam));
@@ -178,23 +234,24 @@ void OnlineMapper::addLiveBeam(Beam beam, bool starts_sweep) {
   processBeamQueue();
 }
 
-void OnlineMapper::closeLiveSweep(bool at_end) {
+void OnlineMapper::closeLiveSweep(const std::optional<HeadSetting>& next) {
   if (live_sweep_.empty()) return;
+  const HeadSetting setting = headSettingOf(live_sweep_.front());
+  const std::size_t min_beams = minBeams(mapper_.options());
   if (live_whole_) {
-    // Too short to calibrate on: it joins the next sweep (unless the stream ends).
-    if (!at_end && live_sweep_.size() < minBeams(mapper_.options())) return;
+    // Too short to calibrate on: it joins the next sweep of the same setting (processReady detects
+    // a short one with its setting's calibration, or counts it uncalibrated).
+    if (next && *next == setting && live_sweep_.size() < min_beams) return;
     waiting_beams_ += live_sweep_.size();
     ready_.push_back(std::exchange(live_sweep_, {}));
     live_whole_ = false;
     return;
   }
   std::vector<Beam> sweep = std::exchange(live_sweep_, {});
-  if (sweep.size() >= minBeams(mapper_.options())) {
+  if (sweep.size() >= min_beams) {
     // Its beams are (or will be) integrated one by one; calibrate the next ones on it.
     PolarImage polar = makePolarImage(sweep, 0, sweep.size());
-    SweepDetection detection = mapper_.detectSweep(polar);
-    live_calibration_ = std::move(detection.calibration);
-    live_bin_length_m_ = polar.bin_length_m;
+    keepCalibration(setting, mapper_.detectSweep(polar).calibration);
   }
   const std::unique_lock lock(map_mutex_);
   ++mapper_.stats().sweeps;
@@ -210,16 +267,8 @@ void OnlineMapper::processBeamQueue() {
 }
 
 void OnlineMapper::integrateLiveBeam(const Beam& beam) {
-  // One row with the calibration's columns (a longer beam is cut at its last one).
-  const SweepCalibration& calibration = *live_calibration_;
-  PolarImage row = makePolarImage(std::vector<Beam>{beam}, 0, 1);
-  const int cols = static_cast<int>(calibration.background.size());
-  if (row.cols() != cols) {
-    cv::Mat resized = cv::Mat::zeros(1, cols, CV_8UC1);
-    row.intensities.colRange(0, std::min(cols, row.cols())).copyTo(resized.colRange(0, std::min(cols, row.cols())));
-    row.intensities = resized;
-    row.valid_bins[0] = std::min(row.valid_bins[0], cols);
-  }
+  const SweepCalibration& calibration = *calibrationOf(headSettingOf(beam));
+  PolarImage row = fitToCalibration(makePolarImage(std::vector<Beam>{beam}, 0, 1), calibration);
   const SweepDetection detection = mapper_.detectRows(row, calibration);
   const std::unique_lock lock(map_mutex_);
   mapper_.recordDetection(detection);

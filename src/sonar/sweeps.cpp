@@ -24,16 +24,17 @@ double wrappedStep(double from_rad, double to_rad) {
 }  // namespace
 
 bool SweepSplitter::startsSweep(const Beam& beam) {
+  const HeadSetting setting = headSettingOf(beam);
   if (!previous_) {
-    previous_ = Previous{beam.bearing_rad, beam.bin_length_m};
+    previous_ = Previous{beam.bearing_rad, setting};
     return false;
   }
   const double step = wrappedStep(previous_->bearing_rad, beam.bearing_rad);
   const int sign = step > 0.0 ? 1 : (step < 0.0 ? -1 : 0);
-  const bool starts = beam.bin_length_m != previous_->bin_length_m ||
+  const bool starts = setting != previous_->setting ||
                       (sign != 0 && direction_ != 0 && sign != direction_) ||
                       turned_rad_ + std::abs(step) >= kTwoPi - kFullTurnSlack_rad;
-  previous_ = Previous{beam.bearing_rad, beam.bin_length_m};
+  previous_ = Previous{beam.bearing_rad, setting};
   if (starts) {
     direction_ = 0;
     turned_rad_ = 0.0;
@@ -56,8 +57,14 @@ std::vector<SweepRange> splitSweeps(const std::vector<Beam>& beams) {
 
 SweepGrouper::SweepGrouper(std::size_t min_beams) : min_beams_(min_beams) {}
 
-std::size_t SweepGrouper::add(bool starts_sweep) {
-  if (starts_sweep) closeCurrent();
+std::size_t SweepGrouper::add(bool starts_sweep, const HeadSetting& setting) {
+  const bool new_setting = setting_ && setting != *setting_;
+  setting_ = setting;
+  if (starts_sweep || new_setting) closeCurrent();
+  if (new_setting) {  // nothing of another setting joins the group: it is final, however short
+    ++current_;
+    return std::exchange(pending_, 0);
+  }
   ++current_;
   if (pending_ >= min_beams_ && current_ >= min_beams_) {  // current will not join pending: it is final
     return std::exchange(pending_, 0);
@@ -75,7 +82,8 @@ void SweepGrouper::closeCurrent() {
   pending_ += std::exchange(current_, 0);
 }
 
-std::vector<SweepRange> mergeShortSweeps(const std::vector<SweepRange>& sweeps, std::size_t min_beams) {
+std::vector<SweepRange> mergeShortSweeps(const std::vector<Beam>& beams, const std::vector<SweepRange>& sweeps,
+                                         std::size_t min_beams) {
   std::vector<SweepRange> merged;
   SweepGrouper grouper(min_beams);
   std::size_t next = sweeps.empty() ? 0 : sweeps.front().first;
@@ -85,10 +93,16 @@ std::vector<SweepRange> mergeShortSweeps(const std::vector<SweepRange>& sweeps, 
     next += beams;
   };
   for (const SweepRange& sweep : sweeps) {
-    for (std::size_t i = sweep.first; i < sweep.last_exclusive; ++i) take(grouper.add(i == sweep.first));
+    for (std::size_t i = sweep.first; i < sweep.last_exclusive; ++i) {
+      take(grouper.add(i == sweep.first, headSettingOf(beams[i])));
+    }
   }
   take(grouper.finish());
   return merged;
+}
+
+std::vector<SweepRange> groupSweeps(const std::vector<Beam>& beams, std::size_t min_beams) {
+  return mergeShortSweeps(beams, splitSweeps(beams), min_beams);
 }
 
 }  // namespace sonarmap

@@ -43,7 +43,7 @@ TEST_F(cliConvert, SeaNetLogBecomesOneRowPerBeamAndMapsToTheIdenticalOctree) {
   ASSERT_EQ(converted.exit_code, 0) << converted.err;
   const Names rows = linesOf(bytesOf(csv));
   ASSERT_EQ(rows.size(), 469U);  // header + 468 beams
-  EXPECT_EQ(rows[0].rfind("time_s,bearing_deg,bin_length_m,intensity_span_db,b0,b1,", 0), 0U) << rows[0];
+  EXPECT_EQ(rows[0].rfind("time_s,bearing_deg,bin_length_m,intensity_span_db,gain_setting,b0,b1,", 0), 0U) << rows[0];
   const fs::path from_log = out_ / "v4.bt", from_csv = out_ / "csv.bt";
   ASSERT_EQ(run({"map", kSeaNetLog.string(), "-o", from_log.string(), "-q"}).exit_code, 0);
   ASSERT_EQ(run({"map", csv.string(), "-o", from_csv.string(), "-q"}).exit_code, 0);

@@ -61,7 +61,7 @@ MsisSimulation simulate(const Trajectory& trajectory) {
 SonarMapper mapWithOnePosePerSweep(const MsisSimulation& run) {
   SonarMapper mapper;
   const auto min_beams = static_cast<std::size_t>(mapper.options().detector.background.min_beams);
-  for (const SweepRange& sweep : mergeShortSweeps(splitSweeps(run.log.beams), min_beams)) {
+  for (const SweepRange& sweep : groupSweeps(run.log.beams, min_beams)) {
     PolarImage polar = makePolarImage(run.log.beams, sweep.first, sweep.last_exclusive);
     const std::vector<BeamDetection> detections = mapper.detect(polar);
     const double middle_s = polar.time_s[polar.time_s.size() / 2];

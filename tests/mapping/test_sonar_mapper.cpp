@@ -206,12 +206,21 @@ TEST(mappingSonarMapper, BadInputThrows) {
   EXPECT_THROW(SonarMapper{options}, ValueError);
 }
 
-TEST(mappingSweeps, ShortFragmentsJoinTheirNeighbour) {
+TEST(mappingSweeps, ShortFragmentsJoinTheirNeighbourOfTheSameHeadSetting) {
+  std::vector<Beam> beams(403);
+  for (Beam& beam : beams) beam.bin_length_m = 0.01;
   const std::vector<SweepRange> sweeps{{0, 200}, {200, 400}, {400, 403}};
-  EXPECT_EQ(mergeShortSweeps(sweeps, 20), (std::vector<SweepRange>{{0, 200}, {200, 403}}));
+  EXPECT_EQ(mergeShortSweeps(beams, sweeps, 20), (std::vector<SweepRange>{{0, 200}, {200, 403}}));
   const std::vector<SweepRange> leading{{0, 5}, {5, 205}};
-  EXPECT_EQ(mergeShortSweeps(leading, 20), (std::vector<SweepRange>{{0, 205}}));
-  EXPECT_EQ(mergeShortSweeps(sweeps, 1), sweeps);
+  EXPECT_EQ(mergeShortSweeps(beams, leading, 20), (std::vector<SweepRange>{{0, 205}}));
+  EXPECT_EQ(mergeShortSweeps(beams, sweeps, 1), sweeps);
+  // A range change (beams 0-4 at another bin length) or a gain change (the last 3) is never joined:
+  // those groups stay short.
+  std::vector<Beam> range_change = beams;
+  for (std::size_t i = 0; i < 5; ++i) range_change[i].bin_length_m = 0.05;
+  EXPECT_EQ(mergeShortSweeps(range_change, leading, 20), leading);
+  for (std::size_t i = 400; i < 403; ++i) beams[i].gain_setting = 2;
+  EXPECT_EQ(mergeShortSweeps(beams, sweeps, 20), sweeps);
 }
 
 }  // namespace

@@ -50,6 +50,9 @@ class WireStreamDecoder {
   std::size_t bytesFed() const;
   /// Beams returned so far.
   std::size_t beamsDecoded() const;
+  /// What the stream said of its device so far (a Ping360's device_information: "Ping360 (firmware
+  /// 3.1.1)"); empty when nothing.
+  std::string device() const;
   /// Items skipped so far (as SonarLog::skipped_beams): runs of noise, other messages, frames cut
   /// short, device data out of range.
   std::size_t skippedItems() const;
@@ -58,7 +61,7 @@ class WireStreamDecoder {
   std::vector<std::string> takeSkipReasons();
 
   /// Feeds `bytes` at once, then finishes: the beams (timed as the constructor says), skipped
-  /// count and skip lines of the whole stream. Returns an empty log when it holds no beam.
+  /// count, skip lines and device (SonarLog::sonar) of the whole stream. Returns an empty log when it holds no beam.
   /// @throws ValueError after finish().
   SonarLog decodeAll(std::span<const std::uint8_t> bytes);
 

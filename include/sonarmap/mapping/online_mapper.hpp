@@ -6,9 +6,12 @@
 ///
 /// Fed one beam at a time (in recording order) and, for a moving vehicle, navigation fixes as they
 /// arrive, the mapper forms sweeps itself with splitSweeps' rules (SweepSplitter: a full turn, a
-/// sector head's reversal, a range change) and mergeShortSweeps' joining of short fragments
-/// (SweepGrouper: a sweep is final once the next one has the detector's min_beams beams, or at
-/// finish()). A final sweep is detected (calibration, cleaning, first obstacle per beam: the
+/// sector head's reversal, a change of range scale or gain) and mergeShortSweeps' joining of short
+/// fragments of one head setting (SweepGrouper: a sweep is final once the next one has the
+/// detector's min_beams beams, once the setting changes, or at finish()). A final group of fewer
+/// than min_beams beams (a range scale the user passed through) is detected with the calibration
+/// of the last whole sweep of its setting (detectRows) or, without one, not mapped and counted
+/// (MappingStats::beams_uncalibrated): a handful of bearings gives no background. A final sweep is detected (calibration, cleaning, first obstacle per beam: the
 /// detector needs the whole sweep for its per-sweep background) and integrated as soon as the
 /// navigation covers its last beam (a fix at or after its time), or at finish(). Detection runs on
 /// a second thread while the previous sweep is integrated when MapperOptions::pipeline_detection
@@ -43,10 +46,12 @@ enum class OnlineIntegration {
   /// Each beam as it arrives (and the navigation covers it): detected with the calibration of the
   /// last whole sweep (SonarMapper::detectRows: its water background, threshold and near field),
   /// integrated on its own (SonarMapper::integrateBeams: a cell is updated once per beam, so the
-  /// overlap of neighbouring wedges is updated twice, unlike a sweep). The first sweep, and a sweep
-  /// after a range change, are integrated whole once they end, to calibrate; a sweep shorter than
-  /// the detector's min_beams joins the next. Detection is never pipelined. Live mapping: the
-  /// latency of a beam, not of a turn.
+  /// overlap of neighbouring wedges is updated twice, unlike a sweep). The calibration is kept per
+  /// head setting (range scale and gain): the first sweep of a setting not seen before is
+  /// integrated whole once it ends, to calibrate, and a return to an earlier setting is mapped beam
+  /// by beam again at once; a whole sweep shorter than the detector's min_beams joins the next one
+  /// of its setting, or is detected as a short group (above). Detection is never pipelined. Live
+  /// mapping: the latency of a beam, not of a turn.
   kBeam,
 };
 
@@ -105,13 +110,20 @@ class OnlineMapper {
   struct DetectedSweep;
   void emitGroup(std::size_t beams);
   void processReady();
-  void integrate(DetectedSweep sweep);
+  /// A final group of fewer than min_beams beams (a head setting used for fewer beams).
+  void processShortGroup(std::vector<Beam> group);
+  /// Integrates a detected sweep; `calibrates`: its calibration becomes its setting's.
+  void integrate(DetectedSweep sweep, bool calibrates = true);
+  const SweepCalibration* calibrationOf(const HeadSetting& setting) const;
+  void keepCalibration(const HeadSetting& setting, SweepCalibration calibration);
   bool navigationCovers(double time_s) const;
   /// The poses of `times_s` (navigation mode: nullopt outside the fixes).
   std::vector<std::optional<Eigen::Isometry3d>> posesAt(const std::vector<double>& times_s) const;
   // kBeam
   void addLiveBeam(Beam beam, bool starts_sweep);
-  void closeLiveSweep(bool at_end);
+  /// Ends the sweep being received; `next`: the setting of the beam that starts the next one
+  /// (nullopt at the end of the stream).
+  void closeLiveSweep(const std::optional<HeadSetting>& next);
   void processBeamQueue();
   void integrateLiveBeam(const Beam& beam);
 
@@ -128,10 +140,9 @@ class OnlineMapper {
   std::unique_ptr<std::future<DetectedSweep>> in_flight_;  ///< detection running beside integration
   std::size_t sweeps_ = 0;
   bool finished_ = false;
-  // kBeam: the calibration of the last whole sweep, the raw sweep being received, the beams waiting
-  // for navigation.
-  std::optional<SweepCalibration> live_calibration_;
-  double live_bin_length_m_ = 0.0;
+  /// The calibration of the last whole sweep of each head setting seen (few: a range knob's stops).
+  std::vector<std::pair<HeadSetting, SweepCalibration>> calibrations_;
+  // kBeam: the raw sweep being received, the beams waiting for navigation.
   std::vector<Beam> live_sweep_;
   bool live_whole_ = false;  ///< the sweep being received is integrated whole when it ends
   std::deque<Beam> beam_queue_;

@@ -44,6 +44,10 @@ struct MappingStats {
   std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
   std::size_t beams_clipped = 0;         ///< beams longer than max_range_m (used up to it, obstacle dropped)
   std::size_t beams_without_nav = 0;     ///< beams without a pose: their time lies outside the navigation (skipped)
+  /// Beams of a head setting (range scale, gain) used for fewer than the detector's min_beams beams
+  /// in a row, before any whole sweep of that setting calibrated it: too few bearings to measure a
+  /// background on (skipped; OnlineMapper).
+  std::size_t beams_uncalibrated = 0;
   /// Beams without an obstacle that clear nothing (MapperOptions::clear_without_obstacle: the
   /// volume model's default): not in beams_used.
   std::size_t beams_without_evidence = 0;

@@ -10,6 +10,19 @@
 
 namespace sonarmap {
 
+/// What a sweep's calibration depends on besides the scene: the head's range scale (its bin length:
+/// a range change changes the sample interval, and with it the near field, the noise floor's growth
+/// and every threshold in bins) and its receiver gain. Beams of different settings are never
+/// calibrated together.
+struct HeadSetting {
+  double bin_length_m = 0.0;         ///< Beam::bin_length_m
+  std::optional<int> gain_setting;   ///< Beam::gain_setting (unset when the format has none)
+  bool operator==(const HeadSetting&) const = default;
+};
+
+/// The head setting of `beam`.
+inline HeadSetting headSettingOf(const Beam& beam) { return HeadSetting{beam.bin_length_m, beam.gain_setting}; }
+
 /// Beams [first, last_exclusive) of a beam list form one sweep.
 struct SweepRange {
   std::size_t first = 0;
@@ -27,7 +40,8 @@ struct SweepRange {
 ///     is independent of where bearing 0 lies, so it also works when the first beam is not at 0;
 ///   - sector scan (SeaNet, issue 4): the direction of rotation reverses (the step's sign differs
 ///     from the sweep's direction); the beam at the turning point ends the old sweep;
-///   - the bin length changes (a range change), so each sweep can become one PolarImage.
+///   - the head setting changes (HeadSetting: the bin length with a range change, or the gain), so
+///     each sweep can become one PolarImage and is calibrated on beams of one setting.
 /// Zero steps (repeated bearings) neither set nor reverse the direction. Bearing jitter that
 /// looks like a reversal would split a sweep; the MSIS logs we know step cleanly.
 ///
@@ -48,7 +62,7 @@ class SweepSplitter {
  private:
   struct Previous {
     double bearing_rad = 0.0;
-    double bin_length_m = 0.0;
+    HeadSetting setting;
   };
   std::optional<Previous> previous_;  ///< the last beam seen
   int direction_ = 0;                 ///< +1 counter-clockwise, −1 clockwise, 0 not known yet
@@ -57,14 +71,17 @@ class SweepSplitter {
 
 /// mergeShortSweeps one beam at a time: says when the oldest beams held form a final group, a sweep
 /// (or sweeps joined) that no later beam can join. A sweep joins the group before it when either
-/// has fewer than `min_beams` beams, so a group is final once the sweep after it has `min_beams`
-/// beams, or at the end of the stream.
+/// has fewer than `min_beams` beams and both have the same head setting, so a group is final once
+/// the sweep after it has `min_beams` beams, once the head setting changes, or at the end of the
+/// stream. A group may therefore hold fewer than `min_beams` beams: a range scale or gain used
+/// for fewer beams than that (a user turning the range knob through several scales).
 class SweepGrouper {
  public:
   explicit SweepGrouper(std::size_t min_beams);
-  /// The next beam, `starts_sweep` as SweepSplitter said. Returns the number of beams, oldest first
-  /// and not counting this one, that now form a final group; 0 when none.
-  std::size_t add(bool starts_sweep);
+  /// The next beam, `starts_sweep` as SweepSplitter said, `setting` its head setting. Returns the
+  /// number of beams, oldest first and not counting this one, that now form a final group; 0 when
+  /// none.
+  std::size_t add(bool starts_sweep, const HeadSetting& setting);
   /// The end of the stream: the size of the last group (0 when no beam is held).
   std::size_t finish();
 
@@ -73,11 +90,17 @@ class SweepGrouper {
   std::size_t min_beams_;
   std::size_t pending_ = 0;  ///< beams of the group before the current sweep, not yet final
   std::size_t current_ = 0;  ///< beams of the sweep being received
+  std::optional<HeadSetting> setting_;  ///< the last beam's
 };
 
 /// Joins a sweep of fewer than `min_beams` beams (a log that starts or ends mid-turn) to its
-/// neighbour, so the detector's per-sweep background is always estimated over enough beams.
-/// `sweeps` must be contiguous (splitSweeps' output); the same groups as SweepGrouper.
-std::vector<SweepRange> mergeShortSweeps(const std::vector<SweepRange>& sweeps, std::size_t min_beams);
+/// neighbour of the same head setting, so the detector's per-sweep background is estimated over
+/// enough beams where the log has them. `sweeps` must be contiguous splitSweeps(beams) output; the
+/// same groups as SweepGrouper (a setting used for fewer than `min_beams` beams stays short).
+std::vector<SweepRange> mergeShortSweeps(const std::vector<Beam>& beams, const std::vector<SweepRange>& sweeps,
+                                         std::size_t min_beams);
+
+/// The sweeps the mapper detects one at a time: mergeShortSweeps(beams, splitSweeps(beams), min_beams).
+std::vector<SweepRange> groupSweeps(const std::vector<Beam>& beams, std::size_t min_beams);
 
 }  // namespace sonarmap
