@@ -235,6 +235,10 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   const double seconds = secondsSince(start);
   if (!args.map.quiet) printStatus(live, decoder, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9), true);
   MappedLog run{std::move(live.mapper()).release(), seconds};
+  if (const std::size_t changes = run.mapper.stats().resolution_changes; changes > 0) {
+    run.resolution_note = " (auto: coarsened " + std::to_string(changes) + (changes == 1 ? " time" : " times") +
+                          " as the range scale grew)";
+  }
   run.mapper.stats().beams_skipped = decoder.skippedItems();
   writeMapFile(run.mapper.map(), args.map.output_bt);
   const std::vector<std::string> warnings =

@@ -33,9 +33,10 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "voxel nearest the viewer coloured by its y (viridis, legend in metres): walls' heights, the "
                   "seabed's slope");
   cmd->add_option("--polar-png", args.polar_png,
-                  "Polar image of the largest sweep (PNG figure: range in m across, bearing in degrees up)");
+                  "Polar image of the largest sweep (PNG figure: range in m across, bearing in degrees up); in a "
+                  "log of several range scales, the last largest sweep of the scale most beams use (named)");
   cmd->add_option("--cartesian-png", args.cartesian_png,
-                  "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0)");
+                  "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0), as --polar-png");
   addMappingOptions(*cmd, args);
   cmd->add_option("--nav", args.nav_csv,
                   "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, the log's "
@@ -77,6 +78,16 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
 
 }  // namespace
 
+std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
+  if (options.resolution_m) return {};
+  const AutoResolution chosen = autoResolutionForLog(log, options);
+  if (chosen.scales < 2 && !chosen.coarsened) return {};
+  char note[160];
+  std::snprintf(note, sizeof note, " (auto: the %.3g m range scale, %zu of %zu beams%s)", chosen.scale.reach_m,
+                chosen.scale.beams, chosen.beams, chosen.coarsened ? ", coarsened to fit --max-voxel-updates" : "");
+  return note;
+}
+
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
   const LogFormat format = inputFormat(args.input, args.format);
@@ -84,7 +95,8 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
   const NavTrack nav = args.nav_csv.empty() ? NavTrack{} : readNavCsv(args.nav_csv);
-  const MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body);
+  MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body);
+  mapped.resolution_note = resolutionNote(log, sonar_options);
   FileTransaction outputs;  // nothing appears unless every output could be written
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;

@@ -23,6 +23,11 @@ Command addMapCommand(CLI::App& app, MapArgs& args);
 /// @throws ValueError (usage) unless there are exactly six finite values.
 Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting);
 
+/// What the summary says after an automatic resolution (MappedLog::resolution_note): the range
+/// scale it follows when the log has several, and whether it was coarsened to fit the budget;
+/// empty for a resolution given by the user or a log of one scale.
+std::string resolutionNote(const SonarLog& log, const MapperOptions& options);
+
 /// Reads, maps and writes. Prints the warnings about the options and the mapping (mappingWarnings)
 /// on stderr and the one-line summary on stdout. With args.nav_csv, each beam is placed with the
 /// vehicle's pose at its time and `sonar_to_body`. A non-empty `side_png` (--side-png) receives the

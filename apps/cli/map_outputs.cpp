@@ -18,20 +18,34 @@
 #include "sonarmap/sonar/map_views.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
+#include "sonarmap/sonar/range_scales.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap::cli {
 namespace {
 
-/// The polar image of the largest (last, on ties) sweep: the one drawn in the PNGs.
-PolarImage lastFullSweep(const SonarLog& log) {
+/// The sweep drawn in the PNGs: the largest (last, on ties) sweep of the range scale most beams
+/// use (the one the automatic resolution follows), and its caption.
+std::pair<PolarImage, std::string> pictureSweep(const SonarLog& log) {
+  const std::vector<RangeScale> scales = rangeScales(log);
+  const RangeScale* scale = mostUsedRangeScale(scales);
+  if (scale == nullptr) throw ValueError("the log holds no beams to draw");
+  const SweepRange* best = nullptr;
   const std::vector<SweepRange> sweeps = splitSweeps(log.beams);
-  if (sweeps.empty()) throw ValueError("the log holds no beams to draw");
-  const SweepRange* best = &sweeps.front();
   for (const SweepRange& sweep : sweeps) {
-    if (sweep.size() >= best->size()) best = &sweep;
+    if (log.beams[sweep.first].bin_length_m != scale->bin_length_m) continue;
+    if (best == nullptr || sweep.size() >= best->size()) best = &sweep;
   }
-  return makePolarImage(log.beams, best->first, best->last_exclusive);
+  PolarImage polar = makePolarImage(log.beams, best->first, best->last_exclusive);
+  char caption[192];
+  if (scales.size() > 1) {
+    std::snprintf(caption, sizeof caption, "%.3g m scale (%zu of %zu beams): last largest sweep, %d x %d bins of %.2g m",
+                  scale->reach_m, scale->beams, log.beams.size(), polar.rows(), polar.cols(), polar.bin_length_m);
+  } else {
+    std::snprintf(caption, sizeof caption, "largest sweep: %d beams x %d bins of %.3f m", polar.rows(), polar.cols(),
+                  polar.bin_length_m);
+  }
+  return {std::move(polar), caption};
 }
 
 /// The input's file name, for the figures' titles.
@@ -88,10 +102,7 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarL
     outputs.stageBytes(side_png, encodePng(sideViewFigure(map, figureTitle(args, res, "3D map, side view"), track_m)));
   }
   if (args.polar_png.empty() && args.cartesian_png.empty()) return;
-  const PolarImage polar = lastFullSweep(log);
-  char sweep[96];
-  std::snprintf(sweep, sizeof sweep, "largest sweep: %d beams x %d bins of %.3f m", polar.rows(), polar.cols(),
-                polar.bin_length_m);
+  const auto [polar, sweep] = pictureSweep(log);
   const std::string input = inputName(args);
   if (!args.polar_png.empty()) {
     outputs.stageBytes(args.polar_png, encodePng(polarFigure(polar, input + "  |  polar image, " + sweep)));
@@ -125,9 +136,9 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
   if (const std::optional<HeightExtent> extent = occupiedHeightExtent(map)) {
     std::printf("occupied z %.2f .. %.2f m, ", extent->min_m, extent->max_m);
   }
-  std::printf("%g m voxels, min range %.2f m, threshold %.1f dB on %.0f dB, %zu map nodes (%zu leaves), %.1f KiB, "
+  std::printf("%g m voxels%s, min range %.2f m, threshold %.1f dB on %.0f dB, %zu map nodes (%zu leaves), %.1f KiB, "
               "%.3f s",
-              map.resolution_m(), calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes,
+              map.resolution_m(), run.resolution_note.c_str(), calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes,
               counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
   if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");
   std::printf(" -> %s\n", output_bt.c_str());

@@ -110,19 +110,48 @@ double logReach_m(const SonarLog& log, double max_range_m) {
   return std::min(reach_m, max_range_m);
 }
 
+AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options) {
+  options.validate();
+  const std::vector<RangeScale> scales = rangeScales(log);
+  const RangeScale* most_used = mostUsedRangeScale(scales);
+  if (most_used == nullptr || !(most_used->reach_m > 0.0)) {
+    throw ValueError("automatic resolution: the log has no beam with bins");
+  }
+  AutoResolution chosen{0.0, *most_used, scales.size(), log.beams.size(), false};
+  chosen.scale.reach_m = std::min(chosen.scale.reach_m, options.max_range_m);
+  chosen.resolution_m = autoResolution_m(chosen.scale.reach_m);
+  const double coarsest_m = autoResolution_m(logReach_m(log, options.max_range_m));
+  MapperOptions trial = options;
+  for (;;) {
+    trial.resolution_m = chosen.resolution_m;
+    if (chosen.resolution_m >= coarsest_m || estimateVoxelUpdates(log, trial) <= options.max_voxel_updates) break;
+    // The next of 1, 2, 5 × 10^k: ×2 from a 1 or a 5, ×2.5 from a 2.
+    const double mantissa = chosen.resolution_m / std::pow(10.0, std::floor(std::log10(chosen.resolution_m) + 1e-9));
+    chosen.resolution_m *= std::abs(mantissa - 2.0) < 0.01 ? 2.5 : 2.0;
+    chosen.coarsened = true;
+  }
+  return chosen;
+}
+
 MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log) {
   options.validate();
   MapperOptions resolved = options;
-  if (!resolved.resolution_m) {
-    const double reach_m = logReach_m(log, options.max_range_m);
-    if (!(reach_m > 0.0)) throw ValueError("automatic resolution: the log has no beam with bins");
-    resolved.resolution_m = autoResolution_m(reach_m);
-  }
+  if (!resolved.resolution_m) resolved.resolution_m = autoResolutionForLog(log, options).resolution_m;
   return resolved;
 }
 
+namespace {
+/// The resolution estimates use: the option, else the automatic one (a 1 mm floor for a log
+/// without bins).
+double resolutionOrAuto_m(const SonarLog& log, const MapperOptions& options) {
+  if (options.resolution_m) return *options.resolution_m;
+  const double reach_m = logReach_m(log, options.max_range_m);
+  return reach_m > 0.0 ? autoResolutionForLog(log, options).resolution_m : autoResolution_m(1e-3);
+}
+}  // namespace
+
 double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
-  const double voxel_m = options.resolution_m.value_or(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3)));
+  const double voxel_m = resolutionOrAuto_m(log, options);
   double updates = 0.0;
   for (std::size_t i = 0; i < log.beams.size(); ++i) {
     const Beam& beam = log.beams[i];
@@ -189,7 +218,9 @@ void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
   const double updates = estimateVoxelUpdates(log, options);
   if (updates <= options.max_voxel_updates) return;
   // Updates scale with 1 / resolution² (planar) or 1 / resolution³ (volume): the finest that fits.
-  const double voxel_m = options.resolution_m.value_or(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3)));
+  const double voxel_m = resolutionOrAuto_m(log, options);
+  MapperOptions automatic = options;
+  automatic.resolution_m.reset();
   const double power = options.beam_model == BeamModel::kVolume ? 1.0 / 3.0 : 0.5;
   const double fits_m = voxel_m * std::pow(updates / options.max_voxel_updates, power);
   char text[400];
@@ -198,7 +229,7 @@ void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
                 "(max_voxel_updates, --max-voxel-updates): use a resolution of at least %s (auto: %s), or raise "
                 "the budget",
                 metres(voxel_m).c_str(), updates, options.max_voxel_updates, metres(fits_m).c_str(),
-                metres(autoResolution_m(std::max(logReach_m(log, options.max_range_m), 1e-3))).c_str());
+                metres(resolutionOrAuto_m(log, automatic)).c_str());
   throw ValueError(text);
 }
 

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "sonarmap/algorithms/resample.hpp"
 #include "sonarmap/raycast/bresenham.hpp"
 #include "sonarmap/raycast/dda.hpp"
 #include "sonarmap/sonar/polar.hpp"
@@ -56,6 +57,7 @@ struct SonarMapper::SweepWork {
 
 SonarMapper::SonarMapper(const MapperOptions& options)
     : options_(validated(options)),
+      auto_resolution_(!options.resolution_m),
       map_(options.resolution_m.value_or(kUnresolvedResolution_m), options.octree),
       work_(std::make_unique<SweepWork>()) {}
 SonarMapper::SonarMapper(SonarMapper&&) noexcept = default;
@@ -67,10 +69,36 @@ double SonarMapper::rangeTolerance_m(const PolarImage& polar) const {
 }
 
 void SonarMapper::resolveResolution(const PolarImage& polar) {
-  if (options_.resolution_m) return;
+  if (!auto_resolution_) return;
   const double reach_m = std::min(polar.cols() * polar.bin_length_m, options_.max_range_m);
-  options_.resolution_m = autoResolution_m(reach_m > 0.0 ? reach_m : polar.bin_length_m);
-  map_ = OcTree16(*options_.resolution_m, options_.octree);
+  const double wanted_m = autoResolution_m(reach_m > 0.0 ? reach_m : polar.bin_length_m);
+  if (!options_.resolution_m) {
+    options_.resolution_m = wanted_m;
+    map_ = OcTree16(wanted_m, options_.octree);
+    return;
+  }
+  if (wanted_m <= *options_.resolution_m) return;  // never finer: the map so far would be lost
+  // A longer range scale than any before (a Ping360 powers on at 2 m): the map so far, coarser.
+  map_ = resampledMap(map_, wanted_m);
+  options_.resolution_m = wanted_m;
+  ++stats_.resolution_changes;
+  work_->occupied_keys.clear();  // the volume model's hit cells, in the new map's keys
+  map_.forEachLeaf([&](const LeafView<16>& leaf) {
+    if (!(leaf.log_odds > map_.model().occupied_above)) return;
+    const auto edge = static_cast<std::uint32_t>(leaf.edgeVoxels());
+    for (std::uint32_t x = 0; x < edge; ++x) {
+      for (std::uint32_t y = 0; y < edge; ++y) {
+        for (std::uint32_t z = 0; z < edge; ++z) {
+          Key16 key = leaf.key;
+          key[0] = static_cast<std::uint16_t>(key[0] + x);
+          key[1] = static_cast<std::uint16_t>(key[1] + y);
+          key[2] = static_cast<std::uint16_t>(key[2] + z);
+          work_->occupied_keys.push_back(mortonCode(key));
+        }
+      }
+    }
+  });
+  std::sort(work_->occupied_keys.begin(), work_->occupied_keys.end());
 }
 
 SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {

@@ -16,6 +16,7 @@
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
+#include "sonarmap/sonar/range_scales.hpp"
 
 namespace sonarmap {
 
@@ -160,8 +161,27 @@ double autoResolution_m(double reach_m);
 /// 0 for a log without beams.
 double logReach_m(const SonarLog& log, double max_range_m);
 
+/// The automatic resolution of a log and what it follows.
+struct AutoResolution {
+  double resolution_m = 0.0;  ///< voxel edge, metres
+  RangeScale scale;           ///< the range scale it follows (its reach at most max_range_m)
+  std::size_t scales = 0;     ///< range scales (bin lengths) in the log
+  std::size_t beams = 0;      ///< beams in the log
+  bool coarsened = false;     ///< coarser than the scale's own, to fit MapperOptions::max_voxel_updates
+};
+
+/// The resolution mapSonarLog uses when MapperOptions::resolution_m is unset: autoResolution_m of
+/// the reach of the range scale most beams use (mostUsedRangeScale, range_scales.hpp; at most
+/// max_range_m), so a log mostly recorded at 10 m maps at 5 cm although it opens with a Ping360's
+/// power-on pings at 2 m and the user looked out to 20 m for a while. When mapping every beam at
+/// it would exceed max_voxel_updates (estimateVoxelUpdates), the next coarser of 1, 2, 5 × 10^k m
+/// that fits, but never coarser than autoResolution_m of the log's longest reach (checkWorkBudget
+/// then says what fits). A log of one range scale: autoResolution_m(logReach_m).
+/// @throws ValueError when options are invalid or no beam of the log has bins.
+AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options);
+
 /// `options` with every "auto" the mapper needs before the first sweep resolved for `log`:
-/// resolution_m (autoResolution_m of logReach_m). Other options are unchanged.
+/// resolution_m (autoResolutionForLog). Other options are unchanged.
 /// @throws ValueError when options are invalid, or the resolution is auto and the log has no beam.
 MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
 

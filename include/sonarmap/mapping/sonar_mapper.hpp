@@ -44,6 +44,8 @@ struct MappingStats {
   std::size_t out_of_map = 0;            ///< beams whose end lies outside the map (skipped)
   std::size_t beams_clipped = 0;         ///< beams longer than max_range_m (used up to it, obstacle dropped)
   std::size_t beams_without_nav = 0;     ///< beams without a pose: their time lies outside the navigation (skipped)
+  /// Times an automatic resolution grew with a longer range scale (SonarMapper::resolveResolution).
+  std::size_t resolution_changes = 0;
   /// Beams of a head setting (range scale, gain) used for fewer than the detector's min_beams beams
   /// in a row, before any whole sweep of that setting calibrated it: too few bearings to measure a
   /// background on (skipped; OnlineMapper).
@@ -142,8 +144,12 @@ class SonarMapper {
   const MapperOptions& options() const { return options_; }
 
  private:
-  /// With an automatic resolution, fixes it from the first sweep's reach (autoResolution_m) and
-  /// starts the (still empty) map at that resolution.
+  /// With an automatic resolution (MapperOptions::resolution_m unset at construction), fixes it
+  /// from the first sweep's reach (autoResolution_m) and starts the (still empty) map at that
+  /// resolution; a later sweep of a longer range scale, whose autoResolution_m is coarser, coarsens
+  /// the map so far to it (resampledMap, algorithms/resample.hpp; counted in
+  /// MappingStats::resolution_changes). Never finer. mapSonarLog resolves the resolution for the
+  /// whole log first (autoResolutionForLog), so this applies to mappers fed beam by beam (live).
   void resolveResolution(const PolarImage& polar);
   /// MapperOptions::range_tolerance_m, or the sweep's part of its automatic value: a bin plus half a
   /// voxel (each echo's rise is added per beam).
@@ -173,6 +179,7 @@ class SonarMapper {
   struct SweepWork;  // the sweep's plan and cells, reused from sweep to sweep
 
   MapperOptions options_;
+  bool auto_resolution_ = false;  ///< resolution_m was unset at construction
   OcTree16 map_;
   MappingStats stats_;
   std::unique_ptr<SweepWork> work_;
