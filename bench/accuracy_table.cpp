@@ -5,9 +5,10 @@
 //  2. The real CRAS tank log with each detector: the rectangle measure (eval/tank_quality.hpp) at
 //     a 10 cm tolerance.
 //  3. The real SeaNet sector log: is the target's last position occupied?
+//     Every shared real log against its own strong echoes (real_log_table.hpp).
 //  4. With --analysis, where the errors come from (accuracy_analysis.hpp).
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis]   (DATA_DIR holds the shared logs;
+// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only]   (DATA_DIR holds the shared logs;
 //        default: the SONARMAP_DATA environment variable, else the configured shared data folder)
 #include <chrono>
 #include <cmath>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "accuracy_analysis.hpp"
+#include "real_log_table.hpp"
 #include "sonarmap/eval/last_sweep.hpp"
 #include "sonarmap/eval/simulated_accuracy.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
@@ -136,17 +138,21 @@ int main(int argc, char** argv) {
   const char* env = std::getenv("SONARMAP_DATA");
   std::string data = env != nullptr ? env : SONARMAP_SHARED_DATA;
   bool analysis = false;
+  bool real_only = false;  // the real logs' tables only (seconds instead of minutes)
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--analysis") {
       analysis = true;
+    } else if (std::string(argv[i]) == "--real-only") {
+      real_only = true;
     } else {
       data = argv[i];
     }
   }
   try {
-    printSimulatedTable();
+    if (!real_only) printSimulatedTable();
     printCrasTable(data + "/cras_micron_tank_static.mat");
     printSeaNetRow(data + "/seanet_sector_target.V4LOG");
+    sonarmap::bench::printRealLogTable(data);
     if (analysis) {
       sonarmap::bench::printLeadingEdgeTable();
       sonarmap::bench::printIncidenceTable();
