@@ -35,8 +35,11 @@ struct Simulated {
   MsisSimulation run;
 };
 
-Simulated simulate(const std::string& preset_name, const std::string& scene_name) {
+Simulated simulate(const std::string& preset_name, const std::string& scene_name, double scatterers_per_m = 0.0,
+                   double scatterer_level_db = 8.0) {
   Simulated s{sonarPreset(preset_name), {}, {}};
+  s.preset.echo.water_scatterers_per_m = scatterers_per_m;
+  s.preset.echo.water_scatterer_level_db = scatterer_level_db;
   s.scene = builtinScene(scene_name, s.preset.head.range_m, s.preset.head.vertical_beam_width_rad);
   MsisSimulationOptions options;
   options.head = s.preset.head;
@@ -217,6 +220,18 @@ void printNoiseTailTable(const std::string& data_dir) {
     std::size_t bins = 0, above[kLevels] = {};
     countTail(s.run.log, headOptions(s.preset), bins, above);
     printTailRow(("simulated " + name + ", open water").c_str(), bins, above);
+  }
+  // The simulated tank before its walls, as the real logs' rows count, with water scatterers
+  // (EchoModelOptions::water_scatterers_per_m) of a few densities and mean levels.
+  const double scatterers[][2] = {{0.0, 9.0}, {3.0, 9.0}, {12.0, 9.0}, {12.0, 12.0}};  // per metre, dB
+  for (const auto& [per_m, level_db] : scatterers) {
+    const Simulated s = simulate("micron", "tank", per_m, level_db);
+    std::size_t bins = 0, above[kLevels] = {};
+    countTail(s.run.log, headOptions(s.preset), bins, above);
+    char what[120];
+    std::snprintf(what, sizeof what, "simulated micron, tank, water before each obstacle, %.0f scatterers/m of %.0f dB",
+                  per_m, level_db);
+    printTailRow(what, bins, above);
   }
   for (const char* file : {"cras_micron_tank_static.mat", "seanet_sector_target.V4LOG"}) {
     const std::filesystem::path path = std::filesystem::path(data_dir) / file;

@@ -8,7 +8,7 @@
 //     Every shared real log against its own strong echoes (real_log_table.hpp).
 //  4. With --analysis, where the errors come from (accuracy_analysis.hpp).
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only]   (DATA_DIR holds the shared logs;
+// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails]   (DATA_DIR holds the shared logs;
 //        default: the SONARMAP_DATA environment variable, else the configured shared data folder)
 #include <chrono>
 #include <cmath>
@@ -139,16 +139,23 @@ int main(int argc, char** argv) {
   std::string data = env != nullptr ? env : SONARMAP_SHARED_DATA;
   bool analysis = false;
   bool real_only = false;  // the real logs' tables only (seconds instead of minutes)
+  bool noise_tails_only = false;  // the noise-tail table only
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--analysis") {
       analysis = true;
     } else if (std::string(argv[i]) == "--real-only") {
       real_only = true;
+    } else if (std::string(argv[i]) == "--noise-tails") {
+      noise_tails_only = true;
     } else {
       data = argv[i];
     }
   }
   try {
+    if (noise_tails_only) {
+      sonarmap::bench::printNoiseTailTable(data);
+      return 0;
+    }
     if (!real_only) printSimulatedTable();
     printCrasTable(data + "/cras_micron_tank_static.mat");
     printSeaNetRow(data + "/seanet_sector_target.V4LOG");

@@ -111,6 +111,10 @@ void EchoModelOptions::validate() const {
           "echo model: tvg_absorption_db_per_m must be ≥ 0");
   require(finite(pulse_length_m) && pulse_length_m > 0.0, "echo model: pulse_length_m must be > 0");
   require(speckle_looks >= 0, "echo model: speckle_looks must be ≥ 0");
+  require(finite(water_scatterers_per_m) && water_scatterers_per_m >= 0.0,
+          "echo model: water_scatterers_per_m must be ≥ 0");
+  require(finite(water_scatterer_level_db) && water_scatterer_level_db > 0.0,
+          "echo model: water_scatterer_level_db must be > 0");
   require(finite(noise_level_db) && finite(ad_low_db), "echo model: noise_level_db and ad_low_db must be finite");
   require(finite(ad_span_db) && ad_span_db > 0.0, "echo model: ad_span_db must be > 0");
   require(finite(blanking_m) && blanking_m >= 0.0, "echo model: blanking_m must be ≥ 0");

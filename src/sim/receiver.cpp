@@ -55,6 +55,24 @@ void Receiver::fluctuation(Random& random, std::vector<double>& factors) {
   }
 }
 
+void Receiver::waterScatterers(Random& random, std::vector<double>& clutter) const {
+  const std::size_t bins = gain_.size();
+  clutter.assign(bins, 0.0);
+  if (!(echo_.water_scatterers_per_m > 0.0)) return;
+  const double bin_m = head_.binLength_m();
+  const double noise_power = powerOf(echo_.noise_level_db);
+  const double reach_m = static_cast<double>(bins) * bin_m;
+  // A Poisson process along the beam: exponential gaps of mean 1 / density.
+  for (double range_m = random.exponential() / echo_.water_scatterers_per_m; range_m < reach_m;
+       range_m += random.exponential() / echo_.water_scatterers_per_m) {
+    const auto first = static_cast<std::size_t>(range_m / bin_m);
+    const double level_db = echo_.water_scatterer_level_db * random.exponential();
+    const double speckle = random.exponential();
+    const std::size_t last = std::min(bins, first + static_cast<std::size_t>(pulse_bins_));
+    for (std::size_t i = first; i < last; ++i) clutter[i] += noise_power * gain_[i] * powerOf(level_db) * speckle;
+  }
+}
+
 void Receiver::receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities) {
   const std::size_t bins = energy.size();
   // Pulse: each bin sums the energy of the pulse length before it (a running sum).
@@ -67,12 +85,13 @@ void Receiver::receive(const std::vector<double>& energy, Random& random, std::v
   }
   fluctuation(random, speckle_);
   fluctuation(random, noise_);
+  waterScatterers(random, clutter_);
   const double noise_power = powerOf(echo_.noise_level_db);
   const double bin_m = head_.binLength_m();
   intensities.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) {
     const double power =
-        (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + noise_power * noise_[i] * gain_[i];
+        (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + noise_power * noise_[i] * gain_[i] + clutter_[i];
     const bool blanked = (static_cast<double>(i) + 0.5) * bin_m < echo_.blanking_m;
     intensities[i] = blanked ? 0 : quantise(power);
   }

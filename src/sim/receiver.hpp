@@ -19,7 +19,7 @@ class Receiver {
 
   /// @param energy       received energy per bin, head.bins values.
   /// @param random       the run's stream; takes 2 · (bins + speckle_looks − 1) draws (none
-  ///                     without speckle).
+  ///                     without speckle), then the water scatterers' draws when there are any.
   /// @param intensities  set to head.bins values.
   void receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities);
 
@@ -31,13 +31,16 @@ class Receiver {
   /// Sets `factors` (one per bin, mean 1) to the moving mean of speckle_looks exponential draws,
   /// or to 1 when speckle_looks is 0.
   void fluctuation(Random& random, std::vector<double>& factors);
+  /// Sets `clutter` (one per bin) to the water scatterers' power after the gain
+  /// (EchoModelOptions::water_scatterers_per_m); all 0 without scatterers, taking no draws.
+  void waterScatterers(Random& random, std::vector<double>& clutter) const;
 
   MsisHeadOptions head_;
   EchoModelOptions echo_;
   int pulse_bins_ = 1;
   std::vector<double> gain_;                             // TVG per bin (power factor)
   std::vector<double> self_reflection_;                  // band power per bin, after the gain
-  std::vector<double> pulse_, speckle_, noise_, draws_;  // per-beam scratch
+  std::vector<double> pulse_, speckle_, noise_, clutter_, draws_;  // per-beam scratch
 };
 
 }  // namespace sonarmap::sim
