@@ -79,8 +79,9 @@ void OnlineMapper::addBeam(Beam beam) {
     addLiveBeam(std::move(beam), starts_sweep);
     return;
   }
-  const std::size_t final_beams = grouper_.add(starts_sweep, headSettingOf(beam));
-  if (final_beams > 0) emitGroup(final_beams);
+  const HeadSetting setting = headSettingOf(beam);
+  const std::size_t final_beams = grouper_.add(starts_sweep, setting);
+  if (final_beams > 0) emitGroup(final_beams, headSettingOf(held_[final_beams - 1]) != setting);
   held_.push_back(std::move(beam));
   processReady();
 }
@@ -89,7 +90,7 @@ void OnlineMapper::finish() {
   if (finished_) return;
   finished_ = true;
   if (integration_ == OnlineIntegration::kBeam) closeLiveSweep(std::nullopt);
-  if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last);
+  if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last, true);
   processReady();
   processBeamQueue();
   if (in_flight_) {
@@ -98,13 +99,13 @@ void OnlineMapper::finish() {
   }
 }
 
-void OnlineMapper::emitGroup(std::size_t beams) {
+void OnlineMapper::emitGroup(std::size_t beams, bool cut) {
   std::vector<Beam> group;
   group.reserve(beams);
   std::move(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(beams), std::back_inserter(group));
   held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(beams));
   waiting_beams_ += beams;
-  ready_.push_back(std::move(group));
+  ready_.push_back({std::move(group), cut});
 }
 
 bool OnlineMapper::navigationCovers(double time_s) const {
@@ -121,13 +122,14 @@ double latestTime_s(const std::vector<Beam>& beams) {
 }  // namespace
 
 void OnlineMapper::processReady() {
-  while (!ready_.empty() && navigationCovers(latestTime_s(ready_.front()))) {
-    std::vector<Beam> group = std::move(ready_.front());
+  while (!ready_.empty() && navigationCovers(latestTime_s(ready_.front().beams))) {
+    ReadyGroup ready = std::move(ready_.front());
     ready_.pop_front();
-    if (group.size() < minBeams(mapper_.options())) {
-      processShortGroup(std::move(group));
+    if (detectedAsShort(ready)) {
+      processShortGroup(std::move(ready.beams));
       continue;
     }
+    std::vector<Beam> group = std::move(ready.beams);
     auto detect = [this, group = std::move(group)]() {
       DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, headSettingOf(group.front())};
       sweep.detection = mapper_.detectSweep(sweep.polar);  // const: touches no mapper state
@@ -142,6 +144,24 @@ void OnlineMapper::processReady() {
     std::unique_ptr<std::future<DetectedSweep>> previous = std::exchange(in_flight_, std::move(next));
     if (previous) integrate(previous->get());  // rethrows what its detection threw
   }
+}
+
+bool OnlineMapper::detectedAsShort(const ReadyGroup& group) {
+  if (group.beams.size() < minBeams(mapper_.options())) return true;
+  if (!group.cut) return false;
+  // A sweep cut short by a range or gain change, or by the end of the log, covers a few bearings:
+  // its own background and near field would be those of one patch of the scene (a seabed seen in
+  // every one of its beams is taken for the near field). Its setting's last whole sweep measured
+  // them over more bearings; the sweep before it may still be in detection.
+  if (in_flight_) {
+    std::unique_ptr<std::future<DetectedSweep>> previous = std::move(in_flight_);
+    integrate(previous->get());
+  }
+  const HeadSetting setting = headSettingOf(group.beams.front());
+  for (const KeptCalibration& kept : calibrations_) {
+    if (kept.setting == setting) return 2 * group.beams.size() < kept.beams;
+  }
+  return false;
 }
 
 void OnlineMapper::processShortGroup(std::vector<Beam> group) {
@@ -167,20 +187,21 @@ void OnlineMapper::processShortGroup(std::vector<Beam> group) {
 }
 
 const SweepCalibration* OnlineMapper::calibrationOf(const HeadSetting& setting) const {
-  for (const auto& [known, calibration] : calibrations_) {
-    if (known == setting) return &calibration;
+  for (const KeptCalibration& kept : calibrations_) {
+    if (kept.setting == setting) return &kept.calibration;
   }
   return nullptr;
 }
 
-void OnlineMapper::keepCalibration(const HeadSetting& setting, SweepCalibration calibration) {
-  for (auto& [known, kept] : calibrations_) {
-    if (known == setting) {
-      kept = std::move(calibration);
+void OnlineMapper::keepCalibration(const HeadSetting& setting, SweepCalibration calibration, std::size_t beams) {
+  for (KeptCalibration& kept : calibrations_) {
+    if (kept.setting == setting) {
+      kept.calibration = std::move(calibration);
+      kept.beams = beams;
       return;
     }
   }
-  calibrations_.emplace_back(setting, std::move(calibration));
+  calibrations_.push_back({setting, std::move(calibration), beams});
 }
 
 void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
@@ -196,7 +217,9 @@ void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
     waiting_beams_ -= static_cast<std::size_t>(sweep.polar.rows());
   }
   // The calibration later beams of this setting are detected with (short groups; kBeam's beams).
-  if (calibrates) keepCalibration(sweep.setting, std::move(sweep.detection.calibration));
+  if (calibrates) {
+    keepCalibration(sweep.setting, std::move(sweep.detection.calibration), static_cast<std::size_t>(sweep.polar.rows()));
+  }
   if (on_sweep_) on_sweep_(sweeps_);
 }
 
@@ -243,7 +266,7 @@ void OnlineMapper::closeLiveSweep(const std::optional<HeadSetting>& next) {
     // a short one with its setting's calibration, or counts it uncalibrated).
     if (next && *next == setting && live_sweep_.size() < min_beams) return;
     waiting_beams_ += live_sweep_.size();
-    ready_.push_back(std::exchange(live_sweep_, {}));
+    ready_.push_back({std::exchange(live_sweep_, {}), false});
     live_whole_ = false;
     return;
   }
@@ -251,7 +274,7 @@ void OnlineMapper::closeLiveSweep(const std::optional<HeadSetting>& next) {
   if (sweep.size() >= min_beams) {
     // Its beams are (or will be) integrated one by one; calibrate the next ones on it.
     PolarImage polar = makePolarImage(sweep, 0, sweep.size());
-    keepCalibration(setting, mapper_.detectSweep(polar).calibration);
+    keepCalibration(setting, mapper_.detectSweep(polar).calibration, sweep.size());
   }
   const std::unique_lock lock(map_mutex_);
   ++mapper_.stats().sweeps;

@@ -141,3 +141,38 @@ TEST(mappingRangeChanges, LiveSweepByBeamGivesTheBatchMapAtAGivenResolution) {
 
 }  // namespace
 }  // namespace sonarmap
+
+namespace sonarmap {
+namespace {
+
+TEST(mappingRangeChanges, ASweepCutShortIsDetectedWithItsSettingsLastWholeSweep) {
+  // Two turns at 5 m, one at 10 m, then 40 beams at 5 m (a fifth of a turn) in which a bright
+  // return fills 0.3–2 m in every beam (a seabed close under the head) and the log ends. Calibrated
+  // on its own, those 40 beams would take the bright stretch, present in all of them, for the
+  // vehicle's self-reflection band and detect nothing before 2 m; a fifth of a turn is detected
+  // with the calibration of the last whole 5 m turn instead.
+  SonarLog log = tankTurns(5.0, 399, 2, 0.0, 1);
+  append(log, tankTurns(10.0, 500, 1, lastTime(log), 2));
+  const SonarLog last = tankTurns(5.0, 399, 1, lastTime(log), 3);
+  append(log, last, 40);
+  for (std::size_t i = log.beams.size() - 40; i < log.beams.size(); ++i) {
+    std::vector<std::uint8_t>& bins = log.beams[i].intensities;
+    for (std::size_t c = 0; c < bins.size(); ++c) {
+      const double range_m = (static_cast<double>(c) + 0.5) * log.beams[i].bin_length_m;
+      if (range_m > 0.3 && range_m < 2.0) bins[c] = 180;
+    }
+  }
+  const SonarMapper mapper = mapSonarLog(log);
+  EXPECT_EQ(mapper.stats().beams_uncalibrated, 0U);
+  EXPECT_EQ(mapper.stats().beams_used, log.beams.size());
+  // The last detection (the 40 beams) used the whole turn's band and near field, not 2 m.
+  EXPECT_LT(mapper.stats().calibration.band_end_m, 0.5);
+  EXPECT_LT(mapper.stats().calibration.min_range_m, 1.0);
+  // Most of the 40 beams find an obstacle (the bright stretch's start or the wall before it).
+  SonarLog whole = log;
+  whole.beams.resize(log.beams.size() - 40);
+  EXPECT_GE(mapper.stats().obstacles, mapSonarLog(whole).stats().obstacles + 35);
+}
+
+}  // namespace
+}  // namespace sonarmap

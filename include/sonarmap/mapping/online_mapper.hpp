@@ -108,14 +108,24 @@ class OnlineMapper {
 
  private:
   struct DetectedSweep;
-  void emitGroup(std::size_t beams);
+  /// A final group of beams; `cut`: it ended at a change of head setting or at the end of the
+  /// stream, not at the end of a sweep.
+  struct ReadyGroup {
+    std::vector<Beam> beams;
+    bool cut = false;
+  };
+  void emitGroup(std::size_t beams, bool cut);
   void processReady();
-  /// A final group of fewer than min_beams beams (a head setting used for fewer beams).
+  /// A final group of fewer than min_beams beams (a head setting used for fewer beams), or a cut
+  /// group of fewer than half the beams of the sweep its setting was last calibrated on.
   void processShortGroup(std::vector<Beam> group);
+  /// Whether `group` is detected with its setting's calibration instead of its own (see above).
+  bool detectedAsShort(const ReadyGroup& group);
   /// Integrates a detected sweep; `calibrates`: its calibration becomes its setting's.
   void integrate(DetectedSweep sweep, bool calibrates = true);
   const SweepCalibration* calibrationOf(const HeadSetting& setting) const;
-  void keepCalibration(const HeadSetting& setting, SweepCalibration calibration);
+  /// Keeps `calibration`, measured on a sweep of `beams` beams, as its setting's.
+  void keepCalibration(const HeadSetting& setting, SweepCalibration calibration, std::size_t beams);
   bool navigationCovers(double time_s) const;
   /// The poses of `times_s` (navigation mode: nullopt outside the fixes).
   std::vector<std::optional<Eigen::Isometry3d>> posesAt(const std::vector<double>& times_s) const;
@@ -135,13 +145,18 @@ class OnlineMapper {
   SweepSplitter splitter_;
   SweepGrouper grouper_;
   std::deque<Beam> held_;                        ///< beams of groups not yet final
-  std::deque<std::vector<Beam>> ready_;          ///< final groups waiting for navigation
+  std::deque<ReadyGroup> ready_;                 ///< final groups waiting for navigation
   std::size_t waiting_beams_ = 0;                ///< beams of final groups not yet integrated
   std::unique_ptr<std::future<DetectedSweep>> in_flight_;  ///< detection running beside integration
   std::size_t sweeps_ = 0;
   bool finished_ = false;
   /// The calibration of the last whole sweep of each head setting seen (few: a range knob's stops).
-  std::vector<std::pair<HeadSetting, SweepCalibration>> calibrations_;
+  struct KeptCalibration {
+    HeadSetting setting;
+    SweepCalibration calibration;
+    std::size_t beams = 0;  ///< of the sweep it was measured on
+  };
+  std::vector<KeptCalibration> calibrations_;
   // kBeam: the raw sweep being received, the beams waiting for navigation.
   std::vector<Beam> live_sweep_;
   bool live_whole_ = false;  ///< the sweep being received is integrated whole when it ends
