@@ -8,8 +8,9 @@
 //     Every shared real log against its own strong echoes (real_log_table.hpp).
 //  4. With --analysis, where the errors come from (accuracy_analysis.hpp).
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails]   (DATA_DIR holds the shared logs;
-//        default: the SONARMAP_DATA environment variable, else the configured shared data folder)
+// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails] [--head PRESET]...   (DATA_DIR holds the shared logs;
+//        default: the SONARMAP_DATA environment variable, else the configured shared data folder;
+//        --head: only the simulated rows of the named presets, e.g. --head ping360-2m --head ping360-5m)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,12 +58,13 @@ void printRow(const SimulatedAccuracy& a) {
   std::fflush(stdout);
 }
 
-void printSimulatedTable() {
+/// The simulated table; `heads` limits it to those presets (all when empty).
+void printSimulatedTable(const std::vector<std::string>& heads) {
   std::printf("\n### Simulated heads × scenes, default settings\n\n");
   std::printf("| head | scene | scan | voxel (m) | occupied | precision | recall | free accuracy | worst \\|offset\\| (m) "
               "| offset per surface (m) | obstacles / sweep | mapping (s) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
-  for (const std::string& preset : sonarPresetNames()) {
+  for (const std::string& preset : heads.empty() ? sonarPresetNames() : heads) {
     for (const std::string& scene : builtinSceneNames()) {
       try {
         printRow(evaluateSimulatedRun(SimulatedRun{preset, scene}));
@@ -140,6 +142,7 @@ int main(int argc, char** argv) {
   bool analysis = false;
   bool real_only = false;  // the real logs' tables only (seconds instead of minutes)
   bool noise_tails_only = false;  // the noise-tail table only
+  std::vector<std::string> heads;  // --head NAME: the simulated table's rows of those presets only (no real logs)
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--analysis") {
       analysis = true;
@@ -147,6 +150,8 @@ int main(int argc, char** argv) {
       real_only = true;
     } else if (std::string(argv[i]) == "--noise-tails") {
       noise_tails_only = true;
+    } else if (std::string(argv[i]) == "--head" && i + 1 < argc) {
+      heads.emplace_back(argv[++i]);
     } else {
       data = argv[i];
     }
@@ -156,7 +161,8 @@ int main(int argc, char** argv) {
       sonarmap::bench::printNoiseTailTable(data);
       return 0;
     }
-    if (!real_only) printSimulatedTable();
+    if (!real_only) printSimulatedTable(heads);
+    if (!heads.empty()) return 0;
     printCrasTable(data + "/cras_micron_tank_static.mat");
     printSeaNetRow(data + "/seanet_sector_target.V4LOG");
     sonarmap::bench::printRealLogTable(data);

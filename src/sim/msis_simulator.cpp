@@ -158,6 +158,7 @@ MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& opt
     beam.time_s = options.start_time_s + static_cast<double>(i) * head.beam_period_s;
     beam.bearing_rad = head.bearingOf(i);
     beam.bin_length_m = head.binLength_m();
+    if (head.logs_pulse_length) beam.pulse_length_m = options.echo.pulse_length_m;
     NavSample fix = options.trajectory(beam.time_s);
     fix.time_s = beam.time_s;
     tracer.trace(sonarToMap(fix, options.sonar_to_body), beam.bearing_rad, energy);

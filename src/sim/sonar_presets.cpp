@@ -3,6 +3,7 @@
 
 #include "sonarmap/sim/sonar_presets.hpp"
 
+#include <cmath>
 #include <numbers>
 #include <utility>
 
@@ -61,23 +62,30 @@ SonarPreset seaKing(std::string name, double range_m, int bins, double beam_peri
   return preset;
 }
 
-SonarPreset ping360() {
-  SonarPreset preset =
-      newPreset("ping360", "Blue Robotics Ping360, 750 kHz, 50 m, 1200 samples, 2 x 25 deg", 2.0, 25.0, 7, 0.22);
+/// The Blue Robotics Ping360 at 750 kHz, 1200 samples a ping, 1 gradian steps; what changes with
+/// the range scale and the gain is passed in.
+SonarPreset ping360(std::string name, double range_m, double beam_period_s, double pulse_length_m, double noise_level_db,
+                    double ad_low_db, double ringing_end_m, double ringing_intensity, double ringing_taper_m) {
+  const int range_cm = static_cast<int>(std::lround(range_m * 100.0));
+  const std::string range_text = range_cm % 100 == 0 ? std::to_string(range_cm / 100) : std::to_string(range_m);
+  SonarPreset preset = newPreset(std::move(name),
+                                 "Blue Robotics Ping360, 750 kHz, " + range_text + " m, 1200 samples, 2 x 25 deg", 2.0,
+                                 25.0, 7, 0.22);
   preset.head.step_rad = 1.0 * kGradian;
-  preset.head.range_m = 50.0;
+  preset.head.logs_pulse_length = true;  // device_data's transmit_duration
+  preset.head.range_m = range_m;
   preset.head.bins = 1200;
-  preset.head.beam_period_s = 0.083;
+  preset.head.beam_period_s = beam_period_s;
   EchoModelOptions& echo = preset.echo;
-  echo.pulse_length_m = 0.20;
+  echo.pulse_length_m = pulse_length_m;
   echo.speckle_looks = 5;
-  echo.noise_level_db = -99.0;
-  echo.ad_low_db = -55.0;
+  echo.noise_level_db = noise_level_db;
+  echo.ad_low_db = ad_low_db;
   echo.ad_span_db = 60.0;
   echo.blanking_m = 0.0;
-  echo.self_reflection_end_m = 0.5;
-  echo.self_reflection_intensity = 230.0;
-  echo.self_reflection_taper_m = 0.5;
+  echo.self_reflection_end_m = ringing_end_m;
+  echo.self_reflection_intensity = ringing_intensity;
+  echo.self_reflection_taper_m = ringing_taper_m;
   return preset;
 }
 
@@ -103,14 +111,16 @@ SonarPreset imagenex881a() {
 }  // namespace
 
 std::vector<std::string> sonarPresetNames() {
-  return {"micron", "seaking-30", "seaking-50", "ping360", "imagenex-881a"};
+  return {"micron", "seaking-30", "seaking-50", "ping360", "ping360-2m", "ping360-5m", "imagenex-881a"};
 }
 
 SonarPreset sonarPreset(std::string_view name) {
   if (name == "micron") return micron();
   if (name == "seaking-30") return seaKing("seaking-30", 30.0, 300, 0.070, 0.10, -69.5, 7);
   if (name == "seaking-50") return seaKing("seaking-50", 50.0, 800, 0.140, 0.15, -71.3, 9);
-  if (name == "ping360") return ping360();
+  if (name == "ping360") return ping360("ping360", 50.0, 0.083, 0.20, -99.0, -55.0, 0.5, 230.0, 0.5);
+  if (name == "ping360-2m") return ping360("ping360-2m", 2.0, 0.040, 0.008, -50.0, -40.0, 0.07, 250.0, 0.28);
+  if (name == "ping360-5m") return ping360("ping360-5m", 5.0, 0.043, 0.020, -60.0, -40.0, 0.10, 250.0, 0.30);
   if (name == "imagenex-881a") return imagenex881a();
   std::string known;
   for (const std::string& candidate : sonarPresetNames()) known += (known.empty() ? "" : ", ") + candidate;

@@ -34,7 +34,12 @@ struct Stated {
 const std::vector<Stated> kStated{
     {"micron", 399, 5.0, 200, 3.0, 35.0, 0.05},       {"seaking-30", 300, 30.0, 400, 3.0, 40.0, 0.10},
     {"seaking-50", 800, 50.0, 400, 3.0, 40.0, 0.15},  {"ping360", 1200, 50.0, 400, 2.0, 25.0, 0.20},
+    {"ping360-2m", 1200, 2.0, 400, 2.0, 25.0, 0.008}, {"ping360-5m", 1200, 5.0, 400, 2.0, 25.0, 0.02},
     {"imagenex-881a", 500, 20.0, 400, 1.8, 20.0, 0.06}};
+
+/// The Ping360 at the short range scales of tank work, at its power-on low gain: the shared Ping
+/// Viewer logs' water is 0 in most bins and their strongest returns reach 100–160 counts.
+bool lowGainShortRange(const std::string& name) { return name == "ping360-2m" || name == "ping360-5m"; }
 
 /// The built-in scene `name` as built for the preset's head.
 Scene sceneFor(const std::string& name, const SonarPreset& preset) {
@@ -97,7 +102,8 @@ double leadingEdge_m(const Beam& beam, double expected_m, const SonarPreset& pre
 
 TEST(simSonarPresets, NamesAndUnknownNamesListed) {
   EXPECT_EQ(sonarPresetNames(),
-            (std::vector<std::string>{"micron", "seaking-30", "seaking-50", "ping360", "imagenex-881a"}));
+            (std::vector<std::string>{"micron", "seaking-30", "seaking-50", "ping360", "ping360-2m", "ping360-5m",
+                                      "imagenex-881a"}));
   try {
     sonarPreset("seabat");
     FAIL() << "expected ValueError";
@@ -193,6 +199,20 @@ TEST(simSonarPresets, WallsPilesAndHullsEchoAtTheirGeometricRanges) {
   }
 }
 
+TEST(simSonarPresets, PingThreeSixtyLogsRecordThePulseAsDeviceDataDoesTritechLogsDoNot) {
+  for (const std::string& name : sonarPresetNames()) {
+    SCOPED_TRACE(name);
+    const SonarPreset preset = sonarPreset(name);
+    const MsisSimulation run = simulateMsis(sceneFor("tank", preset), sectorRun(preset, 0.0, 10.0));
+    ASSERT_FALSE(run.log.beams.empty());
+    if (name.rfind("ping360", 0) == 0) {
+      EXPECT_EQ(run.log.beams.front().pulse_length_m, preset.echo.pulse_length_m);
+    } else {
+      EXPECT_FALSE(run.log.beams.front().pulse_length_m.has_value());
+    }
+  }
+}
+
 TEST(simSonarPresets, HardTargetsStandWellAboveTheNoise) {
   for (const std::string& name : sonarPresetNames()) {
     SCOPED_TRACE(name);
@@ -211,7 +231,7 @@ TEST(simSonarPresets, HardTargetsStandWellAboveTheNoise) {
     const double noise = percentile(intensities(water.log.beams, 0.65 * r, 0.8 * r), 0.9);
     const double above_db = (percentile(peaks, 0.5) - noise) * preset.echo.ad_span_db / 255.0;
     EXPECT_GE(above_db, 15.0) << "quay median peak " << percentile(peaks, 0.5) << ", noise " << noise;
-    EXPECT_GE(percentile(peaks, 0.5), 150.0);
+    EXPECT_GE(percentile(peaks, 0.5), lowGainShortRange(name) ? 120.0 : 150.0);
   }
 }
 
@@ -226,9 +246,9 @@ TEST(simSonarPresets, NoiseFloorsAreVisibleAndGrowWithRangeOrAreClipped) {
     const double far = percentile(intensities(water.log.beams, 0.95 * r, r), 0.5);
     const double half = percentile(intensities(water.log.beams, 0.45 * r, 0.55 * r), 0.5);
     far_medians.push_back(far);
-    if (name == "imagenex-881a") {
-      EXPECT_EQ(far, 0.0) << "the 881A clips its noise";
-      EXPECT_LE(percentile(intensities(water.log.beams, 0.1 * r, r), 0.99), 5.0);
+    if (name == "imagenex-881a" || lowGainShortRange(name)) {
+      EXPECT_EQ(far, 0.0) << "the 881A, and the Ping360 at its low gain, clip their noise";
+      EXPECT_LE(percentile(intensities(water.log.beams, 0.2 * r, r), 0.99), 5.0);  // beyond the near field
     } else {
       EXPECT_GE(far, 8.0) << "a visible noise floor at the full range";
       EXPECT_LE(far, 65.0);

@@ -94,6 +94,10 @@ struct MsisHeadOptions {
   /// least one step (sector_width_rad ≥ step_rad).
   double sector_width_rad = 2.0 * std::numbers::pi;
   double sector_center_rad = 0.0;  ///< bearing of the sector's centre, radians (sector scans only)
+  /// The head's log records its pulse with each beam (Beam::pulse_length_m = the echo model's
+  /// pulse_length_m), as a Ping360's device_data does (transmit_duration); false: as Tritech's
+  /// SeaNet logs and the CRAS .mat, which do not.
+  bool logs_pulse_length = false;
 
   double binLength_m() const { return range_m / bins; }
   /// Whether the head scans a sector (sector_width_rad < 2π) rather than turning continuously.

@@ -67,6 +67,22 @@
 ///    show [A]; noise −99 dB: a grainy floor over the far 30% of the range, median ≈ 50 at R [A].
 ///    Near field: the transducer's ringing, bright (230) to 0.5 m, fading out by 1 m (the Ping360's
 ///    0.75 m minimum range [D]) [A]; no blanking: every sample is reported [A]. Rays 7 × 78.
+///  - `ping360-2m`, `ping360-5m`: the same Ping360 at the short range scales of tank work, as the
+///    shared Ping Viewer logs record them at 2 m (the power-on default: 487 and 387 pings) [L]:
+///    1200 samples of 1.65 mm at 2 m (sample period 88 ticks) and 4.17 mm at 5 m [D];
+///    transmit duration 11 µs at 2 m (Ping Viewer's 8000 · R / c µs: 27 µs at 5 m) [L], a pulse
+///    of 8 mm (5 samples) and 2 cm [C]; a ping every 40 ms at 2 m (the harbour log's median; 49 ms in
+///    the basin log), about 36 ms of motor step and transfer plus the listening time 2R/c, so
+///    43 ms at 5 m [L, C]. Gain setting 0 (low), the power-on gain: the water is 0 in most bins
+///    (median 0 from 0.4 to 2 m, 90th percentile 3–34) and the strongest returns reach 100–160
+///    counts, so ad_low −40 dB puts a concrete wall near 150 and the noise, −50 dB (2 m) and
+///    −60 dB (5 m), stays clipped to 0 but for specks near R [L, A]. Ringing: saturated from the
+///    first samples to 0.07 m, 190 at 0.10 m, 150 at 0.15, 90 at 0.20, 55 at 0.25 and gone by
+///    0.3–0.35 m [L], modelled as a 250 plateau to 0.07 m tapering over 0.28 m; at 5 m (a longer
+///    pulse) a 0.10 m plateau and 0.30 m taper, between the 2 m pings and the 60 m scale's
+///    (saturated to 0.25 m, gone by about 0.45 m) [A]. (The shared logs also disagree with the
+///    `ping360` preset's noise floor: at 60 m and gain 2 their water is 0 beyond 4 m, median and
+///    90th percentile; that preset keeps its assumed floor, see docs/accuracy.md.)
 ///  - `imagenex-881a`: an Imagenex 881A-like head at 675 kHz, 20 m with 500 samples (4 cm) [A].
 ///    Beam 1.8° × 20° [D]; 0.9° steps (400 a turn) [D]; period 26.7 ms + 550 B at 115.2 kBd
 ///    (48 ms) = 75 ms [C] (30 s a turn). Pulse 80 µs, 0.06 m (1.5 samples) [A]; speckle_looks 2.
@@ -91,7 +107,7 @@ struct SonarPreset {
 };
 
 /// Names sonarPreset() accepts, in a fixed order: "micron", "seaking-30", "seaking-50", "ping360",
-/// "imagenex-881a".
+/// "ping360-2m", "ping360-5m", "imagenex-881a".
 std::vector<std::string> sonarPresetNames();
 
 /// The preset called `name` (see the file's comment). Its head and echo options validate.
