@@ -23,6 +23,7 @@ constexpr std::size_t kFixedColumns = 3;  // time_s, bearing_deg, bin_length_m
 constexpr std::string_view kFixedNames[kFixedColumns] = {"time_s", "bearing_deg", "bin_length_m"};
 constexpr std::string_view kSpanName = "intensity_span_db";  // optional, after bin_length_m
 constexpr std::string_view kGainName = "gain_setting";       // optional, after the span (or bin_length_m)
+constexpr std::string_view kPulseName = "pulse_length_m";    // optional, after the gain (or the columns before)
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Bearing in [0, 2π) from any finite angle in degrees (the same arithmetic as readCrasMat).
@@ -58,6 +59,7 @@ std::string binColumnName(std::size_t bin) {
 struct Header {
   bool has_span = false;      ///< an intensity_span_db column after bin_length_m
   std::optional<std::size_t> gain_column;  ///< the gain_setting column, when there is one
+  std::optional<std::size_t> pulse_column;  ///< the pulse_length_m column, when there is one
   std::size_t first_bin = 0;  ///< column of b0
   std::size_t bins = 0;       ///< b-columns
 };
@@ -72,6 +74,7 @@ Header readHeader(csv::LineReader& reader) {
   header.has_span = named(kFixedColumns, kSpanName);
   header.first_bin = kFixedColumns + (header.has_span ? 1 : 0);
   if (named(header.first_bin, kGainName)) header.gain_column = header.first_bin++;
+  if (named(header.first_bin, kPulseName)) header.pulse_column = header.first_bin++;
   header.bins = reader.fields().size() - header.first_bin;
   for (std::size_t i = 0; i < header.bins; ++i) reader.expectName(header.first_bin + i, binColumnName(i));
   return header;
@@ -122,6 +125,13 @@ Beam readBeam(const csv::LineReader& reader, const Header& header) {
     }
     beam.gain_setting = gain;
   }
+  if (header.pulse_column && fields.size() > *header.pulse_column && !fields[*header.pulse_column].empty()) {
+    const double pulse_m = reader.finiteNumber(*header.pulse_column, kPulseName, "metres > 0");
+    if (!(pulse_m > 0.0)) {
+      reader.failField(*header.pulse_column, kPulseName, csv::formatNumber(pulse_m) + " m, expected metres > 0");
+    }
+    beam.pulse_length_m = pulse_m;
+  }
   beam.intensities.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) beam.intensities[i] = readIntensity(reader, header.first_bin + i, i);
   return beam;
@@ -142,6 +152,9 @@ void checkWritable(const SonarLog& log) {
     if (beam.intensity_span_db && !(*beam.intensity_span_db > 0.0 && std::isfinite(*beam.intensity_span_db))) {
       throw ValueError(where + "intensity span " + csv::formatNumber(*beam.intensity_span_db) +
                        " dB, expected finite and > 0");
+    }
+    if (beam.pulse_length_m && !(*beam.pulse_length_m > 0.0 && std::isfinite(*beam.pulse_length_m))) {
+      throw ValueError(where + "pulse length " + csv::formatNumber(*beam.pulse_length_m) + " m, expected finite and > 0");
     }
     if (i > 0 && beam.time_s < log.beams[i - 1].time_s) {
       throw ValueError(where + "time " + csv::formatNumber(beam.time_s) + " s is before the previous beam's " +
@@ -177,15 +190,17 @@ SonarLog readBeamCsv(const std::string& path) {
 void writeBeamCsv(std::ostream& out, const SonarLog& log) {
   checkWritable(log);
   std::size_t header_bins = 0;
-  bool has_span = false, has_gain = false;
+  bool has_span = false, has_gain = false, has_pulse = false;
   for (const Beam& beam : log.beams) {
     header_bins = std::max(header_bins, beam.intensities.size());
     has_span = has_span || beam.intensity_span_db.has_value();
     has_gain = has_gain || beam.gain_setting.has_value();
+    has_pulse = has_pulse || beam.pulse_length_m.has_value();
   }
   std::string line = "time_s,bearing_deg,bin_length_m";
   if (has_span) (line += ',') += kSpanName;
   if (has_gain) (line += ',') += kGainName;
+  if (has_pulse) (line += ',') += kPulseName;
   for (std::size_t i = 0; i < header_bins; ++i) line += ',' + binColumnName(i);
   out << line << '\n';
   for (const Beam& beam : log.beams) {
@@ -202,6 +217,10 @@ void writeBeamCsv(std::ostream& out, const SonarLog& log) {
     if (has_gain) {
       line += ',';
       if (beam.gain_setting) line += std::to_string(*beam.gain_setting);
+    }
+    if (has_pulse) {
+      line += ',';
+      if (beam.pulse_length_m) csv::appendNumber(line, *beam.pulse_length_m);
     }
     for (const std::uint8_t intensity : beam.intensities) {
       line += ',';

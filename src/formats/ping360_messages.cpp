@@ -29,6 +29,7 @@ constexpr double kSamplePeriodUnit_s = 25e-9;
 // Payload offsets shared by both messages, and where each one's sample count and data begin.
 constexpr std::size_t kGainSettingAt = 1;
 constexpr std::size_t kAngleAt = 2;
+constexpr std::size_t kTransmitDurationAt = 4;  ///< µs
 constexpr std::size_t kSamplePeriodAt = 6;
 constexpr std::size_t kDeviceDataLengthAt = 12;      // device_data: after number_of_samples
 constexpr std::size_t kAutoDeviceDataLengthAt = 18;  // auto_device_data: after the sector fields
@@ -89,6 +90,8 @@ std::optional<Beam> decodeDeviceData(std::span<const unsigned char> payload, std
     beam.bin_length_m = sample_period * kSamplePeriodUnit_s * sound_speed_m_s / 2.0;
     beam.intensities.assign(payload.begin() + static_cast<std::ptrdiff_t>(data_at), payload.end());
     beam.gain_setting = payload[kGainSettingAt];
+    const std::uint16_t transmit_duration_us = u16At(payload, kTransmitDurationAt);
+    if (transmit_duration_us > 0) beam.pulse_length_m = transmit_duration_us * 1e-6 * sound_speed_m_s / 2.0;
     return beam;
   }
   return std::nullopt;

@@ -51,6 +51,13 @@ unsigned clockwiseSteps(double bearing_rad, unsigned steps) {
 }
 
 /// The beam's gain setting as the wire's byte (0 when unknown).
+/// A Ping360's transmit duration for the beam's pulse, µs (1…65535); 32 µs when the beam has none.
+std::uint16_t transmitDurationUs(const Beam& beam, double sound_speed_m_s) {
+  if (!beam.pulse_length_m) return 32;
+  const double us = std::round(*beam.pulse_length_m * 2.0 / sound_speed_m_s * 1e6);
+  return static_cast<std::uint16_t>(std::clamp(us, 1.0, 65535.0));
+}
+
 std::uint8_t gainByte(const Beam& beam) { return static_cast<std::uint8_t>(std::clamp(beam.gain_setting.value_or(0), 0, 255)); }
 
 }  // namespace
@@ -108,7 +115,7 @@ std::vector<std::uint8_t> encodePing360Stream(const std::vector<Beam>& beams, co
     out.insert(out.end(), {0x02, 0x00});  // source device, destination
     out.insert(out.end(), {0x01, gainByte(beam)});  // mode 1, gain setting
     putU16(out, clockwiseSteps(beam.bearing_rad, 400));
-    putU16(out, 32);  // transmit duration, µs
+    putU16(out, transmitDurationUs(beam, options.sound_speed_m_s));
     putU16(out, sample_period);
     putU16(out, 750);  // transmit frequency, kHz
     putU16(out, bins);  // number of samples

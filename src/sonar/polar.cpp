@@ -110,6 +110,10 @@ PolarImage makePolarImage(const std::vector<Beam>& beams, std::size_t first, std
   PolarImage polar;
   polar.bin_length_m = beams[first].bin_length_m;
   polar.intensity_span_db = beams[first].intensity_span_db;
+  for (std::size_t i = first; i < last_exclusive; ++i) {
+    const std::optional<double>& pulse_m = beams[i].pulse_length_m;
+    if (pulse_m && (!polar.pulse_length_m || *pulse_m < *polar.pulse_length_m)) polar.pulse_length_m = pulse_m;
+  }
   polar.intensities = cv::Mat::zeros(static_cast<int>(last_exclusive - first), static_cast<int>(cols), CV_8UC1);
   for (std::size_t i = first; i < last_exclusive; ++i) {
     const Beam& beam = beams[i];

@@ -48,6 +48,8 @@ void expectIdentical(const SonarLog& read, const SonarLog& written) {
     ASSERT_EQ(a.bin_length_m, b.bin_length_m) << "beam " << i;
     ASSERT_EQ(a.intensities, b.intensities) << "beam " << i;
     ASSERT_EQ(a.intensity_span_db, b.intensity_span_db) << "beam " << i;
+    ASSERT_EQ(a.gain_setting, b.gain_setting) << "beam " << i;
+    ASSERT_EQ(a.pulse_length_m, b.pulse_length_m) << "beam " << i;
   }
 }
 
@@ -98,6 +100,22 @@ TEST(sonarBeamCsv, IntensitySpanRoundTripsAndIsOptional) {
   EXPECT_EQ(read.beams[0].intensities, std::vector<std::uint8_t>{9});
   EXPECT_FALSE(read.beams[1].intensity_span_db.has_value());  // row ends before the span
   EXPECT_TRUE(read.beams[1].intensities.empty());
+}
+
+TEST(sonarBeamCsv, GainAndPulseLengthRoundTripAndAreOptional) {
+  SonarLog log;
+  log.beams = {beam(0.1, 0.0, 0.00165, {3, 200}), beam(0.2, 0.1, 0.00825, {7})};
+  log.beams[0].gain_setting = 0;
+  log.beams[0].pulse_length_m = 0.00825;  // a Ping360 at 2 m: 11 µs
+  log.beams[1].gain_setting = 1;
+  const TempDir dir;
+  expectIdentical(roundTrip(log, dir), log);
+  const SonarLog read = readBeamCsv(dir.file("log.csv"));
+  EXPECT_EQ(read.beams[0].pulse_length_m, 0.00825);
+  EXPECT_FALSE(read.beams[1].pulse_length_m.has_value());  // an empty field: unknown
+  EXPECT_EQ(read.beams[1].gain_setting, 1);
+  const std::string text = readText(dir.file("log.csv"));
+  EXPECT_EQ(text.substr(0, text.find('\n')), "time_s,bearing_deg,bin_length_m,gain_setting,pulse_length_m,b0,b1");
 }
 
 TEST(sonarBeamCsv, CrasLogRoundTripIsExact) {
@@ -239,6 +257,9 @@ TEST(sonarBeamCsv, BrokenFilesNameLineAndField) {
   expectFileError(hs + "0,0,0.1,inf,1\n", {"line 2", "field 'intensity_span_db'", "not finite"});
   expectFileError(hs + "0,0,0.1,45dB,1\n", {"line 2", "field 'intensity_span_db'", "not a number"});
   expectFileError(hs + "0,0,0.1,45,1,2\n", {"line 2", "2 bins, more than the 1 b-columns"});
+  const std::string hp = "time_s,bearing_deg,bin_length_m,pulse_length_m,b0\n";
+  expectFileError(hp + "0,0,0.1,0,1\n", {"line 2", "field 'pulse_length_m' (column 4)", "expected metres > 0"});
+  expectFileError(hp + "0,0,0.1,nan,1\n", {"line 2", "field 'pulse_length_m'", "not finite"});
   expectFileError(h + "5,0,0.1,1\n\n4.5,0,0.1,1\n",
                   {"line 4", "field 'time_s'", "times go backwards",
                    "4.5 s is before the previous beam's 5 s (line 2)"});

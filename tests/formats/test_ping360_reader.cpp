@@ -67,6 +67,9 @@ TEST(formatsPing360, ConvertsDeviceDataAndAutoDeviceData) {
   EXPECT_NEAR(log.beams[0].bin_length_m, 80 * 25e-9 * 1500.0 / 2.0, 1e-15);  // 1.5 mm
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{0, 9, 255}));
   EXPECT_FALSE(log.beams[0].intensity_span_db.has_value());
+  // the fixture's transmit duration, 32 µs, is a pulse of 2.4 cm at 1500 m/s
+  ASSERT_TRUE(log.beams[0].pulse_length_m.has_value());
+  EXPECT_NEAR(*log.beams[0].pulse_length_m, 32e-6 * 1500.0 / 2.0, 1e-15);
   EXPECT_NEAR(log.beams[1].bearing_rad, 1.5 * kPi, 1e-12);
   EXPECT_NEAR(log.beams[1].bin_length_m, 0.01875, 1e-15);  // 1200 samples reach 22.5 m
   EXPECT_EQ(log.beams[1].intensities.size(), 1200u);
@@ -75,6 +78,7 @@ TEST(formatsPing360, ConvertsDeviceDataAndAutoDeviceData) {
 
   const SonarLog timed = parseStream(ping360Message(ahead) + ping360Message(last), CaptureOptions{1450.0, 0.1});
   EXPECT_NEAR(timed.beams[0].bin_length_m, 80 * 25e-9 * 725.0, 1e-15);
+  EXPECT_NEAR(*timed.beams[0].pulse_length_m, 32e-6 * 725.0, 1e-15);
   EXPECT_DOUBLE_EQ(timed.beams[1].time_s, 0.1);
 }
 

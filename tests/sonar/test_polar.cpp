@@ -38,6 +38,16 @@ TEST(sonarPolarImage, RowsAreBeamsPaddedToTheWidest) {
   for (int c = 1; c < 5; ++c) EXPECT_EQ(polar.intensities.at<std::uint8_t>(1, c), 0) << "padding at " << c;
 }
 
+TEST(sonarPolarImage, KeepsTheShortestPulseOfItsBeams) {
+  std::vector<Beam> beams = {beam(0.0, {1}), beam(0.1, {2}), beam(0.2, {3}), beam(0.3, {4})};
+  EXPECT_FALSE(makePolarImage(beams, 0, 4).pulse_length_m.has_value());  // no beam says
+  beams[1].pulse_length_m = 0.02;
+  beams[2].pulse_length_m = 0.008;
+  EXPECT_EQ(makePolarImage(beams, 0, 4).pulse_length_m, 0.008);
+  EXPECT_EQ(makePolarImage(beams, 0, 2).pulse_length_m, 0.02);
+  EXPECT_FALSE(makePolarImage(beams, 3, 4).pulse_length_m.has_value());
+}
+
 TEST(sonarPolarImage, RejectsEmptyRangeAndMixedBinLengths) {
   const std::vector<Beam> beams = {beam(0.0, {1, 2}), beam(0.1, {1, 2}, 0.2)};
   EXPECT_THROW(makePolarImage(beams, 1, 1), ValueError);

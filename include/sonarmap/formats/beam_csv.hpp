@@ -18,6 +18,9 @@
 ///  - gain_setting (optional column, after intensity_span_db or, without it, after bin_length_m):
 ///    the head's receiver gain setting in its own units (Beam::gain_setting, an integer); empty:
 ///    unknown. Written only when some beam has one (a range or gain change splits sweeps, sweeps.hpp).
+///  - pulse_length_m (optional column, after the optional columns before it): the transmitted
+///    pulse's length in range, metres, finite and > 0 (Beam::pulse_length_m: a Ping360's transmit
+///    duration, a simulated head's pulse); empty: unknown. Written only when some beam has one.
 ///  - b0…b<K-1>: echo intensity per bin, integers 0…255, b0 nearest. The header has as many
 ///    b-columns as the longest beam (K ≥ 0); a row may hold fewer bins than the header (trailing
 ///    empty fields, as spreadsheets pad short rows, count as absent bins), never more.
@@ -37,9 +40,10 @@ namespace sonarmap {
 /// @return the beams in file order.
 /// @throws FileError naming the file, the 1-based line and the field (column name and number)
 ///         when the file cannot be opened or is empty; the header is not
-///         `time_s,bearing_deg,bin_length_m[,intensity_span_db][,gain_setting],b0,b1,…` with consecutive
-///         b-columns; a row has fewer than 3 fields or more bins than the header declares; a
-///         number is malformed or not finite (a NaN bearing); a bin length or a span is ≤ 0; an intensity is not an integer in 0…255; a gain setting is not an integer;
+///         `time_s,bearing_deg,bin_length_m[,intensity_span_db][,gain_setting][,pulse_length_m],b0,b1,…`
+///         with consecutive b-columns; a row has fewer than 3 fields or more bins than the header
+///         declares; a number is malformed or not finite (a NaN bearing); a bin length, a span or a
+///         pulse length is ≤ 0; an intensity is not an integer in 0…255; a gain setting is not an integer;
 ///         a time is before the previous row's ("times go backwards"); or there is no beam row.
 SonarLog readBeamCsv(const std::string& path);
 

@@ -27,6 +27,12 @@ struct Beam {
   /// it (Ping360 device_data gain_setting: 0 low, 1 normal, 2 high; SeaNet mtHeadData: the gain
   /// byte). Beams of different settings are not calibrated together (sweeps.hpp).
   std::optional<int> gain_setting;
+  /// Length in range of the transmitted pulse, c·τ/2, metres (> 0), when the format records it
+  /// (Ping360 device_data: transmit_duration τ in µs at the reader's sound speed; Ping Viewer sets
+  /// τ to 8000·R/c µs, a pulse of 0.4 % of the range R: 8 mm at 2 m, 0.2 m at 50 m); unset
+  /// otherwise. A surface's echo is as long as the pulse at least, so the detector never asks an
+  /// echo to be longer than this (detectors.hpp, BackgroundOptions::min_echo_length_m).
+  std::optional<double> pulse_length_m;
 };
 
 /// Beams read from a file, in recording order, with the count of beams the reader rejected.

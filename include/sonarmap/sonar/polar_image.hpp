@@ -22,6 +22,8 @@ struct PolarImage {
   std::vector<double> time_s;        ///< time of each row
   double bin_length_m = 0.0;         ///< bin length (all beams of one image share it)
   std::optional<double> intensity_span_db;  ///< the first beam's Beam::intensity_span_db
+  /// The shortest Beam::pulse_length_m of the rows, metres; unset when no row has one.
+  std::optional<double> pulse_length_m;
 
   int rows() const { return intensities.rows; }
   int cols() const { return intensities.cols; }
