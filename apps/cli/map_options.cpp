@@ -19,7 +19,8 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "Least rise of an echo above the background in DB, whatever --false-alarm gives")
       ->capture_default_str();
   cmd.add_option("--min-echo-length", args.min_echo_length_m,
-                 "Least length of an echo along the beam in METRES (at least one bin): shorter ones are speckle")
+                 "Least length of an echo along the beam in METRES (at least one bin): shorter ones are speckle; "
+                 "never more than the log's pulse where it records one (a Ping360 at 2 m: 8 mm)")
       ->capture_default_str();
   cmd.add_option("--leading-edge", args.leading_edge_db,
                  "An obstacle's range is where its echo rises to within this many DB of its peak (6: the nearest "

@@ -245,12 +245,25 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
 }
 
 namespace {
+/// `options` with each required echo length no longer than the image's pulse (PolarImage::
+/// pulse_length_m, when the log records it): a hard surface at normal incidence returns an echo
+/// about one pulse long, so a short range's pulse (a Ping360's 8 mm at 2 m) must not be asked for
+/// the 4 cm that reject speckle at longer ranges.
+DetectorOptions capEchoLengthsAtPulse(DetectorOptions options, const PolarImage& polar) {
+  if (polar.pulse_length_m) {
+    options.background.min_echo_length_m = std::min(options.background.min_echo_length_m, *polar.pulse_length_m);
+    options.cfar.min_echo_length_m = std::min(options.cfar.min_echo_length_m, *polar.pulse_length_m);
+  }
+  return options;
+}
+
 /// detectSweep and detectRows: the detections of `polar` with `calibration`, the background measured
 /// again over the rows or not.
-SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration,
+SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& requested, const SweepCalibration& calibration,
                           bool measure_background) {
   checkImage(polar);
-  options.validate();
+  requested.validate();
+  const DetectorOptions options = capEchoLengthsAtPulse(requested, polar);
   const auto cols = static_cast<std::size_t>(polar.cols());
   if (calibration.background.size() != cols || calibration.threshold.size() != cols) {
     throw ValueError("detectSweep: the calibration has " + std::to_string(calibration.background.size()) +

@@ -115,6 +115,28 @@ TEST(sonarDetectors, BackgroundSubtractedFindsTheWallLeadingEdge) {
   }
 }
 
+TEST(sonarDetectors, AnEchoAsShortAsTheLogsPulseIsAnObstacle) {
+  // A Ping360 at 2 m: 1.65 mm samples and an 8.25 mm pulse (11 µs); a wall at normal incidence
+  // returns an echo of about the pulse, 5 samples, far shorter than the 4 cm default echo length.
+  PolarImage polar = emptySweep(kRows, 1200);
+  polar.bin_length_m = 0.00165;
+  for (int r = 0; r < kRows; ++r) polar.intensities.row(r).colRange(500 + r, 505 + r).setTo(150);
+  const DetectorOptions options = optionsFor(Detector::kBackgroundSubtracted);
+  for (const BeamDetection& found : detectObstacles(polar, options)) EXPECT_EQ(found.obstacle_bin, -1);
+  polar.pulse_length_m = 0.00825;
+  const auto found = detectObstacles(polar, options);
+  for (int r = 0; r < kRows; ++r) EXPECT_EQ(found[r].obstacle_bin, 500 + r) << "row " << r;
+  // speckle of one or two samples stays below the pulse's length and is no obstacle
+  PolarImage speckle = emptySweep(kRows, 1200);
+  speckle.bin_length_m = 0.00165;
+  speckle.pulse_length_m = 0.00825;
+  for (int r = 0; r < kRows; ++r) speckle.intensities.row(r).colRange(500 + r, 502 + r).setTo(150);
+  for (const BeamDetection& spike : detectObstacles(speckle, options)) EXPECT_EQ(spike.obstacle_bin, -1);
+  // the pulse only lowers the echo length asked for: a longer pulse leaves the 4 cm rule as it is
+  polar.pulse_length_m = 0.2;
+  for (const BeamDetection& none : detectObstacles(polar, options)) EXPECT_EQ(none.obstacle_bin, -1);
+}
+
 TEST(sonarDetectors, ConstantRangeRingIsIgnoredButTheWallBehindIsFound) {
   PolarImage polar = emptySweep();
   addRing(polar, 90);

@@ -113,7 +113,9 @@ struct CfarOptions {
   double scale = 1.25;            ///< α, the threshold's ratio to the noise estimate, finite and > 0
   double os_rank = 0.75;          ///< OS only: k as a share of the training cells, in (0, 1]
   double min_contrast_db = 0.0;   ///< a detected cell also rises this much above the background, dB, ≥ 0
-  double min_echo_length_m = 0.04;  ///< consecutive passing cells that make an obstacle, metres, ≥ 0 (≥ 1 bin)
+  /// Consecutive passing cells that make an obstacle, metres, ≥ 0 (≥ 1 bin); never more than the
+  /// log's pulse where it records one (Beam::pulse_length_m).
+  double min_echo_length_m = 0.04;
 
   /// The cells for bins of `bin_length_m` (the floor is applied per bin by the detector).
   /// @throws ValueError  when an option is outside its documented range or the bin length is not > 0.

@@ -72,7 +72,9 @@ struct CannyOptions {
 /// not estimated and no obstacle is reported (mapSonarLog joins a short sweep to its neighbour).
 struct BackgroundOptions {
   CalibrationOptions calibration;   ///< background percentile, contrast, false-alarm rate, near field
-  double min_echo_length_m = 0.04;  ///< least extent of an echo along the beam, metres, ≥ 0 (≥ 1 bin)
+  /// Least extent of an echo along the beam, metres, ≥ 0 (≥ 1 bin); never more than the log's
+  /// pulse where it records one (Beam::pulse_length_m: a Ping360 at 2 m sends 8 mm).
+  double min_echo_length_m = 0.04;
   double leading_edge_db = 6.0;     ///< the leading edge is within this of the echo's peak, dB, ≥ 0
   int min_beams = 20;               ///< fewest rows (beams) to estimate a background, ≥ 1
 };
