@@ -103,6 +103,23 @@ void wireSeeds() {
   });
   seed("ping360", "viewer_utf16.bin",
        [&](std::ostream& out) { out << test::pingViewerLog({{"00:00:00.100", stream}}, true); });
+  // What real Ping Viewer logs do (../shared/data/README.md): time stamps in the locale's digits
+  // (Persian, UTF-8 here), records that are raw serial chunks (a message over several records,
+  // several messages in one), power-on pings at 2 m then a range change and a gain change.
+  std::string settings;
+  for (std::uint16_t angle = 0; angle < 6; ++angle) {
+    test::Ping360Data ping;
+    ping.angle = angle;
+    ping.sample_period = angle < 2 ? 88 : 440;
+    std::string message = test::ping360Message(ping);
+    if (angle >= 4) message = test::pingMessage(2300, test::ping360Payload(ping).replace(1, 1, 1, '\x01'));
+    settings += message;
+  }
+  seed("ping360", "viewer_real_chunks.bin", [&](std::ostream& out) {
+    out << test::pingViewerLog({{"\u06F0\u06F0:\u06F0\u06F0:\u06F0\u06F0.\u06F1\u06F0\u06F0", settings.substr(0, 7)},
+                                {"\u06F0\u06F0:\u06F0\u06F0:\u06F0\u06F0.\u06F1\u06F5\u06F0", settings.substr(7, 11)},
+                                {"\u06F0\u06F0:\u06F0\u06F0:\u06F0\u06F0.\u06F2\u06F0\u06F0", settings.substr(18)}});
+  });
   // The stream decoder's harness: byte 0 even for SeaNet, odd for Ping360, then the stream.
   seed("wire_stream", "seanet.bin", [&](std::ostream& out) {
     out << '\x00' << "\r\n" << test::seanetHeadData({}) << test::seanetOther(4, 8) << test::seanetHeadData(four_bit);

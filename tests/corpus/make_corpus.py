@@ -208,9 +208,9 @@ def ping_message(message_id, payload, checksum_delta=0):
     return out + struct.pack("<H", (sum(out) + checksum_delta) & 0xFFFF)
 
 
-def ping360_data(angle=0, sample_period=80, data=b"\x01\x02\xfa", auto=False):
+def ping360_data(angle=0, sample_period=80, data=b"\x01\x02\xfa", auto=False, gain=0):
     """device_data (2300) or auto_device_data (2301, with its sector fields)."""
-    payload = struct.pack("<BBHHHH", 1, 0, angle, 32, sample_period, 750)
+    payload = struct.pack("<BBHHHH", 1, gain, angle, 32, sample_period, 750)
     if auto:
         payload += struct.pack("<HHBB", 0, 399, 1, 0)
     payload += struct.pack("<HH", len(data), len(data)) + data
@@ -232,6 +232,63 @@ def viewer_header(version=1, utf16=False):
 def viewer_log(records, utf16=False, **header):
     return viewer_header(utf16=utf16, **header) + b"".join(
         qt_string(time, utf16) + struct.pack(">I", len(data)) + data for time, data in records)
+
+
+# What real Ping Viewer logs do (../shared/data/README.md), each in a small file of its own, made
+# here from the protocol, never copied from a shared log.
+
+def locale_digits(text, zero="\u06f0"):
+    """`text` with its ASCII digits written in another locale's digits (default: Persian, U+06F0...)."""
+    return "".join(chr(ord(zero) + ord(c) - ord("0")) if c.isdigit() else c for c in text)
+
+
+def device_information():
+    """device_information (common message 4): a Ping360 (type 2), revision 1, firmware 3.1.1."""
+    return ping_message(4, bytes([2, 1, 3, 1, 1, 0]))
+
+
+def chunks(stream, sizes):
+    """`stream` cut into pieces of `sizes` bytes (the rest in a last piece), as serial reads cut it."""
+    out, at = [], 0
+    for size in sizes:
+        out.append(stream[at:at + size])
+        at += size
+    return out + ([stream[at:]] if at < len(stream) else [])
+
+
+def viewer_records(pieces, start_ms=100, step_ms=50, zero="0"):
+    """One record a piece, the time stamps `step_ms` apart in `zero`'s digits."""
+    return [(locale_digits("00:00:%02d.%03d" % divmod(start_ms + i * step_ms, 1000), zero), piece)
+            for i, piece in enumerate(pieces)]
+
+
+def real_viewer_files():
+    """The real files' behaviours: (broken, valid) as every maker here returns."""
+    pings = b"".join(ping360_data(angle=a) for a in range(4))
+    # power-on pings at the 2 m default (sample period 88 ticks: 1.65 mm samples), then the user's
+    # range (sample period 440: 8.25 mm), then the gain changed from low (0) to normal (1)
+    power_on = b"".join(ping360_data(angle=a, sample_period=88) for a in range(3))
+    user_range = b"".join(ping360_data(angle=a, sample_period=440) for a in range(3, 6))
+    new_gain = b"".join(ping360_data(angle=a, sample_period=440, gain=1) for a in range(6, 9))
+    settings = device_information() + power_on + user_range + new_gain
+    one = ping360_data()
+    return {
+        # Persian-digit times around records that hold no ping at all
+        "viewer_locale_digits_no_ping.bin": viewer_log(viewer_records([device_information()] * 2, zero="\u06f0"), utf16=True),
+        # a message split over records whose last piece never came
+        "viewer_chunked_cut_short.bin": viewer_log(viewer_records(chunks(one, [9, 9])[:2])),
+        # the power-on 2 m pings in Persian digits, all with a sample period of 0 (no range at all)
+        "viewer_power_on_zero_period.bin": viewer_log(viewer_records(
+            [device_information(), b"".join(ping360_data(angle=a, sample_period=0) for a in range(3))],
+            zero="\u06f0"), utf16=True),
+    }, {
+        # Windows' UTF-16 time stamps in Persian digits
+        "viewer_locale_digits.bin": viewer_log(viewer_records([pings[:40], pings[40:]], zero="\u06f0"), utf16=True),
+        # serial chunks: one message over three records, then three messages and a half in one record
+        "viewer_chunked.bin": viewer_log(viewer_records(chunks(pings, [7, 11, 9, 3 * len(one) + 4]))),
+        # device_information, power-on 2 m pings, a range change and a gain change
+        "viewer_range_changes.bin": viewer_log(viewer_records(chunks(settings, [len(settings) // 3] * 2))),
+    }
 
 
 def ping360_files():
@@ -366,8 +423,8 @@ def main():
         folder.mkdir(parents=True, exist_ok=True)
         for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
             shutil.copyfile(text, folder / text.name)
-    for make in (mat_files, v4_files, seanet_files, ping360_files, graph_files, bt_files, ot_files,
-                 binary_text_files):
+    for make in (mat_files, v4_files, seanet_files, ping360_files, real_viewer_files, graph_files, bt_files,
+                 ot_files, binary_text_files):
         for kind, files in zip(("broken", "valid"), make()):
             for name, data in files.items():
                 (out / kind / name).write_bytes(data)

@@ -206,7 +206,8 @@ constexpr Seed kSeeds[] = {
     {"points_small.xyz", "cloud"},   {"tree_small.bt", "eval"},            {"tree_small.ot", "eval"},
     {"scene_small.txt", "simulate"}, {"beams_span_small.csv", "map"},
     {"seanet_small.seanet", "map"},  {"ping_small.bin", "map"},           {"viewer_small.bin", "map"},
-    {"viewer_small_utf16.bin", "map"},
+    {"viewer_small_utf16.bin", "map"}, {"viewer_locale_digits.bin", "map"}, {"viewer_chunked.bin", "map"},
+    {"viewer_range_changes.bin", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 
@@ -263,6 +264,53 @@ TEST_P(corpusMutated, byteFlipsReadOrThrowError) {
 
 INSTANTIATE_TEST_SUITE_P(valid, corpusMutated, ::testing::ValuesIn(kSeeds),
                          [](const ::testing::TestParamInfo<Seed>& info) { return identifier(info.param.file); });
+
+// ---- what real Ping Viewer logs do (../shared/data/README.md), in files made by make_corpus.py ---------
+
+TEST(corpusRealViewer, timeStampsInPersianDigitsReadAsSeconds) {
+  const SonarLog log = readSonarLog(valid("viewer_locale_digits.bin"));
+  ASSERT_EQ(log.beams.size(), 4u);
+  EXPECT_DOUBLE_EQ(log.beams.front().time_s, 0.100);
+  EXPECT_DOUBLE_EQ(log.beams.back().time_s, 0.150);  // the records' second stamp, "۰۰:۰۰:۰۰.۱۵۰"
+  EXPECT_TRUE(log.notes.empty());
+  EXPECT_EQ(log.skipped_beams, 0u);
+}
+
+TEST(corpusRealViewer, messagesSplitOverRecordsOrSharingOneAreReassembled) {
+  // one message over three records, then three messages and a half in one record, the rest in a last
+  const SonarLog log = readSonarLog(valid("viewer_chunked.bin"));
+  ASSERT_EQ(log.beams.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    // angles 0, 1, 2, 3 gradians clockwise: bearings 0, then counter-clockwise from a full turn
+    EXPECT_NEAR(log.beams[i].bearing_rad, static_cast<double>((400 - i) % 400) * 2.0 * 3.141592653589793 / 400.0, 1e-12)
+        << i;
+    EXPECT_EQ(log.beams[i].intensities.size(), 3u) << i;
+  }
+  EXPECT_EQ(log.skipped_beams, 0u);
+}
+
+TEST(corpusRealViewer, powerOnPingsThenRangeAndGainChangesKeepEachBeamsSetting) {
+  const SonarLog log = readSonarLog(valid("viewer_range_changes.bin"));
+  ASSERT_EQ(log.beams.size(), 9u);
+  EXPECT_NE(log.sonar.find("Ping360 (firmware 3.1.1)"), std::string::npos) << log.sonar;
+  // sample period 88 and 440 ticks of 25 ns at 1500 m/s: 1.65 mm and 8.25 mm bins
+  for (std::size_t i = 0; i < 9; ++i) {
+    EXPECT_NEAR(log.beams[i].bin_length_m, i < 3 ? 0.00165 : 0.00825, 1e-9) << i;
+    EXPECT_EQ(log.beams[i].gain_setting, i < 6 ? 0 : 1) << i;
+  }
+}
+
+TEST(corpusRealViewer, theDefaultMapCommandReadsEveryRealBehaviourFile) {
+  // the beams are too short (3 samples) to map anything: the command must still end with exit 0,
+  // a map file and a summary that counts every beam
+  for (const char* name : {"viewer_locale_digits.bin", "viewer_chunked.bin", "viewer_range_changes.bin"}) {
+    test::TempDir dir;
+    const std::string map = dir.file("map.bt");
+    const ProgramRun run = test::runProgram(SONARMAP_CLI, {"map", valid(name), "-o", map, "-q"}, dir.path());
+    EXPECT_EQ(run.exit_code, 0) << name << ": " << run.err;
+    EXPECT_TRUE(fs::exists(map)) << name;
+  }
+}
 
 }  // namespace
 }  // namespace sonarmap
