@@ -11,6 +11,7 @@
 #include "convert_command.hpp"
 #include "demo_command.hpp"
 #include "eval_command.hpp"
+#include "info_command.hpp"
 #include "live_command.hpp"
 #include "map_command.hpp"
 #include "simulate_command.hpp"
@@ -38,7 +39,9 @@ int main(int argc, char** argv) {
   sonarmap::cli::EvalArgs eval_args;
   sonarmap::cli::LiveArgs live_args;
   sonarmap::cli::ViewArgs view_args;
+  sonarmap::cli::InfoArgs info_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
+                                                     sonarmap::cli::addInfoCommand(app, info_args),
                                                      sonarmap::cli::addLiveCommand(app, live_args),
                                                      sonarmap::cli::addCloudCommand(app, cloud_args),
                                                      sonarmap::cli::addConvertCommand(app, convert_args),

@@ -2,6 +2,13 @@
 
 namespace sonarmap::cli {
 
+void addLogFormatOption(CLI::App& cmd, std::string& format) {
+  cmd.add_option("--format", format,
+                 "Log format: auto (by extension: .mat, .csv, .V4LOG, .seanet, .bin) | mat | csv | v4log | seanet | "
+                 "ping360 (a raw capture of any name)")
+      ->capture_default_str();
+}
+
 void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--resolution", args.resolution,
                  "Voxel edge in METRES, or auto: about 1/256 of the log's reach, rounded to 1, 2 or 5 x 10^k m "
@@ -53,10 +60,7 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--max-range", args.max_range_m,
                  "Use beams up to this range in METRES: longer ones clear free space up to it, their obstacle dropped")
       ->capture_default_str();
-  cmd.add_option("--format", args.format,
-                 "Log format: auto (by extension: .mat, .csv, .V4LOG, .seanet, .bin) | mat | csv | v4log | seanet | "
-                 "ping360 (a raw capture of any name)")
-      ->capture_default_str();
+  addLogFormatOption(cmd, args.format);
   cmd.add_option("--beam-width", args.beam_width_deg,
                  "Horizontal beam width in DEGREES (default the sonar's: Tritech 3, Ping360 2): each beam clears its "
                  "wedge; 0 = one ray per beam (the paper)")

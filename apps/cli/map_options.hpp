@@ -26,6 +26,9 @@ struct MapArgs : MappingArguments {
   std::vector<double> mounting;  ///< X,Y,Z (m), ROLL,PITCH,YAW (degrees) of the sonar in the body; empty: default
 };
 
+/// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.
+void addLogFormatOption(CLI::App& cmd, std::string& format);
+
 /// Adds the mapping options (everything but the input, outputs, --nav and --mounting) to `cmd`.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
 

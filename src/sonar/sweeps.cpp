@@ -1,5 +1,5 @@
 /// @file sweeps.cpp
-/// splitSweeps, SweepSplitter, SweepGrouper, mergeShortSweeps (see sweeps.hpp).
+/// bearingStep_rad, splitSweeps, SweepSplitter, SweepGrouper, mergeShortSweeps (see sweeps.hpp).
 
 #include "sonarmap/sonar/sweeps.hpp"
 
@@ -15,13 +15,12 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// degrees carry ~1e-6 rad of rounding, far below any head step (≥ 0.05625° ≈ 1e-3 rad).
 constexpr double kFullTurnSlack_rad = 1e-5;
 
-/// Bearing difference to − from, wrapped to (−π, π].
-double wrappedStep(double from_rad, double to_rad) {
-  double step = std::remainder(to_rad - from_rad, kTwoPi);
+}  // namespace
+
+double bearingStep_rad(double from_rad, double to_rad) {
+  const double step = std::remainder(to_rad - from_rad, kTwoPi);
   return step <= -std::numbers::pi ? step + kTwoPi : step;
 }
-
-}  // namespace
 
 bool SweepSplitter::startsSweep(const Beam& beam) {
   const HeadSetting setting = headSettingOf(beam);
@@ -29,7 +28,7 @@ bool SweepSplitter::startsSweep(const Beam& beam) {
     previous_ = Previous{beam.bearing_rad, setting};
     return false;
   }
-  const double step = wrappedStep(previous_->bearing_rad, beam.bearing_rad);
+  const double step = bearingStep_rad(previous_->bearing_rad, beam.bearing_rad);
   const int sign = step > 0.0 ? 1 : (step < 0.0 ? -1 : 0);
   const bool starts = setting != previous_->setting ||
                       (sign != 0 && direction_ != 0 && sign != direction_) ||

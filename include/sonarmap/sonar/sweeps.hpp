@@ -23,6 +23,10 @@ struct HeadSetting {
 /// The head setting of `beam`.
 inline HeadSetting headSettingOf(const Beam& beam) { return HeadSetting{beam.bin_length_m, beam.gain_setting}; }
 
+/// The head's step from bearing `from_rad` to bearing `to_rad`: their difference wrapped to (−π, π],
+/// radians; positive counter-clockwise (the sonar frame's direction of bearing, beam.hpp).
+double bearingStep_rad(double from_rad, double to_rad);
+
 /// Beams [first, last_exclusive) of a beam list form one sweep.
 struct SweepRange {
   std::size_t first = 0;

@@ -1,0 +1,34 @@
+#pragma once
+// `sonarmap info`: what a sonar log holds, before mapping it (issue 19): the format and sonar, the
+// beams and their clock, the sweeps, the bearings, each head setting (range scale and gain) with
+// its beams, what the reader skipped and why, and the navigation's coverage when given. One screen
+// of text, or one JSON object with --json.
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "command.hpp"
+
+namespace sonarmap::cli {
+
+/// Arguments of `sonarmap info` as typed by the user.
+struct InfoArgs {
+  std::string input;
+  std::string format = "auto";  ///< input format, or auto (by extension): inputFormat
+  std::string nav_csv;          ///< navigation CSV whose coverage of the beams is reported (empty: none)
+  bool json = false;            ///< --json: one JSON object on stdout instead of the text
+};
+
+/// Adds the `info` subcommand to `app`; its options fill `args`. Its check rejects an unknown
+/// --format name (ValueError: usage, exit 2).
+Command addInfoCommand(CLI::App& app, InfoArgs& args);
+
+/// Reads the log (and the navigation CSV when given), summarizes it (summarizeLog,
+/// sonar/log_summary.hpp) and prints the summary on stdout: about 10 to 30 lines of text with a
+/// unit on every number, or with args.json one JSON object (keys with their units: `duration_s`,
+/// `bin_length_m`, `span_deg`, ...; a value the log does not give is null).
+/// @throws FileError for an unknown extension, an unreadable or malformed log or navigation CSV.
+void runInfo(const InfoArgs& args);
+
+}  // namespace sonarmap::cli
