@@ -280,6 +280,13 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       // The cone met something before: a weak return it cannot call an obstacle, but no water.
       water_m = detection.echo_onset_m;
       free_range_m = std::min(free_range_m, std::max(0.0, water_m - tolerance_m));
+    } else if (!hit && detection.echo_onset_m < range_m) {
+      // The planar model's beam without an obstacle: a weak return below the obstacle threshold (a
+      // soft or grazing surface) is no proof of water, so the beam clears only up to where its
+      // echo starts (Elfes 1987); but an obstacle as strong as another beam's would have crossed
+      // the threshold in this one, so it still carves the other beams' arcs up to its water range.
+      water_m = range_m;
+      free_range_m = std::max(0.0, detection.echo_onset_m);
     }
     const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit, water_m};
     if (!beamInsideMap(beam)) {

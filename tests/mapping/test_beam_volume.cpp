@@ -315,6 +315,33 @@ TEST(mappingBeamVolume, WeakReturnStopsTheFreeCone) {
   EXPECT_EQ(classify(2.5), Occupancy::kUnknown);
 }
 
+// The planar model: a beam whose only return is weak (8.8 dB over the background: a soft or grazing
+// surface, no obstacle) clears its wedge up to where that return starts, not through it; a quiet
+// beam still clears to its full range.
+TEST(mappingBeamVolume, PlanarBeamWithAWeakReturnClearsOnlyUpToIt) {
+  PolarImage polar = makeSweep(60, 200);  // 4 m of 2 cm bins
+  for (int r = 0; r < 60; ++r) {
+    for (int c = 10; c < 200; ++c) polar.intensities.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(c % 3);
+  }
+  for (int c = 100; c < 200; ++c) polar.intensities.at<std::uint8_t>(0, c) = 50;  // from 2 m on
+  MapperOptions options;
+  options.resolution_m = kVoxel;
+  SonarMapper mapper(options);
+  PolarImage detected = polar;
+  const std::vector<BeamDetection> detections = mapper.detect(detected);
+  ASSERT_FALSE(detections[0].hasObstacle());
+  EXPECT_NEAR(detections[0].echo_onset_m, 2.0, 0.03);
+  EXPECT_GT(detections[0].water_range_m, 3.9);  // below the obstacle threshold all along
+  mapper.integrateSweep(detected, detections);
+  const auto classify = [&](double x_m, double y_m) {
+    const std::optional<float> log_odds = mapper.map().search(*mapper.map().coder().keyOf(Eigen::Vector3d(x_m, y_m, 0.001)));
+    return log_odds ? mapper.map().model().classify(*log_odds) : Occupancy::kUnknown;
+  };
+  EXPECT_EQ(classify(1.5, 0.001), Occupancy::kFree);
+  EXPECT_EQ(classify(3.0, 0.001), Occupancy::kUnknown);  // behind the weak return's start
+  EXPECT_EQ(classify(0.0, -3.0), Occupancy::kFree);       // the quiet beam at 270°
+}
+
 // Options: the free aperture must lie within the aperture; the volume model's aperture in (0, π).
 TEST(mappingBeamVolume, ApertureOptionsAreChecked) {
   MapperOptions options = volumeOptions();

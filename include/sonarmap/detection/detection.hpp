@@ -29,8 +29,9 @@ struct BeamDetection {
   /// Where the beam's echo first rises above the background at all, metres: the start of the first
   /// stretch of DetectorOptions::onset_length_m whose mean rise reaches onset_db, at or beyond the
   /// minimum range; at most the obstacle's range (or water_range_m without one). Weak extended
-  /// returns below the obstacle threshold (a grazing seabed) start here: the beam-volume model
-  /// clears its cone no farther (Elfes 1987: only an empty return proves empty space). +∞ when
+  /// returns below the obstacle threshold (a grazing seabed, a soft or grazing wall) start here:
+  /// the beam-volume model clears its cone no farther, nor does the planar model a beam without
+  /// an obstacle (Elfes 1987: only an empty return proves empty space). +∞ when
   /// not measured (a detection made by hand).
   double echo_onset_m = std::numeric_limits<double>::infinity();
   bool hasObstacle() const { return obstacle_bin >= 0; }

@@ -110,8 +110,9 @@ struct MapperOptions {
   /// beams' shells still use the whole aperture. Unset: half the vertical aperture (the Gaussian
   /// two-way pattern above −1.5 dB).
   std::optional<double> free_vertical_aperture_rad;
-  /// Whether a beam without an obstacle clears (up to BeamDetection::water_range_m, and in the
-  /// volume model its echo onset). Unset (clearsWithoutObstacle()): yes for the planar model, no
+  /// Whether a beam without an obstacle clears (up to BeamDetection::echo_onset_m, where a return
+  /// below the obstacle threshold starts; the planar model still carves other beams' arcs up to
+  /// its BeamDetection::water_range_m, where an obstacle's echo would have shown). Unset (clearsWithoutObstacle()): yes for the planar model, no
   /// for the volume model. In 3D a beam's silence is no proof of water: a seabed or wall met at
   /// grazing incidence returns only 1–3 dB above the noise per bin over metres of range (the
   /// simulated missions' seabed; the CRAS log's surface ring is 3–5 dB), below any obstacle
