@@ -26,7 +26,10 @@ Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo) : 
     const double past_end_m = range_m - echo.self_reflection_end_m;
     if (echo.self_reflection_end_m > 0.0 && echo.self_reflection_intensity > 0.0 &&
         past_end_m < echo.self_reflection_taper_m) {
-      self_reflection_[i] = band_power * std::clamp(1.0 - past_end_m / echo.self_reflection_taper_m, 0.0, 1.0);
+      const double remaining = std::clamp(1.0 - past_end_m / echo.self_reflection_taper_m, 0.0, 1.0);
+      self_reflection_[i] = echo.self_reflection_taper_db
+                                ? (remaining > 0.0 ? powerOf(levelOf(echo.self_reflection_intensity * remaining)) : 0.0)
+                                : band_power * remaining;
     }
   }
 }

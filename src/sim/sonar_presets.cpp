@@ -65,7 +65,8 @@ SonarPreset seaKing(std::string name, double range_m, int bins, double beam_peri
 /// The Blue Robotics Ping360 at 750 kHz, 1200 samples a ping, 1 gradian steps; what changes with
 /// the range scale and the gain is passed in.
 SonarPreset ping360(std::string name, double range_m, double beam_period_s, double pulse_length_m, double noise_level_db,
-                    double ad_low_db, double ringing_end_m, double ringing_intensity, double ringing_taper_m) {
+                    double ad_low_db, double ringing_end_m, double ringing_intensity, double ringing_taper_m,
+                    bool ringing_taper_db) {
   const int range_cm = static_cast<int>(std::lround(range_m * 100.0));
   const std::string range_text = range_cm % 100 == 0 ? std::to_string(range_cm / 100) : std::to_string(range_m);
   SonarPreset preset = newPreset(std::move(name),
@@ -86,6 +87,7 @@ SonarPreset ping360(std::string name, double range_m, double beam_period_s, doub
   echo.self_reflection_end_m = ringing_end_m;
   echo.self_reflection_intensity = ringing_intensity;
   echo.self_reflection_taper_m = ringing_taper_m;
+  echo.self_reflection_taper_db = ringing_taper_db;
   return preset;
 }
 
@@ -118,9 +120,9 @@ SonarPreset sonarPreset(std::string_view name) {
   if (name == "micron") return micron();
   if (name == "seaking-30") return seaKing("seaking-30", 30.0, 300, 0.070, 0.10, -69.5, 7);
   if (name == "seaking-50") return seaKing("seaking-50", 50.0, 800, 0.140, 0.15, -71.3, 9);
-  if (name == "ping360") return ping360("ping360", 50.0, 0.083, 0.20, -99.0, -55.0, 0.5, 230.0, 0.5);
-  if (name == "ping360-2m") return ping360("ping360-2m", 2.0, 0.040, 0.008, -50.0, -40.0, 0.07, 250.0, 0.28);
-  if (name == "ping360-5m") return ping360("ping360-5m", 5.0, 0.043, 0.020, -60.0, -40.0, 0.10, 250.0, 0.30);
+  if (name == "ping360") return ping360("ping360", 50.0, 0.083, 0.20, -99.0, -55.0, 0.5, 230.0, 0.5, false);
+  if (name == "ping360-2m") return ping360("ping360-2m", 2.0, 0.040, 0.008, -50.0, -40.0, 0.07, 250.0, 0.28, true);
+  if (name == "ping360-5m") return ping360("ping360-5m", 5.0, 0.043, 0.020, -60.0, -40.0, 0.10, 250.0, 0.30, true);
   if (name == "imagenex-881a") return imagenex881a();
   std::string known;
   for (const std::string& candidate : sonarPresetNames()) known += (known.empty() ? "" : ", ") + candidate;

@@ -36,7 +36,8 @@
 ///     noise: exponential power of mean noise_level_db before the gain, so it grows with range
 ///     after it as in the real data. The self-reflection band (reflections from the vehicle and the
 ///     transducer's ringing: a plateau of self_reflection_intensity to self_reflection_end_m, its
-///     power tapering linearly to 0 over self_reflection_taper_m) under the same speckle; bins
+///     power tapering linearly to 0 over self_reflection_taper_m, or its level in dB with
+///     self_reflection_taper_db) under the same speckle; bins
 ///     before blanking_m are 0.
 ///  6. Quantisation. intensity = 255 · (10 log10 P − ad_low_db) / ad_span_db, rounded, clipped to
 ///     0…255 (the Micron's ADlow/ADspan mapping of the log-amplified echo).
@@ -147,6 +148,11 @@ struct EchoModelOptions {
   /// self_reflection_end_m, > 0: short for reflections off the vehicle (the Micron's 5 cm), long for
   /// a transducer that rings for a while after transmitting.
   double self_reflection_taper_m = 0.05;
+  /// The band's level falls linearly in dB over the taper (from its plateau's intensity to
+  /// intensity 0: an exponential ring-down, as the shared Ping Viewer logs' 2 m pings show it,
+  /// 190 counts at 0.10 m, 150 at 0.15, 90 at 0.20, 55 at 0.25) instead of linearly in power
+  /// (which keeps the band within 3 dB of its plateau over half the taper).
+  bool self_reflection_taper_db = false;
   bool multipath = true;                                    ///< trace one specular bounce
   double specular_share = 0.6;                              ///< share of the energy a surface mirrors onwards, [0, 1]
   double glint_gain = 8.0;                                  ///< strength of the second surface's mirror lobe, ≥ 0

@@ -78,7 +78,8 @@
 ///    counts, so ad_low −40 dB puts a concrete wall near 150 and the noise, −50 dB (2 m) and
 ///    −60 dB (5 m), stays clipped to 0 but for specks near R [L, A]. Ringing: saturated from the
 ///    first samples to 0.07 m, 190 at 0.10 m, 150 at 0.15, 90 at 0.20, 55 at 0.25 and gone by
-///    0.3–0.35 m [L], modelled as a 250 plateau to 0.07 m tapering over 0.28 m; at 5 m (a longer
+///    0.3–0.35 m [L], modelled as a 250 plateau to 0.07 m tapering linearly in dB (an exponential
+///    ring-down: EchoModelOptions::self_reflection_taper_db) over 0.28 m; at 5 m (a longer
 ///    pulse) a 0.10 m plateau and 0.30 m taper, between the 2 m pings and the 60 m scale's
 ///    (saturated to 0.25 m, gone by about 0.45 m) [A]. (The shared logs also disagree with the
 ///    `ping360` preset's noise floor: at 60 m and gain 2 their water is 0 beyond 4 m, median and
