@@ -37,6 +37,10 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "Detector's minimum range in METRES, or auto: the end of the near-field clutter measured on each "
                  "sweep (the vehicle's own returns, the transducer's ringing)")
       ->capture_default_str();
+  cmd.add_option("--max-near-field", args.max_near_field_m,
+                 "The automatic minimum range's clutter ends within this many METRES of the head (the vehicle's "
+                 "own body); farther, returns in many bearings are the scene (a floor seen down a slope)")
+      ->capture_default_str();
   cmd.add_option("--self-reflection", args.self_reflection,
                  "Zero the bins nearer than this in METRES before detection, or auto: the self-reflection band's end "
                  "measured on each sweep")

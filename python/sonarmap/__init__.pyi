@@ -186,6 +186,7 @@ def map_sonar_log(
     min_echo_length: float = ...,
     leading_edge: float = ...,
     min_range: _NumberOrAuto = ...,
+    max_near_field: float = ...,
     self_reflection: _NumberOrAuto = ...,
     intensity_span: _NumberOrAuto = ...,
     smoothing: str = ...,

@@ -60,7 +60,7 @@ std::vector<std::string> mappingArgumentNames() {
           "smoothing_range",  "smoothing_bearing", "cfar_training",   "cfar_guard",       "ray",
           "aggregation",      "max_range",        "beam_width",       "range_tolerance",  "max_voxel_updates",
           "hit_probability",  "volume",           "vertical_aperture", "free_aperture",   "clear_without_obstacle",
-          "arc_evidence",     "threads"};
+          "arc_evidence",     "threads",          "max_near_field"};
 }
 
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra) {
@@ -74,6 +74,7 @@ MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<st
     else if (name == "min_echo_length") args.min_echo_length_m = number(value, name);
     else if (name == "leading_edge") args.leading_edge_db = number(value, name);
     else if (name == "min_range") args.min_range = numberOrAuto(value, name);
+    else if (name == "max_near_field") args.max_near_field_m = number(value, name);
     else if (name == "self_reflection") args.self_reflection = numberOrAuto(value, name);
     else if (name == "intensity_span") args.intensity_span = numberOrAuto(value, name);
     else if (name == "smoothing") args.smoothing = text(value, name);
@@ -216,7 +217,7 @@ CSV, or an (N, 7) float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch
 default upright and aligned). progress: callable(sweeps_done, sweeps_total) or None.
 Keyword options (the CLI's flags with '-' as '_', in the CLI's units; None or "auto" where the CLI
 takes auto): resolution (m), detector, false_alarm, min_contrast (dB), min_echo_length (m),
-leading_edge (dB), min_range (m), self_reflection (m), intensity_span (dB), smoothing,
+leading_edge (dB), min_range (m), max_near_field (m), self_reflection (m), intensity_span (dB), smoothing,
 smoothing_range (m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m), ray, aggregation,
 max_range (m), format (whose nominal beam to assume; default the log's), beam_width (deg; default the
 sonar's), range_tolerance (m), max_voxel_updates, hit_probability, volume (bool, the CLI's --3d),

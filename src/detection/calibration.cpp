@@ -93,6 +93,7 @@ void CalibrationOptions::validate() const {
   if (!(std::isfinite(min_contrast_db) && min_contrast_db >= 0.0)) throwOption("the minimum contrast must be >= 0 dB");
   if (!(clutter_share > 0.0 && clutter_share <= 0.5)) throwOption("the clutter share must be in (0, 0.5]");
   if (!(std::isfinite(max_gap_m) && max_gap_m >= 0.0)) throwOption("the near-field gap must be >= 0 m");
+  if (!(max_near_field_m >= 0.0)) throwOption("the near field's largest extent must be >= 0 m");
 }
 
 double clutterLevelDb(const CalibrationOptions& options) {
@@ -128,7 +129,11 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
   const int band = bandEnd(profile, threshold);
   const int gap = binsForLength(options.max_gap_m, polar.bin_length_m, 1, std::max(1, polar.cols()));
   const auto clutter_level = static_cast<float>(countsForDb(clutterLevelDb(options), span_db));
-  const int near_field = nearFieldEnd(profile, clutter_level, band, gap);
+  // The vehicle's own body lies within max_near_field_m of the head: what returns in many bearings
+  // farther out (a basin's floor seen down a slope) is the scene, and is left to the detector.
+  const int max_near_field =
+      std::max(band, binsForLength(options.max_near_field_m, polar.bin_length_m, 0, std::max(0, polar.cols())));
+  const int near_field = std::min(nearFieldEnd(profile, clutter_level, band, gap), max_near_field);
   calibration.band_end_m = band * polar.bin_length_m;
   calibration.near_field_end_m = near_field * polar.bin_length_m;
   return calibration;

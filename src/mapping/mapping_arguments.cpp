@@ -91,6 +91,8 @@ MapperOptions toMapperOptions(const MappingArguments& args) {
   options.detector.cfar.min_contrast_db = std::max(options.detector.cfar.min_contrast_db, args.min_contrast_db);
   options.detector.background.leading_edge_db = args.leading_edge_db;
   options.detector.min_range_m = autoOr(args.min_range, "--min-range", "metres", true);
+  requireWithin(args.max_near_field_m, 0.0, 1e6, false, false, "--max-near-field", "metres >= 0");
+  calibration.max_near_field_m = args.max_near_field_m;
   options.self_reflection_range_m = autoOr(args.self_reflection, "--self-reflection", "metres", true);
   options.detector.intensity_span_db = autoOr(args.intensity_span, "--intensity-span", "dB", false);
   options.smoothing.kind = parseSmoothing(args.smoothing);

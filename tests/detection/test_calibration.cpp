@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/detection/calibration.hpp"
@@ -124,6 +126,31 @@ TEST(detectionCalibration, NearFieldIsTheBandAndTheClutterNextToIt) {
   clean.intensities.colRange(0, 24).setTo(200);
   for (int r = 0; r < 16; ++r) clean.intensities.row(r).colRange(40, 60).setTo(150);
   EXPECT_NEAR(calibrateSweep(clean, CalibrationOptions{}, kSpan_db).near_field_end_m, 0.30, 0.02);
+}
+
+// A floor seen down a slope in a third of the bearings, from just past the band to the end of a
+// 10 m scale (the shared Ping360 basin log): clutter by its share of bearings, but no vehicle is
+// that long. The near field stops at max_near_field_m and the detector finds the floor's rise in
+// the bearings where it rises farther out.
+TEST(detectionCalibration, NearFieldClutterEndsWithinTheVehiclesReach) {
+  PolarImage polar = noiseSweep(300, 1200, 0.0083, -10.0, 7);  // 10 m of dark water
+  polar.intensities.colRange(0, 60).setTo(230);                 // the band: 0–0.5 m
+  const auto rise = [](int r) { return r < 100 ? 62 + r % 20 : 360 + 2 * (r - 100); };  // 0.51–0.68, 3.0–4.6 m
+  for (int r = 0; r < 200; ++r) polar.intensities.row(r).colRange(rise(r), 1200).setTo(160);
+  CalibrationOptions options;
+  const SweepCalibration calibration = calibrateSweep(polar, options, kSpan_db);
+  EXPECT_NEAR(calibration.band_end_m, 0.50, 0.02);
+  EXPECT_NEAR(calibration.near_field_end_m, 2.0, 0.01);
+  DetectorOptions detector;
+  const std::vector<BeamDetection> found = detectObstacles(polar, detector);
+  for (int r = 100; r < 200; ++r) EXPECT_NEAR(found[static_cast<std::size_t>(r)].range_m, (rise(r) + 0.5) * 0.0083, 0.02) << r;
+  // Unbounded, the clutter rule takes the whole scale for the vehicle's and finds nothing.
+  options.max_near_field_m = std::numeric_limits<double>::infinity();
+  EXPECT_GT(calibrateSweep(polar, options, kSpan_db).near_field_end_m, 9.9);
+  detector.background.calibration = options;
+  for (const BeamDetection& d : detectObstacles(polar, detector)) EXPECT_FALSE(d.hasObstacle());
+  options.max_near_field_m = -1.0;
+  EXPECT_THROW(options.validate(), ValueError);
 }
 
 // A wall far away in few bearings, behind the multipath and reverberation of nearer walls in all

@@ -55,6 +55,13 @@ struct CalibrationOptions {
   double min_contrast_db = 0.0;
   double clutter_share = 0.10;  ///< share of bearings that makes a range near-field clutter, (0, 0.5]
   double max_gap_m = 0.10;      ///< clutter-free stretch that ends the near field, metres, ≥ 0
+  /// Farthest the near-field clutter reaches from the head, metres, ≥ 0 (+∞ allowed): the vehicle's
+  /// own body and fixtures, within 2 m of the head on the small AUVs and ROVs that carry MSIS
+  /// (a BlueROV2 is 0.46 m long, the CRAS vehicle's returns end at 0.26 m). Farther, what rises in
+  /// many bearings is the scene (the shared Ping360 basin log's floor, seen down a slope in a third
+  /// of the bearings from 2 to 9 m, made near fields of 7–10 m on a 10 m scale and an empty map);
+  /// the self-reflection band, measured on the median, is never cut.
+  double max_near_field_m = 2.0;
 
   /// @throws ValueError naming the option when it is outside its range or not finite.
   void validate() const;

@@ -28,6 +28,8 @@ struct MappingArguments {
   double min_echo_length_m = MapperOptions{}.detector.background.min_echo_length_m;
   double leading_edge_db = MapperOptions{}.detector.background.leading_edge_db;
   std::string min_range = "auto";        ///< metres, or auto (the near-field clutter's end)
+  /// metres ≥ 0: the farthest the automatic minimum range's clutter may reach (CalibrationOptions)
+  double max_near_field_m = MapperOptions{}.detector.background.calibration.max_near_field_m;
   std::string self_reflection = "auto";  ///< metres, or auto (the self-reflection band's end)
   std::string intensity_span = "auto";   ///< dB, or auto (the log's, else 45 dB)
   std::string smoothing = "none";        ///< none | gaussian | median | mean
