@@ -75,12 +75,13 @@ void printSweeps(const LogSummary& s) {
 void printSettings(const LogSummary& s) {
   std::printf("settings    %zu head setting%s, %zu range scale%s (reach = bins x bin length):\n", s.settings.size(),
               s.settings.size() == 1 ? "" : "s", s.range_scales.size(), s.range_scales.size() == 1 ? "" : "s");
-  std::printf("      reach  bin length       bins  gain   beams  first beam  stretches  time\n");
+  std::printf("      reach  bin length       bins  gain     pulse   beams  first beam  stretches  time\n");
   for (std::size_t i = 0; i < s.settings.size() && i < kMaxSettingLines; ++i) {
     const HeadSettingUse& u = s.settings[i];
-    std::printf("  %7.2f m  %8.3f mm  %9s  %4s  %6zu  %10zu  %9zu  %.1f .. %.1f s\n", u.reach_m,
-                u.setting.bin_length_m * 1000.0, binsText(u).c_str(), gainText(u.setting).c_str(), u.beams,
-                u.first_beam, u.stretches, u.first_time_s, u.last_time_s);
+    const std::string pulse = u.pulse_length_m ? formatted("%.1f mm", *u.pulse_length_m * 1000.0) : "-";
+    std::printf("  %7.2f m  %8.3f mm  %9s  %4s  %8s  %6zu  %10zu  %9zu  %.1f .. %.1f s\n", u.reach_m,
+                u.setting.bin_length_m * 1000.0, binsText(u).c_str(), gainText(u.setting).c_str(), pulse.c_str(),
+                u.beams, u.first_beam, u.stretches, u.first_time_s, u.last_time_s);
   }
   if (s.settings.size() > kMaxSettingLines) {
     std::printf("  ... %zu more settings (--json lists them all)\n", s.settings.size() - kMaxSettingLines);
@@ -172,7 +173,8 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
   nlohmann::json settings = nlohmann::json::array();
   for (const HeadSettingUse& u : s.settings) {
     settings.push_back({{"bin_length_m", u.setting.bin_length_m}, {"gain_setting", orNull(u.setting.gain_setting)},
-                        {"bins", u.bins}, {"min_bins", u.min_bins}, {"reach_m", u.reach_m}, {"beams", u.beams},
+                        {"bins", u.bins}, {"min_bins", u.min_bins}, {"reach_m", u.reach_m},
+                        {"pulse_length_m", orNull(u.pulse_length_m)}, {"beams", u.beams},
                         {"first_beam", u.first_beam}, {"stretches", u.stretches}, {"first_time_s", u.first_time_s},
                         {"last_time_s", u.last_time_s}});
   }

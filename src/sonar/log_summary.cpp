@@ -168,6 +168,9 @@ std::vector<HeadSettingUse> settingUses(const std::vector<Beam>& beams) {
     use->bins = std::max(use->bins, bins);
     use->min_bins = std::min(use->min_bins, bins);
     use->reach_m = std::max(use->reach_m, static_cast<double>(bins) * beam.bin_length_m);
+    if (beam.pulse_length_m && (!use->pulse_length_m || *beam.pulse_length_m < *use->pulse_length_m)) {
+      use->pulse_length_m = beam.pulse_length_m;
+    }
     if (std::isfinite(beam.time_s)) {
       use->first_time_s = std::min(use->first_time_s, beam.time_s);
       use->last_time_s = std::max(use->last_time_s, beam.time_s);

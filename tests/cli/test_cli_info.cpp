@@ -186,7 +186,13 @@ TEST_P(cliInfoReal, RangeScalesAndBeamsAreTheReadersOnOneScreen) {
     EXPECT_EQ(info["range_scales"][i]["beams"], scales[i].beams);
   }
   std::size_t setting_beams = 0;
-  for (const nlohmann::json& setting : info["head_settings"]) setting_beams += setting["beams"].get<std::size_t>();
+  for (const nlohmann::json& setting : info["head_settings"]) {
+    setting_beams += setting["beams"].get<std::size_t>();
+    // a Ping360 records each ping's pulse (its transmit duration); Tritech logs do not
+    const bool ping360 = log.beams.front().pulse_length_m.has_value();
+    EXPECT_EQ(setting["pulse_length_m"].is_number(), ping360) << setting;
+    if (ping360) EXPECT_GT(setting["pulse_length_m"].get<double>(), 0.0);
+  }
   EXPECT_EQ(setting_beams, log.beams.size());
   EXPECT_EQ(info["auto_resolution_scale"]["bin_length_m"], mostUsedRangeScale(scales)->bin_length_m);
 

@@ -139,8 +139,12 @@ TEST(sonarLogSummary, RangeAndGainChangesListEachSettingInOrderOfFirstUse) {
   addBeams(log, steps(90.0, 1.8, 300), 0.01, 1, 1000);   // the user's 10 m
   addBeams(log, steps(270.0, 1.8, 100), 0.01, 2, 1000);  // gain raised
   addBeams(log, steps(90.0, 1.8, 10), 0.002, 1, 1000);   // back to 2 m for a moment
+  for (std::size_t i = 50; i < 450; ++i) log.beams[i].pulse_length_m = i < 60 ? 0.045 : 0.04;  // the 10 m pings'
   const LogSummary s = summarizeLog(log);
   ASSERT_EQ(s.settings.size(), 3U);
+  EXPECT_FALSE(s.settings[0].pulse_length_m);  // no 2 m beam records its pulse
+  EXPECT_EQ(s.settings[1].pulse_length_m, 0.04);  // the shortest of the setting's beams
+  EXPECT_EQ(s.settings[2].pulse_length_m, 0.04);
   const HeadSettingUse& two = s.settings[0];
   EXPECT_DOUBLE_EQ(two.setting.bin_length_m, 0.002);
   EXPECT_EQ(two.setting.gain_setting, 1);

@@ -58,6 +58,8 @@ struct HeadSettingUse {
   std::size_t bins = 0;         ///< most bins of one of its beams
   std::size_t min_bins = 0;     ///< fewest bins of one of its beams (less than `bins` for a cut beam)
   double reach_m = 0.0;         ///< bins × bin length, metres: the range scale as the user set it
+  /// The shortest Beam::pulse_length_m of its beams, metres; unset when none records one.
+  std::optional<double> pulse_length_m;
   std::size_t beams = 0;        ///< beams of this setting in the log
   std::size_t first_beam = 0;   ///< index of its first beam
   std::size_t stretches = 0;    ///< runs of consecutive beams of this setting (> 1: the user came back to it)
