@@ -9,6 +9,8 @@
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/slam/slam_mapping.hpp"
+#include "slam_outputs.hpp"
 
 namespace sonarmap::cli {
 
@@ -48,8 +50,18 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,180,0,0")
       ->delimiter(',')
       ->expected(6);
+  cmd->add_flag("--slam", args.slam,
+                "Correct the navigation by matching the sonar's scans with each other (motion-compensated scans, "
+                "probabilistic ICP, loop closures, a pose graph) and map with the corrected trajectory. Without "
+                "--nav the vehicle is believed still and its motion comes from the scans alone");
+  cmd->add_option("--trajectory", args.trajectory_out,
+                  "Write the trajectory the map was built with (the corrected one with --slam, else --nav's): "
+                  "a navigation CSV, or TUM format (time x y z qx qy qz qw, NED) when the name ends in .tum or .txt");
   auto check = [&args, checked] {
-    if (!args.mounting.empty() && args.nav_csv.empty()) throw ValueError("--mounting needs --nav");
+    if (!args.mounting.empty() && args.nav_csv.empty() && !args.slam) throw ValueError("--mounting needs --nav or --slam");
+    if (!args.trajectory_out.empty() && args.nav_csv.empty() && !args.slam) {
+      throw ValueError("--trajectory needs --nav or --slam: a static log has no trajectory");
+    }
     if (!checked->side_png.empty() && !args.volume) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
     }
@@ -64,9 +76,19 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) { return so
 
 namespace {
 
-/// Maps the log, static (`nav` empty) or with navigation, drawing a progress bar unless args.quiet.
+/// Maps the log, static (`nav` empty) or with navigation, drawing a progress bar unless args.quiet;
+/// with args.slam, localized first (slam_mapping.hpp) and `slam` receives the localization.
 MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options, const NavTrack& nav,
-                 const Eigen::Isometry3d& sonar_to_body) {
+                 const Eigen::Isometry3d& sonar_to_body, SlamResult& slam) {
+  if (args.slam) {
+    return mapWithProgress(
+        [&](const ProgressCallback& progress) {
+          SlamMapping mapped = mapSonarLogWithSlam(log, nav, sonar_to_body, options, SlamOptions{}, progress);
+          slam = std::move(mapped.slam);
+          return std::move(mapped.mapper);
+        },
+        args.quiet);
+  }
   if (args.nav_csv.empty()) {
     return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(log, options, progress); },
                            args.quiet);
@@ -95,18 +117,23 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
   const NavTrack nav = args.nav_csv.empty() ? NavTrack{} : readNavCsv(args.nav_csv);
-  MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body);
+  SlamResult slam;
+  MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body, slam);
   mapped.resolution_note = resolutionNote(log, sonar_options);
+  const NavTrack& trajectory = args.slam ? slam.trajectory : nav;
   FileTransaction outputs;  // nothing appears unless every output could be written
+  if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, trajectory);
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
   stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
-                  nav.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()} : sonarTrack(nav, sonar_to_body, log));
+                  trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
+                                     : sonarTrack(trajectory, sonar_to_body, log));
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
   printWarnings(warnings);
-  printMapSummary(mapped, args.output_bt, /*with_nav=*/!args.nav_csv.empty(), warnings.size());
+  printMapSummary(mapped, args.output_bt, /*with_nav=*/!trajectory.empty(), warnings.size());
+  if (args.slam) printSlamSummary(slam.report, !nav.empty());
   if (args.tank_report) printTankReport(mapped.mapper.map());
 }
 

@@ -24,6 +24,8 @@ struct MapArgs : MappingArguments {
   bool tank_report = false;
   std::string nav_csv;           ///< navigation CSV (empty: the sonar is static at the map origin)
   std::vector<double> mounting;  ///< X,Y,Z (m), ROLL,PITCH,YAW (degrees) of the sonar in the body; empty: default
+  bool slam = false;             ///< --slam: correct the navigation by scan matching (slam/localizer.hpp)
+  std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)
 };
 
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.

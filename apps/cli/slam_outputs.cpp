@@ -1,0 +1,35 @@
+#include "slam_outputs.hpp"
+
+#include <cstdio>
+#include <map>
+
+#include "sonarmap/core/errors.hpp"
+
+namespace sonarmap::cli {
+
+void stageTrajectory(FileTransaction& outputs, const std::string& path, const NavTrack& trajectory) {
+  if (trajectory.empty()) throw ValueError("--trajectory: no trajectory to write (no scan could be localized)");
+  outputs.stage(path, [&](std::ostream& out) { writeNavCsv(out, trajectory); });
+}
+
+void printSlamSummary(const SlamReport& report, bool with_nav) {
+  std::map<std::string, std::size_t> reasons;
+  for (const LoopClosure& loop : report.loop_closures) {
+    if (!loop.accepted) ++reasons[loop.reason];
+  }
+  std::string commonest;
+  std::size_t most = 0;
+  for (const auto& [reason, count] : reasons) {
+    if (count > most) {
+      most = count;
+      commonest = reason;
+    }
+  }
+  std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them, %zu of %zu loop closures "
+              "accepted%s%s%s\n",
+              report.scans, report.scans_with_points, report.matches_accepted, report.loopClosuresAccepted(),
+              report.loop_closures.size(), most > 0 ? "; most refused as " : "", commonest.c_str(),
+              with_nav ? "" : " (no --nav: the motion comes from the scans alone)");
+}
+
+}  // namespace sonarmap::cli

@@ -1,0 +1,142 @@
+#pragma once
+/// @file localizer.hpp
+/// Sonar-aided navigation (the "L" of the paper's SLAM, §9): scans (scan.hpp) matched against the
+/// scans just before them and against scans seen long before near the current estimate (loop
+/// closures), on a pose graph (pose_graph.hpp) with dead reckoning's odometry. A loop closure is
+/// accepted only when the matcher finds it unambiguous, it agrees with dead reckoning within the
+/// drift dead reckoning may have had (a χ² gate), and it agrees with every loop closure accepted
+/// before it (pairwise consistency: Mangelson et al. 2018, "Pairwise consistent measurement set
+/// maximization for robust multi-robot map merging", ICRA; used for sonar by Bruce SLAM, Wang et
+/// al. 2022). The corrected trajectory moves each dead-reckoning fix by the correction of the
+/// scans around it, interpolated in time.
+///
+/// One path for batch (localize) and live mapping (Localizer fed scan by scan).
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/mapping/mapper_options.hpp"
+#include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/slam/pose_graph.hpp"
+#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/slam/scan_matcher.hpp"
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap {
+
+/// Options of the localization, in physical units.
+struct SlamOptions {
+  ScanFormingOptions forming;  ///< the odometry noise model and the points' uncertainty
+  ScanMatchOptions matching;
+  PoseGraphOptions graph;
+  std::size_t submap_scans = 3;  ///< scans before a scan that it is matched against, ≥ 1
+  /// A loop closure is sought among the scans whose estimated reference position lies within this
+  /// of the new scan's, metres, ≥ 0; 0: automatic, half the scans' median reach.
+  double loop_search_radius_m = 0.0;
+  /// ... and that the vehicle left at least this far back along its path, metres, ≥ 0; 0:
+  /// automatic, twice the scans' median reach (so that a loop closure is not just the last turn).
+  double loop_min_travel_m = 0.0;
+  /// Gate of a loop closure against the current estimate: its squared Mahalanobis distance with the
+  /// covariance dead reckoning accumulates along the path between the two scans plus the match's,
+  /// 3 degrees of freedom; 11.34 is χ²₃'s 99 % quantile. > 0.
+  double loop_gate_chi2 = 11.34;
+  /// Gate of the pairwise consistency of two loop closures (the cycle they close with the
+  /// estimate between their ends), χ²₃. > 0.
+  double consistency_chi2 = 11.34;
+
+  /// @throws ValueError naming the field when out of range.
+  void validate() const;
+};
+
+/// A loop closure the localizer tried.
+struct LoopClosure {
+  std::size_t from = 0;  ///< the older scan
+  std::size_t to = 0;    ///< the newer scan
+  Pose2 measurement;     ///< `to` in `from`'s frame, as matched
+  bool accepted = false;
+  std::string reason;    ///< why refused; empty when accepted
+};
+
+/// What the localization did.
+struct SlamReport {
+  std::size_t scans = 0;
+  std::size_t scans_with_points = 0;  ///< scans with enough detected obstacles to match
+  std::size_t matches_accepted = 0;   ///< scans matched to the scans before them
+  std::size_t matches_refused = 0;
+  std::vector<LoopClosure> loop_closures;  ///< every loop closure matched, in order
+  std::size_t loopClosuresAccepted() const;
+};
+
+/// The localization fed scan by scan (batch and live).
+class Localizer {
+ public:
+  /// @param navigation_known  false: the scans were formed without navigation (the vehicle believed
+  ///        still), so odometry uses OdometryNoise's unknown-motion model.
+  /// @throws ValueError for invalid options.
+  explicit Localizer(const SlamOptions& options, bool navigation_known = true);
+  /// Adds the next scan (scans in time order): an odometry edge from the scan before, a match
+  /// against the submap of the scans before, a loop closure when one is found and passes the gates
+  /// (then the graph is optimised).
+  void addScan(Scan scan);
+  /// Offers a loop closure found elsewhere (or by closeLoop's match): scan `to` measured at
+  /// `measurement` in scan `from`'s frame with `information` (in from's frame). It passes the same
+  /// gates as the matcher's (against the estimate with dead reckoning's drift along the path, and
+  /// pairwise consistency with every accepted loop closure); accepted, it joins the graph, which is
+  /// optimised. Recorded in report() either way. Returns whether it was accepted.
+  /// @throws ValueError unless from < to < scans().size() and the values are finite.
+  bool proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement, const Eigen::Matrix3d& information);
+  /// Optimises the graph with every edge (call once the last scan is in).
+  void optimize();
+
+  const std::vector<Scan>& scans() const { return scans_; }
+  const PoseGraph& graph() const { return graph_; }
+  const SlamReport& report() const { return report_; }
+
+  /// The corrected trajectory: each dead-reckoning fix moved by the correction (optimised pose ∘
+  /// dead-reckoning pose⁻¹ of the scans, NED's plane) interpolated between the two scans around its
+  /// time (the first's before the first scan, the last's after the last); depth, roll and pitch
+  /// kept. With an empty `dead_reckoning`: one fix per scan at its start, reference and end times,
+  /// poses from the graph (depth, roll and pitch 0). Empty when there is no scan.
+  NavTrack correctedTrack(const NavTrack& dead_reckoning) const;
+
+ private:
+  /// Points of scans [first, last) placed with their current poses, in NED.
+  std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last) const;
+  /// Covariance of dead reckoning's relative pose from scan a to scan b (a < b), composed along the
+  /// odometry edges.
+  Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;
+  void matchToSubmap(std::size_t k);
+  void closeLoop(std::size_t k);
+  /// Whether `loop` is consistent with every accepted loop closure.
+  bool consistentWithAccepted(const LoopClosure& loop, const Eigen::Matrix3d& covariance) const;
+
+  SlamOptions options_;
+  bool navigation_known_ = true;
+  std::vector<Scan> scans_;
+  PoseGraph graph_;
+  std::vector<Pose2> odometry_;                ///< dead-reckoning motion from scan k−1 to k (k ≥ 1)
+  std::vector<Eigen::Matrix3d> odometry_cov_;  ///< its covariance
+  std::vector<double> travelled_m_;            ///< dead-reckoning path length at each scan
+  std::vector<Eigen::Matrix3d> loop_cov_;      ///< covariance of each accepted loop's measurement
+  std::vector<std::size_t> accepted_loops_;    ///< indices into report_.loop_closures
+  SlamReport report_;
+};
+
+/// The result of a batch localization.
+struct SlamResult {
+  NavTrack trajectory;          ///< Localizer::correctedTrack of the dead reckoning
+  std::vector<Pose2> scan_poses;  ///< each scan's optimised reference pose (NED's plane)
+  std::vector<double> scan_times_s;
+  SlamReport report;
+};
+
+/// Forms the scans of `log` (formScans) with `dead_reckoning` (empty: none; the vehicle believed
+/// still), localizes them in order and optimises the graph. Deterministic.
+/// @throws ValueError for invalid options or an invalid navigation track.
+SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
+                    const MapperOptions& options, const SlamOptions& slam = {});
+
+}  // namespace sonarmap

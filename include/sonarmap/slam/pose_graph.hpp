@@ -1,0 +1,74 @@
+#pragma once
+/// @file pose_graph.hpp
+/// A planar pose graph (Lu & Milios 1997; Grisetti et al. 2010, "A tutorial on graph-based SLAM")
+/// over the scans' reference poses: odometry edges from dead reckoning, scan-match and loop-closure
+/// edges from the scan matcher, solved by Ceres Solver (Agarwal et al., Debian libceres-dev) with
+/// its Cauchy loss on the match edges, so one bad edge bends the map little. 3 degrees of freedom
+/// (x, y, yaw in NED's plane, pose2.hpp); depth, roll and pitch come from the sensors.
+///
+/// Deterministic: one thread and a fixed order of blocks, so the same graph gives the same bytes.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sonarmap/slam/pose2.hpp"
+
+namespace sonarmap {
+
+/// What an edge stands for.
+enum class EdgeKind {
+  kOdometry,     ///< dead reckoning between consecutive scans (no robust loss)
+  kScanMatch,    ///< a scan matched against the scans just before it
+  kLoopClosure,  ///< a scan matched against scans seen long before
+};
+
+/// A relative-pose measurement: node `to` in the frame of node `from`.
+struct PoseGraphEdge {
+  std::size_t from = 0;
+  std::size_t to = 0;
+  Pose2 measurement;
+  /// Information of the measurement (x, y, yaw in from's frame; 1/m², 1/rad²), symmetric positive
+  /// semi-definite: a direction without information (along a wall) adds no constraint.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  EdgeKind kind = EdgeKind::kOdometry;
+};
+
+/// Options of PoseGraph::optimize.
+struct PoseGraphOptions {
+  /// Scale of the Cauchy loss on match and loop-closure edges, in σ of their information: an edge
+  /// off by much more than this many σ is down-weighted like an outlier. > 0.
+  double robust_scale_sigma = 3.0;
+  int max_iterations = 100;  ///< Levenberg–Marquardt iterations, ≥ 1
+};
+
+/// The graph: nodes (poses, the first held fixed) and edges.
+class PoseGraph {
+ public:
+  /// Adds a node at `initial`; returns its index.
+  std::size_t addNode(const Pose2& initial);
+  /// @throws ValueError when an end is not a node, from == to, or the information is not finite.
+  void addEdge(const PoseGraphEdge& edge);
+  /// Solves for the poses that best explain the edges, starting from the current ones; the first
+  /// node stays where it is. Returns false when Ceres reports no usable solution (the poses are
+  /// then left as they were).
+  /// @throws ValueError for invalid options.
+  bool optimize(const PoseGraphOptions& options = {});
+
+  std::size_t size() const { return poses_.size(); }
+  const std::vector<Pose2>& poses() const { return poses_; }
+  const Pose2& pose(std::size_t node) const { return poses_.at(node); }
+  void setPose(std::size_t node, const Pose2& pose) { poses_.at(node) = pose; }
+  const std::vector<PoseGraphEdge>& edges() const { return edges_; }
+
+ private:
+  std::vector<Pose2> poses_;
+  std::vector<PoseGraphEdge> edges_;
+};
+
+/// The square root S of a positive semi-definite information matrix (SᵀS = information), from its
+/// eigen-decomposition with negative eigenvalues clamped to 0: residuals are S · error.
+Eigen::Matrix3d informationSqrt(const Eigen::Matrix3d& information);
+
+}  // namespace sonarmap

@@ -1,0 +1,104 @@
+#pragma once
+/// @file scan.hpp
+/// Scans for scan matching: the obstacles a mechanically scanned sonar detects over one sweep (a
+/// full turn, or one pass across a sector), each placed with the dead-reckoning pose at its own
+/// beam's time and expressed in the frame of one reference pose of the sweep, with its uncertainty
+/// (motion compensation, as MSISpIC: Mallios et al. 2010, "Probabilistic sonar scan matching for an
+/// AUV", IROS; and 2014, J. Field Robotics 31(1)). A Micron turn takes about 8.6 s and a SeaKing's
+/// about 28 s, during which the vehicle moves metres: points placed with one pose would smear a
+/// wall into a curve.
+///
+/// Frames: NED's horizontal plane (pose2.hpp); a scan's points are in its reference body frame
+/// (x forward, y starboard, metres), the vehicle's dead-reckoning pose at the scan's reference time.
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/mapping/mapper_options.hpp"
+#include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/slam/pose2.hpp"
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap {
+
+/// How far dead reckoning may be trusted: the noise model of odometry between two poses, in the
+/// units of the sensors it stands for (a DVL's velocity, a compass's or gyro's heading). The
+/// defaults describe a modest DVL and AHRS (drift of a few per cent of distance travelled).
+struct OdometryNoise {
+  double scale_sigma = 0.03;  ///< 1σ fractional error of the distance travelled (DVL scale), ≥ 0
+  /// 1σ heading error, radians, ≥ 0: the cross-track error it causes grows with the distance.
+  double heading_sigma_rad = 1.5 * 3.14159265358979323846 / 180.0;
+  double velocity_noise_mps = 0.05;  ///< 1σ white noise of each velocity reading, m/s, ≥ 0
+  double nav_period_s = 0.1;         ///< time between velocity readings (the navigation's fix period), > 0
+  /// Heading random walk, rad/√s, ≥ 0 (a gyro's angle random walk; a compass: its noise).
+  double gyro_walk_rad_per_sqrt_s = 0.05 * 3.14159265358979323846 / 180.0;
+  /// Without navigation (a log mapped with --slam but no --nav): the vehicle is believed still,
+  /// and may have moved at this speed (1σ, m/s, > 0) in any direction and turned at
+  /// unknown_turn_sigma_radps.
+  double unknown_speed_sigma_mps = 0.2;
+  double unknown_turn_sigma_radps = 2.0 * 3.14159265358979323846 / 180.0;  ///< rad/s, > 0
+
+  /// Covariance (x, y, yaw; m², rad²) of the relative motion `delta` (in the frame of its start)
+  /// measured by dead reckoning over `duration_s`: along-track σ² = (scale_sigma · d)² + noise,
+  /// cross-track σ² = (heading_sigma_rad · d)² + noise, where d = |delta's translation| and noise =
+  /// velocity_noise² · nav_period · duration (white velocity noise integrated); yaw σ² =
+  /// gyro_walk² · duration. `known` false: the no-navigation model, isotropic
+  /// (unknown_speed_sigma · duration)² and (unknown_turn_sigma · duration)². A floor of
+  /// (1 mm)² and (0.01°)² keeps it invertible.
+  Eigen::Matrix3d covariance(const Pose2& delta, double duration_s, bool known = true) const;
+  /// @throws ValueError naming the field when a value is negative, zero where it must be > 0, or
+  ///         not finite.
+  void validate() const;
+};
+
+/// One detected obstacle of a scan.
+struct ScanPoint {
+  Eigen::Vector2d xy_m = Eigen::Vector2d::Zero();  ///< in the scan's reference body frame, metres
+  /// Covariance of xy_m, m²: the range's (a bin, the echo's rise) along the beam, the beam width's
+  /// across it, plus what dead reckoning adds between the beam's time and the reference time.
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();
+  double range_m = 0.0;  ///< from the sonar, metres
+};
+
+/// The detections of one sweep, motion-compensated.
+struct Scan {
+  double time_s = 0.0;            ///< reference time: the time of the sweep's middle beam
+  Pose2 dead_reckoning;           ///< the body's dead-reckoning pose in NED at time_s
+  double start_time_s = 0.0;      ///< first beam's time
+  double end_time_s = 0.0;        ///< last beam's time
+  std::size_t first_beam = 0;     ///< index of the sweep's first beam in the log
+  std::size_t beams = 0;          ///< beams in the sweep
+  double reach_m = 0.0;           ///< longest beam range of the sweep, metres
+  std::vector<ScanPoint> points;  ///< one per beam with an obstacle
+};
+
+/// How scans are formed.
+struct ScanFormingOptions {
+  OdometryNoise odometry;
+  /// 1σ of an obstacle's range, metres, ≥ 0; 0: automatic, max(bin length, the echo's rise / 2,
+  /// 2 cm).
+  double range_sigma_m = 0.0;
+  /// 1σ of its bearing, radians, ≥ 0; 0: automatic, half the mapper's horizontal beam width
+  /// (MapperOptions::beam_width_rad), at least half the bearing step.
+  double bearing_sigma_rad = 0.0;
+};
+
+/// Forms one scan per sweep of `log` (the sweeps the mapper detects: groupSweeps), detecting each
+/// sweep's first obstacles exactly as the mapper does (SonarMapper::detectSweep with `options`
+/// resolved for the log, resolveForLog), and placing each obstacle with the dead-reckoning body
+/// pose at its beam's time (interpolateBodyToNed on `dead_reckoning`), the sonar's mounting
+/// `sonar_to_body` and the horizontal projection of the beam. Beams outside the navigation's span
+/// are skipped. An empty `dead_reckoning`: the vehicle is believed still at the origin (every pose
+/// zero). Cost: the detection of every sweep (about the mapper's detection time).
+/// @throws ValueError for invalid options or an invalid navigation track (NavInterpolator).
+std::vector<Scan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
+                            const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
+                            const ScanFormingOptions& forming = {});
+
+/// The planar pose (x, y, heading) of a body-to-NED transform: its translation's x, y and the yaw of
+/// its rotation (Z-Y-X Euler angles: atan2(R(1,0), R(0,0))).
+Pose2 planarPose(const Eigen::Isometry3d& body_to_ned);
+
+}  // namespace sonarmap

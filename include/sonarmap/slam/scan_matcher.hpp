@@ -1,0 +1,100 @@
+#pragma once
+/// @file scan_matcher.hpp
+/// Registration of two scans' points (scan.hpp) in the plane: a probabilistic ICP, point-to-line
+/// where the target is locally straight (a wall) and point-to-point elsewhere (a pile), each pair
+/// weighted by both points' covariances (Montesano et al. 2005, "Probabilistic scan matching for
+/// motion estimation in unstructured environments", IROS; its MSIS form MSISpIC, Mallios et al.
+/// 2014); and a correlative search (Olson 2009, "Real-time correlative scan matching", ICRA) over
+/// the prior's window as the fallback when ICP's basin is too small or the features few or
+/// repetitive. Ambiguous matches (one long wall: free along it; a row of equal piles: several equal
+/// peaks) are reported with the reason, so a caller can refuse them.
+///
+/// Frames: the target's points and the result are in one frame (e.g. NED's plane, pose2.hpp); the
+/// source's points are in their own frame; the match is the pose of the source frame in the target
+/// frame.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sonarmap/slam/pose2.hpp"
+#include "sonarmap/slam/scan.hpp"
+
+namespace sonarmap {
+
+/// Options of matchScans.
+struct ScanMatchOptions {
+  int max_iterations = 40;          ///< Gauss–Newton iterations of the ICP, ≥ 1
+  /// Correspondence gate: a pair is used while its squared Mahalanobis distance (point-to-point, 2
+  /// degrees of freedom) stays below this; 9.21 is χ²₂'s 99 % quantile.
+  double gate_chi2 = 9.21;
+  std::size_t min_pairs = 12;       ///< fewest pairs of an accepted match, ≥ 3
+  double min_overlap = 0.25;        ///< least share of the source's points paired, (0, 1]
+  /// Translation information of an accepted match may be at most this many times weaker in its
+  /// weakest direction than in its strongest (eigenvalues): beyond, the match slides along one
+  /// direction (a long straight wall) and is reported ambiguous. ≥ 1; 25: a σ ratio of 5.
+  double max_information_ratio = 25.0;
+  /// Correlative search: the best pose must score at least this much higher (ratio, ≥ 1) than the
+  /// best second peak (CorrelativeResult::distinct_score), else the match is ambiguous
+  /// (repetitive or too few features).
+  double min_peak_ratio = 1.15;
+  int max_search_steps = 41;        ///< cells across the search window per axis, ≥ 3 (coarser cells beyond)
+
+  /// @throws ValueError naming the field when out of range.
+  void validate() const;
+};
+
+/// The outcome of a match.
+struct ScanMatch {
+  bool accepted = false;
+  /// Why not accepted ("too few pairs: 5 of 80 points", "ambiguous: constrained along one
+  /// direction only (a long straight wall)", …); empty when accepted.
+  std::string reason;
+  Pose2 pose;  ///< the source frame in the target frame
+  /// Information of `pose` (x, y, yaw; 1/m², 1/rad²): the ICP's Gauss–Newton Hessian of the pairs'
+  /// weighted residuals, scaled down when the residuals are larger than their covariances say. A
+  /// match along one wall has no information along it.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  std::size_t pairs = 0;       ///< pairs of the last ICP iteration
+  double overlap = 0.0;        ///< pairs / source points
+  double mean_chi2 = 0.0;      ///< mean squared Mahalanobis residual per degree of freedom
+  bool searched = false;       ///< the correlative search ran
+  double peak_ratio = 0.0;     ///< its best score over the best distinct one (0: not run)
+};
+
+/// Matches `source` (points in its own frame) against `target` (points in the target frame),
+/// starting from `initial` (the source frame in the target frame) whose uncertainty is
+/// `prior_covariance` (x, y, yaw; m², rad²). With `search`, a correlative search over
+/// ±3σ of the prior (at most ±20° and max_search_steps cells per axis) finds the start of the ICP;
+/// without, the ICP starts at `initial` and the search runs only when the ICP does not converge
+/// to enough pairs. Deterministic.
+/// @throws ValueError for invalid options or a prior covariance that is not finite.
+ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
+                     const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
+                     const ScanMatchOptions& options = {});
+
+/// The best pose of a correlative search (Olson 2009) and how distinct its peak is.
+struct CorrelativeResult {
+  Pose2 pose;
+  double score = 0.0;          ///< mean likelihood of the source's points, [0, 1]
+  /// Score of the best second peak: a local maximum of the translations (best heading each) farther
+  /// than max(3 cells, 2σ) from `pose`'s, with a valley below 90 % of it between the two; 0: none.
+  double distinct_score = 0.0;
+};
+
+/// Exhaustive search of poses initial ⊕ (dx, dy, dyaw), |dx|, |dy| ≤ half_window_m and
+/// |dyaw| ≤ half_window_rad, on a grid of at most `max_steps` cells per axis (cells no finer than
+/// sigma_m / 2), scoring each by the mean over the source's points of exp(−d²/2σ²), d the distance
+/// to the nearest target point (a likelihood field from OpenCV's distance transform).
+CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
+                                    const Pose2& initial, double half_window_m, double half_window_rad,
+                                    double sigma_m, int max_steps);
+
+/// Composes the covariance of a chain of relative poses to first order: the covariance of
+/// a ∘ b given cov(a) and cov(b), independent (x, y, yaw; the Jacobians of Pose2 composition).
+Eigen::Matrix3d composeCovariance(const Pose2& a, const Eigen::Matrix3d& cov_a, const Pose2& b,
+                                  const Eigen::Matrix3d& cov_b);
+
+}  // namespace sonarmap

@@ -1,0 +1,258 @@
+/// @file localizer.cpp
+/// Localizer and localize (localizer.hpp): odometry, submap matches and loop closures on the pose
+/// graph; the corrected trajectory.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/slam/localizer.hpp"
+#include "loop_gates.hpp"
+
+namespace sonarmap {
+
+namespace {
+
+/// Information (in `frame`'s coordinates) of a pose whose information is stated in NED: the
+/// position error rotated into the frame, yaw unchanged.
+Eigen::Matrix3d informationInFrame(const Eigen::Matrix3d& information_ned, const Pose2& frame) {
+  Eigen::Matrix3d a = Eigen::Matrix3d::Identity();
+  a.topLeftCorner<2, 2>() = frame.rotation();
+  return a.transpose() * information_ned * a;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+/// Linear interpolation of two planar poses (the yaw along the shorter arc).
+Pose2 interpolate(const Pose2& a, const Pose2& b, double f) {
+  return {a.x_m + f * (b.x_m - a.x_m), a.y_m + f * (b.y_m - a.y_m),
+          wrapAngle_rad(a.yaw_rad + f * wrapAngle_rad(b.yaw_rad - a.yaw_rad))};
+}
+
+}  // namespace
+
+void SlamOptions::validate() const {
+  forming.odometry.validate();
+  matching.validate();
+  if (submap_scans < 1) throw ValueError("slam: submap_scans must be ≥ 1");
+  if (!(std::isfinite(loop_search_radius_m) && loop_search_radius_m >= 0.0)) {
+    throw ValueError("slam: loop_search_radius_m must be ≥ 0 m");
+  }
+  if (!(std::isfinite(loop_min_travel_m) && loop_min_travel_m >= 0.0)) throw ValueError("slam: loop_min_travel_m must be ≥ 0 m");
+  if (!(std::isfinite(loop_gate_chi2) && loop_gate_chi2 > 0.0)) throw ValueError("slam: loop_gate_chi2 must be > 0");
+  if (!(std::isfinite(consistency_chi2) && consistency_chi2 > 0.0)) throw ValueError("slam: consistency_chi2 must be > 0");
+}
+
+std::size_t SlamReport::loopClosuresAccepted() const {
+  return static_cast<std::size_t>(std::count_if(loop_closures.begin(), loop_closures.end(),
+                                                [](const LoopClosure& loop) { return loop.accepted; }));
+}
+
+Localizer::Localizer(const SlamOptions& options, bool navigation_known)
+    : options_(options), navigation_known_(navigation_known) {
+  options_.validate();
+}
+
+std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t last) const {
+  std::vector<ScanPoint> points;
+  for (std::size_t k = first; k < last; ++k) {
+    const Pose2& pose = graph_.pose(k);
+    const Eigen::Matrix2d rotation = pose.rotation();
+    for (const ScanPoint& point : scans_[k].points) {
+      ScanPoint placed = point;
+      placed.xy_m = pose * point.xy_m;
+      placed.covariance_m2 = rotation * point.covariance_m2 * rotation.transpose();
+      points.push_back(placed);
+    }
+  }
+  return points;
+}
+
+void Localizer::addScan(Scan scan) {
+  const std::size_t k = scans_.size();
+  ++report_.scans;
+  if (scan.points.size() >= options_.matching.min_pairs) ++report_.scans_with_points;
+  if (k == 0) {
+    graph_.addNode(scan.dead_reckoning);
+    odometry_.push_back({});
+    odometry_cov_.push_back(Eigen::Matrix3d::Zero());
+    travelled_m_.push_back(0.0);
+    scans_.push_back(std::move(scan));
+    return;
+  }
+  const Scan& previous = scans_.back();
+  const Pose2 motion = previous.dead_reckoning.between(scan.dead_reckoning);
+  const Eigen::Matrix3d covariance =
+      options_.forming.odometry.covariance(motion, scan.time_s - previous.time_s, navigation_known_);
+  graph_.addNode(graph_.pose(k - 1) * motion);
+  graph_.addEdge({k - 1, k, motion, covariance.inverse(), EdgeKind::kOdometry});
+  odometry_.push_back(motion);
+  odometry_cov_.push_back(covariance);
+  travelled_m_.push_back(travelled_m_.back() + motion.translation().norm());
+  scans_.push_back(std::move(scan));
+  matchToSubmap(k);
+  closeLoop(k);
+}
+
+void Localizer::matchToSubmap(std::size_t k) {
+  const std::size_t first = k > options_.submap_scans ? k - options_.submap_scans : 0;
+  const std::vector<ScanPoint> target = placedPoints(first, k);
+  const Pose2 predicted = graph_.pose(k);
+  Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();  // the odometry's covariance rotated into NED
+  rotate.topLeftCorner<2, 2>() = graph_.pose(k - 1).rotation();
+  const Eigen::Matrix3d prior_ned = rotate * odometry_cov_[k] * rotate.transpose();
+  const ScanMatch match = matchScans(target, scans_[k].points, predicted, prior_ned, false, options_.matching);
+  if (!match.accepted) {
+    // A match along one wall still fixes the offset across it and the heading: keep that part.
+    const bool along_wall = match.reason.rfind("ambiguous: constrained", 0) == 0;
+    if (!along_wall || match.pairs < options_.matching.min_pairs) {
+      ++report_.matches_refused;
+      return;
+    }
+  }
+  ++report_.matches_accepted;
+  graph_.setPose(k, match.pose);
+  const Pose2& anchor = graph_.pose(k - 1);
+  graph_.addEdge({k - 1, k, anchor.between(match.pose), informationInFrame(match.information, anchor), EdgeKind::kScanMatch});
+}
+
+void Localizer::closeLoop(std::size_t k) {
+  std::vector<double> reaches;
+  for (const Scan& scan : scans_) reaches.push_back(scan.reach_m);
+  const double reach_m = median(reaches);
+  const double radius_m = options_.loop_search_radius_m > 0.0 ? options_.loop_search_radius_m : reach_m / 2.0;
+  const double min_travel_m = options_.loop_min_travel_m > 0.0 ? options_.loop_min_travel_m : 2.0 * reach_m;
+  if (scans_[k].points.size() < options_.matching.min_pairs) return;
+  // The nearest earlier scan that the vehicle left long enough ago.
+  std::size_t best = k;
+  double best_distance_m = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j + options_.submap_scans < k; ++j) {
+    if (travelled_m_[k] - travelled_m_[j] < min_travel_m) continue;
+    if (scans_[j].points.size() < options_.matching.min_pairs) continue;
+    const double distance_m = (graph_.pose(j).translation() - graph_.pose(k).translation()).norm();
+    if (distance_m <= radius_m && distance_m < best_distance_m) {
+      best = j;
+      best_distance_m = distance_m;
+    }
+  }
+  if (best == k) return;
+  const std::size_t j = best;
+  const std::size_t first = j > 0 ? j - 1 : 0;
+  const std::size_t last = std::min(j + 2, k - options_.submap_scans);
+  const std::vector<ScanPoint> target = placedPoints(first, last);
+  // The prior: dead reckoning's drift along the path from j to k, in NED.
+  const Eigen::Matrix3d path = pathCovariance(j, k);
+  Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();
+  rotate.topLeftCorner<2, 2>() = graph_.pose(j).rotation();
+  const Eigen::Matrix3d prior_ned = rotate * path * rotate.transpose();
+  const ScanMatch match = matchScans(target, scans_[k].points, graph_.pose(k), prior_ned, true, options_.matching);
+  LoopClosure loop;
+  loop.from = j;
+  loop.to = k;
+  loop.measurement = graph_.pose(j).between(match.pose);
+  if (!match.accepted) {
+    loop.reason = match.reason;
+    report_.loop_closures.push_back(loop);
+    return;
+  }
+  proposeLoopClosure(j, k, loop.measurement, informationInFrame(match.information, graph_.pose(j)));
+}
+
+bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement,
+                                   const Eigen::Matrix3d& information) {
+  if (from >= to || to >= scans_.size()) throw ValueError("slam: a loop closure joins an older scan to a newer one");
+  if (!information.allFinite() || !measurement.vector().allFinite()) throw ValueError("slam: a loop closure must be finite");
+  LoopClosure loop;
+  loop.from = from;
+  loop.to = to;
+  loop.measurement = measurement;
+  const Eigen::Matrix3d match_cov = (information + 1e-9 * Eigen::Matrix3d::Identity()).inverse();
+  const Eigen::Matrix3d path = pathCovariance(from, to);
+  const Pose2 estimated = graph_.pose(from).between(graph_.pose(to));
+  if (loopChi2(measurement, estimated, path + match_cov) > options_.loop_gate_chi2) {
+    loop.reason = "farther from the estimate than dead reckoning can have drifted";
+  } else if (!consistentWithAccepted(loop, match_cov)) {
+    loop.reason = "inconsistent with an earlier loop closure";
+  } else {
+    loop.accepted = true;
+    accepted_loops_.push_back(report_.loop_closures.size());
+    loop_cov_.push_back(match_cov);
+    graph_.addEdge({from, to, measurement, information, EdgeKind::kLoopClosure});
+    graph_.optimize(options_.graph);
+  }
+  report_.loop_closures.push_back(loop);
+  return loop.accepted;
+}
+
+void Localizer::optimize() { graph_.optimize(options_.graph); }
+
+NavTrack Localizer::correctedTrack(const NavTrack& dead_reckoning) const {
+  NavTrack track;
+  if (scans_.empty()) return track;
+  if (dead_reckoning.empty()) {
+    for (std::size_t k = 0; k < scans_.size(); ++k) {
+      const Pose2& pose = graph_.pose(k);
+      for (const double time_s : {scans_[k].start_time_s, scans_[k].time_s, scans_[k].end_time_s}) {
+        if (!track.empty() && !(time_s > track.back().time_s)) continue;
+        NavSample fix;
+        fix.time_s = time_s;
+        fix.position_ned_m = Eigen::Vector3d(pose.x_m, pose.y_m, 0.0);
+        fix.yaw_rad = pose.yaw_rad;
+        track.push_back(fix);
+      }
+    }
+    return track;
+  }
+  // Correction of each scan: optimised ∘ dead reckoning⁻¹ (maps dead-reckoned NED to corrected NED).
+  std::vector<Pose2> corrections(scans_.size());
+  for (std::size_t k = 0; k < scans_.size(); ++k) corrections[k] = graph_.pose(k) * scans_[k].dead_reckoning.inverse();
+  std::size_t next = 0;  // the first scan after the fix
+  for (const NavSample& fix : dead_reckoning) {
+    while (next < scans_.size() && scans_[next].time_s <= fix.time_s) ++next;
+    Pose2 correction;
+    if (next == 0) {
+      correction = corrections.front();
+    } else if (next == scans_.size()) {
+      correction = corrections.back();
+    } else {
+      const double t0 = scans_[next - 1].time_s, t1 = scans_[next].time_s;
+      correction = interpolate(corrections[next - 1], corrections[next], (fix.time_s - t0) / (t1 - t0));
+    }
+    const Pose2 corrected = correction * Pose2{fix.position_ned_m.x(), fix.position_ned_m.y(), fix.yaw_rad};
+    NavSample out = fix;
+    out.position_ned_m.x() = corrected.x_m;
+    out.position_ned_m.y() = corrected.y_m;
+    out.yaw_rad = fix.yaw_rad + wrapAngle_rad(corrected.yaw_rad - fix.yaw_rad);  // no wrap of the track's own yaw
+    track.push_back(out);
+  }
+  return track;
+}
+
+SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
+                    const MapperOptions& options, const SlamOptions& slam) {
+  slam.validate();
+  SlamOptions tuned = slam;
+  if (dead_reckoning.size() >= 2) {  // the velocity readings' period: the navigation's median fix spacing
+    std::vector<double> periods;
+    for (std::size_t i = 1; i < dead_reckoning.size(); ++i) periods.push_back(dead_reckoning[i].time_s - dead_reckoning[i - 1].time_s);
+    tuned.forming.odometry.nav_period_s = std::max(median(periods), 1e-3);
+  }
+  std::vector<Scan> scans = formScans(log, dead_reckoning, sonar_to_body, options, tuned.forming);
+  Localizer localizer(tuned, !dead_reckoning.empty());
+  for (Scan& scan : scans) localizer.addScan(std::move(scan));
+  localizer.optimize();
+  SlamResult result;
+  result.trajectory = localizer.correctedTrack(dead_reckoning);
+  result.scan_poses = localizer.graph().poses();
+  for (const Scan& scan : localizer.scans()) result.scan_times_s.push_back(scan.time_s);
+  result.report = localizer.report();
+  return result;
+}
+
+}  // namespace sonarmap

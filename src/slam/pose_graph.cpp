@@ -1,0 +1,107 @@
+/// @file pose_graph.cpp
+/// PoseGraph (pose_graph.hpp) on Ceres Solver: one 3-vector parameter block per node, an
+/// automatically differentiated residual per edge.
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include <Eigen/Eigenvalues>
+#include <ceres/ceres.h>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/slam/pose_graph.hpp"
+
+namespace sonarmap {
+namespace {
+
+template <class T>
+T wrapped(const T& angle) {
+  using std::floor;
+  const T two_pi = T(2.0 * std::numbers::pi);
+  return angle - two_pi * floor((angle + T(std::numbers::pi)) / two_pi);
+}
+
+/// The error of an edge: the measured pose of `to` in `from`'s frame against the nodes' one,
+/// (Δx, Δy in from's frame, Δyaw wrapped), times the information's square root.
+struct RelativePoseError {
+  RelativePoseError(const Pose2& measurement, const Eigen::Matrix3d& sqrt_information)
+      : measurement_(measurement), sqrt_information_(sqrt_information) {}
+
+  template <class T>
+  bool operator()(const T* from, const T* to, T* residuals) const {
+    using std::cos;
+    using std::sin;
+    const T c = cos(from[2]), s = sin(from[2]);
+    const T dx = to[0] - from[0], dy = to[1] - from[1];
+    const T x = c * dx + s * dy;  // to's position in from's frame: Rᵀ (t_to − t_from)
+    const T y = -s * dx + c * dy;
+    Eigen::Matrix<T, 3, 1> error(x - T(measurement_.x_m), y - T(measurement_.y_m),
+                                 wrapped(to[2] - from[2] - T(measurement_.yaw_rad)));
+    // The information is stated in from's frame, like the measurement's translation.
+    const Eigen::Matrix<T, 3, 1> weighted = sqrt_information_.cast<T>() * error;
+    residuals[0] = weighted(0);
+    residuals[1] = weighted(1);
+    residuals[2] = weighted(2);
+    return true;
+  }
+
+ private:
+  Pose2 measurement_;
+  Eigen::Matrix3d sqrt_information_;
+};
+
+}  // namespace
+
+Eigen::Matrix3d informationSqrt(const Eigen::Matrix3d& information) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (information + information.transpose()));
+  const Eigen::Vector3d roots = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return roots.asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+std::size_t PoseGraph::addNode(const Pose2& initial) {
+  poses_.push_back(initial);
+  return poses_.size() - 1;
+}
+
+void PoseGraph::addEdge(const PoseGraphEdge& edge) {
+  if (edge.from >= poses_.size() || edge.to >= poses_.size() || edge.from == edge.to) {
+    throw ValueError("pose graph: an edge must join two different nodes");
+  }
+  if (!edge.information.allFinite() || !edge.measurement.vector().allFinite()) {
+    throw ValueError("pose graph: an edge's measurement and information must be finite");
+  }
+  edges_.push_back(edge);
+}
+
+bool PoseGraph::optimize(const PoseGraphOptions& options) {
+  if (!(std::isfinite(options.robust_scale_sigma) && options.robust_scale_sigma > 0.0) || options.max_iterations < 1) {
+    throw ValueError("pose graph: robust_scale_sigma must be > 0 and max_iterations ≥ 1");
+  }
+  if (poses_.size() < 2 || edges_.empty()) return true;
+  std::vector<std::array<double, 3>> state(poses_.size());
+  for (std::size_t i = 0; i < poses_.size(); ++i) state[i] = {poses_[i].x_m, poses_[i].y_m, poses_[i].yaw_rad};
+  ceres::Problem problem;
+  for (const PoseGraphEdge& edge : edges_) {
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(
+        new RelativePoseError(edge.measurement, informationSqrt(edge.information)));
+    ceres::LossFunction* loss = nullptr;
+    if (edge.kind != EdgeKind::kOdometry) loss = new ceres::CauchyLoss(options.robust_scale_sigma);
+    problem.AddResidualBlock(cost, loss, state[edge.from].data(), state[edge.to].data());
+  }
+  problem.SetParameterBlockConstant(state.front().data());
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = 1;
+  solver.logging_type = ceres::SILENT;
+  solver.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  if (!summary.IsSolutionUsable()) return false;
+  for (std::size_t i = 0; i < poses_.size(); ++i) poses_[i] = {state[i][0], state[i][1], wrapAngle_rad(state[i][2])};
+  return true;
+}
+
+}  // namespace sonarmap

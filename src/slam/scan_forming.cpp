@@ -1,0 +1,153 @@
+/// @file scan_forming.cpp
+/// formScans (scan.hpp): motion-compensated scans from a log's sweeps and its dead reckoning.
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/sonar/polar.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap {
+namespace {
+
+void requireNonNegative(double value, const char* name) {
+  if (!(std::isfinite(value) && value >= 0.0)) throw ValueError(std::string("odometry noise: ") + name + " must be ≥ 0");
+}
+void requirePositive(double value, const char* name) {
+  if (!(std::isfinite(value) && value > 0.0)) throw ValueError(std::string("odometry noise: ") + name + " must be > 0");
+}
+
+/// Where the body was at `time_s` by dead reckoning; nullopt outside the track. An empty track: the
+/// origin, always.
+std::optional<Eigen::Isometry3d> deadReckoningAt(const std::optional<NavInterpolator>& nav, double time_s) {
+  if (!nav) return Eigen::Isometry3d::Identity();
+  return nav->bodyToNedAt(time_s);
+}
+
+/// The covariance a point at `range_m` along horizontal unit direction `along` (reference frame)
+/// gets from the sensor: σ_r along the beam, range · σ_b across it.
+Eigen::Matrix2d sensorCovariance(const Eigen::Vector2d& along, double range_m, double range_sigma_m,
+                                 double bearing_sigma_rad) {
+  const Eigen::Vector2d across(-along.y(), along.x());
+  const double cross_sigma_m = range_m * bearing_sigma_rad;
+  return along * along.transpose() * (range_sigma_m * range_sigma_m) +
+         across * across.transpose() * (cross_sigma_m * cross_sigma_m);
+}
+
+}  // namespace
+
+Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s, bool known) const {
+  const double t = std::abs(duration_s);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  if (!known) {
+    const double position_sigma_m = unknown_speed_sigma_mps * t;
+    const double yaw_sigma_rad = unknown_turn_sigma_radps * t;
+    covariance.diagonal() << position_sigma_m * position_sigma_m, position_sigma_m * position_sigma_m,
+        yaw_sigma_rad * yaw_sigma_rad;
+  } else {
+    const Eigen::Vector2d step = delta.translation();
+    const double distance_m = step.norm();
+    const double noise_m2 = velocity_noise_mps * velocity_noise_mps * nav_period_s * t;
+    const double along_m2 = std::pow(scale_sigma * distance_m, 2) + noise_m2;
+    const double cross_m2 = std::pow(heading_sigma_rad * distance_m, 2) + noise_m2;
+    const Eigen::Vector2d along = distance_m > 1e-9 ? Eigen::Vector2d(step / distance_m) : Eigen::Vector2d::UnitX();
+    const Eigen::Vector2d across(-along.y(), along.x());
+    covariance.topLeftCorner<2, 2>() = along * along.transpose() * along_m2 + across * across.transpose() * cross_m2;
+    covariance(2, 2) = gyro_walk_rad_per_sqrt_s * gyro_walk_rad_per_sqrt_s * t;
+  }
+  covariance(0, 0) += 1e-6;
+  covariance(1, 1) += 1e-6;
+  covariance(2, 2) += std::pow(0.01 * 3.14159265358979323846 / 180.0, 2);
+  return covariance;
+}
+
+void OdometryNoise::validate() const {
+  requireNonNegative(scale_sigma, "scale_sigma");
+  requireNonNegative(heading_sigma_rad, "heading_sigma_rad");
+  requireNonNegative(velocity_noise_mps, "velocity_noise_mps");
+  requirePositive(nav_period_s, "nav_period_s");
+  requireNonNegative(gyro_walk_rad_per_sqrt_s, "gyro_walk_rad_per_sqrt_s");
+  requirePositive(unknown_speed_sigma_mps, "unknown_speed_sigma_mps");
+  requirePositive(unknown_turn_sigma_radps, "unknown_turn_sigma_radps");
+}
+
+Pose2 planarPose(const Eigen::Isometry3d& body_to_ned) {
+  const Eigen::Matrix3d r = body_to_ned.linear();
+  return {body_to_ned.translation().x(), body_to_ned.translation().y(), std::atan2(r(1, 0), r(0, 0))};
+}
+
+std::vector<Scan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
+                            const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
+                            const ScanFormingOptions& forming) {
+  forming.odometry.validate();
+  if (!(std::isfinite(forming.range_sigma_m) && forming.range_sigma_m >= 0.0) ||
+      !(std::isfinite(forming.bearing_sigma_rad) && forming.bearing_sigma_rad >= 0.0)) {
+    throw ValueError("scan forming: range and bearing sigmas must be ≥ 0");
+  }
+  std::optional<NavInterpolator> nav;
+  if (!dead_reckoning.empty()) nav.emplace(dead_reckoning);  // throws ValueError for an invalid track
+  const bool known = nav.has_value();
+  const MapperOptions resolved = resolveForLog(options, log);
+  const SonarMapper detector(resolved);
+  const auto min_beams = static_cast<std::size_t>(std::max(1, resolved.detector.background.min_beams));
+
+  std::vector<Scan> scans;
+  for (const SweepRange& sweep : groupSweeps(log.beams, min_beams)) {
+    PolarImage polar = makePolarImage(log.beams, sweep.first, sweep.last_exclusive);
+    const SweepDetection detection = detector.detectSweep(polar);
+    Scan scan;
+    scan.first_beam = sweep.first;
+    scan.beams = sweep.size();
+    scan.start_time_s = log.beams[sweep.first].time_s;
+    scan.end_time_s = log.beams[sweep.last_exclusive - 1].time_s;
+    scan.time_s = log.beams[sweep.first + sweep.size() / 2].time_s;
+    const std::optional<Eigen::Isometry3d> reference = deadReckoningAt(nav, scan.time_s);
+    if (!reference) continue;  // the sweep's middle lies outside the navigation
+    scan.dead_reckoning = planarPose(*reference);
+    const Pose2 ned_to_reference = scan.dead_reckoning.inverse();
+    double step_rad = 0.0;
+    if (polar.rows() > 1) step_rad = std::abs(bearingStep_rad(polar.bearing_rad[0], polar.bearing_rad[1]));
+    const double bearing_sigma_rad =
+        forming.bearing_sigma_rad > 0.0 ? forming.bearing_sigma_rad : std::max(resolved.beam_width_rad, step_rad) / 2.0;
+    for (int row = 0; row < polar.rows(); ++row) {
+      scan.reach_m = std::max(scan.reach_m, polar.valid_bins[static_cast<std::size_t>(row)] * polar.bin_length_m);
+      const BeamDetection& hit = detection.detections[static_cast<std::size_t>(row)];
+      if (!hit.hasObstacle()) continue;
+      const double time_s = polar.time_s[static_cast<std::size_t>(row)];
+      const std::optional<Eigen::Isometry3d> body = deadReckoningAt(nav, time_s);
+      if (!body) continue;
+      const double bearing_rad = polar.bearing_rad[static_cast<std::size_t>(row)];
+      const Eigen::Vector3d in_sonar(hit.range_m * std::cos(bearing_rad), hit.range_m * std::sin(bearing_rad), 0.0);
+      const Eigen::Isometry3d sonar_to_ned = *body * sonar_to_body;
+      const Eigen::Vector3d in_ned = sonar_to_ned * in_sonar;
+      const Eigen::Vector3d origin_ned = sonar_to_ned.translation();
+      ScanPoint point;
+      point.range_m = hit.range_m;
+      point.xy_m = ned_to_reference * Eigen::Vector2d(in_ned.x(), in_ned.y());
+      Eigen::Vector2d along = ned_to_reference.rotation() * (in_ned - origin_ned).head<2>();
+      if (along.norm() < 1e-9) continue;  // a beam pointing straight down: no horizontal position
+      along.normalize();
+      const double range_sigma_m = forming.range_sigma_m > 0.0
+                                       ? forming.range_sigma_m
+                                       : std::max({polar.bin_length_m, hit.rise_m / 2.0, 0.02});
+      point.covariance_m2 = sensorCovariance(along, hit.range_m, range_sigma_m, bearing_sigma_rad);
+      // What dead reckoning adds between the beam's time and the reference time: the position's
+      // uncertainty, and the heading's, which swings the point across its beam.
+      const Pose2 motion = scan.dead_reckoning.between(planarPose(*body));
+      const Eigen::Matrix3d drift = forming.odometry.covariance(motion, time_s - scan.time_s, known);
+      point.covariance_m2 += drift.topLeftCorner<2, 2>();  // already in the reference frame
+      const Eigen::Vector2d across(-along.y(), along.x());
+      point.covariance_m2 += across * across.transpose() * (hit.range_m * hit.range_m * drift(2, 2));
+      scan.points.push_back(point);
+    }
+    scans.push_back(std::move(scan));
+  }
+  return scans;
+}
+
+}  // namespace sonarmap

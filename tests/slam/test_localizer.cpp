@@ -1,0 +1,142 @@
+// The localizer (slam/localizer.hpp) on simulated missions: it beats drifting dead reckoning, refuses
+// a wrong loop closure, compensates the vehicle's motion within a scan, and is deterministic.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "slam_fixture.hpp"
+#include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/slam/scan.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// ATE: RMSE of the horizontal positions after a rigid alignment (Umeyama 1991, Eigen::umeyama).
+double ate_m(const NavTrack& estimate, const NavTrack& truth) {
+  Eigen::Matrix2Xd from(2, truth.size()), to(2, truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    from.col(static_cast<Eigen::Index>(i)) = estimate[i].position_ned_m.head<2>();
+    to.col(static_cast<Eigen::Index>(i)) = truth[i].position_ned_m.head<2>();
+  }
+  const Eigen::Matrix3d align = Eigen::umeyama(from, to, false);
+  const Eigen::Matrix2Xd moved = (align.topLeftCorner<2, 2>() * from).colwise() + align.topRightCorner<2, 1>();
+  return std::sqrt((moved - to).colwise().squaredNorm().mean());
+}
+
+/// The Micron flying a 16 × 1 m loop along the harbour's quay, 3 % scale error and 2° heading bias.
+struct HarbourLoop {
+  MsisSimulation run = testing::loopMission("harbour", "micron", -0.5, 0.0, 16.0, 1.0, 0.25);
+  NavTrack drift = testing::driftingTrack(run.nav, 0.03, 2.0 * kDeg);
+};
+
+const HarbourLoop& harbourLoop() {
+  static const HarbourLoop loop;
+  return loop;
+}
+
+TEST(slamLocalizer, HarbourLoopBeatsDeadReckoning) {
+  const HarbourLoop& loop = harbourLoop();
+  const SlamResult slam = localize(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  ASSERT_EQ(slam.trajectory.size(), loop.drift.size());
+  EXPECT_GT(slam.report.loopClosuresAccepted(), 0U);
+  EXPECT_GT(slam.report.matches_accepted, slam.report.scans / 2);
+  const double dr_m = ate_m(loop.drift, loop.run.nav);
+  const double slam_m = ate_m(slam.trajectory, loop.run.nav);
+  EXPECT_GT(dr_m, 0.1);
+  EXPECT_LT(slam_m, dr_m / 3.0) << "dead reckoning " << dr_m << " m, slam " << slam_m << " m";
+}
+
+TEST(slamLocalizer, IsDeterministic) {
+  const HarbourLoop& loop = harbourLoop();
+  const SlamResult a = localize(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  const SlamResult b = localize(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    ASSERT_EQ(a.trajectory[i].position_ned_m, b.trajectory[i].position_ned_m);
+    ASSERT_EQ(a.trajectory[i].yaw_rad, b.trajectory[i].yaw_rad);
+  }
+}
+
+TEST(slamLocalizer, RefusesAWrongLoopClosureAndKeepsTheGraph) {
+  const HarbourLoop& loop = harbourLoop();
+  std::vector<Scan> scans = formScans(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  ASSERT_GT(scans.size(), 10U);
+  Localizer localizer(SlamOptions{});
+  for (Scan& scan : scans) localizer.addScan(std::move(scan));
+  const std::vector<Pose2> before = localizer.graph().poses();
+  // The last scan claimed 3 m east of the first (one pile spacing and a half along the quay),
+  // very confidently: the two are within centimetres of each other in truth.
+  const std::size_t last = localizer.scans().size() - 1;
+  const Pose2 truth = localizer.graph().pose(0).between(localizer.graph().pose(last));
+  const Pose2 wrong{truth.x_m, truth.y_m + 3.0, truth.yaw_rad};
+  EXPECT_FALSE(localizer.proposeLoopClosure(0, last, wrong, Eigen::Vector3d(1e4, 1e4, 1e6).asDiagonal()));
+  EXPECT_FALSE(localizer.report().loop_closures.back().reason.empty());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(localizer.graph().pose(i).x_m, before[i].x_m);
+    EXPECT_EQ(localizer.graph().pose(i).y_m, before[i].y_m);
+  }
+}
+
+TEST(slamScanForming, MotionCompensationPutsAWallBackOnOneLine) {
+  // The Micron heading north at 0.2 m/s straight at the harbour's quay (its face at north 3.5 m),
+  // between two piles (east 0 and 2 m): in its 8.6 s turn the vehicle closes 1.7 m.
+  const SonarPreset preset = sonarPreset("micron");
+  MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  NavSample start;
+  start.position_ned_m = Eigen::Vector3d(0.0, 1.0, 0.0);
+  options.trajectory = constantVelocityTrajectory(start, Eigen::Vector3d(0.2, 0.0, 0.0));
+  options.turns = 1;
+  const Scene scene = builtinScene("harbour", preset.head.range_m, preset.head.vertical_beam_width_rad);
+  const MsisSimulation run = simulateMsis(scene, options);
+  // Share of the points placed near the quay (north of 2.9 m, the piles' 2 m well behind; within
+  // 2.5 m east or west of the track) that lie within 5 cm of its face.
+  const auto on_face = [&](const NavTrack& nav) {
+    const std::vector<Scan> scans = formScans(run.log, nav, defaultSonarToBody(), MapperOptions{});
+    std::size_t near = 0, on = 0;
+    for (const Scan& scan : scans) {
+      for (const ScanPoint& point : scan.points) {
+        const Eigen::Vector2d ned = scan.dead_reckoning * point.xy_m;
+        if (ned.x() < 2.9 || std::abs(ned.y() - 1.0) > 2.5) continue;
+        ++near;
+        if (std::abs(ned.x() - 3.5) < 0.05) ++on;
+      }
+    }
+    EXPECT_GT(near, 10U);
+    return static_cast<double>(on) / static_cast<double>(std::max<std::size_t>(near, 1));
+  };
+  // With the vehicle believed still at its mid-turn pose the wall smears over the 1.7 m it closed.
+  NavTrack still;
+  for (const NavSample& fix : run.nav) {
+    NavSample held = fix;
+    held.position_ned_m = run.nav[run.nav.size() / 2].position_ned_m;
+    still.push_back(held);
+  }
+  EXPECT_GT(on_face(run.nav), 0.7);
+  EXPECT_LT(on_face(still), 0.3);
+}
+
+TEST(slamLocalizer, WithoutNavigationAStaticLogStaysPut) {
+  const SonarPreset preset = sonarPreset("micron");
+  MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  options.turns = 6;
+  const Scene scene = builtinScene("tank", preset.head.range_m, preset.head.vertical_beam_width_rad);
+  const MsisSimulation run = simulateMsis(scene, options);
+  const SlamResult slam = localize(run.log, NavTrack{}, defaultSonarToBody(), MapperOptions{});
+  ASSERT_FALSE(slam.trajectory.empty());
+  for (const NavSample& fix : slam.trajectory) {
+    EXPECT_LT(fix.position_ned_m.norm(), 0.03);
+    EXPECT_LT(std::abs(fix.yaw_rad), 0.5 * kDeg);
+  }
+}
+
+}  // namespace
+}  // namespace sonarmap
