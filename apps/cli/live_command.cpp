@@ -26,6 +26,8 @@
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/slam/online_slam.hpp"
+#include "slam_outputs.hpp"
 
 namespace sonarmap::cli {
 namespace {
@@ -54,7 +56,13 @@ class LiveMapping {
   LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, Clock::time_point start)
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
-    if (args.map.nav_csv.empty() && args.nav_stream.empty()) {
+    const bool navigation = !args.map.nav_csv.empty() || !args.nav_stream.empty();
+    if (args.map.slam) {
+      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, SlamOptions{}, integration);
+      if (!args.map.nav_csv.empty()) {
+        for (const NavSample& fix : readNavCsv(args.map.nav_csv)) slam_->addNavFix(fix);
+      }
+    } else if (args.map.nav_csv.empty() && args.nav_stream.empty()) {
       mapper_ = std::make_unique<OnlineMapper>(options, integration);
     } else if (args.map.nav_csv.empty()) {  // the fixes arrive on their own stream
       mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
@@ -69,14 +77,22 @@ class LiveMapping {
   void add(std::vector<Beam> beams, double arrival_s) {
     for (Beam& beam : beams) {
       beam.time_s = arrival_s;  // the raw protocols carry no clock: the arrival is the beam's time
-      arrivals_.push_back({arrival_s, mapper_->sweepsIntegrated() == 0});
-      mapper_->addBeam(std::move(beam));
+      arrivals_.push_back({arrival_s, sweepsIntegrated() == 0});
+      if (slam_) {
+        slam_->addBeam(std::move(beam));
+      } else {
+        mapper_->addBeam(std::move(beam));
+      }
       ++beams_;
       collect();
     }
   }
   void finish() {
-    mapper_->finish();
+    if (slam_) {
+      slam_->finish();
+    } else {
+      mapper_->finish();
+    }
     collect();
   }
 
@@ -86,12 +102,21 @@ class LiveMapping {
     for (NavSample& fix : fixes) {
       if (!nav_offset_s_) nav_offset_s_ = arrival_s - fix.time_s;
       fix.time_s += *nav_offset_s_;
-      mapper_->addNavFix(fix);
+      if (slam_) {
+        slam_->addNavFix(fix);
+      } else {
+        mapper_->addNavFix(fix);
+      }
       collect();
     }
   }
 
-  OnlineMapper& mapper() { return *mapper_; }
+  /// The mapper of the current map (with --slam: rebuilt when a loop closes; feeding thread only).
+  OnlineMapper& mapper() { return slam_ ? slam_->mapper() : *mapper_; }
+  /// Safe from any thread (the periodic writer's).
+  OcTree16 mapSnapshot() const { return slam_ ? slam_->mapSnapshot() : mapper_->mapSnapshot(); }
+  std::size_t sweepsIntegrated() const { return slam_ ? slam_->sweepsIntegrated() : mapper_->sweepsIntegrated(); }
+  const OnlineSlam* slam() const { return slam_.get(); }
   std::size_t beams() const { return beams_; }
   /// Latencies (s) of the beams integrated since the last call, and of the whole run.
   std::vector<double> takeRecentLatencies() { return std::exchange(recent_, {}); }
@@ -102,7 +127,7 @@ class LiveMapping {
  private:
   /// The beams integrated since the last call: the oldest arrivals (the mapper keeps beam order).
   void collect() {
-    const std::size_t pending = mapper_->beamsPending();
+    const std::size_t pending = slam_ ? slam_->beamsPending() : mapper_->beamsPending();
     if (arrivals_.size() <= pending) return;
     const double now_s = secondsSince(start_);
     while (arrivals_.size() > pending) {
@@ -115,6 +140,7 @@ class LiveMapping {
 
   Clock::time_point start_;
   std::unique_ptr<OnlineMapper> mapper_;
+  std::unique_ptr<OnlineSlam> slam_;  ///< with --slam, instead of mapper_
   struct Arrival {
     double arrival_s = 0.0;
     bool calibrating = false;  ///< arrived before the first sweep was integrated
@@ -137,7 +163,7 @@ void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double ela
   std::fprintf(stderr,
                "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
                "latency median %.1f ms",
-               elapsed_s, decoder.bytesFed(), live.beams(), rate_per_s, decoder.skippedItems(), mapper.sweepsIntegrated(),
+               elapsed_s, decoder.bytesFed(), live.beams(), rate_per_s, decoder.skippedItems(), live.sweepsIntegrated(),
                mapper.mapper().map().counts().nodes, 1000.0 * percentile(latencies, 0.5));
   if (whole_run) {
     std::fprintf(stderr, ", 99th percentile %.1f ms (from read to map, after the first sweep; its beams waited %.0f ms)",
@@ -150,7 +176,7 @@ void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double ela
 /// on its own thread, so that writing a large map never holds up the beams.
 class PeriodicWriter {
  public:
-  PeriodicWriter(const OnlineMapper& mapper, std::string path, double every_s)
+  PeriodicWriter(const LiveMapping& mapper, std::string path, double every_s)
       : thread_([this, &mapper, path = std::move(path), every_s](std::stop_token stop) {
           std::mutex mutex;
           std::unique_lock lock(mutex);
@@ -181,7 +207,7 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: reading %s\n", source.description().c_str());
   WireStreamDecoder decoder(format, {}, args.map.input);
 
-  std::optional<PeriodicWriter> writer(std::in_place, live.mapper(), args.map.output_bt, args.write_every_s);
+  std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.write_every_s);
   std::array<std::uint8_t, 65536> buffer{};
   double last_status_s = 0.0;
   double last_byte_s = 0.0;
@@ -234,6 +260,9 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   live.finish();
   const double seconds = secondsSince(start);
   if (!args.map.quiet) printStatus(live, decoder, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9), true);
+  const NavTrack trajectory = live.slam() ? live.slam()->trajectory() : NavTrack{};
+  const std::optional<SlamReport> slam_report =
+      live.slam() ? std::optional<SlamReport>(live.slam()->localizer().report()) : std::nullopt;
   MappedLog run{std::move(live.mapper()).release(), seconds};
   if (const std::size_t changes = run.mapper.stats().resolution_changes; changes > 0) {
     run.resolution_note = " (auto: coarsened " + std::to_string(changes) + (changes == 1 ? " time" : " times") +
@@ -241,11 +270,17 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   }
   run.mapper.stats().beams_skipped = decoder.skippedItems();
   writeMapFile(run.mapper.map(), args.map.output_bt);
+  if (!args.map.trajectory_out.empty()) {
+    FileTransaction outputs;
+    stageTrajectory(outputs, args.map.trajectory_out, trajectory);
+    outputs.commit();
+  }
   const std::vector<std::string> warnings =
       mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
-  printMapSummary(run, args.map.output_bt, /*with_nav=*/!args.map.nav_csv.empty() || !args.nav_stream.empty(),
-                  warnings.size());
+  const bool with_nav = !args.map.nav_csv.empty() || !args.nav_stream.empty();
+  printMapSummary(run, args.map.output_bt, with_nav || args.map.slam, warnings.size());
+  if (slam_report) printSlamSummary(*slam_report, with_nav);
 }
 
 }  // namespace
@@ -283,6 +318,11 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
                   "for `map`")
       ->delimiter(',')
       ->expected(6);
+  cmd->add_flag("--slam", args.map.slam,
+                "Correct the navigation by scan matching as sweeps complete (as `map --slam`); when a loop closes the "
+                "map is rebuilt with the corrected trajectory, so each written map is the current best");
+  cmd->add_option("--trajectory", args.map.trajectory_out,
+                  "With --slam: write the corrected trajectory at the end (navigation CSV, or TUM for .tum/.txt)");
   struct Checked {
     MapperOptions options;
     Eigen::Isometry3d sonar_to_body;
@@ -294,9 +334,10 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     }
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
-    if (!args.map.mounting.empty() && args.map.nav_csv.empty() && args.nav_stream.empty()) {
-      throw ValueError("--mounting needs --nav or --nav-stream");
+    if (!args.map.mounting.empty() && args.map.nav_csv.empty() && args.nav_stream.empty() && !args.map.slam) {
+      throw ValueError("--mounting needs --nav, --nav-stream or --slam");
     }
+    if (!args.map.trajectory_out.empty() && !args.map.slam) throw ValueError("live --trajectory needs --slam");
     checked->options = toMapperOptions(args.map);
     checked->sonar_to_body = toSonarToBody(args.map.mounting);
   };

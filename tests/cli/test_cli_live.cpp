@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sonarmap/nav/navigation.hpp"
+
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -253,6 +255,27 @@ TEST_F(CliLive, StandardInputGivesTheBatchMapByteForByte) {
   EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
   EXPECT_NE(run.err.find("sonarmap: live: reading standard input"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("latency median"), std::string::npos) << run.err;  // the final status line
+}
+
+// --slam without navigation on a static head: the scans say the vehicle stayed put, the map is
+// written, and so is the trajectory.
+TEST_F(CliLive, SlamOnAStaticHeadKeepsItPutAndWritesTheTrajectory) {
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);
+  Names args = liveArgs("-");
+  args.insert(args.end(), {"--slam", "--trajectory", (out_ / "trajectory.csv").string()});
+  Child child(args, root_, pipe_fds[0]);
+  ::close(pipe_fds[0]);
+  writeAll(pipe_fds[1], tankCapture(), 1000);
+  ::close(pipe_fds[1]);
+  const ProgramRun run = child.wait();
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_EQ(linesOf(run.out).size(), 2u) << run.out;  // the map's summary, then the localization's
+  EXPECT_EQ(linesOf(run.out)[1].rfind("slam: 4 scans", 0), 0u) << run.out;
+  EXPECT_GT(fs::file_size(out_ / "live.bt"), 1000u);
+  const NavTrack trajectory = readNavCsv((out_ / "trajectory.csv").string());
+  ASSERT_FALSE(trajectory.empty());
+  for (const NavSample& fix : trajectory) EXPECT_LT(fix.position_ned_m.norm(), 0.05);
 }
 
 TEST_F(CliLive, APseudoTerminalIsReadAsASerialDevice) {

@@ -1,0 +1,84 @@
+#pragma once
+/// @file online_slam.hpp
+/// Live mapping with localization (`sonarmap live --slam`): beams and dead-reckoning fixes arrive
+/// one at a time; each completed sweep becomes a scan (scan.hpp) for the Localizer
+/// (localizer.hpp); new beams are mapped at once (OnlineMapper) with the dead reckoning corrected
+/// by the latest scan's correction; when a loop closure moves the past poses, the map is rebuilt
+/// from every beam so far with the corrected trajectory (the octree maps a Micron turn in about a
+/// millisecond), so the map is always the current best. After finish() the map and trajectory are
+/// those of the batch path (mapSonarLogWithSlam) on the same beams and fixes.
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <shared_mutex>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/mapping/online_mapper.hpp"
+#include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/sonar/sweeps.hpp"
+
+namespace sonarmap {
+
+class OnlineSlam {
+ public:
+  /// @param navigation  whether dead-reckoning fixes will be given (addNavFix); without, the
+  ///        vehicle is believed still and its motion comes from the scans alone (localize).
+  /// @throws ValueError for invalid options or mounting.
+  OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, bool navigation,
+             const SlamOptions& slam = {}, OnlineIntegration integration = OnlineIntegration::kBeam);
+
+  /// The next dead-reckoning fix (NED, on the beams' clock), strictly after the previous one.
+  /// @throws ValueError for a fix that is not finite or not after the previous one, or without
+  ///         navigation.
+  void addNavFix(const NavSample& fix);
+  /// The next beam in recording order; may complete a sweep (a scan for the localizer, and a map
+  /// rebuild when it closes a loop).
+  /// @throws ValueError as OnlineMapper::addBeam, or after finish().
+  void addBeam(Beam beam);
+  /// The end of the stream: the last sweep's scan, the final optimisation, and the map rebuilt
+  /// with the final trajectory. Idempotent.
+  void finish();
+
+  /// A copy of the current map; safe from any thread.
+  OcTree16 mapSnapshot() const;
+  /// Sweeps integrated into the current map; safe from any thread.
+  std::size_t sweepsIntegrated() const;
+  /// Beams received and not yet in the map (feeding thread only).
+  std::size_t beamsPending() const;
+  /// The current mapper (feeding thread only).
+  OnlineMapper& mapper() { return *mapper_; }
+  const Localizer& localizer() const { return localizer_; }
+  /// The trajectory the localizer currently believes (Localizer::correctedTrack of the fixes so
+  /// far, or of none).
+  NavTrack trajectory() const;
+  std::size_t rebuilds() const { return rebuilds_; }
+
+ private:
+  void closeGroup(std::size_t beams);
+  /// Maps every beam so far with the current trajectory into a new OnlineMapper and swaps it in.
+  void rebuild();
+  NavSample corrected(const NavSample& fix) const;
+
+  MapperOptions options_;
+  Eigen::Isometry3d sonar_to_body_;
+  bool navigation_ = true;
+  SlamOptions slam_;
+  OnlineIntegration integration_;
+  Localizer localizer_;
+  SonarLog beams_;        ///< every beam so far
+  NavTrack dead_reckoning_;
+  SweepSplitter splitter_;
+  SweepGrouper grouper_;
+  std::size_t grouped_ = 0;  ///< beams already in a scan's group
+  std::size_t accepted_loops_ = 0;
+  std::size_t rebuilds_ = 0;
+  bool finished_ = false;
+  Pose2 correction_;  ///< the latest scan's: optimised ∘ dead reckoning⁻¹
+  mutable std::shared_mutex swap_mutex_;  ///< exclusive while the mapper is swapped
+  std::unique_ptr<OnlineMapper> mapper_;
+};
+
+}  // namespace sonarmap

@@ -1,0 +1,53 @@
+// Live mapping with localization (slam/online_slam.hpp): fed beam by beam it ends with the batch
+// path's trajectory, and its map follows the corrections.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "slam_fixture.hpp"
+#include "sonarmap/slam/online_slam.hpp"
+#include "sonarmap/slam/slam_mapping.hpp"
+
+namespace sonarmap {
+namespace {
+
+TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
+  const MsisSimulation run = testing::loopMission("harbour", "micron", -0.5, 0.0, 16.0, 1.0, 0.25);
+  const NavTrack drift = testing::driftingTrack(run.nav, 0.03, 2.0 * std::numbers::pi / 180.0);
+  MapperOptions options;
+  options.resolution_m = 0.05;
+  const SlamMapping batch = mapSonarLogWithSlam(run.log, drift, defaultSonarToBody(), options);
+
+  OnlineSlam live(options, defaultSonarToBody(), true, SlamOptions{}, OnlineIntegration::kSweep);
+  std::size_t next_fix = 0;
+  for (const Beam& beam : run.log.beams) {
+    while (next_fix < drift.size() && drift[next_fix].time_s <= beam.time_s) live.addNavFix(drift[next_fix++]);
+    live.addBeam(beam);
+  }
+  while (next_fix < drift.size()) live.addNavFix(drift[next_fix++]);
+  live.finish();
+  EXPECT_GT(live.rebuilds(), 1U);  // loops closed while running, and the final map
+  const NavTrack trajectory = live.trajectory();
+  ASSERT_EQ(trajectory.size(), batch.slam.trajectory.size());
+  for (std::size_t i = 0; i < trajectory.size(); ++i) {
+    ASSERT_NEAR(trajectory[i].position_ned_m.x(), batch.slam.trajectory[i].position_ned_m.x(), 1e-9);
+    ASSERT_NEAR(trajectory[i].position_ned_m.y(), batch.slam.trajectory[i].position_ned_m.y(), 1e-9);
+  }
+  const OcTree16 map = live.mapSnapshot();
+  EXPECT_EQ(map.counts().leaves, batch.mapper.map().counts().leaves);
+}
+
+TEST(slamOnline, RefusesFixesOutOfOrderAndBeamsAfterTheEnd) {
+  OnlineSlam live(MapperOptions{}, defaultSonarToBody(), true);
+  NavSample fix;
+  fix.time_s = 1.0;
+  live.addNavFix(fix);
+  EXPECT_THROW(live.addNavFix(fix), ValueError);
+  live.finish();
+  EXPECT_THROW(live.addBeam(Beam{}), ValueError);
+  OnlineSlam without(MapperOptions{}, defaultSonarToBody(), false);
+  EXPECT_THROW(without.addNavFix(fix), ValueError);
+}
+
+}  // namespace
+}  // namespace sonarmap
