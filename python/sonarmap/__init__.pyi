@@ -74,6 +74,10 @@ class OccupancyMap:
     def resolution(self) -> float: ...
     @property
     def stats(self) -> Optional[MappingStats]: ...
+    @property
+    def trajectory(self) -> Optional[Float64Array]: ...
+    @property
+    def slam(self) -> Optional[dict[str, Any]]: ...
     def insert_point_cloud(
         self,
         points: Float64Array,
@@ -178,6 +182,7 @@ def map_sonar_log(
     nav: Union[None, PathLike, Float64Array] = None,
     mounting: Optional[Sequence[float]] = None,
     progress: Optional[Callable[[int, int], None]] = None,
+    slam: bool = False,
     *,
     resolution: _NumberOrAuto = ...,
     detector: str = ...,

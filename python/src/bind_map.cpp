@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "navigation_arrays.hpp"
 #include "numpy_checks.hpp"
 #include "sonarmap/algorithms/cast_ray.hpp"
 #include "sonarmap/algorithms/point_cloud_insertion.hpp"
@@ -135,6 +136,38 @@ cannot be written (an existing file is then left untouched).)doc")
       .def_property_readonly(
           "stats", [](const OccupancyMap& map) { return map.stats; },
           "The mapper's counts (sonarmap.MappingStats) for a map made by map_sonar_log or OnlineMapper; None otherwise.")
+      .def_property_readonly(
+          "trajectory",
+          [](const OccupancyMap& map) -> py::object {
+            if (!map.trajectory) return py::none();
+            return navArray(*map.trajectory);
+          },
+          "map_sonar_log(slam=True): the corrected trajectory the map was built with, an (N, 7) float64 array "
+          "[time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED metres, radians; one row per dead-reckoning "
+          "fix, or three per scan without nav); None otherwise.")
+      .def_property_readonly(
+          "slam",
+          [](const OccupancyMap& map) -> py::object {
+            if (!map.slam) return py::none();
+            py::dict report;
+            report["scans"] = map.slam->scans;
+            report["scans_with_points"] = map.slam->scans_with_points;
+            report["matches_accepted"] = map.slam->matches_accepted;
+            report["matches_refused"] = map.slam->matches_refused;
+            py::list loops;
+            for (const LoopClosure& loop : map.slam->loop_closures) {
+              py::dict entry;
+              entry["from_scan"] = loop.from;
+              entry["to_scan"] = loop.to;
+              entry["accepted"] = loop.accepted;
+              entry["reason"] = loop.reason;
+              loops.append(entry);
+            }
+            report["loop_closures"] = loops;
+            return report;
+          },
+          "map_sonar_log(slam=True): what the localization did, a dict (scans, scans_with_points, matches_accepted, "
+          "matches_refused, loop_closures: a list of dicts from_scan, to_scan, accepted, reason); None otherwise.")
       .def(
           "insert_point_cloud",
           [](OccupancyMap& map, const py::object& points, const py::object& origin, double max_range, bool discretize,
@@ -299,7 +332,7 @@ origin outside the map.)doc")
       .def("memory_bytes_allocated", [](const OccupancyMap& map) { return map.tree.memoryBytesAllocated(); },
            "Bytes allocated by the tree, including capacity kept for growth.")
       .def("is_empty", [](const OccupancyMap& map) { return map.tree.empty(); }, "True when nothing is known.")
-      .def("copy", [](const OccupancyMap& map) { return OccupancyMap{map.tree, map.stats}; }, "A deep copy.")
+      .def("copy", [](const OccupancyMap& map) { return OccupancyMap(map); }, "A deep copy.")
       .def("__repr__", &repr);
 }
 

@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_arrays.hpp"
 #include "numpy_checks.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -153,7 +154,7 @@ void warn(const std::vector<std::string>& lines) {
 }  // namespace
 
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
-                    const py::object& progress, const py::kwargs& kwargs) {
+                    const py::object& progress, bool slam, const py::kwargs& kwargs) {
   const MappingArguments args = mappingArguments(kwargs, {"format"});
   NominalBeam beam = log.beam;
   if (kwargs.contains("format") && !kwargs["format"].is_none()) {
@@ -161,7 +162,9 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
     if (format != "auto") beam = nominalBeam(parseLogFormat(format));
   }
   const MapperOptions options = withSonarBeam(toMapperOptions(args), args, beam);
-  if (!mounting.is_none() && nav.is_none()) throwValueError("mounting needs nav (the sonar's mounting on a moving vehicle)");
+  if (!mounting.is_none() && nav.is_none() && !slam) {
+    throwValueError("mounting needs nav or slam (the sonar's mounting on a moving vehicle)");
+  }
   std::vector<double> mounting_values;
   if (!mounting.is_none()) mounting_values = mounting.cast<std::vector<double>>();
   const Eigen::Isometry3d sonar_to_body = sonarToBodyOfMounting(mounting_values);
@@ -176,13 +179,25 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
     };
   }
   std::optional<SonarMapper> mapper;
+  std::optional<SlamResult> localized;
   {
     py::gil_scoped_release release;
-    mapper.emplace(track ? mapSonarLog(log.log, *track, sonar_to_body, options, callback)
-                         : mapSonarLog(log.log, options, callback));
+    if (slam) {
+      SlamMapping mapped = mapSonarLogWithSlam(log.log, track ? *track : NavTrack{}, sonar_to_body, options, SlamOptions{}, callback);
+      mapper.emplace(std::move(mapped.mapper));
+      localized = std::move(mapped.slam);
+    } else {
+      mapper.emplace(track ? mapSonarLog(log.log, *track, sonar_to_body, options, callback)
+                           : mapSonarLog(log.log, options, callback));
+    }
   }
   warn(mappingWarnings(mapper->stats(), mapper->options(), mapper->map().resolution_m()));
-  return OccupancyMap{std::move(mapper->map()), mapper->stats()};
+  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt};
+  if (localized) {
+    map.trajectory = std::move(localized->trajectory);
+    map.slam = std::move(localized->report);
+  }
+  return map;
 }
 
 void bindMapping(py::module_& m) {
@@ -205,7 +220,7 @@ void bindMapping(py::module_& m) {
       .def("__repr__", [](const MappingStats& s) { return "MappingStats(" + py::repr(statsDict(s)).cast<std::string>() + ")"; });
 
   m.def("map_sonar_log", &mapLog, py::arg("log"), py::arg("nav") = py::none(), py::arg("mounting") = py::none(),
-        py::arg("progress") = py::none(),
+        py::arg("progress") = py::none(), py::arg("slam") = false,
         R"doc(Maps every sweep of ``log`` into an occupancy octree, exactly as ``sonarmap map`` does (the same
 library call, the same option translation): each beam's first obstacle is detected per sweep and
 its wedge (planar model) or cone (volume=True) updated free up to it, the obstacle occupied.
@@ -214,7 +229,10 @@ log: sonarmap.SonarLog. nav: None (the sonar static at the map origin), the path
 CSV, or an (N, 7) float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad]
 (NED metres, body FRD Z-Y-X radians, on the beams' clock; the CLI's --nav). mounting: with nav,
 (x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting;
-default upright and aligned). progress: callable(sweeps_done, sweeps_total) or None.
+default upright and aligned). progress: callable(sweeps_done, sweeps_total) or None. slam: correct
+the navigation by scan matching first and map with the corrected trajectory (the CLI's --slam; without
+nav the vehicle is believed still and its motion comes from the scans); the map's ``trajectory`` and
+``slam`` then hold the corrected trajectory and what the localization did.
 Keyword options (the CLI's flags with '-' as '_', in the CLI's units; None or "auto" where the CLI
 takes auto): resolution (m), detector, false_alarm, min_contrast (dB), min_echo_length (m),
 leading_edge (dB), min_range (m), max_near_field (m), self_reflection (m), intensity_span (dB), smoothing,

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike (pathlib.Path)
 
+#include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
@@ -17,6 +18,8 @@ namespace py = pybind11;
 struct OccupancyMap {
   OcTree16 tree;
   std::optional<MappingStats> stats;
+  std::optional<NavTrack> trajectory;  ///< map_sonar_log(slam=True): the corrected trajectory
+  std::optional<SlamReport> slam;      ///< ... and what the localization did
 };
 
 void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses

@@ -18,8 +18,9 @@ py::array_t<double> navArray(const NavTrack& track);
 ///         for an unreadable CSV. Time order is checked by the library where the track is used.
 NavTrack navTrackOf(const py::object& nav);
 
-/// map_sonar_log (bind_mapping.cpp), also used by the online mapper's tests of equality.
+/// map_sonar_log (bind_mapping.cpp), also used by the online mapper's tests of equality; `slam`:
+/// localize first (slam/slam_mapping.hpp) and keep the trajectory and report in the map.
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
-                    const py::object& progress, const py::kwargs& kwargs);
+                    const py::object& progress, bool slam, const py::kwargs& kwargs);
 
 }  // namespace sonarmap::python

@@ -74,7 +74,7 @@ std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t la
   return points;
 }
 
-void Localizer::addScan(Scan scan) {
+void Localizer::addScan(SonarScan scan) {
   const std::size_t k = scans_.size();
   ++report_.scans;
   if (scan.points.size() >= options_.matching.min_pairs) ++report_.scans_with_points;
@@ -86,7 +86,7 @@ void Localizer::addScan(Scan scan) {
     scans_.push_back(std::move(scan));
     return;
   }
-  const Scan& previous = scans_.back();
+  const SonarScan& previous = scans_.back();
   const Pose2 motion = previous.dead_reckoning.between(scan.dead_reckoning);
   const Eigen::Matrix3d covariance =
       options_.forming.odometry.covariance(motion, scan.time_s - previous.time_s, navigation_known_);
@@ -124,7 +124,7 @@ void Localizer::matchToSubmap(std::size_t k) {
 
 void Localizer::closeLoop(std::size_t k) {
   std::vector<double> reaches;
-  for (const Scan& scan : scans_) reaches.push_back(scan.reach_m);
+  for (const SonarScan& scan : scans_) reaches.push_back(scan.reach_m);
   const double reach_m = median(reaches);
   const double radius_m = options_.loop_search_radius_m > 0.0 ? options_.loop_search_radius_m : reach_m / 2.0;
   const double min_travel_m = options_.loop_min_travel_m > 0.0 ? options_.loop_min_travel_m : 2.0 * reach_m;
@@ -243,14 +243,14 @@ SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const E
     for (std::size_t i = 1; i < dead_reckoning.size(); ++i) periods.push_back(dead_reckoning[i].time_s - dead_reckoning[i - 1].time_s);
     tuned.forming.odometry.nav_period_s = std::max(median(periods), 1e-3);
   }
-  std::vector<Scan> scans = formScans(log, dead_reckoning, sonar_to_body, options, tuned.forming);
+  std::vector<SonarScan> scans = formScans(log, dead_reckoning, sonar_to_body, options, tuned.forming);
   Localizer localizer(tuned, !dead_reckoning.empty());
-  for (Scan& scan : scans) localizer.addScan(std::move(scan));
+  for (SonarScan& scan : scans) localizer.addScan(std::move(scan));
   localizer.optimize();
   SlamResult result;
   result.trajectory = localizer.correctedTrack(dead_reckoning);
   result.scan_poses = localizer.graph().poses();
-  for (const Scan& scan : localizer.scans()) result.scan_times_s.push_back(scan.time_s);
+  for (const SonarScan& scan : localizer.scans()) result.scan_times_s.push_back(scan.time_s);
   result.report = localizer.report();
   return result;
 }

@@ -71,8 +71,8 @@ void OnlineSlam::closeGroup(std::size_t beams) {
   group.beams.assign(beams_.beams.begin() + static_cast<std::ptrdiff_t>(grouped_),
                      beams_.beams.begin() + static_cast<std::ptrdiff_t>(grouped_ + beams));
   const NavTrack none;
-  std::vector<Scan> scans = formScans(group, navigation_ ? dead_reckoning_ : none, sonar_to_body_, options_, slam_.forming);
-  for (Scan& scan : scans) {
+  std::vector<SonarScan> scans = formScans(group, navigation_ ? dead_reckoning_ : none, sonar_to_body_, options_, slam_.forming);
+  for (SonarScan& scan : scans) {
     scan.first_beam += grouped_;
     localizer_.addScan(std::move(scan));
   }

@@ -81,7 +81,7 @@ Pose2 planarPose(const Eigen::Isometry3d& body_to_ned) {
   return {body_to_ned.translation().x(), body_to_ned.translation().y(), std::atan2(r(1, 0), r(0, 0))};
 }
 
-std::vector<Scan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
+std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
                             const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
                             const ScanFormingOptions& forming) {
   forming.odometry.validate();
@@ -96,11 +96,11 @@ std::vector<Scan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
   const SonarMapper detector(resolved);
   const auto min_beams = static_cast<std::size_t>(std::max(1, resolved.detector.background.min_beams));
 
-  std::vector<Scan> scans;
+  std::vector<SonarScan> scans;
   for (const SweepRange& sweep : groupSweeps(log.beams, min_beams)) {
     PolarImage polar = makePolarImage(log.beams, sweep.first, sweep.last_exclusive);
     const SweepDetection detection = detector.detectSweep(polar);
-    Scan scan;
+    SonarScan scan;
     scan.first_beam = sweep.first;
     scan.beams = sweep.size();
     scan.start_time_s = log.beams[sweep.first].time_s;

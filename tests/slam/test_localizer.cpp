@@ -64,10 +64,10 @@ TEST(slamLocalizer, IsDeterministic) {
 
 TEST(slamLocalizer, RefusesAWrongLoopClosureAndKeepsTheGraph) {
   const HarbourLoop& loop = harbourLoop();
-  std::vector<Scan> scans = formScans(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  std::vector<SonarScan> scans = formScans(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
   ASSERT_GT(scans.size(), 10U);
   Localizer localizer(SlamOptions{});
-  for (Scan& scan : scans) localizer.addScan(std::move(scan));
+  for (SonarScan& scan : scans) localizer.addScan(std::move(scan));
   const std::vector<Pose2> before = localizer.graph().poses();
   // The last scan claimed 3 m east of the first (one pile spacing and a half along the quay),
   // very confidently: the two are within centimetres of each other in truth.
@@ -98,9 +98,9 @@ TEST(slamScanForming, MotionCompensationPutsAWallBackOnOneLine) {
   // Share of the points placed near the quay (north of 2.9 m, the piles' 2 m well behind; within
   // 2.5 m east or west of the track) that lie within 5 cm of its face.
   const auto on_face = [&](const NavTrack& nav) {
-    const std::vector<Scan> scans = formScans(run.log, nav, defaultSonarToBody(), MapperOptions{});
+    const std::vector<SonarScan> scans = formScans(run.log, nav, defaultSonarToBody(), MapperOptions{});
     std::size_t near = 0, on = 0;
-    for (const Scan& scan : scans) {
+    for (const SonarScan& scan : scans) {
       for (const ScanPoint& point : scan.points) {
         const Eigen::Vector2d ned = scan.dead_reckoning * point.xy_m;
         if (ned.x() < 2.9 || std::abs(ned.y() - 1.0) > 2.5) continue;

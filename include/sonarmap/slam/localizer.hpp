@@ -80,7 +80,7 @@ class Localizer {
   /// Adds the next scan (scans in time order): an odometry edge from the scan before, a match
   /// against the submap of the scans before, a loop closure when one is found and passes the gates
   /// (then the graph is optimised).
-  void addScan(Scan scan);
+  void addScan(SonarScan scan);
   /// Offers a loop closure found elsewhere (or by closeLoop's match): scan `to` measured at
   /// `measurement` in scan `from`'s frame with `information` (in from's frame). It passes the same
   /// gates as the matcher's (against the estimate with dead reckoning's drift along the path, and
@@ -91,7 +91,7 @@ class Localizer {
   /// Optimises the graph with every edge (call once the last scan is in).
   void optimize();
 
-  const std::vector<Scan>& scans() const { return scans_; }
+  const std::vector<SonarScan>& scans() const { return scans_; }
   const PoseGraph& graph() const { return graph_; }
   const SlamReport& report() const { return report_; }
 
@@ -115,7 +115,7 @@ class Localizer {
 
   SlamOptions options_;
   bool navigation_known_ = true;
-  std::vector<Scan> scans_;
+  std::vector<SonarScan> scans_;
   PoseGraph graph_;
   std::vector<Pose2> odometry_;                ///< dead-reckoning motion from scan k−1 to k (k ≥ 1)
   std::vector<Eigen::Matrix3d> odometry_cov_;  ///< its covariance

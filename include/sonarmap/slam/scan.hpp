@@ -63,7 +63,7 @@ struct ScanPoint {
 };
 
 /// The detections of one sweep, motion-compensated.
-struct Scan {
+struct SonarScan {
   double time_s = 0.0;            ///< reference time: the time of the sweep's middle beam
   Pose2 dead_reckoning;           ///< the body's dead-reckoning pose in NED at time_s
   double start_time_s = 0.0;      ///< first beam's time
@@ -93,7 +93,7 @@ struct ScanFormingOptions {
 /// are skipped. An empty `dead_reckoning`: the vehicle is believed still at the origin (every pose
 /// zero). Cost: the detection of every sweep (about the mapper's detection time).
 /// @throws ValueError for invalid options or an invalid navigation track (NavInterpolator).
-std::vector<Scan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
+std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
                             const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
                             const ScanFormingOptions& forming = {});
 
