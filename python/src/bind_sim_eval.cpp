@@ -245,7 +245,8 @@ laps times, speed 0 meaning its default speed; turns and heading are then ignore
 dvl_noise (m/s per axis and fix), dvl_scale_error (fraction), heading_bias_deg (degrees), gyro_walk
 (degrees per sqrt(s)): dead-reckoning errors; with any set, .dead_reckoning holds the drifting
 believed track (nav and truth_nav stay the truth; the beams do not change).
-Returns sonarmap.Simulation (log, nav, truth_nav, dead_reckoning, scene). ``simulate(...).log.write_csv(p)`` writes the file
+Returns sonarmap.Simulation (log, nav, truth_nav, dead_reckoning, scene).
+``simulate(...).log.write_csv(p)`` writes the file
 the CLI writes as beams.csv. Raises sonarmap.ValueError for a value out of range or an unknown
 scene or preset; sonarmap.FileError for a bad scene file.)doc");
 

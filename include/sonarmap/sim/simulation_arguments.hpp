@@ -20,7 +20,7 @@ struct SimulationArguments {
   double sector_deg = 360.0;       ///< width of the scanned sector, degrees, in (0, 360]; 360: continuous turns
   double sector_center_deg = 0.0;  ///< bearing of the sector's centre, degrees counter-clockwise from the sonar's x
   std::uint64_t seed = 1;          ///< seed of the speckle and noise
-  std::size_t turns = 28;          ///< full turns of the head (passes across a sector), ≥ 1
+  std::size_t turns = 28;          ///< full turns of the head (passes across a sector), ≥ 1; ignored with a mission
   /// Vehicle speed over ground, metres per second: along the heading without a mission; along the
   /// mission's path with one, where 0 means defaultMissionSpeed_mps(the head's range) (missions.hpp).
   double speed_mps = 0.0;
