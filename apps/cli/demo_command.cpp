@@ -190,8 +190,8 @@ Command addDemoCommand(CLI::App& app, DemoArgs& args) {
                   "Output folder (created when missing): the static tank (tank.bt, tank.html, tank.png, tank_polar.png, "
                   "tank_cartesian.png, beams.csv, scene.txt), and in 3d-mission/ the Micron flying a loop over the "
                   "quay3d scene with its sonar tilted 25 degrees down, mapped with --3d at 5 cm (map.bt, "
-                  "map.html, map_top.png, map_side.png, beams.csv, nav.csv, scene.txt); it prints how to score that map "
-                  "with sonarmap eval")
+                  "map.html, map_top.png, map_side.png, beams.csv, nav.csv, truth_nav.csv, scene.txt); it prints how "
+                  "to score that map with sonarmap eval")
       ->required();
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};

@@ -11,6 +11,7 @@
 #include "convert_command.hpp"
 #include "demo_command.hpp"
 #include "eval_command.hpp"
+#include "eval_trajectory_command.hpp"
 #include "info_command.hpp"
 #include "live_command.hpp"
 #include "map_command.hpp"
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   sonarmap::cli::SimulateArgs simulate_args;
   sonarmap::cli::DemoArgs demo_args;
   sonarmap::cli::EvalArgs eval_args;
+  sonarmap::cli::EvalTrajectoryArgs eval_trajectory_args;
   sonarmap::cli::LiveArgs live_args;
   sonarmap::cli::ViewArgs view_args;
   sonarmap::cli::InfoArgs info_args;
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
                                                      sonarmap::cli::addSimulateCommand(app, simulate_args),
                                                      sonarmap::cli::addDemoCommand(app, demo_args),
                                                      sonarmap::cli::addEvalCommand(app, eval_args),
+                                                     sonarmap::cli::addEvalTrajectoryCommand(app, eval_trajectory_args),
                                                      sonarmap::cli::addViewCommand(app, view_args)};
   try {
     app.parse(argc, argv);

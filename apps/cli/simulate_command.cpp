@@ -12,6 +12,7 @@
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
 #include "sonarmap/sim/trajectory.hpp"
@@ -39,6 +40,7 @@ void checkScene(const std::string& scene) {
 
 void check(const SimulateArgs& args, MsisSimulationOptions& options) {
   checkScene(args.scene);
+  checkMissionScene(args, args.scene);
   if (fs::exists(args.output_dir) && !fs::is_directory(args.output_dir)) {
     throw ValueError("-o must name a folder, '" + args.output_dir + "' is a file");
   }
@@ -64,6 +66,21 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   std::printf("%s: %zu beams in %zu %s, %zu nav fixes, %zu scene primitives -> %s\n", args.sonar.c_str(),
               simulation.log.beams.size(), options.turns, turns, simulation.nav.size(),
               simulation.scene.primitives.size(), args.output_dir.c_str());
+  if (!args.mission.empty() && !simulation.nav.empty()) {
+    const MissionPlan plan = missionPlan(args.mission, head.range_m,
+                                         args.speed_mps > 0.0 ? args.speed_mps : defaultMissionSpeed_mps(head.range_m),
+                                         args.laps);
+    std::printf("mission %s: %zu lap(s), %.1f m in %.1f s\n", plan.name.c_str(), args.laps, plan.length_m,
+                plan.duration_s);
+  }
+  if (!simulation.dead_reckoning.empty()) {
+    const Eigen::Vector3d drift_m =
+        simulation.dead_reckoning.back().position_ned_m - simulation.nav.back().position_ned_m;
+    std::printf("nav.csv: dead reckoning, %.3f m from the truth at the end; truth_nav.csv: the true track\n",
+                drift_m.norm());
+  } else if (!simulation.nav.empty()) {
+    std::printf("nav.csv, truth_nav.csv: the true track\n");
+  }
 }
 
 /// The --sonar option's help: every preset with its one-line description.
@@ -80,14 +97,17 @@ void stageSimulation(FileTransaction& outputs, const std::string& dir, const Msi
   outputs.stage((folder / "scene.txt").string(), [&](std::ostream& out) { writeScene(out, run.scene); });
   outputs.stage((folder / "beams.csv").string(), [&](std::ostream& out) { writeBeamCsv(out, run.log); });
   if (!run.nav.empty()) {
-    outputs.stage((folder / "nav.csv").string(), [&](std::ostream& out) { writeNavCsv(out, run.nav); });
+    const NavTrack& believed = run.dead_reckoning.empty() ? run.nav : run.dead_reckoning;
+    outputs.stage((folder / "nav.csv").string(), [&](std::ostream& out) { writeNavCsv(out, believed); });
+    outputs.stage((folder / "truth_nav.csv").string(), [&](std::ostream& out) { writeNavCsv(out, run.nav); });
   }
 }
 
 Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Simulate a mechanically scanned sonar (default: the Tritech Micron) scanning a scene: DIR/beams.csv, "
-                  "DIR/nav.csv, DIR/scene.txt");
+                  "DIR/nav.csv (the navigation the vehicle believes), DIR/truth_nav.csv (the true track), "
+                  "DIR/scene.txt");
   cmd->add_option("scene", args.scene,
                   "Built-in scene (" + joined(builtinSceneNames(), " | ") +
                       "), sized for the sonar's range, or a scene file in metres (format: "
@@ -107,8 +127,30 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--turns", args.turns,
                   "Full 360-degree turns of the head (the Micron: 200 beams each), or passes across a sector")
       ->capture_default_str();
-  cmd->add_option("--speed", args.speed_mps, "Vehicle speed in m/s along --heading (0: static)")->capture_default_str();
-  cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north")
+  cmd->add_option("--speed", args.speed_mps,
+                  "Vehicle speed in m/s along --heading (0: static); with --mission along its path (0: the mission's "
+                  "default, range / 20 s up to 1.5 m/s)")
+      ->capture_default_str();
+  cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north (not with --mission)")
+      ->capture_default_str();
+  cmd->add_option("--mission", args.mission,
+                  "Fly a named mission in its scene, sized for the sonar's range (" + joined(missionNames(), " | ") +
+                      "; include/sonarmap/sim/missions.hpp); the head turns until the mission ends, --turns is "
+                      "ignored");
+  cmd->add_option("--laps", args.laps, "Times the mission is flown (loops again, lines back and forth)")
+      ->capture_default_str();
+  cmd->add_option("--dvl-noise", args.dvl_noise_mps,
+                  "Dead reckoning: sigma of the DVL's velocity noise per axis and nav fix, m/s; any dead-reckoning "
+                  "error makes nav.csv the drifting believed track (truth_nav.csv stays the truth)")
+      ->capture_default_str();
+  cmd->add_option("--dvl-scale-error", args.dvl_scale_error,
+                  "Dead reckoning: DVL scale error as a fraction (0.02: reads 2 % fast, 2 m along track per 100 m)")
+      ->capture_default_str();
+  cmd->add_option("--heading-bias", args.heading_bias_deg,
+                  "Dead reckoning: constant compass heading bias, degrees (1: 1.75 m across track per 100 m)")
+      ->capture_default_str();
+  cmd->add_option("--gyro-walk", args.gyro_walk_deg_per_sqrt_s,
+                  "Dead reckoning: heading random walk, degrees per square root of a second (deg/sqrt(s))")
       ->capture_default_str();
   cmd->add_option("--nav-rate", args.nav_rate_hz, "Navigation fixes per second in nav.csv; 0: no nav.csv")
       ->capture_default_str();

@@ -1,6 +1,7 @@
 #pragma once
 // `sonarmap simulate`: a simulated MSIS run (sim/msis_simulator.hpp) of a head preset
-// (sim/sonar_presets.hpp) written as a beam CSV, its navigation CSV and its ground-truth scene file.
+// (sim/sonar_presets.hpp) written as a beam CSV, its navigation CSVs (believed and true) and its
+// ground-truth scene file.
 
 #include <cstddef>
 #include <cstdint>
@@ -27,9 +28,11 @@ struct SimulateArgs : SimulationArguments {
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.
 Command addSimulateCommand(CLI::App& app, SimulateArgs& args);
 
-/// Stages the files of a simulated run in `outputs`: `dir`/beams.csv (beam CSV, docs/formats.md),
-/// `dir`/nav.csv (navigation CSV, only when `run.nav` is not empty) and `dir`/scene.txt
-/// (scene_file.hpp). @throws FileError when a file cannot be staged.
+/// Stages the files of a simulated run in `outputs`, in this order: `dir`/scene.txt
+/// (scene_file.hpp), `dir`/beams.csv (beam CSV, docs/formats.md), and when `run.nav` is not empty
+/// `dir`/nav.csv (navigation CSV: the dead-reckoning track the vehicle believes,
+/// run.dead_reckoning, when the run has one, else the true track) and `dir`/truth_nav.csv
+/// (navigation CSV of the true track, run.nav). @throws FileError when a file cannot be staged.
 void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run);
 
 }  // namespace sonarmap::cli

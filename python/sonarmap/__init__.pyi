@@ -267,6 +267,10 @@ class Simulation:
     @property
     def nav(self) -> Float64Array: ...
     @property
+    def truth_nav(self) -> Float64Array: ...
+    @property
+    def dead_reckoning(self) -> Float64Array: ...
+    @property
     def scene(self) -> Scene: ...
 
 class Mission:
@@ -304,7 +308,20 @@ def simulate(
     speed: float = 0.0,
     heading: float = 0.0,
     nav_rate: float = 10.0,
+    mission: str = "",
+    laps: int = 1,
+    dvl_noise: float = 0.0,
+    dvl_scale_error: float = 0.0,
+    heading_bias_deg: float = 0.0,
+    gyro_walk: float = 0.0,
 ) -> Simulation: ...
+def mission_plan_names() -> list[str]: ...
+def eval_trajectory(
+    estimate: Union[PathLike, Float64Array],
+    truth: Union[PathLike, Float64Array],
+    se3: bool = False,
+    segment_m: float = 10.0,
+) -> dict[str, Any]: ...
 def evaluate(
     map: OccupancyMap,
     scene: Union[str, Scene],

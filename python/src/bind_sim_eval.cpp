@@ -14,8 +14,11 @@
 #include "numpy_checks.hpp"
 #include "sonarmap/eval/ground_truth.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/eval/trajectory_error.hpp"
 #include "sonarmap/mapping/mapping_arguments.hpp"
+#include "sonarmap/nav/tum_trajectory.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
@@ -26,7 +29,8 @@ namespace {
 /// A simulated run as Python sees it.
 struct PySimulation {
   PySonarLog log;
-  NavTrack nav;
+  NavTrack nav;             ///< the true track
+  NavTrack dead_reckoning;  ///< the believed track; empty without dead-reckoning errors
   Scene scene;
 };
 
@@ -98,6 +102,14 @@ py::dict reportDict(const GroundTruthReport& r) {
   return d;
 }
 
+/// A track from an (N, 7) array, or a navigation CSV or TUM file's path (readTrajectory).
+NavTrack trajectoryArgument(const py::object& track) {
+  if (py::isinstance<py::str>(track) || py::hasattr(track, "__fspath__")) {
+    return readTrajectory(py::module_::import("os").attr("fspath")(track).cast<std::string>());
+  }
+  return navTrackOf(track);
+}
+
 Scene sceneArgument(const py::object& scene, const MsisHeadOptions& head) {
   if (py::isinstance<Scene>(scene)) return scene.cast<Scene>();
   if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__")) {
@@ -163,7 +175,14 @@ the names for an unknown one.)doc");
   py::class_<PySimulation>(m, "Simulation", "A simulated MSIS run: its log, navigation track and scene.")
       .def_readonly("log", &PySimulation::log, "sonarmap.SonarLog of the simulated beams (format \"simulated\").")
       .def_property_readonly("nav", [](const PySimulation& s) { return navArray(s.nav); },
-                             "float64 (N, 7) navigation fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED, FRD).")
+                             "float64 (N, 7) true navigation fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] "
+                             "(NED, FRD): the poses the beams were simulated from.")
+      .def_property_readonly("truth_nav", [](const PySimulation& s) { return navArray(s.nav); },
+                             "float64 (N, 7) the true track, as nav (the CLI's truth_nav.csv).")
+      .def_property_readonly(
+          "dead_reckoning", [](const PySimulation& s) { return navArray(s.dead_reckoning); },
+          "float64 (N, 7) the track a dead-reckoning navigation with the run's DVL and heading errors believes "
+          "(the CLI's nav.csv then), same times as nav; (0, 7) without dead-reckoning errors.")
       .def_readonly("scene", &PySimulation::scene, "sonarmap.Scene that was scanned (map frame).")
       .def("__repr__", [](const PySimulation& s) {
         return "Simulation(" + std::to_string(s.log.log.beams.size()) + " beams, " + std::to_string(s.nav.size()) +
@@ -174,8 +193,15 @@ the names for an unknown one.)doc");
   m.def(
       "simulate",
       [](const py::object& scene, const std::string& sonar, std::size_t turns, std::uint64_t seed, double sector,
-         double sector_center, double speed, double heading, double nav_rate) {
+         double sector_center, double speed, double heading, double nav_rate, const std::string& mission,
+         std::size_t laps, double dvl_noise, double dvl_scale_error, double heading_bias_deg, double gyro_walk) {
         SimulationArguments args;
+        args.mission = mission;
+        args.laps = laps;
+        args.dvl_noise_mps = dvl_noise;
+        args.dvl_scale_error = dvl_scale_error;
+        args.heading_bias_deg = heading_bias_deg;
+        args.gyro_walk_deg_per_sqrt_s = gyro_walk;
         args.sonar = sonar;
         args.turns = turns;
         args.seed = seed;
@@ -185,6 +211,7 @@ the names for an unknown one.)doc");
         args.heading_deg = heading;
         args.nav_rate_hz = nav_rate;
         const MsisSimulationOptions options = toSimulationOptions(args);
+        if (py::isinstance<py::str>(scene)) checkMissionScene(args, scene.cast<std::string>());
         const Scene ground_truth = sceneArgument(scene, options.head);
         PySimulation out;
         {
@@ -192,6 +219,7 @@ the names for an unknown one.)doc");
           MsisSimulation run = simulateMsis(ground_truth, options);
           out.log.log = std::move(run.log);
           out.nav = std::move(run.nav);
+          out.dead_reckoning = std::move(run.dead_reckoning);
           out.scene = std::move(run.scene);
         }
         out.log.format = "simulated";
@@ -202,6 +230,9 @@ the names for an unknown one.)doc");
       py::arg("seed") = defaults.seed, py::arg("sector") = defaults.sector_deg,
       py::arg("sector_center") = defaults.sector_center_deg, py::arg("speed") = defaults.speed_mps,
       py::arg("heading") = defaults.heading_deg, py::arg("nav_rate") = defaults.nav_rate_hz,
+      py::arg("mission") = defaults.mission, py::arg("laps") = defaults.laps,
+      py::arg("dvl_noise") = defaults.dvl_noise_mps, py::arg("dvl_scale_error") = defaults.dvl_scale_error,
+      py::arg("heading_bias_deg") = defaults.heading_bias_deg, py::arg("gyro_walk") = defaults.gyro_walk_deg_per_sqrt_s,
       R"doc(Simulates an MSIS scanning a scene, as ``sonarmap simulate`` (the same arguments, the same run).
 
 scene: a built-in scene name (built for the preset's range), a scene file path, or a sonarmap.Scene.
@@ -209,7 +240,13 @@ sonar: head preset (sonar_preset_names()). turns: full turns (or sector passes),
 speckle and noise (a seed always gives the same beams). sector: scanned width in degrees, (0, 360].
 sector_center: degrees, counter-clockwise from the sonar's x. speed: m/s along heading (degrees
 clockwise from north). nav_rate: fixes per second (0: none).
-Returns sonarmap.Simulation (log, nav, scene). ``simulate(...).log.write_csv(p)`` writes the file
+mission: a named mission (mission_plan_names(); scene must then be its built-in scene, by name) flown
+laps times, speed 0 meaning its default speed; turns and heading are then ignored.
+dvl_noise (m/s per axis and fix), dvl_scale_error (fraction), heading_bias_deg (degrees), gyro_walk
+(degrees per sqrt(s)): dead-reckoning errors; with any set, .dead_reckoning holds the drifting
+believed track (nav and truth_nav stay the truth; the beams do not change).
+Returns sonarmap.Simulation (log, nav, truth_nav, dead_reckoning, scene).
+``simulate(...).log.write_csv(p)`` writes the file
 the CLI writes as beams.csv. Raises sonarmap.ValueError for a value out of range or an unknown
 scene or preset; sonarmap.FileError for a bad scene file.)doc");
 
@@ -289,6 +326,44 @@ Map it with ``map_sonar_log(m.log, nav=m.nav, mounting=m.mounting, volume=True,
 beam_width=m.beam_width, vertical_aperture=m.vertical_aperture, resolution=...)`` and score the map
 with ``m.evaluate(map)``. Returns sonarmap.Mission. Raises sonarmap.ValueError for an unknown
 mission, preset or scene.)doc");
+
+  m.def("mission_plan_names", &missionNames,
+        "The named missions simulate(mission=...) flies (sim/missions.hpp): \"harbour-loop\", "
+        "\"harbour-lawnmower\", \"harbour-featureless\", \"hull-loop\".");
+  m.def(
+      "eval_trajectory",
+      [](const py::object& estimate, const py::object& truth, bool se3, double segment_m) {
+        const NavTrack estimated = trajectoryArgument(estimate), true_track = trajectoryArgument(truth);
+        TrajectoryErrorOptions options;
+        options.se3 = se3;
+        options.segment_m = segment_m;
+        TrajectoryError e;
+        {
+          py::gil_scoped_release release;
+          e = evaluateTrajectory(estimated, true_track, options);
+        }
+        py::dict d;
+        d["poses"] = e.poses;
+        d["distance_m"] = e.distance_m;
+        d["ate_rmse_m"] = e.ate_rmse_m;
+        d["ate_max_m"] = e.ate_max_m;
+        d["rpe_segments"] = e.rpe_segments;
+        d["rpe_rmse_m"] = e.rpe_rmse_m;
+        d["rpe_yaw_rmse_deg"] = e.rpe_yaw_rmse_deg;
+        d["final_drift_m"] = e.final_drift_m;
+        d["final_drift_pct"] = e.final_drift_pct;
+        return d;
+      },
+      py::arg("estimate"), py::arg("truth"), py::arg("se3") = false, py::arg("segment_m") = 10.0,
+      R"doc(Scores an estimated vehicle track against the true one, as ``sonarmap eval-trajectory``
+(eval/trajectory_error.hpp): ATE after a rigid alignment (SE(2) in the horizontal plane, or SE(3)
+with se3=True), RPE over segments of segment_m metres travelled, final drift (unaligned).
+
+estimate, truth: float64 (N, 7) arrays as Simulation.nav, or paths of a navigation CSV or a TUM
+trajectory. Returns a dict: poses, distance_m, ate_rmse_m, ate_max_m, rpe_segments, rpe_rmse_m,
+rpe_yaw_rmse_deg, final_drift_m, final_drift_pct (NaN where undefined). Raises sonarmap.ValueError
+for fewer than 3 estimate fixes within the truth's time span or a bad array; sonarmap.FileError for a
+bad file.)doc");
 
   m.def(
       "evaluate",

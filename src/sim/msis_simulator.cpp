@@ -139,6 +139,7 @@ void MsisSimulationOptions::validate() const {
   require(std::isfinite(nav_rate_hz) && nav_rate_hz >= 0.0, "MSIS simulation: nav_rate_hz must be ≥ 0");
   require(isRigid(sonar_to_body),
           "MSIS simulation: sonar_to_body must be a finite rigid transform (rotation + translation)");
+  dead_reckoning.validate();
 }
 
 MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options, const ProgressCallback& progress) {
@@ -170,6 +171,7 @@ MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& opt
     run.nav = sampleTrajectory(options.trajectory, run.log.beams.front().time_s, run.log.beams.back().time_s,
                                options.nav_rate_hz);
   }
+  if (options.dead_reckoning.any() && !run.nav.empty()) run.dead_reckoning = deadReckon(run.nav, options.dead_reckoning);
   return run;
 }
 

@@ -4,11 +4,14 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
 #include "sonarmap/sim/trajectory.hpp"
@@ -50,13 +53,49 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args) {
   options.turns = args.turns;
   options.seed = args.seed;
   options.nav_rate_hz = args.nav_rate_hz;
-  NavSample start;
-  start.yaw_rad = args.heading_deg * kRadPerDeg;
-  const Eigen::Vector3d velocity_ned_mps(args.speed_mps * std::cos(start.yaw_rad),
-                                         args.speed_mps * std::sin(start.yaw_rad), 0.0);
-  options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);
+  if (args.mission.empty()) {
+    if (args.laps != 1) throw ValueError("--laps needs --mission");
+    NavSample start;
+    start.yaw_rad = args.heading_deg * kRadPerDeg;
+    const Eigen::Vector3d velocity_ned_mps(args.speed_mps * std::cos(start.yaw_rad),
+                                           args.speed_mps * std::sin(start.yaw_rad), 0.0);
+    options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);
+  } else {
+    if (args.laps < 1) throw ValueError("--laps must be at least 1");
+    if (args.speed_mps < 0.0) throw ValueError("--speed must be >= 0 with --mission (0: the mission's default speed)");
+    const double range_m = options.head.range_m;
+    const double speed_mps = args.speed_mps > 0.0 ? args.speed_mps : defaultMissionSpeed_mps(range_m);
+    MissionPlan plan = missionPlan(args.mission, range_m, speed_mps, args.laps);
+    const double turn_s = static_cast<double>(options.head.beamsPerTurn()) * options.head.beam_period_s;
+    options.turns = static_cast<std::size_t>(std::ceil((plan.duration_s + options.head.beam_period_s) / turn_s));
+    options.trajectory = waypointTrajectory(std::move(plan.waypoints));
+  }
+  auto finite = [](double value, const char* flag) {
+    if (!std::isfinite(value)) throw ValueError(std::string(flag) + " must be finite");
+  };
+  finite(args.dvl_noise_mps, "--dvl-noise");
+  finite(args.dvl_scale_error, "--dvl-scale-error");
+  finite(args.heading_bias_deg, "--heading-bias");
+  finite(args.gyro_walk_deg_per_sqrt_s, "--gyro-walk");
+  if (args.dvl_noise_mps < 0.0) throw ValueError("--dvl-noise must be >= 0 m/s");
+  if (!(args.dvl_scale_error > -1.0)) throw ValueError("--dvl-scale-error must be > -1");
+  if (args.gyro_walk_deg_per_sqrt_s < 0.0) throw ValueError("--gyro-walk must be >= 0 deg/sqrt(s)");
+  options.dead_reckoning.dvl_noise_mps = args.dvl_noise_mps;
+  options.dead_reckoning.dvl_scale_error = args.dvl_scale_error;
+  options.dead_reckoning.heading_bias_rad = args.heading_bias_deg * kRadPerDeg;
+  options.dead_reckoning.gyro_walk_rad_per_sqrt_s = args.gyro_walk_deg_per_sqrt_s * kRadPerDeg;
+  options.dead_reckoning.seed = args.seed;
   options.validate();
   return options;
+}
+
+void checkMissionScene(const SimulationArguments& args, const std::string& scene) {
+  if (args.mission.empty()) return;
+  const std::string needed = missionPlan(args.mission, kBuiltinSceneReach_m, 1.0).scene;
+  if (scene != needed) {
+    throw ValueError("--mission " + args.mission + " is drawn for the built-in scene '" + needed + "', not '" + scene +
+                     "'");
+  }
 }
 
 bool isBuiltinSceneName(const std::string& name) {

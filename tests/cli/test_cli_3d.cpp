@@ -127,7 +127,8 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.err, "");
   const fs::path mission = dir / "3d-mission";
-  EXPECT_EQ(listDir(mission), (Names{"beams.csv", "map.bt", "map.html", "map_side.png", "map_top.png", "nav.csv", "scene.txt"}));
+  EXPECT_EQ(listDir(mission), (Names{"beams.csv", "map.bt", "map.html", "map_side.png", "map_top.png", "nav.csv",
+                                     "scene.txt", "truth_nav.csv"}));
   for (const char* png : {"map_top.png", "map_side.png"}) {
     const cv::Mat image = readFigure(mission / png);
     ASSERT_FALSE(image.empty()) << png;

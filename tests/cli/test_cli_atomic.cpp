@@ -78,13 +78,14 @@ TEST_F(cliAtomic, MapFailingOnItsLastImageKeepsThePreviousMapAndImages) {
 TEST_F(cliAtomic, SimulateFailingOnItsLastFileKeepsThePreviousRun) {
   const fs::path dir = out_ / "sim";
   ASSERT_EQ(run({"simulate", "harbour", "-o", dir.string(), "--turns", "1", "--seed", "1"}).exit_code, 0);
-  const Contents before = contentsOf(dir, {"beams.csv", "scene.txt"});
+  const Contents before = contentsOf(dir, {"beams.csv", "scene.txt", "truth_nav.csv"});
 
-  // Staged and renamed in this order: scene.txt, beams.csv, then nav.csv, whose rename fails.
+  // Staged and renamed in this order: scene.txt, beams.csv, then nav.csv, whose rename fails
+  // (truth_nav.csv, after it, is not replaced either).
   blockWithFolder(dir / "nav.csv");
   expectFailedOn(run({"simulate", "tank", "-o", dir.string(), "--turns", "1", "--seed", "2"}), dir / "nav.csv");
-  EXPECT_TRUE(contentsOf(dir, {"beams.csv", "scene.txt"}) == before) << "an earlier output was replaced";
-  EXPECT_EQ(listDir(dir), (Names{"beams.csv", "nav.csv", "scene.txt"}));
+  EXPECT_TRUE(contentsOf(dir, {"beams.csv", "scene.txt", "truth_nav.csv"}) == before) << "an earlier output was replaced";
+  EXPECT_EQ(listDir(dir), (Names{"beams.csv", "nav.csv", "scene.txt", "truth_nav.csv"}));
 }
 
 TEST_F(cliAtomic, DemoFailingOnItsLastFileKeepsEveryOtherFile) {

@@ -17,7 +17,7 @@
 namespace sonarmap::test {
 namespace {
 
-const Names kSimulationFiles{"beams.csv", "nav.csv", "scene.txt"};
+const Names kSimulationFiles{"beams.csv", "nav.csv", "scene.txt", "truth_nav.csv"};
 const Names kDemoFiles{"3d-mission", "beams.csv",          "scene.txt",      "tank.bt",
                        "tank.html",  "tank.png",           "tank_cartesian.png", "tank_polar.png"};
 
@@ -41,7 +41,8 @@ TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
   EXPECT_EQ(result.err, "");
   // 2 turns of 200 beams, 43 ms apart: 17.157 s of fixes at 10 Hz, 0 s to 17.2 s.
   EXPECT_EQ(linesOf(result.out),
-            Names{"micron: 400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string()});
+            (Names{"micron: 400 beams in 2 turns, 173 nav fixes, 4 scene primitives -> " + dir.string(),
+                   "nav.csv, truth_nav.csv: the true track"}));
   // -q (no progress bar, which is drawn only on a terminal anyway): the same files and summary.
   const fs::path quiet = out_ / "quiet";
   const ProgramRun quiet_run = run({"simulate", "tank", "-o", quiet.string(), "--turns", "2", "--seed", "7", "-q"});
@@ -53,6 +54,7 @@ TEST_F(cliSim, SimulateWritesBeamsNavAndSceneThatMapIntoAnOctoMapTree) {
   ASSERT_EQ(rows.size(), 401U);  // header + 400 beams
   EXPECT_EQ(rows[0].rfind("time_s,bearing_deg,bin_length_m,b0,b1,", 0), 0U) << rows[0];
   EXPECT_EQ(linesOf(readFile(dir / "nav.csv"))[0], "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad");
+  EXPECT_EQ(readFile(dir / "truth_nav.csv"), readFile(dir / "nav.csv")) << "no dead-reckoning error: nav is the truth";
 
   const fs::path bt = out_ / "run.bt";
   const ProgramRun mapped = run({"map", (dir / "beams.csv").string(), "-o", bt.string(), "-q"});

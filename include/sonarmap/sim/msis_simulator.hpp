@@ -64,6 +64,7 @@
 
 #include "sonarmap/core/progress.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sim/dead_reckoning.hpp"
 #include "sonarmap/sim/scene.hpp"
 #include "sonarmap/sim/trajectory.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -190,9 +191,13 @@ struct MsisSimulationOptions {
   Eigen::Isometry3d sonar_to_body = defaultSonarToBody();
   double nav_rate_hz = 10.0;  ///< rate of the NavTrack written with the log; 0: none
   std::uint64_t seed = 1;     ///< seed of the speckle and noise
+  /// Errors of the vehicle's dead-reckoning navigation (dead_reckoning.hpp): when any is set, the
+  /// run also holds the track the vehicle believes it flew (MsisSimulation::dead_reckoning). Its
+  /// own seed and random stream: setting errors leaves the log's beams unchanged.
+  DeadReckoningOptions dead_reckoning;
 
-  /// @throws ValueError for invalid head or echo options, a missing trajectory, a non-finite start
-  ///         time, a negative or non-finite nav rate, or a non-rigid sonar_to_body.
+  /// @throws ValueError for invalid head, echo or dead-reckoning options, a missing trajectory, a
+  ///         non-finite start time, a negative or non-finite nav rate, or a non-rigid sonar_to_body.
   void validate() const;
 };
 
@@ -201,7 +206,11 @@ struct MsisSimulation {
   SonarLog log;  ///< beams in time order, bearings in [0, 2π), no skipped beams
   /// Fixes of the trajectory at nav_rate_hz from the first beam's time until at least the last
   /// beam's (so every beam can be interpolated); empty when nav_rate_hz is 0.
+  /// These are the TRUE poses of the vehicle (the ground truth the beams were simulated from).
   NavTrack nav;
+  /// The track a dead-reckoning navigation believes (deadReckon(nav, options.dead_reckoning)): the
+  /// same times as `nav`, drifting; empty when no dead-reckoning error is set or `nav` is empty.
+  NavTrack dead_reckoning;
   Scene scene;  ///< the scene that was scanned (map frame)
 };
 

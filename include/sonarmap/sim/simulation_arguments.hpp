@@ -20,17 +20,42 @@ struct SimulationArguments {
   double sector_deg = 360.0;       ///< width of the scanned sector, degrees, in (0, 360]; 360: continuous turns
   double sector_center_deg = 0.0;  ///< bearing of the sector's centre, degrees counter-clockwise from the sonar's x
   std::uint64_t seed = 1;          ///< seed of the speckle and noise
-  std::size_t turns = 28;          ///< full turns of the head (passes across a sector), ≥ 1
-  double speed_mps = 0.0;          ///< vehicle speed over ground along the heading, metres per second
-  double heading_deg = 0.0;        ///< vehicle heading, degrees clockwise from north (NED yaw)
+  std::size_t turns = 28;          ///< full turns of the head (passes across a sector), ≥ 1; ignored with a mission
+  /// Vehicle speed over ground, metres per second: along the heading without a mission; along the
+  /// mission's path with one, where 0 means defaultMissionSpeed_mps(the head's range) (missions.hpp).
+  double speed_mps = 0.0;
+  double heading_deg = 0.0;        ///< vehicle heading, degrees clockwise from north (NED yaw); unused with a mission
   double nav_rate_hz = 10.0;       ///< navigation fixes per second, ≥ 0; 0: no navigation track
+  /// A named mission (missionNames(), missions.hpp) flown in its scene; empty: the constant-velocity
+  /// line of speed_mps and heading_deg from the origin.
+  std::string mission;
+  std::size_t laps = 1;  ///< times the mission is flown, ≥ 1 (1 without a mission)
+  // Dead-reckoning errors (dead_reckoning.hpp), in user units; all 0: a perfect navigation.
+  double dvl_noise_mps = 0.0;             ///< σ of the DVL's velocity noise per component and fix, m/s, ≥ 0
+  double dvl_scale_error = 0.0;           ///< fractional DVL scale error (0.02: reads 2 % fast), > −1
+  double heading_bias_deg = 0.0;          ///< constant heading bias, degrees
+  double gyro_walk_deg_per_sqrt_s = 0.0;  ///< heading random walk, degrees per √second, ≥ 0
 };
 
-/// The simulation options of the arguments: the preset's head and echo model, the sector, a
-/// constant-velocity trajectory from the NED origin along the heading.
-/// @throws ValueError naming the option (as its command-line flag) for a value out of range, or an
-///         unknown preset (listing the names).
+/// The simulation options of the arguments: the preset's head and echo model, the sector, the
+/// trajectory, the dead-reckoning errors (options.dead_reckoning, degrees turned into radians,
+/// seeded with args.seed; its stream differs from the sonar's, dead_reckoning.hpp).
+/// Trajectory: without a mission, a constant-velocity line from the NED origin along the heading,
+/// for args.turns turns. With a mission, its waypoints (missionPlan for the head's range at
+/// speed_mps or the default mission speed, args.laps laps) and as many turns as the head needs to
+/// keep scanning until the vehicle has come to the mission's end: turns = ceil((duration + one
+/// beam period) / the time of one turn (or sector pass)); args.turns and args.heading_deg are then
+/// ignored.
+/// @throws ValueError naming the option (as its command-line flag) for a value out of range, an
+///         unknown preset or mission (listing the names), a negative speed with a mission, or laps
+///         other than 1 without one.
 MsisSimulationOptions toSimulationOptions(const SimulationArguments& args);
+
+/// Checks that `scene` is the built-in scene args.mission is drawn for (MissionPlan::scene);
+/// nothing to check without a mission.
+/// @throws ValueError naming the mission and the scene it needs, for another scene (a scene file
+///         included), or an unknown mission.
+void checkMissionScene(const SimulationArguments& args, const std::string& scene);
 
 /// True when `name` is one of builtinSceneNames() or builtinScene3dNames().
 bool isBuiltinSceneName(const std::string& name);

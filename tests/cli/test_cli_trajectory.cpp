@@ -1,0 +1,125 @@
+// End-to-end tests of `sonarmap simulate --mission ... --dvl-scale-error ... --heading-bias ...`
+// (the believed nav.csv beside the true truth_nav.csv) and of `sonarmap eval-trajectory`.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "cli_fixture.hpp"
+
+namespace sonarmap::test {
+namespace {
+
+using cliTrajectory = CliTest;
+
+/// The `key value` lines of eval-trajectory's output as a map.
+std::map<std::string, std::string> metricsOf(const std::string& out) {
+  std::map<std::string, std::string> metrics;
+  for (const std::string& line : linesOf(out)) {
+    const std::size_t space = line.find(' ');
+    metrics[line.substr(0, space)] = space == std::string::npos ? "" : line.substr(space + 1);
+  }
+  return metrics;
+}
+
+TEST_F(cliTrajectory, MissionWithDeadReckoningErrorsAndItsEvaluation) {
+  const fs::path dir = out_ / "loop";
+  const ProgramRun sim = run({"simulate", "harbour", "--mission", "harbour-loop", "--dvl-scale-error", "0.02",
+                              "--heading-bias", "1", "-o", dir.string(), "-q"});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const Names lines = linesOf(sim.out);
+  ASSERT_EQ(lines.size(), 3U) << sim.out;
+  // 36 m at 0.25 m/s and three quarter turns at 0.5 rad/s: 153.4 s, 18 turns of 8.6 s.
+  EXPECT_EQ(lines[0].rfind("micron: 3600 beams in 18 turns, 1549 nav fixes", 0), 0U) << lines[0];
+  EXPECT_EQ(lines[1], "mission harbour-loop: 1 lap(s), 36.0 m in 153.4 s");
+  EXPECT_EQ(lines[2].rfind("nav.csv: dead reckoning, ", 0), 0U) << lines[2];
+  EXPECT_EQ(listDir(dir), (Names{"beams.csv", "nav.csv", "scene.txt", "truth_nav.csv"}));
+  const std::string nav = readFile(dir / "nav.csv"), truth = readFile(dir / "truth_nav.csv");
+  EXPECT_NE(nav, truth);
+  EXPECT_EQ(linesOf(nav).size(), linesOf(truth).size());
+  // The first fix: at the truth's place (its heading biased by 1 degree).
+  const std::string first = linesOf(nav)[1], first_truth = linesOf(truth)[1];
+  EXPECT_EQ(first.substr(0, first.rfind(',')), first_truth.substr(0, first_truth.rfind(',')));
+  EXPECT_NE(first, first_truth);
+
+  // The beams are those of the same run without the errors.
+  const fs::path plain = out_ / "plain";
+  ASSERT_EQ(run({"simulate", "harbour", "--mission", "harbour-loop", "-o", plain.string(), "-q"}).exit_code, 0);
+  EXPECT_EQ(readFile(plain / "beams.csv"), readFile(dir / "beams.csv"));
+  EXPECT_EQ(readFile(plain / "truth_nav.csv"), truth);
+  EXPECT_EQ(readFile(plain / "nav.csv"), truth);
+
+  const ProgramRun drift = run({"eval-trajectory", (dir / "nav.csv").string(), "--truth", (dir / "truth_nav.csv").string()});
+  ASSERT_EQ(drift.exit_code, 0) << drift.err;
+  EXPECT_EQ(drift.err, "");
+  std::map<std::string, std::string> m = metricsOf(drift.out);
+  for (const char* key : {"poses", "distance_m", "ate_rmse_m", "ate_max_m", "rpe_segments", "rpe_rmse_m",
+                          "rpe_yaw_rmse_deg", "final_drift_m", "final_drift_pct"}) {
+    EXPECT_EQ(m.count(key), 1U) << key << " in " << drift.out;
+  }
+  EXPECT_EQ(m["poses"], "1549");
+  EXPECT_NEAR(std::atof(m["distance_m"].c_str()), 36.0, 0.01);
+  EXPECT_GT(std::atof(m["ate_rmse_m"].c_str()), 0.05);  // 2 % of a 16 m side, not aligned away
+  EXPECT_NEAR(std::atof(m["rpe_rmse_m"].c_str()), 0.2, 0.05);  // 2 % of 10 m
+  EXPECT_LT(std::atof(m["final_drift_pct"].c_str()), 0.5);  // constant errors: the loop closes on itself
+
+  const ProgramRun same = run({"eval-trajectory", (dir / "truth_nav.csv").string(), "--truth",
+                               (dir / "truth_nav.csv").string(), "--se3", "--segment", "5"});
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  m = metricsOf(same.out);
+  EXPECT_EQ(m["ate_rmse_m"], "0.0000");
+  EXPECT_EQ(m["final_drift_m"], "0.0000");
+}
+
+TEST_F(cliTrajectory, EvalTrajectoryReadsTumToo) {
+  writeFile(root_ / "truth.csv", "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,0,0,0,0,0,0\n1,1,0,0,0,0,0\n"
+                                 "2,2,0,0,0,0,0\n3,3,0,0,0,0,0\n");
+  writeFile(root_ / "est.tum", "# time x y z qx qy qz qw\n0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n2 2 0 0 0 0 0 1\n"
+                               "3 3.3 0 0 0 0 0 1\n");
+  const ProgramRun result = run({"eval-trajectory", (root_ / "est.tum").string(), "--truth",
+                                 (root_ / "truth.csv").string(), "--segment", "1"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::map<std::string, std::string> m = metricsOf(result.out);
+  EXPECT_EQ(m["poses"], "4");
+  EXPECT_EQ(m["final_drift_m"], "0.3000");
+  EXPECT_EQ(m["final_drift_pct"], "10.0000");
+}
+
+TEST_F(cliTrajectory, ErrorsExitNonZeroWithOneLine) {
+  writeFile(root_ / "truth.csv", "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,0,0,0,0,0,0\n1,1,0,0,0,0,0\n"
+                                 "2,2,0,0,0,0,0\n");
+  writeFile(root_ / "bad.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0\n");
+  const std::string truth = (root_ / "truth.csv").string();
+  expectError(run({"eval-trajectory", (root_ / "bad.tum").string(), "--truth", truth}), 1);
+  expectError(run({"eval-trajectory", (root_ / "missing.csv").string(), "--truth", truth}), 1);
+  expectError(run({"eval-trajectory", truth, "--truth", truth, "--segment", "0"}), 2);
+  expectError(run({"eval-trajectory", truth}), 2);  // no --truth
+  writeFile(root_ / "late.csv", "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n10,0,0,0,0,0,0\n11,1,0,0,0,0,0\n"
+                                "12,2,0,0,0,0,0\n");
+  expectError(run({"eval-trajectory", (root_ / "late.csv").string(), "--truth", truth}), 1);  // no common time
+  const std::string dir = (out_ / "x").string();
+  expectError(run({"simulate", "hull", "--mission", "harbour-loop", "-o", dir}), 2);  // the mission's scene is harbour
+  expectError(run({"simulate", "harbour", "--mission", "lake-loop", "-o", dir}), 2);
+  expectError(run({"simulate", "harbour", "--laps", "2", "-o", dir}), 2);  // --laps without --mission
+  expectError(run({"simulate", "harbour", "--dvl-noise", "-1", "-o", dir}), 2);
+  expectError(run({"simulate", "harbour", "--dvl-scale-error", "-1", "-o", dir}), 2);
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
+TEST_F(cliTrajectory, HelpNamesTheUnits) {
+  const ProgramRun help = run({"simulate", "--help"});
+  ASSERT_EQ(help.exit_code, 0);
+  for (const char* text : {"--mission", "harbour-loop", "hull-loop", "--laps", "--dvl-noise", "m/s",
+                           "--dvl-scale-error", "--heading-bias", "degrees", "--gyro-walk", "deg/sqrt(s)"}) {
+    EXPECT_NE(help.out.find(text), std::string::npos) << text;
+  }
+  const ProgramRun eval_help = run({"eval-trajectory", "--help"});
+  ASSERT_EQ(eval_help.exit_code, 0);
+  for (const char* text : {"--truth", "--se3", "--segment", "TUM"}) {
+    EXPECT_NE(eval_help.out.find(text), std::string::npos) << text;
+  }
+}
+
+}  // namespace
+}  // namespace sonarmap::test
