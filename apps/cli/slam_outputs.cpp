@@ -4,12 +4,20 @@
 #include <map>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/nav/tum_trajectory.hpp"
 
 namespace sonarmap::cli {
 
 void stageTrajectory(FileTransaction& outputs, const std::string& path, const NavTrack& trajectory) {
   if (trajectory.empty()) throw ValueError("--trajectory: no trajectory to write (no scan could be localized)");
-  outputs.stage(path, [&](std::ostream& out) { writeNavCsv(out, trajectory); });
+  const auto endsWith = [&path](const std::string& suffix) {
+    return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (endsWith(".tum") || endsWith(".txt")) {
+    outputs.stage(path, [&](std::ostream& out) { writeTumTrajectory(out, trajectory); });
+  } else {
+    outputs.stage(path, [&](std::ostream& out) { writeNavCsv(out, trajectory); });
+  }
 }
 
 void printSlamSummary(const SlamReport& report, bool with_nav) {

@@ -85,10 +85,10 @@ MissionPlan missionPlan(const std::string& name, double range_m, double speed_mp
   plan.name = name;
   if (name == "harbour-loop") {
     plan.scene = "harbour";
-    plan.waypoints = rectangle(-1.0 * s, 0.0, kEast_rad, 16.0 * s, 2.0 * s, true, speed_mps, laps);
+    plan.waypoints = rectangle(-0.5 * s, 0.0, kEast_rad, 16.0 * s, 1.0 * s, true, speed_mps, laps);
   } else if (name == "harbour-lawnmower") {
     plan.scene = "harbour";
-    plan.waypoints = eastwardLegs(3, 0.0, -8.0 * s, 16.0 * s, 1.0 * s, speed_mps, laps);
+    plan.waypoints = eastwardLegs(3, 0.0, -8.0 * s, 16.0 * s, 0.5 * s, speed_mps, laps);
   } else if (name == "harbour-featureless") {
     plan.scene = "harbour";
     plan.waypoints = eastwardLegs(1, 0.0, 0.0, 40.0 * s, 1.0 * s, speed_mps, laps);

@@ -10,6 +10,9 @@
 #include "slam_fixture.hpp"
 #include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/slam/scan.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
+#include "sonarmap/sim/trajectory.hpp"
 
 namespace sonarmap {
 namespace {
@@ -28,10 +31,10 @@ double ate_m(const NavTrack& estimate, const NavTrack& truth) {
   return std::sqrt((moved - to).colwise().squaredNorm().mean());
 }
 
-/// The Micron flying a 16 × 1 m loop along the harbour's quay, 3 % scale error and 2° heading bias.
+/// The Micron flying the 34 m harbour loop, 3 % scale error, 2° heading bias, 0.02°/√s gyro walk.
 struct HarbourLoop {
-  MsisSimulation run = testing::loopMission("harbour", "micron", -0.5, 0.0, 16.0, 1.0, 0.25);
-  NavTrack drift = testing::driftingTrack(run.nav, 0.03, 2.0 * kDeg);
+  MsisSimulation run = testing::missionRun("harbour-loop");
+  const NavTrack& drift = run.dead_reckoning;
 };
 
 const HarbourLoop& harbourLoop() {

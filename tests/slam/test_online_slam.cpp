@@ -12,8 +12,8 @@ namespace sonarmap {
 namespace {
 
 TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
-  const MsisSimulation run = testing::loopMission("harbour", "micron", -0.5, 0.0, 16.0, 1.0, 0.25);
-  const NavTrack drift = testing::driftingTrack(run.nav, 0.03, 2.0 * std::numbers::pi / 180.0);
+  const MsisSimulation run = testing::missionRun("harbour-loop");
+  const NavTrack& drift = run.dead_reckoning;
   MapperOptions options;
   options.resolution_m = 0.05;
   const SlamMapping batch = mapSonarLogWithSlam(run.log, drift, defaultSonarToBody(), options);

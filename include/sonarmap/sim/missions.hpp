@@ -7,13 +7,14 @@
 /// Coordinates below are NED north and east in units of s. The scenes are drawn in the map frame
 /// (NWU, navigation.hpp), so a scene's map y is −east: the harbour's piles at map y −4…4 s stand at
 /// east 4…−4 s.
-///  - `harbour-loop` (scene `harbour`): the rectangle with corners (0, −8), (0, 8), (−2, 8),
-///    (−2, −8), flown in that order, clockwise seen from above: it starts at (0, −8) heading east
+///  - `harbour-loop` (scene `harbour`): the rectangle with corners (0, −8), (0, 8), (−1, 8),
+///    (−1, −8), flown in that order, clockwise seen from above: it starts at (0, −8) heading east
 ///    along the quay (face at north 3.5, piles at north 2, east −4…4) and comes back to its start
-///    heading north; 36 s a lap (Micron 36 m, SeaKing-30 216 m). Loop closures: every lap passes
-///    the same piles again.
-///  - `harbour-lawnmower` (scene `harbour`): three legs along east from −8 to 8 at north 0, −1, −2
-///    (the first eastwards, spaced 1 s to the south), joined by 1 s crossings at their ends; 50 s.
+///    heading north; 34 s a lap (Micron 34 m, SeaKing-30 204 m). Both long legs keep the quay
+///    within 4.5 s, inside the reach (5 s); a leg at north −2 would see it at 5.5 s, beyond. Loop
+///    closures: the way back passes the same piles, and every lap again.
+///  - `harbour-lawnmower` (scene `harbour`): three legs along east from −8 to 8 at north 0, −0.5,
+///    −1 (the first eastwards, spaced 0.5 s to the south), joined by 0.5 s crossings; 49 s.
 ///  - `harbour-featureless` (scene `harbour`): a straight line along east at north 0 from east 0
 ///    to east 40; the quay ends at east 20, so its second half sees nothing but the seabed (where
 ///    a SLAM can only dead reckon); 40 s.
