@@ -1,0 +1,168 @@
+// sonarmap_slam_study: the seeded localization study of docs/localization.md (not a test).
+//
+// For each mission (a head flying a named mission of sim/missions.hpp in its scene) and each seed:
+// simulate the run with a drifting dead reckoning, localize it (slam/localizer.hpp), and score
+// dead reckoning and the localization against the true navigation (eval/trajectory_error.hpp:
+// ATE after an SE(2) Umeyama alignment, RPE per 10 m, final drift). Each accepted loop closure is
+// checked against the truth: wrong when the relative pose it asserts is off the true one by more
+// than 5 % of the head's range or 3°. With --maps, the first seed's maps (true navigation, dead
+// reckoning, --slam) are scored against the scene (eval/ground_truth.hpp).
+//
+// Dead reckoning of seed n: a DVL scale error of ±(2…3) %, a heading bias of ±(1…2)° (signs and
+// sizes drawn from the seed), a gyro walk of 0.02°/√s and DVL noise of 0.02 m/s; the simulator's
+// speckle and noise are seeded with n too.
+//
+// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps]
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "sonarmap/eval/ground_truth.hpp"
+#include "sonarmap/eval/trajectory_error.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sim/missions.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+#include "sonarmap/sim/simulation_arguments.hpp"
+#include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/slam/scan.hpp"
+
+namespace {
+
+using namespace sonarmap;
+using Clock = std::chrono::steady_clock;
+
+struct Mission {
+  const char* sonar;
+  const char* name;
+  std::size_t laps;
+};
+
+const Mission kMissions[] = {
+    {"micron", "harbour-loop", 2},       {"micron", "harbour-lawnmower", 1}, {"micron", "hull-loop", 2},
+    {"micron", "harbour-featureless", 1}, {"seaking-30", "harbour-loop", 1}, {"seaking-30", "hull-loop", 1},
+    {"seaking-30", "harbour-featureless", 1}, {"ping360", "harbour-loop", 1}};
+
+double seconds(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+SimulationArguments argumentsOf(const Mission& mission, std::uint64_t seed) {
+  SimulationArguments args;
+  args.sonar = mission.sonar;
+  args.mission = mission.name;
+  args.laps = mission.laps;
+  args.seed = seed;
+  std::mt19937_64 draw(seed * 0x9E3779B97F4A7C15ULL + 12345);
+  const auto unit = [&draw] { return static_cast<double>(draw() >> 11) * 0x1.0p-53; };
+  args.dvl_scale_error = (unit() < 0.5 ? -1.0 : 1.0) * (0.02 + 0.01 * unit());
+  args.heading_bias_deg = (unit() < 0.5 ? -1.0 : 1.0) * (1.0 + unit());
+  args.gyro_walk_deg_per_sqrt_s = 0.02;
+  args.dvl_noise_mps = 0.02;
+  return args;
+}
+
+/// Loop closures accepted whose relative pose is off the truth by more than 5 % of the range or 3°.
+std::size_t wrongLoops(const SlamResult& slam, const NavTrack& truth, double range_m) {
+  std::size_t wrong = 0;
+  for (const LoopClosure& loop : slam.report.loop_closures) {
+    if (!loop.accepted) continue;
+    const auto from = interpolateBodyToNed(truth, slam.scan_times_s[loop.from]);
+    const auto to = interpolateBodyToNed(truth, slam.scan_times_s[loop.to]);
+    if (!from || !to) continue;
+    const Pose2 true_relative = planarPose(*from).between(planarPose(*to));
+    const Pose2 error = true_relative.between(loop.measurement);
+    if (error.translation().norm() > 0.05 * range_m || std::abs(error.yaw_rad) > 3.0 * std::numbers::pi / 180.0) {
+      ++wrong;
+      std::fprintf(stderr, "wrong loop closure %zu -> %zu: off by %.2f m, %.1f deg\n", loop.from, loop.to,
+                   error.translation().norm(), error.yaw_rad * 180.0 / std::numbers::pi);
+    }
+  }
+  return wrong;
+}
+
+GroundTruthReport scoreMap(const SonarMapper& mapper, const MsisSimulation& run, const Eigen::Isometry3d& sonar_to_body) {
+  GroundTruthOptions truth;
+  truth.sensor_positions_m.clear();
+  const NavTrack& fixes = run.nav;
+  for (std::size_t i = 0; i < fixes.size(); i += std::max<std::size_t>(1, fixes.size() / 40)) {
+    truth.sensor_positions_m.push_back(sonarToMap(fixes[i], sonar_to_body).translation());
+  }
+  return evaluateAgainstScene(mapper.map(), run.scene, truth);
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::size_t seeds = 20;
+  std::string only;
+  bool maps = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
+      seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
+    } else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+      only = argv[++i];
+    } else if (std::strcmp(argv[i], "--maps") == 0) {
+      maps = true;
+    } else {
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::printf("| sonar | mission | length | seeds | DR ATE median (max) | SLAM ATE median (max) | worst SLAM/DR | "
+              "SLAM final drift median (max) | loops accepted (wrong) | x real time (min) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Mission& mission : kMissions) {
+    if (!only.empty() && only != std::string(mission.sonar) + ":" + mission.name) continue;
+    std::vector<double> dr_ate, slam_ate, slam_drift;
+    double worst_ratio = 0.0, slowest = 1e300, length_m = 0.0;
+    std::size_t accepted = 0, wrong = 0;
+    for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
+      const SimulationArguments args = argumentsOf(mission, seed);
+      const MsisSimulationOptions options = toSimulationOptions(args);
+      const std::string scene = missionPlan(mission.name, options.head.range_m, 1.0).scene;
+      const MsisSimulation run = simulateMsis(sceneOf(scene, options.head), options);
+      const Clock::time_point start = Clock::now();
+      const SlamResult slam = localize(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{});
+      const SonarMapper slam_map = mapSonarLog(run.log, slam.trajectory, options.sonar_to_body, MapperOptions{});
+      const double spent_s = seconds(start);
+      const double duration_s = run.log.beams.back().time_s - run.log.beams.front().time_s;
+      slowest = std::min(slowest, duration_s / spent_s);
+      const TrajectoryError dr = evaluateTrajectory(run.dead_reckoning, run.nav);
+      const TrajectoryError est = evaluateTrajectory(slam.trajectory, run.nav);
+      length_m = dr.distance_m;
+      dr_ate.push_back(dr.ate_rmse_m);
+      slam_ate.push_back(est.ate_rmse_m);
+      slam_drift.push_back(est.final_drift_pct);
+      worst_ratio = std::max(worst_ratio, est.ate_rmse_m / dr.ate_rmse_m);
+      accepted += slam.report.loopClosuresAccepted();
+      wrong += wrongLoops(slam, run.nav, options.head.range_m);
+      if (maps && seed == 1) {
+        const SonarMapper true_map = mapSonarLog(run.log, run.nav, options.sonar_to_body, MapperOptions{});
+        const SonarMapper dr_map = mapSonarLog(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{});
+        const GroundTruthReport t = scoreMap(true_map, run, options.sonar_to_body);
+        const GroundTruthReport d = scoreMap(dr_map, run, options.sonar_to_body);
+        const GroundTruthReport s = scoreMap(slam_map, run, options.sonar_to_body);
+        std::fprintf(stderr, "%s %s seed 1 map P/R/free: true nav %.3f/%.3f/%.3f, DR %.3f/%.3f/%.3f, slam %.3f/%.3f/%.3f\n",
+                     mission.sonar, mission.name, t.precision, t.recall, t.free_accuracy, d.precision, d.recall,
+                     d.free_accuracy, s.precision, s.recall, s.free_accuracy);
+      }
+    }
+    const auto maxOf = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
+    std::printf("| %s | %s ×%zu | %.0f m | %zu | %.3f (%.3f) m | %.3f (%.3f) m | %.2f | %.2f (%.2f) %% | %zu (%zu) | %.0f |\n",
+                mission.sonar, mission.name, mission.laps, length_m, seeds, median(dr_ate), maxOf(dr_ate),
+                median(slam_ate), maxOf(slam_ate), worst_ratio, median(slam_drift), maxOf(slam_drift), accepted, wrong,
+                slowest);
+    std::fflush(stdout);
+  }
+  return 0;
+}
