@@ -129,7 +129,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->capture_default_str();
   cmd->add_option("--speed", args.speed_mps,
                   "Vehicle speed in m/s along --heading (0: static); with --mission along its path (0: the mission's "
-                  "default, range / 20 s up to 1.5 m/s)")
+                  "default, range / 20 s up to 0.5 m/s)")
       ->capture_default_str();
   cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north (not with --mission)")
       ->capture_default_str();

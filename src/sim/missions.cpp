@@ -73,7 +73,7 @@ std::vector<std::string> missionNames() {
 
 double defaultMissionSpeed_mps(double range_m) {
   requirePositive("range_m", range_m);
-  return std::min(range_m / 20.0, 1.5);
+  return std::min(range_m / 20.0, 0.5);
 }
 
 MissionPlan missionPlan(const std::string& name, double range_m, double speed_mps, std::size_t laps) {

@@ -57,12 +57,15 @@ std::size_t SlamReport::loopClosuresAccepted() const {
 Localizer::Localizer(const SlamOptions& options, bool navigation_known)
     : options_(options), navigation_known_(navigation_known) {
   options_.validate();
+  if (navigation_known_ && options_.forming.odometry.scale_sigma > 0.0) {
+    graph_.estimateOdometryScale(options_.forming.odometry.scale_sigma);
+  }
 }
 
-std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t last) const {
+std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame) const {
   std::vector<ScanPoint> points;
   for (std::size_t k = first; k < last; ++k) {
-    const Pose2& pose = graph_.pose(k);
+    const Pose2 pose = ned_to_frame * graph_.pose(k);
     const Eigen::Matrix2d rotation = pose.rotation();
     for (const ScanPoint& point : scans_[k].points) {
       ScanPoint placed = point;
@@ -88,10 +91,16 @@ void Localizer::addScan(SonarScan scan) {
   }
   const SonarScan& previous = scans_.back();
   const Pose2 motion = previous.dead_reckoning.between(scan.dead_reckoning);
-  const Eigen::Matrix3d covariance =
-      options_.forming.odometry.covariance(motion, scan.time_s - previous.time_s, navigation_known_);
-  graph_.addNode(graph_.pose(k - 1) * motion);
-  graph_.addEdge({k - 1, k, motion, covariance.inverse(), EdgeKind::kOdometry});
+  const double duration_s = scan.time_s - previous.time_s;
+  const Eigen::Matrix3d covariance = options_.forming.odometry.covariance(motion, duration_s, navigation_known_);
+  // The edge: the scale error is the graph's own parameter (estimateOdometryScale), so the edge
+  // keeps only what varies from edge to edge (a fifth of it, and the noise).
+  OdometryNoise varying = options_.forming.odometry;
+  if (navigation_known_) varying.scale_sigma /= 5.0;
+  const Eigen::Matrix3d edge_covariance = varying.covariance(motion, duration_s, navigation_known_);
+  const double scale = graph_.odometryScale();
+  graph_.addNode(graph_.pose(k - 1) * Pose2{scale * motion.x_m, scale * motion.y_m, motion.yaw_rad});
+  graph_.addEdge({k - 1, k, motion, edge_covariance.inverse(), EdgeKind::kOdometry});
   odometry_.push_back(motion);
   odometry_cov_.push_back(covariance);
   travelled_m_.push_back(travelled_m_.back() + motion.translation().norm());
@@ -151,17 +160,27 @@ void Localizer::closeLoop(std::size_t k) {
   Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();
   rotate.topLeftCorner<2, 2>() = graph_.pose(j).rotation();
   const Eigen::Matrix3d prior_ned = rotate * path * rotate.transpose();
-  const ScanMatch match = matchScans(target, scans_[k].points, graph_.pose(k), prior_ned, true, options_.matching);
+  // The source: the new scan with the scans just before it, in its frame (more of the place, so a
+  // match along one wall or one row of piles is told from a true fix more often).
+  const std::size_t source_first = k + 1 > options_.submap_scans ? k + 1 - options_.submap_scans : 0;
+  const std::vector<ScanPoint> source = placedPoints(std::max(source_first, last), k + 1, graph_.pose(k).inverse());
+  const ScanMatch match = matchScans(target, source, graph_.pose(k), prior_ned, true, options_.matching);
   LoopClosure loop;
   loop.from = j;
   loop.to = k;
   loop.measurement = graph_.pose(j).between(match.pose);
+  loop.pairs = match.pairs;
+  loop.peak_ratio = match.peak_ratio;
   if (!match.accepted) {
     loop.reason = match.reason;
     report_.loop_closures.push_back(loop);
     return;
   }
-  proposeLoopClosure(j, k, loop.measurement, informationInFrame(match.information, graph_.pose(j)));
+  if (proposeLoopClosure(j, k, loop.measurement, informationInFrame(match.information, graph_.pose(j))) ||
+      !report_.loop_closures.empty()) {
+    report_.loop_closures.back().pairs = match.pairs;
+    report_.loop_closures.back().peak_ratio = match.peak_ratio;
+  }
 }
 
 bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement,

@@ -31,13 +31,25 @@ struct RelativePoseError {
 
   template <class T>
   bool operator()(const T* from, const T* to, T* residuals) const {
+    return evaluate(from, to, T(1.0), residuals);
+  }
+
+  /// The odometry's form: the measured translation times the odometry's scale factor.
+  template <class T>
+  bool operator()(const T* from, const T* to, const T* scale, T* residuals) const {
+    return evaluate(from, to, scale[0], residuals);
+  }
+
+ private:
+  template <class T>
+  bool evaluate(const T* from, const T* to, const T& scale, T* residuals) const {
     using std::cos;
     using std::sin;
     const T c = cos(from[2]), s = sin(from[2]);
     const T dx = to[0] - from[0], dy = to[1] - from[1];
     const T x = c * dx + s * dy;  // to's position in from's frame: Rᵀ (t_to − t_from)
     const T y = -s * dx + c * dy;
-    Eigen::Matrix<T, 3, 1> error(x - T(measurement_.x_m), y - T(measurement_.y_m),
+    Eigen::Matrix<T, 3, 1> error(x - scale * T(measurement_.x_m), y - scale * T(measurement_.y_m),
                                  wrapped(to[2] - from[2] - T(measurement_.yaw_rad)));
     // The information is stated in from's frame, like the measurement's translation.
     const Eigen::Matrix<T, 3, 1> weighted = sqrt_information_.cast<T>() * error;
@@ -47,9 +59,18 @@ struct RelativePoseError {
     return true;
   }
 
- private:
   Pose2 measurement_;
   Eigen::Matrix3d sqrt_information_;
+};
+
+/// The odometry scale's prior: (scale − 1) / σ.
+struct ScalePrior {
+  double sigma;
+  template <class T>
+  bool operator()(const T* scale, T* residual) const {
+    residual[0] = (scale[0] - T(1.0)) / T(sigma);
+    return true;
+  }
 };
 
 }  // namespace
@@ -83,12 +104,22 @@ bool PoseGraph::optimize(const PoseGraphOptions& options) {
   std::vector<std::array<double, 3>> state(poses_.size());
   for (std::size_t i = 0; i < poses_.size(); ++i) state[i] = {poses_[i].x_m, poses_[i].y_m, poses_[i].yaw_rad};
   ceres::Problem problem;
+  double scale = odometry_scale_;
   for (const PoseGraphEdge& edge : edges_) {
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(
-        new RelativePoseError(edge.measurement, informationSqrt(edge.information)));
+    const Eigen::Matrix3d root = informationSqrt(edge.information);
+    if (edge.kind == EdgeKind::kOdometry && scale_sigma_) {
+      auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3, 1>(new RelativePoseError(edge.measurement, root));
+      problem.AddResidualBlock(cost, nullptr, state[edge.from].data(), state[edge.to].data(), &scale);
+      continue;
+    }
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(new RelativePoseError(edge.measurement, root));
     ceres::LossFunction* loss = nullptr;
     if (edge.kind != EdgeKind::kOdometry) loss = new ceres::CauchyLoss(options.robust_scale_sigma);
     problem.AddResidualBlock(cost, loss, state[edge.from].data(), state[edge.to].data());
+  }
+  if (scale_sigma_ && problem.HasParameterBlock(&scale)) {  // its prior: 1 ± scale_sigma
+    auto* prior = new ceres::AutoDiffCostFunction<ScalePrior, 1, 1>(new ScalePrior{*scale_sigma_});
+    problem.AddResidualBlock(prior, nullptr, &scale);
   }
   problem.SetParameterBlockConstant(state.front().data());
   ceres::Solver::Options solver;
@@ -101,7 +132,13 @@ bool PoseGraph::optimize(const PoseGraphOptions& options) {
   ceres::Solve(solver, &problem, &summary);
   if (!summary.IsSolutionUsable()) return false;
   for (std::size_t i = 0; i < poses_.size(); ++i) poses_[i] = {state[i][0], state[i][1], wrapAngle_rad(state[i][2])};
+  odometry_scale_ = scale;
   return true;
+}
+
+void PoseGraph::estimateOdometryScale(double prior_sigma) {
+  if (!(std::isfinite(prior_sigma) && prior_sigma > 0.0)) throw ValueError("pose graph: the scale's prior σ must be > 0");
+  scale_sigma_ = prior_sigma;
 }
 
 }  // namespace sonarmap

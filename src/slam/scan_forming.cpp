@@ -39,6 +39,60 @@ Eigen::Matrix2d sensorCovariance(const Eigen::Vector2d& along, double range_m, d
          across * across.transpose() * (cross_sigma_m * cross_sigma_m);
 }
 
+/// What every scan of a sweep shares.
+struct ScanGeometry {
+  double bearing_sigma_rad = 0.0;
+  double reach_m = 0.0;
+};
+
+/// The scan of rows [first_row, last_row) of a sweep's polar image (its first beam `first_beam` in
+/// the log); nullopt when its middle beam has no dead-reckoning pose.
+std::optional<SonarScan> formScan(const PolarImage& polar, const SweepDetection& detection, int first_row, int last_row,
+                                  std::size_t first_beam, const std::optional<NavInterpolator>& nav,
+                                  const Eigen::Isometry3d& sonar_to_body, const ScanGeometry& geometry,
+                                  const ScanFormingOptions& forming, bool known) {
+  SonarScan scan;
+  scan.first_beam = first_beam + static_cast<std::size_t>(first_row);
+  scan.beams = static_cast<std::size_t>(last_row - first_row);
+  scan.start_time_s = polar.time_s[static_cast<std::size_t>(first_row)];
+  scan.end_time_s = polar.time_s[static_cast<std::size_t>(last_row - 1)];
+  scan.time_s = polar.time_s[static_cast<std::size_t>(first_row + (last_row - first_row) / 2)];
+  scan.reach_m = geometry.reach_m;
+  const std::optional<Eigen::Isometry3d> reference = deadReckoningAt(nav, scan.time_s);
+  if (!reference) return std::nullopt;  // the scan's middle lies outside the navigation
+  scan.dead_reckoning = planarPose(*reference);
+  const Pose2 ned_to_reference = scan.dead_reckoning.inverse();
+  for (int row = first_row; row < last_row; ++row) {
+    const BeamDetection& hit = detection.detections[static_cast<std::size_t>(row)];
+    if (!hit.hasObstacle()) continue;
+    const double time_s = polar.time_s[static_cast<std::size_t>(row)];
+    const std::optional<Eigen::Isometry3d> body = deadReckoningAt(nav, time_s);
+    if (!body) continue;
+    const double bearing_rad = polar.bearing_rad[static_cast<std::size_t>(row)];
+    const Eigen::Vector3d in_sonar(hit.range_m * std::cos(bearing_rad), hit.range_m * std::sin(bearing_rad), 0.0);
+    const Eigen::Isometry3d sonar_to_ned = *body * sonar_to_body;
+    const Eigen::Vector3d in_ned = sonar_to_ned * in_sonar;
+    ScanPoint point;
+    point.range_m = hit.range_m;
+    point.xy_m = ned_to_reference * Eigen::Vector2d(in_ned.x(), in_ned.y());
+    Eigen::Vector2d along = ned_to_reference.rotation() * (in_ned - sonar_to_ned.translation()).head<2>();
+    if (along.norm() < 1e-9) continue;  // a beam pointing straight down: no horizontal position
+    along.normalize();
+    const double range_sigma_m =
+        forming.range_sigma_m > 0.0 ? forming.range_sigma_m : std::max({polar.bin_length_m, hit.rise_m / 2.0, 0.02});
+    point.covariance_m2 = sensorCovariance(along, hit.range_m, range_sigma_m, geometry.bearing_sigma_rad);
+    // What dead reckoning adds between the beam's time and the reference time: the position's
+    // uncertainty, and the heading's, which swings the point across its beam.
+    const Pose2 motion = scan.dead_reckoning.between(planarPose(*body));
+    const Eigen::Matrix3d drift = forming.odometry.covariance(motion, time_s - scan.time_s, known);
+    point.covariance_m2 += drift.topLeftCorner<2, 2>();  // already in the reference frame
+    const Eigen::Vector2d across(-along.y(), along.x());
+    point.covariance_m2 += across * across.transpose() * (hit.range_m * hit.range_m * drift(2, 2));
+    scan.points.push_back(point);
+  }
+  return scan;
+}
+
 }  // namespace
 
 Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s, bool known) const {
@@ -89,6 +143,9 @@ std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_recko
       !(std::isfinite(forming.bearing_sigma_rad) && forming.bearing_sigma_rad >= 0.0)) {
     throw ValueError("scan forming: range and bearing sigmas must be ≥ 0");
   }
+  if (!(std::isfinite(forming.max_travel_m) && forming.max_travel_m >= 0.0)) {
+    throw ValueError("scan forming: max_travel_m must be ≥ 0 m");
+  }
   std::optional<NavInterpolator> nav;
   if (!dead_reckoning.empty()) nav.emplace(dead_reckoning);  // throws ValueError for an invalid track
   const bool known = nav.has_value();
@@ -100,52 +157,36 @@ std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_recko
   for (const SweepRange& sweep : groupSweeps(log.beams, min_beams)) {
     PolarImage polar = makePolarImage(log.beams, sweep.first, sweep.last_exclusive);
     const SweepDetection detection = detector.detectSweep(polar);
-    SonarScan scan;
-    scan.first_beam = sweep.first;
-    scan.beams = sweep.size();
-    scan.start_time_s = log.beams[sweep.first].time_s;
-    scan.end_time_s = log.beams[sweep.last_exclusive - 1].time_s;
-    scan.time_s = log.beams[sweep.first + sweep.size() / 2].time_s;
-    const std::optional<Eigen::Isometry3d> reference = deadReckoningAt(nav, scan.time_s);
-    if (!reference) continue;  // the sweep's middle lies outside the navigation
-    scan.dead_reckoning = planarPose(*reference);
-    const Pose2 ned_to_reference = scan.dead_reckoning.inverse();
     double step_rad = 0.0;
     if (polar.rows() > 1) step_rad = std::abs(bearingStep_rad(polar.bearing_rad[0], polar.bearing_rad[1]));
-    const double bearing_sigma_rad =
+    ScanGeometry geometry;
+    geometry.bearing_sigma_rad =
         forming.bearing_sigma_rad > 0.0 ? forming.bearing_sigma_rad : std::max(resolved.beam_width_rad, step_rad) / 2.0;
     for (int row = 0; row < polar.rows(); ++row) {
-      scan.reach_m = std::max(scan.reach_m, polar.valid_bins[static_cast<std::size_t>(row)] * polar.bin_length_m);
-      const BeamDetection& hit = detection.detections[static_cast<std::size_t>(row)];
-      if (!hit.hasObstacle()) continue;
-      const double time_s = polar.time_s[static_cast<std::size_t>(row)];
-      const std::optional<Eigen::Isometry3d> body = deadReckoningAt(nav, time_s);
-      if (!body) continue;
-      const double bearing_rad = polar.bearing_rad[static_cast<std::size_t>(row)];
-      const Eigen::Vector3d in_sonar(hit.range_m * std::cos(bearing_rad), hit.range_m * std::sin(bearing_rad), 0.0);
-      const Eigen::Isometry3d sonar_to_ned = *body * sonar_to_body;
-      const Eigen::Vector3d in_ned = sonar_to_ned * in_sonar;
-      const Eigen::Vector3d origin_ned = sonar_to_ned.translation();
-      ScanPoint point;
-      point.range_m = hit.range_m;
-      point.xy_m = ned_to_reference * Eigen::Vector2d(in_ned.x(), in_ned.y());
-      Eigen::Vector2d along = ned_to_reference.rotation() * (in_ned - origin_ned).head<2>();
-      if (along.norm() < 1e-9) continue;  // a beam pointing straight down: no horizontal position
-      along.normalize();
-      const double range_sigma_m = forming.range_sigma_m > 0.0
-                                       ? forming.range_sigma_m
-                                       : std::max({polar.bin_length_m, hit.rise_m / 2.0, 0.02});
-      point.covariance_m2 = sensorCovariance(along, hit.range_m, range_sigma_m, bearing_sigma_rad);
-      // What dead reckoning adds between the beam's time and the reference time: the position's
-      // uncertainty, and the heading's, which swings the point across its beam.
-      const Pose2 motion = scan.dead_reckoning.between(planarPose(*body));
-      const Eigen::Matrix3d drift = forming.odometry.covariance(motion, time_s - scan.time_s, known);
-      point.covariance_m2 += drift.topLeftCorner<2, 2>();  // already in the reference frame
-      const Eigen::Vector2d across(-along.y(), along.x());
-      point.covariance_m2 += across * across.transpose() * (hit.range_m * hit.range_m * drift(2, 2));
-      scan.points.push_back(point);
+      geometry.reach_m = std::max(geometry.reach_m, polar.valid_bins[static_cast<std::size_t>(row)] * polar.bin_length_m);
     }
-    scans.push_back(std::move(scan));
+    // A sweep during which the vehicle travels farther than max_travel_m is cut into several scans,
+    // each over about that much travel: dead reckoning's drift within a scan stays small.
+    const double max_travel_m = forming.max_travel_m > 0.0 ? forming.max_travel_m : geometry.reach_m / 2.0;
+    int first_row = 0;
+    std::optional<Eigen::Vector2d> start;
+    for (int row = 0; row <= polar.rows(); ++row) {
+      bool cut = row == polar.rows();
+      if (!cut && known) {
+        const std::optional<Eigen::Isometry3d> body = deadReckoningAt(nav, polar.time_s[static_cast<std::size_t>(row)]);
+        if (body) {
+          const Eigen::Vector2d here = body->translation().head<2>();
+          if (!start) start = here;
+          cut = (here - *start).norm() > max_travel_m && row > first_row;
+          if (cut) start = here;
+        }
+      }
+      if (!cut) continue;
+      std::optional<SonarScan> scan =
+          formScan(polar, detection, first_row, row, sweep.first, nav, sonar_to_body, geometry, forming, known);
+      if (scan) scans.push_back(std::move(*scan));
+      first_row = row;
+    }
   }
   return scans;
 }

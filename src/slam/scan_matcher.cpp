@@ -32,6 +32,10 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 struct LocalShape {
   bool line = false;
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
+  /// Not a line: the scatter of its neighbours (m²). A pile's points lie on the side facing each
+  /// view, so the same pile seen from elsewhere gives points up to its radius apart: pairing them
+  /// as one point would bias the match towards no motion.
+  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
 };
 
 /// Lines where a target point and its nearest neighbours (within a few of its own σ) lie along one
@@ -63,6 +67,8 @@ std::vector<LocalShape> localShapes(const std::vector<ScanPoint>& target, const 
     if (eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1)) {
       shapes[i].line = true;
       shapes[i].normal = eigen.eigenvectors().col(0);
+    } else {
+      shapes[i].spread = scatter / static_cast<double>(used);
     }
   }
   return shapes;
@@ -98,7 +104,7 @@ ScanMatch icp(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>
       if (tree.knnSearch(moved.data(), 1, &nearest, &distance_sq) == 0) continue;
       const ScanPoint& pair = target[nearest];
       const Eigen::Matrix2d covariance =
-          pair.covariance_m2 + rotation * point.covariance_m2 * rotation.transpose();
+          pair.covariance_m2 + shapes[nearest].spread + rotation * point.covariance_m2 * rotation.transpose();
       const Eigen::Vector2d difference = moved - pair.xy_m;
       const Eigen::Matrix2d weight = covariance.inverse();
       if (difference.dot(weight * difference) > options.gate_chi2) continue;

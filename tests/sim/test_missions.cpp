@@ -73,8 +73,8 @@ TEST(simMissions, NamesLengthsAndDurations) {
     }
   }
   EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(5.0), 0.25);  // Micron
-  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(30.0), 1.5);  // SeaKing-30
-  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(50.0), 1.5);
+  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(30.0), 0.5);  // SeaKing-30
+  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(50.0), 0.5);
   EXPECT_NEAR(missionPlan("harbour-loop", 30.0, 1.5).length_m, 204.0, 1e-9);
 }
 

@@ -59,9 +59,12 @@ struct MissionPlan {
 ///         range_m or speed_mps is not a finite number > 0 or laps is 0.
 MissionPlan missionPlan(const std::string& name, double range_m, double speed_mps, std::size_t laps = 1);
 
-/// A mission speed suited to a head of range scale `range_m` (metres): min(R / 20 s, 1.5 m/s), so
-/// that the vehicle moves a twentieth of the range a second (the Micron at 5 m: 0.25 m/s) up to a
-/// survey AUV's 1.5 m/s (≈ 3 knots; the SeaKing at 30 m).
+/// A mission speed suited to a head of range scale `range_m` (metres): min(R / 20 s, 0.5 m/s), so
+/// that the vehicle moves a twentieth of the range a second (the Micron at 5 m: 0.25 m/s) up to
+/// 0.5 m/s (≈ 1 knot; the 30–50 m heads). A turn of a 30–50 m head takes 24–30 s: at 0.5 m/s the
+/// vehicle covers 12–15 m of it, under half the range, so consecutive turns still see the same
+/// place; at a survey AUV's 1.5 m/s (36–45 m a turn) they barely do, and an MSIS SLAM has little
+/// to match (docs/localization.md measures both).
 /// @throws ValueError when range_m is not a finite number > 0.
 double defaultMissionSpeed_mps(double range_m);
 

@@ -58,6 +58,8 @@ struct LoopClosure {
   Pose2 measurement;     ///< `to` in `from`'s frame, as matched
   bool accepted = false;
   std::string reason;    ///< why refused; empty when accepted
+  std::size_t pairs = 0;    ///< the match's pairs (0: proposed from elsewhere)
+  double peak_ratio = 0.0;  ///< the correlative search's best over its best distinct peak (ScanMatch)
 };
 
 /// What the localization did.
@@ -103,8 +105,9 @@ class Localizer {
   NavTrack correctedTrack(const NavTrack& dead_reckoning) const;
 
  private:
-  /// Points of scans [first, last) placed with their current poses, in NED.
-  std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last) const;
+  /// Points of scans [first, last) placed with their current poses, in NED moved by `ned_to_frame`
+  /// (identity: in NED).
+  std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame = {}) const;
   /// Covariance of dead reckoning's relative pose from scan a to scan b (a < b), composed along the
   /// odometry edges.
   Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;

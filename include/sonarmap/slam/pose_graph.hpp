@@ -9,6 +9,7 @@
 /// Deterministic: one thread and a fixed order of blocks, so the same graph gives the same bytes.
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -56,6 +57,16 @@ class PoseGraph {
   /// @throws ValueError for invalid options.
   bool optimize(const PoseGraphOptions& options = {});
 
+  /// Estimate one scale factor λ of every odometry edge's translation with the poses (a DVL's scale
+  /// error is common to the whole run: per edge independent, its drift would be under-counted, and
+  /// a loop closure cannot observe it): odometry residuals compare the nodes' relative translation
+  /// with λ × the measured one; λ's prior is 1 ± prior_sigma. Scan matches that see features along
+  /// the track measure it.
+  /// @throws ValueError unless prior_sigma > 0.
+  void estimateOdometryScale(double prior_sigma);
+  /// λ after the last optimize (1 before, or without estimateOdometryScale).
+  double odometryScale() const { return odometry_scale_; }
+
   std::size_t size() const { return poses_.size(); }
   const std::vector<Pose2>& poses() const { return poses_; }
   const Pose2& pose(std::size_t node) const { return poses_.at(node); }
@@ -65,6 +76,8 @@ class PoseGraph {
  private:
   std::vector<Pose2> poses_;
   std::vector<PoseGraphEdge> edges_;
+  std::optional<double> scale_sigma_;
+  double odometry_scale_ = 1.0;
 };
 
 /// The square root S of a positive semi-definite information matrix (SᵀS = information), from its

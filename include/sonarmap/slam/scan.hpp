@@ -83,9 +83,16 @@ struct ScanFormingOptions {
   /// 1σ of its bearing, radians, ≥ 0; 0: automatic, half the mapper's horizontal beam width
   /// (MapperOptions::beam_width_rad), at least half the bearing step.
   double bearing_sigma_rad = 0.0;
+  /// Most dead-reckoning travel within one scan, metres, ≥ 0: a sweep during which the vehicle
+  /// travels farther is cut into consecutive scans of about this much travel each, so that dead
+  /// reckoning's drift within a scan stays small (a SeaKing turn at 30 m takes 24 s: 36 m at
+  /// 1.5 m/s). 0: automatic, half the sweep's reach (the Micron at 0.25 m/s, 2.2 m a turn, keeps
+  /// whole turns).
+  double max_travel_m = 0.0;
 };
 
-/// Forms one scan per sweep of `log` (the sweeps the mapper detects: groupSweeps), detecting each
+/// Forms one scan per sweep of `log` (the sweeps the mapper detects: groupSweeps; several when the
+/// vehicle travels farther than ScanFormingOptions::max_travel_m during one), detecting each
 /// sweep's first obstacles exactly as the mapper does (SonarMapper::detectSweep with `options`
 /// resolved for the log, resolveForLog), and placing each obstacle with the dead-reckoning body
 /// pose at its beam's time (interpolateBodyToNed on `dead_reckoning`), the sonar's mounting
