@@ -121,5 +121,41 @@ TEST_F(cliTrajectory, HelpNamesTheUnits) {
   }
 }
 
+// `map --slam` on a drifting mission: the summary says what the localization did, the trajectory
+// is written (TUM here) and beats the dead reckoning it started from; nothing is written when the
+// options are wrong.
+TEST_F(cliTrajectory, MapWithSlamCorrectsTheDeadReckoning) {
+  const fs::path dir = out_ / "loop";
+  ASSERT_EQ(run({"simulate", "harbour", "--mission", "harbour-loop", "--dvl-scale-error", "0.03", "--heading-bias", "2",
+                 "--gyro-walk", "0.02", "-o", dir.string(), "-q"})
+                .exit_code,
+            0);
+  const fs::path tum = out_ / "slam.tum";
+  const ProgramRun mapped = run({"map", (dir / "beams.csv").string(), "--nav", (dir / "nav.csv").string(), "--slam",
+                                 "-o", (out_ / "slam.bt").string(), "--trajectory", tum.string(), "-q"});
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  const Names lines = linesOf(mapped.out);
+  ASSERT_EQ(lines.size(), 2U) << mapped.out;
+  EXPECT_EQ(lines[1].rfind("slam: 17 scans", 0), 0U) << lines[1];
+  EXPECT_NE(lines[1].find("loop closures accepted"), std::string::npos) << lines[1];
+  EXPECT_EQ(readFile(tum).rfind("# ", 0), 0U);  // TUM's comment header
+  const auto ate = [&](const fs::path& estimate) {
+    const ProgramRun eval = run({"eval-trajectory", estimate.string(), "--truth", (dir / "truth_nav.csv").string()});
+    EXPECT_EQ(eval.exit_code, 0) << eval.err;
+    return std::atof(metricsOf(eval.out)["ate_rmse_m"].c_str());
+  };
+  const double dead_reckoning_m = ate(dir / "nav.csv"), slam_m = ate(tum);
+  EXPECT_GT(dead_reckoning_m, 0.1);
+  EXPECT_LT(slam_m, dead_reckoning_m / 2.0);
+
+  // A trajectory is asked of a static log: one line, nothing written.
+  const ProgramRun refused = run({"map", (dir / "beams.csv").string(), "-o", (out_ / "static.bt").string(),
+                                  "--trajectory", (out_ / "static.csv").string()});
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_EQ(linesOf(refused.err).size(), 1U) << refused.err;
+  EXPECT_FALSE(fs::exists(out_ / "static.bt"));
+  EXPECT_FALSE(fs::exists(out_ / "static.csv"));
+}
+
 }  // namespace
 }  // namespace sonarmap::test

@@ -43,3 +43,18 @@ def test_mission_errors():
         sonarmap.simulate("harbour", dvl_noise=-1.0)
     with pytest.raises(sonarmap.ValueError):
         sonarmap.eval_trajectory(np.zeros((2, 7)), np.zeros((2, 7)))
+
+
+def test_map_sonar_log_with_slam():
+    run = sonarmap.simulate("harbour", mission="harbour-loop", dvl_scale_error=0.03, heading_bias_deg=2.0,
+                            gyro_walk=0.02)
+    slammed = sonarmap.map_sonar_log(run.log, run.dead_reckoning, slam=True)
+    assert slammed.trajectory.shape == run.dead_reckoning.shape
+    assert slammed.slam["scans"] == 17
+    assert any(loop["accepted"] for loop in slammed.slam["loop_closures"])
+    dead = sonarmap.eval_trajectory(run.dead_reckoning, run.nav)["ate_rmse_m"]
+    corrected = sonarmap.eval_trajectory(slammed.trajectory, run.nav)["ate_rmse_m"]
+    assert corrected < dead / 2.0
+    plain = sonarmap.map_sonar_log(run.log, run.dead_reckoning)
+    assert plain.trajectory is None and plain.slam is None
+    assert slammed.copy().trajectory.shape == slammed.trajectory.shape
