@@ -14,7 +14,8 @@
 // sizes drawn from the seed), a gyro walk of 0.02°/√s and DVL noise of 0.02 m/s; the simulator's
 // speckle and noise are seeded with n too.
 //
-// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps]
+// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose]
+// (--verbose: one line per seed on stderr: its errors, both ATEs, the estimated odometry scale)
 
 #include <algorithm>
 #include <chrono>
@@ -136,6 +137,7 @@ int main(int argc, char** argv) {
   std::size_t seeds = 20;
   std::string only;
   bool maps = false;
+  bool verbose = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
       seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
@@ -143,8 +145,10 @@ int main(int argc, char** argv) {
       only = argv[++i];
     } else if (std::strcmp(argv[i], "--maps") == 0) {
       maps = true;
+    } else if (std::strcmp(argv[i], "--verbose") == 0) {
+      verbose = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose]\n", argv[0]);
       return 2;
     }
   }
@@ -174,6 +178,11 @@ int main(int argc, char** argv) {
       slam_ate.push_back(est.ate_rmse_m);
       slam_drift.push_back(est.final_drift_pct);
       worst_ratio = std::max(worst_ratio, est.ate_rmse_m / dr.ate_rmse_m);
+      if (verbose) {
+        std::fprintf(stderr, "%s %s seed %llu: scale error %+.4f, bias %+.2f deg: DR ATE %.3f m, SLAM ATE %.3f m, "
+                     "odometry scale %.4f\n", mission.sonar, mission.name, static_cast<unsigned long long>(seed),
+                     args.dvl_scale_error, args.heading_bias_deg, dr.ate_rmse_m, est.ate_rmse_m, slam.report.odometry_scale);
+      }
       accepted += slam.report.loopClosuresAccepted();
       wrong += wrongLoops(slam, run.nav, options.head.range_m, seed);
       if (maps && seed == 1) {

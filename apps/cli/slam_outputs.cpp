@@ -33,10 +33,12 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
       commonest = reason;
     }
   }
+  char scale[64] = "";
+  if (with_nav) std::snprintf(scale, sizeof scale, ", odometry scale %.4f", report.odometry_scale);
   std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them, %zu of %zu loop closures "
-              "accepted%s%s%s\n",
+              "accepted%s%s%s%s\n",
               report.scans, report.scans_with_points, report.matches_accepted, report.loopClosuresAccepted(),
-              report.loop_closures.size(), most > 0 ? "; most refused as " : "", commonest.c_str(),
+              report.loop_closures.size(), scale, most > 0 ? "; most refused as " : "", commonest.c_str(),
               with_nav ? "" : " (no --nav: the motion comes from the scans alone)");
 }
 

@@ -71,6 +71,7 @@ std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t la
       ScanPoint placed = point;
       placed.xy_m = pose * point.xy_m;
       placed.covariance_m2 = rotation * point.covariance_m2 * rotation.transpose();
+      placed.toward_sonar = rotation * point.toward_sonar;
       points.push_back(placed);
     }
   }
@@ -209,7 +210,10 @@ bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2
   return loop.accepted;
 }
 
-void Localizer::optimize() { graph_.optimize(options_.graph); }
+void Localizer::optimize() {
+  graph_.optimize(options_.graph);
+  report_.odometry_scale = graph_.odometryScale();
+}
 
 NavTrack Localizer::correctedTrack(const NavTrack& dead_reckoning) const {
   NavTrack track;

@@ -78,6 +78,7 @@ std::optional<SonarScan> formScan(const PolarImage& polar, const SweepDetection&
     Eigen::Vector2d along = ned_to_reference.rotation() * (in_ned - sonar_to_ned.translation()).head<2>();
     if (along.norm() < 1e-9) continue;  // a beam pointing straight down: no horizontal position
     along.normalize();
+    point.toward_sonar = -along;
     const double range_sigma_m =
         forming.range_sigma_m > 0.0 ? forming.range_sigma_m : std::max({polar.bin_length_m, hit.rise_m / 2.0, 0.02});
     point.covariance_m2 = sensorCovariance(along, hit.range_m, range_sigma_m, geometry.bearing_sigma_rad);

@@ -32,10 +32,6 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 struct LocalShape {
   bool line = false;
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
-  /// Not a line: the scatter of its neighbours (m²). A pile's points lie on the side facing each
-  /// view, so the same pile seen from elsewhere gives points up to its radius apart: pairing them
-  /// as one point would bias the match towards no motion.
-  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
 };
 
 /// Lines where a target point and its nearest neighbours (within a few of its own σ) lie along one
@@ -67,8 +63,6 @@ std::vector<LocalShape> localShapes(const std::vector<ScanPoint>& target, const 
     if (eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1)) {
       shapes[i].line = true;
       shapes[i].normal = eigen.eigenvectors().col(0);
-    } else {
-      shapes[i].spread = scatter / static_cast<double>(used);
     }
   }
   return shapes;
@@ -104,15 +98,18 @@ ScanMatch icp(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>
       if (tree.knnSearch(moved.data(), 1, &nearest, &distance_sq) == 0) continue;
       const ScanPoint& pair = target[nearest];
       const Eigen::Matrix2d covariance =
-          pair.covariance_m2 + shapes[nearest].spread + rotation * point.covariance_m2 * rotation.transpose();
+          pair.covariance_m2 + rotation * point.covariance_m2 * rotation.transpose();
       const Eigen::Vector2d difference = moved - pair.xy_m;
       const Eigen::Matrix2d weight = covariance.inverse();
       if (difference.dot(weight * difference) > options.gate_chi2) continue;
       Eigen::Matrix<double, 2, 3> jacobian;
       jacobian << Eigen::Matrix2d::Identity(), d_rotation * point.xy_m;
       ++match.pairs;
-      if (shapes[nearest].line) {  // point to line: only the offset across the wall counts
-        const Eigen::Vector2d& n = shapes[nearest].normal;
+      // Point to line: only the offset across the wall counts. An isolated point (a pile) is a patch
+      // facing the sonar that saw it (ScanPoint::toward_sonar): only the offset along that view counts.
+      const bool facing = !shapes[nearest].line && pair.toward_sonar.squaredNorm() > 0.5;
+      if (shapes[nearest].line || facing) {
+        const Eigen::Vector2d& n = shapes[nearest].line ? shapes[nearest].normal : pair.toward_sonar;
         const double residual = n.dot(difference);
         const double w = 1.0 / n.dot(covariance * n);
         const Eigen::RowVector3d j = n.transpose() * jacobian;

@@ -69,6 +69,9 @@ struct SlamReport {
   std::size_t matches_accepted = 0;   ///< scans matched to the scans before them
   std::size_t matches_refused = 0;
   std::vector<LoopClosure> loop_closures;  ///< every loop closure matched, in order
+  /// The odometry's scale factor the graph estimated (PoseGraph::odometryScale; 1 without
+  /// navigation): 0.97 says the dead reckoning's distances were 3 % too long.
+  double odometry_scale = 1.0;
   std::size_t loopClosuresAccepted() const;
 };
 

@@ -60,6 +60,11 @@ struct ScanPoint {
   /// across it, plus what dead reckoning adds between the beam's time and the reference time.
   Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();
   double range_m = 0.0;  ///< from the sonar, metres
+  /// Unit vector from the point back towards the sonar that saw it (scan frame); zero: unknown. A
+  /// sonar sees the side of a surface that faces it, so an isolated point (a pile) is matched
+  /// along this direction only: the same pile seen from elsewhere gives points up to its radius
+  /// apart across it, and pairing them as one point would bias the match towards no motion.
+  Eigen::Vector2d toward_sonar = Eigen::Vector2d::Zero();
 };
 
 /// The detections of one sweep, motion-compensated.
