@@ -16,6 +16,7 @@
 #include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/io/scan_graph.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/nav/tum_trajectory.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene_file.hpp"
@@ -59,6 +60,33 @@ void sonarSeeds() {
   seed("beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("map_beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("nav_csv", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
+  // readTrajectory (navigation CSV or TUM, told apart by content): the simulator's track in both
+  // formats, a hand-written TUM file with comments, blank lines, tabs, a non-unit quaternion and a
+  // UTF-8 byte-order mark, and CRLF line ends in both formats.
+  NavTrack turning;  // the tank's track stands still: one that moves, rolls, pitches (to ±90°) and turns past ±π
+  for (int k = 0; k < 8; ++k) {
+    NavSample fix;
+    fix.time_s = 100.0 + 0.25 * k;
+    fix.position_ned_m = Eigen::Vector3d(0.5 * k, -1.0 + 0.3 * k * k, 2.0 - 0.1 * k);
+    fix.roll_rad = 0.2 * (k % 3) - 0.2;
+    fix.pitch_rad = k == 5 ? 1.5707963267948966 : -0.1 * k;
+    fix.yaw_rad = 2.6 + 0.2 * k;
+    turning.push_back(fix);
+  }
+  seed("trajectory", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
+  seed("trajectory", "tank.tum", [&](std::ostream& out) { writeTumTrajectory(out, run.nav); });
+  seed("trajectory", "turning_nav.csv", [&](std::ostream& out) { writeNavCsv(out, turning); });
+  seed("trajectory", "turning.tum", [&](std::ostream& out) { writeTumTrajectory(out, turning); });
+  seed("trajectory", "comments.tum", [](std::ostream& out) {
+    out << "\xEF\xBB\xBF# timestamp tx ty tz qx qy qz qw\n\n1.5 1 2 3 0 0 0.7071067811865476 0.7071067811865476\n"
+           "  # indented comment\n2.5\t4 5 6 0 0 0 2\n3e1 -1e-3 0.5 7 0.5 -0.5 0.5 -0.5   \n";
+  });
+  seed("trajectory", "crlf.tum", [](std::ostream& out) {
+    out << "# crlf\r\n0 0 0 0 0 0 0 1\r\n\r\n0.25 1 0 -2 0.1 0.2 0.3 0.9\r\n";
+  });
+  seed("trajectory", "crlf_nav.csv", [](std::ostream& out) {
+    out << "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\r\n0,1,2,3,0.1,-0.2,3.1\r\n1.5, 2 ,3,4,0,0,-3.1\r\n";
+  });
   // The stream harness: byte 0 seeds the chunk sizes, then rows as a vehicle sends them.
   seed("nav_stream", "tank_nav.bin", [&](std::ostream& out) {
     out << '\x05';

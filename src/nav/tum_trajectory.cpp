@@ -123,7 +123,11 @@ NavTrack readTumTrajectory(const std::string& path) {
       }
     }
     Eigen::Quaterniond q(values[7], values[4], values[5], values[6]);
-    if (!(q.norm() > 1e-12)) fail("the quaternion has norm 0");
+    // Divided by its largest component first: beyond ~1e154 the squared norm overflows to inf and
+    // normalize() would give (0, 0, 0, 0), read as the identity attitude.
+    const double largest = q.coeffs().cwiseAbs().maxCoeff();
+    if (largest > 0.0) q.coeffs() /= largest;
+    if (!(largest * q.norm() > 1e-12)) fail("the quaternion has norm 0");
     q.normalize();
     NavSample fix = anglesOf(q.toRotationMatrix());
     fix.time_s = values[0];

@@ -30,6 +30,7 @@
 #include "sonarmap/io/point_text.hpp"
 #include "sonarmap/io/scan_graph.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/nav/tum_trajectory.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 
@@ -68,6 +69,10 @@ const std::vector<Route>& routes() {
       {"map --nav", [](const std::string& f) { readNavCsv(f); },
        [](const std::string& f, const fs::path& out) -> Args {
          return {"map", valid("beams_small.csv"), "--nav", f, "-o", in(out, "map.bt"), "-q"};
+       }},
+      {"eval-trajectory", [](const std::string& f) { readTrajectory(f); },
+       [](const std::string& f, const fs::path&) -> Args {
+         return {"eval-trajectory", f, "--truth", valid("tum_small.txt")};
        }},
       {"cloud",
        [](const std::string& f) {
@@ -207,7 +212,7 @@ constexpr Seed kSeeds[] = {
     {"scene_small.txt", "simulate"}, {"beams_span_small.csv", "map"},
     {"seanet_small.seanet", "map"},  {"ping_small.bin", "map"},           {"viewer_small.bin", "map"},
     {"viewer_small_utf16.bin", "map"}, {"viewer_locale_digits.bin", "map"}, {"viewer_chunked.bin", "map"},
-    {"viewer_range_changes.bin", "map"},
+    {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 
@@ -264,6 +269,25 @@ TEST_P(corpusMutated, byteFlipsReadOrThrowError) {
 
 INSTANTIATE_TEST_SUITE_P(valid, corpusMutated, ::testing::ValuesIn(kSeeds),
                          [](const ::testing::TestParamInfo<Seed>& info) { return identifier(info.param.file); });
+
+// ---- trajectories: readTrajectory tells a navigation CSV from a TUM file by content ----------------
+
+TEST(corpusTrajectory, validTumFileReadsEveryPoseAndTheCliScoresIt) {
+  // comments, a blank line, a tab, a CRLF line end; quaternions of yaw 0, 0.2, (about) 0.6 and 1 rad
+  const NavTrack track = readTrajectory(valid("tum_small.txt"));
+  ASSERT_EQ(track.size(), 4u);
+  EXPECT_EQ(track[1].time_s, 0.5);
+  EXPECT_EQ(track[2].position_ned_m, Eigen::Vector3d(2.0, 1.5, 2.5));
+  EXPECT_NEAR(track[1].yaw_rad, 0.2, 1e-9);
+  EXPECT_NEAR(track[3].yaw_rad, 1.0, 1e-9);
+  EXPECT_EQ(readTrajectory(valid("nav_small.csv")).size(), readNavCsv(valid("nav_small.csv")).size());
+  test::TempDir dir;
+  const ProgramRun run =
+      test::runProgram(SONARMAP_CLI, {"eval-trajectory", valid("tum_small.txt"), "--truth", valid("tum_small.txt")},
+                       dir.path());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("poses 4\n"), std::string::npos) << run.out;
+}
 
 // ---- what real Ping Viewer logs do (../shared/data/README.md), in files made by make_corpus.py ---------
 

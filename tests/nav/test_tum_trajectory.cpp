@@ -80,6 +80,22 @@ TEST_F(navTum, CommentsAndBlankLinesAreSkipped) {
   EXPECT_NEAR(track[1].yaw_rad, 0.0, 1e-12);
 }
 
+TEST_F(navTum, HugeQuaternionsAreNormalisedWithoutOverflow) {
+  // Finite components whose squared norm overflows: yaw 90°, then roll 180° (was read as identity).
+  writeText(file("h.txt"), "0 0 0 0 0 0 1e200 1e200\n1 0 0 0 1e308 0 0 0\n2 0 0 0 0 0 1.5e308 1.5e308\n");
+  const NavTrack track = readTumTrajectory(file("h.txt").string());
+  ASSERT_EQ(track.size(), 3U);
+  EXPECT_NEAR(track[0].yaw_rad, 0.5 * std::numbers::pi, 1e-12);
+  const Eigen::Matrix3d roll_pi = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  EXPECT_TRUE(bodyToNed(track[1]).linear().isApprox(roll_pi, 1e-12)) << bodyToNed(track[1]).linear();
+  EXPECT_NEAR(track[2].yaw_rad, 0.5 * std::numbers::pi, 1e-12);
+  // A tiny quaternion is still refused as norm 0, even where its squared norm underflows.
+  writeText(file("t.txt"), "0 0 0 0 0 0 0 1e-13\n");
+  EXPECT_NE(errorOf(file("t.txt")).find("line 1: the quaternion has norm 0"), std::string::npos) << errorOf(file("t.txt"));
+  writeText(file("u.txt"), "0 0 0 0 1e-300 0 0 1e-300\n");
+  EXPECT_NE(errorOf(file("u.txt")).find("line 1: the quaternion has norm 0"), std::string::npos) << errorOf(file("u.txt"));
+}
+
 TEST_F(navTum, MalformedLinesNameTheLine) {
   writeText(file("a.txt"), "# h\n0 0 0 0 0 0 0 1\n1 0 0 0 0 0 1\n");
   EXPECT_NE(errorOf(file("a.txt")).find("line 3"), std::string::npos) << errorOf(file("a.txt"));
