@@ -14,7 +14,8 @@
 // sizes drawn from the seed), a gyro walk of 0.02°/√s and DVL noise of 0.02 m/s; the simulator's
 // speckle and noise are seeded with n too.
 //
-// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose]
+// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale]
+// (--fixed-scale: SlamOptions::estimate_odometry_scale false)
 // (--verbose: one line per seed on stderr: its errors, both ATEs, the estimated odometry scale)
 
 #include <algorithm>
@@ -138,6 +139,7 @@ int main(int argc, char** argv) {
   std::string only;
   bool maps = false;
   bool verbose = false;
+  bool fixed_scale = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
       seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
@@ -147,8 +149,10 @@ int main(int argc, char** argv) {
       maps = true;
     } else if (std::strcmp(argv[i], "--verbose") == 0) {
       verbose = true;
+    } else if (std::strcmp(argv[i], "--fixed-scale") == 0) {
+      fixed_scale = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale]\n", argv[0]);
       return 2;
     }
   }
@@ -166,7 +170,9 @@ int main(int argc, char** argv) {
       const std::string scene = missionPlan(mission.name, options.head.range_m, 1.0).scene;
       const MsisSimulation run = simulateMsis(sceneOf(scene, options.head), options);
       const Clock::time_point start = Clock::now();
-      const SlamResult slam = localize(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{});
+      SlamOptions slam_options;
+      slam_options.estimate_odometry_scale = !fixed_scale;
+      const SlamResult slam = localize(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{}, slam_options);
       const SonarMapper slam_map = mapSonarLog(run.log, slam.trajectory, options.sonar_to_body, MapperOptions{});
       const double spent_s = seconds(start);
       const double duration_s = run.log.beams.back().time_s - run.log.beams.front().time_s;

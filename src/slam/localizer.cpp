@@ -57,7 +57,7 @@ std::size_t SlamReport::loopClosuresAccepted() const {
 Localizer::Localizer(const SlamOptions& options, bool navigation_known)
     : options_(options), navigation_known_(navigation_known) {
   options_.validate();
-  if (navigation_known_ && options_.forming.odometry.scale_sigma > 0.0) {
+  if (navigation_known_ && options_.estimate_odometry_scale && options_.forming.odometry.scale_sigma > 0.0) {
     graph_.estimateOdometryScale(options_.forming.odometry.scale_sigma);
   }
 }
@@ -97,7 +97,7 @@ void Localizer::addScan(SonarScan scan) {
   // The edge: the scale error is the graph's own parameter (estimateOdometryScale), so the edge
   // keeps only what varies from edge to edge (a fifth of it, and the noise).
   OdometryNoise varying = options_.forming.odometry;
-  if (navigation_known_) varying.scale_sigma /= 5.0;
+  if (navigation_known_ && options_.estimate_odometry_scale) varying.scale_sigma /= 5.0;
   const Eigen::Matrix3d edge_covariance = varying.covariance(motion, duration_s, navigation_known_);
   const double scale = graph_.odometryScale();
   graph_.addNode(graph_.pose(k - 1) * Pose2{scale * motion.x_m, scale * motion.y_m, motion.yaw_rad});

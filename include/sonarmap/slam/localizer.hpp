@@ -33,6 +33,10 @@ struct SlamOptions {
   ScanMatchOptions matching;
   PoseGraphOptions graph;
   std::size_t submap_scans = 3;  ///< scans before a scan that it is matched against, ≥ 1
+  /// Estimate the odometry's scale factor with the poses (PoseGraph::estimateOdometryScale, prior
+  /// 1 ± forming.odometry.scale_sigma; the odometry edges then keep a fifth of that σ). false: the
+  /// odometry's scale is trusted, its error left in each edge's covariance.
+  bool estimate_odometry_scale = true;
   /// A loop closure is sought among the scans whose estimated reference position lies within this
   /// of the new scan's, metres, ≥ 0; 0: automatic, half the scans' median reach.
   double loop_search_radius_m = 0.0;
