@@ -4,7 +4,9 @@
 // median beam interval) and at RATE times it by a producer thread; the mapping thread decodes
 // each beam's bytes as they arrive, maps the beam at once (OnlineMapper, OnlineIntegration::kBeam)
 // and stamps it. Latency = the stamp − the time the beam's last byte was handed over. The beams
-// of the first sweep wait for its end (the calibration) and are reported apart; "late" counts
+// of the first sweep wait for its end (the calibration) and are reported apart; the --slam row
+// maps through OnlineSlam without navigation (a scan per sweep, matched, the map rebuilt when a
+// loop closes); "late" counts
 // beams still waiting when the next one arrives (a backlog; nothing is dropped: the queue holds
 // every beam, so a backlog shows as latency). At most 30 s of replay per row (at the head's own
 // rate: its first sweeps).
@@ -17,6 +19,7 @@
 #include <deque>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <thread>
@@ -27,6 +30,7 @@
 #include "sonarmap/formats/seanet_capture.hpp"
 #include "sonarmap/formats/wire_encoder.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
+#include "sonarmap/slam/online_slam.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
 namespace {
@@ -38,6 +42,7 @@ struct Case {
   const char* name;
   BeamModel model;
   double resolution_m;
+  bool slam = false;  ///< live --slam without navigation (OnlineSlam): scans, matches, map rebuilds
 };
 
 /// The median interval between consecutive beams of the log, seconds (0.043 s on the CRAS Micron).
@@ -84,7 +89,13 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
   options.beam_model = c.model;
   options.resolution_m = c.resolution_m;
   options.pipeline_detection = false;
-  OnlineMapper mapper(options, OnlineIntegration::kBeam);
+  std::optional<OnlineMapper> plain;
+  std::optional<OnlineSlam> slam;
+  if (c.slam) {
+    slam.emplace(options, defaultSonarToBody(), false, SlamOptions{}, OnlineIntegration::kBeam);
+  } else {
+    plain.emplace(options, OnlineIntegration::kBeam);
+  }
   std::vector<Clock::time_point> sent;
   std::vector<double> latency_ms, warmup_ms;
   std::size_t late = 0, pending_before = 0;
@@ -101,11 +112,15 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
     const SonarLog decoded = parseSeaNetCapture(std::span(arrival.bytes.data(), arrival.bytes.size()), "wire");
     for (const Beam& beam : decoded.beams) {
       sent.push_back(arrival.sent);
-      mapper.addBeam(beam);
+      if (slam) {
+        slam->addBeam(beam);
+      } else {
+        plain->addBeam(beam);
+      }
     }
     // Every beam no longer pending is in the map now.
     const Clock::time_point now = Clock::now();
-    const std::size_t pending = mapper.beamsPending();
+    const std::size_t pending = slam ? slam->beamsPending() : plain->beamsPending();
     const std::size_t integrated = sent.size() - pending;
     for (std::size_t i = sent.size() - decoded.beams.size() - pending_before; i < integrated; ++i) {
       const double ms = std::chrono::duration<double, std::milli>(now - sent[i]).count();
@@ -114,11 +129,16 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
     pending_before = pending;
   }
   producer.join();
-  mapper.finish();
+  if (slam) {
+    slam->finish();
+  } else {
+    plain->finish();
+  }
+  const std::size_t mapped = slam ? slam->mapper().mapper().stats().beams_used : plain->mapper().stats().beams_used;
   std::printf("| %s | %.0f× (%.0f beams/s) | %zu | %.3f | %.3f | %.3f | %.0f | %zu | %zu |\n", c.name, rate,
               rate / interval_s, latency_ms.size(), percentileOf(latency_ms, 0.5), percentileOf(latency_ms, 0.99),
               latency_ms.empty() ? 0.0 : *std::max_element(latency_ms.begin(), latency_ms.end()),
-              percentileOf(warmup_ms, 0.5), late, mapper.mapper().stats().beams_used);
+              percentileOf(warmup_ms, 0.5), late, mapped);
   std::fflush(stdout);
 }
 
@@ -142,7 +162,8 @@ int main(int argc, char** argv) {
                 "late | beams mapped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     const Case cases[] = {{"planar, 2 cm", BeamModel::kPlanar, 0.02},
                           {"volume, 5 cm", BeamModel::kVolume, 0.05},
-                          {"volume, 2 cm", BeamModel::kVolume, 0.02}};
+                          {"volume, 2 cm", BeamModel::kVolume, 0.02},
+                          {"planar, 2 cm, --slam", BeamModel::kPlanar, 0.02, true}};
     for (const Case& c : cases) {
       for (const double rate : rates) replay(packets, first_sweep, interval_s, rate, c);
     }
