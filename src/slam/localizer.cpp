@@ -143,7 +143,10 @@ void Localizer::closeLoop(std::size_t k) {
   std::size_t best = k;
   double best_distance_m = std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j + options_.submap_scans < k; ++j) {
-    if (travelled_m_[k] - travelled_m_[j] < min_travel_m) continue;
+    // The vehicle left j long ago, or never left its neighbourhood (a hovering or static vehicle
+    // revisits the same place all the time: its drift is bounded by matching the first scans).
+    const double travelled_m = travelled_m_[k] - travelled_m_[j];
+    if (travelled_m < min_travel_m && travelled_m > radius_m) continue;
     if (scans_[j].points.size() < options_.matching.min_pairs) continue;
     const double distance_m = (graph_.pose(j).translation() - graph_.pose(k).translation()).norm();
     if (distance_m <= radius_m && distance_m < best_distance_m) {

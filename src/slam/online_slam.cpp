@@ -83,8 +83,21 @@ void OnlineSlam::closeGroup(std::size_t beams) {
   const std::size_t accepted = localizer_.report().loopClosuresAccepted();
   if (accepted > accepted_loops_) {
     accepted_loops_ = accepted;
-    rebuild();
+    if (movedSinceRebuild()) rebuild();
   }
+}
+
+bool OnlineSlam::movedSinceRebuild() const {
+  const std::vector<Pose2>& poses = localizer_.graph().poses();
+  // Half a voxel, at the farthest a beam reaches: less than that changes no cell.
+  const double voxel_m = mapper_->mapper().map().resolution_m();
+  for (std::size_t k = 0; k < poses.size() && k < mapped_poses_.size(); ++k) {
+    const double reach_m = localizer_.scans()[k].reach_m;
+    const double moved_m = (poses[k].translation() - mapped_poses_[k].translation()).norm() +
+                           reach_m * std::abs(wrapAngle_rad(poses[k].yaw_rad - mapped_poses_[k].yaw_rad));
+    if (moved_m > 0.5 * voxel_m) return true;
+  }
+  return false;
 }
 
 NavTrack OnlineSlam::trajectory() const {
@@ -106,6 +119,7 @@ void OnlineSlam::rebuild() {
     mapper->addBeam(beam);
   }
   if (finished_) mapper->finish();
+  mapped_poses_ = localizer_.graph().poses();
   std::unique_lock lock(swap_mutex_);
   mapper_ = std::move(mapper);
   ++rebuilds_;

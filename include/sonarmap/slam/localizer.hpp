@@ -10,6 +10,9 @@
 /// al. 2022). The corrected trajectory moves each dead-reckoning fix by the correction of the
 /// scans around it, interpolated in time.
 ///
+/// A loop closure is sought for every scan among the scans older than its submap
+/// (SlamOptions::loop_search_radius_m, loop_min_travel_m).
+///
 /// One path for batch (localize) and live mapping (Localizer fed scan by scan).
 
 #include <cstddef>
@@ -41,7 +44,9 @@ struct SlamOptions {
   /// of the new scan's, metres, ≥ 0; 0: automatic, half the scans' median reach.
   double loop_search_radius_m = 0.0;
   /// ... and that the vehicle left at least this far back along its path, metres, ≥ 0; 0:
-  /// automatic, twice the scans' median reach (so that a loop closure is not just the last turn).
+  /// automatic, twice the scans' median reach (so that a loop closure is not just the last turn),
+  /// unless it has travelled no farther than the search radius since (a hovering or static
+  /// vehicle: its scans older than the submap are loop closures too).
   double loop_min_travel_m = 0.0;
   /// Gate of a loop closure against the current estimate: its squared Mahalanobis distance with the
   /// covariance dead reckoning accumulates along the path between the two scans plus the match's,

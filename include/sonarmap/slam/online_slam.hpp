@@ -3,7 +3,8 @@
 /// Live mapping with localization (`sonarmap live --slam`): beams and dead-reckoning fixes arrive
 /// one at a time; each completed sweep becomes a scan (scan.hpp) for the Localizer
 /// (localizer.hpp); new beams are mapped at once (OnlineMapper) with the dead reckoning corrected
-/// by the latest scan's correction; when a loop closure moves the past poses, the map is rebuilt
+/// by the latest scan's correction; when a loop closure moves the past poses (a scan by more than
+/// half a voxel at its reach, since the map was last built), the map is rebuilt
 /// from every beam so far with the corrected trajectory (the octree maps a Micron turn in about a
 /// millisecond), so the map is always the current best. After finish() the map and trajectory are
 /// those of the batch path (mapSonarLogWithSlam) on the same beams and fixes.
@@ -60,6 +61,9 @@ class OnlineSlam {
   void closeGroup(std::size_t beams);
   /// Maps every beam so far with the current trajectory into a new OnlineMapper and swaps it in.
   void rebuild();
+  /// Whether a scan's pose moved since the map was last rebuilt by more than half a voxel at its
+  /// reach (position, plus reach × heading change): less changes no cell worth a rebuild.
+  bool movedSinceRebuild() const;
   NavSample corrected(const NavSample& fix) const;
 
   MapperOptions options_;
@@ -77,6 +81,7 @@ class OnlineSlam {
   std::size_t rebuilds_ = 0;
   bool finished_ = false;
   Pose2 correction_;  ///< the latest scan's: optimised ∘ dead reckoning⁻¹
+  std::vector<Pose2> mapped_poses_;  ///< the scans' poses the current map was built with (empty: none)
   mutable std::shared_mutex swap_mutex_;  ///< exclusive while the mapper is swapped
   std::unique_ptr<OnlineMapper> mapper_;
 };
