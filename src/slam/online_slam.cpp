@@ -74,6 +74,9 @@ void OnlineSlam::closeGroup(std::size_t beams) {
   std::vector<SonarScan> scans = formScans(group, navigation_ ? dead_reckoning_ : none, sonar_to_body_, options_, slam_.forming);
   for (SonarScan& scan : scans) {
     scan.first_beam += grouped_;
+    // The scans before this one are in the map with (about) their poses as they are now.
+    const std::vector<Pose2>& poses = localizer_.graph().poses();
+    for (std::size_t k = mapped_poses_.size(); k < poses.size(); ++k) mapped_poses_.push_back(poses[k]);
     localizer_.addScan(std::move(scan));
   }
   grouped_ += beams;

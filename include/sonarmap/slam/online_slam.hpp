@@ -81,7 +81,9 @@ class OnlineSlam {
   std::size_t rebuilds_ = 0;
   bool finished_ = false;
   Pose2 correction_;  ///< the latest scan's: optimised ∘ dead reckoning⁻¹
-  std::vector<Pose2> mapped_poses_;  ///< the scans' poses the current map was built with (empty: none)
+  /// The scans' poses the current map was built with: each scan's as it was when the next one came,
+  /// or all of them as of the last rebuild.
+  std::vector<Pose2> mapped_poses_;
   mutable std::shared_mutex swap_mutex_;  ///< exclusive while the mapper is swapped
   std::unique_ptr<OnlineMapper> mapper_;
 };
