@@ -8,6 +8,7 @@
 #include <string>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/core/statistics.hpp"
 #include "sonarmap/slam/localizer.hpp"
 #include "loop_gates.hpp"
 
@@ -21,12 +22,6 @@ Eigen::Matrix3d informationInFrame(const Eigen::Matrix3d& information_ned, const
   Eigen::Matrix3d a = Eigen::Matrix3d::Identity();
   a.topLeftCorner<2, 2>() = frame.rotation();
   return a.transpose() * information_ned * a;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-  return values[values.size() / 2];
 }
 
 /// Linear interpolation of two planar poses (the yaw along the shorter arc).
@@ -135,7 +130,7 @@ void Localizer::matchToSubmap(std::size_t k) {
 void Localizer::closeLoop(std::size_t k) {
   std::vector<double> reaches;
   for (const SonarScan& scan : scans_) reaches.push_back(scan.reach_m);
-  const double reach_m = median(reaches);
+  const double reach_m = percentile(reaches, 0.5);
   const double radius_m = options_.loop_search_radius_m > 0.0 ? options_.loop_search_radius_m : reach_m / 2.0;
   const double min_travel_m = options_.loop_min_travel_m > 0.0 ? options_.loop_min_travel_m : 2.0 * reach_m;
   if (scans_[k].points.size() < options_.matching.min_pairs) return;
@@ -180,11 +175,9 @@ void Localizer::closeLoop(std::size_t k) {
     report_.loop_closures.push_back(loop);
     return;
   }
-  if (proposeLoopClosure(j, k, loop.measurement, informationInFrame(match.information, graph_.pose(j))) ||
-      !report_.loop_closures.empty()) {
-    report_.loop_closures.back().pairs = match.pairs;
-    report_.loop_closures.back().peak_ratio = match.peak_ratio;
-  }
+  proposeLoopClosure(j, k, loop.measurement, informationInFrame(match.information, graph_.pose(j)));
+  report_.loop_closures.back().pairs = match.pairs;  // proposeLoopClosure recorded it, accepted or not
+  report_.loop_closures.back().peak_ratio = match.peak_ratio;
 }
 
 bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement,
@@ -267,7 +260,7 @@ SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const E
   if (dead_reckoning.size() >= 2) {  // the velocity readings' period: the navigation's median fix spacing
     std::vector<double> periods;
     for (std::size_t i = 1; i < dead_reckoning.size(); ++i) periods.push_back(dead_reckoning[i].time_s - dead_reckoning[i - 1].time_s);
-    tuned.forming.odometry.nav_period_s = std::max(median(periods), 1e-3);
+    tuned.forming.odometry.nav_period_s = std::max(percentile(periods, 0.5), 1e-3);
   }
   std::vector<SonarScan> scans = formScans(log, dead_reckoning, sonar_to_body, options, tuned.forming);
   Localizer localizer(tuned, !dead_reckoning.empty());
