@@ -158,8 +158,15 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
                   map.resolution_m());
     writeBytesAtomically(args.png, encodePng(surfaceErrorFigure(map, r, title, options.sensor_positions_m)));
   }
-  std::printf("precision %.4f (%zu of %zu occupied voxels on a surface)\n", r.precision, r.occupied_on_surface,
-              r.occupied_voxels);
+  const std::size_t off_surface = r.occupied_voxels - r.occupied_on_surface;
+  if (off_surface == 0) {
+    std::printf("precision %.4f (%zu of %zu occupied voxels on a surface)\n", r.precision, r.occupied_on_surface,
+                r.occupied_voxels);
+  } else {
+    std::printf("precision %.4f (%zu of %zu occupied voxels on a surface; of the others, %zu in the water, %zu behind "
+                "or inside a surface)\n",
+                r.precision, r.occupied_on_surface, r.occupied_voxels, r.occupied_in_water, off_surface - r.occupied_in_water);
+  }
   std::printf("recall %.4f (%zu of %zu visible surface voxels mapped)\n", r.recall, r.surface_voxels_found,
               r.surface_voxels);
   std::printf("erosion %.4f (%zu of %zu visible surface voxels free)\n", r.erosion, r.surface_voxels_free,

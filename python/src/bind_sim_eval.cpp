@@ -76,6 +76,7 @@ py::dict reportDict(const GroundTruthReport& r) {
   d["free_accuracy"] = r.free_accuracy;
   d["occupied_voxels"] = r.occupied_voxels;
   d["occupied_on_surface"] = r.occupied_on_surface;
+  d["occupied_in_water"] = r.occupied_in_water;
   d["surface_voxels"] = r.surface_voxels;
   d["surface_voxels_found"] = r.surface_voxels_found;
   d["surface_voxels_free"] = r.surface_voxels_free;

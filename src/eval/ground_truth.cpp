@@ -196,6 +196,9 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
     const Eigen::Vector3d center = map.coder().centerOf(key);
     const auto [distance_m, nearest] = nearestPrimitive(scene, center);
     report.occupied_on_surface += distance_m <= report.tolerance_m ? 1 : 0;
+    if (distance_m > report.tolerance_m && reachableInWater(caster, options.sensor_positions_m, center)) {
+      ++report.occupied_in_water;  // a shell in front of a surface, not a voxel behind or inside one
+    }
     distances.push_back(distance_m);
     report.occupied_errors.push_back({center, distance_m});
     if (distance_m > options.match_distance_m) continue;

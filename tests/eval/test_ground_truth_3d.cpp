@@ -150,6 +150,22 @@ TEST(evalGroundTruth3d, SurfaceErrorIsTheMedianAndNinetiethPercentileOverOccupie
   EXPECT_EQ(none.surface_error_p90_m, 0.0);
 }
 
+// Occupied voxels off the surface are split by where they lie: in front of the wall (a shell in
+// the water, reached from the sensor through no surface) or behind it.
+TEST(evalGroundTruth3d, OffSurfaceVoxelsAreSplitIntoWaterAndBehind) {
+  OcTree16 map(kRes);
+  setOccupied(map, 10, 0);  // on the wall
+  setOccupied(map, 9, 0);   // 0.1 m in front: within T, on the surface
+  setOccupied(map, 8, 0);   // 0.2 m in front: in the water
+  setOccupied(map, 6, 1);   // 0.4 m in front: in the water
+  setOccupied(map, 13, 0);  // 0.3 m behind the wall
+  setOccupied(map, 15, 2);  // 0.5 m behind the wall
+  const GroundTruthReport r = evaluateAgainstScene(map, wallScene());
+  ASSERT_EQ(r.occupied_voxels, 6U);
+  EXPECT_EQ(r.occupied_on_surface, 2U);
+  EXPECT_EQ(r.occupied_in_water, 2U);
+}
+
 /// A map of water in front of the wall over ten layers (z centres 0.05 … 0.95 m), rows −1…0.
 OcTree16 waterColumnMap() {
   OcTree16 map(kRes);

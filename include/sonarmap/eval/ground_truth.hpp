@@ -24,7 +24,9 @@
 ///    elevation of p in its frame, asin(z component of Rᵢᵀ · (p − sᵢ) / |p − sᵢ|), lies within
 ///    [−A/2, A/2]; no horizontal limit. Without them every direction is seen (a sphere).
 ///  - Precision = occupied voxels of the region within T of a scene surface (distanceToSurface)
-///    / occupied voxels of the region.
+///    / occupied voxels of the region. The others are split by where they lie: in the water (a
+///    straight segment from some sensor reaches them through no surface, as for free accuracy
+///    below: a shell in front of a face) or behind or inside a surface.
 ///  - Surface voxels: the voxels of the map's grid inside the region's box (the horizontal bounding
 ///    box of the region's known voxels, grown by T on each side, × the z extent of the region's
 ///    known voxels; or GroundTruthOptions::surface_box_m when set) whose centre is within res / 2 of a scene surface (the surface sampled at the
@@ -138,6 +140,11 @@ struct GroundTruthReport {
 
   std::size_t occupied_voxels = 0;
   std::size_t occupied_on_surface = 0;  ///< within T of a surface
+  /// Of the others (farther than T from every surface), those in the water: a straight segment
+  /// from some sensor reaches them through no surface. The beam-volume model's uncarved shells
+  /// (voxels in front of a face, at the echo's range but at an elevation where the face is farther);
+  /// the rest lie behind or inside a surface.
+  std::size_t occupied_in_water = 0;
   double precision = 0.0;
 
   std::size_t surface_voxels = 0;       ///< visible surface voxels of the region
