@@ -7,7 +7,7 @@
 // For each preset: the seabed 2 m below the head at the Micron's 5 m scale (scaled with the range),
 // level (lawnmower) and tilted 25° down (tilted loop, the beam looking the way it tilts); the echo
 // power of a bin at 40, 60, 80 and 100 % of the range against the mean noise power after the TVG
-// (noise_level_db + 20 log r + 2 α r), in dB, for the quay3d seabed (reflectivity 0.5, Lambert
+// (meanNoisePower: noise_level_db + 20 log r + 2 α r), in dB, for the quay3d seabed (reflectivity 0.5, Lambert
 // μ = ρ / π = −8.0 dB) and for Mackenzie's (1961) deep-sea Lambert constant μ = −27 dB. Ranges
 // where the seabed lies outside the echo model's rays are left out.
 #include <cmath>
@@ -30,8 +30,7 @@ int main() {
     for (const double tilt_deg : {0.0, 25.0}) {
       for (const double share : {0.4, 0.6, 0.8, 1.0}) {
         const double range_m = share * reach_m;
-        const double noise_db = preset.echo.noise_level_db + 20.0 * std::log10(range_m) +
-                                2.0 * preset.echo.tvg_absorption_db_per_m * range_m;
+        const double noise_db = 10.0 * std::log10(meanNoisePower(preset.echo, range_m));
         const double tilt_rad = tilt_deg * std::numbers::pi / 180.0;
         auto relative = [&](double reflectivity) -> std::string {
           const double power = flatSeabedEchoPower(preset.head, preset.echo, altitude_m, reflectivity, range_m, tilt_rad);

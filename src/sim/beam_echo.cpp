@@ -18,6 +18,11 @@ double oneWayPattern(double angle_rad, double width_rad, double exponent) {
   return std::exp2(-std::pow(std::abs(2.0 * angle_rad / width_rad), exponent));
 }
 
+double apertureRayAngle(const ApertureAxis& axis, double width_rad, int index) {
+  const double span_rad = axis.extent * width_rad;
+  return -0.5 * span_rad + (index + 0.5) * (span_rad / axis.rays);
+}
+
 struct BeamEchoTracer::Beam {
   Eigen::Vector3d origin_m;      // the head, map frame
   Eigen::Matrix3d sonar_to_map;  // rotation
@@ -34,8 +39,8 @@ BeamEchoTracer::BeamEchoTracer(const Scene& scene, const MsisHeadOptions& head, 
   for (int i = 0; i < echo.horizontal.rays; ++i) {
     for (int j = 0; j < echo.vertical.rays; ++j) {
       ApertureRay ray;
-      ray.horizontal_rad = -0.5 * horizontal_span_rad + (i + 0.5) * horizontal_step_rad_;
-      ray.elevation_rad = -0.5 * vertical_span_rad + (j + 0.5) * vertical_step_rad_;
+      ray.horizontal_rad = apertureRayAngle(echo.horizontal, head.horizontal_beam_width_rad, i);
+      ray.elevation_rad = apertureRayAngle(echo.vertical, head.vertical_beam_width_rad, j);
       ray.sin_elevation = std::sin(ray.elevation_rad);
       ray.cos_elevation = std::cos(ray.elevation_rad);
       ray.pattern = oneWayPattern(ray.horizontal_rad, head.horizontal_beam_width_rad, echo.horizontal.exponent) *

@@ -16,6 +16,10 @@ namespace sonarmap::sim {
 /// One-way power pattern 2^−|2θ/W|^n: 1 on the axis, 0.5 (−3 dB) at θ = ±W/2.
 double oneWayPattern(double angle_rad, double width_rad, double exponent);
 
+/// Angle of ray `index` (0 … axis.rays − 1) of the aperture grid on one axis, from the beam's
+/// axis: the rays span ± axis.extent half widths, each at the middle of its cell.
+double apertureRayAngle(const ApertureAxis& axis, double width_rad, int index);
+
 /// One direction of the aperture grid, relative to the beam's axis (sonar frame).
 struct ApertureRay {
   double horizontal_rad = 0.0;  ///< added to the bearing (counter-clockwise)

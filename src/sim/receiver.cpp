@@ -13,16 +13,24 @@ double powerOf(double level_db) { return std::pow(10.0, level_db / 10.0); }
 
 }  // namespace
 
+int pulseBins(const MsisHeadOptions& head, const EchoModelOptions& echo) {
+  return std::max(1, static_cast<int>(std::lround(echo.pulse_length_m / head.binLength_m())));
+}
+
+double tvgGain(const EchoModelOptions& echo, double range_m) {
+  return range_m * range_m * std::pow(10.0, 2.0 * echo.tvg_absorption_db_per_m * range_m / 10.0);
+}
+
 Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo) : head_(head), echo_(echo) {
   const double bin_m = head.binLength_m();
-  pulse_bins_ = std::max(1, static_cast<int>(std::lround(echo.pulse_length_m / bin_m)));
+  pulse_bins_ = pulseBins(head, echo);
   const auto bins = static_cast<std::size_t>(head.bins);
   gain_.resize(bins);
   self_reflection_.assign(bins, 0.0);
   const double band_power = powerOf(levelOf(echo.self_reflection_intensity));
   for (std::size_t i = 0; i < bins; ++i) {
     const double range_m = (static_cast<double>(i) + 0.5) * bin_m;
-    gain_[i] = range_m * range_m * std::pow(10.0, 2.0 * echo.tvg_absorption_db_per_m * range_m / 10.0);
+    gain_[i] = tvgGain(echo, range_m);
     const double past_end_m = range_m - echo.self_reflection_end_m;
     if (echo.self_reflection_end_m > 0.0 && echo.self_reflection_intensity > 0.0 &&
         past_end_m < echo.self_reflection_taper_m) {

@@ -11,6 +11,13 @@
 
 namespace sonarmap::sim {
 
+/// Bins the receiver sums per pulse: the pulse length in bins, rounded, at least 1.
+int pulseBins(const MsisHeadOptions& head, const EchoModelOptions& echo);
+
+/// The time-varying gain at `range_m` as a power factor: r² · 10^(2 α r / 10), α the absorption
+/// the TVG compensates (20 log r + 2αr).
+double tvgGain(const EchoModelOptions& echo, double range_m);
+
 /// Turns received energy per range bin (BeamEchoTracer::trace) into one beam's intensities.
 class Receiver {
  public:

@@ -3,11 +3,11 @@
 
 #include "sonarmap/sim/sonar_equation.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "beam_echo.hpp"
+#include "receiver.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
@@ -27,7 +27,7 @@ double flatSeabedEchoPower(const MsisHeadOptions& head, const EchoModelOptions& 
   // V: the two-way vertical pattern times cos v over the echo model's rays (their normalisation).
   double pattern_integral = 0.0;
   for (int j = 0; j < echo.vertical.rays; ++j) {
-    const double v = -0.5 * span_rad + (j + 0.5) * step_rad;
+    const double v = sim::apertureRayAngle(echo.vertical, width_rad, j);
     const double p = sim::oneWayPattern(v, width_rad, echo.vertical.exponent);
     pattern_integral += p * p * std::cos(v) * step_rad;
   }
@@ -40,9 +40,13 @@ double flatSeabedEchoPower(const MsisHeadOptions& head, const EchoModelOptions& 
                            std::pow(sin_grazing, echo.lambert_exponent + 1.0) /
                            (altitude_m * pattern_integral * std::cos(grazing_rad));
   // The receiver sums the energy of a pulse length of bins.
-  const double bin_m = head.binLength_m();
-  const int pulse_bins = std::max(1, static_cast<int>(std::lround(echo.pulse_length_m / bin_m)));
-  return per_metre * pulse_bins * bin_m;
+  return per_metre * sim::pulseBins(head, echo) * head.binLength_m();
+}
+
+double meanNoisePower(const EchoModelOptions& echo, double range_m) {
+  echo.validate();
+  if (!(range_m > 0.0) || !std::isfinite(range_m)) throw ValueError("range_m must be > 0");
+  return std::pow(10.0, echo.noise_level_db / 10.0) * sim::tvgGain(echo, range_m);
 }
 
 }  // namespace sonarmap

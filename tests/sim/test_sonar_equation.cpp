@@ -1,6 +1,7 @@
 // The simulated seabed against the sonar equation: a level head over a flat Lambertian seabed
 // writes, bin by bin, the echo level the closed form of sonar_equation.hpp gives (pulse-limited
-// bottom reverberation, Urick 1983 ch. 8), for two heads and two altitudes.
+// bottom reverberation, Urick 1983 ch. 8), for two heads and two altitudes, and a head tilted 25°;
+// the noise's mean power against the simulator's noise alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/sonar_equation.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
@@ -100,6 +102,28 @@ TEST(simSonarEquation, TiltedHeadSeesTheSeabedAsTheClosedFormSays) {
     ++checked;
   }
   EXPECT_GE(checked, 7);
+}
+
+// Noise alone (open water: nothing within reach), speckled as the head speckles it: its mean
+// power after the TVG is what meanNoisePower says.
+TEST(simSonarEquation, NoiseAloneHasTheMeanPowerOfTheClosedForm) {
+  const SonarPreset preset = sonarPreset("seaking-30");
+  MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  options.echo.multipath = false;
+  options.echo.self_reflection_end_m = 0.0;
+  options.echo.blanking_m = 0.0;
+  options.echo.ad_low_db = options.echo.noise_level_db - 20.0;  // the noise well inside the A/D span
+  options.echo.ad_span_db = 90.0;
+  options.turns = 2;
+  const MsisSimulation run = simulateMsis(builtinScene("open-water", preset.head.range_m), options);
+  for (const double share : {0.2, 0.5, 0.9}) {
+    const double range_m = share * preset.head.range_m;
+    const double simulated = meanPower(run, options.echo, options.head.binLength_m(), range_m);
+    EXPECT_NEAR(10.0 * std::log10(simulated / meanNoisePower(options.echo, range_m)), 0.0, 0.3) << range_m;
+  }
+  EXPECT_THROW(meanNoisePower(options.echo, 0.0), ValueError);
 }
 
 TEST(simSonarEquation, LevelFollowsLambertAndTheGeometry) {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file sonar_equation.hpp
-/// The echo level of a flat seabed under a level head, in closed form: the sonar equation for a
+/// The echo level of a flat seabed under a level or tilted head, in closed form: the sonar equation for a
 /// pulse-limited extended surface (Urick, "Principles of Underwater Sound", 3rd ed. 1983, ch. 8,
 /// boundary reverberation), in the units of the simulator's echo model (msis_simulator.hpp), so
 /// that what the simulator writes for a seabed can be checked against physics, and a seabed's
@@ -39,13 +39,19 @@ namespace sonarmap {
 
 /// The mean power of a bin at range `range_m` (after the TVG, before speckle and noise; in the echo
 /// model's units, 1 = 0 dB re a perfect reflector filling the beam) of a flat seabed of reflectivity
-/// `reflectivity` lying `altitude_m` below the head (see the file's comment). 0 where the seabed is
-/// nearer than the altitude or outside the echo model's rays. Valid where the echo varies little over a pulse length.
+/// `reflectivity` lying `altitude_m` below the head, whose axis points down by `tilt_rad` (the beam
+/// looking the way it tilts; 0: level); see the file's comment. 0 where the seabed is nearer than
+/// the altitude or outside the echo model's rays. Valid where the echo varies little over a pulse
+/// length.
 /// @throws ValueError for invalid head or echo options, altitude_m or range_m not > 0 and finite,
 ///         reflectivity outside [0, 1], or tilt_rad outside [0, π/2).
-/// `tilt_rad`: the head's axis pointed down by this much, the beam looking the way it tilts, in
-/// [0, π/2).
 double flatSeabedEchoPower(const MsisHeadOptions& head, const EchoModelOptions& echo, double altitude_m,
                            double reflectivity, double range_m, double tilt_rad = 0.0);
+
+/// The mean power of the additive noise in a bin at `range_m` after the TVG, in the same units: the
+/// noise before the gain (EchoModelOptions::noise_level_db) times r² · 10^(2 α r / 10), what the
+/// simulator's receiver adds (msis_simulator.hpp, step 5).
+/// @throws ValueError for invalid echo options or range_m not > 0 and finite.
+double meanNoisePower(const EchoModelOptions& echo, double range_m);
 
 }  // namespace sonarmap
