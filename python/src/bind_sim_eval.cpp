@@ -134,6 +134,10 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
             return out;
           },
           "The primitives as dicts (kind, geometry in metres/radians, reflectivity), in scene order.")
+      .def_property_readonly(
+          "reverberation_db", [](const Scene& scene) { return scene.reverberation_db; },
+          "An enclosed basin's diffuse reverberation after the TVG, dB in the echo model's units, or None "
+          "(open water; C++ Scene::reverberation_db).")
       .def(
           "distance",
           [](const Scene& scene, const py::object& points) {

@@ -14,6 +14,8 @@ namespace sonarmap {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
+/// The CRAS tank's diffuse reverberation (Scene::reverberation_db), fitted on the real log (see tankScene).
+constexpr double kTankReverberation_db = -27.0;
 
 /// How a scene drawn for the Micron at 5 m is stretched for another head (builtin_scenes.hpp).
 struct SceneScale {
@@ -45,6 +47,7 @@ Scene tankScene(const SceneScale& scale) {
                                  {1.0 * s, 0.4 * s, 0.3 * h},
                                  bearing_rad - 90.0 * kDegree,
                                  0.8});
+  scene.reverberation_db = kTankReverberation_db;
   return scene;
 }
 

@@ -162,8 +162,16 @@ MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& opt
     if (head.logs_pulse_length) beam.pulse_length_m = options.echo.pulse_length_m;
     NavSample fix = options.trajectory(beam.time_s);
     fix.time_s = beam.time_s;
-    tracer.trace(sonarToMap(fix, options.sonar_to_body), beam.bearing_rad, energy);
-    receiver.receive(energy, random, beam.intensities);
+    const Eigen::Isometry3d sonar_to_map = sonarToMap(fix, options.sonar_to_body);
+    tracer.trace(sonar_to_map, beam.bearing_rad, energy);
+    double reverberation_from_m = head.range_m;  // from the first surface on the beam's axis
+    if (run.scene.reverberation_db) {
+      const Eigen::Vector3d axis =
+          sonar_to_map.linear() * Eigen::Vector3d(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
+      const std::optional<SceneHit> hit = firstHit(run.scene, sonar_to_map.translation(), axis, head.range_m);
+      if (hit) reverberation_from_m = hit->surface.range_m;
+    }
+    receiver.receive(energy, random, beam.intensities, run.scene.reverberation_db, reverberation_from_m);
     run.log.beams.push_back(std::move(beam));
     if (progress) progress(i + 1, beams);
   }

@@ -84,7 +84,8 @@ void Receiver::waterScatterers(Random& random, std::vector<double>& clutter) con
   }
 }
 
-void Receiver::receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities) {
+void Receiver::receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities,
+                       std::optional<double> reverberation_db, double reverberation_from_m) {
   const std::size_t bins = energy.size();
   // Pulse: each bin sums the energy of the pulse length before it (a running sum).
   pulse_.assign(bins, 0.0);
@@ -98,11 +99,13 @@ void Receiver::receive(const std::vector<double>& energy, Random& random, std::v
   fluctuation(random, noise_);
   waterScatterers(random, clutter_);
   const double noise_power = powerOf(echo_.noise_level_db);
+  const double reverberation_power = reverberation_db ? powerOf(*reverberation_db) : 0.0;
   const double bin_m = head_.binLength_m();
   intensities.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) {
-    const double power =
-        (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + noise_power * noise_[i] * gain_[i] + clutter_[i];
+    const bool reverberant = reverberation_db && (static_cast<double>(i) + 0.5) * bin_m >= reverberation_from_m;
+    const double background = noise_power * gain_[i] + (reverberant ? reverberation_power : 0.0);
+    const double power = (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + background * noise_[i] + clutter_[i];
     const bool blanked = (static_cast<double>(i) + 0.5) * bin_m < echo_.blanking_m;
     intensities[i] = blanked ? 0 : quantise(power);
   }

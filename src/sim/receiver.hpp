@@ -4,6 +4,7 @@
 /// time-varying gain, speckle, noise, self-reflection band and quantisation to 0…255.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "random.hpp"
@@ -28,7 +29,11 @@ class Receiver {
   /// @param random       the run's stream; takes 2 · (bins + speckle_looks − 1) draws (none
   ///                     without speckle), then the water scatterers' draws when there are any.
   /// @param intensities  set to head.bins values.
-  void receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities);
+  /// @param reverberation_db  Scene::reverberation_db: the basin's diffuse reverberation after
+  ///                     the gain, added from `reverberation_from_m` on under the noise's
+  ///                     fluctuation (no extra draws); none when unset.
+  void receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities,
+               std::optional<double> reverberation_db = std::nullopt, double reverberation_from_m = 0.0);
 
   /// Echo level (dB) that quantises to `intensity` (the inverse of the AD mapping).
   double levelOf(double intensity) const;

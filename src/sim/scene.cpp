@@ -185,6 +185,9 @@ void validateScene(const Scene& scene) {
       throw ValueError("scene primitive " + std::to_string(i) + " (" + error.what() + ")");
     }
   }
+  if (scene.reverberation_db && !std::isfinite(*scene.reverberation_db)) {
+    throw ValueError("scene: reverberation_db must be finite when set");
+  }
 }
 
 SceneRayCaster::SceneRayCaster(const Scene& scene) : scene_(scene) {

@@ -22,6 +22,7 @@ namespace {
 constexpr std::string_view kPlaneFields = "px py pz nx ny nz reflectivity";
 constexpr std::string_view kBoxFields = "cx cy cz size_x size_y size_z yaw_rad reflectivity";
 constexpr std::string_view kCylinderFields = "cx cy radius_m z_min_m z_max_m reflectivity";
+constexpr std::string_view kReverberationFields = "level_db";
 
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
@@ -93,7 +94,7 @@ Primitive parsePrimitive(const std::vector<std::string_view>& tokens, const Line
     const auto v = context.numbers<6>(tokens, kCylinderFields);
     return Cylinder{v[0], v[1], v[2], v[3], v[4], v[5]};
   }
-  context.fail("unknown primitive " + detail::quotedForMessage(kind) + ", expected plane, box or cylinder");
+  context.fail("unknown primitive " + detail::quotedForMessage(kind) + ", expected plane, box, cylinder or reverberation");
 }
 
 void appendNumbers(std::string& line, std::initializer_list<double> values) {
@@ -130,6 +131,11 @@ Scene readScene(std::istream& in, const std::string& source) {
     const std::vector<std::string_view> tokens = tokensOf(line);
     if (tokens.empty()) continue;
     const LineContext context(source, line_number);
+    if (tokens[0] == "reverberation") {
+      if (scene.reverberation_db) context.fail("reverberation: given twice");
+      scene.reverberation_db = context.numbers<1>(tokens, kReverberationFields)[0];
+      continue;
+    }
     Primitive primitive = parsePrimitive(tokens, context);
     try {
       validatePrimitive(primitive);
@@ -157,6 +163,12 @@ void writeScene(std::ostream& out, const Scene& scene) {
       << "# box      " << kBoxFields << "\n"
       << "# cylinder " << kCylinderFields << "\n";
   for (const Primitive& primitive : scene.primitives) out << formatPrimitive(primitive) << '\n';
+  if (scene.reverberation_db) {
+    std::string line = "reverberation";
+    appendNumbers(line, {*scene.reverberation_db});
+    out << "# an enclosed basin's diffuse reverberation after the TVG, dB: " << kReverberationFields << "\n"
+        << line << '\n';
+  }
 }
 
 void writeScene(const std::string& path, const Scene& scene) {

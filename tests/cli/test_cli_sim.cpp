@@ -76,11 +76,12 @@ TEST_F(cliSim, DefaultRunIsTheMicronAndUnchanged) {
                  "--sector", "360"})
                 .exit_code,
             0);
-  // Hashes of the files `sonarmap simulate tank --turns 2 --seed 7` wrote before presets, sectors
-  // and scaled scenes were added.
-  EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0x2f20354f000cffc7ULL);
+  // Hashes of the files `sonarmap simulate tank --turns 2 --seed 7` writes; they change only on
+  // purpose (last in issue 21: the Micron's noise from the CRAS log, the tank's reverberation in
+  // its scene file).
+  EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0xc97475781858db06ULL);
   EXPECT_EQ(fnv1a(readFile(plain / "nav.csv")), 0xe498463d125b3807ULL);
-  EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0xd30423bb857e69b9ULL);
+  EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0x8fc3cc34d5377912ULL);
   for (const std::string& file : kSimulationFiles) EXPECT_EQ(readFile(plain / file), readFile(micron / file)) << file;
 }
 

@@ -68,6 +68,9 @@ def test_simulation_outputs(simulated_tank, tmp_path):
     again = sonarmap.read_scene(str(path))
     points = np.array([[0.0, 0.0, 0.0], [1.0, 0.5, 0.0]])
     assert np.allclose(again.distance(points), scene.distance(points))
+    # The tank reverberates (its scene file says so); open water does not.
+    assert again.reverberation_db == scene.reverberation_db and scene.reverberation_db < 0.0
+    assert sonarmap.builtin_scene("harbour").reverberation_db is None
     assert "quay3d" in sonarmap.builtin_scene_names() and "micron" in sonarmap.sonar_preset_names()
     with pytest.raises(sonarmap.ValueError, match="scene"):
         sonarmap.simulate("atlantis")
@@ -124,8 +127,8 @@ def test_map_pictures_for_notebooks(simulated_tank):
 
 def test_simulated_mission_reproduces_the_accuracy_table():
     """The tilted loop mapped from Python as sonarmap_accuracy_3d maps it (--3d, 5 cm, the head's
-    beam) and scored with the head's field of view: docs/accuracy.md's row, P 0.490, R 0.107,
-    median surface error 0.118 m, free accuracy 1.000."""
+    beam) and scored with the head's field of view: docs/accuracy.md's row, P 0.403, R 0.141,
+    median surface error 0.126 m, free accuracy 1.000."""
     assert sonarmap.mission_names() == ["lawnmower", "tilted-loop"]
     mission = sonarmap.simulate_mission("tilted-loop", sonar="micron")
     assert len(mission.log) > 0 and mission.nav.shape[1] == 7 and mission.range == pytest.approx(5.0)
@@ -134,9 +137,9 @@ def test_simulated_mission_reproduces_the_accuracy_table():
                                resolution=0.05, beam_width=mission.beam_width,
                                vertical_aperture=mission.vertical_aperture)
     score = mission.evaluate(m)
-    assert score["precision"] == pytest.approx(0.490, abs=5e-4)
-    assert score["recall"] == pytest.approx(0.107, abs=5e-4)
-    assert score["surface_error_median_m"] == pytest.approx(0.118, abs=5e-4)
+    assert score["precision"] == pytest.approx(0.403, abs=5e-4)
+    assert score["recall"] == pytest.approx(0.141, abs=5e-4)
+    assert score["surface_error_median_m"] == pytest.approx(0.126, abs=5e-4)
     assert score["free_accuracy"] == pytest.approx(1.0, abs=5e-4)
     with pytest.raises(sonarmap.ValueError):
         sonarmap.simulate_mission("spiral")

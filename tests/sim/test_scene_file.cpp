@@ -32,6 +32,7 @@ bool samePrimitive(const Primitive& a, const Primitive& b) {
 }
 
 void expectSameScene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.reverberation_db, b.reverberation_db);
   ASSERT_EQ(a.primitives.size(), b.primitives.size());
   for (std::size_t i = 0; i < a.primitives.size(); ++i)
     EXPECT_TRUE(samePrimitive(a.primitives[i], b.primitives[i])) << i;
@@ -65,6 +66,7 @@ TEST(simSceneFile, AwkwardNumbersRoundTripExactly) {
   scene.primitives.push_back(Plane{{0.1, -1e-300, 1.0 / 3.0}, {0.0, 2.0 / 3.0, -7.0}, 0.123456789012345678});
   scene.primitives.push_back(Box{{1e5, -0.0, 3.5}, {0.3, 1e-6, 2.0}, -2.0 * std::numbers::pi / 7.0, 1.0});
   scene.primitives.push_back(Cylinder{-4.25, 1.0 / 7.0, 0.2, -1.3, 3.5, 0.0});
+  scene.reverberation_db = -27.0 / 7.0;
   std::stringstream text;
   writeScene(text, scene);
   expectSameScene(readScene(text, "memory"), scene);
@@ -101,6 +103,19 @@ TEST(simSceneFile, BrokenLinesNameFileLineAndProblem) {
   expectError("cylinder 0 0 -0.2 -1 1 0.5", "radius_m must be > 0");
   expectError("cylinder 0 0 0.2 1 -1 0.5", "z_max_m");
   expectError("plane 0 0 0 0 0 1 1.5", "reflectivity must be in [0, 1]");
+  expectError("reverberation -27 3", "2 value(s), expected 1: level_db");
+  expectError("reverberation inf", "not finite");
+  EXPECT_NE(errorOf(good + "reverberation -27\nreverberation -30\n").find("line 3: reverberation: given twice"),
+            std::string::npos);
+}
+
+TEST(simSceneFile, ReverberationIsReadAndOnlyTheTankHasIt) {
+  std::istringstream in("plane 0 0 -1.5 0 0 1 0.3\nreverberation -27.5  # a small concrete basin\n");
+  EXPECT_EQ(readScene(in, "memory").reverberation_db, -27.5);
+  EXPECT_TRUE(builtinScene("tank").reverberation_db.has_value());
+  for (const std::string& name : {"harbour", "hull", "soft", "open-water", "quay3d"}) {
+    EXPECT_FALSE(builtinScene(name).reverberation_db.has_value()) << name;  // open water: nothing bounces back
+  }
 }
 
 TEST(simSceneFile, EmptyAndMissingFilesAreErrors) {

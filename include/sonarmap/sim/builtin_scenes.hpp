@@ -23,7 +23,9 @@
 ///    (1.0 × 0.4 × 0.3 m box, half above the surface) has its near face 1.95 m from the head at
 ///    bearing 95°, long side across the line of sight, shadowing part of the +y wall like the
 ///    floater of the real data (a 1 m line at about that place in the real map). It lies above
-///    z = 0. Reflectivities: walls (concrete) 0.9, floater 0.8, floor 0.5, surface 1.0.
+///    z = 0. Reflectivities: walls (concrete) 0.9, floater 0.8, floor 0.5, surface 1.0. The only
+///    scene with a reverberation (Scene::reverberation_db, −27 dB): the real log's level behind
+///    its walls (msis_simulator.hpp).
 ///    Note: a floor 1.5 m below the head cannot enter a ±17.5° aperture at 1.56 m (that needs
 ///    0.47 m), so the ring is made by the surface.
 ///  - `harbour`: open water without tank walls. A quay wall (a 5 × 40 m solid block whose face runs

@@ -46,9 +46,16 @@
 /// incidence. The defaults were tuned on the built-in `tank` against the CRAS log (percentiles of
 /// the intensity over all beams at a range; real → simulated): band at 0.1–0.3 m, median ≈ 100 →
 /// 95; 0.4–1.4 m, median 0 → 0; ring at 1.5–1.7 m, median 20–28 → 28–37, starting sharply at
-/// ≈ 1.5 m in both; walls' leading edges 100–190 → 110–200; beyond 3.5 m (noise and multipath),
-/// median 45–60 → 41–59. Known difference: the real log holds more energy behind the walls
-/// (90th percentile ≈ 100–120 at 3–5 m; here ≈ 60–75).
+/// ≈ 1.5 m in both; walls' leading edges 100–190 → 110–200. Behind the walls the real log is not
+/// noise: its level does not grow with range as noise under a 20 log r TVG would (+3.3 dB from
+/// 3.4 to 5 m) but follows the tank (medians 30, 41, 31, 30, 27, 44, 54, 60 counts in 0.2 m steps
+/// from 3.3 m): the basin's reverberation, which is the `tank` scene's (Scene::reverberation_db,
+/// −27 dB: median 0.4–1.6 m behind the wall 43 → 42). The noise is what the quietest of those
+/// steps allows, 27 counts at 4.2 m with the reverberation in it: −41.5 dB at 1 m (issue 21; it
+/// was −37.5, fitted to the reverberation, which put a seabed in open water at the noise).
+/// Known differences: the real log holds more energy behind the walls (90th percentile ≈ 100 at
+/// 3–5 m; here ≈ 60–65), and its surface ring falls back to ≈ 4 counts within 0.3 m where the
+/// simulated surface, a Lambertian scatterer, keeps ≈ 30 up to the walls.
 ///
 /// Randomness: std::mt19937_64 seeded with `seed` (its output is fixed by the C++ standard). An
 /// exponential draw is −log(v) with v = (k + 1) · 2⁻⁵³, k the top 53 bits of one 64-bit output,
@@ -139,7 +146,7 @@ struct EchoModelOptions {
   double tvg_absorption_db_per_m = 0.15;  ///< absorption the head's TVG compensates, ≥ 0
   double pulse_length_m = 0.05;           ///< range extent of the transmitted pulse, > 0
   int speckle_looks = 3;                  ///< exponential draws averaged per bin (speckle and noise); 0: no fluctuation
-  double noise_level_db = -37.5;          ///< mean additive noise power before the gain (at 1 m after it)
+  double noise_level_db = -41.5;          ///< mean additive noise power before the gain (at 1 m after it)
   double ad_low_db = -33.0;               ///< level that maps to intensity 0
   double ad_span_db = 45.0;               ///< level span that maps to 0…255, > 0
   double blanking_m = 0.05;               ///< bins nearer than this are 0 (transmit blanking), ≥ 0

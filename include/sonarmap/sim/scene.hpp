@@ -51,6 +51,14 @@ using Primitive = std::variant<Plane, Box, Cylinder>;
 /// The ground truth: primitives in the map frame.
 struct Scene {
   std::vector<Primitive> primitives;
+  /// The diffuse reverberation of an enclosed basin (a tank), none in open water: sound that has
+  /// met the enclosure's walls keeps bouncing between them and fills every later bin. Its mean
+  /// power after the head's TVG, dB in the echo model's units (msis_simulator.hpp: re the echo of
+  /// a perfect reflector filling the beam at normal incidence), taken constant from the range of
+  /// the first surface the beam's axis meets to the end of the beam (over a few metres the
+  /// field's decay and the TVG's rise roughly cancel). Finite when set. Measured on the CRAS tank
+  /// log for `tank` (builtin_scenes.hpp); a property of the place, not of the head.
+  std::optional<double> reverberation_db;
 };
 
 /// Where a ray meets a surface.

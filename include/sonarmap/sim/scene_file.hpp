@@ -10,6 +10,7 @@
 ///     plane    px py pz  nx ny nz                    reflectivity
 ///     box      cx cy cz  size_x size_y size_z yaw_rad reflectivity
 ///     cylinder cx cy  radius_m  z_min_m z_max_m       reflectivity
+///     reverberation level_db                          (at most once; Scene::reverberation_db)
 ///
 ///  - plane: a point on the plane and its normal (non-zero, any length, either sense);
 ///  - box: centre, edge lengths along the box's own axes (> 0), turn about the vertical,
@@ -33,7 +34,7 @@
 namespace sonarmap {
 
 /// Reads a scene from `in`; `source` names it in messages (the file's path).
-/// @throws FileError "source: line N: …" for an unknown kind, a wrong number of fields, a field
+/// @throws FileError "source: line N: …" for an unknown kind, a second reverberation line, a wrong number of fields, a field
 ///         that is not a number or not finite, or a primitive that fails validatePrimitive (zero
 ///         normal, non-positive size or radius, z_max_m ≤ z_min_m, reflectivity outside [0, 1]);
 ///         "source: …" when reading fails or the text holds no primitive.

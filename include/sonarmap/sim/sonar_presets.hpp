@@ -39,7 +39,9 @@
 ///
 /// Presets (each also has the common values above):
 ///  - `micron`: Tritech Micron of the CRAS log: exactly MsisHeadOptions{} and EchoModelOptions{}
-///    (see there: 5 m, 399 bins, 1.8° steps, 3° × 35°, 43 ms [L]; levels tuned on the CRAS log).
+///    (see there: 5 m, 399 bins, 1.8° steps, 3° × 35°, 43 ms [L]; levels tuned on the CRAS log,
+///    its noise on the log's quietest bins behind the walls, the rest there being the tank's
+///    reverberation, a property of the `tank` scene [L]).
 ///  - `seaking-30`: Tritech SeaKing at 325 kHz, 30 m range scale, 300 bins (10 cm) [A].
 ///    Beam 3° × 40° [D]; 0.9° steps (400 a turn) [D]; period 40 ms + 350 B at 115.2 kBd (30 ms)
 ///    = 70 ms [C] (28 s a turn). Pulse 0.10 m (133 µs, one bin: a wall at normal incidence
