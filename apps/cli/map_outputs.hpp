@@ -23,7 +23,7 @@ struct MappedLog {
   double seconds = 0.0;  ///< wall time of the mapping alone (no reading or writing), seconds
   /// Said after the resolution in the summary, e.g. " (auto: the 10 m range scale, 2137 of 3035
   /// beams)" for an automatic resolution in a log of several range scales; empty otherwise.
-  std::string resolution_note;
+  std::string resolution_note = {};
 };
 
 /// One mapping call (a mapSonarLog overload) given the progress callback to report to.

@@ -191,7 +191,9 @@ TEST_P(cliInfoReal, RangeScalesAndBeamsAreTheReadersOnOneScreen) {
     // a Ping360 records each ping's pulse (its transmit duration); Tritech logs do not
     const bool ping360 = log.beams.front().pulse_length_m.has_value();
     EXPECT_EQ(setting["pulse_length_m"].is_number(), ping360) << setting;
-    if (ping360) EXPECT_GT(setting["pulse_length_m"].get<double>(), 0.0);
+    if (ping360) {
+      EXPECT_GT(setting["pulse_length_m"].get<double>(), 0.0);
+    }
   }
   EXPECT_EQ(setting_beams, log.beams.size());
   EXPECT_EQ(info["auto_resolution_scale"]["bin_length_m"], mostUsedRangeScale(scales)->bin_length_m);

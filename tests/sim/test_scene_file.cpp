@@ -113,7 +113,7 @@ TEST(simSceneFile, ReverberationIsReadAndOnlyTheTankHasIt) {
   std::istringstream in("plane 0 0 -1.5 0 0 1 0.3\nreverberation -27.5  # a small concrete basin\n");
   EXPECT_EQ(readScene(in, "memory").reverberation_db, -27.5);
   EXPECT_TRUE(builtinScene("tank").reverberation_db.has_value());
-  for (const std::string& name : {"harbour", "hull", "soft", "open-water", "quay3d"}) {
+  for (const char* name : {"harbour", "hull", "soft", "open-water", "quay3d"}) {
     EXPECT_FALSE(builtinScene(name).reverberation_db.has_value()) << name;  // open water: nothing bounces back
   }
 }

@@ -58,7 +58,7 @@ struct Scene {
   /// the first surface the beam's axis meets to the end of the beam (over a few metres the
   /// field's decay and the TVG's rise roughly cancel). Finite when set. Measured on the CRAS tank
   /// log for `tank` (builtin_scenes.hpp); a property of the place, not of the head.
-  std::optional<double> reverberation_db;
+  std::optional<double> reverberation_db = std::nullopt;
 };
 
 /// Where a ray meets a surface.
