@@ -34,6 +34,12 @@ struct BeamDetection {
   /// an obstacle (Elfes 1987: only an empty return proves empty space). +∞ when
   /// not measured (a detection made by hand).
   double echo_onset_m = std::numeric_limits<double>::infinity();
+  /// A weak extended return found in the whole echo of a beam without an obstacle (a grazing
+  /// seabed or water surface; extended_returns.hpp): its first and last lit bins' centres, metres,
+  /// onset ≤ end; NaN when the beam has none or the extended returns were not sought.
+  double extended_onset_m = std::numeric_limits<double>::quiet_NaN();
+  double extended_end_m = std::numeric_limits<double>::quiet_NaN();
+  bool hasExtendedReturn() const { return extended_onset_m <= extended_end_m; }
   bool hasObstacle() const { return obstacle_bin >= 0; }
 };
 

@@ -1,0 +1,242 @@
+/// @file extended_returns.cpp
+/// Binary integration of the whole echo against the sweep's background (see extended_returns.hpp).
+
+#include "sonarmap/detection/extended_returns.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/core/statistics.hpp"
+
+namespace sonarmap {
+namespace {
+
+/// P(X ≥ m) for X binomial with n trials of probability p.
+double binomialTail(int n, double p, int m) {
+  double tail = 0.0;
+  for (int k = std::max(m, 0); k <= n; ++k) {
+    tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) + k * std::log(p) +
+                     (n - k) * std::log1p(-p));
+  }
+  return tail;
+}
+
+/// Where the return starts within [begin, end): the split s that makes the lit bins of the window's
+/// rows likeliest as noise (lit with probability p₀) before s and as one return (its own lit
+/// rate, estimated) from s on: the maximum-likelihood change point of a Bernoulli sequence
+/// (Hinkley 1970, Biometrika 57, 1). The first window that holds a return may begin up to a
+/// window before it, on a noise bin lit by chance.
+int changePoint(int begin, int end, const std::vector<int>& rows, const std::vector<std::vector<int>>& lit_before, double p0) {
+  const double trials_per_bin = static_cast<double>(rows.size());
+  auto lit = [&](int from, int to) {
+    int n = 0;
+    for (const int j : rows) n += lit_before[static_cast<std::size_t>(j)][to] - lit_before[static_cast<std::size_t>(j)][from];
+    return static_cast<double>(n);
+  };
+  auto logLikelihood = [](double k, double n, double p) {
+    return (k > 0.0 ? k * std::log(p) : 0.0) + (n - k > 0.0 ? (n - k) * std::log1p(-p) : 0.0);
+  };
+  int best = begin;
+  double best_ll = -std::numeric_limits<double>::infinity();
+  for (int split = begin; split < end; ++split) {
+    const double k_noise = lit(begin, split), n_noise = (split - begin) * trials_per_bin;
+    const double k_echo = lit(split, end), n_echo = (end - split) * trials_per_bin;
+    const double rate = std::clamp(k_echo / n_echo, p0, 1.0 - 1e-12);
+    const double ll = logLikelihood(k_noise, n_noise, p0) + logLikelihood(k_echo, n_echo, rate);
+    if (ll > best_ll) {
+      best_ll = ll;
+      best = split;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void ExtendedReturnOptions::validate() const {
+  if (!(bin_false_alarm > 0.0 && bin_false_alarm < 0.5)) {
+    throw ValueError("extended returns: bin_false_alarm must be in (0, 0.5)");
+  }
+  if (!(window_looks >= 2.0) || !std::isfinite(window_looks)) throw ValueError("extended returns: window_looks must be >= 2");
+  if (!(false_alarm_per_beam > 0.0 && false_alarm_per_beam < 0.5)) {
+    throw ValueError("extended returns: false_alarm_per_beam must be in (0, 0.5)");
+  }
+  if (!(bearing_window_deg >= 0.0 && bearing_window_deg <= 360.0)) {
+    throw ValueError("extended returns: bearing_window_deg must be in [0, 360]");
+  }
+}
+
+ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, const std::vector<float>& background_counts,
+                                                   double background_percentile, double span_db, double min_range_m,
+                                                   const ExtendedReturnOptions& options) {
+  options.validate();
+  if (!(span_db > 0.0) || !std::isfinite(span_db)) throw ValueError("extended returns: span_db must be > 0");
+  if (!(background_percentile > 0.0 && background_percentile < 100.0)) {
+    throw ValueError("extended returns: background_percentile must be in (0, 100)");
+  }
+  if (!(min_range_m >= 0.0)) throw ValueError("extended returns: min_range_m must be >= 0");
+  if (background_counts.size() > static_cast<std::size_t>(polar.cols())) {
+    throw ValueError("extended returns: the background has more columns than the sweep has bins");
+  }
+  const double counts_per_db = 255.0 / span_db;
+  const double p0 = options.bin_false_alarm;
+  const double p = background_percentile / 100.0;
+  const std::size_t columns = background_counts.size();
+  const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil(min_range_m / polar.bin_length_m - 0.5)));
+  // Columns above the A/D floor: their background is the noise's p-quantile (or a surface's, if
+  // one lights most bearings at that range: then it is not sought there).
+  auto noise_column = [&](std::size_t c) { return background_counts[c] > 0.0F; };
+  auto bin = [&](int row, std::size_t c) -> double { return polar.intensities.at<std::uint8_t>(row, static_cast<int>(c)); };
+  auto valid = [&](int row, std::size_t c) { return static_cast<int>(c) < polar.valid_bins[static_cast<std::size_t>(row)]; };
+  ExtendedReturnCalibration calibration;
+  calibration.bin_false_alarm = p0;
+  std::vector<double> excess;
+  for (std::size_t c = first; c < columns; ++c) {
+    if (!noise_column(c)) continue;
+    ++calibration.noise_columns;
+    for (int row = 0; row < polar.rows(); ++row) {
+      if (valid(row, c)) excess.push_back(bin(row, c) - background_counts[c]);
+    }
+  }
+  double tau_counts = 10.0 * std::log10(std::log(p0) / std::log(1.0 - p)) * counts_per_db;
+  calibration.measured = calibration.noise_columns >= 8 && excess.size() >= 1000;
+  if (calibration.measured) tau_counts = percentile(excess, 1.0 - p0);
+  calibration.lit_counts.assign(columns, 255.0F);  // nothing is lit before the minimum range
+  std::vector<std::size_t> histogram(256);
+  for (std::size_t c = first; c < columns; ++c) {
+    calibration.lit_counts[c] = static_cast<float>(std::max(0.5, background_counts[c] + tau_counts));
+    if (background_counts[c] > 0.0F) continue;
+    // Noise under the A/D floor: the column's own (1 − p₀) quantile over the bearings bounds the lit level.
+    std::fill(histogram.begin(), histogram.end(), 0);
+    std::size_t count = 0;
+    for (int row = 0; row < polar.rows(); ++row) {
+      if (!valid(row, c)) continue;
+      ++histogram[polar.intensities.at<std::uint8_t>(row, static_cast<int>(c))];
+      ++count;
+    }
+    const auto allowed = static_cast<std::size_t>(p0 * static_cast<double>(count));
+    std::size_t above = 0;
+    int level = 255;
+    while (level > 0 && above + histogram[static_cast<std::size_t>(level)] <= allowed) {
+      above += histogram[static_cast<std::size_t>(level--)];
+    }
+    calibration.lit_counts[c] = std::max(calibration.lit_counts[c], static_cast<float>(level) + 0.5F);
+  }
+  // Bins per look: the mean run of lit bins on the noise columns against 1 / (1 − p₀); rows per
+  // look the same across neighbouring bearings (overlapping beams see correlated speckle).
+  const int rows = polar.rows();
+  std::size_t lit = 0, runs = 0, row_lit = 0, row_runs = 0;
+  for (std::size_t c = std::max<std::size_t>(first, 1); c < columns; ++c) {
+    if (!noise_column(c)) continue;
+    for (int row = 0; row < rows; ++row) {
+      if (!valid(row, c)) continue;
+      const bool here = bin(row, c) > calibration.lit_counts[c];
+      const bool before = bin(row, c - 1) > calibration.lit_counts[c - 1];
+      const bool previous_row = row > 0 && valid(row - 1, c) && bin(row - 1, c) > calibration.lit_counts[c];
+      lit += here ? 1 : 0;
+      runs += here && !before ? 1 : 0;
+      if (row > 0) {
+        row_lit += here ? 1 : 0;
+        row_runs += here && !previous_row ? 1 : 0;
+      }
+    }
+  }
+  if (calibration.measured && runs > 0) {
+    calibration.bins_per_look = std::max(1.0, static_cast<double>(lit) / static_cast<double>(runs) * (1.0 - p0));
+  }
+  if (calibration.measured && row_runs > 0) {
+    calibration.rows_per_look = std::max(1.0, static_cast<double>(row_lit) / static_cast<double>(row_runs) * (1.0 - p0));
+  }
+  // Rows of the window: the neighbours within bearing_window_deg / 2 at the sweep's median step.
+  std::vector<double> steps;
+  for (int row = 1; row < rows; ++row) {
+    const double d = std::abs(std::remainder(polar.bearing_rad[row] - polar.bearing_rad[row - 1], 2.0 * std::numbers::pi));
+    if (d > 0.0) steps.push_back(d);
+  }
+  const double step_rad = steps.empty() ? 0.0 : percentile(steps, 0.5);
+  const double half_window_rad = 0.5 * options.bearing_window_deg * std::numbers::pi / 180.0;
+  calibration.half_window_rows = step_rad > 0.0 ? static_cast<int>(std::floor(half_window_rad / step_rad + 1e-9)) : 0;
+  const double window_rows = 2.0 * calibration.half_window_rows + 1.0;
+  calibration.window_bins = std::max(1, static_cast<int>(std::lround(options.window_looks * calibration.bins_per_look)));
+  const int looks = std::max(1, static_cast<int>(std::lround(options.window_looks * std::max(1.0, window_rows / calibration.rows_per_look))));
+  const double windows = std::max(1.0, static_cast<double>(columns) / calibration.window_bins);
+  int needed = looks;
+  while (needed > 1 && windows * binomialTail(looks, p0, needed - 1) <= options.false_alarm_per_beam) --needed;
+  // Lit bins the window needs: the looks' share of its bins.
+  const double bins_in_window = calibration.window_bins * window_rows;
+  calibration.lit_needed = std::max(1, static_cast<int>(std::ceil(needed * bins_in_window / looks - 1e-9)));
+  return calibration;
+}
+
+std::size_t addExtendedReturns(const PolarImage& polar, double background_percentile, SweepDetection& sweep,
+                               const ExtendedReturnOptions& options) {
+  if (sweep.detections.size() != static_cast<std::size_t>(polar.rows())) {
+    throw ValueError("extended returns: the sweep has " + std::to_string(sweep.detections.size()) +
+                     " detections for " + std::to_string(polar.rows()) + " beams");
+  }
+  const double start_m = std::max(sweep.min_range_m, sweep.calibration.near_field_end_m);
+  const ExtendedReturnCalibration calibration = calibrateExtendedReturns(
+      polar, sweep.calibration.background, background_percentile, sweep.calibration.span_db, start_m, options);
+  const int window = calibration.window_bins;
+  const int rows = polar.rows();
+  const int columns = static_cast<int>(calibration.lit_counts.size());
+  // Lit bins before each column, per row.
+  std::vector<std::vector<int>> lit_before(static_cast<std::size_t>(rows));
+  for (int row = 0; row < rows; ++row) {
+    const int bins = std::min<int>(polar.valid_bins[static_cast<std::size_t>(row)], columns);
+    const std::uint8_t* intensities = polar.intensities.ptr<std::uint8_t>(row);
+    std::vector<int>& before = lit_before[static_cast<std::size_t>(row)];
+    before.assign(static_cast<std::size_t>(std::max(bins, 0)) + 1, 0);
+    for (int c = 0; c < bins; ++c) {
+      before[c + 1] = before[c] + (intensities[c] > calibration.lit_counts[static_cast<std::size_t>(c)] ? 1 : 0);
+    }
+  }
+  const double half_window_rad = 0.5 * options.bearing_window_deg * std::numbers::pi / 180.0 + 1e-9;
+  std::vector<int> neighbours;
+  std::size_t found = 0;
+  for (int row = 0; row < rows; ++row) {
+    BeamDetection& detection = sweep.detections[static_cast<std::size_t>(row)];
+    if (detection.hasObstacle()) continue;
+    // The window's rows: this beam and its neighbours in bearing; their common valid bins.
+    neighbours.assign(1, row);
+    for (int k = 1; k <= calibration.half_window_rows; ++k) {
+      for (const int j : {row - k, row + k}) {
+        if (j < 0 || j >= rows) continue;
+        const double gap = std::abs(std::remainder(polar.bearing_rad[j] - polar.bearing_rad[row], 2.0 * std::numbers::pi));
+        if (gap <= half_window_rad) neighbours.push_back(j);
+      }
+    }
+    int bins = static_cast<int>(lit_before[static_cast<std::size_t>(row)].size()) - 1;
+    for (const int j : neighbours) bins = std::min(bins, static_cast<int>(lit_before[static_cast<std::size_t>(j)].size()) - 1);
+    if (bins < window) continue;
+    // The threshold scales with the rows the window has (fewer at a sector's ends).
+    const double rows_share = neighbours.size() / (2.0 * calibration.half_window_rows + 1.0);
+    const int needed = std::max(1, static_cast<int>(std::ceil(calibration.lit_needed * rows_share - 1e-9)));
+    auto count = [&](int c) {
+      int n = 0;
+      for (const int j : neighbours) n += lit_before[static_cast<std::size_t>(j)][c + window] - lit_before[static_cast<std::size_t>(j)][c];
+      return n;
+    };
+    const std::vector<int>& own = lit_before[static_cast<std::size_t>(row)];
+    int c = 0;
+    while (c + window <= bins && count(c) < needed) ++c;
+    if (c + window > bins) continue;
+    const int start = c;
+    while (c + 1 + window <= bins && count(c + 1) >= needed) ++c;  // the run of windows that hold one
+    const int onset = changePoint(start, std::min(c + window, start + 2 * window), neighbours, lit_before,
+                                  calibration.bin_false_alarm);
+    int last = c + window - 1;
+    while (last > onset && own[last + 1] == own[last]) --last;  // its last lit bin
+    detection.extended_onset_m = (onset + 0.5) * polar.bin_length_m;
+    detection.extended_end_m = (last + 0.5) * polar.bin_length_m;
+    detection.echo_onset_m = std::min(detection.echo_onset_m, detection.extended_onset_m);
+    ++found;
+  }
+  return found;
+}
+
+}  // namespace sonarmap
