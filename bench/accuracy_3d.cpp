@@ -36,6 +36,7 @@ struct Model {
   BeamModel beam;
   ArcEvidence evidence;
   std::optional<bool> clear_without_obstacle;  ///< unset: the model's default
+  bool extended_returns = true;                ///< MapperOptions::extended_returns
 };
 
 /// Table rows of the mission's recall and erosion per scene primitive.
@@ -120,6 +121,8 @@ int main(int argc, char** argv) {
                           {"volume, whole arc", BeamModel::kVolume, ArcEvidence::kWholeArc, std::nullopt},
                           {"volume, uniform spread", BeamModel::kVolume, ArcEvidence::kSpreadUniform, std::nullopt},
                           {"volume, beam pattern", BeamModel::kVolume, ArcEvidence::kBeamPattern, std::nullopt},
+                          {"volume, beam pattern, first returns only", BeamModel::kVolume, ArcEvidence::kBeamPattern,
+                           std::nullopt, false},
                           {"volume, beam pattern, silent beams clear", BeamModel::kVolume, ArcEvidence::kBeamPattern, true}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) |\n");
@@ -133,6 +136,7 @@ int main(int argc, char** argv) {
         options.beam_model = model.beam;
         options.arc_evidence = model.evidence;
         options.clear_without_obstacle = model.clear_without_obstacle;
+        options.extended_returns = model.extended_returns;
         try {
           const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
           const GroundTruthReport& t = a.truth;
@@ -144,7 +148,7 @@ int main(int argc, char** argv) {
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
                       static_cast<double>(a.voxel_updates), a.seconds_mapping);
           if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
-              !model.clear_without_obstacle) {
+              !model.clear_without_obstacle && model.extended_returns) {
             by_surface += recallBySurface(preset, mission, a);
           }
         } catch (const std::exception& error) {

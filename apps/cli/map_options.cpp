@@ -94,6 +94,10 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "auto (yes for the plane, no for --3d, where a grazing seabed returns below any threshold)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "yes", "no"}));
+  cmd.add_option("--extended-returns", args.extended_returns,
+                 "--3d: seek weak extended returns (a grazing seabed or water surface) in the whole echo of beams "
+                 "without an obstacle and map them on the level surface their onset implies: yes | no")
+      ->capture_default_str();
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();

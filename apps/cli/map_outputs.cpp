@@ -131,6 +131,7 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
   if (with_nav) std::printf("%zu without navigation, ", stats.beams_without_nav);
   if (stats.beams_uncalibrated > 0) std::printf("%zu uncalibrated, ", stats.beams_uncalibrated);
   if (stats.beams_without_evidence > 0) std::printf("%zu without obstacle (clearing nothing), ", stats.beams_without_evidence);
+  if (stats.extended_returns > 0) std::printf("%zu weak extended returns, ", stats.extended_returns);
   std::printf("%zu sweeps, %zu obstacles%s, ", stats.sweeps, stats.obstacles,
               stats.obstacles == 0 ? " (EMPTY MAP)" : "");
   if (const std::optional<HeightExtent> extent = occupiedHeightExtent(map)) {

@@ -61,7 +61,7 @@ std::vector<std::string> mappingArgumentNames() {
           "smoothing_range",  "smoothing_bearing", "cfar_training",   "cfar_guard",       "ray",
           "aggregation",      "max_range",        "beam_width",       "range_tolerance",  "max_voxel_updates",
           "hit_probability",  "volume",           "vertical_aperture", "free_aperture",   "clear_without_obstacle",
-          "arc_evidence",     "threads",          "max_near_field"};
+          "arc_evidence",     "threads",          "max_near_field",   "extended_returns"};
 }
 
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra) {
@@ -101,6 +101,7 @@ MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<st
         args.vertical_aperture_given = true;
       }
     } else if (name == "free_aperture") args.free_aperture = numberOrAuto(value, name);
+    else if (name == "extended_returns") args.extended_returns = flag(value, name);
     else if (name == "clear_without_obstacle") {
       if (value.is_none()) args.clear_without_obstacle = "auto";
       else if (py::isinstance<py::bool_>(value)) args.clear_without_obstacle = value.cast<bool>() ? "yes" : "no";
@@ -141,6 +142,7 @@ py::dict statsDict(const MappingStats& s) {
   d["beams_without_nav"] = s.beams_without_nav;
   d["beams_uncalibrated"] = s.beams_uncalibrated;
   d["beams_without_evidence"] = s.beams_without_evidence;
+  d["extended_returns"] = s.extended_returns;
   d["farthest_m"] = s.farthest_m;
   return d;
 }
@@ -215,6 +217,8 @@ void bindMapping(py::module_& m) {
                     "beams of a range scale or gain used for too few beams in a row to calibrate on (skipped)")
       .def_readonly("beams_without_evidence", &MappingStats::beams_without_evidence,
                     "beams without an obstacle that clear nothing (the volume model's default)")
+      .def_readonly("extended_returns", &MappingStats::extended_returns,
+                    "beams without an obstacle whose whole echo held a weak extended return (volume model)")
       .def_readonly("farthest_m", &MappingStats::farthest_m, "largest |x|, |y| or |z| a beam reached, metres, map frame")
       .def("as_dict", &statsDict, "The counts as a dict of ints and floats.")
       .def("__repr__", [](const MappingStats& s) { return "MappingStats(" + py::repr(statsDict(s)).cast<std::string>() + ")"; });
@@ -240,7 +244,7 @@ smoothing_range (m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m),
 max_range (m), format (whose nominal beam to assume; default the log's), beam_width (deg; default the
 sonar's), range_tolerance (m), max_voxel_updates, hit_probability, volume (bool, the CLI's --3d),
 vertical_aperture (deg), free_aperture (deg), clear_without_obstacle (bool/None), arc_evidence,
-threads.
+extended_returns (bool), threads.
 Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.

@@ -85,6 +85,7 @@ void MapperOptions::validate() const {
   if (threads == 0) throw ValueError("the mapper needs at least one thread");
   smoothing.validate();
   detector.validate();
+  extended.validate();
   octree.occupancy.validate();
 }
 

@@ -111,12 +111,20 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
   removeSelfReflection(polar, self_reflection_m);
   // Nothing can be detected, nor water seen, where the bins were zeroed.
   detector.min_range_m = std::max(detector.min_range_m.value_or(recorded.near_field_end_m), self_reflection_m);
-  if (options_.smoothing.kind == Smoothing::kNone) return sonarmap::detectSweep(polar, detector, recorded);
-  smooth(polar, options_.smoothing);
-  SweepCalibration smoothed = calibrateSweep(polar, detector.background.calibration, span_db);
-  smoothed.band_end_m = recorded.band_end_m;
-  smoothed.near_field_end_m = recorded.near_field_end_m;
-  return sonarmap::detectSweep(polar, detector, smoothed);
+  SweepDetection detection;
+  if (options_.smoothing.kind == Smoothing::kNone) {
+    detection = sonarmap::detectSweep(polar, detector, recorded);
+  } else {
+    smooth(polar, options_.smoothing);
+    SweepCalibration smoothed = calibrateSweep(polar, detector.background.calibration, span_db);
+    smoothed.band_end_m = recorded.band_end_m;
+    smoothed.near_field_end_m = recorded.near_field_end_m;
+    detection = sonarmap::detectSweep(polar, detector, smoothed);
+  }
+  if (options_.beam_model == BeamModel::kVolume && options_.extended_returns) {
+    addExtendedReturns(polar, detector.background.calibration.background_percentile, detection, options_.extended);
+  }
+  return detection;
 }
 
 SweepDetection SonarMapper::detectRows(PolarImage& rows, const SweepCalibration& calibration) const {
@@ -259,7 +267,8 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (detection.hasObstacle() && !(std::isfinite(detection.range_m) && detection.range_m > 0.0)) {
       throw ValueError("detection of beam " + std::to_string(row) + " has an obstacle at a range that is not > 0 m");
     }
-    if (!detection.hasObstacle() && !clears_without_obstacle) {  // silence is no proof of water here
+    const bool traced = options_.beam_model == BeamModel::kVolume && !detection.hasObstacle() && detection.hasExtendedReturn();
+    if (!detection.hasObstacle() && !clears_without_obstacle && !traced) {  // silence is no proof of water here
       ++stats_.beams_without_evidence;
       continue;
     }
@@ -288,13 +297,18 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       water_m = range_m;
       free_range_m = std::max(0.0, detection.echo_onset_m);
     }
-    const PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit, water_m};
+    PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit, water_m};
+    if (traced) {
+      beam.trace_onset_m = detection.extended_onset_m;
+      beam.trace_end_m = std::min(detection.extended_end_m, range_m);
+    }
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
       continue;
     }
     work.beams.push_back(beam);
     ++stats_.beams_used;
+    if (traced) ++stats_.extended_returns;
     if (hit) ++stats_.obstacles;
   }
   planBeams();

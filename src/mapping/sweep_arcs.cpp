@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 #include "sonarmap/mapping/sweep_fan.hpp"
@@ -68,11 +69,14 @@ bool inCone(const WaterCone& cone, const Eigen::Vector3d& point_m, double range_
   return w.right_x * v.y() - w.right_y * v.x() >= 0.0 && w.left_x * v.y() - w.left_y * v.x() <= 0.0;
 }
 
-/// The two-way vertical pattern of a Gaussian beam of −3 dB width `aperture_rad` (ArcEvidence::kBeamPattern).
+}  // namespace
+
 double twoWayPattern(double elevation_rad, double aperture_rad) {
   const double u = 2.0 * elevation_rad / aperture_rad;
   return std::exp2(-2.0 * u * u);
 }
+
+namespace {
 
 /// planArcs of the beam-volume model (sweep_fan.hpp).
 void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
@@ -92,10 +96,13 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   std::vector<HitPoint> shell;
   std::vector<char> row_kept;
   std::vector<Eigen::Vector2d> column_dirs;  // cos, sin of each column's bearing
+  std::vector<HitPoint> trace;
+  const TraceSlopes slopes = fitTraceSlopes(beams, shape);
   for (std::size_t b = 0; b < beams.size(); ++b) {
     const PlannedBeam& beam = beams[b];
-    if (!beam.hit) continue;
-    const double range_m = beam.hit_range_m;
+    const bool traced = !beam.hit && beam.trace_onset_m <= beam.trace_end_m;
+    if (!beam.hit && !traced) continue;
+    const double range_m = beam.hit ? beam.hit_range_m : beam.trace_onset_m;
     candidates.clear();
     for (std::size_t n = 0; n < beams.size(); ++n) {
       if (n == b) continue;
@@ -107,6 +114,17 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       const double parallax_rad = std::asin(std::min(1.0, 2.0 * offset_m / range_m));
       if (cones[n].axis.dot(cones[b].axis) < std::cos(std::min(std::numbers::pi, 2.0 * cone_radius_rad + parallax_rad))) continue;
       candidates.push_back(n);
+    }
+    auto carved = [&](const Eigen::Vector3d& point_m) {
+      return std::any_of(candidates.begin(), candidates.end(), [&](std::size_t n) {
+        return inCone(cones[n], point_m, cones[n].wedge.water_m - tolerance_m);
+      });
+    };
+    if (traced) {  // a weak extended return: its level trace, less what other beams saw as water
+      trace.clear();
+      appendLevelTrace(beam, shape, voxel_m, evidence, trace, slopes);
+      std::copy_if(trace.begin(), trace.end(), std::back_inserter(hits), [&](const HitPoint& p) { return !carved(p.point_m); });
+      continue;
     }
     const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * range_m / voxel_m)));
     const int rows = std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
@@ -123,10 +141,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       const double horizontal_m = range_m * std::cos(elevation), vertical_m = range_m * std::sin(elevation);
       for (const Eigen::Vector2d& dir : column_dirs) {
         const Eigen::Vector3d point_m = beam.sonar_to_map * Eigen::Vector3d(horizontal_m * dir.x(), horizontal_m * dir.y(), vertical_m);
-        const bool carved = std::any_of(candidates.begin(), candidates.end(), [&](std::size_t n) {
-          return inCone(cones[n], point_m, cones[n].wedge.water_m - tolerance_m);
-        });
-        if (carved) continue;
+        if (carved(point_m)) continue;
         shell.push_back({point_m, weight});
         row_kept[static_cast<std::size_t>(r)] = 1;
       }

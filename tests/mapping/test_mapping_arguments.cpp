@@ -25,6 +25,7 @@ TEST(MappingArguments, DefaultsAreTheLibrarysOptions) {
   EXPECT_DOUBLE_EQ(options.octree.occupancy.prob_hit, library.octree.occupancy.prob_hit);
   EXPECT_EQ(options.beam_model, BeamModel::kPlanar);
   EXPECT_FALSE(options.clear_without_obstacle.has_value());
+  EXPECT_TRUE(options.extended_returns);
 }
 
 TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
@@ -37,6 +38,7 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   args.detector = "cfar-os";
   args.clear_without_obstacle = "yes";
   args.min_range = "0.3";
+  args.extended_returns = false;
   const MapperOptions options = toMapperOptions(args);
   EXPECT_DOUBLE_EQ(*options.resolution_m, 0.05);
   EXPECT_DOUBLE_EQ(options.beam_width_rad, 2.0 * kRadPerDeg);
@@ -46,6 +48,7 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   EXPECT_EQ(options.detector.kind, Detector::kCfar);
   EXPECT_EQ(options.clear_without_obstacle, true);
   EXPECT_DOUBLE_EQ(*options.detector.min_range_m, 0.3);
+  EXPECT_FALSE(options.extended_returns);
 }
 
 TEST(MappingArguments, BadValuesNameTheOption) {

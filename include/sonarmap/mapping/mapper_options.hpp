@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/detection/extended_returns.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -125,6 +126,14 @@ struct MapperOptions {
   /// How the volume model shares an obstacle's evidence over its shell (sweep_fan.hpp). Unused by
   /// the planar model (every arc point gets the whole hit).
   ArcEvidence arc_evidence = ArcEvidence::kBeamPattern;
+  /// Whether the volume model seeks weak extended returns in the whole echo of each beam without an
+  /// obstacle (a seabed or water surface met at grazing incidence; extended_returns.hpp) and places
+  /// them on the level surface their onset implies (appendLevelTrace, sweep_fan.hpp). Such a beam
+  /// then also clears its cone's loud core up to the return's onset. Whole sweeps only: the live
+  /// mapper's beams, detected a few at a time, use their first returns. Unused by the planar model.
+  bool extended_returns = true;
+  /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).
+  ExtendedReturnOptions extended{};
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much
   /// before its obstacle, so the obstacle's range uncertainty (a bin, the pulse, a voxel) does not
   /// clear what the same surface gave in earlier sweeps; an arc point of the obstacle is dropped
@@ -146,7 +155,7 @@ struct MapperOptions {
   /// @throws ValueError naming the option for a resolution that is set but not finite and > 0, a
   ///         self-reflection range or range tolerance that is set but not finite and ≥ 0, a max
   ///         range that is NaN or ≤ 0, a beam width outside [0, π), a budget that is NaN or ≤ 0,
-  ///         invalid smoothing or detector options, invalid occupancy parameters, or 0 threads.
+  ///         invalid smoothing, detector or extended-return options, invalid occupancy parameters, or 0 threads.
   void validate() const;
 };
 

@@ -53,6 +53,10 @@ struct MappingStats {
   /// Beams without an obstacle that clear nothing (MapperOptions::clear_without_obstacle: the
   /// volume model's default): not in beams_used.
   std::size_t beams_without_evidence = 0;
+  /// Beams without an obstacle whose whole echo held a weak extended return (a grazing seabed or
+  /// water surface; MapperOptions::extended_returns), in beams_used: each clears its cone up to the
+  /// return's onset, and one whose aperture points only down or only up maps it (appendLevelTrace).
+  std::size_t extended_returns = 0;
   /// Why beams found no obstacle, summed over the sweeps detected by this mapper (detectors.hpp).
   DetectionDiagnostics detection;
   /// The last detected sweep's calibration (calibration.hpp): what the mapper derived from the log.

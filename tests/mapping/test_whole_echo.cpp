@@ -1,0 +1,218 @@
+// Evidence from the whole echo (issue 21): weak extended returns found by binary integration over
+// bins and bearings (extended_returns.hpp) and placed on the level surface their onset implies
+// (appendLevelTrace, sweep_fan.hpp). A single beam's trace against a brute-force search of its
+// shells; a tilted head's seabed mapped as a floor; speckle in open water that must not accumulate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/mapping/sweep_fan.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+const BeamShape kMicron{3.0 * kDegree, 35.0 * kDegree};
+
+Eigen::Isometry3d tiltedPose(const Eigen::Vector3d& origin_m, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  pose.translation() = origin_m;
+  return pose;
+}
+
+PlannedBeam tracedBeam(const Eigen::Isometry3d& pose, double bearing_rad, double onset_m, double end_m) {
+  PlannedBeam beam{pose, bearing_rad, onset_m, end_m, false, onset_m};
+  beam.trace_onset_m = onset_m;
+  beam.trace_end_m = end_m;
+  return beam;
+}
+
+// Every trace point lies on the level the onset implies, inside the cone, between the onset and
+// the end; and a brute-force search of each shell (range step × column, elevations 10⁻⁴ rad apart)
+// finds the level in the aperture exactly where the trace has a point, at the same elevation.
+TEST(mappingWholeEcho, LevelTraceOfOneBeamMatchesBruteForce) {
+  const double voxel_m = 0.05;
+  // Nose down 30°, rolled and turned: the beam's lower edge is its most downward direction.
+  const Eigen::Isometry3d pose = tiltedPose({0.4, -0.3, -0.5}, 0.15, 30.0 * kDegree, 0.6);
+  const PlannedBeam beam = tracedBeam(pose, 12.0 * kDegree, 2.5, 3.6);
+  std::vector<HitPoint> trace;
+  appendLevelTrace(beam, kMicron, voxel_m, ArcEvidence::kWholeArc, trace);
+  ASSERT_FALSE(trace.empty());
+  const Eigen::Isometry3d map_to_sonar = pose.inverse();
+  auto direction = [](double bearing_rad, double elevation_rad) {
+    return Eigen::Vector3d(std::cos(elevation_rad) * std::cos(bearing_rad), std::cos(elevation_rad) * std::sin(bearing_rad),
+                           std::sin(elevation_rad));
+  };
+  // The level: where the aperture's lowest edge (in the map) meets it at the onset.
+  const double half_aperture = 0.5 * kMicron.vertical_aperture_rad;
+  const double low_z = (pose.linear() * direction(beam.bearing_rad, -half_aperture)).z();
+  const double high_z = (pose.linear() * direction(beam.bearing_rad, half_aperture)).z();
+  ASSERT_LT(std::max(low_z, high_z), 0.0);  // the whole aperture looks down: a seabed only
+  const double level_m = pose.translation().z() + 2.5 * std::min(low_z, high_z);
+  for (const HitPoint& hit : trace) {
+    const Eigen::Vector3d v = map_to_sonar * hit.point_m;
+    EXPECT_NEAR(hit.point_m.z(), level_m, 1e-9);
+    EXPECT_GE(v.norm(), 2.5 - 1e-9);
+    EXPECT_LE(v.norm(), 3.6 + 1e-9);
+    EXPECT_LE(std::abs(std::asin(v.z() / v.norm())), half_aperture + 1e-9);
+    EXPECT_LE(std::abs(std::atan2(v.y(), v.x()) - beam.bearing_rad), 0.5 * kMicron.width_rad + 1e-9);
+    EXPECT_EQ(hit.weight, 1.0);
+  }
+  // Brute force over the same ranges and columns as the trace.
+  const int columns = static_cast<int>(std::ceil(kMicron.width_rad * 3.6 / voxel_m));
+  std::size_t expected = 0, matched = 0;
+  for (double range_m = 2.5; range_m <= 3.6 + 1e-9; range_m += 0.5 * voxel_m) {
+    for (int c = 0; c <= columns; ++c) {
+      const double bearing_rad = beam.bearing_rad - 0.5 * kMicron.width_rad + kMicron.width_rad * c / columns;
+      double previous = std::numeric_limits<double>::quiet_NaN();
+      for (double e = -half_aperture; e <= half_aperture; e += 1e-4) {
+        const double z = (pose * (range_m * direction(bearing_rad, e))).z() - level_m;
+        if (!std::isnan(previous) && (previous <= 0.0) != (z <= 0.0)) {
+          ++expected;
+          const Eigen::Vector3d point_m = pose * (range_m * direction(bearing_rad, e));
+          for (const HitPoint& hit : trace) {
+            if ((hit.point_m - point_m).norm() < range_m * 2e-4) {
+              ++matched;
+              break;
+            }
+          }
+        }
+        previous = z;
+      }
+    }
+  }
+  EXPECT_EQ(trace.size(), expected);
+  EXPECT_EQ(matched, expected);
+  EXPECT_GT(expected, 40U);
+}
+
+// The edge decides the surface: an aperture that looks up (head tilted up) traces the water
+// surface above the sonar; one that looks both up and down (a level head) cannot tell which and
+// traces nothing; the pattern's weight falls towards the edge.
+TEST(mappingWholeEcho, TheApertureDecidesWhichSurfaceATraceIs) {
+  std::vector<HitPoint> trace;
+  appendLevelTrace(tracedBeam(tiltedPose({0.0, 0.0, -1.0}, 0.0, -30.0 * kDegree, 0.0), 0.0, 1.2, 2.0), kMicron, 0.05,
+                   ArcEvidence::kBeamPattern, trace);
+  ASSERT_FALSE(trace.empty());
+  const double surface_m = -1.0 + 1.2 * std::sin(47.5 * kDegree);
+  for (const HitPoint& hit : trace) EXPECT_NEAR(hit.point_m.z(), surface_m, 1e-9);
+  // At the onset the trace lies on the aperture's edge (two-way pattern 0.25; the side columns
+  // a little inside it); farther, nearer the axis.
+  EXPECT_LT(trace.front().weight, 0.35);
+  EXPECT_GE(trace.front().weight, twoWayPattern(0.5 * kMicron.vertical_aperture_rad, kMicron.vertical_aperture_rad) - 1e-9);
+  EXPECT_GT(trace.back().weight, 2.0 * trace.front().weight);
+  trace.clear();
+  appendLevelTrace(tracedBeam(Eigen::Isometry3d::Identity(), 0.0, 1.2, 2.0), kMicron, 0.05, ArcEvidence::kBeamPattern, trace);
+  EXPECT_TRUE(trace.empty());
+  appendLevelTrace(tracedBeam(Eigen::Isometry3d::Identity(), 0.0, 1.2, 2.0), BeamShape{kMicron.width_rad, 0.0}, 0.05,
+                   ArcEvidence::kWholeArc, trace);
+  EXPECT_TRUE(trace.empty());  // the planar model has no traces
+}
+
+/// The default mounting tilted nose down by `tilt_deg`.
+Eigen::Isometry3d tiltedMounting(double tilt_deg) {
+  return defaultSonarToBody() * Eigen::AngleAxisd(tilt_deg * kDegree, Eigen::Vector3d::UnitY());
+}
+
+/// A static head (default: the Micron) tilted down by `tilt_deg`, `altitude_m` over a flat sandy seabed (ρ 0.5), or in open water.
+MsisSimulation tiltedMicron(double altitude_m, bool seabed, double tilt_deg = 25.0, const std::string& preset = "micron") {
+  const SonarPreset head = sonarPreset(preset);
+  MsisSimulationOptions options;
+  options.head = head.head;
+  options.echo = head.echo;
+  options.turns = 4;
+  options.sonar_to_body = tiltedMounting(tilt_deg);
+  Scene scene = builtinScene("open-water", head.head.range_m);
+  if (seabed) scene = Scene{{Plane{{0.0, 0.0, -altitude_m}, Eigen::Vector3d::UnitZ(), 0.5}}};
+  return simulateMsis(scene, options);
+}
+
+MapperOptions volume(bool extended_returns) {
+  MapperOptions options;
+  options.beam_model = BeamModel::kVolume;
+  options.resolution_m = 0.05;
+  options.extended_returns = extended_returns;
+  return options;
+}
+
+struct Occupied {
+  std::size_t total = 0, on_floor = 0, above_floor = 0;
+};
+Occupied occupiedAround(const SonarMapper& mapper, double floor_z_m) {
+  Occupied counts;
+  mapper.map().forEachLeaf([&](const LeafView<16>& leaf) {
+    if (leaf.log_odds <= 0.0F) return;
+    const double z = mapper.map().coder().centerOf(leaf.key).z();
+    ++counts.total;
+    if (std::abs(z - floor_z_m) <= 0.1) ++counts.on_floor;
+    if (z > floor_z_m + 0.3) ++counts.above_floor;
+  });
+  return counts;
+}
+
+// The seabed under a head tilted 25° returns a few dB above the noise per bin (+3.5 dB at 4 m,
+// sonar_equation.hpp): no obstacle, but an extended return. With the whole echo the map has a
+// floor at the seabed's depth; with first returns only it has nothing at all.
+TEST(mappingWholeEcho, TiltedHeadMapsTheSeabedAsAFloor) {
+  const MsisSimulation run = tiltedMicron(2.0, true);
+  const SonarMapper whole = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), volume(true));
+  const Occupied floor = occupiedAround(whole, -2.0);
+  std::printf("seabed 2 m under a tilted Micron: %zu occupied, %zu within 0.1 m of it, %zu over 0.3 m above it\n",
+              floor.total, floor.on_floor, floor.above_floor);
+  EXPECT_GT(floor.total, 500U);
+  EXPECT_GE(static_cast<double>(floor.on_floor), 0.8 * static_cast<double>(floor.total));
+  EXPECT_EQ(floor.above_floor, 0U);
+  const SonarMapper first = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), volume(false));
+  EXPECT_EQ(occupiedAround(first, -2.0).total, 0U);
+}
+
+// Speckle must not accumulate: turns of open water, the head level or tilted, map no occupied
+// voxel, whatever the head (the detector's false alarms are 10⁻⁴ per beam, and a level head
+// places no trace).
+TEST(mappingWholeEcho, SpeckleInOpenWaterDoesNotAccumulate) {
+  for (const char* preset : {"micron", "ping360", "seaking-30"}) {
+    for (const double tilt_deg : {0.0, 25.0}) {
+      const MsisSimulation run = tiltedMicron(0.0, false, tilt_deg, preset);
+      MapperOptions options = volume(true);
+      options.resolution_m.reset();
+      const SonarMapper mapper = mapSonarLog(run.log, run.nav, tiltedMounting(tilt_deg), options);
+      EXPECT_EQ(occupiedAround(mapper, 0.0).total, 0U) << preset << " tilted " << tilt_deg << "°";
+    }
+  }
+}
+
+// The detector's options are probabilities, looks and degrees, each checked.
+TEST(mappingWholeEcho, ExtendedReturnOptionsAreChecked) {
+  EXPECT_NO_THROW(ExtendedReturnOptions{}.validate());
+  auto rejects = [](auto change) {
+    ExtendedReturnOptions options;
+    change(options);
+    EXPECT_THROW(options.validate(), ValueError);
+    MapperOptions mapper;
+    mapper.extended = options;
+    EXPECT_THROW(mapper.validate(), ValueError);
+  };
+  rejects([](ExtendedReturnOptions& o) { o.bin_false_alarm = 0.5; });
+  rejects([](ExtendedReturnOptions& o) { o.bin_false_alarm = 0.0; });
+  rejects([](ExtendedReturnOptions& o) { o.window_looks = 1.0; });
+  rejects([](ExtendedReturnOptions& o) { o.window_looks = std::numeric_limits<double>::infinity(); });
+  rejects([](ExtendedReturnOptions& o) { o.false_alarm_per_beam = 0.0; });
+  rejects([](ExtendedReturnOptions& o) { o.bearing_window_deg = -1.0; });
+  rejects([](ExtendedReturnOptions& o) { o.bearing_window_deg = std::numeric_limits<double>::quiet_NaN(); });
+}
+
+}  // namespace
+}  // namespace sonarmap
