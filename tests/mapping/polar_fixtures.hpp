@@ -1,6 +1,8 @@
 #pragma once
-// Test fixtures of the mapping tests: synthetic polar images.
+// Test fixtures of the mapping tests: synthetic polar images, sonar poses.
 #include <numbers>
+
+#include <Eigen/Geometry>
 
 #include <opencv2/core.hpp>
 
@@ -20,6 +22,17 @@ inline PolarImage makeFullTurnSweep(int beams, int bins, double bin_m) {
   }
   polar.bin_length_m = bin_m;
   return polar;
+}
+
+/// A sonar pose (sonar → map) at `origin_m` with roll, pitch and yaw (radians, Z-Y-X): a tilted,
+/// turned sonar. Pitch > 0 turns its x axis down.
+inline Eigen::Isometry3d tiltedPose(const Eigen::Vector3d& origin_m, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  pose.translation() = origin_m;
+  return pose;
 }
 
 }  // namespace sonarmap::testing

@@ -22,6 +22,7 @@ constexpr double kVoxel = 0.02;
 const BeamShape kMicron{3.0 * kDegree, 35.0 * kDegree};
 
 using KeySet = std::unordered_set<Key16, KeyHash<16>>;
+using testing::tiltedPose;
 
 /// The cells the planned free rays cross (as the mapper's traversal marks them).
 KeySet crossedCells(const KeyCoder<16>& coder, const std::vector<FreeRay>& rays) {
@@ -39,16 +40,6 @@ struct SonarPolar {
 SonarPolar toSonar(const Eigen::Isometry3d& sonar_to_map, const Eigen::Vector3d& point_m) {
   const Eigen::Vector3d v = sonar_to_map.inverse() * point_m;
   return {v.norm(), std::atan2(v.y(), v.x()), std::asin(v.z() / v.norm())};
-}
-
-/// A rotation with roll, pitch and yaw (radians): a tilted, turned sonar.
-Eigen::Isometry3d tiltedPose(const Eigen::Vector3d& origin_m, double roll, double pitch, double yaw) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                      .toRotationMatrix();
-  pose.translation() = origin_m;
-  return pose;
 }
 
 // Every voxel whose centre lies well inside the cone (a voxel diagonal from its surface) is

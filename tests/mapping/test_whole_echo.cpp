@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
+#include "polar_fixtures.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -24,14 +25,7 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 const BeamShape kMicron{3.0 * kDegree, 35.0 * kDegree};
 
-Eigen::Isometry3d tiltedPose(const Eigen::Vector3d& origin_m, double roll, double pitch, double yaw) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                      .toRotationMatrix();
-  pose.translation() = origin_m;
-  return pose;
-}
+using testing::tiltedPose;
 
 PlannedBeam tracedBeam(const Eigen::Isometry3d& pose, double bearing_rad, double onset_m, double end_m) {
   PlannedBeam beam{pose, bearing_rad, onset_m, end_m, false, onset_m};
