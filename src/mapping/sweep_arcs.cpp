@@ -97,7 +97,6 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   std::vector<char> row_kept;
   std::vector<Eigen::Vector2d> column_dirs;  // cos, sin of each column's bearing
   std::vector<HitPoint> trace;
-  const TraceSlopes slopes = fitTraceSlopes(beams, shape);
   for (std::size_t b = 0; b < beams.size(); ++b) {
     const PlannedBeam& beam = beams[b];
     const bool traced = !beam.hit && beam.trace_onset_m <= beam.trace_end_m;
@@ -122,7 +121,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
     };
     if (traced) {  // a weak extended return: its level trace, less what other beams saw as water
       trace.clear();
-      appendLevelTrace(beam, shape, voxel_m, evidence, trace, slopes);
+      appendLevelTrace(beam, shape, voxel_m, evidence, trace);
       std::copy_if(trace.begin(), trace.end(), std::back_inserter(hits), [&](const HitPoint& p) { return !carved(p.point_m); });
       continue;
     }

@@ -135,42 +135,27 @@ void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, doub
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
               ArcEvidence evidence, std::vector<HitPoint>& hits);
 
-/// The slopes of the seabed and of the water surface that a sweep's weak extended returns imply
-/// (fitTraceSlopes): unit normals, map frame, z > 0; unset where the sweep cannot tell.
-struct TraceSlopes {
-  std::optional<Eigen::Vector3d> seabed_normal;
-  std::optional<Eigen::Vector3d> surface_normal;
-};
-
-/// Fits the plane z = a + b x + c y by least squares to the onset points of the sweep's traces
-/// (appendLevelTrace: each onset on its aperture's edge, with its beam's pose), seabed and surface
-/// apart, dropping points farther than 3 robust standard deviations (1.4826 × the median
-/// residual) twice. A slope is kept from 12 points on, spread over both horizontal directions
-/// (the smaller principal spread at least a quarter of the larger) and under 30°; else it is
-/// unset and the traces stay level. Nothing is thrown.
-TraceSlopes fitTraceSlopes(const std::vector<PlannedBeam>& beams, const BeamShape& shape);
-
 /// Appends the hit points of one beam's weak extended return (PlannedBeam::trace_onset_m,
 /// trace_end_m) to `hits`, map frame; nothing else is touched, and a beam without one adds nothing.
-/// planArcs of the volume model calls it for each such beam, with the sweep's fitTraceSlopes, and
-/// carves the points as a shell's. Nothing is thrown.
+/// planArcs of the volume model calls it for each such beam and carves the points as a shell's. Nothing is thrown.
 ///
 /// A weak extended return is a surface met at grazing incidence: a surface facing the beam would
 /// have echoed loud enough to be an obstacle. It starts where the surface enters the cone, at the
 /// edge of the vertical aperture nearest to it, and goes on while the surface crosses the cone.
 /// Under the flat-seabed hypothesis of sidescan slant-range correction (Blondel, "The Handbook of
-/// Sidescan Sonar", 2009), the surface is the plane through the onset point on that edge (range r₀)
-/// with the sweep's fitted slope, or level without one. At every range r from the onset to the
-/// return's end (points half a voxel apart in range, at most a voxel apart across the beam's
-/// width) the return comes from where the shell meets that plane: the elevation e in the aperture
-/// with n · (r u(e)) = n · (r₀ u(edge)), n the plane's normal and u the directions in the map frame.
+/// Sidescan Sonar", 2009), the surface is level through the onset point on that edge (range r₀).
+/// At every range r from the onset to the return's end (points half a voxel apart in range, at
+/// most a voxel apart across the beam's width) the return comes from where the shell meets that
+/// level: the elevation e in the aperture with r · v(e) = r₀ · v(edge), v the vertical (map z)
+/// component of the direction. A sloping seabed puts the trace off it by the slope times the
+/// horizontal distance from the onset point (7° over 1 m: 0.12 m).
 /// The edge is the aperture's most downward one when that points down (a seabed), its most upward
 /// one when that points up (the water surface); an aperture that points both ways (a level head)
 /// cannot tell the two and gets no trace. A point gets `evidence`'s weight at its elevation (the
 /// two-way pattern, or 1). The planar model (aperture 0) has no traces.
 /// @param voxel_m map resolution, > 0.
 void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double voxel_m, ArcEvidence evidence,
-                      std::vector<HitPoint>& hits, const TraceSlopes& slopes = {});
+                      std::vector<HitPoint>& hits);
 
 /// planFreeRays and planArcs of beams that share one pose.
 void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,
