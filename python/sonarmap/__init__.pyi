@@ -214,6 +214,7 @@ def map_sonar_log(
     free_aperture: _NumberOrAuto = ...,
     clear_without_obstacle: Union[bool, str, None] = ...,
     arc_evidence: str = ...,
+    extended_returns: bool = ...,
     threads: int = ...,
 ) -> OccupancyMap: ...
 def read_nav_csv(path: PathLike) -> Float64Array: ...
