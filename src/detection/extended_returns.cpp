@@ -55,6 +55,9 @@ int changePoint(int begin, int end, const std::vector<int>& rows, const std::vec
   return best;
 }
 
+/// Half the bearing window, radians (ExtendedReturnOptions::bearing_window_deg).
+double halfWindow_rad(const ExtendedReturnOptions& options) { return 0.5 * options.bearing_window_deg * std::numbers::pi / 180.0; }
+
 }  // namespace
 
 void ExtendedReturnOptions::validate() const {
@@ -93,7 +96,6 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
   auto bin = [&](int row, std::size_t c) -> double { return polar.intensities.at<std::uint8_t>(row, static_cast<int>(c)); };
   auto valid = [&](int row, std::size_t c) { return static_cast<int>(c) < polar.valid_bins[static_cast<std::size_t>(row)]; };
   ExtendedReturnCalibration calibration;
-  calibration.bin_false_alarm = p0;
   std::vector<double> excess;
   for (std::size_t c = first; c < columns; ++c) {
     if (!noise_column(c)) continue;
@@ -158,7 +160,7 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
     if (d > 0.0) steps.push_back(d);
   }
   const double step_rad = steps.empty() ? 0.0 : percentile(steps, 0.5);
-  const double half_window_rad = 0.5 * options.bearing_window_deg * std::numbers::pi / 180.0;
+  const double half_window_rad = halfWindow_rad(options);
   calibration.half_window_rows = step_rad > 0.0 ? static_cast<int>(std::floor(half_window_rad / step_rad + 1e-9)) : 0;
   const double window_rows = 2.0 * calibration.half_window_rows + 1.0;
   calibration.window_bins = std::max(1, static_cast<int>(std::lround(options.window_looks * calibration.bins_per_look)));
@@ -195,7 +197,7 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
       before[c + 1] = before[c] + (intensities[c] > calibration.lit_counts[static_cast<std::size_t>(c)] ? 1 : 0);
     }
   }
-  const double half_window_rad = 0.5 * options.bearing_window_deg * std::numbers::pi / 180.0 + 1e-9;
+  const double half_window_rad = halfWindow_rad(options) + 1e-9;
   std::vector<int> neighbours;
   std::size_t found = 0;
   for (int row = 0; row < rows; ++row) {
@@ -228,7 +230,7 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
     const int start = c;
     while (c + 1 + window <= bins && count(c + 1) >= needed) ++c;  // the run of windows that hold one
     const int onset = changePoint(start, std::min(c + window, start + 2 * window), neighbours, lit_before,
-                                  calibration.bin_false_alarm);
+                                  options.bin_false_alarm);
     int last = c + window - 1;
     while (last > onset && own[last + 1] == own[last]) --last;  // its last lit bin
     detection.extended_onset_m = (onset + 0.5) * polar.bin_length_m;

@@ -37,7 +37,7 @@
 ///
 /// Only beams the detector found empty get one (BeamDetection::extended_onset_m, extended_end_m),
 /// and their echo onset moves to it when that is nearer. Meant for the beam-volume model, which
-/// places such a return on the level surface its onset implies (level_traces.hpp); a level head's
+/// places such a return on the level surface its onset implies (appendLevelTrace, sweep_fan.hpp); a level head's
 /// 2D map has no use for the seabed's ring.
 
 #include <cstddef>
@@ -72,7 +72,6 @@ struct ExtendedReturnCalibration {
   int lit_needed = 1;             ///< lit bins a full window (all its rows) needs
   std::size_t noise_columns = 0;  ///< columns τ and L were measured on
   bool measured = false;          ///< τ measured (else one-look speckle's)
-  double bin_false_alarm = 0.1;   ///< p₀ the lit level was set for
 };
 
 /// Calibrates the sweep `polar` for extended returns from its background (the detection's
