@@ -274,7 +274,7 @@ void OnlineMapper::closeLiveSweep(const std::optional<HeadSetting>& next) {
   if (sweep.size() >= min_beams) {
     // Its beams are (or will be) integrated one by one; calibrate the next ones on it.
     PolarImage polar = makePolarImage(sweep, 0, sweep.size());
-    keepCalibration(setting, mapper_.detectSweep(polar).calibration, sweep.size());
+    keepCalibration(setting, mapper_.sweepCalibration(polar), sweep.size());
   }
   const std::unique_lock lock(map_mutex_);
   ++mapper_.stats().sweeps;

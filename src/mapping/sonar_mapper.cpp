@@ -101,7 +101,11 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
   std::sort(work_->occupied_keys.begin(), work_->occupied_keys.end());
 }
 
-SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
+SweepDetection SonarMapper::detectSweep(PolarImage& polar) const { return detectSweep(polar, options_.extended_returns); }
+
+SweepCalibration SonarMapper::sweepCalibration(PolarImage& polar) const { return detectSweep(polar, false).calibration; }
+
+SweepDetection SonarMapper::detectSweep(PolarImage& polar, bool extended_returns) const {
   // Calibrate on the image as recorded: the band and the near field are measured before the band is
   // zeroed and before any smoothing spreads it.
   DetectorOptions detector = options_.detector;
@@ -121,7 +125,7 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
     smoothed.near_field_end_m = recorded.near_field_end_m;
     detection = sonarmap::detectSweep(polar, detector, smoothed);
   }
-  if (options_.beam_model == BeamModel::kVolume && options_.extended_returns) {
+  if (options_.beam_model == BeamModel::kVolume && extended_returns) {
     addExtendedReturns(polar, detector.background.calibration.background_percentile, detection, options_.extended);
   }
   return detection;

@@ -95,6 +95,12 @@ class SonarMapper {
   /// mapper state.
   SweepDetection detectSweep(PolarImage& polar) const;
 
+  /// detectSweep(polar).calibration, without the search for weak extended returns (which does not
+  /// change it): what live mapping keeps of a whole sweep to detect the beams that follow with.
+  /// Cleans `polar` in place as detectSweep. Thread-safe as detectSweep.
+  /// @throws ValueError  as detectSweep.
+  SweepCalibration sweepCalibration(PolarImage& polar) const;
+
   /// detectSweep(polar).detections.
   std::vector<BeamDetection> detect(PolarImage& polar) const;
   /// Cleans and searches a few beams of a sweep in progress (live mapping: OnlineMapper's per-beam
@@ -155,6 +161,8 @@ class SonarMapper {
   /// MappingStats::resolution_changes). Never finer. mapSonarLog resolves the resolution for the
   /// whole log first (autoResolutionForLog), so this applies to mappers fed beam by beam (live).
   void resolveResolution(const PolarImage& polar);
+  /// detectSweep, with or without the search for weak extended returns (the volume model only).
+  SweepDetection detectSweep(PolarImage& polar, bool extended_returns) const;
   /// MapperOptions::range_tolerance_m, or the sweep's part of its automatic value: a bin plus half a
   /// voxel (each echo's rise is added per beam).
   double rangeTolerance_m(const PolarImage& polar) const;
