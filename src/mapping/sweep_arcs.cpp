@@ -69,6 +69,21 @@ bool inCone(const WaterCone& cone, const Eigen::Vector3d& point_m, double range_
   return w.right_x * v.y() - w.right_y * v.x() >= 0.0 && w.left_x * v.y() - w.left_y * v.x() <= 0.0;
 }
 
+/// Whether cones `a` and `b` can hold a common direction as seen from a's sonar, by their
+/// bearings: a direction in both lies within half a width of each beam's bearing, each measured in
+/// its own sonar frame. Rotating a direction by θ (the angle between the two sonar frames) and
+/// moving the origin (`parallax_rad`) changes its bearing by at most (θ + parallax) / cos e, e the
+/// largest elevation it passes (half the aperture plus both angles), so the bearings differ by at
+/// most a width plus that. Conservative: never false for cones that share a direction.
+bool bearingsCanShare(const PlannedBeam& a, const PlannedBeam& b, const BeamShape& shape, double parallax_rad) {
+  const double cos_rotation = std::clamp(0.5 * ((a.sonar_to_map.linear().cwiseProduct(b.sonar_to_map.linear())).sum() - 1.0), -1.0, 1.0);
+  const double turn_rad = std::acos(cos_rotation) + parallax_rad;
+  const double elevation_rad = 0.5 * shape.vertical_aperture_rad + turn_rad;
+  if (elevation_rad >= 1.4) return true;  // near the poles bearings say nothing
+  const double gap_rad = std::abs(std::remainder(a.bearing_rad - b.bearing_rad, kTwoPi));
+  return gap_rad <= shape.width_rad + turn_rad / std::cos(elevation_rad) + 1e-9;
+}
+
 }  // namespace
 
 double twoWayPattern(double elevation_rad, double aperture_rad) {
@@ -112,6 +127,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       // parallax of the sonar's motion at this range.
       const double parallax_rad = std::asin(std::min(1.0, 2.0 * offset_m / range_m));
       if (cones[n].axis.dot(cones[b].axis) < std::cos(std::min(std::numbers::pi, 2.0 * cone_radius_rad + parallax_rad))) continue;
+      if (!bearingsCanShare(beams[b], beams[n], shape, parallax_rad)) continue;
       candidates.push_back(n);
     }
     auto carved = [&](const Eigen::Vector3d& point_m) {

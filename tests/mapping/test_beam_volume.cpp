@@ -151,6 +151,52 @@ TEST(mappingBeamVolume, ShellIsCarvedAndEvidenceShared) {
   EXPECT_NEAR(edge_weight, 0.25, 1e-12);
 }
 
+// Carving against brute force: a shell point is kept exactly when no other beam of the sweep saw
+// water beyond it in its cone, whatever the beams' poses. Beams from sonars moved and turned by up
+// to 0.3 m and 40° (the mapper skips pairs of beams that cannot share a direction; that must never
+// skip one that carves), some with an obstacle, some with water only.
+TEST(mappingBeamVolume, CarvingMatchesBruteForceForMovedAndTurnedSonars) {
+  std::vector<PlannedBeam> beams;
+  for (int i = 0; i < 40; ++i) {
+    const double turn = (i % 4) * 10.0 * kDegree;  // 0°, 10°, 20°, 30° of roll, pitch and yaw
+    const Eigen::Vector3d origin_m(0.3 * std::sin(i), 0.2 * std::cos(1.7 * i), 0.1 * std::sin(0.3 * i));
+    const Eigen::Isometry3d pose = tiltedPose(origin_m, 0.7 * turn, -turn, 1.3 * turn);
+    const double bearing_rad = 2.0 * kDegree * i;
+    const double range_m = 1.5 + 0.05 * (i % 7) + 0.5 * (i % 3);
+    const bool hit = i % 5 != 0;
+    beams.push_back(PlannedBeam{pose, bearing_rad, range_m - 0.05, range_m, hit});
+  }
+  const double tolerance_m = 0.03;
+  auto inCone = [&](const PlannedBeam& beam, const Eigen::Vector3d& point_m) {
+    const Eigen::Vector3d v = beam.sonar_to_map.inverse() * point_m;
+    const double reach_m = (beam.hit ? beam.hit_range_m : beam.free_range_m) - tolerance_m;
+    if (!(v.norm() < reach_m)) return false;
+    const double elevation_rad = std::asin(v.z() / v.norm());
+    const double bearing_gap_rad = std::abs(std::remainder(std::atan2(v.y(), v.x()) - beam.bearing_rad, 2.0 * std::numbers::pi));
+    return std::abs(elevation_rad) <= 0.5 * kMicron.vertical_aperture_rad + 1e-12 &&
+           bearing_gap_rad <= 0.5 * kMicron.width_rad + 1e-12;
+  };
+  std::vector<HitPoint> expected, shell;
+  std::size_t carved = 0;
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    planArcs({beams[b]}, kMicron, kVoxel, tolerance_m, ArcEvidence::kWholeArc, shell);
+    for (const HitPoint& point : shell) {
+      bool water = false;
+      for (std::size_t n = 0; n < beams.size() && !water; ++n) water = n != b && inCone(beams[n], point.point_m);
+      if (water) {
+        ++carved;
+      } else {
+        expected.push_back(point);
+      }
+    }
+  }
+  std::vector<HitPoint> hits;
+  planArcs(beams, kMicron, kVoxel, tolerance_m, ArcEvidence::kWholeArc, hits);
+  EXPECT_GT(carved, 1000U);  // the test carves
+  ASSERT_EQ(hits.size(), expected.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) EXPECT_EQ(hits[i].point_m, expected[i].point_m) << i;
+}
+
 /// A sweep of `beams` beams over a full turn, all with `bins` bins of 2 cm.
 PolarImage makeSweep(int beams, int bins) { return testing::makeFullTurnSweep(beams, bins, kVoxel); }
 
