@@ -231,24 +231,25 @@ void SonarMapper::integrateHits() {
   const double prob_hit = options_.octree.occupancy.prob_hit;
   const bool volume = options_.beam_model == BeamModel::kVolume;
   if (work.hit_log_odds.empty()) work.hit_log_odds.assign(0x10000, std::numeric_limits<float>::quiet_NaN());
-  work.merged_keys.clear();
   for (const std::uint64_t hit : work.hits) {
-    const std::uint64_t cell = hit >> 16;
     float& delta = work.hit_log_odds[hit & 0xFFFF];
     if (std::isnan(delta)) {
       const double weight = static_cast<double>(hit & 0xFFFF) / 0xFFFF;
       delta = weight >= 1.0 ? map_.model().hit : logOdds(0.5 + (prob_hit - 0.5) * weight);
     }
-    map_.updateNode(keyOfMortonCode<16>(cell), delta);
+    map_.updateNode(keyOfMortonCode<16>(hit >> 16), delta);
     ++stats_.occupied_updates;
-    if (volume) work.merged_keys.push_back(cell);
   }
-  if (volume) {  // the sweep's hit cells (sorted, unique) joined to those of earlier sweeps
-    const std::size_t sweep_keys = work.merged_keys.size();
-    work.merged_keys.resize(sweep_keys + work.occupied_keys.size());
-    std::copy(work.occupied_keys.begin(), work.occupied_keys.end(), work.merged_keys.begin() + static_cast<std::ptrdiff_t>(sweep_keys));
-    std::inplace_merge(work.merged_keys.begin(), work.merged_keys.begin() + static_cast<std::ptrdiff_t>(sweep_keys), work.merged_keys.end());
-    work.merged_keys.erase(std::unique(work.merged_keys.begin(), work.merged_keys.end()), work.merged_keys.end());
+  if (volume) {  // the sweep's hit cells (sorted and unique, as keySweep left them) joined to earlier sweeps'
+    work.merged_keys.clear();
+    auto earlier = work.occupied_keys.begin();
+    for (const std::uint64_t hit : work.hits) {
+      const std::uint64_t cell = hit >> 16;
+      for (; earlier != work.occupied_keys.end() && *earlier < cell; ++earlier) work.merged_keys.push_back(*earlier);
+      if (earlier != work.occupied_keys.end() && *earlier == cell) ++earlier;
+      work.merged_keys.push_back(cell);
+    }
+    work.merged_keys.insert(work.merged_keys.end(), earlier, work.occupied_keys.end());
     std::swap(work.occupied_keys, work.merged_keys);
   }
 }
