@@ -10,7 +10,8 @@
 // range from the sonar (0.25 m rings): count and height extent against 2 r tan(aperture / 2), the
 // vertical band a static head must give (docs/mapping-3d.md).
 //
-// Usage: sonarmap_accuracy_3d [RESOLUTION_M] [PRESET ... | LOG]   (defaults: 0.05, micron)
+// Usage: sonarmap_accuracy_3d [RESOLUTION_M | auto] [PRESET ... | LOG]   (defaults: 0.05, micron;
+// auto: each log's automatic resolution, autoResolutionForLog, as `sonarmap map` without --resolution)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include <exception>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -104,9 +106,11 @@ void printBands(const std::string& path, double resolution_m) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const double resolution_m = argc > 1 ? std::atof(argv[1]) : 0.05;
+  const bool automatic = argc > 1 && std::string(argv[1]) == "auto";
+  const double resolution_m = argc > 1 && !automatic ? std::atof(argv[1]) : 0.05;
   if (argc > 2 && isLog(argv[2])) {
     try {
+      if (automatic) throw std::invalid_argument("give a log's resolution in metres");
       printBands(argv[2], resolution_m);
     } catch (const std::exception& error) {
       std::fprintf(stderr, "sonarmap_accuracy_3d: %s\n", error.what());
@@ -125,14 +129,14 @@ int main(int argc, char** argv) {
                            std::nullopt, false},
                           {"volume, beam pattern, silent beams clear", BeamModel::kVolume, ArcEvidence::kBeamPattern, true}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
-              "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::string by_surface;  // the default model's recall and erosion per scene primitive
   for (const std::string& preset : presets) {
     for (const std::string& mission : simulatedMissionNames()) {
       for (const Model& model : models) {
         MapperOptions options;
-        options.resolution_m = resolution_m;
+        if (!automatic) options.resolution_m = resolution_m;
         options.beam_model = model.beam;
         options.arc_evidence = model.evidence;
         options.clear_without_obstacle = model.clear_without_obstacle;
@@ -141,12 +145,12 @@ int main(int argc, char** argv) {
           const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
           const GroundTruthReport& t = a.truth;
           const std::size_t off_surface = t.occupied_voxels - t.occupied_on_surface;
-          std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f | %.4f | %.3f | %zu | %.3g | %.2f |\n",
+          std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f | %.4f | %.3f | %zu | %.3g | %.2f | %.3g |\n",
                       preset.c_str(), mission.c_str(), model.name, t.occupied_voxels, t.precision,
                       off_surface > 0 ? static_cast<double>(t.occupied_in_water) / static_cast<double>(off_surface) : 0.0,
                       t.recall, a.f1(),
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
-                      static_cast<double>(a.voxel_updates), a.seconds_mapping);
+                      static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
           if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
               !model.clear_without_obstacle && model.extended_returns) {
             by_surface += recallBySurface(preset, mission, a);
