@@ -202,7 +202,9 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
   std::size_t found = 0;
   for (int row = 0; row < rows; ++row) {
     BeamDetection& detection = sweep.detections[static_cast<std::size_t>(row)];
-    if (detection.hasObstacle()) continue;
+    // A beam with an obstacle: the run that starts with its obstacle's echo, if any.
+    const bool obstacle = detection.hasObstacle();
+    const int obstacle_bin = obstacle ? static_cast<int>(detection.range_m / polar.bin_length_m) : 0;
     // The window's rows: this beam and its neighbours in bearing; their common valid bins.
     neighbours.assign(1, row);
     for (int k = 1; k <= calibration.half_window_rows; ++k) {
@@ -224,9 +226,9 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
       return n;
     };
     const std::vector<int>& own = lit_before[static_cast<std::size_t>(row)];
-    int c = 0;
+    int c = obstacle ? std::max(0, obstacle_bin - window + 1) : 0;
     while (c + window <= bins && count(c) < needed) ++c;
-    if (c + window > bins) continue;
+    if (c + window > bins || (obstacle && c > obstacle_bin)) continue;
     const int start = c;
     while (c + 1 + window <= bins && count(c + 1) >= needed) ++c;  // the run of windows that hold one
     const int onset = changePoint(start, std::min(c + window, start + 2 * window), neighbours, lit_before,
@@ -235,6 +237,7 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
     while (last > onset && own[last + 1] == own[last]) --last;  // its last lit bin
     detection.extended_onset_m = (onset + 0.5) * polar.bin_length_m;
     detection.extended_end_m = (last + 0.5) * polar.bin_length_m;
+    if (obstacle) continue;  // its echo onset stays the detector's
     detection.echo_onset_m = std::min(detection.echo_onset_m, detection.extended_onset_m);
     ++found;
   }

@@ -52,6 +52,17 @@ std::optional<TraceEdge> traceEdge(const PlannedBeam& beam, double half_aperture
 
 }  // namespace
 
+bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset_m, double end_m, double tolerance_m) {
+  const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
+  if (!(half_aperture_rad > 0.0) || !(onset_m > 0.0 && onset_m <= end_m)) return false;
+  const std::optional<TraceEdge> edge = traceEdge(beam, half_aperture_rad);
+  if (!edge) return false;
+  // The steepest ray of the cone (the edge a level surface enters by): a vertical face at
+  // horizontal distance d echoes from d / cos e of each ray's slope e, so at most to onset / cos e.
+  const double slope_sin = beam.sonar_to_map.linear().row(2).dot(direction(beam.bearing_rad, edge->elevation_rad));
+  return end_m > onset_m / std::sqrt(std::max(1e-12, 1.0 - slope_sin * slope_sin)) + tolerance_m;
+}
+
 void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double voxel_m, ArcEvidence evidence,
                       std::vector<HitPoint>& hits) {
   const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;

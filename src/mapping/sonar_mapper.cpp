@@ -306,6 +306,13 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
+    } else if (hit && options_.beam_model == BeamModel::kVolume && detection.hasExtendedReturn() &&
+               isLevelReturn(beam, beamShape(), detection.extended_onset_m, detection.extended_end_m, beam_tolerance_m)) {
+      // An obstacle whose echo lasts longer than a face's: a level surface entering the cone.
+      beam.hit = false;
+      beam.trace_onset_m = beam.water_range_m = std::min(detection.extended_onset_m, range_m);
+      beam.trace_end_m = beam.hit_range_m = std::min(detection.extended_end_m, options_.max_range_m);
+      beam.free_range_m = std::max(0.0, std::min(free_range_m, beam.trace_onset_m - tolerance_m));
     }
     if (!beamInsideMap(beam)) {
       ++stats_.out_of_map;
@@ -313,8 +320,8 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     }
     work.beams.push_back(beam);
     ++stats_.beams_used;
-    if (traced) ++stats_.extended_returns;
-    if (hit) ++stats_.obstacles;
+    if (!beam.hit && beam.trace_onset_m <= beam.trace_end_m) ++stats_.extended_returns;
+    if (beam.hit) ++stats_.obstacles;
   }
   planBeams();
   keySweep();

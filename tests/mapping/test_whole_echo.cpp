@@ -146,14 +146,16 @@ MapperOptions volume(bool extended_returns) {
 struct Occupied {
   std::size_t total = 0, on_floor = 0, above_floor = 0;
 };
-Occupied occupiedAround(const SonarMapper& mapper, double floor_z_m) {
+/// Occupied voxels, those whose centre lies within `tolerance_m` of z = floor_z_m, and those more
+/// than 3 tolerances above it.
+Occupied occupiedAround(const SonarMapper& mapper, double floor_z_m, double tolerance_m = 0.1) {
   Occupied counts;
   mapper.map().forEachLeaf([&](const LeafView<16>& leaf) {
     if (leaf.log_odds <= 0.0F) return;
     const double z = mapper.map().coder().centerOf(leaf.key).z();
     ++counts.total;
-    if (std::abs(z - floor_z_m) <= 0.1) ++counts.on_floor;
-    if (z > floor_z_m + 0.3) ++counts.above_floor;
+    if (std::abs(z - floor_z_m) <= tolerance_m) ++counts.on_floor;
+    if (z > floor_z_m + 3.0 * tolerance_m) ++counts.above_floor;
   });
   return counts;
 }
@@ -172,6 +174,60 @@ TEST(mappingWholeEcho, TiltedHeadMapsTheSeabedAsAFloor) {
   EXPECT_EQ(floor.above_floor, 0U);
   const SonarMapper first = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), volume(false));
   EXPECT_EQ(occupiedAround(first, -2.0).total, 0U);
+}
+
+// An obstacle whose echo goes on past the farthest range a vertical face in the cone could echo
+// from is a level surface entering the cone: a head tilted 25° with the Micron's 35° aperture (its
+// steepest ray 42.5° down) calls a return from 3 m to 3 / cos 42.5° ≈ 4.07 m or less a face.
+TEST(mappingWholeEcho, ALongReturnOfADownwardConeIsLevelAndAShortOneAFace) {
+  const Eigen::Isometry3d down = tiltedPose(Eigen::Vector3d::Zero(), 0.0, 25.0 * kDegree, 0.0);
+  const PlannedBeam ahead{down, 0.0, 2.9, 3.0, true};
+  const double face_end_m = 3.0 / std::cos(42.5 * kDegree);
+  EXPECT_FALSE(isLevelReturn(ahead, kMicron, 3.0, 3.1, 0.02));
+  EXPECT_FALSE(isLevelReturn(ahead, kMicron, 3.0, face_end_m, 0.02));
+  EXPECT_TRUE(isLevelReturn(ahead, kMicron, 3.0, face_end_m + 0.03, 0.02));
+  // Sideways the tilted cone points both up and down, as a level head's: never level.
+  const PlannedBeam sideways{down, 0.5 * std::numbers::pi, 2.9, 3.0, true};
+  EXPECT_FALSE(isLevelReturn(sideways, kMicron, 3.0, 10.0, 0.02));
+  const PlannedBeam level{Eigen::Isometry3d::Identity(), 0.0, 2.9, 3.0, true};
+  EXPECT_FALSE(isLevelReturn(level, kMicron, 3.0, 10.0, 0.02));
+}
+
+// The Ping360 hears a seabed 20 m under its head tilted 25° as an obstacle, tens of dB above its
+// noise (sonar_equation.hpp), and the echo goes on to the end of its 50 m. Where the cone points
+// only down and the echo outlasts a face's (bearings within about 30° of the tilt's), that makes it
+// a level return: traced, the seabed there is a floor; as shells, arcs 14 m tall above it. Counted
+// within 25° of bearing 0. The floor lies 0.1–0.9 m high (five 0.2 m voxels): so loud a seabed is
+// heard a little outside the nominal aperture, so its echo starts before the edge the level is
+// drawn from, and each beam's onset has its own error.
+TEST(mappingWholeEcho, ALoudSeabedHeardAsObstaclesIsMappedAsAFloor) {
+  const MsisSimulation run = tiltedMicron(20.0, true, 25.0, "ping360");
+  MapperOptions options = volume(true);
+  options.resolution_m = 0.2;
+  const MsisHeadOptions head = sonarPreset("ping360").head;
+  options.beam_width_rad = head.horizontal_beam_width_rad;
+  options.vertical_aperture_rad = head.vertical_beam_width_rad;  // 25°
+  auto ahead = [&](const SonarMapper& mapper) {
+    Occupied counts;
+    mapper.map().forEachLeaf([&](const LeafView<16>& leaf) {
+      const Eigen::Vector3d centre_m = mapper.map().coder().centerOf(leaf.key);
+      if (leaf.log_odds <= 0.0F || std::abs(std::atan2(centre_m.y(), centre_m.x())) > 25.0 * kDegree) return;
+      ++counts.total;
+      if (std::abs(centre_m.z() + 20.0) <= 1.0) ++counts.on_floor;
+      if (centre_m.z() > -20.0 + 1.2) ++counts.above_floor;
+    });
+    return counts;
+  };
+  const Occupied floor = ahead(mapSonarLog(run.log, run.nav, tiltedMounting(25.0), options));
+  options.extended_returns = false;
+  const Occupied shells = ahead(mapSonarLog(run.log, run.nav, tiltedMounting(25.0), options));
+  std::printf("seabed 20 m under a tilted Ping360, within 25° of its tilt: traced %zu occupied, %zu within 1 m, "
+              "%zu over 1.2 m above; first returns only %zu, %zu, %zu\n", floor.total, floor.on_floor,
+              floor.above_floor, shells.total, shells.on_floor, shells.above_floor);
+  EXPECT_GT(floor.on_floor, 1000U);
+  EXPECT_GE(static_cast<double>(floor.on_floor), 0.8 * static_cast<double>(floor.total));
+  EXPECT_EQ(floor.above_floor, 0U);
+  EXPECT_GT(shells.above_floor, shells.total / 2);
 }
 
 // Live mapping keeps each whole sweep's calibration for the beams that follow; it does not search

@@ -134,6 +134,15 @@ void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, doub
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
               ArcEvidence evidence, std::vector<HitPoint>& hits);
 
+/// Whether a beam's return from `onset_m` to `end_m` (metres; an obstacle's echo and the lit run
+/// that follows it, BeamDetection::extended_onset_m, extended_end_m) is a level surface met at the
+/// cone's edge rather than a face: the cone points only down or only up (as appendLevelTrace
+/// needs), and the return lasts longer than any vertical face inside the cone could echo, from
+/// its nearest point to onset / cos e, e the slope of the cone's steepest ray, plus `tolerance_m`.
+/// A sloping face lies between the two. The beam-volume model traces such a beam instead of
+/// marking its shell. Nothing is thrown.
+bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset_m, double end_m, double tolerance_m);
+
 /// Appends the hit points of one beam's weak extended return (PlannedBeam::trace_onset_m,
 /// trace_end_m) to `hits`, map frame; nothing else is touched, and a beam without one adds nothing.
 /// planArcs of the volume model calls it for each such beam and carves the points as a shell's. Nothing is thrown.
