@@ -34,9 +34,10 @@ struct BeamDetection {
   /// an obstacle (Elfes 1987: only an empty return proves empty space). +∞ when
   /// not measured (a detection made by hand).
   double echo_onset_m = std::numeric_limits<double>::infinity();
-  /// A weak extended return found in the whole echo of a beam without an obstacle (a grazing
-  /// seabed or water surface; extended_returns.hpp): its first and last lit bins' centres, metres,
-  /// onset ≤ end; NaN when the beam has none or the extended returns were not sought.
+  /// An extended return found in the whole echo (extended_returns.hpp): of a beam without an
+  /// obstacle, a weak one (a grazing seabed or water surface); of a beam with one, the lit run that
+  /// starts with the obstacle's echo. Its first and last lit bins' centres, metres, onset ≤ end;
+  /// NaN when the beam has none or the extended returns were not sought.
   double extended_onset_m = std::numeric_limits<double>::quiet_NaN();
   double extended_end_m = std::numeric_limits<double>::quiet_NaN();
   bool hasExtendedReturn() const { return extended_onset_m <= extended_end_m; }

@@ -129,7 +129,9 @@ struct MapperOptions {
   /// Whether the volume model seeks weak extended returns in the whole echo of each beam without an
   /// obstacle (a seabed or water surface met at grazing incidence; extended_returns.hpp) and places
   /// them on the level surface their onset implies (appendLevelTrace, sweep_fan.hpp). Such a beam
-  /// then also clears its cone's loud core up to the return's onset. Whole sweeps only: the live
+  /// then also clears its cone's loud core up to the return's onset. An obstacle whose echo lasts
+  /// longer than a face's in a cone that points only down or up is traced the same way instead of
+  /// marked as a shell (isLevelReturn, sweep_fan.hpp: a loud seabed). Whole sweeps only: the live
   /// mapper's beams, detected a few at a time, use their first returns. Unused by the planar model.
   bool extended_returns = true;
   /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).

@@ -53,9 +53,11 @@ struct MappingStats {
   /// Beams without an obstacle that clear nothing (MapperOptions::clear_without_obstacle: the
   /// volume model's default): not in beams_used.
   std::size_t beams_without_evidence = 0;
-  /// Beams without an obstacle whose whole echo held a weak extended return (a grazing seabed or
-  /// water surface; MapperOptions::extended_returns), in beams_used: each clears its cone up to the
-  /// return's onset, and one whose aperture points only down or only up maps it (appendLevelTrace).
+  /// Beams mapped as an extended return, in beams_used (MapperOptions::extended_returns): without an
+  /// obstacle, a weak return whose whole echo held one (a grazing seabed or water surface) up to the
+  /// beam's water range; with one, a return isLevelReturn calls level (then not in obstacles). Each
+  /// clears its cone up to the return's onset; one whose aperture points only down or only up maps
+  /// it on its level (appendLevelTrace).
   std::size_t extended_returns = 0;
   /// Why beams found no obstacle, summed over the sweeps detected by this mapper (detectors.hpp).
   DetectionDiagnostics detection;

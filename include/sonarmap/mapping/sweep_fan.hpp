@@ -40,9 +40,9 @@ struct PlannedBeam {
   /// How far the beam saw water, for carving other beams' arcs, metres; < 0: the hit range, or
   /// the free range without a hit (the beam-volume model sets its echo onset here).
   double water_range_m = -1.0;
-  /// A weak extended return without an obstacle (BeamDetection::extended_onset_m, extended_end_m):
-  /// the beam-volume model places it on the level surface its onset implies (appendLevelTrace).
-  /// NaN: none.
+  /// An extended return placed on the level surface its onset implies (appendLevelTrace), the
+  /// beam without a hit: a weak one without an obstacle, or an obstacle's that isLevelReturn calls
+  /// level (BeamDetection::extended_onset_m, extended_end_m). NaN: none.
   double trace_onset_m = std::numeric_limits<double>::quiet_NaN();
   double trace_end_m = std::numeric_limits<double>::quiet_NaN();
 };
