@@ -262,6 +262,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
   work.beams.clear();
   const double tolerance_m = work.tolerance_m = rangeTolerance_m(polar);
   const bool clears_without_obstacle = clearsWithoutObstacle(options_);
+  const BeamShape shape = beamShape();
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const Eigen::Isometry3d* sonar_to_map = pose_of(row);
     if (sonar_to_map == nullptr) {
@@ -307,7 +308,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
     } else if (hit && options_.beam_model == BeamModel::kVolume && detection.hasExtendedReturn() &&
-               isLevelReturn(beam, beamShape(), detection.extended_onset_m, detection.extended_end_m, beam_tolerance_m)) {
+               isLevelReturn(beam, shape, detection.extended_onset_m, detection.extended_end_m, beam_tolerance_m)) {
       // An obstacle whose echo lasts longer than a face's: a level surface entering the cone.
       beam.hit = false;
       beam.trace_onset_m = beam.water_range_m = std::min(detection.extended_onset_m, range_m);
@@ -320,7 +321,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     }
     work.beams.push_back(beam);
     ++stats_.beams_used;
-    if (!beam.hit && beam.trace_onset_m <= beam.trace_end_m) ++stats_.extended_returns;
+    if (beam.traced()) ++stats_.extended_returns;
     if (beam.hit) ++stats_.obstacles;
   }
   planBeams();

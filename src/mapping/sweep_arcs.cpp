@@ -114,7 +114,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   std::vector<HitPoint> trace;
   for (std::size_t b = 0; b < beams.size(); ++b) {
     const PlannedBeam& beam = beams[b];
-    const bool traced = !beam.hit && beam.trace_onset_m <= beam.trace_end_m;
+    const bool traced = beam.traced();
     if (!beam.hit && !traced) continue;
     const double range_m = beam.hit ? beam.hit_range_m : beam.trace_onset_m;
     candidates.clear();

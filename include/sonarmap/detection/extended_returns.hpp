@@ -39,9 +39,9 @@
 /// their echo onset moves to it when that is nearer. A beam with an obstacle gets the run that
 /// starts with its obstacle's echo (its first window holding a return begins at the obstacle's bin
 /// or before), its echo onset unchanged: the beam-volume model tells a level surface from a face by
-/// that run's length (isLevelReturn, sweep_fan.hpp). Only the empty beams' returns are counted. Meant for the beam-volume model, which
-/// places such a return on the level surface its onset implies (appendLevelTrace, sweep_fan.hpp); a level head's
-/// 2D map has no use for the seabed's ring.
+/// that run's length (isLevelReturn, sweep_fan.hpp). Only the empty beams' returns are counted.
+/// Meant for the beam-volume model, which places such a return on the level surface its onset
+/// implies (appendLevelTrace, sweep_fan.hpp); a level head's 2D map has no use for the seabed's ring.
 
 #include <cstddef>
 #include <vector>

@@ -45,6 +45,8 @@ struct PlannedBeam {
   /// level (BeamDetection::extended_onset_m, extended_end_m). NaN: none.
   double trace_onset_m = std::numeric_limits<double>::quiet_NaN();
   double trace_end_m = std::numeric_limits<double>::quiet_NaN();
+  /// Whether the beam is mapped as its trace: no hit, and a trace whose onset is at most its end.
+  bool traced() const { return !hit && trace_onset_m <= trace_end_m; }
 };
 
 /// A segment to traverse, map frame. Every cell it crosses is free unless it is a hit cell.
