@@ -7,7 +7,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh test
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$flags" \
+# -O1 -g1 (line tables), as the sanitizers' documentation advises: reports keep function names and
+# lines, and the build takes a third of the time RelWithDebInfo's -O2 -g takes (variable tracking
+# through Eigen and GoogleTest under instrumentation: 112 s against 40 s for scan_matcher.cpp).
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSONARMAP_BUILD_TESTS=ON \
   -DSONARMAP_BUILD_BENCHMARKS=OFF -DSONARMAP_BUILD_PYTHON=OFF >/dev/null
 cmake --build build-asan
