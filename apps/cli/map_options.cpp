@@ -101,6 +101,11 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();
+  cmd.add_option("--obstacle-surface", args.obstacle_surface,
+                 "--3d: where an obstacle lies in its cone: vertical (a face at the echo's range, up to where the "
+                 "echo ends) | shell (the sphere cap at that range)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"vertical", "shell"}));
   cmd.add_option("--threads", args.threads, "Threads tracing each sweep's free rays (the map is identical for any count)")
       ->capture_default_str()
       ->check(CLI::Range(1U, 64U));

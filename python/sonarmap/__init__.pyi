@@ -214,6 +214,7 @@ def map_sonar_log(
     free_aperture: _NumberOrAuto = ...,
     clear_without_obstacle: Union[bool, str, None] = ...,
     arc_evidence: str = ...,
+    obstacle_surface: str = ...,
     extended_returns: bool = ...,
     threads: int = ...,
 ) -> OccupancyMap: ...

@@ -61,7 +61,7 @@ std::vector<std::string> mappingArgumentNames() {
           "smoothing_range",  "smoothing_bearing", "cfar_training",   "cfar_guard",       "ray",
           "aggregation",      "max_range",        "beam_width",       "range_tolerance",  "max_voxel_updates",
           "hit_probability",  "volume",           "vertical_aperture", "free_aperture",   "clear_without_obstacle",
-          "arc_evidence",     "threads",          "max_near_field",   "extended_returns"};
+          "arc_evidence",     "threads",          "max_near_field",   "extended_returns", "obstacle_surface"};
 }
 
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra) {
@@ -111,6 +111,7 @@ MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<st
         throwValueError("clear_without_obstacle expects True, False, None, 'yes', 'no' or 'auto'");
       }
     } else if (name == "arc_evidence") args.arc_evidence = text(value, name);
+    else if (name == "obstacle_surface") args.obstacle_surface = text(value, name);
     else if (name == "threads") {
       const double threads = number(value, name);
       if (!(threads >= 1.0 && threads <= 64.0) || threads != std::floor(threads)) {
@@ -243,7 +244,7 @@ leading_edge (dB), min_range (m), max_near_field (m), self_reflection (m), inten
 smoothing_range (m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m), ray, aggregation,
 max_range (m), format (whose nominal beam to assume; default the log's), beam_width (deg; default the
 sonar's), range_tolerance (m), max_voxel_updates, hit_probability, volume (bool, the CLI's --3d),
-vertical_aperture (deg), free_aperture (deg), clear_without_obstacle (bool/None), arc_evidence,
+vertical_aperture (deg), free_aperture (deg), clear_without_obstacle (bool/None), arc_evidence, obstacle_surface,
 extended_returns (bool), threads.
 Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as

@@ -128,6 +128,7 @@ MapperOptions toMapperOptions(const MappingArguments& args) {
   requireWithin(args.vertical_aperture_deg, 0.0, 180.0, true, true, "--vertical-aperture", "degrees in (0, 180)");
   options.vertical_aperture_rad = args.vertical_aperture_deg * kRadPerDeg;
   options.arc_evidence = parseArcEvidence(args.arc_evidence);
+  options.obstacle_surface = parseObstacleSurface(args.obstacle_surface);
   options.extended_returns = args.extended_returns;
   if (const std::optional<double> free_deg = autoOr(args.free_aperture, "--free-aperture", "degrees", false)) {
     requireWithin(*free_deg, 0.0, args.vertical_aperture_deg, true, false, "--free-aperture",

@@ -17,8 +17,7 @@
 #include "sonarmap/sonar/polar_units.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
-#include "../algorithms/key_marks.hpp"
-#include "../algorithms/radix_sort.hpp"
+#include "sweep_work.hpp"
 
 namespace sonarmap {
 
@@ -31,29 +30,6 @@ const MapperOptions& validated(const MapperOptions& options) {
   return options;
 }
 }  // namespace
-
-struct SonarMapper::SweepWork {
-  std::vector<PlannedBeam> beams;                     ///< the sweep's beams inside the map
-  std::vector<FreeRay> rays;                          ///< free-space rays, in grid-angle order
-  std::vector<HitPoint> hit_points;
-  /// Hit cells: mortonCode(key) << 16 | the largest weight among the cell's arc points, in
-  /// 1/65535. keySweep gathers one per arc point, then sorts them (tree order) and keeps one per cell.
-  std::vector<std::uint64_t> hits;
-  std::vector<std::uint64_t> sort_scratch;            ///< radixSortHighBits' working memory
-  /// Log-odds of a hit of each weight code (hits' low 16 bits), NaN until first needed.
-  std::vector<float> hit_log_odds;
-  Key16 box_lo{}, box_hi{};                           ///< keys the sweep's rays stay within
-  double tolerance_m = 0.0;                           ///< the sweep's range tolerance
-  KeyMarks<16> crossed;  ///< cells the sweep's free rays cross, each once
-  KeyMarks<16> outer;    ///< cells only the outer rays of the cones cross (the volume model)
-  std::vector<KeyMarks<16>> parts;  ///< with several threads: the other threads' marks
-  /// The volume model: every cell that ever received a hit (a superset of the map's occupied
-  /// cells), so a sweep can protect them from the outer part of its cones.
-  std::vector<std::uint64_t> occupied_keys;  ///< mortonCode() of each, sorted, unique
-  std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
-  std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
-  std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
-};
 
 SonarMapper::SonarMapper(const MapperOptions& options)
     : options_(validated(options)),
@@ -304,6 +280,8 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       free_range_m = std::max(0.0, detection.echo_onset_m);
     }
     PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit, water_m};
+    if (hit && detection.hasExtendedReturn()) beam.hit_end_m = detection.extended_end_m;
+    if (hit && detection.hasExtendedReturn()) beam.hit_end_m = detection.extended_end_m;
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
@@ -338,14 +316,6 @@ void checkRows(const PolarImage& polar, std::size_t count, const char* what) {
   if (count != static_cast<std::size_t>(polar.rows())) {
     throw ValueError("sweep has " + std::to_string(polar.rows()) + " beams but " + std::to_string(count) + " " + what);
   }
-}
-
-/// An upper bound of how far any point within `reach_m` of the sonar moves between the poses `a`
-/// and `b`: |Δtranslation| + reach · |Δrotation angle|.
-double poseDisplacementBound_m(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double reach_m) {
-  if (a.matrix() == b.matrix()) return 0.0;
-  const double angle_rad = Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
-  return (a.translation() - b.translation()).norm() + reach_m * std::abs(angle_rad);
 }
 }  // namespace
 
@@ -384,129 +354,6 @@ void SonarMapper::integratePosedRows(const PolarImage& polar, const std::vector<
         return pose ? &*pose : nullptr;
       },
       whole_sweep);
-}
-
-void SonarMapper::planBeams() {
-  // The fan (sweep_fan.hpp) assumes its beams share the sonar's pose: a finer ray starts where its
-  // coarser neighbours drift a voxel apart. Beams whose poses move no point of their reach by more
-  // than a quarter voxel from the group's first pose are planned as one fan (each still placed with
-  // its own pose); the others group by group, their rays appended in beam order. The arcs are
-  // planned over the whole sweep, each beam with its own pose.
-  SweepWork& work = *work_;
-  const std::vector<PlannedBeam>& beams = work.beams;
-  const double voxel_m = *options_.resolution_m;
-  double reach_m = voxel_m;
-  for (const PlannedBeam& beam : beams) reach_m = std::max({reach_m, beam.free_range_m, beam.hit ? beam.hit_range_m : 0.0});
-  const double drift_m = 0.25 * voxel_m;
-  auto groupEnd = [&](std::size_t first) {
-    std::size_t end = first + 1;
-    while (end < beams.size() &&
-           poseDisplacementBound_m(beams[first].sonar_to_map, beams[end].sonar_to_map, reach_m) <= drift_m) {
-      ++end;
-    }
-    return end;
-  };
-  const BeamShape shape = beamShape();
-  planArcs(beams, shape, voxel_m, work.tolerance_m, options_.arc_evidence, work.hit_points);  // each beam's own pose
-  // The free space: the cone's loud core only (MapperOptions::free_vertical_aperture_rad).
-  BeamShape fshape = shape;
-  if (options_.beam_model == BeamModel::kVolume) fshape.vertical_aperture_rad = freeVerticalAperture_rad(options_);
-  if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always
-    planFreeRays(beams, fshape, voxel_m, work.rays);
-    return;
-  }
-  work.rays.clear();
-  for (std::size_t first = 0, end = 0; first < beams.size(); first = end) {
-    end = groupEnd(first);
-    work.group.assign(beams.begin() + static_cast<std::ptrdiff_t>(first), beams.begin() + static_cast<std::ptrdiff_t>(end));
-    planFreeRays(work.group, fshape, voxel_m, work.group_rays);
-    work.rays.insert(work.rays.end(), work.group_rays.begin(), work.group_rays.end());
-  }
-}
-
-BeamShape SonarMapper::beamShape() const {
-  return {options_.beam_width_rad,
-          options_.beam_model == BeamModel::kVolume ? options_.vertical_aperture_rad : 0.0};
-}
-
-bool SonarMapper::beamInsideMap(const PlannedBeam& beam) {
-  // The sonar and the wedge's (or cone's) far corners and middles; the map is a box, so the wedge
-  // is inside (a cone's far surface bulges by less than a voxel between these points at the
-  // resolutions a map this large can have; the traversal checks every key anyway).
-  const BeamShape shape = beamShape();
-  const double half = 0.5 * shape.width_rad;
-  const double half_aperture = 0.5 * shape.vertical_aperture_rad;
-  const double reach_m = std::max(beam.free_range_m, beam.hit ? beam.hit_range_m : 0.0);
-  bool inside = map_.coder().keyOf(beam.sonar_to_map.translation()).has_value();
-  stats_.farthest_m = std::max(stats_.farthest_m, beam.sonar_to_map.translation().cwiseAbs().maxCoeff());
-  for (const double elevation : {-half_aperture, 0.0, half_aperture}) {
-    for (const double offset : {-half, 0.0, half}) {
-      const double angle = beam.bearing_rad + offset;
-      const Eigen::Vector3d end =
-          beam.sonar_to_map * Eigen::Vector3d(reach_m * std::cos(elevation) * std::cos(angle),
-                                              reach_m * std::cos(elevation) * std::sin(angle), reach_m * std::sin(elevation));
-      stats_.farthest_m = std::max(stats_.farthest_m, end.cwiseAbs().maxCoeff());
-      inside = inside && map_.coder().keyOf(end).has_value();
-    }
-    if (half_aperture == 0.0) break;
-  }
-  return inside;
-}
-
-namespace {
-/// Grows the key box [lo, hi] to hold the key of every end point of `rays` inside the map.
-void growKeyBoxByRays(const KeyCoder<16>& coder, const std::vector<FreeRay>& rays, Key16& lo, Key16& hi) {
-  // Keys are monotone in each coordinate, axis by axis: when the corners of the rays' bounding box
-  // have keys, their keys bound every end point's key. Otherwise (a ray leaving the map, whose
-  // traversal is skipped) the end points inside the map, one by one.
-  if (rays.empty()) return;
-  Eigen::Vector3d min_m = rays.front().start_m, max_m = min_m;
-  for (const FreeRay& ray : rays) {
-    min_m = min_m.cwiseMin(ray.start_m).cwiseMin(ray.end_m);
-    max_m = max_m.cwiseMax(ray.start_m).cwiseMax(ray.end_m);
-  }
-  const std::optional<Key16> min_key = coder.keyOf(min_m), max_key = coder.keyOf(max_m);
-  if (min_key && max_key) {
-    growKeyBox(lo, hi, *min_key);
-    growKeyBox(lo, hi, *max_key);
-    return;
-  }
-  for (const FreeRay& ray : rays) {
-    for (const Eigen::Vector3d* point : {&ray.start_m, &ray.end_m}) {
-      if (const auto key = coder.keyOf(*point)) growKeyBox(lo, hi, *key);
-    }
-  }
-}
-}  // namespace
-
-void SonarMapper::keySweep() {
-  SweepWork& work = *work_;
-  work.hits.clear();
-  if (work.beams.empty()) return;
-  work.box_lo = work.box_hi = *map_.coder().keyOf(work.beams.front().sonar_to_map.translation());
-  growKeyBoxByRays(map_.coder(), work.rays, work.box_lo, work.box_hi);
-  work.hits.reserve(work.hit_points.size());
-  for (const HitPoint& hit : work.hit_points) {
-    if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      // std::lround of a value in [0, 65535], without its library call: the integer part, plus one
-      // from a fraction of one half (exact: subtracting the integer part rounds nothing).
-      const double scaled = std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF;
-      const auto whole = static_cast<std::uint64_t>(scaled);
-      const std::uint64_t weight = whole + (scaled - static_cast<double>(whole) >= 0.5 ? 1 : 0);
-      work.hits.push_back(mortonCode(*key) << 16 | weight);
-      growKeyBox(work.box_lo, work.box_hi, *key);
-    }
-  }
-  work.crossed.reset(work.box_lo, work.box_hi);
-  // The arc points in tree order (by cell only, stable), then one entry per cell with its largest weight.
-  radixSortHighBits(work.hits, 16, work.sort_scratch);
-  std::size_t cells = 0;
-  for (std::size_t i = 0; i < work.hits.size(); ++cells) {
-    std::uint64_t cell = work.hits[i++];
-    for (; i < work.hits.size() && work.hits[i] >> 16 == cell >> 16; ++i) cell = std::max(cell, work.hits[i]);
-    work.hits[cells] = cell;
-  }
-  work.hits.resize(cells);
 }
 
 }  // namespace sonarmap

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <utility>
 #include <numbers>
 
 #include "sonarmap/mapping/sweep_fan.hpp"
@@ -94,8 +96,26 @@ double twoWayPattern(double elevation_rad, double aperture_rad) {
 namespace {
 
 /// planArcs of the beam-volume model (sweep_fan.hpp).
+/// The cosines of the cone's most and least horizontal grid directions' map slopes (the rows ×
+/// columns grid of planShellArcs; `column_dirs` the columns' cos, sin of bearing).
+std::pair<double, double> slopeCosines(const PlannedBeam& beam, const BeamShape& shape, int rows,
+                                       const std::vector<Eigen::Vector2d>& column_dirs) {
+  const Eigen::RowVector3d up = beam.sonar_to_map.linear().row(2);  // map z of a sonar-frame direction
+  double nearest = 0.0, farthest = 1.0;
+  for (int r = 0; r <= rows; ++r) {
+    const double elevation = 0.5 * shape.vertical_aperture_rad * (2.0 * r / rows - 1.0);
+    for (const Eigen::Vector2d& dir : column_dirs) {
+      const double sin_slope = up.dot(Eigen::Vector3d(std::cos(elevation) * dir.x(), std::cos(elevation) * dir.y(), std::sin(elevation)));
+      const double cos_slope = std::sqrt(std::max(0.0, 1.0 - sin_slope * sin_slope));
+      nearest = std::max(nearest, cos_slope);
+      farthest = std::min(farthest, cos_slope);
+    }
+  }
+  return {nearest, farthest};
+}
+
 void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
-                   ArcEvidence evidence, std::vector<HitPoint>& hits) {
+                   ArcEvidence evidence, ObstacleSurface surface, std::vector<HitPoint>& hits) {
   const double half_rad = 0.5 * shape.width_rad;
   const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
   std::vector<WaterCone> cones;
@@ -142,20 +162,37 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       continue;
     }
     const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * range_m / voxel_m)));
-    const int rows = std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
-    shell.clear();
-    row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
+    int rows = std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
     column_dirs.clear();
     for (int c = 0; c <= columns; ++c) {
       const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
       column_dirs.emplace_back(std::cos(angle), std::sin(angle));
     }
+    // A vertical face: its horizontal distance, and the farthest range the echo allows. Its points
+    // are farther than the shell's and step in height by r de / cos s: rows at most a voxel apart there.
+    double face_m = 0.0, face_end_m = std::numeric_limits<double>::infinity();
+    const Eigen::RowVector3d up = beam.sonar_to_map.linear().row(2);
+    if (surface == ObstacleSurface::kVertical) {
+      const auto [nearest, farthest] = slopeCosines(beam, shape, rows, column_dirs);
+      face_m = range_m * nearest;
+      if (beam.hit_end_m >= range_m) face_end_m = beam.hit_end_m + tolerance_m;
+      const double reach_m = std::min(face_m / std::max(farthest, 1e-3), std::max(face_end_m, range_m));
+      rows = std::max(rows, static_cast<int>(std::ceil(shape.vertical_aperture_rad * reach_m / (voxel_m * std::max(farthest, 0.1)))));
+    }
+    shell.clear();
+    row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
     for (int r = 0; r <= rows; ++r) {
       const double elevation = -half_aperture_rad + shape.vertical_aperture_rad * r / rows;
       const double weight = evidence == ArcEvidence::kBeamPattern ? twoWayPattern(elevation, shape.vertical_aperture_rad) : 1.0;
-      const double horizontal_m = range_m * std::cos(elevation), vertical_m = range_m * std::sin(elevation);
       for (const Eigen::Vector2d& dir : column_dirs) {
-        const Eigen::Vector3d point_m = beam.sonar_to_map * Eigen::Vector3d(horizontal_m * dir.x(), horizontal_m * dir.y(), vertical_m);
+        const Eigen::Vector3d unit(std::cos(elevation) * dir.x(), std::cos(elevation) * dir.y(), std::sin(elevation));
+        double point_range_m = range_m;
+        if (surface == ObstacleSurface::kVertical) {
+          const double sin_slope = up.dot(unit);
+          point_range_m = face_m / std::sqrt(std::max(1e-12, 1.0 - sin_slope * sin_slope));
+          if (point_range_m > face_end_m) continue;  // beyond the echo: the face ends before
+        }
+        const Eigen::Vector3d point_m = beam.sonar_to_map * (point_range_m * unit);
         if (carved(point_m)) continue;
         shell.push_back({point_m, weight});
         row_kept[static_cast<std::size_t>(r)] = 1;
@@ -172,12 +209,12 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
 }  // namespace
 
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
-              ArcEvidence evidence, std::vector<HitPoint>& hits) {
+              ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface) {
   if (shape.vertical_aperture_rad <= 0.0 || shape.width_rad <= 0.0) {
     return planArcs(beams, shape.width_rad, voxel_m, tolerance_m, hits);
   }
   hits.clear();
-  planShellArcs(beams, shape, voxel_m, tolerance_m, evidence, hits);
+  planShellArcs(beams, shape, voxel_m, tolerance_m, evidence, surface, hits);
 }
 
 void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,

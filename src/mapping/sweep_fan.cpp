@@ -125,4 +125,10 @@ ArcEvidence parseArcEvidence(std::string_view name) {
   throw ValueError("unknown arc evidence '" + std::string(name) + "', expected whole, uniform or pattern");
 }
 
+ObstacleSurface parseObstacleSurface(std::string_view name) {
+  if (name == "shell") return ObstacleSurface::kShell;
+  if (name == "vertical") return ObstacleSurface::kVertical;
+  throw ValueError("unknown obstacle surface '" + std::string(name) + "', expected shell or vertical");
+}
+
 }  // namespace sonarmap

@@ -109,6 +109,45 @@ TEST(mappingBeamVolume, SingleBeamShellSpansWidthAndAperture) {
   EXPECT_GE(hits.size(), 62U * 2U);
 }
 
+// A vertical face: a quay wall at x = 2 m seen by a cone tilted 25° down from 1 m above the seabed.
+// Its nearest point lies on the cone's most horizontal direction (7.5° down), 2 / cos 7.5° away,
+// and that is the echo's range. As a shell its points stand up to 2 (1 − cos 35°) = 0.36 m in
+// front of the wall; as a vertical face every point lies on the wall, across the whole aperture
+// while the echo lasts, and no farther than its end.
+TEST(mappingBeamVolume, VerticalFaceObstaclesLieOnTheWallUpToTheEchosEnd) {
+  const Eigen::Isometry3d pose = tiltedPose({0.0, 0.0, 0.0}, 0.0, 25.0 * kDegree, 0.0);  // looking down 25°
+  ASSERT_LT((pose.linear() * Eigen::Vector3d::UnitX()).z(), -0.4);
+  const double wall_m = 2.0;
+  const double range_m = wall_m / std::cos(7.5 * kDegree);
+  PlannedBeam beam{pose, 0.0, range_m - 0.03, range_m, true};
+  std::vector<HitPoint> shell, face;
+  planArcs({beam}, kMicron, kVoxel, 0.03, ArcEvidence::kBeamPattern, shell, ObstacleSurface::kShell);
+  planArcs({beam}, kMicron, kVoxel, 0.03, ArcEvidence::kBeamPattern, face, ObstacleSurface::kVertical);
+  double shell_front_m = 0.0, face_low_m = 0.0, face_high_m = -1.0;
+  for (const HitPoint& hit : shell) shell_front_m = std::max(shell_front_m, wall_m - hit.point_m.x());
+  for (const HitPoint& hit : face) {
+    EXPECT_NEAR(hit.point_m.x(), wall_m, 2e-3);  // a cylinder about the sonar: 1 − cos 1.5° off at the sides
+    face_low_m = std::min(face_low_m, hit.point_m.z());
+    face_high_m = std::max(face_high_m, hit.point_m.z());
+  }
+  EXPECT_GT(shell_front_m, 0.3);
+  // Without the echo's end, the whole aperture: from 2 tan 7.5° to 2 tan 42.5° below the sonar.
+  EXPECT_NEAR(face_high_m, -wall_m * std::tan(7.5 * kDegree), 0.01);
+  EXPECT_NEAR(face_low_m, -wall_m * std::tan(42.5 * kDegree), 0.01);
+  // Rows at most a voxel apart on the wall, and the columns across the width (≥ 2 per row).
+  EXPECT_GE(face.size(), 2U * static_cast<std::size_t>((face_high_m - face_low_m) / kVoxel));
+  // An echo that ends 0.2 m after its onset: the wall reaches no farther (plus the tolerance).
+  beam.hit_end_m = range_m + 0.2;
+  planArcs({beam}, kMicron, kVoxel, 0.03, ArcEvidence::kBeamPattern, face, ObstacleSurface::kVertical);
+  ASSERT_FALSE(face.empty());
+  for (const HitPoint& hit : face) {
+    EXPECT_NEAR(hit.point_m.x(), wall_m, 2e-3);  // a cylinder about the sonar: 1 − cos 1.5° off at the sides
+    EXPECT_LE(hit.point_m.norm(), range_m + 0.2 + 0.03 + 1e-9);
+  }
+  EXPECT_THROW(parseObstacleSurface("wall"), ValueError);
+  EXPECT_EQ(parseObstacleSurface("shell"), ObstacleSurface::kShell);
+}
+
 // Another beam that saw water farther carves the part of the shell inside its cone; the evidence
 // of what is left is shared as ArcEvidence says.
 TEST(mappingBeamVolume, ShellIsCarvedAndEvidenceShared) {
@@ -239,6 +278,7 @@ TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
   MapperOptions options = volumeOptions();
   options.free_vertical_aperture_rad = options.vertical_aperture_rad;  // clear the whole cone
   options.clear_without_obstacle = true;  // the water beams below clear (not the 3D default)
+  options.obstacle_surface = ObstacleSurface::kShell;  // the obstacle on the target, on the axis
   SonarMapper mapper(options);
   const Key16 target = *mapper.map().coder().keyOf(Eigen::Vector3d(2.0, 0.0, 0.0));
   const Eigen::Vector3d target_m = mapper.map().coder().centerOf(target);

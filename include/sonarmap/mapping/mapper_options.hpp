@@ -126,6 +126,10 @@ struct MapperOptions {
   /// How the volume model shares an obstacle's evidence over its shell (sweep_fan.hpp). Unused by
   /// the planar model (every arc point gets the whole hit).
   ArcEvidence arc_evidence = ArcEvidence::kBeamPattern;
+  /// Where the volume model puts an obstacle in its cone (sweep_fan.hpp): on a vertical face at the
+  /// echo's range (the default: harbour structures are vertical; docs/accuracy.md, before and
+  /// after), or on the shell. Unused by the planar model.
+  ObstacleSurface obstacle_surface = ObstacleSurface::kVertical;
   /// Whether the volume model seeks weak extended returns in the whole echo of each beam without an
   /// obstacle (a seabed or water surface met at grazing incidence; extended_returns.hpp) and places
   /// them on the level surface their onset implies (appendLevelTrace, sweep_fan.hpp). Such a beam

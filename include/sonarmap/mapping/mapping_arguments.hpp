@@ -53,6 +53,7 @@ struct MappingArguments {
   std::string free_aperture = "auto";           ///< degrees, or auto (half the vertical aperture)
   std::string clear_without_obstacle = "auto";  ///< yes, no, or auto (planar yes, volume no)
   std::string arc_evidence = "pattern";         ///< whole | uniform | pattern
+  std::string obstacle_surface = "vertical";    ///< --3d: vertical | shell (ObstacleSurface)
   bool extended_returns = true;                 ///< --3d: weak extended returns on their level surface
 };
 

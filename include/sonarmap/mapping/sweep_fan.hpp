@@ -45,6 +45,9 @@ struct PlannedBeam {
   /// level (BeamDetection::extended_onset_m, extended_end_m). NaN: none.
   double trace_onset_m = std::numeric_limits<double>::quiet_NaN();
   double trace_end_m = std::numeric_limits<double>::quiet_NaN();
+  /// Where the obstacle's echo ends, metres (its lit run, BeamDetection::extended_end_m): a
+  /// vertical face (ObstacleSurface::kVertical) reaches no farther. NaN: not measured.
+  double hit_end_m = std::numeric_limits<double>::quiet_NaN();
   /// Whether the beam is mapped as its trace: no hit, and a trace whose onset is at most its end.
   bool traced() const { return !hit && trace_onset_m <= trace_end_m; }
 };
@@ -93,6 +96,28 @@ enum class ArcEvidence {
   kBeamPattern,
 };
 
+/// Where in its cone the volume model puts an obstacle (MapperOptions::obstacle_surface). The echo's
+/// leading edge is the range r of the nearest surface in the cone; which surface, the beam does not
+/// say.
+enum class ObstacleSurface {
+  /// The shell: the sphere cap at r across the cone, every direction alike. Right for a surface
+  /// that faces the sonar (a sphere about it); in front of a vertical face by r (1 − cos e) at
+  /// elevation e off the face's normal (0.14 m at 3 m and 17.5°): the "banana" arcs of MSIS maps.
+  kShell,
+  /// A vertical face, the man-made structure of harbours (quay walls, piles, hulls, pontoons: the
+  /// vertical-wall hypothesis of MSIS mapping in structured environments, Ribas et al. 2008, J.
+  /// Field Robotics 25(11–12) 898). Its nearest point lies on the cone's most horizontal direction
+  /// (map slope s₀), so the face stands at horizontal distance d = r cos s₀, and the direction of
+  /// map slope s meets it at range d / cos s; each point of the cone's grid is placed there, up to
+  /// where the echo ends (PlannedBeam::hit_end_m, plus the range tolerance). The mirror of the
+  /// level-surface hypothesis of extended returns (appendLevelTrace): a return from a surface met
+  /// at grazing incidence is a level seabed, one loud enough to be an obstacle is a face.
+  kVertical,
+};
+
+/// Parses "shell" or "vertical". @throws ValueError for any other name.
+ObstacleSurface parseObstacleSurface(std::string_view name);
+
 /// The two-way vertical pattern of a Gaussian beam of −3 dB width `aperture_rad` at `elevation_rad`
 /// off its axis: p(e)² with p(e) = 2^−(2e/a)² (ArcEvidence::kBeamPattern), in (0, 1]. Nothing is thrown.
 double twoWayPattern(double elevation_rad, double aperture_rad);
@@ -133,8 +158,10 @@ void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, doub
 /// lies inside another beam's cone (bearing and elevation within its shape, sonar frame) nearer
 /// than that beam's water range less `tolerance_m` (3D distance from its sonar); the points left
 /// share the evidence as `evidence` says.
+/// `surface` places each obstacle's points in its cone (the shell, or a vertical face); the
+/// carving and the evidence are the same for both.
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
-              ArcEvidence evidence, std::vector<HitPoint>& hits);
+              ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface = ObstacleSurface::kShell);
 
 /// Whether a beam's return from `onset_m` to `end_m` (metres; an obstacle's echo and the lit run
 /// that follows it, BeamDetection::extended_onset_m, extended_end_m) is a level surface met at the
