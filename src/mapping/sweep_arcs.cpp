@@ -5,8 +5,8 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
-#include <utility>
 #include <numbers>
+#include <utility>
 
 #include "sonarmap/mapping/sweep_fan.hpp"
 
@@ -95,7 +95,11 @@ double twoWayPattern(double elevation_rad, double aperture_rad) {
 
 namespace {
 
-/// planArcs of the beam-volume model (sweep_fan.hpp).
+/// A vertical face is drawn only along directions within 75° of the horizontal: a steeper ray meets
+/// it at over 75° incidence, where a face scatters little (Lambert's law: cos² 75° = −12 dB) and
+/// its points would recede to 1 / cos s of the face's distance.
+const double kMinFaceSlopeCos = std::cos(75.0 * std::numbers::pi / 180.0);
+
 /// The cosines of the cone's most and least horizontal grid directions' map slopes (the rows ×
 /// columns grid of planShellArcs; `column_dirs` the columns' cos, sin of bearing).
 std::pair<double, double> slopeCosines(const PlannedBeam& beam, const BeamShape& shape, int rows,
@@ -114,6 +118,7 @@ std::pair<double, double> slopeCosines(const PlannedBeam& beam, const BeamShape&
   return {nearest, farthest};
 }
 
+/// planArcs of the beam-volume model (sweep_fan.hpp).
 void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
                    ArcEvidence evidence, ObstacleSurface surface, std::vector<HitPoint>& hits) {
   const double half_rad = 0.5 * shape.width_rad;
@@ -176,8 +181,9 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       const auto [nearest, farthest] = slopeCosines(beam, shape, rows, column_dirs);
       face_m = range_m * nearest;
       if (beam.hit_end_m >= range_m) face_end_m = beam.hit_end_m + tolerance_m;
-      const double reach_m = std::min(face_m / std::max(farthest, 1e-3), std::max(face_end_m, range_m));
-      rows = std::max(rows, static_cast<int>(std::ceil(shape.vertical_aperture_rad * reach_m / (voxel_m * std::max(farthest, 0.1)))));
+      const double steepest_cos = std::max(farthest, kMinFaceSlopeCos);
+      const double reach_m = std::min(face_m / steepest_cos, std::max(face_end_m, range_m));
+      rows = std::max(rows, static_cast<int>(std::ceil(shape.vertical_aperture_rad * reach_m / (voxel_m * steepest_cos))));
     }
     shell.clear();
     row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
@@ -189,7 +195,9 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
         double point_range_m = range_m;
         if (surface == ObstacleSurface::kVertical) {
           const double sin_slope = up.dot(unit);
-          point_range_m = face_m / std::sqrt(std::max(1e-12, 1.0 - sin_slope * sin_slope));
+          const double cos_slope = std::sqrt(std::max(0.0, 1.0 - sin_slope * sin_slope));
+          if (cos_slope < kMinFaceSlopeCos) continue;
+          point_range_m = face_m / cos_slope;
           if (point_range_m > face_end_m) continue;  // beyond the echo: the face ends before
         }
         const Eigen::Vector3d point_m = beam.sonar_to_map * (point_range_m * unit);

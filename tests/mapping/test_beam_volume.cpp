@@ -144,6 +144,16 @@ TEST(mappingBeamVolume, VerticalFaceObstaclesLieOnTheWallUpToTheEchosEnd) {
     EXPECT_NEAR(hit.point_m.x(), wall_m, 2e-3);  // a cylinder about the sonar: 1 − cos 1.5° off at the sides
     EXPECT_LE(hit.point_m.norm(), range_m + 0.2 + 0.03 + 1e-9);
   }
+  // A head looking straight down, without an echo's end: the face only along directions within
+  // 75° of the horizontal, so its points stay within 1 / cos 75° of its distance (a bounded set).
+  const Eigen::Isometry3d down = tiltedPose({0.0, 0.0, 0.0}, 0.0, 80.0 * kDegree, 0.0);
+  const PlannedBeam below{down, 0.0, 1.97, 2.0, true};
+  planArcs({below}, kMicron, kVoxel, 0.03, ArcEvidence::kBeamPattern, face, ObstacleSurface::kVertical);
+  ASSERT_FALSE(face.empty());
+  EXPECT_LT(face.size(), 20000U);
+  for (const HitPoint& hit : face) {
+    EXPECT_LE(std::abs(std::asin(hit.point_m.z() / hit.point_m.norm())), 75.0 * kDegree + 1e-9);
+  }
   EXPECT_THROW(parseObstacleSurface("wall"), ValueError);
   EXPECT_EQ(parseObstacleSurface("shell"), ObstacleSurface::kShell);
 }
