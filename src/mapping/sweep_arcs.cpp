@@ -182,7 +182,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       face_m = range_m * nearest;
       if (beam.hit_end_m >= range_m) face_end_m = beam.hit_end_m + tolerance_m;
       const double steepest_cos = std::max(farthest, kMinFaceSlopeCos);
-      const double reach_m = std::min(face_m / steepest_cos, std::max(face_end_m, range_m));
+      const double reach_m = std::min(face_m / steepest_cos, face_end_m);  // face_end_m: infinite or past range_m
       rows = std::max(rows, static_cast<int>(std::ceil(shape.vertical_aperture_rad * reach_m / (voxel_m * steepest_cos))));
     }
     shell.clear();
