@@ -219,7 +219,7 @@ py::dict detectionsDict(const SweepDetection& sweep) {
   const std::vector<BeamDetection>& d = sweep.detections;
   std::vector<std::int32_t> bins(d.size());
   std::vector<std::uint8_t> intensity(d.size());
-  std::vector<double> range(d.size()), water(d.size()), rise(d.size()), onset(d.size());
+  std::vector<double> range(d.size()), water(d.size()), rise(d.size()), onset(d.size()), echo_end(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) {
     bins[i] = d[i].obstacle_bin;
     intensity[i] = d[i].intensity;
@@ -227,6 +227,7 @@ py::dict detectionsDict(const SweepDetection& sweep) {
     water[i] = d[i].water_range_m;
     rise[i] = d[i].rise_m;
     onset[i] = d[i].echo_onset_m;
+    echo_end[i] = d[i].echo_end_m;
   }
   py::dict out;
   out["obstacle_bin"] = toArray(bins);
@@ -235,6 +236,7 @@ py::dict detectionsDict(const SweepDetection& sweep) {
   out["water_range_m"] = toArray(water);
   out["rise_m"] = toArray(rise);
   out["echo_onset_m"] = toArray(onset);
+  out["echo_end_m"] = toArray(echo_end);
   out["min_range_m"] = sweep.min_range_m;
   out["threshold_db"] = sweep.calibration.threshold_db;
   return out;
@@ -435,7 +437,8 @@ or "auto"), max_near_field (m), self_reflection (m or "auto"), intensity_span (d
 (m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m).
 The input is not modified. Returns a dict of arrays over the rows: obstacle_bin int32 (-1: none),
 range_m float64 (leading edge, metres; NaN: none), intensity uint8, water_range_m, rise_m,
-echo_onset_m float64 (metres); and min_range_m, threshold_db (floats), cleaned (the PolarImage the
+echo_onset_m, echo_end_m float64 (metres; echo_end_m: where the obstacle's loud echo falls back
+below half the threshold, NaN without an obstacle); and min_range_m, threshold_db (floats), cleaned (the PolarImage the
 detector saw). Raises sonarmap.ValueError for an invalid option; TypeError for an unknown keyword.)doc");
 }
 

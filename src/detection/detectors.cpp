@@ -235,6 +235,29 @@ void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& con
   }
 }
 
+/// BeamDetection::echo_end_m of every beam with an obstacle: forward from the obstacle's bin while
+/// the echo does not stay below half the threshold for `quiet_bins` bins in a row.
+void setEchoEnds(const PolarImage& polar, const SweepCalibration& calibration, int quiet_bins,
+                 std::vector<BeamDetection>& detections) {
+  for (int r = 0; r < polar.rows(); ++r) {
+    BeamDetection& detection = detections[static_cast<std::size_t>(r)];
+    if (!detection.hasObstacle()) continue;
+    const auto* row = polar.intensities.ptr<std::uint8_t>(r);
+    const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
+    int last = detection.obstacle_bin;
+    for (int c = detection.obstacle_bin, quiet = 0; c < end && quiet < quiet_bins; ++c) {
+      const auto column = static_cast<std::size_t>(c);
+      if (static_cast<float>(row[c]) - calibration.background[column] >= 0.5f * calibration.threshold[column]) {
+        last = c;
+        quiet = 0;
+      } else {
+        ++quiet;
+      }
+    }
+    detection.echo_end_m = (last + 0.5) * polar.bin_length_m;
+  }
+}
+
 }  // namespace
 
 SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options) {
@@ -276,6 +299,8 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
   setWaterRanges(polar, context, result.calibration, result.detections);
   setEchoOnsets(polar, options, context, result.calibration, result.detections);
+  setEchoEnds(polar, result.calibration, binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols())),
+              result.detections);
   result.diagnostics = diagnose(polar, context, result.calibration, result.detections);
   return result;
 }

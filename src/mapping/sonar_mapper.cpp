@@ -280,9 +280,10 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       free_range_m = std::max(0.0, detection.echo_onset_m);
     }
     PlannedBeam beam{*sonar_to_map, polar.bearing_rad[row], free_range_m, range_m, hit, water_m};
-    if (hit) {  // the echo's end, or the beam's recorded range: no face beyond what it heard
+    if (hit) {  // where the loud echo falls back, the lit run's end, the beam's recorded range: no face beyond what it heard
       const double recorded_m = std::min(polar.valid_bins[row] * polar.bin_length_m, options_.max_range_m);
       beam.hit_end_m = detection.hasExtendedReturn() ? std::min(detection.extended_end_m, recorded_m) : recorded_m;
+      if (detection.echo_end_m >= detection.range_m) beam.hit_end_m = std::min(beam.hit_end_m, detection.echo_end_m);
     }
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <numbers>
 #include <vector>
@@ -135,6 +136,32 @@ TEST(sonarDetectors, AnEchoAsShortAsTheLogsPulseIsAnObstacle) {
   // the pulse only lowers the echo length asked for: a longer pulse leaves the 4 cm rule as it is
   polar.pulse_length_m = 0.2;
   for (const BeamDetection& none : detectObstacles(polar, options)) EXPECT_EQ(none.obstacle_bin, -1);
+}
+
+// A loud echo ends where it falls below half the threshold over the background for the echo length
+// (2 bins of 2 cm): a one-bin speckle dip inside it does not end it, a two-bin one does, and a weak
+// tail behind it (9 counts at one count per dB, under half of the 16.8 dB threshold over the
+// background: a seabed behind a quay's foot) is not part of it. Beams without an obstacle have no end.
+TEST(sonarDetectors, TheEchoEndsWhereItFallsBelowHalfTheThreshold) {
+  PolarImage polar = emptySweep();
+  for (int r = 0; r < kRows; ++r) {
+    if (r % 10 == 0) continue;  // no obstacle
+    cv::Mat row = polar.intensities.row(r);
+    row.colRange(wallBin(r), wallBin(r) + 12).setTo(150);
+    row.colRange(wallBin(r) + 12, wallBin(r) + 32).setTo(9);  // the weak tail
+    row.colRange(wallBin(r) + 4, wallBin(r) + (r % 2 == 0 ? 6 : 5)).setTo(0);  // a dip of 2 or 1 bins
+  }
+  const std::vector<BeamDetection> found = detectObstacles(polar, optionsFor(Detector::kBackgroundSubtracted));
+  for (int r = 0; r < kRows; ++r) {
+    if (r % 10 == 0) {
+      EXPECT_FALSE(found[r].hasObstacle()) << "row " << r;
+      EXPECT_TRUE(std::isnan(found[r].echo_end_m)) << "row " << r;
+      continue;
+    }
+    ASSERT_EQ(found[r].obstacle_bin, wallBin(r)) << "row " << r;
+    const int last = r % 2 == 0 ? wallBin(r) + 3 : wallBin(r) + 11;
+    EXPECT_NEAR(found[r].echo_end_m, (last + 0.5) * kBinLength_m, 1e-9) << "row " << r;
+  }
 }
 
 TEST(sonarDetectors, ConstantRangeRingIsIgnoredButTheWallBehindIsFound) {

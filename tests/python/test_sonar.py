@@ -95,6 +95,8 @@ def test_detectors(simulated_tank):
     found = bins >= 0
     assert found.mean() > 0.8  # the tank's walls surround the sonar
     assert np.all(np.isnan(ranges[~found])) and np.all(ranges[found] > 0)
+    ends = result["echo_end_m"]  # the loud echo falls back behind its leading edge
+    assert np.all(np.isnan(ends[~found])) and np.all(ends[found] >= ranges[found])
     assert isinstance(result["cleaned"], sonarmap.PolarImage)
     for detector in ("threshold", "canny", "cfar-os"):
         other = sonarmap.detect_obstacles(polar, detector=detector)

@@ -34,6 +34,14 @@ struct BeamDetection {
   /// an obstacle (Elfes 1987: only an empty return proves empty space). +∞ when
   /// not measured (a detection made by hand).
   double echo_onset_m = std::numeric_limits<double>::infinity();
+  /// Where the obstacle's echo falls back, metres: the centre of the last bin of the run that starts
+  /// at the obstacle's bin and ends where the echo stays below half the sweep's threshold over the
+  /// background for DetectorOptions' echo length (BackgroundOptions::min_echo_length_m, at least a
+  /// bin): the mirror of the leading edge's foot (detectors.hpp, rule 3), so that a speckle dip
+  /// within the echo does not end it. A face's loud echo ends here even where a weak return goes on
+  /// behind it (the seabed at a quay's foot, seen by the lower rays of the cone); the beam-volume
+  /// model's vertical face reaches no farther (PlannedBeam::hit_end_m). NaN without an obstacle.
+  double echo_end_m = std::numeric_limits<double>::quiet_NaN();
   /// An extended return found in the whole echo (extended_returns.hpp): of a beam without an
   /// obstacle, a weak one (a grazing seabed or water surface); of a beam with one, the lit run that
   /// starts with the obstacle's echo. Its first and last lit bins' centres, metres, onset ≤ end;

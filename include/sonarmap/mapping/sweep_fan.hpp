@@ -45,9 +45,11 @@ struct PlannedBeam {
   /// level (BeamDetection::extended_onset_m, extended_end_m). NaN: none.
   double trace_onset_m = std::numeric_limits<double>::quiet_NaN();
   double trace_end_m = std::numeric_limits<double>::quiet_NaN();
-  /// Where the obstacle's echo ends, metres (its lit run, BeamDetection::extended_end_m; the
-  /// mapper gives the beam's recorded range when that is not measured): a vertical face
-  /// (ObstacleSurface::kVertical) reaches no farther. NaN: no bound.
+  /// Where the obstacle's echo ends, metres: the mapper gives the nearer of where its loud echo falls
+  /// back (BeamDetection::echo_end_m) and its lit run's end (BeamDetection::extended_end_m), or the
+  /// beam's recorded range when neither is measured. A vertical face (ObstacleSurface::kVertical)
+  /// reaches no farther: a weak return that goes on behind the loud one (the seabed at a quay's foot,
+  /// met by the cone's lower rays) is not the face. NaN: no bound.
   double hit_end_m = std::numeric_limits<double>::quiet_NaN();
   /// Whether the beam is mapped as its trace: no hit, and a trace whose onset is at most its end.
   bool traced() const { return !hit && trace_onset_m <= trace_end_m; }
@@ -110,7 +112,7 @@ enum class ObstacleSurface {
   /// Field Robotics 25(11–12) 898). Its nearest point lies on the cone's most horizontal direction
   /// (map slope s₀), so the face stands at horizontal distance d = r cos s₀, and the direction of
   /// map slope s meets it at range d / cos s; each point of the cone's grid is placed there, up to
-  /// where the echo ends (PlannedBeam::hit_end_m, plus the range tolerance) and along directions
+  /// where the loud echo ends (PlannedBeam::hit_end_m, plus the range tolerance) and along directions
   /// within 75° of the horizontal (a steeper ray meets the face at grazing incidence). The mirror of the
   /// level-surface hypothesis of extended returns (appendLevelTrace): a return from a surface met
   /// at grazing incidence is a level seabed, one loud enough to be an obstacle is a face.
