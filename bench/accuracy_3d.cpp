@@ -40,6 +40,7 @@ struct Model {
   std::optional<bool> clear_without_obstacle;  ///< unset: the model's default
   bool extended_returns = true;                ///< MapperOptions::extended_returns
   ObstacleSurface surface = MapperOptions{}.obstacle_surface;
+  bool seabed_slope = true;                    ///< MapperOptions::seabed_slope
 };
 
 /// Table rows of the mission's recall and erosion per scene primitive.
@@ -130,7 +131,9 @@ int main(int argc, char** argv) {
                            std::nullopt, false},
                           {"volume, beam pattern, silent beams clear", BeamModel::kVolume, ArcEvidence::kBeamPattern, true},
                           {"volume, beam pattern, obstacles as shells", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kShell}};
+                           std::nullopt, true, ObstacleSurface::kShell},
+                          {"volume, beam pattern, level seabed traces", BeamModel::kVolume, ArcEvidence::kBeamPattern,
+                           std::nullopt, true, ObstacleSurface::kVertical, false}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
         options.clear_without_obstacle = model.clear_without_obstacle;
         options.extended_returns = model.extended_returns;
         options.obstacle_surface = model.surface;
+        options.seabed_slope = model.seabed_slope;
         try {
           const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
           const GroundTruthReport& t = a.truth;
@@ -156,7 +160,8 @@ int main(int argc, char** argv) {
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
                       static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
           if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
-              !model.clear_without_obstacle && model.extended_returns && model.surface == MapperOptions{}.obstacle_surface) {
+              !model.clear_without_obstacle && model.extended_returns && model.surface == MapperOptions{}.obstacle_surface &&
+              model.seabed_slope) {
             by_surface += recallBySurface(preset, mission, a);
           }
         } catch (const std::exception& error) {

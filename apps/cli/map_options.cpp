@@ -98,6 +98,10 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "--3d: seek weak extended returns (a grazing seabed or water surface) in the whole echo of beams "
                  "without an obstacle and map them on the level surface their onset implies: yes | no")
       ->capture_default_str();
+  cmd.add_option("--seabed-slope", args.seabed_slope,
+                 "--3d: weak seabed returns follow the seabed's slope, fitted to their onsets over the whole run "
+                 "(a robust plane, kept where a test asks for a slope); no: the level through each onset: yes | no")
+      ->capture_default_str();
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();

@@ -216,6 +216,7 @@ def map_sonar_log(
     arc_evidence: str = ...,
     obstacle_surface: str = ...,
     extended_returns: bool = ...,
+    seabed_slope: bool = ...,
     threads: int = ...,
 ) -> OccupancyMap: ...
 def read_nav_csv(path: PathLike) -> Float64Array: ...

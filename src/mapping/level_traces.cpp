@@ -63,14 +63,23 @@ bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset
   return end_m > onset_m / std::sqrt(std::max(1e-12, 1.0 - slope_sin * slope_sin)) + tolerance_m;
 }
 
+std::optional<Eigen::Vector3d> seabedOnsetPoint(const PlannedBeam& beam, const BeamShape& shape) {
+  const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
+  if (!(half_aperture_rad > 0.0) || !beam.traced()) return std::nullopt;
+  const std::optional<TraceEdge> edge = traceEdge(beam, half_aperture_rad);
+  if (!edge || !edge->seabed) return std::nullopt;
+  return beam.sonar_to_map * (beam.trace_onset_m * direction(beam.bearing_rad, edge->elevation_rad));
+}
+
 void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double voxel_m, ArcEvidence evidence,
                       std::vector<HitPoint>& hits) {
   const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
   if (!(half_aperture_rad > 0.0) || !(beam.trace_onset_m <= beam.trace_end_m)) return;
   const std::optional<TraceEdge> edge = traceEdge(beam, half_aperture_rad);
   if (!edge) return;
-  // The surface: level, through the onset point on the edge, `level_m` above the sonar (map z).
-  const Eigen::RowVector3d up = beam.sonar_to_map.linear().row(2);  // map z of a sonar-frame direction
+  // The surface: the plane through the onset point on the edge with the trace's normal (level
+  // unless the seabed's slope was measured), `level_m` from the sonar along that normal.
+  const Eigen::RowVector3d up = (beam.sonar_to_map.linear().transpose() * beam.trace_normal).transpose();  // sonar frame
   const double level_m = beam.trace_onset_m * up.dot(direction(beam.bearing_rad, edge->elevation_rad));
   const double half_rad = 0.5 * shape.width_rad;
   const double step_m = 0.5 * voxel_m;

@@ -130,6 +130,7 @@ MapperOptions toMapperOptions(const MappingArguments& args) {
   options.arc_evidence = parseArcEvidence(args.arc_evidence);
   options.obstacle_surface = parseObstacleSurface(args.obstacle_surface);
   options.extended_returns = args.extended_returns;
+  options.seabed_slope = args.seabed_slope;
   if (const std::optional<double> free_deg = autoOr(args.free_aperture, "--free-aperture", "degrees", false)) {
     requireWithin(*free_deg, 0.0, args.vertical_aperture_deg, true, false, "--free-aperture",
                   "degrees in (0, the vertical aperture]");

@@ -292,6 +292,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
                isLevelReturn(beam, shape, detection.extended_onset_m, detection.extended_end_m, beam_tolerance_m)) {
       // An obstacle whose echo lasts longer than a face's: a level surface entering the cone.
       beam.hit = false;
+      beam.loud_trace = true;
       beam.trace_onset_m = beam.water_range_m = std::min(detection.extended_onset_m, range_m);
       beam.trace_end_m = beam.hit_range_m = std::min(detection.extended_end_m, options_.max_range_m);
       beam.free_range_m = std::max(0.0, std::min(free_range_m, beam.trace_onset_m - tolerance_m));
@@ -305,6 +306,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (beam.traced()) ++stats_.extended_returns;
     if (beam.hit) ++stats_.obstacles;
   }
+  if (options_.beam_model == BeamModel::kVolume && options_.seabed_slope) placeSeabedTraces();
   planBeams();
   keySweep();
   integrateFreeCells();

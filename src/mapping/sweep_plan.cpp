@@ -64,6 +64,32 @@ void SonarMapper::planBeams() {
   }
 }
 
+void SonarMapper::placeSeabedTraces() {
+  // The sweep's weak seabed onsets join those of the sweeps before; the sweep's weak seabed traces
+  // then follow the slope they fit around the sweep's onsets, within twice the traces' reach
+  // (seabed_slope.hpp). Loud traces neither feed nor follow it (PlannedBeam::loud_trace).
+  SweepWork& work = *work_;
+  const BeamShape shape = beamShape();
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();
+  double reach_m = 0.0;
+  std::size_t count = 0;
+  for (const PlannedBeam& beam : work.beams) {
+    if (beam.loud_trace) continue;
+    if (const std::optional<Eigen::Vector3d> onset_m = seabedOnsetPoint(beam, shape)) {
+      const Eigen::Vector3d axis = beam.sonar_to_map.linear() * Eigen::Vector3d(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
+      work.seabed.add(*onset_m, axis.head<2>());
+      centre_m += *onset_m;
+      reach_m = std::max(reach_m, beam.trace_end_m);
+      ++count;
+    }
+  }
+  if (count == 0) return;
+  const Eigen::Vector3d normal = work.seabed.normalAt(centre_m / static_cast<double>(count), 2.0 * reach_m);
+  for (PlannedBeam& beam : work.beams) {
+    if (!beam.loud_trace && seabedOnsetPoint(beam, shape)) beam.trace_normal = normal;
+  }
+}
+
 BeamShape SonarMapper::beamShape() const {
   return {options_.beam_width_rad,
           options_.beam_model == BeamModel::kVolume ? options_.vertical_aperture_rad : 0.0};

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sonarmap/mapping/seabed_slope.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "../algorithms/key_marks.hpp"
@@ -31,6 +32,7 @@ struct SonarMapper::SweepWork {
   /// cells), so a sweep can protect them from the outer part of its cones.
   std::vector<std::uint64_t> occupied_keys;  ///< mortonCode() of each, sorted, unique
   std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
+  SeabedSlope seabed;  ///< the volume model: the onsets of every seabed trace so far (placeSeabedTraces)
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
 };

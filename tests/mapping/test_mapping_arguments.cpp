@@ -26,6 +26,7 @@ TEST(MappingArguments, DefaultsAreTheLibrarysOptions) {
   EXPECT_EQ(options.beam_model, BeamModel::kPlanar);
   EXPECT_FALSE(options.clear_without_obstacle.has_value());
   EXPECT_TRUE(options.extended_returns);
+  EXPECT_TRUE(options.seabed_slope);
 }
 
 TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
@@ -39,6 +40,7 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   args.clear_without_obstacle = "yes";
   args.min_range = "0.3";
   args.extended_returns = false;
+  args.seabed_slope = false;
   const MapperOptions options = toMapperOptions(args);
   EXPECT_DOUBLE_EQ(*options.resolution_m, 0.05);
   EXPECT_DOUBLE_EQ(options.beam_width_rad, 2.0 * kRadPerDeg);
@@ -49,6 +51,7 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   EXPECT_EQ(options.clear_without_obstacle, true);
   EXPECT_DOUBLE_EQ(*options.detector.min_range_m, 0.3);
   EXPECT_FALSE(options.extended_returns);
+  EXPECT_FALSE(options.seabed_slope);
 }
 
 TEST(MappingArguments, BadValuesNameTheOption) {

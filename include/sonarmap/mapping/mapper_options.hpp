@@ -138,6 +138,10 @@ struct MapperOptions {
   /// marked as a shell (isLevelReturn, sweep_fan.hpp: a loud seabed). Whole sweeps only: the live
   /// mapper's beams, detected a few at a time, use their first returns. Unused by the planar model.
   bool extended_returns = true;
+  /// Whether the volume model's weak seabed traces follow the seabed's slope, fitted to the onsets of
+  /// every weak seabed return so far (SeabedSlope, seabed_slope.hpp: a robust plane, kept only where
+  /// the F test asks for a slope), instead of the level through each onset. With extended_returns.
+  bool seabed_slope = true;
   /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).
   ExtendedReturnOptions extended{};
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much

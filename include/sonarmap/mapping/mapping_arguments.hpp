@@ -55,6 +55,7 @@ struct MappingArguments {
   std::string arc_evidence = "pattern";         ///< whole | uniform | pattern
   std::string obstacle_surface = "vertical";    ///< --3d: vertical | shell (ObstacleSurface)
   bool extended_returns = true;                 ///< --3d: weak extended returns on their level surface
+  bool seabed_slope = true;                     ///< --3d: seabed traces follow the fitted slope
 };
 
 /// The log format of `input`: `format` (parseLogFormat's names) unless it is "auto", else by the

@@ -176,6 +176,9 @@ class SonarMapper {
   /// integrateSweep and integrateBeams with optional poses; `whole_sweep` counts a sweep.
   void integratePosedRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                           const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row, bool whole_sweep);
+  /// The volume model: adds the seabed onsets of work_->beams to the mission's (SeabedSlope) and
+  /// sets each seabed trace's normal from them (PlannedBeam::trace_normal).
+  void placeSeabedTraces();
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
   void planBeams();
   /// The beams' shape: the width, and the vertical aperture with the volume model (0: planar).

@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -45,6 +46,14 @@ struct PlannedBeam {
   /// level (BeamDetection::extended_onset_m, extended_end_m). NaN: none.
   double trace_onset_m = std::numeric_limits<double>::quiet_NaN();
   double trace_end_m = std::numeric_limits<double>::quiet_NaN();
+  /// The unit normal of the surface a trace lies on, map frame: level (+z) unless the mapper
+  /// measured the seabed's slope around the onset (SeabedSlope, seabed_slope.hpp). The trace's
+  /// surface is the plane through its onset point with this normal.
+  Eigen::Vector3d trace_normal = Eigen::Vector3d::UnitZ();
+  /// The trace is an obstacle's loud return (isLevelReturn), not a weak one: heard before the
+  /// aperture's nominal edge, its onset does not lie where that edge meets the surface, so it
+  /// neither measures the seabed's slope nor follows it (SonarMapper).
+  bool loud_trace = false;
   /// Where the obstacle's echo ends, metres: the mapper gives the nearer of where its loud echo falls
   /// back (BeamDetection::echo_end_m) and its lit run's end (BeamDetection::extended_end_m), or the
   /// beam's recorded range when neither is measured. A vertical face (ObstacleSurface::kVertical)
@@ -176,6 +185,11 @@ void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, dou
 /// marking its shell. Nothing is thrown.
 bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset_m, double end_m, double tolerance_m);
 
+/// Where a beam's seabed trace starts, map frame: its sonar plus the trace's onset range along the
+/// aperture's lowest edge, when the beam has a trace (PlannedBeam::traced) and its cone points only
+/// down (appendLevelTrace); nullopt otherwise. Nothing is thrown.
+std::optional<Eigen::Vector3d> seabedOnsetPoint(const PlannedBeam& beam, const BeamShape& shape);
+
 /// Appends the hit points of one beam's weak extended return (PlannedBeam::trace_onset_m,
 /// trace_end_m) to `hits`, map frame; nothing else is touched, and a beam without one adds nothing.
 /// planArcs of the volume model calls it for each such beam and carves the points as a shell's. Nothing is thrown.
@@ -184,12 +198,13 @@ bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset
 /// have echoed loud enough to be an obstacle. It starts where the surface enters the cone, at the
 /// edge of the vertical aperture nearest to it, and goes on while the surface crosses the cone.
 /// Under the flat-seabed hypothesis of sidescan slant-range correction (Blondel, "The Handbook of
-/// Sidescan Sonar", 2009), the surface is level through the onset point on that edge (range r₀).
-/// At every range r from the onset to the return's end (points half a voxel apart in range, at
-/// most a voxel apart across the beam's width) the return comes from where the shell meets that
-/// level: the elevation e in the aperture with r · v(e) = r₀ · v(edge), v the vertical (map z)
-/// component of the direction. A sloping seabed puts the trace off it by the slope times the
-/// horizontal distance from the onset point (7° over 1 m: 0.12 m).
+/// Sidescan Sonar", 2009), the surface is the plane through the onset point on that edge (range
+/// r₀) with normal n = PlannedBeam::trace_normal: level (+z), or the seabed's slope where the mapper
+/// measured it (SeabedSlope). At every range r from the onset to the return's end (points half a
+/// voxel apart in range, at most a voxel apart across the beam's width) the return comes from
+/// where the shell meets that plane: the elevation e in the aperture with r · v(e) = r₀ · v(edge),
+/// v the component of the direction along n. A slope drawn level puts the trace off the seabed by
+/// the slope times the horizontal distance from the onset point (7° over 1 m: 0.12 m).
 /// The edge is the aperture's most downward one when that points down (a seabed), its most upward
 /// one when that points up (the water surface); an aperture that points both ways (a level head)
 /// cannot tell the two and gets no trace. A point gets `evidence`'s weight at its elevation (the
