@@ -140,7 +140,8 @@ struct MapperOptions {
   bool extended_returns = true;
   /// Whether the volume model's weak seabed traces follow the seabed's slope, fitted to the onsets of
   /// every weak seabed return so far (SeabedSlope, seabed_slope.hpp: a robust plane, kept only where
-  /// the F test asks for a slope), instead of the level through each onset. With extended_returns.
+  /// the F test asks for a slope and the onsets were seen from many directions), instead of the level
+  /// through each onset. With extended_returns.
   bool seabed_slope = true;
   /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).
   ExtendedReturnOptions extended{};

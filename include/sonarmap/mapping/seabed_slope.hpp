@@ -6,27 +6,27 @@
 ///
 /// A down-looking cone's seabed return starts on the aperture's lowest edge (appendLevelTrace): the
 /// onset point, sonar + onset range × that edge's direction, lies on the seabed whatever its slope.
-/// A sweep's onsets cover a narrow fan ahead of a tilted head, too little to fit a plane (issue 21's
-/// fifth round: fitted slopes of 0–19° in varying directions on a 7° seabed); the onsets of every
-/// sweep so far, around the vehicle's track, do. SeabedSlope keeps them and fits, around a point,
-/// a plane z = a + g · (x, y) to those within a horizontal radius: least median of squares over
-/// triples of onsets (Rousseeuw 1984, JASA 79(388) 871), since some onsets are no seabed (a weak echo
-/// of a wall or a pile heard by a beam without an obstacle), then least squares over its inliers
-/// (2.5 robust deviations; Rousseeuw & Leroy 1987). It keeps the plane only where the data ask for
-/// a slope: the F test of the plane against a level fit over the same points (two more
+/// A sweep's onsets cover a narrow fan ahead of a tilted head, too little to fit a plane (issue
+/// 21's fifth round: fitted slopes of 0–19° in varying directions on a 7° seabed); the onsets of
+/// every sweep so far, around the vehicle's track, do. SeabedSlope keeps them and fits, around a
+/// point, a plane z = a + g · (x, y) to those within a horizontal radius: least median of squares
+/// over triples of onsets (Rousseeuw 1984, JASA 79(388) 871), since some onsets are no seabed (a
+/// weak echo of a wall or a pile heard by a beam without an obstacle), then least squares over its
+/// inliers (2.5 robust deviations; Rousseeuw & Leroy 1987). It keeps the plane only where the data
+/// ask for a slope: the F test of the plane against a level fit over the same points (two more
 /// parameters) at 1 % (F > 4.61, the large-sample critical value χ²₂(0.99) / 2; Draper & Smith,
-/// "Applied Regression Analysis", 3rd ed. 1998, §6), a slope of at most 30° (steeper ground is
-/// no seabed met at grazing incidence), and onsets seen from many directions. The last because an
+/// "Applied Regression Analysis", 3rd ed. 1998, §6), a slope of at most 30° (steeper ground is no
+/// seabed met at grazing incidence), and onsets seen from many directions. The last because an
 /// onset's error depends on the way its beam looks: a weak return is heard late, the more so where
 /// the ground falls away from the beam (a smaller grazing angle on the edge ray, a weaker echo), so
 /// onsets seen down a slope lie too deep and onsets seen up it too high. Seen from one way only (a
-/// static head: its forward fan), they show the slope exaggerated (a 10° seabed fitted at 39°); seen
-/// from opposite ways (a vehicle that turns), the errors cancel (quay3d's 7° seabed fitted at 7.0° on
-/// the tilted loop). The inliers' look directions must therefore spread: the length of their mean
-/// unit horizontal vector (the mean resultant length of directional statistics; Mardia & Jupp,
-/// "Directional Statistics", 2000, §2.3.1) at most 0.5, where a fan of ±60° gives 0.83 and a full
-/// turn 0. Elsewhere the surface stays level (the flat-seabed hypothesis of sidescan slant-range
-/// correction; Blondel 2009).
+/// static head: its forward fan), they show the slope exaggerated (a 10° seabed fitted at 39°);
+/// seen from opposite ways (a vehicle that turns), the errors cancel (quay3d's 7.1° seabed fitted
+/// at 6.7–7.1° on the tilted loop). The inliers' look directions must therefore spread: the length
+/// of their mean unit horizontal vector (the mean resultant length of directional statistics;
+/// Mardia & Jupp, "Directional Statistics", 2000, §2.3.1) at most 0.5, where a fan of ±60° gives
+/// 0.83 and a full turn 0. Elsewhere the surface stays level (the flat-seabed hypothesis of
+/// sidescan slant-range correction; Blondel 2009).
 
 #include <cstddef>
 #include <vector>
