@@ -61,7 +61,10 @@ bool leastMedianPlane(const std::vector<Eigen::Vector3d>& points, Eigen::Vector3
     const Eigen::Vector3d n = (points[pick(random)] - a).cross(points[pick(random)] - a);
     if (!(std::abs(n.z()) > 1e-6 * n.norm())) continue;  // degenerate, or a vertical plane
     const Eigen::Vector3d plane(a.z() + (n.x() * a.x() + n.y() * a.y()) / n.z(), -n.x() / n.z(), -n.y() / n.z());
-    for (std::size_t i = 0; i < points.size(); ++i) squared[i] = residual(plane, points[i]) * residual(plane, points[i]);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double r = residual(plane, points[i]);
+      squared[i] = r * r;
+    }
     std::nth_element(squared.begin(), squared.begin() + middle, squared.end());
     if (squared[static_cast<std::size_t>(middle)] < median_sq) {
       median_sq = squared[static_cast<std::size_t>(middle)];

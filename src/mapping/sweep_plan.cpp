@@ -72,22 +72,20 @@ void SonarMapper::placeSeabedTraces() {
   const BeamShape shape = beamShape();
   Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();
   double reach_m = 0.0;
-  std::size_t count = 0;
-  for (const PlannedBeam& beam : work.beams) {
+  std::vector<PlannedBeam*> traces;  // the sweep's weak seabed traces
+  for (PlannedBeam& beam : work.beams) {
     if (beam.loud_trace) continue;
     if (const std::optional<Eigen::Vector3d> onset_m = seabedOnsetPoint(beam, shape)) {
       const Eigen::Vector3d axis = beam.sonar_to_map.linear() * Eigen::Vector3d(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
       work.seabed.add(*onset_m, axis.head<2>());
       centre_m += *onset_m;
       reach_m = std::max(reach_m, beam.trace_end_m);
-      ++count;
+      traces.push_back(&beam);
     }
   }
-  if (count == 0) return;
-  const Eigen::Vector3d normal = work.seabed.normalAt(centre_m / static_cast<double>(count), 2.0 * reach_m);
-  for (PlannedBeam& beam : work.beams) {
-    if (!beam.loud_trace && seabedOnsetPoint(beam, shape)) beam.trace_normal = normal;
-  }
+  if (traces.empty()) return;
+  const Eigen::Vector3d normal = work.seabed.normalAt(centre_m / static_cast<double>(traces.size()), 2.0 * reach_m);
+  for (PlannedBeam* beam : traces) beam->trace_normal = normal;
 }
 
 BeamShape SonarMapper::beamShape() const {
