@@ -41,6 +41,7 @@ struct Model {
   bool extended_returns = true;                ///< MapperOptions::extended_returns
   ObstacleSurface surface = MapperOptions{}.obstacle_surface;
   bool seabed_slope = true;                    ///< MapperOptions::seabed_slope
+  bool face_slope = true;                      ///< MapperOptions::face_slope
 };
 
 /// Table rows of the mission's recall and erosion per scene primitive.
@@ -133,7 +134,9 @@ int main(int argc, char** argv) {
                           {"volume, beam pattern, obstacles as shells", BeamModel::kVolume, ArcEvidence::kBeamPattern,
                            std::nullopt, true, ObstacleSurface::kShell},
                           {"volume, beam pattern, level seabed traces", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kVertical, false}};
+                           std::nullopt, true, ObstacleSurface::kVertical, false},
+                          {"volume, beam pattern, faces square to each beam", BeamModel::kVolume, ArcEvidence::kBeamPattern,
+                           std::nullopt, true, ObstacleSurface::kVertical, true, false}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -149,6 +152,7 @@ int main(int argc, char** argv) {
         options.extended_returns = model.extended_returns;
         options.obstacle_surface = model.surface;
         options.seabed_slope = model.seabed_slope;
+        options.face_slope = model.face_slope;
         try {
           const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
           const GroundTruthReport& t = a.truth;
@@ -161,7 +165,7 @@ int main(int argc, char** argv) {
                       static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
           if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
               !model.clear_without_obstacle && model.extended_returns && model.surface == MapperOptions{}.obstacle_surface &&
-              model.seabed_slope) {
+              model.seabed_slope && model.face_slope) {
             by_surface += recallBySurface(preset, mission, a);
           }
         } catch (const std::exception& error) {

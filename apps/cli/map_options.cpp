@@ -102,6 +102,10 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "--3d: weak seabed returns follow the seabed's slope, fitted to their onsets over the whole run "
                  "(a robust plane, kept where a test asks for a slope); no: the level through each onset: yes | no")
       ->capture_default_str();
+  cmd.add_option("--face-slope", args.face_slope,
+                 "--3d: a vertical face seen at oblique incidence recedes across its beam as the beams beside it "
+                 "measure; no: square to each beam at its leading edge: yes | no")
+      ->capture_default_str();
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();

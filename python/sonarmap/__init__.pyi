@@ -217,6 +217,7 @@ def map_sonar_log(
     obstacle_surface: str = ...,
     extended_returns: bool = ...,
     seabed_slope: bool = ...,
+    face_slope: bool = ...,
     threads: int = ...,
 ) -> OccupancyMap: ...
 def read_nav_csv(path: PathLike) -> Float64Array: ...

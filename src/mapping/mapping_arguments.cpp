@@ -131,6 +131,7 @@ MapperOptions toMapperOptions(const MappingArguments& args) {
   options.obstacle_surface = parseObstacleSurface(args.obstacle_surface);
   options.extended_returns = args.extended_returns;
   options.seabed_slope = args.seabed_slope;
+  options.face_slope = args.face_slope;
   if (const std::optional<double> free_deg = autoOr(args.free_aperture, "--free-aperture", "degrees", false)) {
     requireWithin(*free_deg, 0.0, args.vertical_aperture_deg, true, false, "--free-aperture",
                   "degrees in (0, the vertical aperture]");

@@ -2,6 +2,7 @@
 /// A sweep's obstacle arcs, carved by the beams that saw water beyond them (see sweep_fan.hpp).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -118,9 +119,91 @@ std::pair<double, double> slopeCosines(const PlannedBeam& beam, const BeamShape&
   return {nearest, farthest};
 }
 
+/// A vertical face's horizontal distance across one beam's width (ObstacleSurface::kVertical): d(φ)
+/// = d₀ + g · clamp(±(φ − φ_near), 0, w) at bearing φ of the beam's sonar frame, the face receding
+/// at g metres per radian from the beam's near edge φ_near = bearing ∓ w / 2, where its leading
+/// edge d₀ comes from (see faceRun).
+struct FaceRun {
+  double distance_m = 0.0;         ///< d₀, horizontal, metres
+  double slope_m_per_rad = 0.0;    ///< g ≥ 0; 0: the face square to the beam, or not measured
+  double near_bearing_rad = 0.0;   ///< φ_near, the beam's sonar frame
+  double direction = 1.0;          ///< +1: receding with increasing bearing, −1: decreasing
+  double width_rad = 0.0;          ///< w
+
+  double at(double bearing_rad) const {
+    return distance_m + slope_m_per_rad * std::clamp(direction * (bearing_rad - near_bearing_rad), 0.0, width_rad);
+  }
+};
+
+/// At most this many beams on either side of a beam measure its face's slope (faceRun).
+constexpr std::size_t kMaxFaceNeighbours = 8;
+
+/// The face across beam `b` of a sweep, from the beams beside it in bearing (b ± 1, b ± 2, … while
+/// they hit and lie within half a beam width of b; the nearest on each side within a width). Each leading edge is the nearest point of the face
+/// in its beam, at the beam's near edge: at oblique incidence the face recedes across the beam,
+/// and the neighbours' face points (their face distances along their axes' azimuths), seen from
+/// b's sonar at their axes' bearings in its frame, measure how fast: their distances are those of
+/// the face at the near edges, one bearing step apart. A straight line fitted to them (least
+/// squares, b's own among them) is the face's slope where it has points on both sides of b and
+/// every point lies within `tolerance_m` of it (a plane: not a pile's near point, a corner, or
+/// leading edges too noisy to tell), and where the echo lasted long enough for it: a face receding
+/// by g · w across the beam echoes from d₀ to d₀ + g · w, so the beam's echo must end
+/// (PlannedBeam::hit_end_m) no nearer than that less `tolerance_m`. Otherwise the face is square
+/// to the beam, at d₀.
+FaceRun faceRun(const std::vector<PlannedBeam>& beams, const std::vector<WaterCone>& cones,
+                const std::vector<double>& face_m, std::size_t b, const BeamShape& shape, double tolerance_m) {
+  const PlannedBeam& beam = beams[b];
+  const double width_rad = shape.width_rad;
+  FaceRun run{face_m[b], 0.0, beam.bearing_rad, 1.0, width_rad};
+  // A bearing of the sonar frame must be one azimuth of the map across the aperture: the fan
+  // rolled by ρ about the beam's axis turns the aperture's edge rows by (a / 2) sin ρ in azimuth,
+  // at most half the beam's width here (a level head: 0; a tilted one looking to the side: no).
+  const Eigen::Vector3d across = beam.sonar_to_map.linear() * Eigen::Vector3d(-std::sin(beam.bearing_rad), std::cos(beam.bearing_rad), 0.0);
+  if (0.5 * shape.vertical_aperture_rad * std::abs(across.z()) > 0.5 * width_rad) return run;
+  const Eigen::Vector3d& origin_m = cones[b].wedge.origin_m;
+  std::array<Eigen::Vector2d, 2 * kMaxFaceNeighbours + 1> points;  // (bearing step, face distance)
+  std::size_t count = 0;
+  points[count++] = {0.0, face_m[b]};
+  int sides = 0;
+  for (const int side : {-1, 1}) {
+    for (std::size_t k = 1; k <= kMaxFaceNeighbours; ++k) {
+      const std::size_t n = side < 0 ? b - k : b + k;  // below the first beam, wraps past the end
+      if (n >= beams.size() || !(face_m[n] > 0.0)) break;
+      const WaterWedge& neighbour = cones[n].wedge;
+      const Eigen::Vector3d seen = cones[b].wedge.map_to_sonar * (neighbour.origin_m + beams[n].hit_range_m * cones[n].axis);
+      const double step_rad = std::remainder(std::atan2(seen.y(), seen.x()) - beam.bearing_rad, kTwoPi);
+      // Within half a width, or the nearest beam on this side within a width.
+      if (!(std::abs(step_rad) > 1e-6 && std::abs(step_rad) <= (k == 1 ? 1.0 : 0.5) * width_rad)) break;
+      const Eigen::Vector3d point_m = neighbour.origin_m + face_m[n] * Eigen::Vector3d(std::cos(neighbour.azimuth_rad), std::sin(neighbour.azimuth_rad), 0.0);
+      points[count++] = {step_rad, (point_m - origin_m).head<2>().norm()};
+      sides |= step_rad < 0.0 ? 1 : 2;
+    }
+  }
+  if (sides != 3) return run;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < count; ++i) mean += points[i];
+  mean /= static_cast<double>(count);
+  double sxx = 0.0, sxy = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Eigen::Vector2d d = points[i] - mean;
+    sxx += d.x() * d.x();
+    sxy += d.x() * d.y();
+  }
+  const double slope = sxy / sxx;  // sxx > 0: points on both sides
+  for (std::size_t i = 0; i < count; ++i) {
+    if (std::abs(points[i].y() - mean.y() - slope * (points[i].x() - mean.x())) > tolerance_m) return run;
+  }
+  if (!(std::abs(slope) * width_rad <= beam.hit_end_m - beam.hit_range_m + tolerance_m)) return run;  // NaN end: no slope
+  if (slope == 0.0) return run;
+  run.slope_m_per_rad = std::abs(slope);
+  run.direction = slope > 0.0 ? 1.0 : -1.0;
+  run.near_bearing_rad = beam.bearing_rad - run.direction * 0.5 * width_rad;
+  return run;
+}
+
 /// planArcs of the beam-volume model (sweep_fan.hpp).
 void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
-                   ArcEvidence evidence, ObstacleSurface surface, std::vector<HitPoint>& hits) {
+                   ArcEvidence evidence, ObstacleSurface surface, bool face_slope, std::vector<HitPoint>& hits) {
   const double half_rad = 0.5 * shape.width_rad;
   const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
   std::vector<WaterCone> cones;
@@ -136,7 +219,30 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   std::vector<HitPoint> shell;
   std::vector<char> row_kept;
   std::vector<Eigen::Vector2d> column_dirs;  // cos, sin of each column's bearing
+  std::vector<double> column_face_m;         // a vertical face's horizontal distance at each column
   std::vector<HitPoint> trace;
+  // Each obstacle's grid: columns across the width and rows across the aperture, at most a voxel
+  // apart at its range; and, for a vertical face, the cosines of the grid's most and least
+  // horizontal map slopes (the face's distance is the range times the first).
+  auto grid = [&](const PlannedBeam& beam, double range_m) {
+    const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * range_m / voxel_m)));
+    column_dirs.clear();
+    for (int c = 0; c <= columns; ++c) {
+      const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
+      column_dirs.emplace_back(std::cos(angle), std::sin(angle));
+    }
+    return std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
+  };
+  std::vector<std::pair<double, double>> slope_cos(beams.size(), {0.0, 1.0});
+  std::vector<double> face_m(beams.size(), 0.0);  // each obstacle's face distance, horizontal; 0: none
+  if (surface == ObstacleSurface::kVertical) {
+    for (std::size_t b = 0; b < beams.size(); ++b) {
+      if (!beams[b].hit) continue;
+      const int rows = grid(beams[b], beams[b].hit_range_m);
+      slope_cos[b] = slopeCosines(beams[b], shape, rows, column_dirs);
+      face_m[b] = beams[b].hit_range_m * slope_cos[b].first;
+    }
+  }
   for (std::size_t b = 0; b < beams.size(); ++b) {
     const PlannedBeam& beam = beams[b];
     const bool traced = beam.traced();
@@ -166,38 +272,39 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       std::copy_if(trace.begin(), trace.end(), std::back_inserter(hits), [&](const HitPoint& p) { return !carved(p.point_m); });
       continue;
     }
-    const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * range_m / voxel_m)));
-    int rows = std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
-    column_dirs.clear();
-    for (int c = 0; c <= columns; ++c) {
-      const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
-      column_dirs.emplace_back(std::cos(angle), std::sin(angle));
-    }
-    // A vertical face: its horizontal distance, and the farthest range the echo allows. Its points
-    // are farther than the shell's and step in height by r de / cos s: rows at most a voxel apart there.
-    double face_m = 0.0, face_end_m = std::numeric_limits<double>::infinity();
+    int rows = grid(beam, range_m);
+    // A vertical face: its horizontal distance across the beam, and the farthest range the echo
+    // allows. Its points are farther than the shell's and step in height by r de / cos s: rows at
+    // most a voxel apart there.
+    FaceRun face;
+    double face_end_m = std::numeric_limits<double>::infinity();
     const Eigen::RowVector3d up = beam.sonar_to_map.linear().row(2);
     if (surface == ObstacleSurface::kVertical) {
-      const auto [nearest, farthest] = slopeCosines(beam, shape, rows, column_dirs);
-      face_m = range_m * nearest;
+      face = face_slope ? faceRun(beams, cones, face_m, b, shape, tolerance_m) : FaceRun{face_m[b]};
       if (beam.hit_end_m >= range_m) face_end_m = beam.hit_end_m + tolerance_m;
-      const double steepest_cos = std::max(farthest, kMinFaceSlopeCos);
-      const double reach_m = std::min(face_m / steepest_cos, face_end_m);  // face_end_m: infinite or past range_m
+      const double steepest_cos = std::max(slope_cos[b].second, kMinFaceSlopeCos);
+      const double farthest_m = face.distance_m + face.slope_m_per_rad * shape.width_rad;
+      const double reach_m = std::min(farthest_m / steepest_cos, face_end_m);  // face_end_m: infinite or past range_m
       rows = std::max(rows, static_cast<int>(std::ceil(shape.vertical_aperture_rad * reach_m / (voxel_m * steepest_cos))));
+      column_face_m.clear();
+      for (std::size_t c = 0; c < column_dirs.size(); ++c) {
+        column_face_m.push_back(face.at(beam.bearing_rad - half_rad + shape.width_rad * static_cast<double>(c) / static_cast<double>(column_dirs.size() - 1)));
+      }
     }
     shell.clear();
     row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
     for (int r = 0; r <= rows; ++r) {
       const double elevation = -half_aperture_rad + shape.vertical_aperture_rad * r / rows;
       const double weight = evidence == ArcEvidence::kBeamPattern ? twoWayPattern(elevation, shape.vertical_aperture_rad) : 1.0;
-      for (const Eigen::Vector2d& dir : column_dirs) {
+      for (std::size_t c = 0; c < column_dirs.size(); ++c) {
+        const Eigen::Vector2d& dir = column_dirs[c];
         const Eigen::Vector3d unit(std::cos(elevation) * dir.x(), std::cos(elevation) * dir.y(), std::sin(elevation));
         double point_range_m = range_m;
         if (surface == ObstacleSurface::kVertical) {
           const double sin_slope = up.dot(unit);
           const double cos_slope = std::sqrt(std::max(0.0, 1.0 - sin_slope * sin_slope));
           if (cos_slope < kMinFaceSlopeCos) continue;
-          point_range_m = face_m / cos_slope;
+          point_range_m = column_face_m[c] / cos_slope;
           if (point_range_m > face_end_m) continue;  // beyond the echo: the face ends before
         }
         const Eigen::Vector3d point_m = beam.sonar_to_map * (point_range_m * unit);
@@ -217,12 +324,12 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
 }  // namespace
 
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
-              ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface) {
+              ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface, bool face_slope) {
   if (shape.vertical_aperture_rad <= 0.0 || shape.width_rad <= 0.0) {
     return planArcs(beams, shape.width_rad, voxel_m, tolerance_m, hits);
   }
   hits.clear();
-  planShellArcs(beams, shape, voxel_m, tolerance_m, evidence, surface, hits);
+  planShellArcs(beams, shape, voxel_m, tolerance_m, evidence, surface, face_slope, hits);
 }
 
 void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, double voxel_m, double tolerance_m,

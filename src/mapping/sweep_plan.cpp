@@ -47,7 +47,8 @@ void SonarMapper::planBeams() {
     return end;
   };
   const BeamShape shape = beamShape();
-  planArcs(beams, shape, voxel_m, work.tolerance_m, options_.arc_evidence, work.hit_points, options_.obstacle_surface);  // each beam's own pose
+  planArcs(beams, shape, voxel_m, work.tolerance_m, options_.arc_evidence, work.hit_points, options_.obstacle_surface,
+           options_.face_slope);  // each beam's own pose
   // The free space: the cone's loud core only (MapperOptions::free_vertical_aperture_rad).
   BeamShape fshape = shape;
   if (options_.beam_model == BeamModel::kVolume) fshape.vertical_aperture_rad = freeVerticalAperture_rad(options_);

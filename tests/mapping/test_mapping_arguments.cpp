@@ -27,6 +27,7 @@ TEST(MappingArguments, DefaultsAreTheLibrarysOptions) {
   EXPECT_FALSE(options.clear_without_obstacle.has_value());
   EXPECT_TRUE(options.extended_returns);
   EXPECT_TRUE(options.seabed_slope);
+  EXPECT_TRUE(options.face_slope);
 }
 
 TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
@@ -41,6 +42,7 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   args.min_range = "0.3";
   args.extended_returns = false;
   args.seabed_slope = false;
+  args.face_slope = false;
   const MapperOptions options = toMapperOptions(args);
   EXPECT_DOUBLE_EQ(*options.resolution_m, 0.05);
   EXPECT_DOUBLE_EQ(options.beam_width_rad, 2.0 * kRadPerDeg);
@@ -52,6 +54,7 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   EXPECT_DOUBLE_EQ(*options.detector.min_range_m, 0.3);
   EXPECT_FALSE(options.extended_returns);
   EXPECT_FALSE(options.seabed_slope);
+  EXPECT_FALSE(options.face_slope);
 }
 
 TEST(MappingArguments, BadValuesNameTheOption) {

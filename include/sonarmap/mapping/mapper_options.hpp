@@ -130,6 +130,13 @@ struct MapperOptions {
   /// echo's range (the default: harbour structures are vertical; docs/accuracy.md, before and
   /// after), or on the shell. Unused by the planar model.
   ObstacleSurface obstacle_surface = ObstacleSurface::kVertical;
+  /// Whether a vertical face recedes across its beam where the beams beside it measure it receding
+  /// (planArcs, sweep_fan.hpp): at oblique incidence the leading edge is the face's nearest point,
+  /// at the beam's near edge, and the face at the beam's other bearings lies farther, by up to the
+  /// range spread the echo's length allows. Otherwise every bearing of the beam puts the face at the
+  /// leading edge's distance, in front of an oblique face by up to r · w · tan(incidence). With
+  /// obstacle_surface kVertical; unused by the planar model.
+  bool face_slope = true;
   /// Whether the volume model seeks weak extended returns in the whole echo of each beam without an
   /// obstacle (a seabed or water surface met at grazing incidence; extended_returns.hpp) and places
   /// them on the level surface their onset implies (appendLevelTrace, sweep_fan.hpp). Such a beam

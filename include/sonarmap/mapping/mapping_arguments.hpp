@@ -56,6 +56,7 @@ struct MappingArguments {
   std::string obstacle_surface = "vertical";    ///< --3d: vertical | shell (ObstacleSurface)
   bool extended_returns = true;                 ///< --3d: weak extended returns on their level surface
   bool seabed_slope = true;                     ///< --3d: seabed traces follow the fitted slope
+  bool face_slope = true;                       ///< --3d: oblique faces recede across their beams
 };
 
 /// The log format of `input`: `format` (parseLogFormat's names) unless it is "auto", else by the

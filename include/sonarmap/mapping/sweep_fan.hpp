@@ -173,8 +173,16 @@ void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, doub
 /// share the evidence as `evidence` says.
 /// `surface` places each obstacle's points in its cone (the shell, or a vertical face); the
 /// carving and the evidence are the same for both.
+/// `face_slope` (a vertical face only): where the face distances of the beam's neighbours in
+/// `beams` (those before and after it within half a beam width, and the nearest on each side within
+/// a width) lie on a line through its own within `tolerance_m` (a plane, not a pile or a corner),
+/// the face recedes across the beam along that line, from the near edge its leading edge came
+/// from, instead of standing square to the beam at the leading edge's distance; only as far as the
+/// echo lasted (PlannedBeam::hit_end_m), and not for a head rolled about the beam's axis by more
+/// than asin(w / a) (see MapperOptions::face_slope).
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
-              ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface = ObstacleSurface::kShell);
+              ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface = ObstacleSurface::kShell,
+              bool face_slope = false);
 
 /// Whether a beam's return from `onset_m` to `end_m` (metres; an obstacle's echo and the lit run
 /// that follows it, BeamDetection::extended_onset_m, extended_end_m) is a level surface met at the
