@@ -218,6 +218,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   std::vector<std::size_t> candidates;
   std::vector<HitPoint> shell;
   std::vector<char> row_kept;
+  std::vector<double> column_bearing_rad;     // each column's bearing, sonar frame
   std::vector<Eigen::Vector2d> column_dirs;  // cos, sin of each column's bearing
   std::vector<double> column_face_m;         // a vertical face's horizontal distance at each column
   std::vector<HitPoint> trace;
@@ -226,9 +227,11 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   // horizontal map slopes (the face's distance is the range times the first).
   auto grid = [&](const PlannedBeam& beam, double range_m) {
     const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * range_m / voxel_m)));
+    column_bearing_rad.clear();
     column_dirs.clear();
     for (int c = 0; c <= columns; ++c) {
       const double angle = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
+      column_bearing_rad.push_back(angle);
       column_dirs.emplace_back(std::cos(angle), std::sin(angle));
     }
     return std::max(1, static_cast<int>(std::ceil(shape.vertical_aperture_rad * range_m / voxel_m)));
@@ -287,9 +290,7 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       const double reach_m = std::min(farthest_m / steepest_cos, face_end_m);  // face_end_m: infinite or past range_m
       rows = std::max(rows, static_cast<int>(std::ceil(shape.vertical_aperture_rad * reach_m / (voxel_m * steepest_cos))));
       column_face_m.clear();
-      for (std::size_t c = 0; c < column_dirs.size(); ++c) {
-        column_face_m.push_back(face.at(beam.bearing_rad - half_rad + shape.width_rad * static_cast<double>(c) / static_cast<double>(column_dirs.size() - 1)));
-      }
+      for (const double bearing_rad : column_bearing_rad) column_face_m.push_back(face.at(bearing_rad));
     }
     shell.clear();
     row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
