@@ -123,7 +123,7 @@ Raises sonarmap.ValueError for a non-finite fix, one not after the previous, or 
           "map",
           [](const OnlineMapper& mapper) {
             py::gil_scoped_release release;
-            return OccupancyMap{mapper.mapSnapshot(), mapper.statsSnapshot()};
+            return OccupancyMap{mapper.mapSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt};
           },
           "A copy of the map as of the last integrated sweep, with its stats (sonarmap.OccupancyMap).")
       .def(
