@@ -34,12 +34,13 @@ build() {
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends clang libclang-rt-14-dev >/dev/null
   fi
+  source scripts/compiler-cache.sh
   # -O1 -g1, as libFuzzer's documentation builds its harnesses: findings keep function names and lines.
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=undefined" \
     -DSONARMAP_BUILD_FUZZERS=ON -DSONARMAP_BUILD_TESTS=OFF -DSONARMAP_BUILD_BENCHMARKS=OFF \
-    -DSONARMAP_BUILD_CLI=OFF >/dev/null
+    -DSONARMAP_BUILD_CLI=OFF "${compiler_cache[@]}" >/dev/null
   cmake --build "$build"
   rm -rf "$build"/seeds "$build"/corpus
   "$build"/fuzz/sonarmap_fuzz_seeds "$build"/seeds  # generated, not committed

@@ -10,8 +10,9 @@ packages=(build-essential cmake ninja-build pkg-config
   # sonarmap view: three.js, compiled into the tool and inlined into each page
   libjs-three)
 if [ "${1:-}" = test ]; then
-  # pytest, the notebook run by nbconvert, and headless Chromium for the viewer's browser tests
-  packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium)
+  # pytest, the notebook run by nbconvert, headless Chromium for the viewer's browser tests, and
+  # ccache for the repeated builds of CI and the sanitizers (scripts/compiler-cache.sh)
+  packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium ccache)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -6,6 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh test
+source scripts/compiler-cache.sh
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # -O1 -g1 (line tables), as the sanitizers' documentation advises: reports keep function names and
 # lines, and the build takes a third of the time RelWithDebInfo's -O2 -g takes (variable tracking
@@ -13,7 +14,7 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fr
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSONARMAP_BUILD_TESTS=ON \
-  -DSONARMAP_BUILD_BENCHMARKS=OFF -DSONARMAP_BUILD_PYTHON=OFF >/dev/null
+  -DSONARMAP_BUILD_BENCHMARKS=OFF -DSONARMAP_BUILD_PYTHON=OFF "${compiler_cache[@]}" >/dev/null
 cmake --build build-asan
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
