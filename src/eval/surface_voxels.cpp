@@ -16,7 +16,13 @@ using Key16 = Key<16>;
 /// farther from a primitive than the bound requires (metres).
 constexpr double kMargin_m = 1e-6;
 
-/// True when the voxel centre lies within res / 2 of one of `primitives` (indices into the scene).
+/// Where a voxel is tested (surface_voxels.hpp): its centre moved towards its lower corner by a
+/// millionth of a voxel on every axis.
+Eigen::Vector3d probeOf(const KeyCoder<16>& coder, const Key16& key) {
+  return coder.centerOf(key).array() - 1e-6 * coder.resolution_m();
+}
+
+/// True when the probe point lies within res / 2 of one of `primitives` (indices into the scene).
 bool nearSurface(const Scene& scene, const std::vector<std::size_t>& primitives, const Eigen::Vector3d& center_m,
                  double half_res_m) {
   double nearest_m = std::numeric_limits<double>::infinity();
@@ -37,7 +43,7 @@ class Recursion {
       high_m[axis] = coder_.centerOf(static_cast<std::uint16_t>(hi[axis]));
     }
     const Eigen::Vector3d middle_m = 0.5 * (low_m + high_m);
-    const double reach_m = 0.5 * (high_m - low_m).norm() + half_res_m_ + kMargin_m;
+    const double reach_m = 0.5 * (high_m - low_m).norm() + half_res_m_ + 2e-6 * coder_.resolution_m() + kMargin_m;
     std::vector<std::size_t> near;
     near.reserve(candidates.size());
     for (const std::size_t i : candidates) {
@@ -51,7 +57,7 @@ class Recursion {
         for (int y = lo[1]; y <= hi[1]; ++y) {
           for (int x = lo[0]; x <= hi[0]; ++x) {
             const Key16 key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(z)}};
-            if (nearSurface(scene_, near, coder_.centerOf(key), half_res_m_)) out_.push_back(key);
+            if (nearSurface(scene_, near, probeOf(coder_, key), half_res_m_)) out_.push_back(key);
           }
         }
       }
@@ -101,7 +107,7 @@ std::vector<Key16> surfaceVoxelsBruteForce(const KeyCoder<16>& coder, const Scen
     for (int y = lo[1]; y <= hi[1]; ++y) {
       for (int x = lo[0]; x <= hi[0]; ++x) {
         const Key16 key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(z)}};
-        if (distanceToSurface(scene, coder.centerOf(key)) <= half_res_m) keys.push_back(key);
+        if (distanceToSurface(scene, probeOf(coder, key)) <= half_res_m) keys.push_back(key);
       }
     }
   }
