@@ -44,7 +44,7 @@ void check(const SimulateArgs& args, MsisSimulationOptions& options) {
   if (fs::exists(args.output_dir) && !fs::is_directory(args.output_dir)) {
     throw ValueError("-o must name a folder, '" + args.output_dir + "' is a file");
   }
-  options = toSimulationOptions(args);
+  options = toSimulationOptions(args, args.scene);
 }
 
 void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
@@ -133,6 +133,9 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->capture_default_str();
   cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north (not with --mission)")
       ->capture_default_str();
+  cmd->add_option("--depth", args.depth_m,
+                  "Vehicle depth in metres below the water surface (not with --mission); default: the built-in "
+                  "scene's (3 m in quay3d at the Micron's range, scaled with the range; 0 elsewhere)");
   cmd->add_option("--mission", args.mission,
                   "Fly a named mission in its scene, sized for the sonar's range (" + joined(missionNames(), " | ") +
                       "; include/sonarmap/sim/missions.hpp); the head turns until the mission ends, --turns is "

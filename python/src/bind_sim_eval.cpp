@@ -199,8 +199,10 @@ the names for an unknown one.)doc");
       "simulate",
       [](const py::object& scene, const std::string& sonar, std::size_t turns, std::uint64_t seed, double sector,
          double sector_center, double speed, double heading, double nav_rate, const std::string& mission,
-         std::size_t laps, double dvl_noise, double dvl_scale_error, double heading_bias_deg, double gyro_walk) {
+         std::size_t laps, double dvl_noise, double dvl_scale_error, double heading_bias_deg, double gyro_walk,
+         std::optional<double> depth) {
         SimulationArguments args;
+        if (depth) args.depth_m = *depth;
         args.mission = mission;
         args.laps = laps;
         args.dvl_noise_mps = dvl_noise;
@@ -215,8 +217,9 @@ the names for an unknown one.)doc");
         args.speed_mps = speed;
         args.heading_deg = heading;
         args.nav_rate_hz = nav_rate;
-        const MsisSimulationOptions options = toSimulationOptions(args);
-        if (py::isinstance<py::str>(scene)) checkMissionScene(args, scene.cast<std::string>());
+        const std::string scene_name = py::isinstance<py::str>(scene) ? scene.cast<std::string>() : std::string();
+        const MsisSimulationOptions options = toSimulationOptions(args, scene_name);
+        if (py::isinstance<py::str>(scene)) checkMissionScene(args, scene_name);
         const Scene ground_truth = sceneArgument(scene, options.head);
         PySimulation out;
         {
@@ -238,13 +241,16 @@ the names for an unknown one.)doc");
       py::arg("mission") = defaults.mission, py::arg("laps") = defaults.laps,
       py::arg("dvl_noise") = defaults.dvl_noise_mps, py::arg("dvl_scale_error") = defaults.dvl_scale_error,
       py::arg("heading_bias_deg") = defaults.heading_bias_deg, py::arg("gyro_walk") = defaults.gyro_walk_deg_per_sqrt_s,
+      py::arg("depth") = py::none(),
       R"doc(Simulates an MSIS scanning a scene, as ``sonarmap simulate`` (the same arguments, the same run).
 
 scene: a built-in scene name (built for the preset's range), a scene file path, or a sonarmap.Scene.
 sonar: head preset (sonar_preset_names()). turns: full turns (or sector passes), >= 1. seed: of the
 speckle and noise (a seed always gives the same beams). sector: scanned width in degrees, (0, 360].
 sector_center: degrees, counter-clockwise from the sonar's x. speed: m/s along heading (degrees
-clockwise from north). nav_rate: fixes per second (0: none).
+clockwise from north). nav_rate: fixes per second (0: none). depth: metres below the water surface
+without a mission; None: the built-in scene's (3 m in quay3d at 5 m range, scaled with the range; 0
+elsewhere).
 mission: a named mission (mission_plan_names(); scene must then be its built-in scene, by name) flown
 laps times, speed 0 meaning its default speed; turns and heading are then ignored.
 dvl_noise (m/s per axis and fix), dvl_scale_error (fraction), heading_bias_deg (degrees), gyro_walk

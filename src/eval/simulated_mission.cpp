@@ -29,7 +29,7 @@ std::vector<NavSample> missionWaypoints(const std::string& name, double s, doubl
     pattern.legs = 3;
     pattern.leg_length_m = 4.0 * s;
     pattern.leg_spacing_m = 1.5 * s;
-    pattern.depths_m = {0.5 * s, 1.0 * s};
+    pattern.depths_m = {3.0 * s, 3.5 * s};
     pattern.speed_mps = speed_mps;
     tilt_rad = 0.0;
     return lawnmowerWaypoints(pattern);
@@ -38,7 +38,7 @@ std::vector<NavSample> missionWaypoints(const std::string& name, double s, doubl
     LoopPattern pattern;
     pattern.length_m = 4.0 * s;
     pattern.width_m = 3.0 * s;
-    pattern.depths_m = {0.5 * s};
+    pattern.depths_m = {3.0 * s};
     pattern.speed_mps = speed_mps;
     tilt_rad = kTiltDown_rad;
     return loopWaypoints(pattern);

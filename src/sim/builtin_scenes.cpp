@@ -101,17 +101,17 @@ Scene openWaterScene(const SceneScale& scale) {
 
 /// The 3D harbour corner `quay3d` (builtin_scenes.hpp), every length scaled by `s`.
 Scene quay3dScene(double s) {
-  // Seabed z = −2.5 − x / 8 (at s = 1): −2.0 m at x = −4, −3.0 m at x = +4.
-  auto seabed_z_m = [s](double x_m) { return -2.5 * s - x_m / 8.0; };
-  const double surface_m = 2.5 * s;
+  // The water surface at z = 0 (a depth sensor's depth 0, nedToMap). Seabed z = −5 − x / 8 (at
+  // s = 1): −4.5 m at x = −4, −5.5 m at x = +4.
+  auto seabed_z_m = [s](double x_m) { return -5.0 * s - x_m / 8.0; };
   Scene scene;
-  scene.primitives.push_back(horizontalPlane(surface_m, 1.0));
-  scene.primitives.push_back(Plane{{0.0, 0.0, -2.5 * s}, Eigen::Vector3d(1.0, 0.0, 8.0).normalized(), 0.5});
-  // Quay: x ∈ [3.5, 8.5], y ∈ [−20, 20], z ∈ [−4.0, 3.5]: below the seabed (−3.56 m at x = 8.5) to
+  scene.primitives.push_back(horizontalPlane(0.0, 1.0));
+  scene.primitives.push_back(Plane{{0.0, 0.0, -5.0 * s}, Eigen::Vector3d(1.0, 0.0, 8.0).normalized(), 0.5});
+  // Quay: x ∈ [3.5, 8.5], y ∈ [−20, 20], z ∈ [−6.5, 1.0]: below the seabed (−6.06 m at x = 8.5) to
   // 1 m above the surface.
-  scene.primitives.push_back(Box{{6.0 * s, 0.0, -0.25 * s}, {5.0 * s, 40.0 * s, 7.5 * s}, 0.0, 0.9});
+  scene.primitives.push_back(Box{{6.0 * s, 0.0, -2.75 * s}, {5.0 * s, 40.0 * s, 7.5 * s}, 0.0, 0.9});
   for (const auto& [x, y] : {std::pair{2.0, -2.5}, std::pair{2.0, 2.5}, std::pair{-3.0, -2.5}}) {
-    scene.primitives.push_back(Cylinder{x * s, y * s, 0.2 * s, seabed_z_m(x * s) - 0.3 * s, 3.5 * s, 0.85});
+    scene.primitives.push_back(Cylinder{x * s, y * s, 0.2 * s, seabed_z_m(x * s) - 0.3 * s, 1.0 * s, 0.85});
   }
   // Boulder: 0.8 × 0.6 × 0.5 m, yawed 30°, its bottom 0.1 m below the seabed under its centre (the
   // slope changes the seabed's height by less than 0.07 m over its footprint).
@@ -120,8 +120,8 @@ Scene quay3dScene(double s) {
                                  {0.8 * s, 0.6 * s, 0.5 * s},
                                  30.0 * kDegree,
                                  0.7});
-  // Pontoon: x ∈ [−1.25, 1.25], y ∈ [2.4, 3.6], z ∈ [−0.6, 2.8]: its underside overhangs water.
-  scene.primitives.push_back(Box{{0.0, 3.0 * s, 1.1 * s}, {2.5 * s, 1.2 * s, 3.4 * s}, 0.0, 0.9});
+  // Pontoon: x ∈ [−1.25, 1.25], y ∈ [2.4, 3.6], z ∈ [−3.1, 0.3]: its underside overhangs water.
+  scene.primitives.push_back(Box{{0.0, 3.0 * s, -1.4 * s}, {2.5 * s, 1.2 * s, 3.4 * s}, 0.0, 0.9});
   return scene;
 }
 
@@ -155,6 +155,11 @@ Scene builtinScene(std::string_view name, double reach_m, double vertical_beam_w
     for (const std::string& candidate : names) known += (known.empty() ? "" : ", ") + candidate;
   }
   throw ValueError("unknown scene '" + std::string(name) + "', expected one of: " + known);
+}
+
+double builtinSceneDepth_m(std::string_view name, double reach_m) {
+  builtinScene(name, reach_m);  // validates the name and the reach
+  return name == "quay3d" ? 3.0 * reach_m / kBuiltinSceneReach_m : 0.0;
 }
 
 }  // namespace sonarmap

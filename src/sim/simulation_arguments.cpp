@@ -36,7 +36,7 @@ std::vector<std::string> allBuiltinSceneNames() {
 
 }  // namespace
 
-MsisSimulationOptions toSimulationOptions(const SimulationArguments& args) {
+MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const std::string& scene) {
   if (args.turns < 1) throw ValueError("--turns must be at least 1");
   if (!std::isfinite(args.speed_mps)) throw ValueError("--speed must be finite");
   if (!std::isfinite(args.heading_deg)) throw ValueError("--heading must be finite");
@@ -57,6 +57,9 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args) {
     if (args.laps != 1) throw ValueError("--laps needs --mission");
     NavSample start;
     start.yaw_rad = args.heading_deg * kRadPerDeg;
+    if (std::isinf(args.depth_m)) throw ValueError("--depth must be finite");
+    start.position_ned_m.z() = std::isnan(args.depth_m) ? (isBuiltinSceneName(scene) ? builtinSceneDepth_m(scene, options.head.range_m) : 0.0)
+                                                        : args.depth_m;
     const Eigen::Vector3d velocity_ned_mps(args.speed_mps * std::cos(start.yaw_rad),
                                            args.speed_mps * std::sin(start.yaw_rad), 0.0);
     options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);

@@ -301,14 +301,15 @@ TEST(evalGroundTruth3d, HierarchicalSurfaceVoxelsEqualTheBruteForce) {
       total += brute.size();
     }
     EXPECT_GT(total, 1000U);
-    // The brute force is what evaluateAgainstScene used to do: one voxel, tested directly.
+    // The brute force is one voxel tested directly, at its centre nudged towards its lower corner.
     const Key16 lo = coder.keyOfChecked({-1.5, -1.3, -1.1}), hi = coder.keyOfChecked({1.6, 1.2, 1.0});
     std::size_t direct = 0;
     for (int z = lo[2]; z <= hi[2]; ++z) {
       for (int y = lo[1]; y <= hi[1]; ++y) {
         for (int x = lo[0]; x <= hi[0]; ++x) {
           const Key16 key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(z)}};
-          direct += distanceToSurface(scene, coder.centerOf(key)) <= 0.5 * res ? 1 : 0;
+          const Eigen::Vector3d probe_m = coder.centerOf(key).array() - 1e-6 * res;
+          direct += distanceToSurface(scene, probe_m) <= 0.5 * res ? 1 : 0;
         }
       }
     }
@@ -316,6 +317,18 @@ TEST(evalGroundTruth3d, HierarchicalSurfaceVoxelsEqualTheBruteForce) {
   }
   // An empty box or scene has none.
   const KeyCoder<16> coder(0.1);
+  // A level plane on the face between two layers of voxels counts in one layer, the one above
+  // (its half-open interval holds the plane), wherever the face lies: at z = 0 the two centres
+  // are exactly res / 2 away, at z = 2.5 m rounding puts one a hair nearer.
+  for (const double level_m : {0.0, 2.5, -1.3}) {
+    Scene level;
+    level.primitives.push_back(Plane{{0.0, 0.0, level_m}, Eigen::Vector3d::UnitZ(), 1.0});
+    const Key16 lo = coder.keyOfChecked({-0.45, -0.45, level_m - 0.45}), hi = coder.keyOfChecked({0.45, 0.45, level_m + 0.45});
+    const std::vector<Key16> layer = detail::surfaceVoxels(coder, level, lo, hi);
+    EXPECT_EQ(layer.size(), 100U) << level_m;
+    for (const Key16& key : layer) EXPECT_NEAR(coder.centerOf(key).z(), level_m + 0.05, 1e-9) << level_m;
+    EXPECT_TRUE(sorted(detail::surfaceVoxelsBruteForce(coder, level, lo, hi)) == sorted(layer)) << level_m;
+  }
   const Key16 a = coder.keyOfChecked({0.0, 0.0, 0.0}), b = coder.keyOfChecked({1.0, 1.0, 1.0});
   EXPECT_TRUE(detail::surfaceVoxels(coder, scene, b, a).empty());
   EXPECT_TRUE(detail::surfaceVoxels(coder, Scene{}, a, b).empty());
@@ -324,16 +337,16 @@ TEST(evalGroundTruth3d, HierarchicalSurfaceVoxelsEqualTheBruteForce) {
 TEST(evalGroundTruth3d, HierarchicalSurfaceVoxelsOfTheQuayEqualTheBruteForce) {
   const Scene scene = builtinScene("quay3d");
   const KeyCoder<16> coder(0.05);
-  const Key16 lo = coder.keyOfChecked({-4.0, -4.0, -3.4}), hi = coder.keyOfChecked({4.0, 4.0, 2.6});
+  const Key16 lo = coder.keyOfChecked({-4.0, -4.0, -5.9}), hi = coder.keyOfChecked({4.0, 4.0, 0.1});
   const std::vector<Key16> brute = detail::surfaceVoxelsBruteForce(coder, scene, lo, hi);
   EXPECT_GT(brute.size(), 50000U);
   EXPECT_TRUE(sorted(detail::surfaceVoxels(coder, scene, lo, hi)) == sorted(brute));
 }
 
-/// The quay3d scene's surface voxels in x, y ∈ [−3.5, 3.5] m, z ∈ [−3.3, 2.0] m (below the
+/// The quay3d scene's surface voxels in x, y ∈ [−3.5, 3.5] m, z ∈ [−5.8, −0.5] m (below the
 /// water surface) at 0.1 m.
 std::vector<Key16> quaySurface(const OcTree16& map, const Scene& scene) {
-  const Key16 lo = map.coder().keyOfChecked({-3.5, -3.5, -3.3}), hi = map.coder().keyOfChecked({3.5, 3.5, 2.0});
+  const Key16 lo = map.coder().keyOfChecked({-3.5, -3.5, -5.8}), hi = map.coder().keyOfChecked({3.5, 3.5, -0.5});
   return detail::surfaceVoxelsBruteForce(map.coder(), scene, lo, hi);
 }
 
@@ -346,8 +359,9 @@ TEST(evalGroundTruth3d, PerfectAndErodedMapsOfTheQuay) {
     perfect.updateNode(key, 4.0F);
     eroded.updateNode(key, -2.0F);
   }
-  // Within 3 m of the origin every surface voxel lies inside the mapped box.
+  // Within 3 m of a sensor 2.5 m deep above the origin every surface voxel lies inside the mapped box.
   GroundTruthOptions options;
+  options.sensor_positions_m = {Eigen::Vector3d(0.0, 0.0, -2.5)};
   options.max_range_m = 3.0;
   const GroundTruthReport good = evaluateAgainstScene(perfect, scene, options);
   EXPECT_EQ(good.precision, 1.0);
@@ -365,8 +379,8 @@ TEST(evalGroundTruth3d, PerfectAndErodedMapsOfTheQuay) {
   EXPECT_EQ(bad.surface_voxels_free, bad.surface_voxels);
   EXPECT_EQ(bad.erosion, 1.0);
   EXPECT_EQ(bad.recall, 0.0);
-  // With the Micron's 35° aperture an upright sonar at the origin cannot see the seabed within
-  // 3 m (2.2–2.9 m below it: 47° down and more) but sees the pontoon's side and underside.
+  // With the Micron's 35° aperture an upright sonar there cannot see the seabed within 3 m
+  // (2.2–2.9 m below it: 47° down and more) but sees the pontoon's side and underside.
   options.sensor_orientations = {Eigen::Matrix3d::Identity()};
   options.vertical_aperture_rad = 35.0 * kDegree;
   const GroundTruthReport view = evaluateAgainstScene(eroded, scene, options);

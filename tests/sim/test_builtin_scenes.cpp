@@ -211,6 +211,10 @@ TEST(simBuiltinScenes, Quay3dIsAThreeDimensionalSceneOutsideTheTwoDimensionalLis
   }
   EXPECT_THROW(builtinScene("quay3d", 0.0), ValueError);
   EXPECT_THROW(builtinScene("quay3d", 5.0, std::numbers::pi), ValueError);
+  // The 2D scenes keep their sonar at z = 0; unknown names and bad reaches throw as builtinScene.
+  for (const std::string& name : names) EXPECT_EQ(builtinSceneDepth_m(name, 7.5), 0.0) << name;
+  EXPECT_THROW(builtinSceneDepth_m("pool"), ValueError);
+  EXPECT_THROW(builtinSceneDepth_m("quay3d", -1.0), ValueError);
 }
 
 TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
@@ -226,23 +230,26 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
       EXPECT_EQ(distanceToSurface(scene.primitives[i], Eigen::Vector3d(0.3, 0.2, 0.1) * s),
                 distanceToSurface(narrow.primitives[i], Eigen::Vector3d(0.3, 0.2, 0.1) * s));
     }
-    // Surface 2.5 m above: straight up from the origin.
-    const auto up = firstHit(scene, kOrigin, Eigen::Vector3d::UnitZ(), 10.0 * s);
+    // The vehicle's nominal place: 3 m deep under the origin. The surface, at z = 0 (a depth
+    // sensor's 0), is 3 m straight above it.
+    EXPECT_DOUBLE_EQ(builtinSceneDepth_m("quay3d", r), 3.0 * s);
+    const Eigen::Vector3d vehicle(0.0, 0.0, -3.0 * s);
+    const auto up = firstHit(scene, vehicle, Eigen::Vector3d::UnitZ(), 10.0 * s);
     ASSERT_TRUE(up);
     EXPECT_EQ(up->primitive, 0U);
     EXPECT_EQ(up->reflectivity, 1.0);
-    EXPECT_NEAR(up->surface.range_m, 2.5 * s, 1e-9 * s);
-    // The seabed slopes: −2.0 m under x = −4, −3.0 m under x = +4 (7.1°), seen from above.
+    EXPECT_NEAR(up->surface.range_m, 3.0 * s, 1e-9 * s);
+    // The seabed slopes: −4.5 m under x = −4, −5.5 m under x = +4 (7.1°), seen from above.
     const auto& seabed = std::get<Plane>(scene.primitives[1]);
     EXPECT_NEAR(std::acos(std::abs(seabed.normal.normalized().z())), std::atan(1.0 / 8.0), 1e-12);
-    for (const auto& [x, depth] : {std::pair{-4.0, -2.0}, std::pair{4.0, -3.0}, std::pair{0.0, -2.5}}) {
+    for (const auto& [x, depth] : {std::pair{-4.0, -4.5}, std::pair{4.0, -5.5}, std::pair{0.0, -5.0}}) {
       const auto down = intersectRay(seabed, Eigen::Vector3d(x * s, 1.0 * s, 0.0), -Eigen::Vector3d::UnitZ());
       ASSERT_TRUE(down) << x;
       EXPECT_NEAR(-down->range_m, depth * s, 1e-9 * s) << x;
     }
     EXPECT_EQ(seabed.reflectivity, 0.5);
-    // A horizontal ray at z = 0 towards +x meets the quay face at 3.5 m.
-    const auto quay = firstHit(scene, kOrigin, Eigen::Vector3d::UnitX(), 10.0 * s);
+    // A horizontal ray from the vehicle towards +x meets the quay face at 3.5 m.
+    const auto quay = firstHit(scene, vehicle, Eigen::Vector3d::UnitX(), 10.0 * s);
     ASSERT_TRUE(quay);
     EXPECT_EQ(quay->primitive, 2U);
     EXPECT_EQ(quay->reflectivity, 0.9);
@@ -250,11 +257,11 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
     // The quay reaches below the seabed and above the surface: a vertical line at its face's
     // foot meets the seabed before the quay's bottom.
     const auto& quay_box = std::get<Box>(scene.primitives[2]);
-    EXPECT_LT(quay_box.center_m.z() - 0.5 * quay_box.size_m.z(), -2.5 * s - 8.5 * s / 8.0);
-    EXPECT_GT(quay_box.center_m.z() + 0.5 * quay_box.size_m.z(), 2.5 * s);
+    EXPECT_LT(quay_box.center_m.z() - 0.5 * quay_box.size_m.z(), -5.0 * s - 8.5 * s / 8.0);
+    EXPECT_GT(quay_box.center_m.z() + 0.5 * quay_box.size_m.z(), 0.0);
     // Piles stand from below the seabed to above the surface: a horizontal ray at any height
     // between them meets the pile at (2, −2.5).
-    for (const double z : {-2.4, -1.0, 0.0, 2.4}) {
+    for (const double z : {-4.9, -3.5, -2.5, -0.1}) {
       const Eigen::Vector3d from(0.0, -2.5 * s, z * s);
       const auto pile = firstHit(scene, from, Eigen::Vector3d::UnitX(), 10.0 * s);
       ASSERT_TRUE(pile) << z;
@@ -265,23 +272,24 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
     for (std::size_t i = 3; i <= 5; ++i) {
       const auto& pile = std::get<Cylinder>(scene.primitives[i]);
       EXPECT_NEAR(pile.radius_m, 0.2 * s, 1e-12);
-      EXPECT_LT(pile.z_min_m, -2.5 * s - pile.center_x_m / 8.0);  // buried
-      EXPECT_GT(pile.z_max_m, 2.5 * s);
+      EXPECT_LT(pile.z_min_m, -5.0 * s - pile.center_x_m / 8.0);  // buried
+      EXPECT_GT(pile.z_max_m, 0.0);
     }
     // The boulder rests on the seabed: straight down from above it meets the boulder's top at
-    // −1.9125 m, and its bottom lies below the seabed everywhere under it.
-    const auto boulder = firstHit(scene, Eigen::Vector3d(-1.5 * s, -1.0 * s, 0.0), -Eigen::Vector3d::UnitZ(), 10.0 * s);
+    // −4.4125 m, and its bottom lies below the seabed everywhere under it.
+    const auto boulder =
+        firstHit(scene, Eigen::Vector3d(-1.5 * s, -1.0 * s, -2.5 * s), -Eigen::Vector3d::UnitZ(), 10.0 * s);
     ASSERT_TRUE(boulder);
     EXPECT_EQ(boulder->primitive, 6U);
     EXPECT_EQ(boulder->reflectivity, 0.7);
-    EXPECT_NEAR(-boulder->surface.range_m, -1.9125 * s, 1e-9 * s);
+    EXPECT_NEAR(-2.5 * s - boulder->surface.range_m, -4.4125 * s, 1e-9 * s);
     const auto& rock = std::get<Box>(scene.primitives[6]);
     EXPECT_NEAR(rock.yaw_rad, 30.0 * kDegree, 1e-12);
     const double rock_bottom_m = rock.center_m.z() - 0.5 * rock.size_m.z();
-    for (const double dx : {-0.5, 0.5}) EXPECT_LT(rock_bottom_m, -2.5 * s - (rock.center_m.x() + dx * s) / 8.0);
-    // The pontoon overhangs: a ray going up from below it meets its underside at z = −0.6 m, the
+    for (const double dx : {-0.5, 0.5}) EXPECT_LT(rock_bottom_m, -5.0 * s - (rock.center_m.x() + dx * s) / 8.0);
+    // The pontoon overhangs: a ray going up from below it meets its underside at z = −3.1 m, the
     // face looking down, with water below.
-    const Eigen::Vector3d below(0.0, 3.0 * s, -1.5 * s);
+    const Eigen::Vector3d below(0.0, 3.0 * s, -4.0 * s);
     const auto underside = firstHit(scene, below, Eigen::Vector3d::UnitZ(), 10.0 * s);
     ASSERT_TRUE(underside);
     EXPECT_EQ(underside->primitive, 7U);
@@ -294,7 +302,7 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
     EXPECT_NEAR(to_seabed->surface.range_m, 1.0 * s, 1e-9 * s);
     // Its top stands out of the water.
     const auto& pontoon = std::get<Box>(scene.primitives[7]);
-    EXPECT_GT(pontoon.center_m.z() + 0.5 * pontoon.size_m.z(), 2.5 * s);
+    EXPECT_GT(pontoon.center_m.z() + 0.5 * pontoon.size_m.z(), 0.0);
     // Everything but the planes and the quay's long block lies within 4.2 m of the origin in plan.
     for (std::size_t i = 3; i < scene.primitives.size(); ++i) {
       if (const auto* pile = std::get_if<Cylinder>(&scene.primitives[i])) {
@@ -318,8 +326,8 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
   writeScene(file, scene);
   const Scene read = readScene(file, "quay3d.scene");
   ASSERT_EQ(read.primitives.size(), scene.primitives.size());
-  for (const Eigen::Vector3d& point : {Eigen::Vector3d(0.3, 2.9, -1.0), Eigen::Vector3d(-1.2, -0.8, -2.0),
-                                       Eigen::Vector3d(3.0, 0.0, -2.5), Eigen::Vector3d(1.9, -2.4, 0.3)}) {
+  for (const Eigen::Vector3d& point : {Eigen::Vector3d(0.3, 2.9, -3.5), Eigen::Vector3d(-1.2, -0.8, -4.5),
+                                       Eigen::Vector3d(3.0, 0.0, -5.0), Eigen::Vector3d(1.9, -2.4, -2.2)}) {
     for (std::size_t i = 0; i < scene.primitives.size(); ++i) {
       EXPECT_NEAR(distanceToSurface(read.primitives[i], point), distanceToSurface(scene.primitives[i], point), 1e-12);
     }
@@ -327,7 +335,7 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
   // As designed at the Micron's 5 m, exactly.
   const Scene micron = builtinScene("quay3d");
   const auto& pontoon = std::get<Box>(micron.primitives[7]);
-  EXPECT_EQ(pontoon.center_m, Eigen::Vector3d(0.0, 3.0, 1.1));
+  EXPECT_EQ(pontoon.center_m, Eigen::Vector3d(0.0, 3.0, -1.4));
   EXPECT_EQ(pontoon.size_m, Eigen::Vector3d(2.5, 1.2, 3.4));
 }
 

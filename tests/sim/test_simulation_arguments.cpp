@@ -35,6 +35,15 @@ TEST(simSimulationArguments, PresetSectorAndTrajectory) {
   EXPECT_NEAR(later.position_ned_m.x(), 0.0, 1e-9);
   args.sector_deg = 360.0;
   EXPECT_NEAR(toSimulationOptions(args).head.sector_width_rad, 2.0 * std::numbers::pi, 1e-15);
+  // The depth: the built-in scene's unless given (quay3d: 3 m at 5 m range, its surface at depth 0).
+  EXPECT_EQ(later.position_ned_m.z(), 0.0);
+  EXPECT_EQ(toSimulationOptions(args, "tank").trajectory(2.0).position_ned_m.z(), 0.0);
+  EXPECT_EQ(toSimulationOptions(args, "quay3d").trajectory(2.0).position_ned_m.z(), 3.0);
+  EXPECT_EQ(toSimulationOptions(args, "my_scene.txt").trajectory(2.0).position_ned_m.z(), 0.0);
+  args.sonar = "seaking-30";
+  EXPECT_NEAR(toSimulationOptions(args, "quay3d").trajectory(2.0).position_ned_m.z(), 18.0, 1e-9);
+  args.depth_m = 1.5;
+  EXPECT_EQ(toSimulationOptions(args, "quay3d").trajectory(2.0).position_ned_m.z(), 1.5);
 }
 
 TEST(simSimulationArguments, BadValuesNameTheOption) {
@@ -49,6 +58,9 @@ TEST(simSimulationArguments, BadValuesNameTheOption) {
   EXPECT_THROW(toSimulationOptions(args), ValueError);
   args = {};
   args.sonar = "sonar-9000";
+  EXPECT_THROW(toSimulationOptions(args), ValueError);
+  args = {};
+  args.depth_m = INFINITY;
   EXPECT_THROW(toSimulationOptions(args), ValueError);
 }
 

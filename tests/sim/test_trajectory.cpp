@@ -304,14 +304,14 @@ double peakRange(const Beam& beam, double from_m, double to_m) {
 }
 
 TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
-  // A rectangle loop at 0.5 m depth with the sonar tilted 25° down (how an AUV maps the seabed
+  // A rectangle loop at 3 m depth (2 m above the seabed) with the sonar tilted 25° down (how an AUV maps the seabed
   // with an MSIS), its first side heading south, up the seabed's slope.
   LoopPattern loop;
   loop.center_ne_m = {0.0, 1.0};
   loop.heading_rad = kPi;
   loop.length_m = 3.0;
   loop.width_m = 2.0;
-  loop.depths_m = {0.5};
+  loop.depths_m = {3.0};
   const std::vector<NavSample> points = loopWaypoints(loop);
   MsisSimulationOptions options;
   options.turns = 2;
@@ -327,11 +327,11 @@ TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
     EXPECT_TRUE(fix.position_ned_m.isApprox(expected(fix.time_s).position_ned_m, 1e-12) ||
                 (fix.position_ned_m - expected(fix.time_s).position_ned_m).norm() < 1e-12);
   }
-  // The vehicle starts at the loop's corner (1.5, 2) m NED, 0.5 m deep: map (1.5, −2, −0.5),
+  // The vehicle starts at the loop's corner (1.5, 2) m NED, 3 m deep: map (1.5, −2, −3),
   // heading south. The first beam (bearing 0) looks south 25° down and meets the seabed
-  // z = −2.5 − x / 8 where −0.5 − t sin 25° = −2.5 − (1.5 − t cos 25°) / 8: t = 4.08 m.
+  // z = −5 − x / 8 where −3 − t sin 25° = −5 − (1.5 − t cos 25°) / 8: t = 4.08 m.
   const Eigen::Isometry3d pose = sonarToMap(run.nav.front(), options.sonar_to_body);
-  EXPECT_TRUE(pose.translation().isApprox(Eigen::Vector3d(1.5, -2.0, -0.5), 1e-12));
+  EXPECT_TRUE(pose.translation().isApprox(Eigen::Vector3d(1.5, -2.0, -3.0), 1e-12));
   const Beam& first = run.log.beams.front();
   ASSERT_NEAR(first.bearing_rad, 0.0, 1e-9);
   const Eigen::Vector3d down_south = pose.linear() * Eigen::Vector3d::UnitX();

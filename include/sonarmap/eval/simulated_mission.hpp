@@ -8,11 +8,13 @@
 /// Missions, at the preset's scale s = range / 5 m (NED, metres; navigation.hpp), at 0.2 · s m/s
 /// with turns in place at 0.5 rad/s (trajectory.hpp):
 ///  - `lawnmower`: three 4 s m legs northwards and back, 1.5 s m apart, centred on the origin, at
-///    0.5 s m and then 1.0 s m depth (two depths: the wide beam sees each surface from two
+///    3.0 s m and then 3.5 s m depth (two depths: the wide beam sees each surface from two
 ///    heights); the sonar upright (its scan plane level).
-///  - `tilted-loop`: a 4 s × 3 s m rectangle at 0.5 s m depth with the sonar tilted 25° down
+///  - `tilted-loop`: a 4 s × 3 s m rectangle at 3.0 s m depth with the sonar tilted 25° down
 ///    (how AUVs map the seabed with an MSIS): its scan is a cone opening downwards.
-/// The scene's pontoon (footprint x ∈ [−1.25, 1.25] s, y ∈ [2.4, 3.6] s) stays clear of both.
+/// The depths are below quay3d's water surface (map z = 0, a depth sensor's 0), 1.5–2.5 s m above
+/// its seabed. The scene's pontoon (footprint x ∈ [−1.25, 1.25] s, y ∈ [2.4, 3.6] s) stays clear
+/// of both.
 
 #include <cstdint>
 #include <string>

@@ -61,23 +61,27 @@
 /// At s = 1, in metres:
 ///
 ///  - `quay3d`: a harbour corner made to be mapped in 3D from a vehicle moving around the origin
-///    between 0 and 1 m depth (map z from 0 to −1 m), primitives in this order:
-///     0. the water surface, a horizontal plane at z = +2.5 m; reflectivity 1.0;
-///     1. a sloping seabed: the plane z = −2.5 − x / 8 (through (0, 0, −2.5), normal ∝ (1, 0, 8)),
-///        −2.0 m at x = −4, −3.0 m at x = +4: 7.1° down towards the quay; 0.5 (sand);
-///     2. a quay wall: a solid block x ∈ [3.5, 8.5], y ∈ [−20, 20], z ∈ [−4.0, 3.5] (from below
+///    in plan, between 2.5 and 3.5 m depth (map z from −2.5 to −3.5 m), primitives in this order:
+///     0. the water surface, a horizontal plane at z = 0, where a depth sensor reads 0 (the
+///        navigation's depth is the map's −z, nedToMap); reflectivity 1.0;
+///     1. a sloping seabed: the plane z = −5 − x / 8 (through (0, 0, −5), normal ∝ (1, 0, 8)),
+///        −4.5 m at x = −4, −5.5 m at x = +4: 7.1° down towards the quay; 0.5 (sand);
+///     2. a quay wall: a solid block x ∈ [3.5, 8.5], y ∈ [−20, 20], z ∈ [−6.5, 1.0] (from below
 ///        the seabed to 1 m above the surface), its face along y at x = 3.5 m; 0.9 (concrete);
 ///     3–5. three piles, cylinders of radius 0.2 m at (x, y) = (2.0, −2.5), (2.0, 2.5) and
-///        (−3.0, −2.5), each from 0.3 m below the seabed under its axis to z = 3.5 m; 0.85;
+///        (−3.0, −2.5), each from 0.3 m below the seabed under its axis to z = 1.0 m; 0.85;
 ///     6. a boulder: a 0.8 × 0.6 × 0.5 m box yawed 30°, centred at (−1.5, −1.0), its bottom 0.1 m
-///        below the seabed under its centre (z ∈ [−2.4125, −1.9125]), so it rests on the slope
+///        below the seabed under its centre (z ∈ [−4.9125, −4.4125]), so it rests on the slope
 ///        without a gap; 0.7 (rock);
 ///     7. a floating pontoon (caisson) with an overhanging face: a box x ∈ [−1.25, 1.25],
-///        y ∈ [2.4, 3.6], z ∈ [−0.6, 2.8] (its top 0.3 m above the surface), whose underside, the
-///        face z = −0.6 m seen from below, overhangs 1.7–2.1 m of water above the seabed; 0.9.
-///    A vehicle at z ∈ [−1, 0] must keep clear of the pontoon's footprint at z above −0.6 m.
+///        y ∈ [2.4, 3.6], z ∈ [−3.1, 0.3] (its top 0.3 m above the surface), whose underside, the
+///        face z = −3.1 m seen from below, overhangs 1.7–2.1 m of water above the seabed; 0.9.
+///    A vehicle at z ∈ [−3.5, −2.5] must keep clear of the pontoon's footprint at z above −3.1 m.
 ///    Everything lies within 4.2 m of the origin in plan except the quay's long block and the
-///    planes; a horizontal ray from the origin towards +x meets the quay face at 3.5 m.
+///    planes; a horizontal ray at z = −3 m from (0, 0) towards +x meets the quay face at 3.5 m.
+///    Unlike the 2D scenes (whose sonar sits at z = 0 for the 2D map), the 3D scene puts its water
+///    surface where the navigation's depth 0 is, as a real depth sensor does (MapperOptions::
+///    water_surface_depth_m).
 
 #include <numbers>
 #include <string>
@@ -108,5 +112,11 @@ std::vector<std::string> builtinScene3dNames();
 ///         argument when reach_m or vertical_beam_width_rad is out of range or not finite.
 Scene builtinScene(std::string_view name, double reach_m = kBuiltinSceneReach_m,
                    double vertical_beam_width_rad = kBuiltinSceneVerticalBeamWidth_rad);
+
+/// The depth a vehicle sits at in the built-in scene `name` built for `reach_m` (metres, > 0), when
+/// nothing else says: 0 (the sonar at z = 0) in the 2D scenes, 3 s m in `quay3d` (below its surface
+/// at z = 0, 2 s m above its seabed at the origin). Metres, NED down.
+/// @throws ValueError as builtinScene for an unknown name or a reach that is not > 0.
+double builtinSceneDepth_m(std::string_view name, double reach_m = kBuiltinSceneReach_m);
 
 }  // namespace sonarmap

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "sonarmap/sim/msis_simulator.hpp"
@@ -25,6 +26,10 @@ struct SimulationArguments {
   /// mission's path with one, where 0 means defaultMissionSpeed_mps(the head's range) (missions.hpp).
   double speed_mps = 0.0;
   double heading_deg = 0.0;        ///< vehicle heading, degrees clockwise from north (NED yaw); unused with a mission
+  /// Vehicle depth without a mission, metres below the NED origin (the water surface in the 3D
+  /// scenes); NaN: the scene's nominal depth (builtinSceneDepth_m: 0 but for the 3D scenes). Unused
+  /// with a mission.
+  double depth_m = std::numeric_limits<double>::quiet_NaN();
   double nav_rate_hz = 10.0;       ///< navigation fixes per second, ≥ 0; 0: no navigation track
   /// A named mission (missionNames(), missions.hpp) flown in its scene; empty: the constant-velocity
   /// line of speed_mps and heading_deg from the origin.
@@ -40,7 +45,8 @@ struct SimulationArguments {
 /// The simulation options of the arguments: the preset's head and echo model, the sector, the
 /// trajectory, the dead-reckoning errors (options.dead_reckoning, degrees turned into radians,
 /// seeded with args.seed; its stream differs from the sonar's, dead_reckoning.hpp).
-/// Trajectory: without a mission, a constant-velocity line from the NED origin along the heading,
+/// Trajectory: without a mission, a constant-velocity line at args.depth_m (NaN: the nominal depth
+/// of the built-in scene `scene`, 0 for any other name) from above the NED origin along the heading,
 /// for args.turns turns. With a mission, its waypoints (missionPlan for the head's range at
 /// speed_mps or the default mission speed, args.laps laps) and as many turns as the head needs to
 /// keep scanning until the vehicle has come to the mission's end: turns = ceil((duration + one
@@ -48,8 +54,8 @@ struct SimulationArguments {
 /// ignored.
 /// @throws ValueError naming the option (as its command-line flag) for a value out of range, an
 ///         unknown preset or mission (listing the names), a negative speed with a mission, or laps
-///         other than 1 without one.
-MsisSimulationOptions toSimulationOptions(const SimulationArguments& args);
+///         other than 1 without one, or a depth that is not finite.
+MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const std::string& scene = {});
 
 /// Checks that `scene` is the built-in scene args.mission is drawn for (MissionPlan::scene);
 /// nothing to check without a mission.
