@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -42,6 +43,7 @@ struct Model {
   ObstacleSurface surface = MapperOptions{}.obstacle_surface;
   bool seabed_slope = true;                    ///< MapperOptions::seabed_slope
   bool face_slope = true;                      ///< MapperOptions::face_slope
+  double water_surface_depth_m = MapperOptions{}.water_surface_depth_m;  ///< NaN: unknown
 };
 
 /// Table rows of the mission's recall and erosion per scene primitive.
@@ -136,7 +138,10 @@ int main(int argc, char** argv) {
                           {"volume, beam pattern, level seabed traces", BeamModel::kVolume, ArcEvidence::kBeamPattern,
                            std::nullopt, true, ObstacleSurface::kVertical, false},
                           {"volume, beam pattern, faces square to each beam", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kVertical, true, false}};
+                           std::nullopt, true, ObstacleSurface::kVertical, true, false},
+                          {"volume, beam pattern, water surface unknown", BeamModel::kVolume, ArcEvidence::kBeamPattern,
+                           std::nullopt, true, ObstacleSurface::kVertical, true, true,
+                           std::numeric_limits<double>::quiet_NaN()}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -153,6 +158,7 @@ int main(int argc, char** argv) {
         options.obstacle_surface = model.surface;
         options.seabed_slope = model.seabed_slope;
         options.face_slope = model.face_slope;
+        options.water_surface_depth_m = model.water_surface_depth_m;
         try {
           const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
           const GroundTruthReport& t = a.truth;
@@ -165,7 +171,7 @@ int main(int argc, char** argv) {
                       static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
           if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
               !model.clear_without_obstacle && model.extended_returns && model.surface == MapperOptions{}.obstacle_surface &&
-              model.seabed_slope && model.face_slope) {
+              model.seabed_slope && model.face_slope && model.water_surface_depth_m == MapperOptions{}.water_surface_depth_m) {
             by_surface += recallBySurface(preset, mission, a);
           }
         } catch (const std::exception& error) {

@@ -106,6 +106,10 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "--3d: a vertical face seen at oblique incidence recedes across its beam as the beams beside it "
                  "measure; no: square to each beam at its leading edge: yes | no")
       ->capture_default_str();
+  cmd.add_option("--water-surface-depth", args.water_surface_depth,
+                 "--3d: the water surface's depth in METRES in the navigation's frame (0 when its depth is a depth "
+                 "sensor's), or none: a level head's weak returns nearer than the surface could be are the seabed")
+      ->capture_default_str();
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")
       ->capture_default_str();

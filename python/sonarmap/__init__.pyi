@@ -218,6 +218,7 @@ def map_sonar_log(
     extended_returns: bool = ...,
     seabed_slope: bool = ...,
     face_slope: bool = ...,
+    water_surface_depth: Optional[float] = ...,
     threads: int = ...,
 ) -> OccupancyMap: ...
 def read_nav_csv(path: PathLike) -> Float64Array: ...
@@ -320,6 +321,7 @@ def simulate(
     dvl_scale_error: float = 0.0,
     heading_bias_deg: float = 0.0,
     gyro_walk: float = 0.0,
+    depth: Optional[float] = None,
 ) -> Simulation: ...
 def mission_plan_names() -> list[str]: ...
 def eval_trajectory(

@@ -62,7 +62,7 @@ std::vector<std::string> mappingArgumentNames() {
           "aggregation",      "max_range",        "beam_width",       "range_tolerance",  "max_voxel_updates",
           "hit_probability",  "volume",           "vertical_aperture", "free_aperture",   "clear_without_obstacle",
           "arc_evidence",     "threads",          "max_near_field",   "extended_returns", "obstacle_surface",
-          "seabed_slope",     "face_slope"};
+          "seabed_slope",     "face_slope",       "water_surface_depth"};
 }
 
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra) {
@@ -105,6 +105,7 @@ MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<st
     else if (name == "extended_returns") args.extended_returns = flag(value, name);
     else if (name == "seabed_slope") args.seabed_slope = flag(value, name);
     else if (name == "face_slope") args.face_slope = flag(value, name);
+    else if (name == "water_surface_depth") args.water_surface_depth = value.is_none() ? "none" : exactText(number(value, name));
     else if (name == "clear_without_obstacle") {
       if (value.is_none()) args.clear_without_obstacle = "auto";
       else if (py::isinstance<py::bool_>(value)) args.clear_without_obstacle = value.cast<bool>() ? "yes" : "no";
@@ -248,7 +249,8 @@ smoothing_range (m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m),
 max_range (m), format (whose nominal beam to assume; default the log's), beam_width (deg; default the
 sonar's), range_tolerance (m), max_voxel_updates, hit_probability, volume (bool, the CLI's --3d),
 vertical_aperture (deg), free_aperture (deg), clear_without_obstacle (bool/None), arc_evidence, obstacle_surface,
-extended_returns (bool), seabed_slope (bool), face_slope (bool), threads.
+extended_returns (bool), seabed_slope (bool), face_slope (bool), water_surface_depth (m in the
+navigation's NED frame, default 0: a depth sensor's; None: unknown), threads.
 Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.

@@ -40,14 +40,23 @@ struct TraceEdge {
   bool seabed;           ///< the most downward edge, pointing down (else the most upward, pointing up)
 };
 
-/// The edges a beam's trace can start from: none when its aperture points both up and down.
-std::optional<TraceEdge> traceEdge(const PlannedBeam& beam, double half_aperture_rad) {
+/// The edges a beam's trace can start from: none when its aperture points both up and down, unless
+/// `below_surface_margin_m` is set (appendLevelTrace): then the lower edge when the trace's onset
+/// lies nearer, by more than the margin, than where the known water surface enters the upper edge.
+std::optional<TraceEdge> traceEdge(const PlannedBeam& beam, double half_aperture_rad,
+                                   std::optional<double> below_surface_margin_m = std::nullopt) {
   const Eigen::RowVector3d up = beam.sonar_to_map.linear().row(2);
   auto vertical = [&](double elevation_rad) { return up.dot(direction(beam.bearing_rad, elevation_rad)); };
   const double low = vertical(-half_aperture_rad), high = vertical(half_aperture_rad);
-  if (std::max(low, high) < 0.0) return TraceEdge{low <= high ? -half_aperture_rad : half_aperture_rad, true};
-  if (std::min(low, high) > 0.0) return TraceEdge{low > high ? -half_aperture_rad : half_aperture_rad, false};
-  return std::nullopt;  // a level head: the seabed's onset or the surface's, it cannot tell
+  const double lower_rad = low <= high ? -half_aperture_rad : half_aperture_rad;
+  if (std::max(low, high) < 0.0) return TraceEdge{lower_rad, true};
+  if (std::min(low, high) > 0.0) return TraceEdge{-lower_rad, false};
+  // A level head: the seabed's onset or the surface's. Only a known surface tells them apart.
+  const double above_m = beam.surface_z_m - beam.sonar_to_map.translation().z();
+  if (!below_surface_margin_m || !(above_m > 0.0)) return std::nullopt;  // NaN: unknown surface
+  const double surface_onset_m = above_m / std::max(low, high);
+  if (beam.trace_onset_m < surface_onset_m - *below_surface_margin_m) return TraceEdge{lower_rad, true};
+  return std::nullopt;
 }
 
 }  // namespace
@@ -75,7 +84,7 @@ void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double vo
                       std::vector<HitPoint>& hits) {
   const double half_aperture_rad = 0.5 * shape.vertical_aperture_rad;
   if (!(half_aperture_rad > 0.0) || !(beam.trace_onset_m <= beam.trace_end_m)) return;
-  const std::optional<TraceEdge> edge = traceEdge(beam, half_aperture_rad);
+  const std::optional<TraceEdge> edge = traceEdge(beam, half_aperture_rad, voxel_m);
   if (!edge) return;
   // The surface: the plane through the onset point on the edge with the trace's normal (level
   // unless the seabed's slope was measured), `level_m` from the sonar along that normal.

@@ -82,6 +82,7 @@ void MapperOptions::validate() const {
   if (!(max_voxel_updates > 0.0)) {
     throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));
   }
+  if (std::isinf(water_surface_depth_m)) throw ValueError("the water surface's depth must be finite or NaN (unknown)");
   if (threads == 0) throw ValueError("the mapper needs at least one thread");
   smoothing.validate();
   detector.validate();

@@ -39,6 +39,19 @@ void requireWithin(double value, double lo, double hi, bool open_lo, bool open_h
   if (!ok) throw ValueError(std::string(option) + " expects " + what + ", got " + formatted(value));
 }
 
+/// --water-surface-depth: metres of either sign, or "none" as NaN (unknown). @throws ValueError (usage) otherwise.
+double surfaceDepth_m(const std::string& text) {
+  if (text == "none") return std::numeric_limits<double>::quiet_NaN();
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, error] = std::from_chars(text.data(), end, value);
+  if (error != std::errc{} || ptr != end || !std::isfinite(value)) {
+    throw ValueError("--water-surface-depth expects metres (the surface's depth in the navigation, 0 with a depth "
+                     "sensor) or none, got '" + text + "'");
+  }
+  return value;
+}
+
 }  // namespace
 
 double parseOptionNumber(const std::string& text, const char* option, const char* unit, bool zero_allowed) {
@@ -132,6 +145,7 @@ MapperOptions toMapperOptions(const MappingArguments& args) {
   options.extended_returns = args.extended_returns;
   options.seabed_slope = args.seabed_slope;
   options.face_slope = args.face_slope;
+  options.water_surface_depth_m = surfaceDepth_m(args.water_surface_depth);
   if (const std::optional<double> free_deg = autoOr(args.free_aperture, "--free-aperture", "degrees", false)) {
     requireWithin(*free_deg, 0.0, args.vertical_aperture_deg, true, false, "--free-aperture",
                   "degrees in (0, the vertical aperture]");

@@ -285,6 +285,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       beam.hit_end_m = detection.hasExtendedReturn() ? std::min(detection.extended_end_m, recorded_m) : recorded_m;
       if (detection.echo_end_m >= detection.range_m) beam.hit_end_m = std::min(beam.hit_end_m, detection.echo_end_m);
     }
+    beam.surface_z_m = -options_.water_surface_depth_m;  // nedToMap: the map's z is −depth
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);

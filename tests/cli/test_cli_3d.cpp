@@ -121,6 +121,52 @@ TEST_F(cli3d, SidePngWithoutThe3dModelIsAUsageError) {
   EXPECT_NE(help.out.find("--side-png"), std::string::npos);
 }
 
+// A level head 4 m deep in quay3d (1 m over its seabed, the surface 4 m above): with the water
+// surface at the navigation's depth 0 (the default) its weak returns nearer than the surface can
+// be are the seabed, and the map reaches down towards it; with the surface unknown they are not
+// placed. A depth that is not metres or none is a usage error.
+TEST_F(cli3d, WaterSurfaceDepthLetsALevelHeadMapTheSeabed) {
+  const fs::path sim = root_ / "sim";
+  ASSERT_EQ(run({"simulate", "quay3d", "-o", sim.string(), "--turns", "3", "--depth", "4"}).exit_code, 0);
+  const std::string beams = (sim / "beams.csv").string(), nav = (sim / "nav.csv").string();
+  const Names base{"map", beams, "--nav", nav, "--3d", "--resolution", "0.1", "-q"};
+  auto mapped = [&](const std::string& depth, const fs::path& bt) {
+    Names args = base;
+    for (const std::string& word : {std::string("--water-surface-depth"), depth, std::string("-o"), bt.string()}) {
+      args.push_back(word);
+    }
+    const ProgramRun result = run(args);
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    return heightExtent(linesOf(result.out).at(0));
+  };
+  // Occupied voxels of the seabed: 0.6 m or more under the sonar, off the quay and the piles.
+  auto seabed = [](const fs::path& bt) {
+    octomap::OcTree tree(0.1);
+    EXPECT_TRUE(tree.readBinary(bt.string()));
+    std::size_t count = 0;
+    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+      bool near_pile = false;
+      for (const auto& [x, y] : {std::pair{2.0, -2.5}, std::pair{2.0, 2.5}, std::pair{-3.0, -2.5}}) {
+        near_pile = near_pile || std::hypot(it.getX() - x, it.getY() - y) < 0.6;
+      }
+      if (tree.isNodeOccupied(*it) && it.getZ() < -4.6 && it.getX() < 3.0 && !near_pile) ++count;
+    }
+    return count;
+  };
+  mapped("0", out_ / "known.bt");
+  mapped("none", out_ / "unknown.bt");
+  const std::size_t known = seabed(out_ / "known.bt"), unknown = seabed(out_ / "unknown.bt");
+  std::printf("seabed voxels of a level head 4 m deep: %zu with the surface at depth 0, %zu without\n", known, unknown);
+  EXPECT_GT(known, unknown + 50);
+  Names bad = base;
+  for (const char* word : {"--water-surface-depth", "deep", "-o"}) bad.emplace_back(word);
+  bad.push_back((out_ / "bad.bt").string());
+  const ProgramRun result = run(bad);
+  expectError(result, 2);
+  EXPECT_NE(result.err.find("--water-surface-depth"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(out_ / "bad.bt"));
+}
+
 TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
   const fs::path dir = out_ / "demo";
   const ProgramRun result = run({"demo", "-o", dir.string(), "-q"});

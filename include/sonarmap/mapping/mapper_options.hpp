@@ -150,6 +150,16 @@ struct MapperOptions {
   /// the F test asks for a slope and the onsets were seen from many directions), instead of the level
   /// through each onset. With extended_returns.
   bool seabed_slope = true;
+  /// The water surface's depth in the navigation's NED frame, metres: 0 when the navigation's
+  /// depth is a depth sensor's (nedToMap puts it at map z = 0). A level head's cone points both up
+  /// and down, so its weak extended return could be the seabed's or the surface's; knowing where
+  /// the surface is, a return whose onset is nearer than the surface can enter the cone (its height
+  /// above the sonar over the sine of the aperture's upper edge's slope) comes from below: the
+  /// seabed, traced from the aperture's lower edge (appendLevelTrace, sweep_fan.hpp). A sonar at or
+  /// above that level gets no such trace: a static sonar at the map origin (mapSonarLog without
+  /// navigation) keeps none. NaN: unknown (navigation without a depth sensor); finite otherwise.
+  /// With extended_returns.
+  double water_surface_depth_m = 0.0;
   /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).
   ExtendedReturnOptions extended{};
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much

@@ -57,6 +57,9 @@ struct MappingArguments {
   bool extended_returns = true;                 ///< --3d: weak extended returns on their level surface
   bool seabed_slope = true;                     ///< --3d: seabed traces follow the fitted slope
   bool face_slope = true;                       ///< --3d: oblique faces recede across their beams
+  /// --3d: the water surface's depth in the navigation's frame, metres (any sign), or none: unknown
+  /// (MapperOptions::water_surface_depth_m).
+  std::string water_surface_depth = "0";
 };
 
 /// The log format of `input`: `format` (parseLogFormat's names) unless it is "auto", else by the

@@ -50,6 +50,10 @@ struct PlannedBeam {
   /// measured the seabed's slope around the onset (SeabedSlope, seabed_slope.hpp). The trace's
   /// surface is the plane through its onset point with this normal.
   Eigen::Vector3d trace_normal = Eigen::Vector3d::UnitZ();
+  /// The water surface's height, map frame, metres (MapperOptions::water_surface_depth_m); NaN:
+  /// unknown. A level head's weak trace is the seabed's when its onset is nearer than the surface
+  /// can enter the cone (appendLevelTrace).
+  double surface_z_m = std::numeric_limits<double>::quiet_NaN();
   /// The trace is an obstacle's loud return (isLevelReturn), not a weak one: heard before the
   /// aperture's nominal edge, its onset does not lie where that edge meets the surface, so it
   /// neither measures the seabed's slope nor follows it (SonarMapper).
@@ -214,8 +218,11 @@ std::optional<Eigen::Vector3d> seabedOnsetPoint(const PlannedBeam& beam, const B
 /// v the component of the direction along n. A slope drawn level puts the trace off the seabed by
 /// the slope times the horizontal distance from the onset point (7° over 1 m: 0.12 m).
 /// The edge is the aperture's most downward one when that points down (a seabed), its most upward
-/// one when that points up (the water surface); an aperture that points both ways (a level head)
-/// cannot tell the two and gets no trace. A point gets `evidence`'s weight at its elevation (the
+/// one when that points up (the water surface). An aperture that points both ways (a level head)
+/// cannot tell the two from the onset alone: it is traced from its lower edge, as the seabed, only
+/// when the surface's height is known (PlannedBeam::surface_z_m) and the onset is nearer, by more
+/// than a voxel, than where the surface enters the aperture's upper edge (the surface's height
+/// above the sonar over that edge's slope sine); otherwise it gets no trace. A point gets `evidence`'s weight at its elevation (the
 /// two-way pattern, or 1). The planar model (aperture 0) has no traces.
 /// @param voxel_m map resolution, > 0.
 void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double voxel_m, ArcEvidence evidence,
