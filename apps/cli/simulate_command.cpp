@@ -34,7 +34,9 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
 /// @throws ValueError (usage) when `scene` is neither a built-in name nor an existing file.
 void checkScene(const std::string& scene) {
   if (isBuiltinSceneName(scene) || fs::exists(scene)) return;
-  throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(builtinSceneNames(), ", ") +
+  std::vector<std::string> names = builtinSceneNames();
+  for (const std::string& name : builtinScene3dNames()) names.push_back(name);
+  throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(names, ", ") +
                    ") nor a scene file");
 }
 
@@ -134,8 +136,9 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north (not with --mission)")
       ->capture_default_str();
   cmd->add_option("--depth", args.depth_m,
-                  "Vehicle depth in metres below the water surface (not with --mission); default: the built-in "
-                  "scene's (3 m in quay3d at the Micron's range, scaled with the range; 0 elsewhere)");
+                  "Vehicle depth in METRES, NED down from the origin (not with --mission); default: the built-in "
+                  "scene's (3 m in quay3d at the Micron's range, under its water surface at depth 0, scaled with the "
+                  "range; 0 elsewhere)");
   cmd->add_option("--mission", args.mission,
                   "Fly a named mission in its scene, sized for the sonar's range (" + joined(missionNames(), " | ") +
                       "; include/sonarmap/sim/missions.hpp); the head turns until the mission ends, --turns is "

@@ -248,9 +248,9 @@ scene: a built-in scene name (built for the preset's range), a scene file path, 
 sonar: head preset (sonar_preset_names()). turns: full turns (or sector passes), >= 1. seed: of the
 speckle and noise (a seed always gives the same beams). sector: scanned width in degrees, (0, 360].
 sector_center: degrees, counter-clockwise from the sonar's x. speed: m/s along heading (degrees
-clockwise from north). nav_rate: fixes per second (0: none). depth: metres below the water surface
-without a mission; None: the built-in scene's (3 m in quay3d at 5 m range, scaled with the range; 0
-elsewhere).
+clockwise from north). nav_rate: fixes per second (0: none). depth: metres, NED down from the origin,
+without a mission; None: the built-in scene's (3 m in quay3d at 5 m range, under its water surface at
+depth 0, scaled with the range; 0 elsewhere).
 mission: a named mission (mission_plan_names(); scene must then be its built-in scene, by name) flown
 laps times, speed 0 meaning its default speed; turns and heading are then ignored.
 dvl_noise (m/s per axis and fix), dvl_scale_error (fraction), heading_bias_deg (degrees), gyro_walk

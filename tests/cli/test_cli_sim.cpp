@@ -220,7 +220,10 @@ TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
 
 TEST_F(cliSim, UsageErrorsExitTwoAndWriteNothing) {
   const std::string dir = (out_ / "x").string();
-  expectError(run({"simulate", "lake", "-o", dir}), 2);  // neither a built-in scene nor a file
+  const ProgramRun lake = run({"simulate", "lake", "-o", dir});  // neither a built-in scene nor a file
+  expectError(lake, 2);
+  EXPECT_NE(lake.err.find("quay3d"), std::string::npos) << lake.err;  // the 3D scene is listed too
+  expectError(run({"simulate", "quay3d", "-o", dir, "--depth", "inf"}), 2);
   expectError(run({"simulate", "tank", "-o", dir, "--turns", "0"}), 2);
   expectError(run({"simulate", "tank", "-o", dir, "--nav-rate", "-1"}), 2);
   expectError(run({"simulate", "tank", "-o", dir, "--speed", "fast"}), 2);

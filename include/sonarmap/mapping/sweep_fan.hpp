@@ -222,8 +222,9 @@ std::optional<Eigen::Vector3d> seabedOnsetPoint(const PlannedBeam& beam, const B
 /// cannot tell the two from the onset alone: it is traced from its lower edge, as the seabed, only
 /// when the surface's height is known (PlannedBeam::surface_z_m) and the onset is nearer, by more
 /// than a voxel, than where the surface enters the aperture's upper edge (the surface's height
-/// above the sonar over that edge's slope sine); otherwise it gets no trace. A point gets `evidence`'s weight at its elevation (the
-/// two-way pattern, or 1). The planar model (aperture 0) has no traces.
+/// above the sonar over that edge's slope sine); otherwise it gets no trace. A point gets
+/// `evidence`'s weight at its elevation (the two-way pattern, or 1). The planar model (aperture 0)
+/// has no traces.
 /// @param voxel_m map resolution, > 0.
 void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double voxel_m, ArcEvidence evidence,
                       std::vector<HitPoint>& hits);
