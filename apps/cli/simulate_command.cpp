@@ -34,9 +34,7 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
 /// @throws ValueError (usage) when `scene` is neither a built-in name nor an existing file.
 void checkScene(const std::string& scene) {
   if (isBuiltinSceneName(scene) || fs::exists(scene)) return;
-  std::vector<std::string> names = builtinSceneNames();
-  for (const std::string& name : builtinScene3dNames()) names.push_back(name);
-  throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(names, ", ") +
+  throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(allBuiltinSceneNames(), ", ") +
                    ") nor a scene file");
 }
 
@@ -111,7 +109,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "DIR/nav.csv (the navigation the vehicle believes), DIR/truth_nav.csv (the true track), "
                   "DIR/scene.txt");
   cmd->add_option("scene", args.scene,
-                  "Built-in scene (" + joined(builtinSceneNames(), " | ") +
+                  "Built-in scene (" + joined(allBuiltinSceneNames(), " | ") +
                       "), sized for the sonar's range, or a scene file in metres (format: "
                       "include/sonarmap/sim/scene_file.hpp)")
       ->required();

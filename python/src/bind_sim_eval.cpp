@@ -167,11 +167,7 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
       R"doc(A built-in scene ("tank", "harbour", "hull", "soft", "open-water", 3D: "quay3d") built for a head of
 range scale reach_m (metres) and vertical beam width (degrees). Raises sonarmap.ValueError listing
 the names for an unknown one.)doc");
-  m.def("builtin_scene_names", [] {
-    std::vector<std::string> names = builtinSceneNames();
-    for (const std::string& name : builtinScene3dNames()) names.push_back(name);
-    return names;
-  }, "Names builtin_scene and simulate accept.");
+  m.def("builtin_scene_names", &allBuiltinSceneNames, "Names builtin_scene and simulate accept.");
   m.def("sonar_preset_names", &sonarPresetNames, "Head presets simulate accepts (its sonar= argument).");
   m.def(
       "read_scene", [](const std::filesystem::path& path) { return readScene(path.string()); }, py::arg("path"),

@@ -28,13 +28,13 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
+}  // namespace
+
 std::vector<std::string> allBuiltinSceneNames() {
   std::vector<std::string> names = builtinSceneNames();
   for (const std::string& name : builtinScene3dNames()) names.push_back(name);
   return names;
 }
-
-}  // namespace
 
 MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const std::string& scene) {
   if (args.turns < 1) throw ValueError("--turns must be at least 1");
@@ -58,8 +58,8 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const
     NavSample start;
     start.yaw_rad = args.heading_deg * kRadPerDeg;
     if (std::isinf(args.depth_m)) throw ValueError("--depth must be finite");
-    start.position_ned_m.z() = std::isnan(args.depth_m) ? (isBuiltinSceneName(scene) ? builtinSceneDepth_m(scene, options.head.range_m) : 0.0)
-                                                        : args.depth_m;
+    const double scene_depth_m = isBuiltinSceneName(scene) ? builtinSceneDepth_m(scene, options.head.range_m) : 0.0;
+    start.position_ned_m.z() = std::isnan(args.depth_m) ? scene_depth_m : args.depth_m;
     const Eigen::Vector3d velocity_ned_mps(args.speed_mps * std::cos(start.yaw_rad),
                                            args.speed_mps * std::sin(start.yaw_rad), 0.0);
     options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene.hpp"
@@ -62,6 +63,9 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const
 /// @throws ValueError naming the mission and the scene it needs, for another scene (a scene file
 ///         included), or an unknown mission.
 void checkMissionScene(const SimulationArguments& args, const std::string& scene);
+
+/// builtinSceneNames() followed by builtinScene3dNames(): every name sceneOf builds.
+std::vector<std::string> allBuiltinSceneNames();
 
 /// True when `name` is one of builtinSceneNames() or builtinScene3dNames().
 bool isBuiltinSceneName(const std::string& name);
