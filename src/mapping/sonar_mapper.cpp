@@ -25,6 +25,14 @@ namespace {
 /// The map's resolution until the first sweep fixes an automatic one (the map is empty until then).
 constexpr double kUnresolvedResolution_m = 0.02;
 
+/// Where an obstacle's loud echo ends, metres: where it falls back (BeamDetection::echo_end_m),
+/// within its lit run; the run's end when that was not measured. A level surface's loud echo lasts
+/// longer than a face's; a face's loud echo followed by a weak seabed at its foot does not.
+double loudEnd_m(const BeamDetection& detection) {
+  if (!(detection.echo_end_m >= detection.range_m)) return detection.extended_end_m;
+  return std::min(detection.echo_end_m, detection.extended_end_m);
+}
+
 const MapperOptions& validated(const MapperOptions& options) {
   options.validate();
   return options;
@@ -290,7 +298,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
     } else if (hit && options_.beam_model == BeamModel::kVolume && detection.hasExtendedReturn() &&
-               isLevelReturn(beam, shape, detection.extended_onset_m, detection.extended_end_m, beam_tolerance_m)) {
+               isLevelReturn(beam, shape, detection.extended_onset_m, loudEnd_m(detection), beam_tolerance_m)) {
       // An obstacle whose echo lasts longer than a face's: a level surface entering the cone.
       beam.hit = false;
       beam.loud_trace = true;

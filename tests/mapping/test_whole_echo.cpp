@@ -28,6 +28,7 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 const BeamShape kMicron{3.0 * kDegree, 35.0 * kDegree};
 
+using testing::makeFullTurnSweep;
 using testing::tiltedPose;
 
 PlannedBeam tracedBeam(const Eigen::Isometry3d& pose, double bearing_rad, double onset_m, double end_m) {
@@ -283,6 +284,35 @@ TEST(mappingWholeEcho, ALongReturnOfADownwardConeIsLevelAndAShortOneAFace) {
   EXPECT_FALSE(isLevelReturn(sideways, kMicron, 3.0, 10.0, 0.02));
   const PlannedBeam level{Eigen::Isometry3d::Identity(), 0.0, 2.9, 3.0, true};
   EXPECT_FALSE(isLevelReturn(level, kMicron, 3.0, 10.0, 0.02));
+}
+
+// A face's loud echo can go on into a weak seabed at its foot, a lit run longer than any face's.
+// Whether the obstacle is a level surface is decided on its loud echo alone, up to where it falls
+// back (BeamDetection::echo_end_m): a head tilted 25° (steepest ray 42.5° down) with an echo from
+// 2.2 m that falls back at 2.8 m (a face reaches 2.2 / cos 42.5° ≈ 2.98 m) keeps its obstacle,
+// whatever the lit run behind it; one whose loud echo lasts to 3.6 m is traced as level.
+TEST(mappingWholeEcho, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
+  PolarImage polar = makeFullTurnSweep(1, 200, 0.025);
+  const Eigen::Isometry3d down = tiltedPose(Eigen::Vector3d::Zero(), 0.0, 25.0 * kDegree, 0.0);
+  BeamDetection echo{88, 200, 2.2};
+  echo.water_range_m = 2.2;
+  echo.echo_onset_m = 2.2;
+  echo.extended_onset_m = 2.2;
+  echo.extended_end_m = 3.6;  // the lit run: the face, then the seabed at its foot
+  auto mapped = [&](double loud_end_m) {
+    echo.echo_end_m = loud_end_m;
+    SonarMapper mapper(volume(true));
+    mapper.integrateSweep(polar, {echo}, down);
+    return mapper.stats();
+  };
+  const MappingStats face = mapped(2.8);
+  EXPECT_EQ(face.obstacles, 1U);
+  EXPECT_EQ(face.extended_returns, 0U);
+  const MappingStats level = mapped(3.6);
+  EXPECT_EQ(level.obstacles, 0U);
+  EXPECT_EQ(level.extended_returns, 1U);
+  // Without a measured fall (a detection made by hand) the lit run decides, as before.
+  EXPECT_EQ(mapped(std::numeric_limits<double>::quiet_NaN()).extended_returns, 1U);
 }
 
 // The Ping360 hears a seabed 20 m under its head tilted 25° as an obstacle, tens of dB above its
