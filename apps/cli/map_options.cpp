@@ -100,7 +100,8 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
       ->capture_default_str();
   cmd.add_option("--seabed-slope", args.seabed_slope,
                  "--3d: weak seabed returns follow the seabed's slope, fitted to their onsets over the whole run "
-                 "(a robust plane, kept where a test asks for a slope); no: the level through each onset: yes | no")
+                 "(a robust plane, kept where a test asks for a slope), and a loud level return whose onset lies above that "
+                 "seabed stays an obstacle; no: the level through each onset: yes | no")
       ->capture_default_str();
   cmd.add_option("--face-slope", args.face_slope,
                  "--3d: a vertical face seen at oblique incidence recedes across its beam as the beams beside it "

@@ -18,8 +18,7 @@ namespace {
 constexpr double kCriticalF = 4.61;
 /// Triples drawn by the least-median-of-squares search.
 constexpr int kTriples = 300;
-/// Inliers lie within this many robust deviations of the plane (Rousseeuw & Leroy 1987).
-constexpr double kInlierDeviations = 2.5;
+constexpr double kInlierDeviations = SeabedSlope::kInlierDeviations;
 /// The largest mean resultant length of the inliers' look directions (seabed_slope.hpp).
 constexpr double kMaxMeanLook = 0.5;
 /// The steepest ground taken for a seabed met at grazing incidence.
@@ -86,6 +85,22 @@ void SeabedSlope::add(const Eigen::Vector3d& onset_m, const Eigen::Vector2d& loo
   }
   onsets_[next_] = onset;
   next_ = (next_ + 1) % kCapacity;
+}
+
+double SeabedSlope::Fit::heightAbove(const Eigen::Vector3d& point_m) const { return residual(plane, point_m - at_m); }
+
+std::optional<SeabedSlope::Fit> SeabedSlope::fitAround(const Eigen::Vector3d& at_m, double radius_m) const {
+  if (!(radius_m > 0.0) || !at_m.allFinite()) return std::nullopt;
+  std::vector<Eigen::Vector3d> near;  // relative to at_m
+  for (const Onset& onset : onsets_) {
+    const Eigen::Vector3d d = onset.point_m - at_m;
+    if (d.head<2>().squaredNorm() <= radius_m * radius_m) near.push_back(d);
+  }
+  Fit fit{at_m, Eigen::Vector3d::Zero(), 0.0};
+  double median_sq = 0.0;
+  if (near.size() < kMinOnsets || !leastMedianPlane(near, fit.plane, median_sq)) return std::nullopt;
+  fit.deviation_m = 1.4826 * (1.0 + 5.0 / (static_cast<double>(near.size()) - 3.0)) * std::sqrt(median_sq);
+  return fit;
 }
 
 Eigen::Vector3d SeabedSlope::normalAt(const Eigen::Vector3d& at_m, double radius_m) const {

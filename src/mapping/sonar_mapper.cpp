@@ -244,6 +244,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
   resolveResolution(polar);
   SweepWork& work = *work_;
   work.beams.clear();
+  work.loud_obstacles.clear();
   const double tolerance_m = work.tolerance_m = rangeTolerance_m(polar);
   const bool clears_without_obstacle = clearsWithoutObstacle(options_);
   const BeamShape shape = beamShape();
@@ -294,12 +295,15 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       if (detection.echo_end_m >= detection.range_m) beam.hit_end_m = std::min(beam.hit_end_m, detection.echo_end_m);
     }
     beam.surface_z_m = -options_.water_surface_depth_m;  // nedToMap: the map's z is −depth
+    std::optional<PlannedBeam> obstacle;  // a loud trace: the obstacle it was detected as
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
     } else if (hit && options_.beam_model == BeamModel::kVolume && detection.hasExtendedReturn() &&
                isLevelReturn(beam, shape, detection.extended_onset_m, loudEnd_m(detection), beam_tolerance_m)) {
-      // An obstacle whose echo lasts longer than a face's: a level surface entering the cone.
+      // An obstacle whose echo lasts longer than a face's: a level surface entering the cone,
+      // unless the seabed measured so far lies well below it (placeSeabedTraces).
+      obstacle = beam;
       beam.hit = false;
       beam.loud_trace = true;
       beam.trace_onset_m = beam.water_range_m = std::min(detection.extended_onset_m, range_m);
@@ -310,6 +314,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
       ++stats_.out_of_map;
       continue;
     }
+    if (obstacle) work.loud_obstacles.emplace_back(work.beams.size(), *obstacle);
     work.beams.push_back(beam);
     ++stats_.beams_used;
     if (beam.traced()) ++stats_.extended_returns;

@@ -84,9 +84,45 @@ void SonarMapper::placeSeabedTraces() {
       traces.push_back(&beam);
     }
   }
-  if (traces.empty()) return;
-  const Eigen::Vector3d normal = work.seabed.normalAt(centre_m / static_cast<double>(traces.size()), 2.0 * reach_m);
-  for (PlannedBeam* beam : traces) beam->trace_normal = normal;
+  if (!traces.empty()) {
+    const Eigen::Vector3d normal = work.seabed.normalAt(centre_m / static_cast<double>(traces.size()), 2.0 * reach_m);
+    for (PlannedBeam* beam : traces) beam->trace_normal = normal;
+  }
+  checkLoudTraces();
+}
+
+void SonarMapper::checkLoudTraces() {
+  // A loud trace is drawn on the level through its onset on the aperture's edge. A face whose
+  // loud echo outlasts the nominal cone's (a loud face is heard beyond the −3 dB edge) would draw
+  // that floor in the water before the face, above the seabed the weak onsets measure; such a
+  // beam stays the obstacle it was detected as: where its onset lies above the seabed fitted
+  // around the sweep's loud onsets (seabed_slope.hpp) by more than the fit's inlier band plus the
+  // sweep's range tolerance.
+  SweepWork& work = *work_;
+  if (work.loud_obstacles.empty()) return;
+  const BeamShape shape = beamShape();
+  std::vector<std::optional<Eigen::Vector3d>> onsets;
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();
+  double reach_m = 0.0;
+  std::size_t count = 0;
+  for (const auto& [index, obstacle] : work.loud_obstacles) {
+    const PlannedBeam& beam = work.beams[index];
+    onsets.push_back(seabedOnsetPoint(beam, shape));
+    if (!onsets.back()) continue;
+    centre_m += *onsets.back();
+    reach_m = std::max(reach_m, beam.trace_end_m);
+    ++count;
+  }
+  if (count == 0) return;
+  const std::optional<SeabedSlope::Fit> seabed = work.seabed.fitAround(centre_m / static_cast<double>(count), 2.0 * reach_m);
+  if (!seabed) return;
+  const double band_m = SeabedSlope::kInlierDeviations * seabed->deviation_m + work.tolerance_m;
+  for (std::size_t i = 0; i < onsets.size(); ++i) {
+    if (!onsets[i] || !(seabed->heightAbove(*onsets[i]) > band_m)) continue;
+    work.beams[work.loud_obstacles[i].first] = work.loud_obstacles[i].second;
+    --stats_.extended_returns;
+    ++stats_.obstacles;
+  }
 }
 
 BeamShape SonarMapper::beamShape() const {

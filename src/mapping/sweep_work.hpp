@@ -3,7 +3,9 @@
 /// The sweep's plan and cells that SonarMapper keeps from sweep to sweep (private to src/mapping:
 /// sonar_mapper.cpp integrates them, sweep_plan.cpp plans them).
 
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sonarmap/mapping/seabed_slope.hpp"
@@ -33,6 +35,10 @@ struct SonarMapper::SweepWork {
   std::vector<std::uint64_t> occupied_keys;  ///< mortonCode() of each, sorted, unique
   std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
   SeabedSlope seabed;  ///< the volume model: the onsets of every seabed trace so far (placeSeabedTraces)
+  /// The sweep's loud traces (PlannedBeam::loud_trace): their index in `beams`, and each as the
+  /// obstacle it was detected as, which it becomes again where the seabed lies well below its
+  /// trace (placeSeabedTraces).
+  std::vector<std::pair<std::size_t, PlannedBeam>> loud_obstacles;
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays
 };

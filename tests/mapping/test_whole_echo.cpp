@@ -315,6 +315,51 @@ TEST(mappingWholeEcho, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
   EXPECT_EQ(mapped(std::numeric_limits<double>::quiet_NaN()).extended_returns, 1U);
 }
 
+// A loud face can outlast the nominal cone's face bound too (it is heard beyond the −3 dB edge),
+// and is then called level. The seabed that the sweep's weak returns measure tells it apart: a
+// head tilted 25°, 2.4 m over a flat seabed; 39 beams within ±20° of its tilt hear the seabed
+// weakly from where it enters the lower edge; one hears it loud from there (traced: its onset lies
+// on the seabed) and one hears a face from 2.2 m whose loud echo lasts to 3.6 m, longer than the
+// face bound 2.2 / cos 42.5° ≈ 2.98 m, but whose onset on the edge lies 0.9 m over the seabed:
+// it stays an obstacle. Without the seabed's onsets (seabed_slope off) both loud beams are traced.
+TEST(mappingWholeEcho, ALoudTraceAboveTheMeasuredSeabedStaysAnObstacle) {
+  const Eigen::Isometry3d down = tiltedPose(Eigen::Vector3d::Zero(), 0.0, 25.0 * kDegree, 0.0);
+  PolarImage polar = makeFullTurnSweep(41, 200, 0.025);
+  std::vector<BeamDetection> detections(41);
+  for (int i = 0; i < 41; ++i) {
+    polar.bearing_rad[i] = std::remainder((i - 20) * kDegree, 2.0 * std::numbers::pi);
+    if (polar.bearing_rad[i] < 0.0) polar.bearing_rad[i] += 2.0 * std::numbers::pi;
+    const Eigen::Vector3d edge = down.linear() * Eigen::Vector3d(std::cos(17.5 * kDegree) * std::cos(polar.bearing_rad[i]),
+                                                                  std::cos(17.5 * kDegree) * std::sin(polar.bearing_rad[i]),
+                                                                  -std::sin(17.5 * kDegree));
+    const double onset_m = 2.4 / -edge.z();  // where the seabed enters the lower edge
+    BeamDetection& beam = detections[static_cast<std::size_t>(i)];
+    beam.water_range_m = 5.0;
+    beam.echo_onset_m = beam.extended_onset_m = onset_m;
+    beam.extended_end_m = 4.9;
+    if (i == 10) {  // the seabed heard loud
+      beam = BeamDetection{static_cast<int>(onset_m / 0.025), 200, onset_m};
+      beam.water_range_m = beam.echo_onset_m = beam.extended_onset_m = onset_m;
+      beam.echo_end_m = beam.extended_end_m = 4.9;
+    }
+    if (i == 20) {  // the face
+      beam = BeamDetection{88, 200, 2.2};
+      beam.water_range_m = beam.echo_onset_m = beam.extended_onset_m = 2.2;
+      beam.echo_end_m = beam.extended_end_m = 3.6;
+    }
+  }
+  MapperOptions options = volume(true);
+  SonarMapper measured(options);
+  measured.integrateSweep(polar, detections, down);
+  EXPECT_EQ(measured.stats().obstacles, 1U);
+  EXPECT_EQ(measured.stats().extended_returns, 40U);
+  options.seabed_slope = false;
+  SonarMapper unmeasured(options);
+  unmeasured.integrateSweep(polar, detections, down);
+  EXPECT_EQ(unmeasured.stats().obstacles, 0U);
+  EXPECT_EQ(unmeasured.stats().extended_returns, 41U);
+}
+
 // The Ping360 hears a seabed 20 m under its head tilted 25° as an obstacle, tens of dB above its
 // noise (sonar_equation.hpp), and the echo goes on to the end of its 50 m. Where the cone points
 // only down and the echo outlasts a face's (bearings within about 30° of the tilt's), that makes it

@@ -148,7 +148,10 @@ struct MapperOptions {
   /// Whether the volume model's weak seabed traces follow the seabed's slope, fitted to the onsets of
   /// every weak seabed return so far (SeabedSlope, seabed_slope.hpp: a robust plane, kept only where
   /// the F test asks for a slope and the onsets were seen from many directions), instead of the level
-  /// through each onset. With extended_returns.
+  /// through each onset. The same onsets check the loud traces (isLevelReturn, sweep_fan.hpp): one
+  /// whose onset lies above the seabed they fit, by more than the fit's inlier band plus the range
+  /// tolerance, stays the obstacle it was detected as (a loud face heard beyond the aperture's edge).
+  /// With extended_returns.
   bool seabed_slope = true;
   /// The water surface's depth in the navigation's NED frame, metres: 0 when the navigation's
   /// depth is a depth sensor's (nedToMap puts it at map z = 0). A level head's cone points both up

@@ -29,6 +29,7 @@
 /// sidescan slant-range correction; Blondel 2009).
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -51,6 +52,22 @@ class SeabedSlope {
   /// or do not ask for a slope. Nothing is thrown.
   Eigen::Vector3d normalAt(const Eigen::Vector3d& at_m, double radius_m) const;
 
+  /// Where the seabed fitted around `at_m` lies (see the file's comment): the least-median-of-squares
+  /// plane of the onsets within `radius_m` horizontally, with the robust deviation of their
+  /// heights about it (Rousseeuw & Leroy 1987). A point's height over the seabed is
+  /// `heightAbove`; a point more than kInlierDeviations deviations above is no seabed.
+  struct Fit {
+    Eigen::Vector3d at_m;     ///< where the plane was fitted, map frame
+    Eigen::Vector3d plane;    ///< z = plane(0) + plane(1) (x − at.x) + plane(2) (y − at.y)
+    double deviation_m = 0;   ///< the robust deviation of the onsets' heights about the plane
+    /// Height of `point_m` over the plane, metres (vertical).
+    double heightAbove(const Eigen::Vector3d& point_m) const;
+  };
+  /// The fit around `at_m`, nullopt where fewer than kMinOnsets onsets lie within `radius_m` or they
+  /// span no plane. Nothing is thrown.
+  std::optional<Fit> fitAround(const Eigen::Vector3d& at_m, double radius_m) const;
+  /// Inliers lie within this many robust deviations of the plane (Rousseeuw & Leroy 1987).
+  static constexpr double kInlierDeviations = 2.5;
   std::size_t size() const { return onsets_.size(); }
 
  private:

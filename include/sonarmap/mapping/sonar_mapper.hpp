@@ -179,6 +179,9 @@ class SonarMapper {
   /// The volume model: adds the seabed onsets of work_->beams to the mission's (SeabedSlope) and
   /// sets each seabed trace's normal from them (PlannedBeam::trace_normal).
   void placeSeabedTraces();
+  /// Turns back into obstacles the sweep's loud traces whose onset lies above the seabed measured
+  /// so far (sweep_plan.cpp).
+  void checkLoudTraces();
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
   void planBeams();
   /// The beams' shape: the width, and the vertical aperture with the volume model (0: planar).
