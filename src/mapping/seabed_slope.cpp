@@ -18,7 +18,6 @@ namespace {
 constexpr double kCriticalF = 4.61;
 /// Triples drawn by the least-median-of-squares search.
 constexpr int kTriples = 300;
-constexpr double kInlierDeviations = SeabedSlope::kInlierDeviations;
 /// The largest mean resultant length of the inliers' look directions (seabed_slope.hpp).
 constexpr double kMaxMeanLook = 0.5;
 /// The steepest ground taken for a seabed met at grazing incidence.
@@ -89,13 +88,20 @@ void SeabedSlope::add(const Eigen::Vector3d& onset_m, const Eigen::Vector2d& loo
 
 double SeabedSlope::Fit::heightAbove(const Eigen::Vector3d& point_m) const { return residual(plane, point_m - at_m); }
 
-std::optional<SeabedSlope::Fit> SeabedSlope::fitAround(const Eigen::Vector3d& at_m, double radius_m) const {
+std::optional<SeabedSlope::Fit> SeabedSlope::robustFit(const Eigen::Vector3d& at_m, double radius_m,
+                                                       std::vector<Eigen::Vector3d>& near,
+                                                       std::vector<Eigen::Vector2d>& looks) const {
+  near.clear();
+  looks.clear();
   if (!(radius_m > 0.0) || !at_m.allFinite()) return std::nullopt;
-  std::vector<Eigen::Vector3d> near;  // relative to at_m
   for (const Onset& onset : onsets_) {
     const Eigen::Vector3d d = onset.point_m - at_m;
-    if (d.head<2>().squaredNorm() <= radius_m * radius_m) near.push_back(d);
+    if (d.head<2>().squaredNorm() > radius_m * radius_m) continue;
+    near.push_back(d);
+    looks.push_back(onset.look);
   }
+  // Onsets of returns that are no seabed (a weak echo of a wall or a pile heard by a beam without
+  // an obstacle) do not pull the least-median plane while they are fewer than half.
   Fit fit{at_m, Eigen::Vector3d::Zero(), 0.0};
   double median_sq = 0.0;
   if (near.size() < kMinOnsets || !leastMedianPlane(near, fit.plane, median_sq)) return std::nullopt;
@@ -103,24 +109,20 @@ std::optional<SeabedSlope::Fit> SeabedSlope::fitAround(const Eigen::Vector3d& at
   return fit;
 }
 
+std::optional<SeabedSlope::Fit> SeabedSlope::fitAround(const Eigen::Vector3d& at_m, double radius_m) const {
+  std::vector<Eigen::Vector3d> near;
+  std::vector<Eigen::Vector2d> looks;
+  return robustFit(at_m, radius_m, near, looks);
+}
+
 Eigen::Vector3d SeabedSlope::normalAt(const Eigen::Vector3d& at_m, double radius_m) const {
   const Eigen::Vector3d level = Eigen::Vector3d::UnitZ();
-  if (!(radius_m > 0.0) || !at_m.allFinite()) return level;
   std::vector<Eigen::Vector3d> near;  // relative to at_m
   std::vector<Eigen::Vector2d> looks;
-  for (const Onset& onset : onsets_) {
-    const Eigen::Vector3d d = onset.point_m - at_m;
-    if (d.head<2>().squaredNorm() > radius_m * radius_m) continue;
-    near.push_back(d);
-    looks.push_back(onset.look);
-  }
-  if (near.size() < kMinOnsets) return level;
-  // Onsets of returns that are no seabed (a weak echo of a wall or a pile heard by a beam without
-  // an obstacle) do not pull the least-median plane while they are fewer than half.
-  Eigen::Vector3d robust;
-  double median_sq = 0.0;
-  if (!leastMedianPlane(near, robust, median_sq)) return level;
-  const double scale_m = 1.4826 * (1.0 + 5.0 / (static_cast<double>(near.size()) - 3.0)) * std::sqrt(median_sq);
+  const std::optional<Fit> robust_fit = robustFit(at_m, radius_m, near, looks);
+  if (!robust_fit) return level;
+  const Eigen::Vector3d& robust = robust_fit->plane;
+  const double scale_m = robust_fit->deviation_m;
   // Least squares over its inliers, against the level through the same points: does the slope
   // explain enough (the F test)?
   std::vector<Eigen::Vector3d> kept;

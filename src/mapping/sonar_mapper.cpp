@@ -302,7 +302,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     } else if (hit && options_.beam_model == BeamModel::kVolume && detection.hasExtendedReturn() &&
                isLevelReturn(beam, shape, detection.extended_onset_m, loudEnd_m(detection), beam_tolerance_m)) {
       // An obstacle whose echo lasts longer than a face's: a level surface entering the cone,
-      // unless the seabed measured so far lies well below it (placeSeabedTraces).
+      // unless the seabed measured so far lies well below it (checkLoudTraces).
       obstacle = beam;
       beam.hit = false;
       beam.loud_trace = true;

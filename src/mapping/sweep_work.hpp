@@ -37,7 +37,7 @@ struct SonarMapper::SweepWork {
   SeabedSlope seabed;  ///< the volume model: the onsets of every seabed trace so far (placeSeabedTraces)
   /// The sweep's loud traces (PlannedBeam::loud_trace): their index in `beams`, and each as the
   /// obstacle it was detected as, which it becomes again where the seabed lies well below its
-  /// trace (placeSeabedTraces).
+  /// trace (checkLoudTraces).
   std::vector<std::pair<std::size_t, PlannedBeam>> loud_obstacles;
   std::vector<PlannedBeam> group;    ///< planBeams: the beams of one group of nearby poses
   std::vector<FreeRay> group_rays;   ///< planBeams: that group's rays

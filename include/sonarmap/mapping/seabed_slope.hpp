@@ -75,6 +75,11 @@ class SeabedSlope {
     Eigen::Vector3d point_m;
     Eigen::Vector2d look;  ///< unit
   };
+  /// The robust fit to the onsets within `radius_m` of `at_m` horizontally (fitAround), and those
+  /// onsets relative to `at_m` with their looks in `near` and `looks` (cleared first).
+  std::optional<Fit> robustFit(const Eigen::Vector3d& at_m, double radius_m, std::vector<Eigen::Vector3d>& near,
+                               std::vector<Eigen::Vector2d>& looks) const;
+
   std::vector<Onset> onsets_;
   std::size_t next_ = 0;  ///< where the next onset goes once full
 };

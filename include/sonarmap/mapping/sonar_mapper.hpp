@@ -177,7 +177,7 @@ class SonarMapper {
   void integratePosedRows(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                           const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row, bool whole_sweep);
   /// The volume model: adds the seabed onsets of work_->beams to the mission's (SeabedSlope) and
-  /// sets each seabed trace's normal from them (PlannedBeam::trace_normal).
+  /// sets each seabed trace's normal from them (PlannedBeam::trace_normal); then checkLoudTraces.
   void placeSeabedTraces();
   /// Turns back into obstacles the sweep's loud traces whose onset lies above the seabed measured
   /// so far (sweep_plan.cpp).
