@@ -25,12 +25,28 @@ namespace {
 /// The map's resolution until the first sweep fixes an automatic one (the map is empty until then).
 constexpr double kUnresolvedResolution_m = 0.02;
 
-/// Where an obstacle's loud echo ends, metres: where it falls back (BeamDetection::echo_end_m),
-/// within its lit run; the run's end when that was not measured. A level surface's loud echo lasts
-/// longer than a face's; a face's loud echo followed by a weak seabed at its foot does not.
-double loudEnd_m(const BeamDetection& detection) {
-  if (!(detection.echo_end_m >= detection.range_m)) return detection.extended_end_m;
-  return std::min(detection.echo_end_m, detection.extended_end_m);
+/// An obstacle's loud return, metres along the beam: where it starts, where its loud echo ends (what
+/// isLevelReturn judges: a level surface's loud echo lasts longer than a face's, a face's loud echo
+/// followed by a weak seabed at its foot does not) and how far its trace reaches.
+struct LoudReturn {
+  double onset_m, loud_end_m, end_m;
+};
+
+/// The lit run that starts with the obstacle's echo (extended_returns.hpp), its loud echo ending where
+/// it falls back (BeamDetection::echo_end_m) or, not measured, with the run. Without a run, when the
+/// whole echo was searched (`searched`): the loud echo alone, from the obstacle's range to where it
+/// falls back: a seabed loud over most of a tilted head's sweep lifts the background the run
+/// detector compares with (on the Ping360's tilted loop at 50 m, 9 in 10 of the obstacle beams where
+/// the seabed enters the lower edge had no run), yet its loud echo outlasts any face. Nothing
+/// without a measured end.
+std::optional<LoudReturn> loudReturn(const BeamDetection& detection, bool searched) {
+  const bool fell_back = detection.echo_end_m >= detection.range_m;
+  if (detection.hasExtendedReturn()) {
+    const double loud_end_m = fell_back ? std::min(detection.echo_end_m, detection.extended_end_m) : detection.extended_end_m;
+    return LoudReturn{detection.extended_onset_m, loud_end_m, detection.extended_end_m};
+  }
+  if (!searched || !fell_back) return std::nullopt;
+  return LoudReturn{detection.range_m, detection.echo_end_m, detection.echo_end_m};
 }
 
 const MapperOptions& validated(const MapperOptions& options) {
@@ -296,18 +312,19 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     }
     beam.surface_z_m = -options_.water_surface_depth_m;  // nedToMap: the map's z is −depth
     std::optional<PlannedBeam> obstacle;  // a loud trace: the obstacle it was detected as
+    const std::optional<LoudReturn> loud =
+        hit && options_.beam_model == BeamModel::kVolume ? loudReturn(detection, options_.extended_returns) : std::nullopt;
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
-    } else if (hit && options_.beam_model == BeamModel::kVolume && detection.hasExtendedReturn() &&
-               isLevelReturn(beam, shape, detection.extended_onset_m, loudEnd_m(detection), beam_tolerance_m)) {
+    } else if (loud && isLevelReturn(beam, shape, loud->onset_m, loud->loud_end_m, beam_tolerance_m)) {
       // An obstacle whose echo lasts longer than a face's: a level surface entering the cone,
       // unless the seabed measured so far lies well below it (checkLoudTraces).
       obstacle = beam;
       beam.hit = false;
       beam.loud_trace = true;
-      beam.trace_onset_m = beam.water_range_m = std::min(detection.extended_onset_m, range_m);
-      beam.trace_end_m = beam.hit_range_m = std::min(detection.extended_end_m, options_.max_range_m);
+      beam.trace_onset_m = beam.water_range_m = std::min(loud->onset_m, range_m);
+      beam.trace_end_m = beam.hit_range_m = std::min(loud->end_m, options_.max_range_m);
       beam.free_range_m = std::max(0.0, std::min(free_range_m, beam.trace_onset_m - tolerance_m));
     }
     if (!beamInsideMap(beam)) {

@@ -290,7 +290,9 @@ TEST(mappingWholeEcho, ALongReturnOfADownwardConeIsLevelAndAShortOneAFace) {
 // Whether the obstacle is a level surface is decided on its loud echo alone, up to where it falls
 // back (BeamDetection::echo_end_m): a head tilted 25° (steepest ray 42.5° down) with an echo from
 // 2.2 m that falls back at 2.8 m (a face reaches 2.2 / cos 42.5° ≈ 2.98 m) keeps its obstacle,
-// whatever the lit run behind it; one whose loud echo lasts to 3.6 m is traced as level.
+// whatever the lit run behind it; one whose loud echo lasts to 3.6 m is traced as level. Without a
+// lit run (a seabed loud over most of the sweep lifts the background the run detector compares
+// with) the loud echo alone decides, when the whole echo was searched.
 TEST(mappingWholeEcho, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
   PolarImage polar = makeFullTurnSweep(1, 200, 0.025);
   const Eigen::Isometry3d down = tiltedPose(Eigen::Vector3d::Zero(), 0.0, 25.0 * kDegree, 0.0);
@@ -299,9 +301,9 @@ TEST(mappingWholeEcho, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
   echo.echo_onset_m = 2.2;
   echo.extended_onset_m = 2.2;
   echo.extended_end_m = 3.6;  // the lit run: the face, then the seabed at its foot
-  auto mapped = [&](double loud_end_m) {
+  auto mapped = [&](double loud_end_m, bool searched = true) {
     echo.echo_end_m = loud_end_m;
-    SonarMapper mapper(volume(true));
+    SonarMapper mapper(volume(searched));
     mapper.integrateSweep(polar, {echo}, down);
     return mapper.stats();
   };
@@ -313,6 +315,12 @@ TEST(mappingWholeEcho, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
   EXPECT_EQ(level.extended_returns, 1U);
   // Without a measured fall (a detection made by hand) the lit run decides, as before.
   EXPECT_EQ(mapped(std::numeric_limits<double>::quiet_NaN()).extended_returns, 1U);
+  echo.extended_onset_m = echo.extended_end_m = std::numeric_limits<double>::quiet_NaN();  // no lit run
+  EXPECT_EQ(mapped(2.8).obstacles, 1U);
+  const MappingStats loud_only = mapped(3.6);
+  EXPECT_EQ(loud_only.obstacles, 0U);
+  EXPECT_EQ(loud_only.extended_returns, 1U);
+  EXPECT_EQ(mapped(3.6, false).obstacles, 1U);  // first returns only: the obstacle, as before
 }
 
 // A loud face can outlast the nominal cone's face bound too (it is heard beyond the −3 dB edge),

@@ -191,7 +191,8 @@ void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, dou
 /// Whether a beam's return from `onset_m` to `end_m` (metres; an obstacle's loud echo: the mapper
 /// gives the start of the lit run that starts with it, BeamDetection::extended_onset_m, and the
 /// nearer of the run's end and where the loud echo falls back, echo_end_m, since a face's loud echo
-/// may go on into a weak seabed at its foot) is a level surface met at the
+/// may go on into a weak seabed at its foot; without a run, the obstacle's range and echo_end_m)
+/// is a level surface met at the
 /// cone's edge rather than a face: the cone points only down or only up (as appendLevelTrace
 /// needs), and the return lasts longer than any vertical face inside the cone could echo, from
 /// its nearest point to onset / cos e, e the slope of the cone's steepest ray, plus `tolerance_m`.
