@@ -109,7 +109,8 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
       ->capture_default_str();
   cmd.add_option("--water-surface-depth", args.water_surface_depth,
                  "--3d: the water surface's depth in METRES in the navigation's frame (0 when its depth is a depth "
-                 "sensor's), or none: a level head's weak returns nearer than the surface could be are the seabed")
+                 "sensor's), or none: a level head's weak returns nearer than the surface could be are the seabed, and an "
+                 "upward cone's echo that starts where the surface enters it is the surface")
       ->capture_default_str();
   cmd.add_option("--arc-evidence", args.arc_evidence,
                  "--3d: how an echo's evidence is shared over its shell: whole | uniform | pattern")

@@ -69,6 +69,12 @@ bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset
   // The steepest ray of the cone (the edge a level surface enters by): a vertical face at
   // horizontal distance d echoes from d / cos e of each ray's slope e, so at most to onset / cos e.
   const double slope_sin = beam.sonar_to_map.linear().row(2).dot(direction(beam.bearing_rad, edge->elevation_rad));
+  if (!edge->seabed) {
+    // The known water surface enters a cone that points up at `above / slope` (its top ray): a
+    // return that starts there is the surface, however soon the beam's range cuts it short.
+    const double above_m = beam.surface_z_m - beam.sonar_to_map.translation().z();
+    if (above_m > 0.0 && std::abs(onset_m - above_m / slope_sin) <= tolerance_m) return true;
+  }
   return end_m > onset_m / std::sqrt(std::max(1e-12, 1.0 - slope_sin * slope_sin)) + tolerance_m;
 }
 

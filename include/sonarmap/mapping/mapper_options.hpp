@@ -160,8 +160,10 @@ struct MapperOptions {
   /// above the sonar over the sine of the aperture's upper edge's slope) comes from below: the
   /// seabed, traced from the aperture's lower edge (appendLevelTrace, sweep_fan.hpp). A sonar at or
   /// above that level gets no such trace: a static sonar at the map origin (mapSonarLog without
-  /// navigation) keeps none. NaN: unknown (navigation without a depth sensor); finite otherwise.
-  /// With extended_returns.
+  /// navigation) keeps none. A cone that points only up meets the surface first on its top ray: an
+  /// obstacle whose echo starts there, within the range tolerance, is the surface, traced on it
+  /// (isLevelReturn, sweep_fan.hpp). NaN: unknown (navigation without a depth sensor); finite
+  /// otherwise. With extended_returns.
   double water_surface_depth_m = 0.0;
   /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).
   ExtendedReturnOptions extended{};

@@ -192,12 +192,15 @@ void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, dou
 /// gives the start of the lit run that starts with it, BeamDetection::extended_onset_m, and the
 /// nearer of the run's end and where the loud echo falls back, echo_end_m, since a face's loud echo
 /// may go on into a weak seabed at its foot; without a run, the obstacle's range and echo_end_m)
-/// is a level surface met at the
-/// cone's edge rather than a face: the cone points only down or only up (as appendLevelTrace
-/// needs), and the return lasts longer than any vertical face inside the cone could echo, from
-/// its nearest point to onset / cos e, e the slope of the cone's steepest ray, plus `tolerance_m`.
-/// A sloping face lies between the two. The beam-volume model traces such a beam instead of
-/// marking its shell. Nothing is thrown.
+/// is a level surface met at the cone's edge rather than a face: the cone points only down or only
+/// up (as appendLevelTrace needs), and the return lasts longer than any vertical face inside the
+/// cone could echo, from its nearest point to onset / cos e, e the slope of the cone's steepest ray,
+/// plus `tolerance_m`. A sloping face lies between the two. A cone that points up under a known
+/// water surface (at map height PlannedBeam::surface_z_m, h metres above the sonar) meets it first
+/// on its top ray, at h / sin e: a return whose onset lies within `tolerance_m` of that range is the surface,
+/// however soon the beam's recorded range cuts it short (a head tilted 25° looking back meets a
+/// surface 3 m above at 4.4 m, and a face's bound 6 m lies past the Micron's 5 m). The beam-volume
+/// model traces such a beam instead of marking its shell. Nothing is thrown.
 bool isLevelReturn(const PlannedBeam& beam, const BeamShape& shape, double onset_m, double end_m, double tolerance_m);
 
 /// Where a beam's seabed trace starts, map frame: its sonar plus the trace's onset range along the
