@@ -85,20 +85,13 @@ void printBands(const std::string& path, double resolution_m) {
   std::map<int, Band> bands;  // by 0.25 m ring
   map.forEachLeaf([&](const LeafView<16>& leaf) {
     if (map.model().classify(leaf.log_odds) != Occupancy::kOccupied) return;
-    const auto edge = static_cast<int>(leaf.edgeVoxels());
-    for (int dz = 0; dz < edge; ++dz) {
-      for (int dy = 0; dy < edge; ++dy) {
-        for (int dx = 0; dx < edge; ++dx) {
-          const Key16 key{{static_cast<std::uint16_t>(leaf.key[0] + dx), static_cast<std::uint16_t>(leaf.key[1] + dy),
-                           static_cast<std::uint16_t>(leaf.key[2] + dz)}};
-          const Eigen::Vector3d centre = map.coder().centerOf(key);
-          Band& band = bands[static_cast<int>(std::floor(std::hypot(centre.x(), centre.y()) / 0.25))];
-          ++band.voxels;
-          band.z_min_m = std::min(band.z_min_m, centre.z());
-          band.z_max_m = std::max(band.z_max_m, centre.z());
-        }
-      }
-    }
+    leaf.forEachVoxel([&](const Key16& key) {
+      const Eigen::Vector3d centre = map.coder().centerOf(key);
+      Band& band = bands[static_cast<int>(std::floor(std::hypot(centre.x(), centre.y()) / 0.25))];
+      ++band.voxels;
+      band.z_min_m = std::min(band.z_min_m, centre.z());
+      band.z_max_m = std::max(band.z_max_m, centre.z());
+    });
   });
   std::printf("| range (m) | occupied voxels | height (m) | 2 r tan(aperture / 2) (m) |\n|---|---:|---:|---:|\n");
   for (const auto& [ring, band] : bands) {

@@ -78,21 +78,14 @@ RegionVoxels collectRegion(const OcTree16& map, double z_min_m, double z_max_m) 
     const Occupancy occupancy = map.model().classify(leaf.log_odds);
     if (occupancy == Occupancy::kUnknown) return;
     std::vector<Key16>& target = occupancy == Occupancy::kOccupied ? region.occupied : region.free;
-    const auto edge = static_cast<unsigned>(leaf.edgeVoxels());
-    for (unsigned dz = 0; dz < edge; ++dz) {
-      const auto z = static_cast<std::uint16_t>(leaf.key[2] + dz);
-      const double z_m = coder.centerOf(z);
-      if (z_m < z_min_m || z_m > z_max_m) continue;
-      for (unsigned dy = 0; dy < edge; ++dy) {
-        for (unsigned dx = 0; dx < edge; ++dx) {
-          const Key16 key{{static_cast<std::uint16_t>(leaf.key[0] + dx), static_cast<std::uint16_t>(leaf.key[1] + dy), z}};
-          target.push_back(key);
-          if (!any) region.lo = region.hi = key;
-          any = true;
-          growKeyBox(region.lo, region.hi, key);
-        }
-      }
-    }
+    leaf.forEachVoxel([&](const Key16& key) {
+      const double z_m = coder.centerOf(key[2]);
+      if (z_m < z_min_m || z_m > z_max_m) return;
+      target.push_back(key);
+      if (!any) region.lo = region.hi = key;
+      any = true;
+      growKeyBox(region.lo, region.hi, key);
+    });
   });
   if (!any) {
     throw ValueError("the map has no known voxel in the evaluated slab z = [" + std::to_string(z_min_m) + ", " +

@@ -30,7 +30,7 @@ struct BeamEchoTracer::Beam {
 };
 
 BeamEchoTracer::BeamEchoTracer(const Scene& scene, const MsisHeadOptions& head, const EchoModelOptions& echo)
-    : scene_(scene), head_(head), echo_(echo), sidelobe_floor_(std::pow(10.0, echo.sidelobe_level_db / 10.0)) {
+    : scene_(scene), primitive_count_(scene.primitives.size()), head_(head), echo_(echo), sidelobe_floor_(std::pow(10.0, echo.sidelobe_level_db / 10.0)) {
   const double horizontal_span_rad = echo.horizontal.extent * head.horizontal_beam_width_rad;
   const double vertical_span_rad = echo.vertical.extent * head.vertical_beam_width_rad;
   horizontal_step_rad_ = horizontal_span_rad / echo.horizontal.rays;
@@ -82,21 +82,48 @@ double BeamEchoTracer::footprintSpan(double range_m, const Eigen::Vector3d& norm
   return std::min(span_m, head_.range_m);
 }
 
-void BeamEchoTracer::traceRay(const Beam& beam, const ApertureRay& ray, std::vector<double>& energy) const {
+BeamEchoTracer::RayCell BeamEchoTracer::rayCell(const Beam& beam, const ApertureRay& ray) const {
   const double azimuth_rad = beam.bearing_rad + ray.horizontal_rad;
   const double sin_v = ray.sin_elevation, cos_v = ray.cos_elevation;
   const double sin_h = std::sin(azimuth_rad), cos_h = std::cos(azimuth_rad);
-  const RayCell cell{beam.sonar_to_map * Eigen::Vector3d(cos_v * cos_h, cos_v * sin_h, sin_v),
-                     beam.sonar_to_map * Eigen::Vector3d(-sin_v * cos_h, -sin_v * sin_h, cos_v),
-                     beam.sonar_to_map * Eigen::Vector3d(-cos_v * sin_h, cos_v * cos_h, 0.0)};
+  return {beam.sonar_to_map * Eigen::Vector3d(cos_v * cos_h, cos_v * sin_h, sin_v),
+          beam.sonar_to_map * Eigen::Vector3d(-sin_v * cos_h, -sin_v * sin_h, cos_v),
+          beam.sonar_to_map * Eigen::Vector3d(-cos_v * sin_h, cos_v * cos_h, 0.0)};
+}
+
+struct BeamEchoTracer::DirectEcho {
+  SceneHit hit;
+  double span_m = 0.0;  // the footprint's range extent
+  double value = 0.0;   // received energy
+};
+
+std::optional<BeamEchoTracer::DirectEcho> BeamEchoTracer::directEcho(const Beam& beam, const ApertureRay& ray,
+                                                                     const RayCell& cell) const {
   const std::optional<SceneHit> hit = scene_.firstHit(beam.origin_m, cell.direction, head_.range_m);
-  if (!hit) return;
+  if (!hit) return std::nullopt;
   const double range_m = hit->surface.range_m;
   const double cos_incidence = std::max(-hit->surface.normal.dot(cell.direction), 0.0);
   const double backscatter = hit->reflectivity * std::pow(cos_incidence, echo_.lambert_exponent - 1.0);
-  const double span_m = footprintSpan(range_m, hit->surface.normal, cell);
-  deposit(range_m, span_m, ray.weight * backscatter * propagationLoss(2.0 * range_m), energy);
-  if (echo_.multipath && echo_.specular_share > 0.0) traceMultipath(beam, ray, cell, *hit, span_m, energy);
+  return DirectEcho{*hit, footprintSpan(range_m, hit->surface.normal, cell),
+                    ray.weight * backscatter * propagationLoss(2.0 * range_m)};
+}
+
+void BeamEchoTracer::traceRay(const Beam& beam, const ApertureRay& ray, std::vector<double>& energy) const {
+  const RayCell cell = rayCell(beam, ray);
+  const std::optional<DirectEcho> echo = directEcho(beam, ray, cell);
+  if (!echo) return;
+  deposit(echo->hit.surface.range_m, echo->span_m, echo->value, energy);
+  if (echo_.multipath && echo_.specular_share > 0.0) traceMultipath(beam, ray, cell, echo->hit, echo->span_m, energy);
+}
+
+void BeamEchoTracer::traceDirect(const Eigen::Isometry3d& sonar_to_map, double bearing_rad,
+                                 std::vector<std::vector<double>>& energy) const {
+  energy.assign(primitive_count_, std::vector<double>(static_cast<std::size_t>(head_.bins), 0.0));
+  const Beam beam{sonar_to_map.translation(), sonar_to_map.linear(), bearing_rad};
+  for (const ApertureRay& ray : rays_) {
+    const std::optional<DirectEcho> echo = directEcho(beam, ray, rayCell(beam, ray));
+    if (echo) deposit(echo->hit.surface.range_m, echo->span_m, echo->value, energy[echo->hit.primitive]);
+  }
 }
 
 void BeamEchoTracer::traceMultipath(const Beam& beam, const ApertureRay& ray, const RayCell& cell,

@@ -4,6 +4,7 @@
 /// msis_simulator.hpp): rays across the aperture, direct echoes and one-bounce multipath, as
 /// received energy per range bin before the pulse, the gain and the noise.
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -40,9 +41,19 @@ class BeamEchoTracer {
   /// `bearing_rad` (sonar frame) from a head at `sonar_to_map`.
   void trace(const Eigen::Isometry3d& sonar_to_map, double bearing_rad, std::vector<double>& energy) const;
 
+  /// As trace(), the direct echoes only (step 2, no multipath), split by the primitive that
+  /// returned them: `energy` gets one vector of head.bins values per scene primitive.
+  void traceDirect(const Eigen::Isometry3d& sonar_to_map, double bearing_rad,
+                   std::vector<std::vector<double>>& energy) const;
+
  private:
   struct Beam;     // one beam's pose and axis
   struct RayCell;  // one ray's direction and its derivatives across the ray's cell
+  struct DirectEcho;  // where a ray's direct echo lands and how much it brings
+  /// The ray's direction and derivatives across its cell (map frame).
+  RayCell rayCell(const Beam& beam, const ApertureRay& ray) const;
+  /// The ray's direct echo (step 2), or nothing when it meets no surface within the range.
+  std::optional<DirectEcho> directEcho(const Beam& beam, const ApertureRay& ray, const RayCell& cell) const;
   /// A ray's direct echo, then its multipath.
   void traceRay(const Beam& beam, const ApertureRay& ray, std::vector<double>& energy) const;
   /// `first_span_m`: the footprint span of the ray's direct echo.
@@ -59,6 +70,7 @@ class BeamEchoTracer {
   void deposit(double center_m, double span_m, double value, std::vector<double>& energy) const;
 
   SceneRayCaster scene_;
+  std::size_t primitive_count_ = 0;
   const MsisHeadOptions& head_;
   const EchoModelOptions& echo_;
   std::vector<ApertureRay> rays_;

@@ -17,6 +17,17 @@ int pulseBins(const MsisHeadOptions& head, const EchoModelOptions& echo) {
   return std::max(1, static_cast<int>(std::lround(echo.pulse_length_m / head.binLength_m())));
 }
 
+void pulseSum(const std::vector<double>& energy, int pulse_bins, std::vector<double>& pulse) {
+  const auto bins = static_cast<std::size_t>(pulse_bins);
+  pulse.assign(energy.size(), 0.0);
+  double window = 0.0;  // a running sum
+  for (std::size_t i = 0; i < energy.size(); ++i) {
+    window += energy[i];
+    if (i >= bins) window -= energy[i - bins];
+    pulse[i] = std::max(window, 0.0);
+  }
+}
+
 double tvgGain(const EchoModelOptions& echo, double range_m) {
   return range_m * range_m * std::pow(10.0, 2.0 * echo.tvg_absorption_db_per_m * range_m / 10.0);
 }
@@ -87,14 +98,7 @@ void Receiver::waterScatterers(Random& random, std::vector<double>& clutter) con
 void Receiver::receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities,
                        std::optional<double> reverberation_db, double reverberation_from_m) {
   const std::size_t bins = energy.size();
-  // Pulse: each bin sums the energy of the pulse length before it (a running sum).
-  pulse_.assign(bins, 0.0);
-  double window = 0.0;
-  for (std::size_t i = 0; i < bins; ++i) {
-    window += energy[i];
-    if (i >= static_cast<std::size_t>(pulse_bins_)) window -= energy[i - static_cast<std::size_t>(pulse_bins_)];
-    pulse_[i] = std::max(window, 0.0);
-  }
+  pulseSum(energy, pulse_bins_, pulse_);
   fluctuation(random, speckle_);
   fluctuation(random, noise_);
   waterScatterers(random, clutter_);

@@ -15,6 +15,10 @@ namespace sonarmap::sim {
 /// Bins the receiver sums per pulse: the pulse length in bins, rounded, at least 1.
 int pulseBins(const MsisHeadOptions& head, const EchoModelOptions& echo);
 
+/// Step 4 of msis_simulator.hpp: sets `pulse` (energy.size() values) to the energy of each bin
+/// summed with the pulse_bins − 1 bins before it (never below 0).
+void pulseSum(const std::vector<double>& energy, int pulse_bins, std::vector<double>& pulse);
+
 /// The time-varying gain at `range_m` as a power factor: r² · 10^(2 α r / 10), α the absorption
 /// the TVG compensates (20 log r + 2αr).
 double tvgGain(const EchoModelOptions& echo, double range_m);

@@ -47,6 +47,20 @@ struct LeafView {
   float log_odds;   ///< the leaf's log-odds
   /// Number of finest voxels along one edge of the leaf: 2^(Depth − depth).
   double edgeVoxels() const { return std::ldexp(1.0, Depth - depth); }
+  /// Calls visit(key) for every finest voxel of the leaf (edgeVoxels()³ of a pruned one), x fastest,
+  /// then y, then z, each key as a Key<Depth>.
+  template <class Visit>
+  void forEachVoxel(Visit&& visit) const {
+    const auto edge = static_cast<unsigned>(edgeVoxels());
+    for (unsigned dz = 0; dz < edge; ++dz) {
+      for (unsigned dy = 0; dy < edge; ++dy) {
+        for (unsigned dx = 0; dx < edge; ++dx) {
+          visit(Key<Depth>{{static_cast<std::uint16_t>(key[0] + dx), static_cast<std::uint16_t>(key[1] + dy),
+                            static_cast<std::uint16_t>(key[2] + dz)}});
+        }
+      }
+    }
+  }
 };
 
 template <int Depth = 16>
