@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "view_command.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 
@@ -104,14 +106,16 @@ void print3dHeader(const MissionRun& mission, const std::string& folder) {
 /// The lines that tell the user how to score the 3D run's map and how to make it again.
 void print3dCommands(const MapArgs& map_args, const std::string& side_png, const std::string& scene,
                      const MissionRun& mission) {
-  const Eigen::Isometry3d& sonar_to_body = mission.options.sonar_to_body;
-  const std::string mounting = poseText(sonar_to_body.linear(), sonar_to_body.translation());
+  // The numbers the mission's mounting was built from, exactly: the map command rebuilds the same pose.
+  char mounting[200];
+  std::snprintf(mounting, sizeof mounting, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", mission.mounting[0],
+                mission.mounting[1], mission.mounting[2], mission.mounting[3], mission.mounting[4], mission.mounting[5]);
   std::printf("3d: score it:  sonarmap eval %s --truth %s\n", map_args.output_bt.c_str(), scene.c_str());
   std::printf("3d: score what the sonar could see (docs/accuracy.md):  sonarmap eval %s --truth %s %s\n",
               map_args.output_bt.c_str(), scene.c_str(), fieldOfViewOptions(mission).c_str());
   std::printf("3d: map it again:  sonarmap map %s --nav %s --mounting %s --3d --resolution %s "
               "--beam-width %g --vertical-aperture %g -o %s --png %s --side-png %s\n",
-              map_args.input.c_str(), map_args.nav_csv.c_str(), mounting.c_str(),
+              map_args.input.c_str(), map_args.nav_csv.c_str(), mounting,
               map_args.resolution.c_str(), map_args.beam_width_deg, map_args.vertical_aperture_deg,
               map_args.output_bt.c_str(), map_args.map_png.c_str(), side_png.c_str());
 }
@@ -142,10 +146,14 @@ void run(const DemoArgs& args) {
   const std::string side_png = dir_3d.file("map_side.png");
   const MapperOptions mapper_options_3d = toMapperOptions(map_args_3d);
   const MsisSimulation& simulation_3d = mission.simulation;
+  // Mapped as its beams.csv holds it: a bearing written in degrees may read back an ulp away
+  // (beam_csv.hpp), and the map command the demo prints must remake the same map.
+  std::stringstream beams_csv;
+  writeBeamCsv(beams_csv, simulation_3d.log);
+  const SonarLog written_3d = readBeamCsv(beams_csv, dir_3d.file("beams.csv"));
   const MappedLog mapped_3d = mapWithProgress(
       [&](const ProgressCallback& progress) {
-        return mapSonarLog(simulation_3d.log, simulation_3d.nav, mission.options.sonar_to_body, mapper_options_3d,
-                           progress);
+        return mapSonarLog(written_3d, simulation_3d.nav, mission.options.sonar_to_body, mapper_options_3d, progress);
       },
       args.quiet);
 

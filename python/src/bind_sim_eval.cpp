@@ -266,11 +266,7 @@ scene or preset; sonarmap.FileError for a bad scene file.)doc");
                              "sonarmap.Scene that was scanned (map frame).")
       .def_property_readonly(
           "mounting",
-          [](const PyMission& s) {
-            const Eigen::Isometry3d& pose = s.run.options.sonar_to_body;
-            const std::array<double, 6> mounting = mountingOfPose(pose.linear(), pose.translation());
-            return std::vector<double>(mounting.begin(), mounting.end());
-          },
+          [](const PyMission& s) { return std::vector<double>(s.run.mounting.begin(), s.run.mounting.end()); },
           "The sonar in the body frame as map_sonar_log's mounting= takes it: [x_m, y_m, z_m, roll_deg, pitch_deg, "
           "yaw_deg] (the CLI's --mounting).")
       .def_property_readonly(

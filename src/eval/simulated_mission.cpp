@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
@@ -17,12 +17,11 @@
 namespace sonarmap {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr double kTiltDown_rad = 25.0 * kDegree;
+constexpr double kTiltDown_deg = 25.0;
 constexpr std::size_t kTruthPoses = 24;
 
 /// The waypoints of `name` at scale s (metres per Micron metre), and the sonar's tilt down.
-std::vector<NavSample> missionWaypoints(const std::string& name, double s, double& tilt_rad) {
+std::vector<NavSample> missionWaypoints(const std::string& name, double s, double& tilt_deg) {
   const double speed_mps = 0.2 * s;
   if (name == "lawnmower") {
     LawnmowerPattern pattern;
@@ -31,7 +30,7 @@ std::vector<NavSample> missionWaypoints(const std::string& name, double s, doubl
     pattern.leg_spacing_m = 1.5 * s;
     pattern.depths_m = {3.0 * s, 3.5 * s};
     pattern.speed_mps = speed_mps;
-    tilt_rad = 0.0;
+    tilt_deg = 0.0;
     return lawnmowerWaypoints(pattern);
   }
   if (name == "tilted-loop") {
@@ -40,7 +39,7 @@ std::vector<NavSample> missionWaypoints(const std::string& name, double s, doubl
     pattern.width_m = 3.0 * s;
     pattern.depths_m = {3.0 * s};
     pattern.speed_mps = speed_mps;
-    tilt_rad = kTiltDown_rad;
+    tilt_deg = kTiltDown_deg;
     return loopWaypoints(pattern);
   }
   std::string known;
@@ -65,13 +64,12 @@ MissionRun simulateMission(const SimulatedMission& mission) {
   options.echo = preset.echo;
   options.seed = mission.seed;
   const double s = preset.head.range_m / kBuiltinSceneReach_m;
-  double tilt_rad = 0.0;
-  const std::vector<NavSample> waypoints = missionWaypoints(mission.mission, s, tilt_rad);
+  double tilt_deg = 0.0;
+  const std::vector<NavSample> waypoints = missionWaypoints(mission.mission, s, tilt_deg);
   options.trajectory = waypointTrajectory(waypoints);
-  // Tilted down: the sonar frame (z up) turned about its own y axis.
-  Eigen::Isometry3d tilt = Eigen::Isometry3d::Identity();
-  tilt.linear() = Eigen::AngleAxisd(tilt_rad, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  options.sonar_to_body = defaultSonarToBody() * tilt;
+  // Tilted down: upside down in the body frame (the default mounting, roll 180°), pitched down.
+  run.mounting = {0.0, 0.0, 0.0, 180.0, -tilt_deg, 0.0};
+  options.sonar_to_body = sonarToBodyOfMounting(std::vector<double>(run.mounting.begin(), run.mounting.end()));
   const double turn_s = options.head.beam_period_s * static_cast<double>(options.head.beamsPerTurn());
   options.turns = static_cast<std::size_t>(std::ceil(waypoints.back().time_s / turn_s));
   const Scene scene = builtinScene(mission.scene, preset.head.range_m, preset.head.vertical_beam_width_rad);

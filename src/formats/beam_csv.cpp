@@ -168,7 +168,11 @@ void checkWritable(const SonarLog& log) {
 SonarLog readBeamCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw FileError("cannot open '" + path + "' for reading");
-  csv::LineReader reader(in, path);
+  return readBeamCsv(in, path);
+}
+
+SonarLog readBeamCsv(std::istream& in, const std::string& name) {
+  csv::LineReader reader(in, name);
   const Header header = readHeader(reader);
   SonarLog log;
   std::size_t previous_line = 0;

@@ -265,6 +265,26 @@ TEST(sonarBeamCsv, BrokenFilesNameLineAndField) {
                    "4.5 s is before the previous beam's 5 s (line 2)"});
 }
 
+// A stream reads as the file does (the demo maps its 3D log as its beams.csv holds it), and
+// names the stream it was given in its errors.
+TEST(sonarBeamCsv, StreamReadsAsTheFileDoes) {
+  SonarLog log;
+  log.beams = {beam(0.1, 0.3, 0.0125313, {0, 255, 7}), beam(0.2, 2.0 * kPi - 1e-12, 0.0125313, {1, 2})};
+  const TempDir dir;
+  const SonarLog from_file = roundTrip(log, dir);
+  std::stringstream text;
+  writeBeamCsv(text, log);
+  expectIdentical(readBeamCsv(text, "beams.csv"), from_file);
+  std::stringstream broken("time_s,bearing_deg,bin_length_m,b0\n0,0,0.1,300\n");
+  try {
+    readBeamCsv(broken, "stream.csv");
+    FAIL() << "no FileError";
+  } catch (const FileError& error) {
+    EXPECT_NE(std::string(error.what()).find("stream.csv"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("line 2"), std::string::npos) << error.what();
+  }
+}
+
 TEST(sonarBeamCsv, MissingFileIsFileError) {
   const TempDir dir;
   EXPECT_THROW(readBeamCsv(dir.file("missing.csv")), FileError);

@@ -80,11 +80,15 @@ def test_cras_log_same_bt_as_cli(cli, shared_file, tmp_path):
 
 def test_demo_3d_mission_same_bt_from_python(cli, tmp_path):
     """The demo's 3D run (tilted loop over quay3d, sonar 25 degrees down, --3d at 5 cm) made from
-    Python with the mission's navigation, mounting and beam: the same bytes as the demo's map.bt."""
+    Python with the log its beams.csv holds (which the demo maps: a bearing written in degrees may
+    read back an ulp from the simulated one) and the mission's navigation, mounting and beam: the
+    same bytes as the demo's map.bt."""
     cli("demo", "-o", tmp_path / "demo", "-q")
     mission = sonarmap.simulate_mission("tilted-loop", sonar="micron", scene="quay3d")
-    assert mission.mounting == pytest.approx([0.0, 0.0, 0.0, 180.0, -25.0, 0.0])
-    m = sonarmap.map_sonar_log(mission.log, nav=mission.nav, mounting=mission.mounting, volume=True,
+    assert mission.mounting == [0.0, 0.0, 0.0, 180.0, -25.0, 0.0]
+    written = sonarmap.read_sonar_log(str(tmp_path / "demo" / "3d-mission" / "beams.csv"))
+    assert len(written) == len(mission.log)
+    m = sonarmap.map_sonar_log(written, nav=mission.nav, mounting=mission.mounting, volume=True,
                                resolution=0.05, beam_width=mission.beam_width,
                                vertical_aperture=mission.vertical_aperture)
     m.write(tmp_path / "map.bt")

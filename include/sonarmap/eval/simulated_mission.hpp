@@ -16,6 +16,7 @@
 /// its seabed. The scene's pontoon (footprint x ∈ [−1.25, 1.25] s, y ∈ [2.4, 3.6] s) stays clear
 /// of both.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,6 +44,10 @@ std::vector<std::string> simulatedMissionNames();
 struct MissionRun {
   MsisSimulationOptions options;  ///< head, echo model, trajectory and mounting used
   MsisSimulation simulation;      ///< log, navigation fixes, scene
+  /// The sonar's mounting as `sonarmap map --mounting` takes it (X, Y, Z metres; roll, pitch, yaw
+  /// degrees; mapping_arguments.hpp): options.sonar_to_body is built from these numbers
+  /// (sonarToBodyOfMounting), so a map made from them, by the CLI or Python, uses the identical pose.
+  std::array<double, 6> mounting{};
 };
 
 /// Simulates `mission`: the vehicle flies it once, the head turning throughout.

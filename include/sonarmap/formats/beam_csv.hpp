@@ -47,6 +47,10 @@ namespace sonarmap {
 ///         a time is before the previous row's ("times go backwards"); or there is no beam row.
 SonarLog readBeamCsv(const std::string& path);
 
+/// The same CSV read from a stream; `name` stands for the file in messages.
+/// @throws FileError as readBeamCsv(path) for anything malformed.
+SonarLog readBeamCsv(std::istream& in, const std::string& name);
+
 /// Writes the beams of `log` as a beam CSV (atomically: temporary file + rename). Beams may have
 /// different bin counts; the header has as many b-columns as the longest beam. Times and bin
 /// lengths are written in their shortest exact decimal form, so they read back identically.
