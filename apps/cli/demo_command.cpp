@@ -73,7 +73,8 @@ MapArgs demo3dMapArgs(const OutputDir& dir, const MsisHeadOptions& head, bool qu
 /// angles of r = Rz(yaw)·Ry(pitch)·Rx(roll) in degrees: the form of map --mounting and eval
 /// --sensor-pose.
 std::string poseText(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) {
-  const std::array<double, 6> pose = mountingOfPose(r, t);
+  std::array<double, 6> pose = mountingOfPose(r, t);
+  for (double& value : pose) value = std::abs(value) < 1e-9 ? 0.0 : value;  // rounding, not a pose: -7e-15°
   char text[160];
   std::snprintf(text, sizeof text, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", pose[0], pose[1], pose[2], pose[3], pose[4], pose[5]);
   return text;

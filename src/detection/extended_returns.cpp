@@ -75,8 +75,13 @@ void ExtendedReturnOptions::validate() const {
 
 ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, const std::vector<float>& background_counts,
                                                    double background_percentile, double span_db, double min_range_m,
-                                                   const ExtendedReturnOptions& options) {
+                                                   const ExtendedReturnOptions& options,
+                                                   const std::vector<EchoBins>& echoes) {
   options.validate();
+  if (!echoes.empty() && echoes.size() != static_cast<std::size_t>(polar.rows())) {
+    throw ValueError("extended returns: " + std::to_string(echoes.size()) + " echo ranges for " +
+                     std::to_string(polar.rows()) + " beams");
+  }
   if (!(span_db > 0.0) || !std::isfinite(span_db)) throw ValueError("extended returns: span_db must be > 0");
   if (!(background_percentile > 0.0 && background_percentile < 100.0)) {
     throw ValueError("extended returns: background_percentile must be in (0, 100)");
@@ -94,7 +99,13 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
   // one lights most bearings at that range: then it is not sought there).
   auto noise_column = [&](std::size_t c) { return background_counts[c] > 0.0F; };
   auto bin = [&](int row, std::size_t c) -> double { return polar.intensities.at<std::uint8_t>(row, static_cast<int>(c)); };
-  auto valid = [&](int row, std::size_t c) { return static_cast<int>(c) < polar.valid_bins[static_cast<std::size_t>(row)]; };
+  // A bin the noise is measured on: recorded, and outside the row's known echo.
+  auto valid = [&](int row, std::size_t c) {
+    if (static_cast<int>(c) >= polar.valid_bins[static_cast<std::size_t>(row)]) return false;
+    if (echoes.empty()) return true;
+    const EchoBins& echo = echoes[static_cast<std::size_t>(row)];
+    return static_cast<int>(c) < echo.begin || static_cast<int>(c) >= echo.end;
+  };
   ExtendedReturnCalibration calibration;
   std::vector<double> excess;
   for (std::size_t c = first; c < columns; ++c) {
@@ -137,7 +148,7 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
     for (int row = 0; row < rows; ++row) {
       if (!valid(row, c)) continue;
       const bool here = bin(row, c) > calibration.lit_counts[c];
-      const bool before = bin(row, c - 1) > calibration.lit_counts[c - 1];
+      const bool before = valid(row, c - 1) && bin(row, c - 1) > calibration.lit_counts[c - 1];
       const bool previous_row = row > 0 && valid(row - 1, c) && bin(row - 1, c) > calibration.lit_counts[c];
       lit += here ? 1 : 0;
       runs += here && !before ? 1 : 0;
@@ -168,21 +179,22 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
   const double windows = std::max(1.0, static_cast<double>(columns) / calibration.window_bins);
   int needed = looks;
   while (needed > 1 && windows * binomialTail(looks, p0, needed - 1) <= options.false_alarm_per_beam) --needed;
+  int to_continue = needed;  // the same rate for one window alone
+  while (to_continue > 1 && binomialTail(looks, p0, to_continue - 1) <= options.false_alarm_per_beam) --to_continue;
   // Lit bins the window needs: the looks' share of its bins.
   const double bins_in_window = calibration.window_bins * window_rows;
-  calibration.lit_needed = std::max(1, static_cast<int>(std::ceil(needed * bins_in_window / looks - 1e-9)));
+  auto litBins = [&](int lit_looks) { return std::max(1, static_cast<int>(std::ceil(lit_looks * bins_in_window / looks - 1e-9))); };
+  calibration.lit_needed = litBins(needed);
+  calibration.lit_to_continue = litBins(to_continue);
   return calibration;
 }
 
-std::size_t addExtendedReturns(const PolarImage& polar, double background_percentile, SweepDetection& sweep,
-                               const ExtendedReturnOptions& options) {
-  if (sweep.detections.size() != static_cast<std::size_t>(polar.rows())) {
-    throw ValueError("extended returns: the sweep has " + std::to_string(sweep.detections.size()) +
-                     " detections for " + std::to_string(polar.rows()) + " beams");
-  }
-  const double start_m = std::max(sweep.min_range_m, sweep.calibration.near_field_end_m);
-  const ExtendedReturnCalibration calibration = calibrateExtendedReturns(
-      polar, sweep.calibration.background, background_percentile, sweep.calibration.span_db, start_m, options);
+namespace {
+
+/// One pass of steps 3 and 4 (see extended_returns.hpp) over the sweep with `calibration`: gives
+/// each beam its extended return in `detections`; returns how many beams without an obstacle got one.
+std::size_t detectReturns(const PolarImage& polar, const ExtendedReturnCalibration& calibration,
+                          const ExtendedReturnOptions& options, std::vector<BeamDetection>& detections) {
   const int window = calibration.window_bins;
   const int rows = polar.rows();
   const int columns = static_cast<int>(calibration.lit_counts.size());
@@ -201,7 +213,7 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
   std::vector<int> neighbours;
   std::size_t found = 0;
   for (int row = 0; row < rows; ++row) {
-    BeamDetection& detection = sweep.detections[static_cast<std::size_t>(row)];
+    BeamDetection& detection = detections[static_cast<std::size_t>(row)];
     // A beam with an obstacle: the run that starts with its obstacle's echo, if any.
     const bool obstacle = detection.hasObstacle();
     const int obstacle_bin = obstacle ? static_cast<int>(detection.range_m / polar.bin_length_m) : 0;
@@ -219,7 +231,8 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
     if (bins < window) continue;
     // The threshold scales with the rows the window has (fewer at a sector's ends).
     const double rows_share = neighbours.size() / (2.0 * calibration.half_window_rows + 1.0);
-    const int needed = std::max(1, static_cast<int>(std::ceil(calibration.lit_needed * rows_share - 1e-9)));
+    auto scaled = [&](int lit) { return std::max(1, static_cast<int>(std::ceil(lit * rows_share - 1e-9))); };
+    const int needed = scaled(calibration.lit_needed), to_continue = scaled(calibration.lit_to_continue);
     auto count = [&](int c) {
       int n = 0;
       for (const int j : neighbours) n += lit_before[static_cast<std::size_t>(j)][c + window] - lit_before[static_cast<std::size_t>(j)][c];
@@ -230,7 +243,7 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
     while (c + window <= bins && count(c) < needed) ++c;
     if (c + window > bins || (obstacle && c > obstacle_bin)) continue;
     const int start = c;
-    while (c + 1 + window <= bins && count(c + 1) >= needed) ++c;  // the run of windows that hold one
+    while (c + 1 + window <= bins && count(c + 1) >= to_continue) ++c;  // the run of windows that go on with it
     const int onset = changePoint(start, std::min(c + window, start + 2 * window), neighbours, lit_before,
                                   options.bin_false_alarm);
     int last = c + window - 1;
@@ -242,6 +255,44 @@ std::size_t addExtendedReturns(const PolarImage& polar, double background_percen
     ++found;
   }
   return found;
+}
+
+/// The bins of each beam's echo: from its obstacle, or from its extended return's onset, to the
+/// farthest of the return's end and where the loud echo falls back; none for a beam with neither.
+std::vector<EchoBins> echoBins(const PolarImage& polar, const std::vector<BeamDetection>& detections) {
+  std::vector<EchoBins> echoes(detections.size());
+  auto binOf = [&](double range_m) { return static_cast<int>(range_m / polar.bin_length_m); };
+  for (std::size_t row = 0; row < detections.size(); ++row) {
+    const BeamDetection& detection = detections[row];
+    const bool obstacle = detection.hasObstacle();
+    if (!obstacle && !detection.hasExtendedReturn()) continue;
+    const double begin_m = obstacle ? detection.range_m : detection.extended_onset_m;
+    double end_m = begin_m;
+    if (detection.hasExtendedReturn()) end_m = std::max(end_m, detection.extended_end_m);
+    if (obstacle && detection.echo_end_m > end_m) end_m = detection.echo_end_m;
+    echoes[row] = {binOf(begin_m), binOf(end_m) + 1};
+  }
+  return echoes;
+}
+
+}  // namespace
+
+std::size_t addExtendedReturns(const PolarImage& polar, double background_percentile, SweepDetection& sweep,
+                               const ExtendedReturnOptions& options) {
+  if (sweep.detections.size() != static_cast<std::size_t>(polar.rows())) {
+    throw ValueError("extended returns: the sweep has " + std::to_string(sweep.detections.size()) +
+                     " detections for " + std::to_string(polar.rows()) + " beams");
+  }
+  const double start_m = std::max(sweep.min_range_m, sweep.calibration.near_field_end_m);
+  auto calibrate = [&](const std::vector<EchoBins>& echoes) {
+    return calibrateExtendedReturns(polar, sweep.calibration.background, background_percentile, sweep.calibration.span_db,
+                                    start_m, options, echoes);
+  };
+  // A first pass on the whole sweep finds the returns that stand out over its bins; the second
+  // measures the noise without them (and without the obstacles' echoes) and looks again.
+  std::vector<BeamDetection> first = sweep.detections;
+  detectReturns(polar, calibrate({}), options, first);
+  return detectReturns(polar, calibrate(echoBins(polar, first)), options, sweep.detections);
 }
 
 }  // namespace sonarmap

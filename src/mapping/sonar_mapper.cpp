@@ -32,7 +32,10 @@ struct LoudReturn {
   double onset_m, loud_end_m, end_m;
 };
 
-/// The lit run that starts with the obstacle's echo (extended_returns.hpp), its loud echo ending where
+/// The lit run that starts with the obstacle's echo (extended_returns.hpp), from the loud echo's
+/// leading edge (the obstacle's range: the run may begin earlier, where a loud surface lights bins
+/// in the pattern's skirt outside the nominal aperture, and a level drawn from the aperture's edge
+/// there lies too high: 1.1 m over a seabed 20 m under a tilted Ping360), its loud echo ending where
 /// it falls back (BeamDetection::echo_end_m) or, not measured, with the run. Without a run, when the
 /// whole echo was searched (`searched`): the loud echo alone, from the obstacle's range to where it
 /// falls back: a seabed loud over most of a tilted head's sweep lifts the background the run
@@ -43,7 +46,7 @@ std::optional<LoudReturn> loudReturn(const BeamDetection& detection, bool search
   const bool fell_back = detection.echo_end_m >= detection.range_m;
   if (detection.hasExtendedReturn()) {
     const double loud_end_m = fell_back ? std::min(detection.echo_end_m, detection.extended_end_m) : detection.extended_end_m;
-    return LoudReturn{detection.extended_onset_m, loud_end_m, detection.extended_end_m};
+    return LoudReturn{std::max(detection.extended_onset_m, detection.range_m), loud_end_m, detection.extended_end_m};
   }
   if (!searched || !fell_back) return std::nullopt;
   return LoudReturn{detection.range_m, detection.echo_end_m, detection.echo_end_m};

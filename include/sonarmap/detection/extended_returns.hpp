@@ -14,9 +14,14 @@
 ///  1. A bin is *lit* when it exceeds B(c) by τ, set so that noise alone lights a bin with
 ///     probability p₀ (`bin_false_alarm`). τ is measured on the sweep: the (1 − p₀) quantile of
 ///     every bin's excess over its column's B(c), over the columns above the A/D floor (≥ 8 columns
-///     and 1,000 bins; right for speckle of any number of looks, and echoes among the bins only
-///     raise it); elsewhere it is one-look speckle's 10 log10(ln p₀ / ln(1 − p)), p the background's
-///     percentile. Where the noise lies under the A/D floor (B(c) = 0) the column's own (1 − p₀)
+///     and 1,000 bins; right for speckle of any number of looks). Echoes among those bins raise it
+///     and lengthen step 2's runs: so the sweep is searched twice, the second pass measuring τ and
+///     the looks without the bins of the returns the first pass found and of the obstacles' echoes
+///     (a censored estimate, as the censored mean-level CFAR leaves its largest cells out: Rickard
+///     & Dillard 1977, IEEE Trans. AES 13(4)). On the Micron's tilted loop, whose seabed lights a
+///     third of the bearings, that lowers the lit level at 3 m by 8–13 counts (1.4–2.3 dB) and the
+///     bins per look from 3.8–8.9 to 2.5–4.3 (its pulse spans 4 bins). Without 8 such columns τ is
+///     one-look speckle's 10 log10(ln p₀ / ln(1 − p)), p the background's percentile. Where the noise lies under the A/D floor (B(c) = 0) the column's own (1 − p₀)
 ///     quantile over the bearings bounds the lit level from below. B(c) is the noise wherever no
 ///     surface lights most bearings at that range; where one does (a level head at a constant
 ///     altitude sees the seabed at one range all round) it is not found, and such a head could not
@@ -33,7 +38,11 @@
 ///  4. The return starts at the maximum-likelihood change point from noise to return of the lit
 ///     bins (the window's rows) over the first window that holds one and the next (Hinkley 1970):
 ///     that window may begin on a noise bin lit by chance up to a window before the return. It ends
-///     at the beam's last lit bin of the run of consecutive windows that hold one.
+///     at the beam's last lit bin of the run of consecutive windows that go on with it: each holds
+///     the lit bins with which noise alone fills one window with probability ≤
+///     `false_alarm_per_beam` (the start asks that of all the beam's windows together; a surface
+///     found is followed to a slightly weaker echo than it takes to find one, as Canny's two
+///     thresholds do).
 ///
 /// Beams the detector found empty get one (BeamDetection::extended_onset_m, extended_end_m), and
 /// their echo onset moves to it when that is nearer. A beam with an obstacle gets the run that
@@ -72,18 +81,30 @@ struct ExtendedReturnCalibration {
   double rows_per_look = 1.0;     ///< neighbouring rows per independent look, ≥ 1
   int half_window_rows = 0;       ///< rows on each side of a beam in its window, ≥ 0
   int window_bins = 1;            ///< n · L rounded, ≥ 1
-  int lit_needed = 1;             ///< lit bins a full window (all its rows) needs
+  int lit_needed = 1;             ///< lit bins a full window (all its rows) needs to start a return
+  int lit_to_continue = 1;        ///< lit bins a full window needs to go on with one, ≤ lit_needed
   std::size_t noise_columns = 0;  ///< columns τ and L were measured on
   bool measured = false;          ///< τ measured (else one-look speckle's)
 };
 
+/// The bins [begin, end) of one beam that hold a known echo (none when begin ≥ end).
+struct EchoBins {
+  int begin = 0;
+  int end = 0;
+};
+
 /// Calibrates the sweep `polar` for extended returns from its background (the detection's
-/// SweepCalibration::background, percentile `background_percentile`) and its span.
+/// SweepCalibration::background, percentile `background_percentile`) and its span. `echoes`, empty
+/// or one per row: bins left out of the noise's measurement (τ, the bins and rows per look), the
+/// echoes a first pass found (censoring, as a censored CFAR leaves its strongest cells out: a
+/// seabed lighting a third of the bearings would otherwise raise the lit level over itself).
 /// @throws ValueError for invalid options, a span or percentile out of range, a negative minimum
-///         range, or a background with more columns than the sweep has bins.
+///         range, a background with more columns than the sweep has bins, or `echoes` neither empty
+///         nor one per row.
 ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, const std::vector<float>& background_counts,
                                                    double background_percentile, double span_db, double min_range_m,
-                                                   const ExtendedReturnOptions& options);
+                                                   const ExtendedReturnOptions& options,
+                                                   const std::vector<EchoBins>& echoes = {});
 
 /// Gives each beam of `sweep` without an obstacle its extended return, if any (see the file's
 /// comment); returns how many got one. `polar` is the image the sweep was detected on.
