@@ -7,26 +7,39 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "sonarmap/mapping/sweep_fan.hpp"
 
 namespace sonarmap {
 namespace {
 
-/// The elevation e in [−half, half] with A cos e + B sin e = s, nearest `prefer_rad`; NaN if none.
-double elevationAtLevel(double a, double b, double s, double half_rad, double prefer_rad) {
-  const double c = std::hypot(a, b);
-  if (!(c > 0.0) || std::abs(s) > c) return std::numeric_limits<double>::quiet_NaN();
-  const double delta = std::atan2(a, b);  // A cos e + B sin e = C sin(e + δ)
-  const double base = std::asin(s / c);
-  double best = std::numeric_limits<double>::quiet_NaN();
-  for (double e : {base - delta, std::numbers::pi - base - delta}) {
-    e = std::remainder(e, 2.0 * std::numbers::pi);
-    if (std::abs(e) > half_rad + 1e-9) continue;
-    if (std::isnan(best) || std::abs(e - prefer_rad) < std::abs(best - prefer_rad)) best = std::clamp(e, -half_rad, half_rad);
+/// Where the rays of one bearing's column meet a plane: the elevation e with A cos e + B sin e = s,
+/// A and B the components along the plane's normal of the bearing's unit vector in the sonar's
+/// plane and of the sonar's z axis, s the plane's distance over the range. Solved as
+/// C sin(e + δ) = s, C and δ computed once per column.
+class LevelCrossing {
+ public:
+  LevelCrossing(double a, double b) : amplitude_(std::hypot(a, b)), phase_rad_(std::atan2(a, b)) {}
+
+  /// The elevation in [−half, half] where the direction's vertical component is `s`, nearest
+  /// `prefer_rad`; NaN if none.
+  double elevation(double s, double half_rad, double prefer_rad) const {
+    if (!(amplitude_ > 0.0) || std::abs(s) > amplitude_) return std::numeric_limits<double>::quiet_NaN();
+    const double base = std::asin(s / amplitude_);
+    double best = std::numeric_limits<double>::quiet_NaN();
+    for (double e : {base - phase_rad_, std::numbers::pi - base - phase_rad_}) {
+      if (std::abs(e) > std::numbers::pi) e = std::remainder(e, 2.0 * std::numbers::pi);  // else e itself
+      if (std::abs(e) > half_rad + 1e-9) continue;
+      if (std::isnan(best) || std::abs(e - prefer_rad) < std::abs(best - prefer_rad)) best = std::clamp(e, -half_rad, half_rad);
+    }
+    return best;
   }
-  return best;
-}
+
+ private:
+  double amplitude_;  ///< C
+  double phase_rad_;  ///< δ
+};
 
 /// The unit direction at `bearing_rad` and `elevation_rad`, sonar frame.
 Eigen::Vector3d direction(double bearing_rad, double elevation_rad) {
@@ -99,14 +112,26 @@ void appendLevelTrace(const PlannedBeam& beam, const BeamShape& shape, double vo
   const double half_rad = 0.5 * shape.width_rad;
   const double step_m = 0.5 * voxel_m;
   const int columns = std::max(1, static_cast<int>(std::ceil(shape.width_rad * beam.trace_end_m / voxel_m)));
+  // What each column's points share at every range: its bearing's cosine and sine, and the level
+  // equation's amplitude and phase (LevelCrossing).
+  struct Column {
+    double cos_bearing, sin_bearing;
+    LevelCrossing crossing;
+  };
+  std::vector<Column> grid;
+  grid.reserve(static_cast<std::size_t>(columns) + 1);
+  for (int c = 0; c <= columns; ++c) {
+    const double bearing_rad = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
+    const double cos_bearing = std::cos(bearing_rad), sin_bearing = std::sin(bearing_rad);
+    grid.push_back({cos_bearing, sin_bearing, LevelCrossing(up.dot(Eigen::Vector3d(cos_bearing, sin_bearing, 0.0)), up.z())});
+  }
   for (double range_m = beam.trace_onset_m; range_m <= beam.trace_end_m + 1e-9; range_m += step_m) {
-    for (int c = 0; c <= columns; ++c) {
-      const double bearing_rad = beam.bearing_rad - half_rad + shape.width_rad * c / columns;
-      const Eigen::Vector3d flat(std::cos(bearing_rad), std::sin(bearing_rad), 0.0);
-      const double elevation_rad =
-          elevationAtLevel(up.dot(flat), up.z(), level_m / range_m, half_aperture_rad, edge->elevation_rad);
+    for (const Column& column : grid) {
+      const double elevation_rad = column.crossing.elevation(level_m / range_m, half_aperture_rad, edge->elevation_rad);
       if (std::isnan(elevation_rad)) continue;
-      const Eigen::Vector3d point_m = beam.sonar_to_map * (range_m * direction(bearing_rad, elevation_rad));
+      const double cos_elevation = std::cos(elevation_rad);
+      const Eigen::Vector3d unit(cos_elevation * column.cos_bearing, cos_elevation * column.sin_bearing, std::sin(elevation_rad));
+      const Eigen::Vector3d point_m = beam.sonar_to_map * (range_m * unit);
       const double weight = evidence == ArcEvidence::kBeamPattern ? twoWayPattern(elevation_rad, shape.vertical_aperture_rad) : 1.0;
       hits.push_back({point_m, weight});
     }

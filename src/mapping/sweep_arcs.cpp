@@ -64,6 +64,10 @@ struct WaterCone {
 
 /// Is `point_m` (map frame) inside the cone, nearer than `range_m` from its sonar?
 bool inCone(const WaterCone& cone, const Eigen::Vector3d& point_m, double range_m) {
+  // Most points a cone is asked about lie beyond its range: the distance in the map frame tells
+  // (a rotation keeps it to 1e-15; the margin leaves every case near the boundary to the test
+  // below, in the sonar frame, as before), without rotating the point.
+  if ((point_m - cone.wedge.origin_m).squaredNorm() >= range_m * range_m * (1.0 + 1e-9)) return false;
   const Eigen::Vector3d v = cone.wedge.map_to_sonar * point_m;
   if (v.squaredNorm() >= range_m * range_m) return false;
   const double horizontal_sq = v.x() * v.x() + v.y() * v.y();
