@@ -58,6 +58,10 @@ int changePoint(int begin, int end, const std::vector<int>& rows, const std::vec
 /// Half the bearing window, radians (ExtendedReturnOptions::bearing_window_deg).
 double halfWindow_rad(const ExtendedReturnOptions& options) { return 0.5 * options.bearing_window_deg * std::numbers::pi / 180.0; }
 
+/// A count of lit bins from a fractional one: rounded up (less 1e-9, so that a product meant to be
+/// whole is not raised by its rounding error), at least 1.
+int wholeCountOf(double lit_bins) { return std::max(1, static_cast<int>(std::ceil(lit_bins - 1e-9))); }
+
 }  // namespace
 
 void ExtendedReturnOptions::validate() const {
@@ -183,7 +187,7 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
   while (to_continue > 1 && binomialTail(looks, p0, to_continue - 1) <= options.false_alarm_per_beam) --to_continue;
   // Lit bins the window needs: the looks' share of its bins.
   const double bins_in_window = calibration.window_bins * window_rows;
-  auto litBins = [&](int lit_looks) { return std::max(1, static_cast<int>(std::ceil(lit_looks * bins_in_window / looks - 1e-9))); };
+  auto litBins = [&](int lit_looks) { return wholeCountOf(lit_looks * bins_in_window / looks); };
   calibration.lit_needed = litBins(needed);
   calibration.lit_to_continue = litBins(to_continue);
   return calibration;
@@ -231,7 +235,7 @@ std::size_t detectReturns(const PolarImage& polar, const ExtendedReturnCalibrati
     if (bins < window) continue;
     // The threshold scales with the rows the window has (fewer at a sector's ends).
     const double rows_share = neighbours.size() / (2.0 * calibration.half_window_rows + 1.0);
-    auto scaled = [&](int lit) { return std::max(1, static_cast<int>(std::ceil(lit * rows_share - 1e-9))); };
+    auto scaled = [&](int lit) { return wholeCountOf(lit * rows_share); };
     const int needed = scaled(calibration.lit_needed), to_continue = scaled(calibration.lit_to_continue);
     auto count = [&](int c) {
       int n = 0;

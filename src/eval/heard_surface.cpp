@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
@@ -47,7 +46,7 @@ OcTree16 heardSurfaceMap(const MissionRun& run, const HeardSurfaceOptions& optio
   const std::vector<double> across = rayAngles(simulation.echo.horizontal.extent * head.horizontal_beam_width_rad, step_rad);
   const std::vector<double> up = rayAngles(simulation.echo.vertical.extent * head.vertical_beam_width_rad, step_rad);
   OcTree16 map(options.resolution_m);
-  std::unordered_set<Key16, KeyHash<16>> marked;
+  std::size_t marked_voxels = 0;
   HeardSurfaceStats counts;
   std::vector<std::vector<double>> levels_db;
   const double bin_m = head.binLength_m();
@@ -72,12 +71,15 @@ OcTree16 heardSurfaceMap(const MissionRun& run, const HeardSurfaceOptions& optio
         if (bin >= level.size() || !(level[bin] >= options.min_level_db)) continue;
         ++counts.heard_hits;
         const std::optional<Key16> key = map.coder().keyOf(sonar_to_map.translation() + hit->surface.range_m * direction);
-        if (key && marked.insert(*key).second) map.integrate(*key, true);
+        if (key && !map.search(*key)) {  // one hit per voxel
+          map.integrate(*key, true);
+          ++marked_voxels;
+        }
       }
     }
   }
   if (stats) *stats = counts;
-  if (marked.empty()) {
+  if (marked_voxels == 0) {
     throw ValueError("heard surface: no surface point is heard " + std::to_string(options.min_level_db) +
                      " dB over the floor");
   }

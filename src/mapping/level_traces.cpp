@@ -22,8 +22,8 @@ class LevelCrossing {
  public:
   LevelCrossing(double a, double b) : amplitude_(std::hypot(a, b)), phase_rad_(std::atan2(a, b)) {}
 
-  /// The elevation in [−half, half] where the direction's vertical component is `s`, nearest
-  /// `prefer_rad`; NaN if none.
+  /// The elevation in [−half, half] where the direction's component along the plane's normal is
+  /// `s`, nearest `prefer_rad`; NaN if none.
   double elevation(double s, double half_rad, double prefer_rad) const {
     if (!(amplitude_ > 0.0) || std::abs(s) > amplitude_) return std::numeric_limits<double>::quiet_NaN();
     const double base = std::asin(s / amplitude_);
