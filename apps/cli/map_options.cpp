@@ -15,8 +15,9 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                  "(Micron at 5 m: 0.02; SeaKing at 30 m: 0.1; Ping360 at 50 m: 0.2)")
       ->capture_default_str();
   cmd.add_option("--detector", args.detector,
-                 "background (calibrated per sweep) | cfar-ca | cfar-so | cfar-go | cfar-os | threshold (paper 8.2) | "
-                 "canny (paper 9)")
+                 "background (calibrated per sweep) | evidence (background's loud echoes, and on beams without one "
+                 "the first return whose evidence against the water measured where it is water adds up: steps into "
+                 "reverberation) | cfar-ca | cfar-so | cfar-go | cfar-os | threshold (paper 8.2) | canny (paper 9)")
       ->capture_default_str();
   cmd.add_option("--false-alarm", args.false_alarm,
                  "PROBABILITY per bin that noise alone is taken for an echo, in (0, 0.5): sets the echo threshold "

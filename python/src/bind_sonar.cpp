@@ -432,7 +432,7 @@ or an image side above 20,000 pixels.)doc");
 (SonarMapper::detectSweep: calibration, self-reflection removal, smoothing, detection; paper
 §8.2, §9; detectors.hpp). Keyword options are map_sonar_log's detection options with the CLI's
 names: detector ("background" | "threshold" | "canny" | "cfar-ca" | "cfar-so" | "cfar-go" |
-"cfar-os"), false_alarm, min_contrast (dB), min_echo_length (m), leading_edge (dB), min_range (m
+"cfar-os" | "evidence"), false_alarm, min_contrast (dB), min_echo_length (m), leading_edge (dB), min_range (m
 or "auto"), max_near_field (m), self_reflection (m or "auto"), intensity_span (dB or "auto"), smoothing, smoothing_range
 (m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m).
 The input is not modified. Returns a dict of arrays over the rows: obstacle_bin int32 (-1: none),

@@ -51,6 +51,29 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
 std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
                                                       const BackgroundOptions& options, SweepCalibration& water);
 
+/// A return found by its evidence: the first bin of its run and the bin where it became certain.
+struct EvidenceReturn {
+  int start_bin = -1;    ///< where the row's evidence sum left 0 (Page's CUSUM change point), −1: none
+  int certain_bin = -1;  ///< where it reached the decision level
+};
+
+/// The evidence detector's outward pass (water_evidence.hpp, detectors.hpp): range by range, the
+/// level measured over the rows still in water, the water's excess distribution over the band of
+/// ranges up to this one on the rows outside any return, and each row's evidence added until it
+/// reaches ln(1 / false_alarm_probability): per row, its run's first bin (where the sum left 0: the
+/// change point of Page's CUSUM, Page 1954, Biometrika 41) and the bin where it became certain.
+std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
+                              SweepCalibration& water);
+
+/// The weight of one bin's evidence: its share of an independent look, bin length over the pulse
+/// (PolarImage::pulse_length_m) when the pulse is longer than a bin, else 1.
+double evidenceWeight(const PolarImage& polar);
+
+/// Evidence detector: the evidence pass, then each return's leading edge. `water` as for
+/// detectBackgroundSubtracted. Options validated.
+std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const DetectionContext& context,
+                                          const BackgroundOptions& options, SweepCalibration& water);
+
 /// CFAR along each row, with a floor at the calibrated background plus the minimum contrast.
 std::vector<BeamDetection> detectCfar(const PolarImage& polar, const DetectionContext& context,
                                       const CfarOptions& options, const SweepCalibration& calibration);

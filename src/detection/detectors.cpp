@@ -48,6 +48,7 @@ void checkBackground(const BackgroundOptions& o) {
   o.calibration.validate();
   requireNonNegative(o.min_echo_length_m, "the minimum echo length (m)");
   requireNonNegative(o.leading_edge_db, "the leading edge's level below the peak (dB)");
+  requireNonNegative(o.water_band_m, "the water band (m)");
   if (o.min_beams < 1) throwOption("background min_beams must be >= 1");
 }
 
@@ -66,6 +67,7 @@ constexpr NamedDetector kDetectorNames[] = {
     {"cfar-so", Detector::kCfar, CfarVariant::kSmallestOf},
     {"cfar-go", Detector::kCfar, CfarVariant::kGreatestOf},
     {"cfar-os", Detector::kCfar, CfarVariant::kOrderedStatistic},
+    {"evidence", Detector::kEvidence, CfarVariant::kCellAveraging},
 };
 
 const NamedDetector& namedDetector(std::string_view name) {
@@ -93,6 +95,7 @@ void DetectorOptions::validate() const {
       checkCanny(canny);
       break;
     case Detector::kBackgroundSubtracted:
+    case Detector::kEvidence:
       checkBackground(background);
       break;
     case Detector::kCfar:
@@ -142,6 +145,8 @@ std::vector<BeamDetection> runDetector(const PolarImage& polar, const DetectorOp
       return detail::detectCanny(polar, context, options.canny);
     case Detector::kBackgroundSubtracted:
       return detail::detectBackgroundSubtracted(polar, context, options.background, water);
+    case Detector::kEvidence:
+      return detail::detectEvidence(polar, context, options.background, water);
     case Detector::kCfar:
       // The floor: above the background of the water, as the background detector measures it.
       detail::outwardPass(polar, context, options.background, water);

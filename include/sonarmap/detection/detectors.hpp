@@ -29,6 +29,8 @@ enum class Detector {
   kBackgroundSubtracted,  ///< ours, the default: first echo above the calibrated background (below)
   kCfar,                  ///< first run of CFAR detections above a level floor along the row
                           ///< (cfar.hpp; Richards ch. 6, Rohling 1983), variant in CfarOptions
+  kEvidence,              ///< ours: each bin's evidence of a return against the water measured
+                          ///< where it is water, added along the beam (water_evidence.hpp)
 };
 
 /// Paper §8.2: an obstacle starts at the first bin c with I[c] − I[c−1] above min_rise_db (both
@@ -77,6 +79,9 @@ struct BackgroundOptions {
   double min_echo_length_m = 0.04;
   double leading_edge_db = 6.0;     ///< the leading edge is within this of the echo's peak, dB, ≥ 0
   int min_beams = 20;               ///< fewest rows (beams) to estimate a background, ≥ 1
+  /// The evidence detector's water band, metres, ≥ 0 (at least 8 bins): the water's excess
+  /// distribution at a range is measured over this much range in front of it and at it.
+  double water_band_m = 0.1;
 };
 
 /// Options of detectObstacles(); each detector reads its own part. All in physical units,

@@ -1,0 +1,171 @@
+/// @file evidence_detector.cpp
+/// The evidence detector: one outward pass over the ranges that measures the water where it is
+/// water (water_evidence.hpp) and adds each bin's evidence of a return along its beam until the
+/// beam's first return is certain (see detectors.hpp, EvidenceOptions).
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <vector>
+
+#include "column_histogram.hpp"
+#include "detector_internal.hpp"
+#include "sonarmap/detection/water_evidence.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
+
+namespace sonarmap::detail {
+namespace {
+
+/// A range's level needs this share of the rows (and at least 3) still in water there; beyond, the
+/// last range that had them is used (as the background detector's outward pass).
+constexpr double kMinWaterShare = 0.3;
+/// Water samples a band needs before its evidence is used (the first bands of a sweep wait for it).
+constexpr std::uint64_t kMinBandSamples = 64;
+
+using ExcessHistogram = std::array<std::uint32_t, WaterEvidence::kExcessValues>;
+
+int excessOf(std::uint8_t value, float level) { return static_cast<int>(std::lround(static_cast<float>(value) - level)); }
+
+/// Replaces the band's oldest column (`oldest`) in `band_counts` by column `c`'s excess over
+/// `level` on the rows in water outside any return (their evidence sum at 0).
+void addToBand(ExcessHistogram& oldest, ExcessHistogram& band_counts, const std::vector<int>& in_water,
+               const std::vector<double>& sum, const PolarImage& polar, const std::uint8_t* column, int c, float level) {
+  for (std::size_t e = 0; e < band_counts.size(); ++e) band_counts[e] -= oldest[e];
+  oldest.fill(0);
+  for (const int r : in_water) {
+    const auto row = static_cast<std::size_t>(r);
+    if (c < polar.valid_bins[row] && sum[row] == 0.0) ++oldest[static_cast<std::size_t>(excessOf(column[r], level) + 255)];
+  }
+  for (std::size_t e = 0; e < band_counts.size(); ++e) band_counts[e] += oldest[e];
+}
+
+/// Where the return `found` of `row` is loud: the first bin from its start on, up to where it became
+/// certain and then as long as the echo stays above half the per-bin threshold, whose excess reaches
+/// the threshold; −1 when the
+/// return has no loud part (a step into reverberation). Evidence of a slowly rising echo (a face at
+/// oblique incidence, lit first by the beam pattern's skirt) adds up before its peak, and its
+/// leading edge is sought from the peak's level (leadingEdgeAt).
+int loudPartOf(const PolarImage& polar, int row, const EvidenceReturn& found, const SweepCalibration& water) {
+  const auto* values = polar.intensities.ptr<std::uint8_t>(row);
+  const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
+  for (int c = found.start_bin; c < end; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    const float excess = static_cast<float>(values[c]) - water.background[i];
+    if (excess >= water.threshold[i]) return c;
+    if (excess < 0.5f * water.threshold[i] && c > found.certain_bin) break;
+  }
+  return -1;
+}
+
+}  // namespace
+
+double evidenceWeight(const PolarImage& polar) {
+  // Bins closer than a pulse length share their speckle: each adds only its share of a look.
+  if (polar.pulse_length_m && *polar.pulse_length_m > polar.bin_length_m) return polar.bin_length_m / *polar.pulse_length_m;
+  return 1.0;
+}
+
+std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
+                              SweepCalibration& water) {
+  const int rows = polar.rows(), cols = polar.cols();
+  const CalibrationOptions& calibration = options.calibration;
+  const auto min_water = static_cast<std::uint32_t>(std::max(3.0, std::ceil(kMinWaterShare * rows)));
+  const int band = binsForLength(options.water_band_m, polar.bin_length_m, 8, std::max(8, cols));
+  const double decision = -std::log(calibration.false_alarm_probability);
+  const double weight = evidenceWeight(polar);
+  std::vector<EvidenceReturn> first(static_cast<std::size_t>(rows));
+  std::vector<int> start(static_cast<std::size_t>(rows), -1);
+  std::vector<int> loud(static_cast<std::size_t>(rows), 0);  // bins in a row above the per-bin threshold
+  std::vector<double> sum(static_cast<std::size_t>(rows), 0.0);
+  std::vector<int> in_water;
+  for (int r = 0; r < rows; ++r) in_water.push_back(r);
+  std::vector<ExcessHistogram> ring(static_cast<std::size_t>(band));  // the band's columns, oldest overwritten
+  ExcessHistogram band_counts{};
+  WaterEvidence evidence{std::span<const std::uint32_t>(band_counts)};
+  IntensityHistogram levels;
+  std::deque<float> upcoming;  // the levels of this range and the next ones (−1: too few rows)
+  const cv::Mat columns = polar.intensities.t();  // row c: column c's values, contiguous
+  for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    const auto* column = columns.ptr<std::uint8_t>(c);
+    // The level: the background percentile of the rows in water outside a loud run, at this range and
+    // the next `ahead` bins, the highest of them: a level surface entering the cone (the water
+    // surface of the CRAS tank at 1.5 m) reaches the bearings within a few bins of each other, and
+    // the level must rise with the first of them, not after a quarter of the bearings have passed.
+    // A wall seen by fewer than (100 − percentile) % of the bearings at one range never raises it.
+    const int ahead = std::min(band / 2, cols - 1 - c);
+    for (int k = c + static_cast<int>(upcoming.size()); k <= c + ahead; ++k) {
+      levels.clear();
+      const auto* values = columns.ptr<std::uint8_t>(k);
+      for (const int r : in_water) {
+        if (k < polar.valid_bins[static_cast<std::size_t>(r)] && loud[static_cast<std::size_t>(r)] == 0) levels.add(values[r]);
+      }
+      upcoming.push_back(levels.total() >= min_water ? levels.percentile(calibration.background_percentile) : -1.0f);
+    }
+    const float measured = *std::max_element(upcoming.begin(), upcoming.end());
+    upcoming.pop_front();
+    // Where too few rows remain in water (mostly those about to meet their return), the last range
+    // that had enough keeps its level and its water.
+    const bool enough = measured >= 0.0f;
+    if (context.measure_background) {
+      if (enough) {
+        water.background[i] = measured;
+      } else if (c > context.min_bin) {
+        water.background[i] = water.background[i - 1];
+      }
+    }
+    if (enough) {
+      // The water's excess over the level, from the rows in water outside any return, over the band.
+      addToBand(ring[static_cast<std::size_t>((c - context.min_bin) % band)], band_counts, in_water, sum, polar, column,
+                c, water.background[i]);
+      std::uint64_t band_samples = 0;
+      for (const std::uint32_t count : band_counts) band_samples += count;
+      if (band_samples >= kMinBandSamples) evidence = WaterEvidence{std::span<const std::uint32_t>(band_counts)};
+    }
+    // Each row adds its bin's evidence (a CUSUM: a run starts where the sum leaves 0); a row whose
+    // sum reaches the decision level has met its first return, where its run started.
+    std::erase_if(in_water, [&](int r) {
+      const auto row = static_cast<std::size_t>(r);
+      if (c >= polar.valid_bins[row]) return true;
+      const float excess = static_cast<float>(column[r]) - water.background[i];
+      loud[row] = excess >= water.threshold[i] ? loud[row] + 1 : 0;
+      const double next = sum[row] + weight * evidence.logLikelihoodRatio(excessOf(column[r], water.background[i]));
+      if (next <= 0.0) {
+        sum[row] = 0.0;
+        start[row] = -1;
+        return false;
+      }
+      if (start[row] < 0) start[row] = c;
+      sum[row] = next;
+      if (next < decision) return false;
+      first[row] = EvidenceReturn{start[row], c};
+      return true;
+    });
+  }
+  return first;
+}
+
+std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const DetectionContext& context,
+                                          const BackgroundOptions& options, SweepCalibration& water) {
+  // The loud returns first: a surface in the beam's loud core, whatever weaker return comes before it
+  // (a surface met by the cone's edge, the CRAS tank's water surface at 1.5 m, a floater above the
+  // plane); `water` leaves with the calibration they were found with.
+  SweepCalibration measured = water;
+  std::vector<BeamDetection> detections = detectBackgroundSubtracted(polar, context, options, water);
+  if ((context.measure_background && polar.rows() < options.min_beams) || polar.cols() == 0) return detections;
+  // A beam whose echo is never loud: its first return certain by the evidence of its bins.
+  const std::vector<EvidenceReturn> first = evidencePass(polar, context, options, measured);
+  for (int r = 0; r < polar.rows(); ++r) {
+    BeamDetection& detection = detections[static_cast<std::size_t>(r)];
+    const EvidenceReturn& found = first[static_cast<std::size_t>(r)];
+    if (detection.hasObstacle() || found.start_bin < 0) continue;
+    // Its range: the leading edge of its loud part if it has one (a slowly rising echo), else where
+    // its evidence started to add up (a step into reverberation has no peak to measure from).
+    const int loud = loudPartOf(polar, r, found, measured);
+    detection = loud >= 0 ? leadingEdgeAt(polar, r, loud, context, measured, options.leading_edge_db)
+                          : detectionAt(polar, r, found.start_bin);
+  }
+  return detections;
+}
+
+}  // namespace sonarmap::detail
