@@ -84,6 +84,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
   WaterEvidence evidence{std::span<const std::uint32_t>(band_counts)};
   IntensityHistogram levels;
   std::deque<float> upcoming;  // the levels of this range and the next ones (−1: too few rows)
+  std::deque<std::uint32_t> upcoming_rows;  // the rows in water they were measured on
   const cv::Mat columns = polar.intensities.t();  // row c: column c's values, contiguous
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
@@ -100,21 +101,24 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       for (const int r : in_water) {
         if (k < polar.valid_bins[static_cast<std::size_t>(r)] && loud[static_cast<std::size_t>(r)] == 0) levels.add(values[r]);
       }
-      upcoming.push_back(levels.total() >= min_water ? levels.percentile(calibration.background_percentile) : -1.0f);
+      upcoming.push_back(levels.total() >= 3 ? levels.percentile(calibration.background_percentile) : -1.0f);
+      upcoming_rows.push_back(levels.total());
     }
     const float measured = *std::max_element(upcoming.begin(), upcoming.end());
+    const std::uint32_t rows_in_water = upcoming_rows.front();
     upcoming.pop_front();
-    // Where too few rows remain in water (mostly those about to meet their return), the last range
-    // that had enough keeps its level and its water.
-    const bool enough = measured >= 0.0f;
+    upcoming_rows.pop_front();
+    // The level follows the rows in water however few remain (a level surface lies beyond the walls
+    // of most bearings as well); the water's shape needs kMinWaterShare of the rows, and where fewer
+    // remain (mostly those about to meet their return) the last band that had them is kept.
     if (context.measure_background) {
-      if (enough) {
+      if (measured >= 0.0f) {
         water.background[i] = measured;
       } else if (c > context.min_bin) {
         water.background[i] = water.background[i - 1];
       }
     }
-    if (enough) {
+    if (rows_in_water >= min_water) {
       // The water's excess over the level, from the rows in water outside any return, over the band.
       addToBand(ring[static_cast<std::size_t>((c - context.min_bin) % band)], band_counts, in_water, sum, polar, column,
                 c, water.background[i]);
