@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -52,7 +53,8 @@ void HeardSurfaceOptions::validate() const {
 
 OcTree16 heardSurfaceMap(const SonarLog& log, const NavTrack& true_nav, const Eigen::Isometry3d& sonar_to_body,
                          const Scene& scene, const MsisHeadOptions& head, const EchoModelOptions& echo,
-                         const HeardSurfaceOptions& options, HeardSurfaceStats* stats, const ProgressCallback& progress) {
+                         const HeardSurfaceOptions& options, HeardSurfaceStats* stats,
+                         const ProgressCallback& progress) {
   options.validate();
   const EchoLevels levels(scene, head, echo);
   const SceneRayCaster caster(scene);
@@ -71,9 +73,12 @@ OcTree16 heardSurfaceMap(const SonarLog& log, const NavTrack& true_nav, const Ei
     const Beam& beam = log.beams[i];
     if (progress) progress(i + 1, log.beams.size());
     if (!(std::abs(beam.bin_length_m - bin_m) <= 1e-6 * bin_m)) {
-      throw ValueError("heard surface: beam " + std::to_string(i) + " has " + std::to_string(beam.bin_length_m) +
-                       " m bins, the head records " + std::to_string(bin_m) + " m (" + std::to_string(head.range_m) +
-                       " m in " + std::to_string(head.bins) + " bins): the log was not recorded by this head");
+      char message[200];
+      std::snprintf(message, sizeof message,
+                    "heard surface: beam %zu has %.6g m bins, the head records %.6g m (%g m in %d bins): the log was "
+                    "not recorded by this head",
+                    i, beam.bin_length_m, bin_m, head.range_m, head.bins);
+      throw ValueError(message);
     }
     Eigen::Isometry3d sonar_to_map = Eigen::Isometry3d::Identity();  // static: at the map origin
     if (nav) {
@@ -129,7 +134,8 @@ HeardSurfaceScore scoreAgainstHeardSurface(const OcTree16& map, const GroundTrut
                      " m) differ from the map's (" + std::to_string(res_m) + " m)");
   }
   if (!(std::isfinite(truth.tolerance_m) && truth.tolerance_m > 0.0)) {
-    throw ValueError("heard recall: the tolerance must be a finite number > 0, got " + std::to_string(truth.tolerance_m));
+    throw ValueError("heard recall: the tolerance must be a finite number > 0, got " +
+                     std::to_string(truth.tolerance_m));
   }
   const detail::KeySet mapped = occupiedKeys(map, truth.z_min_m, truth.z_max_m);
   const detail::KeySet heard_keys =
