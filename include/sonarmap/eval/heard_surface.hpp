@@ -86,7 +86,9 @@ OcTree16 heardSurfaceMap(const SonarLog& log, const NavTrack& true_nav, const Ei
                          const ProgressCallback& progress = {});
 
 /// The heard surface of a simulated mission: the general form above with the run's log, its true
-/// navigation (run.simulation.nav), mounting (run.options.sonar_to_body), scene, head and echo model.
+/// navigation (run.simulation.nav, the fixes a truth_nav.csv holds; a run simulated without
+/// navigation, nav_rate_hz 0, is heard as a static log), mounting (run.options.sonar_to_body),
+/// scene, head and echo model.
 /// @throws ValueError as the general form.
 OcTree16 heardSurfaceMap(const MissionRun& run, const HeardSurfaceOptions& options,
                          HeardSurfaceStats* stats = nullptr);
