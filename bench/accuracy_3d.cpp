@@ -3,7 +3,10 @@
 // under each arc-evidence rule (and the default rule with silent beams clearing, as before issue
 // 11's no-echo rule), at 5 cm voxels, scored in 3D against the scene with the head's
 // field of view: precision, recall, F1, surface error (median, 90th percentile), erosion, free
-// accuracy; obstacles, voxel updates and mapping time.
+// accuracy; obstacles, voxel updates and mapping time. Each map is also scored against the surface
+// its log's beams heard (eval/heard_surface.hpp, issue 40) at 0 dB and at −6 dB over the receiver's
+// floor: heard recall and heard F1 (with the precision above). The heard surface is computed once
+// per mission, level and voxel size, not once per model.
 //
 // With a log (an argument ending in .mat, .V4LOG or .csv, e.g. the CRAS tank), that log is mapped
 // in 3D with the defaults at RESOLUTION_M instead, and its occupied voxels are tabled by horizontal
@@ -24,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "sonarmap/eval/heard_surface.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
@@ -47,8 +51,8 @@ struct Model {
 };
 
 /// Table rows of the mission's recall and erosion per scene primitive.
-std::string recallBySurface(const std::string& preset, const std::string& mission, const MissionAccuracy& accuracy) {
-  const Scene scene = simulateMission(accuracy.mission).simulation.scene;
+std::string recallBySurface(const std::string& preset, const std::string& mission, const Scene& scene,
+                            const MissionAccuracy& accuracy) {
   std::string rows;
   for (const SurfaceRecall& surface : accuracy.truth.recall_by_surface) {
     const auto share = [&](std::size_t n) { return static_cast<double>(n) / static_cast<double>(surface.visible_voxels); };
@@ -60,6 +64,44 @@ std::string recallBySurface(const std::string& preset, const std::string& missio
   }
   return rows;
 }
+
+/// The levels over the receiver's floor at which the maps are scored against the heard surface, dB.
+constexpr double kHeardLevels_db[] = {0.0, -6.0};
+
+/// A mission's heard surfaces, one per level of kHeardLevels_db, made at the first voxel size a map
+/// asks for and again only when a map of another voxel size comes (`auto` resolves per model).
+class HeardSurfaces {
+ public:
+  explicit HeardSurfaces(const MissionRun& run) : run_(run) {}
+
+  /// The heard surface at level `level` (an index into kHeardLevels_db) on the grid of `resolution_m`;
+  /// its voxel count is recorded for the table of heard surfaces.
+  const OcTree16& at(std::size_t level, double resolution_m) {
+    if (maps_.empty() || resolution_m_ != resolution_m) {
+      maps_.clear();
+      resolution_m_ = resolution_m;
+      for (const double level_db : kHeardLevels_db) {
+        HeardSurfaceStats stats;
+        maps_.push_back(heardSurfaceMap(run_, HeardSurfaceOptions{resolution_m, level_db}, &stats));
+        made_.push_back({level_db, resolution_m, stats.voxels});
+      }
+    }
+    return maps_[level];
+  }
+
+  struct Made {
+    double level_db, resolution_m;
+    std::size_t voxels;
+  };
+  /// Every heard surface made, in order.
+  const std::vector<Made>& made() const { return made_; }
+
+ private:
+  const MissionRun& run_;
+  double resolution_m_ = 0.0;
+  std::vector<OcTree16> maps_;
+  std::vector<Made> made_;
+};
 
 bool isLog(const std::string& argument) {
   for (const char* extension : {".mat", ".V4LOG", ".csv"}) {
@@ -136,11 +178,22 @@ int main(int argc, char** argv) {
                            std::nullopt, true, ObstacleSurface::kVertical, true, true,
                            std::numeric_limits<double>::quiet_NaN()}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
+              "heard recall / F1, 0 dB | heard recall / F1, −6 dB | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::string by_surface;  // the default model's recall and erosion per scene primitive
+  std::string heard_rows;  // the heard surfaces' sizes
   for (const std::string& preset : presets) {
     for (const std::string& mission : simulatedMissionNames()) {
+      const SimulatedMission simulated{preset, "quay3d", mission};
+      std::optional<MissionRun> run;
+      try {
+        run = simulateMission(simulated);
+      } catch (const std::exception& error) {
+        std::printf("| %s | %s | %s |\n", preset.c_str(), mission.c_str(), error.what());
+        continue;
+      }
+      HeardSurfaces heard(*run);
       for (const Model& model : models) {
         MapperOptions options;
         if (!automatic) options.resolution_m = resolution_m;
@@ -153,24 +206,37 @@ int main(int argc, char** argv) {
         options.face_slope = model.face_slope;
         options.water_surface_depth_m = model.water_surface_depth_m;
         try {
-          const MissionAccuracy a = evaluateMission(SimulatedMission{preset, "quay3d", mission}, options);
+          std::vector<HeardSurfaceScore> scores;
+          const MissionAccuracy a =
+              evaluateMission(simulated, *run, options, [&](const OcTree16& map, const MissionAccuracy& scored) {
+                for (std::size_t level = 0; level < std::size(kHeardLevels_db); ++level) {
+                  scores.push_back(scoreAgainstHeardSurface(map, scored.truth, heard.at(level, map.resolution_m())));
+                }
+              });
           const GroundTruthReport& t = a.truth;
           const std::size_t off_surface = t.occupied_voxels - t.occupied_on_surface;
-          std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f | %.4f | %.3f | %zu | %.3g | %.2f | %.3g |\n",
+          std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.4f "
+                      "| %.3f | %zu | %.3g | %.2f | %.3g |\n",
                       preset.c_str(), mission.c_str(), model.name, t.occupied_voxels, t.precision,
                       off_surface > 0 ? static_cast<double>(t.occupied_in_water) / static_cast<double>(off_surface) : 0.0,
-                      t.recall, a.f1(),
+                      t.recall, a.f1(), scores[0].recall, scores[0].f1, scores[1].recall, scores[1].f1,
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
                       static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
           if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
               !model.clear_without_obstacle && model.extended_returns && model.surface == MapperOptions{}.obstacle_surface &&
               model.seabed_slope && model.face_slope && model.water_surface_depth_m == MapperOptions{}.water_surface_depth_m) {
-            by_surface += recallBySurface(preset, mission, a);
+            by_surface += recallBySurface(preset, mission, run->simulation.scene, a);
           }
         } catch (const std::exception& error) {
           std::printf("| %s | %s | %s | %s |\n", preset.c_str(), mission.c_str(), model.name, error.what());
         }
         std::fflush(stdout);
+      }
+      for (const HeardSurfaces::Made& made : heard.made()) {
+        char row[160];
+        std::snprintf(row, sizeof row, "| %s | %s | %+.0f dB | %zu | %.3g |\n", preset.c_str(), mission.c_str(),
+                      made.level_db, made.voxels, made.resolution_m);
+        heard_rows += row;
       }
     }
   }
@@ -178,5 +244,9 @@ int main(int argc, char** argv) {
               "primitive of the scene, builtin_scenes.hpp):\n\n| head | mission | primitive | visible voxels | "
               "recall | erosion |\n|---|---|---|---:|---:|---:|\n%s",
               by_surface.c_str());
+  std::printf("\nThe heard surfaces the maps were scored against (heardSurfaceMap: surface points whose mean echo "
+              "is at least the level over the receiver's floor):\n\n| head | mission | level over the floor | heard "
+              "voxels | voxel (m) |\n|---|---|---|---:|---:|\n%s",
+              heard_rows.c_str());
   return 0;
 }

@@ -104,9 +104,11 @@ void print3dHeader(const MissionRun& mission, const std::string& folder) {
               k3dResolution_m, folder.c_str());
 }
 
-/// The lines that tell the user how to score the 3D run's map and how to make it again.
+/// The lines that tell the user how to score the 3D run's map (against the scene, what the sonar
+/// could see, and the surface its beams heard, from the log and the true navigation `truth_nav`) and
+/// how to make it again.
 void print3dCommands(const MapArgs& map_args, const std::string& side_png, const std::string& scene,
-                     const MissionRun& mission) {
+                     const std::string& truth_nav, const MissionRun& mission) {
   // The numbers the mission's mounting was built from, exactly: the map command rebuilds the same pose.
   char mounting[200];
   std::snprintf(mounting, sizeof mounting, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", mission.mounting[0],
@@ -114,6 +116,10 @@ void print3dCommands(const MapArgs& map_args, const std::string& side_png, const
   std::printf("3d: score it:  sonarmap eval %s --truth %s\n", map_args.output_bt.c_str(), scene.c_str());
   std::printf("3d: score what the sonar could see (docs/accuracy.md):  sonarmap eval %s --truth %s %s\n",
               map_args.output_bt.c_str(), scene.c_str(), fieldOfViewOptions(mission).c_str());
+  std::printf("3d: score it against the surface its beams heard (docs/accuracy.md):  sonarmap eval %s --truth %s "
+              "--heard-by %s --nav %s --mounting %s --sonar %s\n",
+              map_args.output_bt.c_str(), scene.c_str(), map_args.input.c_str(), truth_nav.c_str(), mounting,
+              k3dMission.preset.c_str());
   std::printf("3d: map it again:  sonarmap map %s --nav %s --mounting %s --3d --resolution %s "
               "--beam-width %g --vertical-aperture %g -o %s --png %s --side-png %s\n",
               map_args.input.c_str(), map_args.nav_csv.c_str(), mounting,
@@ -187,7 +193,7 @@ void run(const DemoArgs& args) {
   printTankReport(mapped.mapper.map());
   print3dHeader(mission, folder_3d);
   printRun(mapped_3d, map_args_3d.output_bt, true);
-  print3dCommands(map_args_3d, side_png, dir_3d.file("scene.txt"), mission);
+  print3dCommands(map_args_3d, side_png, dir_3d.file("scene.txt"), dir_3d.file("truth_nav.csv"), mission);
 }
 
 }  // namespace
@@ -200,7 +206,7 @@ Command addDemoCommand(CLI::App& app, DemoArgs& args) {
                   "tank_cartesian.png, beams.csv, scene.txt), and in 3d-mission/ the Micron flying a loop over the "
                   "quay3d scene with its sonar tilted 25 degrees down, mapped with --3d at 5 cm (map.bt, "
                   "map.html, map_top.png, map_side.png, beams.csv, nav.csv, truth_nav.csv, scene.txt); it prints how "
-                  "to score that map with sonarmap eval")
+                  "to score that map with sonarmap eval (also against the surface its beams heard)")
       ->required();
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};

@@ -72,10 +72,19 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
                   "Also write a PNG: the map seen from above (and, for a 3D map, from the side), each column's "
                   "occupied voxels coloured by their largest distance to the truth (blue 0 m to red, legend in "
                   "metres), the sonar positions drawn");
+  addHeardOptions(*cmd, args.heard);
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
-  auto options = std::make_shared<GroundTruthOptions>();
-  return {cmd, [cmd, &args, options] { *options = toGroundTruthOptions(*cmd, args); },
-          [&args, options] { runEval(args, *options); }};
+  struct Checked {
+    GroundTruthOptions options;
+    std::optional<HeardRequest> heard;
+  };
+  auto checked = std::make_shared<Checked>();
+  return {cmd,
+          [cmd, &args, checked] {
+            checked->options = toGroundTruthOptions(*cmd, args);
+            checked->heard = toHeardRequest(*cmd, args.heard);
+          },
+          [&args, checked] { runEval(args, checked->options, checked->heard); }};
 }
 
 GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& args) {
@@ -141,7 +150,7 @@ Scene loadTruth(const std::string& truth) {
 
 }  // namespace
 
-void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
+void runEval(const EvalArgs& args, const GroundTruthOptions& options, const std::optional<HeardRequest>& heard) {
   const OcTree16 map = readMapFile(args.map);
   const Scene scene = loadTruth(args.truth);
   const auto start = std::chrono::steady_clock::now();
@@ -151,6 +160,9 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
       if (!args.quiet) bar.update(done, total);
     });
   }();
+  HeardSurfaceStats heard_stats;
+  const std::optional<HeardSurfaceScore> heard_score =
+      heard ? std::optional(scoreHeardSurface(*heard, scene, map, r, args.quiet, heard_stats)) : std::nullopt;
   if (!args.png.empty()) {
     char title[512];
     std::snprintf(title, sizeof title, "%s vs truth %s  |  %g m voxels  |  occupied voxels by distance to the truth",
@@ -169,6 +181,7 @@ void runEval(const EvalArgs& args, const GroundTruthOptions& options) {
   }
   std::printf("recall %.4f (%zu of %zu visible surface voxels mapped)\n", r.recall, r.surface_voxels_found,
               r.surface_voxels);
+  if (heard_score) printHeardScore(*heard, *heard_score, heard_stats);
   std::printf("erosion %.4f (%zu of %zu visible surface voxels free)\n", r.erosion, r.surface_voxels_free,
               r.surface_voxels);
   std::printf("free_accuracy %.4f (%zu of %zu free voxels in the water)\n", r.free_accuracy, r.free_in_water,

@@ -1,12 +1,15 @@
 #pragma once
-// `sonarmap eval`: a map (.bt/.ot) scored against a ground-truth scene (eval/ground_truth.hpp).
+// `sonarmap eval`: a map (.bt/.ot) scored against a ground-truth scene (eval/ground_truth.hpp) and,
+// with --heard-by, against the surface its log's beams heard (eval_heard.hpp).
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "command.hpp"
+#include "eval_heard.hpp"
 
 #include "sonarmap/eval/ground_truth.hpp"
 
@@ -27,6 +30,7 @@ struct EvalArgs {
   double vertical_aperture_deg = 0.0;  ///< --vertical-aperture, degrees (set: field-of-view check)
   std::string png;             ///< --png: the occupied voxels coloured by their distance to the truth
   bool quiet = false;          ///< -q: no progress bar
+  HeardArgs heard;             ///< --heard-by, --nav, --mounting, --heard-level, --sonar
 };
 
 /// Adds the `eval` subcommand to `app`; its options fill `args`.
@@ -43,6 +47,8 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
 /// prints one line per metric on stdout:
 ///   precision P (occupied on surface / occupied)
 ///   recall R (found / visible surface voxels)
+///   heard_recall, heard_f1, heard_surface: with `heard` (--heard-by), the map scored against the
+///     surface the log's beams heard at the map's resolution (printHeardScore, eval_heard.hpp)
 ///   erosion E (free / visible surface voxels)
 ///   free_accuracy F (in water / free)
 ///   wall_error_mean_m M, wall_error_rms_m S (over N matched voxels)
@@ -54,7 +60,8 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
 /// the occupied voxels coloured by their distance to the truth (surfaceErrorFigure,
 /// render/map_figures.hpp; the sensors drawn). A progress bar runs
 /// on stderr while scoring when it is a terminal, unless args.quiet.
-/// @throws sonarmap::Error for an unreadable map or scene, or a map with nothing known in the slab.
-void runEval(const EvalArgs& args, const GroundTruthOptions& options);
+/// @throws sonarmap::Error for an unreadable map, scene, log or navigation file, a map with nothing
+///         known in the slab, or a heard surface that cannot be made (scoreHeardSurface).
+void runEval(const EvalArgs& args, const GroundTruthOptions& options, const std::optional<HeardRequest>& heard);
 
 }  // namespace sonarmap::cli

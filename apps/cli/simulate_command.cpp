@@ -83,14 +83,13 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   }
 }
 
-/// The --sonar option's help: every preset with its one-line description.
-std::string sonarHelp() {
-  std::string help = "Sonar head preset; built-in scenes are built for its range scale:";
+}  // namespace
+
+std::string sonarPresetHelp(const std::string& lead) {
+  std::string help = lead;
   for (const std::string& name : sonarPresetNames()) help += "\n  " + name + ": " + sonarPreset(name).description;
   return help;
 }
-
-}  // namespace
 
 void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run) {
   const fs::path folder(dir);
@@ -114,7 +113,9 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
                       "include/sonarmap/sim/scene_file.hpp)")
       ->required();
   cmd->add_option("-o,--output", args.output_dir, "Output folder (created when missing)")->required();
-  cmd->add_option("--sonar", args.sonar, sonarHelp())->capture_default_str();
+  cmd->add_option("--sonar", args.sonar,
+                  sonarPresetHelp("Sonar head preset; built-in scenes are built for its range scale:"))
+      ->capture_default_str();
   cmd->add_option("--sector", args.sector_deg,
                   "Width of the scanned sector in degrees, (0, 360]; less than 360: the head sweeps back and forth "
                   "across it")

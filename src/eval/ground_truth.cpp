@@ -5,19 +5,17 @@
 #include <limits>
 #include <numbers>
 #include <string>
-#include <unordered_set>
 
 #include <Eigen/LU>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/core/statistics.hpp"
+#include "occupied_near.hpp"
 #include "surface_voxels.hpp"
 
 namespace sonarmap {
 
 namespace {
-
-using KeySet = std::unordered_set<Key16, KeyHash<16>>;
 
 /// Reports the scoring as three equal stages (occupied voxels, surface voxels, free voxels) of
 /// kStageUnits units each, calling the callback only when the count of units changes.
@@ -148,23 +146,6 @@ bool visibleSurface(const SceneRayCaster& caster, const std::vector<Eigen::Vecto
   return false;
 }
 
-/// True when an occupied voxel's centre lies within `tolerance_m` of the centre of `key`.
-bool occupiedNear(const KeySet& occupied, const Key16& key, double tolerance_m, double res_m) {
-  const int reach = static_cast<int>(std::floor(tolerance_m / res_m));
-  const double reach_sq = (tolerance_m / res_m) * (tolerance_m / res_m);
-  for (int dz = -reach; dz <= reach; ++dz) {
-    for (int dy = -reach; dy <= reach; ++dy) {
-      for (int dx = -reach; dx <= reach; ++dx) {
-        if (dx * dx + dy * dy + dz * dz > reach_sq) continue;
-        const Key16 near{{static_cast<std::uint16_t>(key[0] + dx), static_cast<std::uint16_t>(key[1] + dy),
-                          static_cast<std::uint16_t>(key[2] + dz)}};
-        if (occupied.contains(near)) return true;
-      }
-    }
-  }
-  return false;
-}
-
 /// The distance from `point_m` to the nearest surface of the scene (metres) and that primitive's
 /// index (the first of equals).
 std::pair<double, std::size_t> nearestPrimitive(const Scene& scene, const Eigen::Vector3d& point_m) {
@@ -225,7 +206,7 @@ void scoreOccupied(const OcTree16& map, const Scene& scene, const SceneRayCaster
 /// tolerance, and those the map holds free.
 void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster& caster, const RegionVoxels& region,
                    const GroundTruthOptions& options, GroundTruthReport& report, StageProgress& progress) {
-  const KeySet occupied(region.occupied.begin(), region.occupied.end());
+  const detail::KeySet occupied(region.occupied.begin(), region.occupied.end());
   const auto& coder = map.coder();
   const double res = map.resolution_m();
   const FieldOfView view{options.sensor_orientations, 0.5 * options.vertical_aperture_rad.value_or(0.0)};
@@ -251,7 +232,7 @@ void scoreSurfaces(const OcTree16& map, const Scene& scene, const SceneRayCaster
     progress(1, done++, candidates.size());
     const Eigen::Vector3d center = coder.centerOf(key);
     if (!visibleSurface(caster, options.sensor_positions_m, view, center, report.max_range_m, res)) continue;
-    const bool found = occupiedNear(occupied, key, report.tolerance_m, res);
+    const bool found = detail::occupiedNear(occupied, key, report.tolerance_m, res);
     const bool free = map.occupancyOf(key) == Occupancy::kFree;
     SurfaceRecall& nearest = by_primitive[nearestPrimitive(scene, center).second];
     ++nearest.visible_voxels;

@@ -99,9 +99,13 @@ GroundTruthOptions missionTruthOptions(const MissionRun& run, double tolerance_m
 }
 
 MissionAccuracy evaluateMission(const SimulatedMission& mission, const MapperOptions& options) {
+  return evaluateMission(mission, simulateMission(mission), options);
+}
+
+MissionAccuracy evaluateMission(const SimulatedMission& mission, const MissionRun& run, const MapperOptions& options,
+                                const MissionMapVisitor& visit) {
   MissionAccuracy result;
   result.mission = mission;
-  const MissionRun run = simulateMission(mission);
   MapperOptions mapping = options;
   mapping.beam_width_rad = run.options.head.horizontal_beam_width_rad;
   mapping.vertical_aperture_rad = run.options.head.vertical_beam_width_rad;
@@ -113,6 +117,7 @@ MissionAccuracy evaluateMission(const SimulatedMission& mission, const MapperOpt
   result.obstacles = mapper.stats().obstacles;
   result.voxel_updates = mapper.stats().free_updates + mapper.stats().occupied_updates;
   result.truth = evaluateAgainstScene(mapper.map(), run.simulation.scene, missionTruthOptions(run));
+  if (visit) visit(mapper.map(), result);
   return result;
 }
 

@@ -182,9 +182,9 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
     // The vehicle's loop, 4 × 3 m seen from above, a line at z = −0.5 m from the side: red.
     EXPECT_GT(pixelsOf(image, kTrackBgr), std::string(png) == "map_top.png" ? 2000 : 500) << png;
   }
-  // tank summary, tank report, the 3D run's header, its summary, three commands.
+  // tank summary, tank report, the 3D run's header, its summary, four commands.
   const Names lines = linesOf(result.out);
-  ASSERT_EQ(lines.size(), 7U) << result.out;
+  ASSERT_EQ(lines.size(), 8U) << result.out;
   EXPECT_EQ(lines[2], "3d: micron flying the tilted-loop mission over quay3d, sonar tilted 25 deg down, mapped with "
                       "--3d at 0.05 m -> " + mission.string());
   std::size_t used = 0, skipped = 0, without_nav = 0;
@@ -232,10 +232,29 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
   ASSERT_GE(linesOf(seen.out).size(), 3U) << seen.out;
   EXPECT_EQ(linesOf(seen.out)[2].rfind("erosion ", 0), 0U) << seen.out;
 
+  // The heard-surface command names the log, the TRUE navigation and the mounting the map was made
+  // with; eval scores the map against what the 2,000 beams heard.
+  const Names heard_args =
+      commandArgs(lines[6], "3d: score it against the surface its beams heard (docs/accuracy.md):");
+  EXPECT_EQ(heard_args, (Names{"eval", (mission / "map.bt").string(), "--truth", (mission / "scene.txt").string(),
+                               "--heard-by", (mission / "beams.csv").string(), "--nav",
+                               (mission / "truth_nav.csv").string(), "--mounting", "0,0,0,180,-25,0", "--sonar",
+                               "micron"}));
+  const ProgramRun heard = run(heard_args);
+  ASSERT_EQ(heard.exit_code, 0) << heard.err;
+  const Names heard_lines = linesOf(heard.out);
+  ASSERT_GE(heard_lines.size(), 5U) << heard.out;
+  double heard_recall = 0.0;
+  EXPECT_EQ(std::sscanf(heard_lines[2].c_str(), "heard_recall %lf", &heard_recall), 1) << heard_lines[2];
+  EXPECT_GT(heard_recall, 0.5);  // sonarmap_accuracy_3d: 0.714
+  EXPECT_LT(heard_recall, 1.0);
+  EXPECT_NE(heard_lines[4].find("by the micron head, 2000 beams traced (0 without navigation)"), std::string::npos)
+      << heard_lines[4];
+
   // The map command it prints makes the same map and pictures from the files it wrote.
   const std::string map_bt = readFile(mission / "map.bt"), top = readFile(mission / "map_top.png"),
                     side = readFile(mission / "map_side.png");
-  Names map_args = commandArgs(lines[6], "3d: map it again:");
+  Names map_args = commandArgs(lines[7], "3d: map it again:");
   map_args.push_back("-q");
   const ProgramRun remade = run(map_args);
   ASSERT_EQ(remade.exit_code, 0) << remade.err;

@@ -1,17 +1,26 @@
 // End-to-end tests of `sonarmap eval`: a map scored against a scene file or a built-in scene, one
-// line per metric, and the CLI's error contract.
+// line per metric, against the surface its log's beams heard (--heard-by), and the CLI's error
+// contract.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
+#include <string>
 
 #include "cli_fixture.hpp"
 #include "figure_checks.hpp"
+#include "sonarmap/eval/heard_surface.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/io/map_file.hpp"
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
+#include "sonarmap/sim/scene_file.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
 
 namespace sonarmap::test {
 namespace {
@@ -161,6 +170,169 @@ TEST_F(cliEval, BadArgumentsAndInputsFailWithOneLine) {
   expectError(run({"eval", map.string(), "--truth", scene.string()}), 1);                 // invalid scene
   expectError(run({"eval", map.string(), "--truth", "lake"}), 1);                          // neither file nor name
   expectError(run({"eval", map.string(), "--truth", "tank", "--z-min", "3", "--z-max", "4"}), 1);  // nothing known
+}
+
+/// The heard-surface lines of an eval run with --heard-by (after precision and recall), read back.
+struct HeardLines {
+  double recall = -1.0, f1 = -1.0, precision = -1.0, recall_again = -1.0;
+  std::size_t found = 0, voxels = 0, surface_voxels = 0, beams = 0, without_nav = 0;
+  std::string level;  ///< what the surface line says was heard
+};
+
+HeardLines heardLines(const Names& lines) {
+  HeardLines heard;
+  EXPECT_GE(lines.size(), 5U);
+  if (lines.size() < 5) return heard;
+  EXPECT_EQ(std::sscanf(lines[2].c_str(), "heard_recall %lf (%zu of %zu heard surface voxels mapped)", &heard.recall,
+                        &heard.found, &heard.voxels),
+            3)
+      << lines[2];
+  EXPECT_EQ(std::sscanf(lines[3].c_str(), "heard_f1 %lf (precision %lf, heard recall %lf)", &heard.f1, &heard.precision,
+                        &heard.recall_again),
+            3)
+      << lines[3];
+  const std::size_t colon = lines[4].find(": "), by = lines[4].find(" by the micron head, ");
+  EXPECT_EQ(std::sscanf(lines[4].c_str(), "heard_surface %zu voxels:", &heard.surface_voxels), 1) << lines[4];
+  EXPECT_NE(by, std::string::npos) << lines[4];
+  if (colon == std::string::npos || by == std::string::npos) return heard;
+  heard.level = lines[4].substr(colon + 2, by - colon - 2);
+  EXPECT_EQ(std::sscanf(lines[4].c_str() + by, " by the micron head, %zu beams traced (%zu without navigation)",
+                        &heard.beams, &heard.without_nav),
+            2)
+      << lines[4];
+  return heard;
+}
+
+// A Micron moving through quay3d, mapped in 3D at a coarse 0.2 m (a few rays per beam: fast) and
+// scored against what its beams heard: the lines beside today's, their numbers consistent, the
+// heard surface the library's own from the same files, and the level deciding what counts.
+TEST_F(cliEval, HeardByScoresAMapAgainstTheSurfaceItsBeamsHeard) {
+  const fs::path sim = root_ / "sim";
+  ASSERT_EQ(run({"simulate", "quay3d", "-o", sim.string(), "--turns", "2", "--speed", "0.1", "-q"}).exit_code, 0);
+  const std::string beams = (sim / "beams.csv").string(), nav = (sim / "truth_nav.csv").string(),
+                    scene = (sim / "scene.txt").string(), map = (root_ / "map.bt").string();
+  ASSERT_EQ(run({"map", beams, "--nav", (sim / "nav.csv").string(), "--3d", "--resolution", "0.2", "-o", map, "-q"})
+                .exit_code,
+            0);
+  const Names base{"eval", map, "--truth", scene, "-q"};
+  const ProgramRun plain = run(base);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  Names with_heard = base;
+  for (const std::string& word : Names{"--heard-by", beams, "--nav", nav}) with_heard.push_back(word);
+  const ProgramRun result = run(with_heard);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  // Today's lines unchanged but for the summary's time, the three heard lines after the recall.
+  Names lines = linesOf(result.out), today = linesOf(plain.out);
+  ASSERT_EQ(lines.size(), today.size() + 3) << result.out;
+  const HeardLines heard = heardLines(lines);
+  lines.erase(lines.begin() + 2, lines.begin() + 5);
+  lines.pop_back();
+  today.pop_back();
+  EXPECT_EQ(lines, today);
+
+  EXPECT_EQ(heard.level, "echoes >= 0 dB over the floor");
+  EXPECT_EQ(heard.beams, 400U);  // two turns of 200 beams
+  EXPECT_EQ(heard.without_nav, 0U);
+  EXPECT_EQ(heard.surface_voxels, heard.voxels);
+  EXPECT_GT(heard.recall, 0.3);
+  EXPECT_LT(heard.recall, 1.0);
+  EXPECT_NEAR(heard.recall, static_cast<double>(heard.found) / static_cast<double>(heard.voxels), 1e-4);
+  EXPECT_EQ(heard.recall_again, heard.recall);
+  double precision = 0.0;
+  ASSERT_EQ(std::sscanf(today[0].c_str(), "precision %lf", &precision), 1) << today[0];
+  EXPECT_EQ(heard.precision, precision);
+  EXPECT_NEAR(heard.f1, 2.0 * precision * heard.recall / (precision + heard.recall), 1e-4);
+
+  // The library's heard surface of the same files, at the map's resolution: the same voxels.
+  const SonarPreset micron = sonarPreset("micron");
+  HeardSurfaceStats stats;
+  heardSurfaceMap(readSonarLog(beams), readNavCsv(nav), defaultSonarToBody(), readScene(scene), micron.head,
+                  micron.echo, HeardSurfaceOptions{0.2, 0.0}, &stats);
+  EXPECT_EQ(heard.voxels, stats.voxels);
+
+  // Any echo (the geometry) hears more than 0 dB, −6 dB in between.
+  std::size_t previous = heard.voxels;
+  for (const char* level : {"-6", "-inf", "any"}) {
+    Names args = with_heard;
+    for (const char* word : {"--heard-level", level}) args.emplace_back(word);
+    const ProgramRun at_level = run(args);
+    ASSERT_EQ(at_level.exit_code, 0) << at_level.err;
+    const HeardLines more = heardLines(linesOf(at_level.out));
+    EXPECT_GE(more.voxels, previous) << level;
+    previous = more.voxels;
+    EXPECT_EQ(more.level, std::string(level) == "-6" ? "echoes >= -6 dB over the floor" : "every surface a ray meets");
+  }
+  EXPECT_GT(previous, heard.voxels);
+
+  // Navigation for the first half of the run only: the later beams are skipped and counted.
+  std::ifstream full(nav);
+  std::ofstream half(root_ / "half_nav.csv");
+  const std::size_t fixes = readNavCsv(nav).size();
+  std::string row;
+  for (std::size_t i = 0; i <= fixes / 2 && std::getline(full, row); ++i) half << row << '\n';  // header + half
+  half.close();
+  Names args = base;
+  for (const std::string& word : Names{"--heard-by", beams, "--nav", (root_ / "half_nav.csv").string()}) {
+    args.push_back(word);
+  }
+  const ProgramRun partial = run(args);
+  ASSERT_EQ(partial.exit_code, 0) << partial.err;
+  const HeardLines part = heardLines(linesOf(partial.out));
+  EXPECT_GT(part.without_nav, 150U);
+  EXPECT_EQ(part.beams + part.without_nav, 400U);
+}
+
+// --heard-by without --nav: the log of a static sonar, at the map origin as `sonarmap map` places it.
+TEST_F(cliEval, HeardByAStaticLogHearsFromTheMapOrigin) {
+  const fs::path sim = root_ / "sim";
+  ASSERT_EQ(run({"simulate", "tank", "-o", sim.string(), "--turns", "1", "--nav-rate", "0", "-q"}).exit_code, 0);
+  const std::string beams = (sim / "beams.csv").string(), map = (root_ / "tank.bt").string();
+  ASSERT_EQ(run({"map", beams, "--3d", "--resolution", "0.1", "-o", map, "-q"}).exit_code, 0);
+  const ProgramRun result = run({"eval", map, "--truth", "tank", "--heard-by", beams, "-q"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const HeardLines heard = heardLines(linesOf(result.out));
+  EXPECT_EQ(heard.beams, 200U);
+  EXPECT_EQ(heard.without_nav, 0U);
+  EXPECT_GT(heard.recall, 0.5);  // the tank's walls, heard and mapped from the same place
+  const SonarPreset micron = sonarPreset("micron");
+  HeardSurfaceStats stats;
+  heardSurfaceMap(readSonarLog(beams), NavTrack{}, Eigen::Isometry3d::Identity(), builtinScene("tank"), micron.head,
+                  micron.echo, HeardSurfaceOptions{0.1, 0.0}, &stats);
+  EXPECT_EQ(heard.voxels, stats.voxels);
+}
+
+TEST_F(cliEval, BadHeardSurfaceArgumentsAndInputsFailWithOneLine) {
+  const fs::path sim = root_ / "sim";
+  ASSERT_EQ(run({"simulate", "tank", "-o", sim.string(), "--turns", "1", "-q"}).exit_code, 0);
+  const std::string beams = (sim / "beams.csv").string(), nav = (sim / "truth_nav.csv").string();
+  const std::string map = (root_ / "tank.bt").string();
+  ASSERT_EQ(run({"map", beams, "--resolution", "0.1", "-o", map, "-q"}).exit_code, 0);
+  const Names base{"eval", map, "--truth", "tank", "-q"};
+  const auto with = [&](const Names& more) {
+    Names args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return run(args);
+  };
+  // Bad arguments: exit 2.
+  for (const char* level : {"nan", "+inf", "inf", "3dB", ""}) {
+    expectError(with({"--heard-by", beams, "--heard-level", level}), 2);
+  }
+  expectError(with({"--heard-by", beams, "--sonar", "sidescan"}), 2);              // no such preset
+  expectError(with({"--heard-by", beams, "--mounting", "0,0,0,180,0,0"}), 2);      // a mounting without --nav
+  expectError(with({"--heard-by", beams, "--nav", nav, "--mounting", "0,0,0,180,0"}), 2);  // five numbers
+  expectError(with({"--nav", nav}), 2);                                             // no --heard-by
+  expectError(with({"--sonar", "micron"}), 2);
+  expectError(with({"--heard-level", "-6"}), 2);
+  // Bad data: exit 1.
+  expectError(with({"--heard-by", beams, "--nav", (root_ / "missing.csv").string()}), 1);
+  expectError(with({"--heard-by", (root_ / "missing.csv").string()}), 1);
+  const ProgramRun other_head = with({"--heard-by", beams, "--nav", nav, "--sonar", "seaking-30"});
+  expectError(other_head, 1);  // 1.25 cm bins are not the SeaKing's
+  EXPECT_NE(other_head.err.find("not recorded by this head"), std::string::npos) << other_head.err;
+  expectError(with({"--heard-by", beams, "--nav", nav, "--heard-level", "200"}), 1);  // nothing that loud
+  // The same options well formed work.
+  EXPECT_EQ(with({"--heard-by", beams, "--nav", nav, "--mounting", "0,0,0,180,0,0", "--sonar", "micron"}).exit_code, 0);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -79,5 +80,15 @@ struct MissionAccuracy {
 /// simulated navigation and mounting, and scores the map with missionTruthOptions().
 /// @throws ValueError for an unknown preset, scene or mission, invalid options, or an empty map.
 MissionAccuracy evaluateMission(const SimulatedMission& mission, const MapperOptions& options);
+
+/// Called by evaluateMission with the map it made (map frame) and its scores, before the map is
+/// dropped: to score the same map another way (e.g. against the heard surface, heard_surface.hpp).
+using MissionMapVisitor = std::function<void(const OcTree16& map, const MissionAccuracy& accuracy)>;
+
+/// As above on `run`, simulateMission(mission)'s result (one simulation serves many options);
+/// `visit`, when set, is called once with the map and its scores.
+/// @throws ValueError for invalid options or an empty map, and whatever `visit` throws.
+MissionAccuracy evaluateMission(const SimulatedMission& mission, const MissionRun& run, const MapperOptions& options,
+                                const MissionMapVisitor& visit = {});
 
 }  // namespace sonarmap
