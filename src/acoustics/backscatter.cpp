@@ -5,29 +5,26 @@
 
 #include <cmath>
 #include <numbers>
-#include <string>
 
-#include "sonarmap/core/errors.hpp"
+#include "checks.hpp"
 
 namespace sonarmap {
 namespace {
 
+using acoustics_checks::nonNegative;
+using acoustics_checks::require;
+
 void requireReflectivity(double reflectivity) {
-  if (!(reflectivity >= 0.0 && reflectivity <= 1.0)) {
-    throw ValueError("backscatter: reflectivity must be in [0, 1], got " + std::to_string(reflectivity));
-  }
+  require(reflectivity >= 0.0 && reflectivity <= 1.0, "backscatter: reflectivity must be in [0, 1]", reflectivity);
 }
 
 void requireExponent(double lambert_exponent) {
-  if (!(std::isfinite(lambert_exponent) && lambert_exponent >= 1.0)) {
-    throw ValueError("backscatter: lambert_exponent must be >= 1, got " + std::to_string(lambert_exponent));
-  }
+  require(lambert_exponent >= 1.0 && std::isfinite(lambert_exponent), "backscatter: lambert_exponent must be >= 1",
+          lambert_exponent);
 }
 
 void requireCosine(double cos_incidence) {
-  if (!(std::isfinite(cos_incidence) && cos_incidence >= 0.0)) {
-    throw ValueError("backscatter: cos_incidence must be >= 0, got " + std::to_string(cos_incidence));
-  }
+  require(nonNegative(cos_incidence), "backscatter: cos_incidence must be >= 0", cos_incidence);
 }
 
 }  // namespace
@@ -39,9 +36,8 @@ double lambertCoefficient(double reflectivity) {
 
 double lambertStrength_db(double reflectivity, double grazing_rad, double lambert_exponent) {
   requireExponent(lambert_exponent);
-  if (!(grazing_rad >= 0.0 && grazing_rad <= 0.5 * std::numbers::pi)) {
-    throw ValueError("backscatter: grazing_rad must be in [0, π/2], got " + std::to_string(grazing_rad));
-  }
+  require(grazing_rad >= 0.0 && grazing_rad <= 0.5 * std::numbers::pi, "backscatter: grazing_rad must be in [0, π/2]",
+          grazing_rad);
   return 10.0 * std::log10(lambertCoefficient(reflectivity)) +
          10.0 * lambert_exponent * std::log10(std::sin(grazing_rad));
 }

@@ -5,37 +5,27 @@
 
 #include <cmath>
 #include <numbers>
-#include <string>
 
-#include "sonarmap/core/errors.hpp"
+#include "checks.hpp"
 
 namespace sonarmap {
 namespace {
 
-void require(bool valid, const std::string& what) {
-  if (!valid) throw ValueError(what);
-}
+using acoustics_checks::positive;
+using acoustics_checks::require;
 
-void validateWidth(double width_rad, const std::string& what) {
-  require(std::isfinite(width_rad) && width_rad > 0.0 && width_rad < std::numbers::pi,
-          what + " must be in (0, π), got " + std::to_string(width_rad));
-}
-
-void validatePattern(const BeamPattern& pattern, const std::string& prefix) {
-  validateWidth(pattern.width_rad, prefix + "width_rad");
-  require(std::isfinite(pattern.exponent) && pattern.exponent > 0.0,
-          prefix + "exponent must be > 0, got " + std::to_string(pattern.exponent));
-}
-
-void requireAngle(double angle_rad) { require(!std::isnan(angle_rad), "beam pattern: the angle is NaN"); }
+bool validWidth(double width_rad) { return width_rad > 0.0 && width_rad < std::numbers::pi; }
 
 }  // namespace
 
-void BeamPattern::validate() const { validatePattern(*this, "beam pattern: "); }
+void BeamPattern::validate() const {
+  require(validWidth(width_rad), "beam pattern: width_rad must be in (0, π)", width_rad);
+  require(positive(exponent), "beam pattern: exponent must be > 0", exponent);
+}
 
 double oneWayPattern(const BeamPattern& pattern, double angle_rad) {
   pattern.validate();
-  requireAngle(angle_rad);
+  require(!std::isnan(angle_rad), "beam pattern: the angle is NaN");
   return std::exp2(-std::pow(std::abs(2.0 * angle_rad / pattern.width_rad), pattern.exponent));
 }
 
@@ -45,8 +35,10 @@ double twoWayPattern(const BeamPattern& pattern, double angle_rad) {
 }
 
 void TransducerPattern::validate() const {
-  validatePattern(horizontal, "beam pattern, horizontal: ");
-  validatePattern(vertical, "beam pattern, vertical: ");
+  require(validWidth(horizontal.width_rad), "beam pattern, horizontal: width_rad must be in (0, π)", horizontal.width_rad);
+  require(positive(horizontal.exponent), "beam pattern, horizontal: exponent must be > 0", horizontal.exponent);
+  require(validWidth(vertical.width_rad), "beam pattern, vertical: width_rad must be in (0, π)", vertical.width_rad);
+  require(positive(vertical.exponent), "beam pattern, vertical: exponent must be > 0", vertical.exponent);
 }
 
 double oneWayPattern(const TransducerPattern& pattern, double horizontal_rad, double elevation_rad) {
@@ -67,21 +59,20 @@ double equivalentBeamWidth_rad(const BeamPattern& pattern) {
 }
 
 void ApertureSampling::validate() const {
-  require(rays >= 1, "aperture sampling: rays must be >= 1, got " + std::to_string(rays));
-  require(std::isfinite(extent) && extent > 0.0, "aperture sampling: extent must be > 0, got " + std::to_string(extent));
+  require(rays >= 1, "aperture sampling: rays must be >= 1", rays);
+  require(positive(extent), "aperture sampling: extent must be > 0", extent);
 }
 
 double apertureStep_rad(const ApertureSampling& sampling, double width_rad) {
   sampling.validate();
-  validateWidth(width_rad, "aperture sampling: width_rad");
+  require(validWidth(width_rad), "aperture sampling: width_rad must be in (0, π)", width_rad);
   const double span_rad = sampling.extent * width_rad;
   return span_rad / sampling.rays;
 }
 
 double apertureAngle_rad(const ApertureSampling& sampling, double width_rad, int index) {
   const double step_rad = apertureStep_rad(sampling, width_rad);
-  require(index >= 0 && index < sampling.rays, "aperture sampling: index " + std::to_string(index) +
-                                                   " outside 0 … " + std::to_string(sampling.rays - 1));
+  require(index >= 0 && index < sampling.rays, "aperture sampling: index must be in 0 … rays − 1", index);
   const double span_rad = sampling.extent * width_rad;
   return -0.5 * span_rad + (index + 0.5) * step_rad;
 }

@@ -1,23 +1,18 @@
 /// @file decibels.cpp
-/// Levels and powers (see decibels.hpp).
+/// The messages of the level and power checks (see decibels.hpp).
 
 #include "sonarmap/acoustics/decibels.hpp"
 
-#include <cmath>
 #include <string>
 
 #include "sonarmap/core/errors.hpp"
 
-namespace sonarmap {
+namespace sonarmap::detail {
 
-double powerOfLevel(double level_db) {
-  if (std::isnan(level_db)) throw ValueError("powerOfLevel: level_db is NaN");
-  return std::pow(10.0, level_db / 10.0);
+void throwInvalidLevel(double) { throw ValueError("powerOfLevel: level_db is NaN"); }
+
+void throwInvalidPower(double power) {
+  throw ValueError("levelOfPower: power must be >= 0, got " + std::to_string(power));
 }
 
-double levelOfPower(double power) {
-  if (!(power >= 0.0)) throw ValueError("levelOfPower: power must be >= 0, got " + std::to_string(power));
-  return 10.0 * std::log10(power);
-}
-
-}  // namespace sonarmap
+}  // namespace sonarmap::detail

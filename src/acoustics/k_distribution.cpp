@@ -6,23 +6,21 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <string>
 
 #include <unsupported/Eigen/SpecialFunctions>
 
-#include "sonarmap/core/errors.hpp"
+#include "checks.hpp"
 
 namespace sonarmap {
 namespace {
 
+using acoustics_checks::require;
+
+static_assert(kMaxKDistributionShape == 100.0, "the message below names the largest shape");
+
 void requireArguments(double relative_power, double shape) {
-  if (!(shape > 0.0 && shape <= kMaxKDistributionShape)) {
-    throw ValueError("K distribution: shape must be in (0, " + std::to_string(kMaxKDistributionShape) + "], got " +
-                     std::to_string(shape));
-  }
-  if (!(relative_power >= 0.0)) {
-    throw ValueError("K distribution: relative_power must be >= 0, got " + std::to_string(relative_power));
-  }
+  require(shape > 0.0 && shape <= kMaxKDistributionShape, "K distribution: shape must be in (0, 100]", shape);
+  require(relative_power >= 0.0, "K distribution: relative_power must be >= 0", relative_power);
 }
 
 }  // namespace

@@ -5,27 +5,21 @@
 
 #include <cmath>
 #include <numbers>
-#include <string>
 
+#include "checks.hpp"
 #include "sonarmap/acoustics/receiver_model.hpp"
-#include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
-namespace {
 
-void require(bool valid, const std::string& what) {
-  if (!valid) throw ValueError(what);
-}
-
-bool positive(double value) { return std::isfinite(value) && value > 0.0; }
-
-}  // namespace
+using acoustics_checks::nonNegative;
+using acoustics_checks::positive;
+using acoustics_checks::require;
 
 double surfaceEchoPower(double two_way_pattern, double scatter_per_area, double area_m2, double range_m,
                         double equivalent_solid_angle_sr) {
   require(two_way_pattern >= 0.0 && two_way_pattern <= 1.0, "sonar equation: two_way_pattern must be in [0, 1]");
-  require(std::isfinite(scatter_per_area) && scatter_per_area >= 0.0, "sonar equation: scatter_per_area must be >= 0");
-  require(std::isfinite(area_m2) && area_m2 >= 0.0, "sonar equation: area_m2 must be >= 0");
+  require(nonNegative(scatter_per_area), "sonar equation: scatter_per_area must be >= 0");
+  require(nonNegative(area_m2), "sonar equation: area_m2 must be >= 0");
   require(positive(range_m), "sonar equation: range_m must be > 0");
   require(positive(equivalent_solid_angle_sr), "sonar equation: equivalent_solid_angle_sr must be > 0");
   return two_way_pattern * scatter_per_area * area_m2 / (range_m * range_m * equivalent_solid_angle_sr);
@@ -34,24 +28,24 @@ double surfaceEchoPower(double two_way_pattern, double scatter_per_area, double 
 void FlatSeabedHead::validate() const {
   vertical.validate();
   vertical_sampling.validate();
-  require(positive(pulse_length_m), "flat seabed head: pulse_length_m must be > 0, got " + std::to_string(pulse_length_m));
-  require(positive(bin_length_m), "flat seabed head: bin_length_m must be > 0, got " + std::to_string(bin_length_m));
+  require(positive(pulse_length_m), "flat seabed head: pulse_length_m must be > 0", pulse_length_m);
+  require(positive(bin_length_m), "flat seabed head: bin_length_m must be > 0", bin_length_m);
 }
 
 void FlatSeabed::validate() const {
-  require(positive(altitude_m), "flat seabed: altitude_m must be > 0, got " + std::to_string(altitude_m));
+  require(positive(altitude_m), "flat seabed: altitude_m must be > 0", altitude_m);
   require(reflectivity >= 0.0 && reflectivity <= 1.0,
-          "flat seabed: reflectivity must be in [0, 1], got " + std::to_string(reflectivity));
+          "flat seabed: reflectivity must be in [0, 1]", reflectivity);
   require(std::isfinite(lambert_exponent) && lambert_exponent >= 1.0,
-          "flat seabed: lambert_exponent must be >= 1, got " + std::to_string(lambert_exponent));
+          "flat seabed: lambert_exponent must be >= 1", lambert_exponent);
 }
 
 double flatSeabedEchoPower(const FlatSeabedHead& head, const FlatSeabed& seabed, double range_m, double tilt_rad) {
   head.validate();
   seabed.validate();
-  require(positive(range_m), "flat seabed: range_m must be > 0, got " + std::to_string(range_m));
+  require(positive(range_m), "flat seabed: range_m must be > 0", range_m);
   require(tilt_rad >= 0.0 && tilt_rad < 0.5 * std::numbers::pi,
-          "flat seabed: tilt_rad must be in [0, π/2), got " + std::to_string(tilt_rad));
+          "flat seabed: tilt_rad must be in [0, π/2)", tilt_rad);
   if (range_m <= seabed.altitude_m) return 0.0;
   const double span_rad = head.vertical_sampling.extent * head.vertical.width_rad;
   const double pattern_integral = elevationPatternIntegral(head.vertical, head.vertical_sampling);  // V

@@ -7,12 +7,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <string>
 
 #include <unsupported/Eigen/SpecialFunctions>
 
+#include "checks.hpp"
 #include "sonarmap/acoustics/decibels.hpp"
-#include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
 namespace {
@@ -21,25 +20,21 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// dB per neper of power: 10 / ln 10.
 constexpr double kDbPerNeper = 10.0 / std::numbers::ln10;
 
-void requireLooks(double looks) {
-  if (!(std::isfinite(looks) && looks > 0.0)) throw ValueError("speckle: looks must be > 0, got " + std::to_string(looks));
-}
+using acoustics_checks::nonNegative;
+using acoustics_checks::positive;
+using acoustics_checks::require;
+
+void requireLooks(double looks) { require(positive(looks), "speckle: looks must be > 0", looks); }
 
 void requireRelativePower(double relative_power) {
-  if (!(relative_power >= 0.0)) {
-    throw ValueError("speckle: relative_power must be >= 0, got " + std::to_string(relative_power));
-  }
+  require(relative_power >= 0.0, "speckle: relative_power must be >= 0", relative_power);
 }
 
 void requireProbability(double probability) {
-  if (!(probability >= 0.0 && probability <= 1.0)) {
-    throw ValueError("speckle: probability must be in [0, 1], got " + std::to_string(probability));
-  }
+  require(probability >= 0.0 && probability <= 1.0, "speckle: probability must be in [0, 1]", probability);
 }
 
-void requireLevel(double level_db) {
-  if (std::isnan(level_db)) throw ValueError("speckle: level_db is NaN");
-}
+void requireLevel(double level_db) { require(!std::isnan(level_db), "speckle: level_db is NaN"); }
 
 /// ln of the density of ln X at t = ln x: ln(f(x) · x) = L ln L + L t − L eᵗ − ln Γ(L).
 double logDensityOfLog(double t, double looks) {
@@ -81,9 +76,7 @@ double massBetween(const Tails& lower, const Tails& upper) {
 void requireQuantisedArguments(double mean_power, double looks, const ReceiverScale& scale) {
   requireLooks(looks);
   scale.validate();
-  if (!(std::isfinite(mean_power) && mean_power >= 0.0)) {
-    throw ValueError("speckle: mean_power must be >= 0 and finite, got " + std::to_string(mean_power));
-  }
+  require(nonNegative(mean_power), "speckle: mean_power must be >= 0 and finite", mean_power);
 }
 
 /// The tails at the boundary below counts k (1…255): intensity k − 1/2, as a power relative to the mean.
@@ -184,7 +177,7 @@ double speckleLevelVariance_db2(double looks) {
 
 double quantisedSpeckleProbability(int counts, double mean_power, double looks, const ReceiverScale& scale) {
   requireQuantisedArguments(mean_power, looks, scale);
-  if (counts < 0 || counts > 255) throw ValueError("speckle: counts must be in 0…255, got " + std::to_string(counts));
+  require(counts >= 0 && counts <= 255, "speckle: counts must be in 0…255", counts);
   if (mean_power == 0.0) return counts == 0 ? 1.0 : 0.0;
   const double mean_level_db = levelOfPower(mean_power);
   if (counts == 0) return boundaryTails(1, mean_level_db, looks, scale).below;

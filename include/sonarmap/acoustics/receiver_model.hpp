@@ -14,18 +14,29 @@
 /// The receiver's floor: what a bin cannot go below in the log, the larger of the mean noise
 /// after the gain and the A/D's lowest level (a weaker echo logs 0 however often it is looked at).
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 namespace sonarmap {
+
+namespace detail {
+/// Throws ValueError naming the field of `scale` that is out of range or not finite.
+[[noreturn]] void throwInvalidReceiverScale(double ad_low_db, double ad_span_db);
+}  // namespace detail
 
 /// The log-compressed A/D mapping (see the file's comment). No default head: set both fields.
 struct ReceiverScale {
   double ad_low_db = 0.0;   ///< level that maps to intensity 0, dB, finite
   double ad_span_db = 0.0;  ///< level span that maps to 0…255, dB, > 0
 
+  /// Inline: the simulator quantises every bin through a checked scale.
   /// @throws ValueError naming the field that is out of range or not finite.
-  void validate() const;
+  void validate() const {
+    if (!(std::isfinite(ad_low_db) && std::isfinite(ad_span_db) && ad_span_db > 0.0)) {
+      detail::throwInvalidReceiverScale(ad_low_db, ad_span_db);
+    }
+  }
 };
 
 /// The unrounded, unclipped intensity of a level: 255 (level_db − ad_low_db) / ad_span_db, counts
