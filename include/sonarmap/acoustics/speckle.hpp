@@ -23,7 +23,8 @@
 ///
 /// Special functions: Eigen's unsupported SpecialFunctions module (Eigen::numext::igamma, igammac,
 /// lgamma, digamma, polygamma; Cephes' algorithms), about 1e-14 relative. Quantiles invert the
-/// distribution function numerically (safeguarded Newton in ln x) to ~1e-13 relative.
+/// distribution function numerically (safeguarded Newton in ln x, on the smaller tail): the
+/// distribution at the quantile is within about 1e-13 (relative) of the probability asked.
 
 #include <array>
 
