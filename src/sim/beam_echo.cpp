@@ -7,21 +7,17 @@
 #include <cmath>
 #include <numbers>
 
+#include "sonarmap/acoustics/backscatter.hpp"
+#include "sonarmap/acoustics/decibels.hpp"
+#include "sonarmap/acoustics/propagation.hpp"
+#include "sonarmap/sim/acoustic_parameters.hpp"
+
 namespace sonarmap::sim {
 namespace {
 
 double wrapToPi(double angle_rad) { return std::remainder(angle_rad, 2.0 * std::numbers::pi); }
 
 }  // namespace
-
-double oneWayPattern(double angle_rad, double width_rad, double exponent) {
-  return std::exp2(-std::pow(std::abs(2.0 * angle_rad / width_rad), exponent));
-}
-
-double apertureRayAngle(const ApertureAxis& axis, double width_rad, int index) {
-  const double span_rad = axis.extent * width_rad;
-  return -0.5 * span_rad + (index + 0.5) * (span_rad / axis.rays);
-}
 
 struct BeamEchoTracer::Beam {
   Eigen::Vector3d origin_m;      // the head, map frame
@@ -30,21 +26,26 @@ struct BeamEchoTracer::Beam {
 };
 
 BeamEchoTracer::BeamEchoTracer(const Scene& scene, const MsisHeadOptions& head, const EchoModelOptions& echo)
-    : scene_(scene), primitive_count_(scene.primitives.size()), head_(head), echo_(echo), sidelobe_floor_(std::pow(10.0, echo.sidelobe_level_db / 10.0)) {
-  const double horizontal_span_rad = echo.horizontal.extent * head.horizontal_beam_width_rad;
-  const double vertical_span_rad = echo.vertical.extent * head.vertical_beam_width_rad;
-  horizontal_step_rad_ = horizontal_span_rad / echo.horizontal.rays;
-  vertical_step_rad_ = vertical_span_rad / echo.vertical.rays;
+    : scene_(scene),
+      primitive_count_(scene.primitives.size()),
+      head_(head),
+      echo_(echo),
+      pattern_(transducerPatternOf(head, echo)),
+      sidelobe_floor_(powerOfLevel(echo.sidelobe_level_db)) {
+  const ApertureSampling horizontal = apertureSamplingOf(echo.horizontal);
+  const ApertureSampling vertical = apertureSamplingOf(echo.vertical);
+  horizontal_step_rad_ = apertureStep_rad(horizontal, head.horizontal_beam_width_rad);
+  vertical_step_rad_ = apertureStep_rad(vertical, head.vertical_beam_width_rad);
   double total_weight = 0.0;
   for (int i = 0; i < echo.horizontal.rays; ++i) {
     for (int j = 0; j < echo.vertical.rays; ++j) {
       ApertureRay ray;
-      ray.horizontal_rad = apertureRayAngle(echo.horizontal, head.horizontal_beam_width_rad, i);
-      ray.elevation_rad = apertureRayAngle(echo.vertical, head.vertical_beam_width_rad, j);
+      ray.horizontal_rad = apertureAngle_rad(horizontal, head.horizontal_beam_width_rad, i);
+      ray.elevation_rad = apertureAngle_rad(vertical, head.vertical_beam_width_rad, j);
       ray.sin_elevation = std::sin(ray.elevation_rad);
       ray.cos_elevation = std::cos(ray.elevation_rad);
-      ray.pattern = oneWayPattern(ray.horizontal_rad, head.horizontal_beam_width_rad, echo.horizontal.exponent) *
-                    oneWayPattern(ray.elevation_rad, head.vertical_beam_width_rad, echo.vertical.exponent);
+      ray.pattern = oneWayPattern(pattern_, ray.horizontal_rad, ray.elevation_rad);
+      // The two-way pattern times the ray's solid angle (cos v dh dv, the cells' dh dv equal).
       ray.weight = ray.pattern * ray.pattern * ray.cos_elevation;
       total_weight += ray.weight;
       rays_.push_back(ray);
@@ -103,7 +104,7 @@ std::optional<BeamEchoTracer::DirectEcho> BeamEchoTracer::directEcho(const Beam&
   if (!hit) return std::nullopt;
   const double range_m = hit->surface.range_m;
   const double cos_incidence = std::max(-hit->surface.normal.dot(cell.direction), 0.0);
-  const double backscatter = hit->reflectivity * std::pow(cos_incidence, echo_.lambert_exponent - 1.0);
+  const double backscatter = lambertScatterPerSolidAngle(hit->reflectivity, cos_incidence, echo_.lambert_exponent);
   return DirectEcho{*hit, footprintSpan(range_m, hit->surface.normal, cell),
                     ray.weight * backscatter * propagationLoss(2.0 * range_m)};
 }
@@ -159,17 +160,13 @@ void BeamEchoTracer::traceMultipath(const Beam& beam, const ApertureRay& ray, co
 
 double BeamEchoTracer::receivePattern(const Beam& beam, const Eigen::Vector3d& arrival_map) const {
   const Eigen::Vector3d arrival = beam.sonar_to_map.transpose() * arrival_map;
-  const double main_lobe = oneWayPattern(wrapToPi(std::atan2(arrival.y(), arrival.x()) - beam.bearing_rad),
-                                         head_.horizontal_beam_width_rad, echo_.horizontal.exponent) *
-                           oneWayPattern(std::asin(std::clamp(arrival.z(), -1.0, 1.0)), head_.vertical_beam_width_rad,
-                                         echo_.vertical.exponent);
+  const double main_lobe = oneWayPattern(pattern_, wrapToPi(std::atan2(arrival.y(), arrival.x()) - beam.bearing_rad),
+                                         std::asin(std::clamp(arrival.z(), -1.0, 1.0)));
   return std::max(main_lobe, sidelobe_floor_);  // the side and back lobes hear the rest
 }
 
 double BeamEchoTracer::propagationLoss(double path_m) const {
-  // Spreading taken at one bin at least: a surface touching the head does not blow up.
-  const double range_m = std::max(0.5 * path_m, head_.binLength_m());
-  return std::pow(10.0, -echo_.absorption_db_per_m * path_m / 10.0) / (range_m * range_m);
+  return twoWayLossPerSolidAngle(path_m, echo_.absorption_db_per_m, head_.binLength_m());
 }
 
 void BeamEchoTracer::deposit(double center_m, double span_m, double value, std::vector<double>& energy) const {

@@ -2,24 +2,21 @@
 /// @file beam_echo.hpp
 /// Private to the simulator: the geometric part of one beam's echo (steps 1–3 of
 /// msis_simulator.hpp): rays across the aperture, direct echoes and one-bounce multipath, as
-/// received energy per range bin before the pulse, the gain and the noise.
+/// received energy per range bin before the pulse, the gain and the noise. The beam pattern, the
+/// aperture's cells, Lambert's law and the two-way loss are the acoustics layer's
+/// (acoustics/beam_pattern.hpp, backscatter.hpp, propagation.hpp); the ray geometry, the footprint's
+/// range extent and the multipath glint are the simulator's own.
 
 #include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/acoustics/beam_pattern.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene.hpp"
 
 namespace sonarmap::sim {
-
-/// One-way power pattern 2^−|2θ/W|^n: 1 on the axis, 0.5 (−3 dB) at θ = ±W/2.
-double oneWayPattern(double angle_rad, double width_rad, double exponent);
-
-/// Angle of ray `index` (0 … axis.rays − 1) of the aperture grid on one axis, from the beam's
-/// axis: the rays span ± axis.extent half widths, each at the middle of its cell.
-double apertureRayAngle(const ApertureAxis& axis, double width_rad, int index);
 
 /// One direction of the aperture grid, relative to the beam's axis (sonar frame).
 struct ApertureRay {
@@ -64,7 +61,9 @@ class BeamEchoTracer {
   /// One-way receive pattern for an echo arriving along `arrival_map` (unit, map frame, from the
   /// head towards where the echo comes from), never below the side-lobe floor.
   double receivePattern(const Beam& beam, const Eigen::Vector3d& arrival_map) const;
-  /// Two-way spreading and absorption over a path of total length path_m, seen at range path_m / 2.
+  /// Two-way loss per solid angle over a path of total length path_m, seen at range path_m / 2
+  /// (twoWayLossPerSolidAngle), at one bin from the head at least: a surface touching the head
+  /// does not blow up.
   double propagationLoss(double path_m) const;
   /// Adds `value` spread evenly over ranges [center_m − span_m/2, center_m + span_m/2].
   void deposit(double center_m, double span_m, double value, std::vector<double>& energy) const;
@@ -73,6 +72,7 @@ class BeamEchoTracer {
   std::size_t primitive_count_ = 0;
   const MsisHeadOptions& head_;
   const EchoModelOptions& echo_;
+  TransducerPattern pattern_;
   std::vector<ApertureRay> rays_;
   double horizontal_step_rad_ = 0.0;
   double vertical_step_rad_ = 0.0;

@@ -3,26 +3,31 @@
 
 #include "sonarmap/sim/echo_levels.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "beam_echo.hpp"
-#include "receiver.hpp"
-#include "sonarmap/sim/sonar_equation.hpp"
+#include "sonarmap/acoustics/decibels.hpp"
+#include "sonarmap/acoustics/propagation.hpp"
+#include "sonarmap/acoustics/receiver_model.hpp"
+#include "sonarmap/sim/acoustic_parameters.hpp"
 
 namespace sonarmap {
 
 struct EchoLevels::Impl {
   Impl(const Scene& scene_in, const MsisHeadOptions& head_in, const EchoModelOptions& echo_in)
-      : scene(scene_in), head(head_in), echo(echo_in), tracer(scene, head, echo), pulse_bins(sim::pulseBins(head, echo)) {
-    const double converter_floor = std::pow(10.0, echo.ad_low_db / 10.0);
+      : scene(scene_in),
+        head(head_in),
+        echo(echo_in),
+        tracer(scene, head, echo),
+        pulse_bins(pulseBins(echo.pulse_length_m, head.binLength_m())) {
+    const ReceiverNoise noise = receiverNoiseOf(echo);
+    const ReceiverScale scale = receiverScaleOf(echo);
     gain.resize(static_cast<std::size_t>(head.bins));
     floor.resize(gain.size());
     for (std::size_t i = 0; i < gain.size(); ++i) {
       const double range_m = (static_cast<double>(i) + 0.5) * head.binLength_m();  // as the receiver's gain
-      gain[i] = sim::tvgGain(echo, range_m);
-      floor[i] = std::max(meanNoisePower(echo, range_m), converter_floor);
+      gain[i] = tvgGain(range_m, echo.tvg_absorption_db_per_m);
+      floor[i] = receiverFloorPower(noise, scale, range_m);
     }
   }
   Scene scene;  // the tracer keeps references to these three
@@ -59,10 +64,10 @@ void EchoLevels::levels(const Eigen::Isometry3d& sonar_to_map, double bearing_ra
   impl_->tracer.traceDirect(sonar_to_map, bearing_rad, levels_db);
   std::vector<double> summed;
   for (std::vector<double>& bins : levels_db) {
-    sim::pulseSum(bins, impl_->pulse_bins, summed);
+    pulseSum(bins, impl_->pulse_bins, summed);
     for (std::size_t i = 0; i < bins.size(); ++i) {
       const double power = summed[i] * impl_->gain[i];
-      bins[i] = power > 0.0 ? 10.0 * std::log10(power / impl_->floor[i]) : -std::numeric_limits<double>::infinity();
+      bins[i] = power > 0.0 ? levelOfPower(power / impl_->floor[i]) : -std::numeric_limits<double>::infinity();
     }
   }
 }

@@ -6,59 +6,36 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sonarmap/acoustics/decibels.hpp"
+#include "sonarmap/acoustics/propagation.hpp"
+#include "sonarmap/sim/acoustic_parameters.hpp"
+
 namespace sonarmap::sim {
-namespace {
 
-double powerOf(double level_db) { return std::pow(10.0, level_db / 10.0); }
-
-}  // namespace
-
-int pulseBins(const MsisHeadOptions& head, const EchoModelOptions& echo) {
-  return std::max(1, static_cast<int>(std::lround(echo.pulse_length_m / head.binLength_m())));
-}
-
-void pulseSum(const std::vector<double>& energy, int pulse_bins, std::vector<double>& pulse) {
-  const auto bins = static_cast<std::size_t>(pulse_bins);
-  pulse.assign(energy.size(), 0.0);
-  double window = 0.0;  // a running sum
-  for (std::size_t i = 0; i < energy.size(); ++i) {
-    window += energy[i];
-    if (i >= bins) window -= energy[i - bins];
-    pulse[i] = std::max(window, 0.0);
-  }
-}
-
-double tvgGain(const EchoModelOptions& echo, double range_m) {
-  return range_m * range_m * std::pow(10.0, 2.0 * echo.tvg_absorption_db_per_m * range_m / 10.0);
-}
-
-Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo) : head_(head), echo_(echo) {
+Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo)
+    : head_(head), echo_(echo), scale_(receiverScaleOf(echo)) {
   const double bin_m = head.binLength_m();
-  pulse_bins_ = pulseBins(head, echo);
+  const ReceiverNoise noise = receiverNoiseOf(echo);
+  pulse_bins_ = pulseBins(echo.pulse_length_m, bin_m);
   const auto bins = static_cast<std::size_t>(head.bins);
   gain_.resize(bins);
+  mean_noise_.resize(bins);
   self_reflection_.assign(bins, 0.0);
-  const double band_power = powerOf(levelOf(echo.self_reflection_intensity));
+  const double band_power = powerOfLevel(levelOfIntensity(scale_, echo.self_reflection_intensity));
   for (std::size_t i = 0; i < bins; ++i) {
     const double range_m = (static_cast<double>(i) + 0.5) * bin_m;
-    gain_[i] = tvgGain(echo, range_m);
+    gain_[i] = tvgGain(range_m, echo.tvg_absorption_db_per_m);
+    mean_noise_[i] = meanNoisePower(noise, range_m);
     const double past_end_m = range_m - echo.self_reflection_end_m;
     if (echo.self_reflection_end_m > 0.0 && echo.self_reflection_intensity > 0.0 &&
         past_end_m < echo.self_reflection_taper_m) {
       const double remaining = std::clamp(1.0 - past_end_m / echo.self_reflection_taper_m, 0.0, 1.0);
-      self_reflection_[i] = echo.self_reflection_taper_db
-                                ? (remaining > 0.0 ? powerOf(levelOf(echo.self_reflection_intensity * remaining)) : 0.0)
-                                : band_power * remaining;
+      self_reflection_[i] =
+          echo.self_reflection_taper_db
+              ? (remaining > 0.0 ? powerOfLevel(levelOfIntensity(scale_, echo.self_reflection_intensity * remaining)) : 0.0)
+              : band_power * remaining;
     }
   }
-}
-
-double Receiver::levelOf(double intensity) const { return echo_.ad_low_db + intensity / 255.0 * echo_.ad_span_db; }
-
-std::uint8_t Receiver::quantise(double power) const {
-  if (!(power > 0.0)) return 0;
-  const double intensity = 255.0 * (10.0 * std::log10(power) - echo_.ad_low_db) / echo_.ad_span_db;
-  return static_cast<std::uint8_t>(std::lround(std::clamp(intensity, 0.0, 255.0)));
 }
 
 void Receiver::fluctuation(Random& random, std::vector<double>& factors) {
@@ -82,7 +59,6 @@ void Receiver::waterScatterers(Random& random, std::vector<double>& clutter) con
   clutter.assign(bins, 0.0);
   if (!(echo_.water_scatterers_per_m > 0.0)) return;
   const double bin_m = head_.binLength_m();
-  const double noise_power = powerOf(echo_.noise_level_db);
   const double reach_m = static_cast<double>(bins) * bin_m;
   // A Poisson process along the beam: exponential gaps of mean 1 / density.
   for (double range_m = random.exponential() / echo_.water_scatterers_per_m; range_m < reach_m;
@@ -91,7 +67,7 @@ void Receiver::waterScatterers(Random& random, std::vector<double>& clutter) con
     const double level_db = echo_.water_scatterer_level_db * random.exponential();
     const double speckle = random.exponential();
     const std::size_t last = std::min(bins, first + static_cast<std::size_t>(pulse_bins_));
-    for (std::size_t i = first; i < last; ++i) clutter[i] += noise_power * gain_[i] * powerOf(level_db) * speckle;
+    for (std::size_t i = first; i < last; ++i) clutter[i] += mean_noise_[i] * powerOfLevel(level_db) * speckle;
   }
 }
 
@@ -102,16 +78,15 @@ void Receiver::receive(const std::vector<double>& energy, Random& random, std::v
   fluctuation(random, speckle_);
   fluctuation(random, noise_);
   waterScatterers(random, clutter_);
-  const double noise_power = powerOf(echo_.noise_level_db);
-  const double reverberation_power = reverberation_db ? powerOf(*reverberation_db) : 0.0;
+  const double reverberation_power = reverberation_db ? powerOfLevel(*reverberation_db) : 0.0;
   const double bin_m = head_.binLength_m();
   intensities.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) {
     const bool reverberant = reverberation_db && (static_cast<double>(i) + 0.5) * bin_m >= reverberation_from_m;
-    const double background = noise_power * gain_[i] + (reverberant ? reverberation_power : 0.0);
+    const double background = mean_noise_[i] + (reverberant ? reverberation_power : 0.0);
     const double power = (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + background * noise_[i] + clutter_[i];
     const bool blanked = (static_cast<double>(i) + 0.5) * bin_m < echo_.blanking_m;
-    intensities[i] = blanked ? 0 : quantise(power);
+    intensities[i] = blanked ? 0 : countsOfPower(scale_, power);
   }
 }
 

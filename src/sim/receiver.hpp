@@ -1,27 +1,20 @@
 #pragma once
 /// @file receiver.hpp
 /// Private to the simulator: the head's receiver (steps 4–6 of msis_simulator.hpp): pulse,
-/// time-varying gain, speckle, noise, self-reflection band and quantisation to 0…255.
+/// time-varying gain, speckle, noise, self-reflection band and quantisation to 0…255. The pulse
+/// sum, the gain, the noise's mean and the A/D mapping are the acoustics layer's
+/// (acoustics/receiver_model.hpp, propagation.hpp); the random draws, the self-reflection band,
+/// the water scatterers and the blanking are the simulator's own.
 
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "random.hpp"
+#include "sonarmap/acoustics/receiver_model.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 
 namespace sonarmap::sim {
-
-/// Bins the receiver sums per pulse: the pulse length in bins, rounded, at least 1.
-int pulseBins(const MsisHeadOptions& head, const EchoModelOptions& echo);
-
-/// Step 4 of msis_simulator.hpp: sets `pulse` (energy.size() values) to the energy of each bin
-/// summed with the pulse_bins − 1 bins before it (never below 0).
-void pulseSum(const std::vector<double>& energy, int pulse_bins, std::vector<double>& pulse);
-
-/// The time-varying gain at `range_m` as a power factor: r² · 10^(2 α r / 10), α the absorption
-/// the TVG compensates (20 log r + 2αr).
-double tvgGain(const EchoModelOptions& echo, double range_m);
 
 /// Turns received energy per range bin (BeamEchoTracer::trace) into one beam's intensities.
 class Receiver {
@@ -39,13 +32,10 @@ class Receiver {
   void receive(const std::vector<double>& energy, Random& random, std::vector<std::uint8_t>& intensities,
                std::optional<double> reverberation_db = std::nullopt, double reverberation_from_m = 0.0);
 
-  /// Echo level (dB) that quantises to `intensity` (the inverse of the AD mapping).
-  double levelOf(double intensity) const;
-
  private:
-  std::uint8_t quantise(double power) const;
   /// Sets `factors` (one per bin, mean 1) to the moving mean of speckle_looks exponential draws,
-  /// or to 1 when speckle_looks is 0.
+  /// or to 1 when speckle_looks is 0: marginally Gamma speckle of speckle_looks looks
+  /// (acoustics/speckle.hpp), correlated over speckle_looks bins.
   void fluctuation(Random& random, std::vector<double>& factors);
   /// Sets `clutter` (one per bin) to the water scatterers' power after the gain
   /// (EchoModelOptions::water_scatterers_per_m); all 0 without scatterers, taking no draws.
@@ -53,8 +43,10 @@ class Receiver {
 
   MsisHeadOptions head_;
   EchoModelOptions echo_;
+  ReceiverScale scale_;
   int pulse_bins_ = 1;
   std::vector<double> gain_;                             // TVG per bin (power factor)
+  std::vector<double> mean_noise_;                       // the noise's mean power per bin, after the gain
   std::vector<double> self_reflection_;                  // band power per bin, after the gain
   std::vector<double> pulse_, speckle_, noise_, clutter_, draws_;  // per-beam scratch
 };

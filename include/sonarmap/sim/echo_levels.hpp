@@ -6,9 +6,10 @@
 /// The echo follows steps 1, 2, 4 and 5 of msis_simulator.hpp (rays across the aperture with the
 /// two-way beam pattern, Lambert backscatter, two-way spreading and absorption, the pulse, the
 /// time-varying gain) without multipath, speckle, noise or quantisation. The floor of bin i is the
-/// larger of the additive noise's mean power after the gain (EchoModelOptions::noise_level_db) and
-/// the A/D converter's lowest level (EchoModelOptions::ad_low_db: a weaker bin logs 0 however often
-/// it is looked at); the scene's reverberation (Scene::reverberation_db) is not counted. A surface
+/// receiver's floor (acoustics/receiver_model.hpp, receiverFloorPower): the larger of the additive
+/// noise's mean power after the gain (EchoModelOptions::noise_level_db) and the A/D converter's
+/// lowest level (EchoModelOptions::ad_low_db: a weaker bin logs 0 however often it is looked at);
+/// the scene's reverberation (Scene::reverberation_db) is not counted. A surface
 /// whose echo stays below that floor in every bin it lies in leaves nothing in the log for a
 /// detector to find: eval/heard_surface.hpp maps what lies above it, the oracle of what a mission
 /// can map.

@@ -6,7 +6,11 @@
 /// (../shared/data/README.md); sonar_presets.hpp holds the settings of other heads. The head turns
 /// continuously or scans a sector back and forth (MsisHeadOptions::sector_width_rad).
 ///
-/// Echo model of one beam (bearing β in the sonar frame, beam.hpp):
+/// Echo model of one beam (bearing β in the sonar frame, beam.hpp). The formulas of its steps (beam
+/// pattern, Lambert's law, spreading and absorption, pulse, TVG, noise, A/D mapping) are the
+/// acoustics layer's (include/sonarmap/acoustics/, with their sources); sim/acoustic_parameters.hpp
+/// gives these options in its terms. The ray geometry, multipath, the random draws, the
+/// self-reflection band and the water scatterers are the simulator's own.
 ///  1. Rays. A grid of horizontal.rays × vertical.rays directions spans ±extent half beam widths
 ///     around the beam's axis on each axis (bearing β + h, elevation v in the sonar frame). Each
 ///     carries the two-way beam pattern p(h)² p(v)² with the one-way power pattern
