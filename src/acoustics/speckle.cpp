@@ -109,14 +109,10 @@ double speckleSurvival(double relative_power, double looks) {
   return Eigen::numext::igammac(looks, looks * relative_power);
 }
 
-double speckleQuantile(double probability, double looks) {
-  requireLooks(looks);
-  requireProbability(probability);
-  if (probability == 0.0) return 0.0;
-  if (probability == 1.0) return kInfinity;
-  // Solve g(t) = 0 for t = ln x, g increasing: the smaller tail against its target.
-  const bool upper = probability > 0.5;
-  const double target = upper ? 1.0 - probability : probability;
+namespace {
+/// The x whose lower tail (upper = false) or upper tail (upper = true) holds `target` ∈ (0, 1);
+double solveQuantile(double target, bool upper, double looks) {
+  // Solve g(t) = 0 for t = ln x, g increasing: the tail against its target.
   auto g = [&](double t) {
     const double scaled = looks * std::exp(t);
     return upper ? target - Eigen::numext::igammac(looks, scaled) : Eigen::numext::igamma(looks, scaled) - target;
@@ -124,9 +120,10 @@ double speckleQuantile(double probability, double looks) {
   // Start: Wilson–Hilferty's cube-root normal approximation, or where it fails (few looks, far
   // lower tail) the lower tail's leading term F ≈ (L x)^L / Γ(L + 1).
   const double c = 1.0 / (9.0 * looks);
-  const double cube_root = 1.0 - c + Eigen::numext::ndtri(probability) * std::sqrt(c);
+  const double normal = upper ? -Eigen::numext::ndtri(target) : Eigen::numext::ndtri(target);  // Φ⁻¹(probability)
+  const double cube_root = 1.0 - c + normal * std::sqrt(c);
   double t = cube_root > 0.05 ? 3.0 * std::log(cube_root)
-                              : (std::log(probability) + Eigen::numext::lgamma(looks + 1.0)) / looks - std::log(looks);
+                              : (std::log(target) + Eigen::numext::lgamma(looks + 1.0)) / looks - std::log(looks);
   // Bracket the root, then Newton steps that fall back to bisection when they leave the bracket.
   double low = t, high = t;
   for (double step = 1.0; g(low) > 0.0 && step < 4096.0; step *= 2.0) low = t - step;
@@ -142,6 +139,25 @@ double speckleQuantile(double probability, double looks) {
     if (converged) break;
   }
   return std::exp(t);
+}
+}  // namespace
+
+double speckleQuantile(double probability, double looks) {
+  requireLooks(looks);
+  requireProbability(probability);
+  if (probability == 0.0) return 0.0;
+  if (probability == 1.0) return kInfinity;
+  const bool upper = probability > 0.5;
+  return solveQuantile(upper ? 1.0 - probability : probability, upper, looks);
+}
+
+double speckleSurvivalQuantile(double exceedance, double looks) {
+  requireLooks(looks);
+  requireProbability(exceedance);
+  if (exceedance == 0.0) return kInfinity;
+  if (exceedance == 1.0) return 0.0;
+  if (exceedance >= 0.5) return speckleQuantile(1.0 - exceedance, looks);
+  return solveQuantile(exceedance, true, looks);
 }
 
 double speckleLevelPdf(double level_db, double looks) {

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "column_histogram.hpp"
+#include "sonarmap/acoustics/decibels.hpp"
+#include "sonarmap/acoustics/speckle.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/sonar/polar_units.hpp"
 
@@ -96,19 +98,25 @@ void CalibrationOptions::validate() const {
   if (!(max_near_field_m >= 0.0)) throwOption("the near field's largest extent must be >= 0 m");
 }
 
+namespace {
+/// The level of one-look speckle (exponential power, acoustics/speckle.hpp) that the background
+/// percentile stands for, relative to the mean power (at least 10⁻³ of it: a 0th percentile).
+double backgroundQuantile(const CalibrationOptions& options) {
+  return std::max(speckleQuantile(options.background_percentile / 100.0, 1.0), 1e-3);
+}
+}  // namespace
+
 double clutterLevelDb(const CalibrationOptions& options) {
   options.validate();
   // The level speckle exceeds with a quarter of the clutter share's probability.
-  const double quantile = std::max(-std::log1p(-options.background_percentile / 100.0), 1e-3);
-  return 10.0 * std::log10(-std::log(0.25 * options.clutter_share) / quantile);
+  return levelOfPower(speckleSurvivalQuantile(0.25 * options.clutter_share, 1.0) / backgroundQuantile(options));
 }
 
 double thresholdDb(const CalibrationOptions& options) {
   options.validate();
-  // Exponential power: its p-quantile is −ln(1 − p) times the mean; the tail beyond t times the
-  // mean has probability exp(−t). T is the ratio of the two, in dB.
-  const double quantile = std::max(-std::log1p(-options.background_percentile / 100.0), 1e-3);
-  const double speckle_db = 10.0 * std::log10(-std::log(options.false_alarm_probability) / quantile);
+  // The level one-look speckle exceeds with probability Pfa over its background percentile, in dB.
+  const double speckle_db =
+      levelOfPower(speckleSurvivalQuantile(options.false_alarm_probability, 1.0) / backgroundQuantile(options));
   return std::max(options.min_contrast_db, speckle_db);
 }
 

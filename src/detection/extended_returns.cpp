@@ -3,6 +3,9 @@
 
 #include "sonarmap/detection/extended_returns.hpp"
 
+#include "sonarmap/acoustics/decibels.hpp"
+#include "sonarmap/acoustics/speckle.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -119,7 +122,8 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
       if (valid(row, c)) excess.push_back(bin(row, c) - background_counts[c]);
     }
   }
-  double tau_counts = 10.0 * std::log10(std::log(p0) / std::log(1.0 - p)) * counts_per_db;
+  // One-look speckle's level exceeded with probability p₀ over its background percentile, in counts.
+  double tau_counts = levelOfPower(speckleSurvivalQuantile(p0, 1.0) / speckleQuantile(p, 1.0)) * counts_per_db;
   calibration.measured = calibration.noise_columns >= 8 && excess.size() >= 1000;
   if (calibration.measured) tau_counts = percentile(excess, 1.0 - p0);
   calibration.lit_counts.assign(columns, 255.0F);  // nothing is lit before the minimum range

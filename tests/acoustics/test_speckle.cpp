@@ -159,3 +159,25 @@ TEST(acousticsSpeckle, RejectsInvalidArguments) {
 
 }  // namespace
 }  // namespace sonarmap
+
+namespace sonarmap {
+namespace {
+
+TEST(acousticsSpeckle, SurvivalQuantileKeepsTinyExceedancesExact) {
+  // One look: the exponential's −ln(p), where 1 − p would round p away.
+  for (const double p : {0.3, 1e-6, 1e-12, 1e-100}) {
+    EXPECT_NEAR(speckleSurvivalQuantile(p, 1.0), -std::log(p), 1e-10 * -std::log(p)) << "p = " << p;
+  }
+  for (const double looks : {2.0, 5.0, 30.0}) {
+    for (const double p : {0.7, 1e-3, 1e-9}) {
+      EXPECT_NEAR(speckleSurvival(speckleSurvivalQuantile(p, looks), looks) / p, 1.0, 1e-9) << looks << " looks, p " << p;
+    }
+  }
+  EXPECT_EQ(speckleSurvivalQuantile(1.0, 3.0), 0.0);
+  EXPECT_TRUE(std::isinf(speckleSurvivalQuantile(0.0, 3.0)));
+  EXPECT_THROW(speckleSurvivalQuantile(1.5, 3.0), ValueError);
+  EXPECT_THROW(speckleSurvivalQuantile(0.1, 0.0), ValueError);
+}
+
+}  // namespace
+}  // namespace sonarmap

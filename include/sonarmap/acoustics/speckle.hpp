@@ -49,6 +49,12 @@ double speckleSurvival(double relative_power, double looks);
 /// @throws ValueError when looks is not > 0 and finite or probability is outside [0, 1].
 double speckleQuantile(double probability, double looks);
 
+/// The x with Pr[X > x] = `exceedance` ([0, 1]; 0 gives +infinity, 1 gives 0), solved on the upper
+/// tail itself so that a tiny exceedance (a false-alarm probability of 10⁻¹²) keeps its precision,
+/// which 1 − exceedance would lose. One look: −ln(exceedance).
+/// @throws ValueError when looks is not > 0 and finite or exceedance is outside [0, 1].
+double speckleSurvivalQuantile(double exceedance, double looks);
+
 /// Density of the level Y = 10 log10 X at `level_db` (dB re the mean power, any real, ±infinity
 /// give 0), per dB.
 /// @throws ValueError when looks is not > 0 and finite or level_db is NaN.
