@@ -92,7 +92,7 @@ void printCrasTable(const std::string& path) {
   const SonarLog log = readSonarLog(path);
   std::printf("| detector | obstacles | occupied | on walls | walls covered | rms to walls (m) | fitted size (m) | inside free | mapping (s) |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (const char* detector : {"background", "cfar-ca", "cfar-so", "cfar-go", "cfar-os", "threshold", "canny"}) {
+  for (const char* detector : {"background", "evidence", "cfar-ca", "cfar-so", "cfar-go", "cfar-os", "threshold", "canny"}) {
     MapperOptions options;
     selectDetector(options.detector, detector);
     const auto start = std::chrono::steady_clock::now();
