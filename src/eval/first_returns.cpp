@@ -35,7 +35,7 @@ int firstReturnBin(const Beam& beam, const FirstReturnOptions& options) {
     const auto q90 = window.begin() + static_cast<std::ptrdiff_t>(std::lround(0.9 * (front - 1)));
     std::nth_element(window.begin(), q90, window.end());
     const double level = *q90 + rise;
-    if (values[c] < level) continue;
+    if (values[c] < level || values[c + 1] < level) continue;
     double sum = 0.0;
     for (int k = c; k < c + stay; ++k) sum += values[k];
     if (sum / stay >= level) return c;

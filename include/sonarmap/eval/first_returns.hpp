@@ -5,8 +5,9 @@
 ///
 /// A beam's first return is where its echo first rises out of the water in front of it and stays
 /// up, measured on the beam alone with no detector, background or threshold model of the mapper's:
-/// scanning outward from `front_m`, the first bin c whose intensity and whose mean intensity over
-/// the `stay_m` from c on both reach `rise_db` above the water in front of c, the 90th percentile
+/// scanning outward from `front_m`, the first bin c whose intensity, the next bin's, and the mean
+/// intensity over the `stay_m` from c on all reach `rise_db` above the water in front of c (one loud
+/// bin is a speckle spike, not a return that stays up), the 90th percentile
 /// of the beam's bins over the `front_m` before c. (The bright near-field band at the start of a
 /// beam is in front of everything within `front_m` of it, so it is never a first return itself.)
 /// The intensities' dB span is the beam's own, else 45 dB. A return counts as mapped when an
