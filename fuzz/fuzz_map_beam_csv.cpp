@@ -1,6 +1,7 @@
 // libFuzzer harness: beam CSV bytes → readBeamCsv → the whole mapping pipeline (sweeps, polar
 // images, self-reflection removal, smoothing, detection, ray casting, octree) with the CLI's
-// defaults. A log that reads must map without crashing or hanging, whatever its values.
+// defaults, and again with the evidence detector. A log that reads must map without crashing or
+// hanging, whatever its values.
 #include <cstddef>
 #include <cstdint>
 
@@ -15,6 +16,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     sonarmap::MapperOptions options;
     options.pipeline_detection = false;  // one thread: libFuzzer's timeout and leak checks see everything
     options.max_range_m = 30.0;  // explore inputs, not ever longer beams (a 300 m beam is legitimate work)
-    (void)sonarmap::mapSonarLog(sonarmap::readBeamCsv(path), options);
+    const sonarmap::SonarLog log = sonarmap::readBeamCsv(path);
+    (void)sonarmap::mapSonarLog(log, options);
+    sonarmap::selectDetector(options.detector, "evidence");
+    (void)sonarmap::mapSonarLog(log, options);
   });
 }

@@ -13,11 +13,6 @@
 namespace sonarmap::detail {
 namespace {
 
-/// The echo's peak is sought this far behind its first bin above the threshold (at least two
-/// bins), metres: a pulse length or two (Ping360 at 50 m: ≈ 0.2 m). The leading edge is then
-/// sought forward from the rise's foot, so a stronger echo within the window (reverberation or
-/// multipath behind a wall) can only raise the edge's level, never move it behind the first rise.
-constexpr double kPeakWindow_m = 0.3;
 /// A range's water statistics need this share of the rows (and at least 3) still in water there;
 /// beyond, the last range that had them is used. Where fewer beams remain, they are mostly those
 /// whose walls were missed so far, and their echoes would raise the background that hides them (the

@@ -8,6 +8,12 @@
 
 namespace sonarmap::detail {
 
+/// The echo's peak is sought this far behind its first bin above the threshold (at least two
+/// bins), metres: a pulse length or two (Ping360 at 50 m: ≈ 0.2 m). The leading edge is then
+/// sought forward from the rise's foot, so a stronger echo within the window (reverberation or
+/// multipath behind a wall) can only raise the edge's level, never move it behind the first rise.
+constexpr double kPeakWindow_m = 0.3;
+
 /// What every detector needs besides its own options: the first bin it may report and the image's
 /// intensity scale.
 struct DetectionContext {
@@ -17,6 +23,8 @@ struct DetectionContext {
   /// sweep); false: it uses the given calibration's as it is (a few rows of a sweep in progress,
   /// detectRows).
   bool measure_background = true;
+  /// The beams' horizontal −3 dB width, radians (DetectorOptions::beam_width_rad).
+  double beam_width_rad = 0.0;
 };
 
 /// The detection of `bin` in `row`, with the image's intensity there and the bin's centre as range.

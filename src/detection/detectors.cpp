@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <span>
 #include <string>
 
@@ -87,6 +88,7 @@ void DetectorOptions::validate() const {
     throwOption("the intensity span must be a finite number of dB > 0");
   }
   requireNonNegative(onset_length_m, "the echo onset length (m)");
+  if (!(beam_width_rad >= 0.0 && beam_width_rad < std::numbers::pi)) throwOption("the beam width must be in [0, pi) rad");
   switch (kind) {
     case Detector::kThreshold:
       requireNonNegative(threshold.min_rise_db, "the threshold's rise (dB)");
@@ -300,7 +302,7 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   SweepDetection result;
   result.min_range_m = options.min_range_m.value_or(calibration.near_field_end_m);
   const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
-                                         calibration.span_db, measure_background};
+                                         calibration.span_db, measure_background, options.beam_width_rad};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
   setWaterRanges(polar, context, result.calibration, result.detections);
   setEchoOnsets(polar, options, context, result.calibration, result.detections);

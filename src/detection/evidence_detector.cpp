@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <numbers>
 #include <vector>
 
 #include "column_histogram.hpp"
@@ -55,6 +56,24 @@ int loudPartOf(const PolarImage& polar, int row, const EvidenceReturn& found, co
     if (excess < 0.5f * water.threshold[i] && c > found.certain_bin) break;
   }
   return -1;
+}
+
+/// Whether the weak return of `row` at `range_m` is a loud return of another beam within a beam
+/// width of it, heard in this beam's pattern skirt: that beam's obstacle lies within its echo's rise
+/// plus the leading edge's peak window (kPeakWindow_m: a pulse or two) of `range_m`. Such a return
+/// is explained by the surface the louder beam met and adds no surface of its own (it would draw
+/// the surface's arc a beam width beside it).
+bool heardInTheSkirt(const PolarImage& polar, int row, double range_m, const std::vector<BeamDetection>& loud,
+                     double beam_width_rad) {
+  for (int k = 0; k < polar.rows(); ++k) {
+    const BeamDetection& other = loud[static_cast<std::size_t>(k)];
+    if (k == row || !other.hasObstacle()) continue;
+    const double gap_rad = std::abs(std::remainder(polar.bearing_rad[static_cast<std::size_t>(k)] -
+                                                       polar.bearing_rad[static_cast<std::size_t>(row)],
+                                                   2.0 * std::numbers::pi));
+    if (gap_rad <= beam_width_rad && std::abs(other.range_m - range_m) <= kPeakWindow_m + other.rise_m) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -159,6 +178,7 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
   if ((context.measure_background && polar.rows() < options.min_beams) || polar.cols() == 0) return detections;
   // A beam whose echo is never loud: its first return certain by the evidence of its bins.
   const std::vector<EvidenceReturn> first = evidencePass(polar, context, options, measured);
+  const std::vector<BeamDetection> loud_returns = detections;
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     const EvidenceReturn& found = first[static_cast<std::size_t>(r)];
@@ -166,8 +186,9 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
     // Its range: the leading edge of its loud part if it has one (a slowly rising echo), else where
     // its evidence started to add up (a step into reverberation has no peak to measure from).
     const int loud = loudPartOf(polar, r, found, measured);
-    detection = loud >= 0 ? leadingEdgeAt(polar, r, loud, context, measured, options.leading_edge_db)
-                          : detectionAt(polar, r, found.start_bin);
+    const BeamDetection weak = loud >= 0 ? leadingEdgeAt(polar, r, loud, context, measured, options.leading_edge_db)
+                                         : detectionAt(polar, r, found.start_bin);
+    if (!heardInTheSkirt(polar, r, weak.range_m, loud_returns, context.beam_width_rad)) detection = weak;
   }
   return detections;
 }

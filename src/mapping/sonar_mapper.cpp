@@ -112,6 +112,7 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar, bool extended_returns
   // Calibrate on the image as recorded: the band and the near field are measured before the band is
   // zeroed and before any smoothing spreads it.
   DetectorOptions detector = options_.detector;
+  detector.beam_width_rad = options_.beam_width_rad;
   const double span_db = detector.intensity_span_db.value_or(intensitySpan_db(polar));
   const SweepCalibration recorded = calibrateSweep(polar, detector.background.calibration, span_db);
   const double self_reflection_m = options_.self_reflection_range_m.value_or(recorded.band_end_m);
@@ -136,6 +137,7 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar, bool extended_returns
 
 SweepDetection SonarMapper::detectRows(PolarImage& rows, const SweepCalibration& calibration) const {
   DetectorOptions detector = options_.detector;
+  detector.beam_width_rad = options_.beam_width_rad;
   const double self_reflection_m = options_.self_reflection_range_m.value_or(calibration.band_end_m);
   removeSelfReflection(rows, self_reflection_m);
   detector.min_range_m = std::max(detector.min_range_m.value_or(calibration.near_field_end_m), self_reflection_m);

@@ -108,9 +108,13 @@ struct DetectorOptions {
   /// incidence, the edge of the beam on a wall) are not obstacles, but they prove the beam met
   /// something there, so the beam-volume model clears no farther.
   double onset_length_m = 0.2;  ///< metres, ≥ 0
+  /// The beams' horizontal −3 dB width, radians, in [0, π) (the mapper sets it from
+  /// MapperOptions::beam_width_rad): the evidence detector takes a weak return within this of a
+  /// beam whose loud return lies at the same range for that surface heard in the pattern's skirt.
+  double beam_width_rad = 3.0 * 3.14159265358979323846 / 180.0;
 
-  /// @throws ValueError naming the option when the minimum range, the span or the chosen
-  ///         detector's options are outside their documented ranges.
+  /// @throws ValueError naming the option when the minimum range, the span, the beam width or the
+  ///         chosen detector's options are outside their documented ranges.
   void validate() const;
 };
 
