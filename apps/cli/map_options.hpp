@@ -1,6 +1,7 @@
 #pragma once
-// The options of `sonarmap map` (and `demo`), every one in physical units, and their conversion
-// into the library's MapperOptions (mapping_arguments.hpp). Defaults are the library's, not copies.
+// The options of `sonarmap map` and `live`, every one in physical units: the mapping options are
+// the library's table (mapping_option_table.hpp), converted into MapperOptions by toMapperOptions
+// (mapping_arguments.hpp). Defaults are the library's, not copies.
 
 #include <string>
 #include <vector>
@@ -31,7 +32,9 @@ struct MapArgs : MappingArguments {
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.
 void addLogFormatOption(CLI::App& cmd, std::string& format);
 
-/// Adds the mapping options (everything but the input, outputs, --nav and --mounting) to `cmd`.
+/// Adds --format, every option of mappingOptionTable() (its flag, its help with unit and range, its
+/// default shown) and --quiet and --tank-report to `cmd`: everything but the input, outputs, --nav
+/// and --mounting.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
 
 // inputFormat, withSonarBeam and toMapperOptions live in the library

@@ -1,7 +1,7 @@
 # Typed stub of the sonarmap package (the compiled _sonarmap extension and __init__.py).
 # Shapes, dtypes and units are in the docstrings (help(sonarmap.X)); arrays are numpy ndarrays.
 import builtins
-from typing import Any, Callable, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Optional, Sequence, Tuple, TypedDict, Union, Unpack
 
 import numpy as np
 import numpy.typing as npt
@@ -10,6 +10,49 @@ Float64Array = npt.NDArray[np.float64]
 PathLike = str
 _ArrayLike = Union[npt.ArrayLike, Float64Array]
 _NumberOrAuto = Union[float, str, None]
+
+# The mapping keywords of map_sonar_log, OnlineMapper and detect_obstacles: rendered from the
+# library's option table (sonarmap.mapping_options()) by tests/python/test_mapping_options.py, which
+# fails when this block differs from the table and rewrites it when run as a script with --write.
+# BEGIN mapping options
+class _MappingOptions(TypedDict, total=False):
+    resolution: _NumberOrAuto
+    detector: str
+    false_alarm: float
+    min_contrast: float
+    min_echo_length: float
+    leading_edge: float
+    min_range: _NumberOrAuto
+    max_near_field: float
+    self_reflection: _NumberOrAuto
+    intensity_span: _NumberOrAuto
+    smoothing: str
+    smoothing_range: float
+    smoothing_bearing: float
+    cfar_training: float
+    cfar_guard: float
+    ray: str
+    aggregation: str
+    max_range: float
+    beam_width: Optional[float]
+    range_tolerance: _NumberOrAuto
+    max_voxel_updates: float
+    hit_probability: float
+    volume: bool
+    vertical_aperture: Optional[float]
+    free_aperture: _NumberOrAuto
+    clear_without_obstacle: Union[bool, str, None]
+    extended_returns: bool
+    seabed_slope: bool
+    face_slope: bool
+    water_surface_depth: Optional[float]
+    arc_evidence: str
+    obstacle_surface: str
+    threads: int
+# END mapping options
+
+class _MapSonarLogOptions(_MappingOptions, total=False):
+    format: str
 
 class Error(builtins.RuntimeError): ...
 class FileError(Error, builtins.OSError): ...
@@ -178,49 +221,16 @@ def cartesian_image(
     polar: PolarImage, pixel_size_m: Optional[float] = None, beam_width_deg: float = 3.0
 ) -> npt.NDArray[np.uint8]: ...
 def cartesian_extent(image: npt.NDArray[Any], pixel_size_m: float) -> list[float]: ...
-def detect_obstacles(polar: PolarImage, **options: Any) -> dict[str, Any]: ...
+def detect_obstacles(polar: PolarImage, **options: Unpack[_MappingOptions]) -> dict[str, Any]: ...
 def map_sonar_log(
     log: SonarLog,
     nav: Union[None, PathLike, Float64Array] = None,
     mounting: Optional[Sequence[float]] = None,
     progress: Optional[Callable[[int, int], None]] = None,
     slam: bool = False,
-    *,
-    resolution: _NumberOrAuto = ...,
-    detector: str = ...,
-    false_alarm: float = ...,
-    min_contrast: float = ...,
-    min_echo_length: float = ...,
-    leading_edge: float = ...,
-    min_range: _NumberOrAuto = ...,
-    max_near_field: float = ...,
-    self_reflection: _NumberOrAuto = ...,
-    intensity_span: _NumberOrAuto = ...,
-    smoothing: str = ...,
-    smoothing_range: float = ...,
-    smoothing_bearing: float = ...,
-    cfar_training: float = ...,
-    cfar_guard: float = ...,
-    ray: str = ...,
-    aggregation: str = ...,
-    max_range: Optional[float] = ...,
-    format: str = ...,
-    beam_width: Optional[float] = ...,
-    range_tolerance: _NumberOrAuto = ...,
-    max_voxel_updates: float = ...,
-    hit_probability: float = ...,
-    volume: bool = ...,
-    vertical_aperture: Optional[float] = ...,
-    free_aperture: _NumberOrAuto = ...,
-    clear_without_obstacle: Union[bool, str, None] = ...,
-    arc_evidence: str = ...,
-    obstacle_surface: str = ...,
-    extended_returns: bool = ...,
-    seabed_slope: bool = ...,
-    face_slope: bool = ...,
-    water_surface_depth: Optional[float] = ...,
-    threads: int = ...,
+    **options: Unpack[_MapSonarLogOptions],
 ) -> OccupancyMap: ...
+def mapping_options() -> list[dict[str, Any]]: ...
 def read_nav_csv(path: PathLike) -> Float64Array: ...
 def write_nav_csv(path: PathLike, nav: Float64Array) -> None: ...
 
@@ -231,7 +241,7 @@ class OnlineMapper:
         mounting: Optional[Sequence[float]] = None,
         integration: str = "sweep",
         format: str = "csv",
-        **options: Any,
+        **options: Unpack[_MappingOptions],
     ) -> None: ...
     def add_beam(
         self,

@@ -411,6 +411,15 @@ pixel_size_m: metres per pixel (default: the bin length). The array owns the ima
 Raises sonarmap.ValueError for an empty image, a pixel size <= 0, a beam width out of (0, 360],
 or an image side above 20,000 pixels.)doc");
 
+  const std::string detect_doc = R"doc(First obstacle along each beam of one sweep's polar image, as the mapper finds it
+(SonarMapper::detectSweep: calibration, self-reflection removal, smoothing, detection; paper
+§8.2, §9; detectors.hpp). Keyword options are map_sonar_log's detection options with the CLI's
+names and units (sonarmap.mapping_options() with stage "detection"): )doc" + mappingKeywordsDoc(true) + R"doc(.
+The input is not modified. Returns a dict of arrays over the rows: obstacle_bin int32 (-1: none),
+range_m float64 (leading edge, metres; NaN: none), intensity uint8, water_range_m, rise_m,
+echo_onset_m, echo_end_m float64 (metres; echo_end_m: where the obstacle's loud echo falls back
+below half the threshold, NaN without an obstacle); and min_range_m, threshold_db (floats), cleaned (the PolarImage the
+detector saw). Raises sonarmap.ValueError for an invalid option; TypeError for an unknown keyword.)doc";
   m.def(
       "detect_obstacles",
       [](const PolarImage& polar, const py::kwargs& kwargs) {
@@ -427,19 +436,7 @@ or an image side above 20,000 pixels.)doc");
         out["cleaned"] = py::cast(std::move(cleaned));
         return out;
       },
-      py::arg("polar"),
-      R"doc(First obstacle along each beam of one sweep's polar image, as the mapper finds it
-(SonarMapper::detectSweep: calibration, self-reflection removal, smoothing, detection; paper
-§8.2, §9; detectors.hpp). Keyword options are map_sonar_log's detection options with the CLI's
-names: detector ("background" | "threshold" | "canny" | "cfar-ca" | "cfar-so" | "cfar-go" |
-"cfar-os" | "evidence"), false_alarm, min_contrast (dB), min_echo_length (m), leading_edge (dB), min_range (m
-or "auto"), max_near_field (m), self_reflection (m or "auto"), intensity_span (dB or "auto"), smoothing, smoothing_range
-(m), smoothing_bearing (deg), cfar_training (m), cfar_guard (m).
-The input is not modified. Returns a dict of arrays over the rows: obstacle_bin int32 (-1: none),
-range_m float64 (leading edge, metres; NaN: none), intensity uint8, water_range_m, rise_m,
-echo_onset_m, echo_end_m float64 (metres; echo_end_m: where the obstacle's loud echo falls back
-below half the threshold, NaN without an obstacle); and min_range_m, threshold_db (floats), cleaned (the PolarImage the
-detector saw). Raises sonarmap.ValueError for an invalid option; TypeError for an unknown keyword.)doc");
+      py::arg("polar"), detect_doc.c_str());
 }
 
 }  // namespace sonarmap::python

@@ -25,6 +25,7 @@ struct OccupancyMap {
 void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses
 void bindMap(py::module_& m);       // bind_map.cpp: OccupancyMap (octree, queries, files)
 void bindSonar(py::module_& m);     // bind_sonar.cpp: SonarLog, polar and Cartesian images, detectors
+void bindOptions(py::module_& m);   // bind_options.cpp: mapping_options, the mapping keywords
 void bindMapping(py::module_& m);   // bind_mapping.cpp: map_sonar_log, MappingStats, navigation
 void bindOnline(py::module_& m);    // bind_online.cpp: OnlineMapper
 void bindSimEval(py::module_& m);   // bind_sim_eval.cpp: Scene, simulate, evaluate
@@ -58,13 +59,17 @@ struct PySonarLog {
   void cache();
 };
 
-/// The mapping keyword arguments (the command line's option names, '-' as '_', see
-/// mapping_arguments.hpp) as MappingArguments. `allowed_extra` names further keywords the caller
+/// The mapping keyword arguments (the keywords of mappingOptionTable(): the command line's option
+/// names with '-' as '_') as MappingArguments. `allowed_extra` names further keywords the caller
 /// handles itself (skipped here).
 /// @throws TypeError for an unknown keyword; sonarmap.ValueError for a value of the wrong kind.
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra = {});
 
-/// The keyword names mappingArguments accepts.
-std::vector<std::string> mappingArgumentNames();
+/// The mapping keywords for a docstring, "resolution (metres), detector, ...": every one, or with
+/// `detection_only` those detect_obstacles uses (OptionStage::kDetection).
+std::string mappingKeywordsDoc(bool detection_only);
+
+/// A keyword's value as a string. @throws sonarmap.ValueError naming `name` when it is not a str.
+std::string textArgument(const py::handle& value, const std::string& name);
 
 }  // namespace sonarmap::python

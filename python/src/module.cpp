@@ -7,6 +7,7 @@ PYBIND11_MODULE(_sonarmap, m) {
   sonarmap::python::bindErrors(m);
   sonarmap::python::bindMap(m);
   sonarmap::python::bindSonar(m);
+  sonarmap::python::bindOptions(m);
   sonarmap::python::bindMapping(m);
   sonarmap::python::bindOnline(m);
   sonarmap::python::bindSimEval(m);

@@ -4,8 +4,8 @@
 /// the keyword arguments of the Python module's `map_sonar_log`): physical units a person reads
 /// (metres, degrees, dB, probabilities), "auto" for what the mapper derives from the log, and their
 /// checked conversion into MapperOptions. One translation shared by the command-line tool and the
-/// Python module, so both map a log with the same options identically. Defaults are the library's
-/// (MapperOptions{}), not copies.
+/// Python module, so both map a log with the same options identically. Each option is an entry of
+/// mappingOptionTable() (mapping_option_table.hpp); defaults are the library's (MapperOptions{}).
 
 #include <array>
 #include <string>
@@ -15,51 +15,57 @@
 
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
+#include "sonarmap/mapping/mapping_option_table.hpp"
 
 namespace sonarmap {
 
-/// The mapping options in user units. Strings hold a number or "auto" (resolved per log or sweep).
-/// Each field's name is the command-line flag's (`--false-alarm` → false_alarm) with its unit.
+/// The mapping options in the user's units, one field per entry of mappingOptionTable() (the
+/// entry's link names the field; its unit, range, accepted words and help are the entry's). Numbers
+/// are in the unit their name ends with (_m metres, _deg degrees, _db dB; the others are
+/// probabilities and counts); strings hold a number or the option's word ("auto", "none") or one of
+/// its words. A default-constructed MappingArguments holds the library's defaults (MapperOptions{}).
 struct MappingArguments {
-  std::string resolution = "auto";       ///< metres, or auto (autoResolution_m of the log's reach)
-  std::string detector = "background";   ///< parseDetector's names
-  double false_alarm = MapperOptions{}.detector.background.calibration.false_alarm_probability;
-  double min_contrast_db = MapperOptions{}.detector.background.calibration.min_contrast_db;
-  double min_echo_length_m = MapperOptions{}.detector.background.min_echo_length_m;
-  double leading_edge_db = MapperOptions{}.detector.background.leading_edge_db;
-  std::string min_range = "auto";        ///< metres, or auto (the near-field clutter's end)
-  /// metres ≥ 0: the farthest the automatic minimum range's clutter may reach (CalibrationOptions)
-  double max_near_field_m = MapperOptions{}.detector.background.calibration.max_near_field_m;
-  std::string self_reflection = "auto";  ///< metres, or auto (the self-reflection band's end)
-  std::string intensity_span = "auto";   ///< dB, or auto (the log's, else 45 dB)
-  std::string smoothing = "none";        ///< none | gaussian | median | mean
-  double smoothing_range_m = MapperOptions{}.smoothing.range_m;
-  double smoothing_bearing_deg = MapperOptions{}.smoothing.bearing_rad * 180.0 / 3.14159265358979323846;
-  double cfar_training_m = MapperOptions{}.detector.cfar.training_m;
-  double cfar_guard_m = MapperOptions{}.detector.cfar.guard_m;
-  std::string ray = "dda";               ///< dda | bresenham
-  std::string aggregation = "max";       ///< inner nodes: max | mean
-  double max_range_m = MapperOptions{}.max_range_m;
-  std::string format = "auto";  ///< log format (parseLogFormat), or auto: by the input's extension
-  double beam_width_deg = MapperOptions{}.beam_width_rad * 180.0 / 3.14159265358979323846;
-  bool beam_width_given = false;         ///< the user gave the beam width (else the sonar's, withSonarBeam)
+  /// Every option at the library's default, in the user's unit (setDefaultArgument).
+  MappingArguments();
+
+  std::string resolution;
+  std::string detector;
+  double false_alarm = 0.0;
+  double min_contrast_db = 0.0;
+  double min_echo_length_m = 0.0;
+  double leading_edge_db = 0.0;
+  std::string min_range;
+  double max_near_field_m = 0.0;
+  std::string self_reflection;
+  std::string intensity_span;
+  std::string smoothing;
+  double smoothing_range_m = 0.0;
+  double smoothing_bearing_deg = 0.0;
+  double cfar_training_m = 0.0;
+  double cfar_guard_m = 0.0;
+  std::string ray;
+  std::string aggregation;
+  double max_range_m = 0.0;
+  double beam_width_deg = 0.0;
+  bool beam_width_given = false;  ///< the user gave the beam width (else the sonar's, withSonarBeam)
+  std::string range_tolerance;
+  double max_voxel_updates = 0.0;
+  double hit_probability = 0.0;
+  bool volume = false;  ///< `--3d`
+  double vertical_aperture_deg = 0.0;
   bool vertical_aperture_given = false;  ///< the user gave the vertical aperture (else the sonar's)
-  std::string range_tolerance = "auto";  ///< metres, or auto (a bin plus half a voxel plus each echo's rise)
-  double max_voxel_updates = MapperOptions{}.max_voxel_updates;
-  double hit_probability = MapperOptions{}.octree.occupancy.prob_hit;
-  bool volume = false;  ///< `--3d`: the beam-volume model (BeamModel::kVolume)
-  double vertical_aperture_deg = MapperOptions{}.vertical_aperture_rad * 180.0 / 3.14159265358979323846;
-  unsigned threads = 1;  ///< threads tracing a sweep's free rays, ≥ 1
-  std::string free_aperture = "auto";           ///< degrees, or auto (half the vertical aperture)
-  std::string clear_without_obstacle = "auto";  ///< yes, no, or auto (planar yes, volume no)
-  std::string arc_evidence = "pattern";         ///< whole | uniform | pattern
-  std::string obstacle_surface = "vertical";    ///< --3d: vertical | shell (ObstacleSurface)
-  bool extended_returns = true;                 ///< --3d: weak extended returns on their level surface
-  bool seabed_slope = true;                     ///< --3d: seabed traces follow the fitted slope
-  bool face_slope = true;                       ///< --3d: oblique faces recede across their beams
-  /// --3d: the water surface's depth in the navigation's frame, metres (any sign), or none: unknown
-  /// (MapperOptions::water_surface_depth_m).
-  std::string water_surface_depth = "0";
+  std::string free_aperture;
+  std::string clear_without_obstacle;
+  std::string arc_evidence;
+  std::string obstacle_surface;
+  bool extended_returns = false;
+  bool seabed_slope = false;
+  bool face_slope = false;
+  std::string water_surface_depth;
+  unsigned threads = 0;
+  /// The log's format (parseLogFormat's names), or auto: by the input's extension (inputFormat).
+  /// Not a mapping option: it names the sonar whose beam widths apply (withSonarBeam).
+  std::string format = "auto";
 };
 
 /// The log format of `input`: `format` (parseLogFormat's names) unless it is "auto", else by the
@@ -77,8 +83,10 @@ MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args,
 /// @throws ValueError as above.
 MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args, const NominalBeam& beam);
 
-/// Turns the arguments into mapper options, checking each value's range.
-/// @throws ValueError naming the option (as its command-line flag), its unit and its range.
+/// Turns the arguments into mapper options (applyArgument for each entry of mappingOptionTable()),
+/// checking each value against its range or words, and the free aperture against the vertical one.
+/// @throws ValueError naming the option (as its command-line flag), its unit and its range (or
+///         its words), or as MapperOptions::validate.
 MapperOptions toMapperOptions(const MappingArguments& args);
 
 /// `text` as a number > 0 (≥ 0 with `zero_allowed`) of `unit`, for the option `option`.

@@ -1,0 +1,177 @@
+// The mapping options as Python keywords, read from the library's table
+// (mapping/mapping_option_table.hpp): the keyword of each option, how a Python value becomes the
+// text or number `sonarmap map` would have read, the type the stub gives it, and
+// sonarmap.mapping_options(), the table itself (tests/python/test_mapping_options.py renders the
+// stub's keyword block from it and compares them with python/sonarmap/__init__.pyi).
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "numpy_checks.hpp"
+
+namespace sonarmap::python {
+namespace {
+
+bool hasWord(const MappingOption& option, std::string_view word) {
+  return std::any_of(option.words.begin(), option.words.end(), [&](const OptionWord& w) { return w.word == word; });
+}
+
+/// Where the command line takes "auto" for a number, Python takes its text too ("auto", "0.05").
+bool takesText(const MappingOption& option) { return option.unset.word == "auto"; }
+
+double number(const py::handle& value, const std::string& name) {
+  if (py::isinstance<py::bool_>(value)) throwValueError(name + " expects a number, got a bool");
+  const bool is_number = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value);
+  if (!is_number && !py::hasattr(value, "__float__")) throwValueError(name + " expects a number");
+  return value.cast<double>();
+}
+
+bool flag(const py::handle& value, const std::string& name) {
+  if (!py::isinstance<py::bool_>(value)) throwValueError(name + " expects True or False");
+  return value.cast<bool>();
+}
+
+/// Stores the Python value of one option's keyword `name` in `args`, as the command line would
+/// have read it. None is the option's unset word, or for a number the user may leave to the sonar
+/// (beam_width), not given; True and False are yes and no.
+void readKeyword(const MappingOption& option, const std::string& name, const py::handle& value,
+                 MappingArguments& args) {
+  std::visit(LinkVisitor{
+                 [&](const NumberLink& link) {
+                   if (value.is_none() && link.given != nullptr) return;
+                   args.*link.arg = number(value, name);
+                   if (link.given != nullptr) args.*link.given = true;
+                 },
+                 [&](const NumberOrWordLink& link) {
+                   if (value.is_none()) {
+                     args.*link.arg = option.unset.word;
+                   } else if (takesText(option) && py::isinstance<py::str>(value)) {
+                     args.*link.arg = value.cast<std::string>();
+                   } else {
+                     args.*link.arg = exactNumberText(number(value, name));
+                   }
+                 },
+                 [&](const WordLink& link) {
+                   if (value.is_none() && hasWord(option, "auto")) {
+                     args.*link.arg = "auto";
+                   } else if (py::isinstance<py::bool_>(value) && hasWord(option, "yes") && hasWord(option, "no")) {
+                     args.*link.arg = value.cast<bool>() ? "yes" : "no";
+                   } else {
+                     args.*link.arg = textArgument(value, name);
+                   }
+                 },
+                 [&](const BoolLink& link) { args.*link.arg = flag(value, name); },
+                 [&](const CountLink& link) {
+                   const double count = number(value, name);
+                   if (!(count >= 0.0 && count <= std::numeric_limits<unsigned>::max()) || count != std::floor(count)) {
+                     throwValueError(name + " expects " + optionAccepts(option) + ", got " +
+                                     py::repr(value).cast<std::string>());
+                   }
+                   args.*link.arg = static_cast<unsigned>(count);
+                 }},
+             option.link);
+}
+
+/// The option's type in the stub (python/sonarmap/__init__.pyi): what readKeyword accepts.
+std::string stubType(const MappingOption& option) {
+  return std::visit(
+      LinkVisitor{[](const NumberLink& link) { return link.given ? "Optional[float]" : "float"; },
+                  [&](const NumberOrWordLink&) { return takesText(option) ? "_NumberOrAuto" : "Optional[float]"; },
+                  [&](const WordLink&) {
+                    if (!hasWord(option, "yes") || !hasWord(option, "no")) return "str";
+                    return hasWord(option, "auto") ? "Union[bool, str, None]" : "Union[bool, str]";
+                  },
+                  [](const BoolLink&) { return "bool"; }, [](const CountLink&) { return "int"; }},
+      option.link);
+}
+
+/// The option's default as its keyword takes it (MappingArguments{}, the library's defaults).
+py::object defaultValue(const MappingOption& option, const MappingArguments& defaults) {
+  return std::visit(LinkVisitor{[&](const NumberOrWordLink& link) -> py::object {
+                                  const std::string& text = defaults.*link.arg;
+                                  if (text == option.unset.word) return py::none();
+                                  double value = 0.0;
+                                  std::from_chars(text.data(), text.data() + text.size(), value);
+                                  return py::float_(value);
+                                },
+                                [&](const auto& link) -> py::object { return py::cast(defaults.*link.arg); }},
+                    option.link);
+}
+
+py::list optionList() {
+  const MappingArguments defaults;
+  py::list options;
+  for (const MappingOption& option : mappingOptionTable()) {
+    py::dict entry;
+    entry["keyword"] = optionKeyword(option);
+    entry["flag"] = optionFlag(option);
+    entry["stage"] = option.stage == OptionStage::kDetection ? "detection" : "mapping";
+    entry["unit"] = optionUnitName(option.unit);
+    entry["accepts"] = optionAccepts(option);
+    entry["default"] = defaultValue(option, defaults);
+    py::list words;
+    for (const OptionWord& word : option.words) words.append(std::string(word.word));
+    entry["words"] = words;
+    entry["help"] = optionHelp(option);
+    entry["type"] = stubType(option);
+    options.append(entry);
+  }
+  return options;
+}
+
+}  // namespace
+
+std::string textArgument(const py::handle& value, const std::string& name) {
+  if (!py::isinstance<py::str>(value)) throwValueError(name + " expects a string");
+  return value.cast<std::string>();
+}
+
+MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra) {
+  MappingArguments args;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = key.cast<std::string>();
+    if (const MappingOption* option = findMappingOption(name)) {
+      readKeyword(*option, name, value, args);
+    } else if (std::find(allowed_extra.begin(), allowed_extra.end(), name) == allowed_extra.end()) {
+      std::string names;
+      for (const MappingOption& known : mappingOptionTable()) {
+        if (!names.empty()) names += ", ";
+        names += optionKeyword(known);
+      }
+      throw py::type_error("unexpected keyword argument '" + name + "'; the mapping options are: " + names);
+    }
+  }
+  return args;
+}
+
+std::string mappingKeywordsDoc(bool detection_only) {
+  // Each keyword with its unit, its words or "bool", and the CLI's flag where the names differ.
+  std::string doc;
+  for (const MappingOption& option : mappingOptionTable()) {
+    if (detection_only && option.stage != OptionStage::kDetection) continue;
+    std::string notes = !option.words.empty()                           ? optionAccepts(option)
+                        : std::holds_alternative<BoolLink>(option.link) ? "bool"
+                                                                        : "";
+    if (option.unit != OptionUnit::kProbability && option.unit != OptionUnit::kCount)
+      notes += optionUnitName(option.unit);
+    if (!option.keyword.empty()) notes += std::string(notes.empty() ? "" : ", ") + "the CLI's " + optionFlag(option);
+    doc += (doc.empty() ? "" : ", ") + optionKeyword(option) + (notes.empty() ? "" : " (" + notes + ")");
+  }
+  return doc;
+}
+
+void bindOptions(py::module_& m) {
+  m.def("mapping_options", &optionList,
+        R"doc(The mapping options map_sonar_log, OnlineMapper and detect_obstacles take as
+keywords (the CLI's flags of `sonarmap map`), from the library's table: a list of dicts, one per
+option, with keyword, flag ("--false-alarm"), stage ("detection": detect_obstacles uses it, or
+"mapping"), unit ("metres", "degrees", "dB", "probability", "count" or ""), accepts (its range or
+words, as errors say it), default (the library's, as the keyword takes it; None: auto), words
+(the accepted words of a word option), help (the CLI's) and type (the stub's annotation).)doc");
+}
+
+}  // namespace sonarmap::python

@@ -1,0 +1,313 @@
+// The table of mapping options (mapping_option_table.hpp): one entry per option. What an entry
+// means (help, checks, conversion, defaults) is in mapping_option_rules.cpp.
+#include "sonarmap/mapping/mapping_option_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/mapping/mapping_arguments.hpp"
+#include "sonarmap/sonar/preprocess.hpp"
+
+namespace sonarmap {
+namespace {
+
+using Args = MappingArguments;
+using Options = MapperOptions;
+using Stage = OptionStage;
+using Unit = OptionUnit;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The largest length the detector's windows and the near field accept: far beyond any sonar, and
+/// small enough that a length in bins stays an int.
+constexpr double kLongest_m = 1e6;
+
+constexpr OptionRange atLeast(double lo, double hi = kInf) { return {lo, hi, false, false}; }
+constexpr OptionRange above(double lo, double hi = kInf) { return {lo, hi, true, false}; }
+constexpr OptionRange openRange(double lo, double hi) { return {lo, hi, true, true}; }
+
+constexpr OptionWord kDetectors[] = {
+    {"background", "calibrated per sweep"},
+    {"evidence", "background's loud echoes, and on beams without one the first return whose evidence against the "
+                 "water measured where it is water adds up: steps into reverberation"},
+    {"cfar-ca", ""},
+    {"cfar-so", ""},
+    {"cfar-go", ""},
+    {"cfar-os", ""},
+    {"threshold", "paper 8.2"},
+    {"canny", "paper 9"},
+};
+constexpr OptionWord kSmoothings[] = {{"none", ""}, {"gaussian", ""}, {"median", ""}, {"mean", ""}};
+constexpr OptionWord kRays[] = {{"dda", ""}, {"bresenham", ""}};
+constexpr OptionWord kAggregations[] = {{"max", ""}, {"mean", ""}};
+constexpr OptionWord kClearings[] = {
+    {"yes", ""},
+    {"no", ""},
+    {"auto", "yes for the plane, no for --3d, where a grazing seabed returns below any threshold"},
+};
+constexpr OptionWord kArcEvidences[] = {{"whole", ""}, {"uniform", ""}, {"pattern", ""}};
+constexpr OptionWord kObstacleSurfaces[] = {
+    {"vertical", "a face at the echo's range, up to where the echo ends"},
+    {"shell", "the sphere cap at that range"},
+};
+
+constinit const MappingOption kTable[] = {
+    {.name = "resolution",
+     .unit = Unit::kMetres,
+     .range = above(0.0),
+     .unset = {"auto", "about 1/256 of the log's reach, rounded to 1, 2 or 5 x 10^k m (Micron at 5 m: 0.02; SeaKing "
+                       "at 30 m: 0.1; Ping360 at 50 m: 0.2)"},
+     .help = "Voxel edge",
+     .link = NumberOrWordLink{&Args::resolution, {.ref = [](Options& o) -> auto& { return o.resolution_m; }}}},
+    {.name = "detector",
+     .stage = Stage::kDetection,
+     .words = kDetectors,
+     .help = "Obstacle detector",
+     .link = WordLink{&Args::detector, [](Options& o, std::string_view w) { selectDetector(o.detector, w); },
+                      [](const Options& a, const Options& b) {
+                        return detectorName(a.detector) == detectorName(b.detector);
+                      }}},
+    {.name = "false-alarm",
+     .stage = Stage::kDetection,
+     .unit = Unit::kProbability,
+     .range = openRange(0.0, 0.5),
+     .help = "Chance per bin that noise alone is taken for an echo",
+     .details = "sets the echo threshold above the background by the speckle model (1e-6: 16.9 dB); raise it to see "
+                "weaker targets",
+     .link = NumberLink{&Args::false_alarm, {.ref = [](Options& o) -> auto& {
+                          return o.detector.background.calibration.false_alarm_probability;
+                        }}}},
+    {.name = "min-contrast",
+     .stage = Stage::kDetection,
+     .unit = Unit::kDecibels,
+     .range = atLeast(0.0, 255.0),
+     .help = "Least rise of an echo above the background",
+     .details = "whatever --false-alarm gives (the CFAR detectors' floor too, never below their own)",
+     .link = NumberLink{&Args::min_contrast_db,
+                        {.get = [](const Options& o) { return o.detector.background.calibration.min_contrast_db; },
+                         .set = [](Options& o, double v) {
+                           o.detector.background.calibration.min_contrast_db = v;
+                           o.detector.cfar.min_contrast_db = std::max(o.detector.cfar.min_contrast_db, v);
+                         }}}},
+    {.name = "min-echo-length",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0, kLongest_m),
+     .help = "Least length of an echo along the beam",
+     .details = "at least one bin; shorter ones are speckle; never more than the log's pulse where it records one (a "
+                "Ping360 at 2 m: 8 mm)",
+     .link = NumberLink{&Args::min_echo_length_m,
+                        {.get = [](const Options& o) { return o.detector.background.min_echo_length_m; },
+                         .set = [](Options& o, double v) {
+                           o.detector.background.min_echo_length_m = v;
+                           o.detector.cfar.min_echo_length_m = v;
+                         }}}},
+    {.name = "leading-edge",
+     .stage = Stage::kDetection,
+     .unit = Unit::kDecibels,
+     .range = atLeast(0.0, 255.0),
+     .help = "An obstacle's range is where its echo rises to within this much of its peak",
+     .details = "at 6, the nearest surface within the -3 dB beam",
+     .link = NumberLink{&Args::leading_edge_db,
+                        {.ref = [](Options& o) -> auto& { return o.detector.background.leading_edge_db; }}}},
+    {.name = "min-range",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0),
+     .unset = {"auto", "the end of the near-field clutter measured on each sweep (the vehicle's own returns, the "
+                       "transducer's ringing)"},
+     .help = "Detector's minimum range",
+     .link = NumberOrWordLink{&Args::min_range, {.ref = [](Options& o) -> auto& { return o.detector.min_range_m; }}}},
+    {.name = "max-near-field",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0, kLongest_m),
+     .help = "The automatic minimum range's clutter ends within this far of the head",
+     .details = "the vehicle's own body; farther, returns in many bearings are the scene (a floor seen down a slope)",
+     .link = NumberLink{&Args::max_near_field_m, {.ref = [](Options& o) -> auto& {
+                          return o.detector.background.calibration.max_near_field_m;
+                        }}}},
+    {.name = "self-reflection",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0),
+     .unset = {"auto", "the self-reflection band's end measured on each sweep"},
+     .help = "Zero the bins nearer than this before detection",
+     .link = NumberOrWordLink{&Args::self_reflection,
+                              {.ref = [](Options& o) -> auto& { return o.self_reflection_range_m; }}}},
+    {.name = "intensity-span",
+     .stage = Stage::kDetection,
+     .unit = Unit::kDecibels,
+     .range = above(0.0),
+     .unset = {"auto", "the log's (SeaNet ADspan), else 45 dB"},
+     .help = "The span of the intensities 0..255",
+     .link = NumberOrWordLink{&Args::intensity_span,
+                              {.ref = [](Options& o) -> auto& { return o.detector.intensity_span_db; }}}},
+    {.name = "smoothing",
+     .stage = Stage::kDetection,
+     .words = kSmoothings,
+     .help = "Smoothing of the polar image, before detection",
+     .link = WordLink{&Args::smoothing, [](Options& o, std::string_view w) { o.smoothing.kind = parseSmoothing(w); },
+                      [](const Options& a, const Options& b) { return a.smoothing.kind == b.smoothing.kind; }}},
+    {.name = "smoothing-range",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0, kLongest_m),
+     .help = "Smoothing along the beam",
+     .details = "the Gaussian's sigma, or the kernel's length",
+     .link = NumberLink{&Args::smoothing_range_m, {.ref = [](Options& o) -> auto& { return o.smoothing.range_m; }}}},
+    {.name = "smoothing-bearing",
+     .stage = Stage::kDetection,
+     .unit = Unit::kDegrees,
+     .range = atLeast(0.0, 360.0),
+     .help = "Smoothing across beams",
+     .details = "the Gaussian's sigma, or the kernel's width",
+     .link = NumberLink{&Args::smoothing_bearing_deg,
+                        {.ref = [](Options& o) -> auto& { return o.smoothing.bearing_rad; }}}},
+    {.name = "cfar-training",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = above(0.0, kLongest_m),
+     .help = "CFAR training window per side",
+     .link = NumberLink{&Args::cfar_training_m,
+                        {.ref = [](Options& o) -> auto& { return o.detector.cfar.training_m; }}}},
+    {.name = "cfar-guard",
+     .stage = Stage::kDetection,
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0, kLongest_m),
+     .help = "CFAR guard window per side",
+     .link = NumberLink{&Args::cfar_guard_m, {.ref = [](Options& o) -> auto& { return o.detector.cfar.guard_m; }}}},
+    {.name = "ray",
+     .words = kRays,
+     .help = "Voxel traversal of a ray",
+     .link = WordLink{&Args::ray, [](Options& o, std::string_view w) { o.ray = parseRayAlgorithm(w); },
+                      [](const Options& a, const Options& b) { return a.ray == b.ray; }}},
+    {.name = "aggregation",
+     .words = kAggregations,
+     .help = "Inner nodes' occupancy from their children",
+     .link = WordLink{&Args::aggregation,
+                      [](Options& o, std::string_view w) {
+                        o.octree.aggregation = w == "mean" ? InnerAggregation::kMean : InnerAggregation::kMax;
+                      },
+                      [](const Options& a, const Options& b) { return a.octree.aggregation == b.octree.aggregation; }}},
+    {.name = "max-range",
+     .unit = Unit::kMetres,
+     .range = above(0.0),
+     .help = "Use beams up to this range",
+     .details = "longer ones clear free space up to it, their obstacle dropped",
+     .link = NumberLink{&Args::max_range_m, {.ref = [](Options& o) -> auto& { return o.max_range_m; }}}},
+    {.name = "beam-width",
+     .unit = Unit::kDegrees,
+     .range = {0.0, 180.0, false, true},
+     .help = "Horizontal beam width",
+     .details = "default the sonar's (Tritech 3, Ping360 2); each beam clears its wedge; 0 = one ray per beam (the "
+                "paper)",
+     .link = NumberLink{&Args::beam_width_deg,
+                        {.ref = [](Options& o) -> auto& { return o.beam_width_rad; }},
+                        &Args::beam_width_given}},
+    {.name = "range-tolerance",
+     .unit = Unit::kMetres,
+     .range = atLeast(0.0),
+     .unset = {"auto", "a bin plus half a voxel plus the echo's rise (leading edge to peak)"},
+     .help = "A beam's free space ends this far before its obstacle",
+     .link = NumberOrWordLink{&Args::range_tolerance,
+                              {.ref = [](Options& o) -> auto& { return o.range_tolerance_m; }}}},
+    {.name = "max-voxel-updates",
+     .unit = Unit::kCount,
+     .range = above(0.0),
+     .help = "Refuse a log that needs more VOXEL UPDATES than this",
+     .details = "estimated before mapping",
+     .link = NumberLink{&Args::max_voxel_updates, {.ref = [](Options& o) -> auto& { return o.max_voxel_updates; }}}},
+    {.name = "hit-probability",
+     .unit = Unit::kProbability,
+     .range = openRange(0.5, 1.0),
+     .help = "P(occupied | echo)",
+     .details = "0.9 lets one echo outweigh earlier free space",
+     .link = NumberLink{&Args::hit_probability,
+                        {.ref = [](Options& o) -> auto& { return o.octree.occupancy.prob_hit; }}}},
+    {.name = "3d",
+     .keyword = "volume",
+     .help = "Map the whole beam volume (width x vertical aperture) into a 3D map instead of the sonar's plane",
+     .link = BoolLink{&Args::volume,
+                      {.get = [](const Options& o) { return o.beam_model == BeamModel::kVolume; },
+                       .set = [](Options& o, bool v) { o.beam_model = v ? BeamModel::kVolume : BeamModel::kPlanar; }},
+                      true}},
+    {.name = "vertical-aperture",
+     .unit = Unit::kDegrees,
+     .range = openRange(0.0, 180.0),
+     .help = "Vertical beam width for --3d",
+     .details = "default the sonar's (Tritech 35, Ping360 25; SeaKing 40)",
+     .link = NumberLink{&Args::vertical_aperture_deg,
+                        {.ref = [](Options& o) -> auto& { return o.vertical_aperture_rad; }},
+                        &Args::vertical_aperture_given}},
+    {.name = "free-aperture",
+     .unit = Unit::kDegrees,
+     .range = openRange(0.0, 180.0),
+     .unset = {"auto", "half the vertical aperture"},
+     .help = "--3d: vertical extent of the cone a beam clears (where its silence proves water)",
+     .details = "at most the vertical aperture",
+     .link = NumberOrWordLink{&Args::free_aperture,
+                              {.ref = [](Options& o) -> auto& { return o.free_vertical_aperture_rad; }}}},
+    {.name = "clear-without-obstacle",
+     .words = kClearings,
+     .help = "Whether a beam without an obstacle clears its wedge or cone up to where its echo shows water",
+     .link = WordLink{&Args::clear_without_obstacle,
+                      [](Options& o, std::string_view w) {
+                        o.clear_without_obstacle = w == "auto" ? std::nullopt : std::optional<bool>(w == "yes");
+                      },
+                      [](const Options& a, const Options& b) {
+                        return a.clear_without_obstacle == b.clear_without_obstacle;
+                      }}},
+    {.name = "extended-returns",
+     .help = "--3d: seek weak extended returns (a grazing seabed or water surface) in the whole echo of beams without "
+             "an obstacle and map them on the level surface their onset implies",
+     .link = BoolLink{&Args::extended_returns, {.ref = [](Options& o) -> auto& { return o.extended_returns; }}}},
+    {.name = "seabed-slope",
+     .help = "--3d: weak seabed returns follow the seabed's slope, fitted to their onsets over the whole run (a "
+             "robust plane, kept where a test asks for a slope), and a loud level return whose onset lies above that "
+             "seabed stays an obstacle; no: the level through each onset",
+     .link = BoolLink{&Args::seabed_slope, {.ref = [](Options& o) -> auto& { return o.seabed_slope; }}}},
+    {.name = "face-slope",
+     .help = "--3d: a vertical face seen at oblique incidence recedes across its beam as the beams beside it measure; "
+             "no: square to each beam at its leading edge",
+     .link = BoolLink{&Args::face_slope, {.ref = [](Options& o) -> auto& { return o.face_slope; }}}},
+    {.name = "water-surface-depth",
+     .unit = Unit::kMetres,
+     .unset = {"none", "unknown"},
+     .help = "--3d: the water surface's depth in the navigation's frame (0 when its depth is a depth sensor's)",
+     .details = "a level head's weak returns nearer than the surface could be are the seabed, and an upward cone's "
+                "echo that starts where the surface enters it is the surface",
+     .link = NumberOrWordLink{&Args::water_surface_depth,
+                              {.get = [](const Options& o) {  // unknown (NaN) is the unset word
+                                 return std::isnan(o.water_surface_depth_m) ? std::nullopt
+                                                                            : std::optional(o.water_surface_depth_m);
+                               },
+                               .set = [](Options& o, std::optional<double> v) {
+                                 o.water_surface_depth_m = v.value_or(std::numeric_limits<double>::quiet_NaN());
+                               }}}},
+    {.name = "arc-evidence",
+     .words = kArcEvidences,
+     .help = "--3d: how an echo's evidence is shared over its shell",
+     .link = WordLink{&Args::arc_evidence, [](Options& o, std::string_view w) { o.arc_evidence = parseArcEvidence(w); },
+                      [](const Options& a, const Options& b) { return a.arc_evidence == b.arc_evidence; }}},
+    {.name = "obstacle-surface",
+     .words = kObstacleSurfaces,
+     .help = "--3d: where an obstacle lies in its cone",
+     .link = WordLink{&Args::obstacle_surface,
+                      [](Options& o, std::string_view w) { o.obstacle_surface = parseObstacleSurface(w); },
+                      [](const Options& a, const Options& b) { return a.obstacle_surface == b.obstacle_surface; }}},
+    {.name = "threads",
+     .unit = Unit::kCount,
+     .range = atLeast(1.0, 64.0),
+     .help = "Threads tracing each sweep's free rays",
+     .details = "the map is identical for any count",
+     .link = CountLink{&Args::threads, {.ref = [](Options& o) -> auto& { return o.threads; }}}},
+};
+
+}  // namespace
+
+std::span<const MappingOption> mappingOptionTable() { return kTable; }
+
+}  // namespace sonarmap
