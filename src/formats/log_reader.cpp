@@ -11,6 +11,7 @@
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/mat_reader.hpp"
 #include "sonarmap/formats/ping360_reader.hpp"
+#include "sonarmap/formats/ros_bag_reader.hpp"
 #include "sonarmap/formats/seanet_capture.hpp"
 #include "sonarmap/formats/v4log_reader.hpp"
 
@@ -23,11 +24,12 @@ struct FormatNames {
   std::string_view extension;  ///< lower case, with the dot
 };
 
-constexpr std::array<FormatNames, 5> kFormats{{{LogFormat::kMat, "mat", ".mat"},
+constexpr std::array<FormatNames, 6> kFormats{{{LogFormat::kMat, "mat", ".mat"},
                                                {LogFormat::kCsv, "csv", ".csv"},
                                                {LogFormat::kV4Log, "v4log", ".v4log"},
                                                {LogFormat::kSeaNet, "seanet", ".seanet"},
-                                               {LogFormat::kPing360, "ping360", ".bin"}}};
+                                               {LogFormat::kPing360, "ping360", ".bin"},
+                                               {LogFormat::kRosBag, "rosbag", ".bag"}}};
 
 std::string lowerCase(std::string_view text) {
   std::string lower(text);
@@ -42,7 +44,7 @@ LogFormat parseLogFormat(std::string_view name) {
   for (const FormatNames& entry : kFormats) {
     if (entry.name == lower) return entry.format;
   }
-  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet or ping360");
+  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet, ping360 or rosbag");
 }
 
 NominalBeam nominalBeam(LogFormat format) {
@@ -73,6 +75,7 @@ SonarLog readSonarLog(const std::string& path, LogFormat format) {
     case LogFormat::kV4Log: return readSeaNetV4Log(path);
     case LogFormat::kSeaNet: return readSeaNetCapture(path);
     case LogFormat::kPing360: return readPing360(path);
+    case LogFormat::kRosBag: return readRosBag(path);
   }
   throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
 }
@@ -81,7 +84,7 @@ SonarLog readSonarLog(const std::string& path) {
   const std::optional<LogFormat> format = logFormatOfPath(path);
   if (!format) {
     throw FileError("'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() +
-                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture) or .bin (Ping360)");
+                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) or .bag (ROS 1)");
   }
   return readSonarLog(path, *format);
 }

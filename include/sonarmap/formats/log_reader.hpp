@@ -18,17 +18,18 @@ enum class LogFormat {
   kV4Log,    ///< "v4log": Tritech SeaNet V4 log (readSeaNetV4Log), `.V4LOG`
   kSeaNet,   ///< "seanet": raw Tritech SeaNet wire capture (readSeaNetCapture), `.seanet`
   kPing360,  ///< "ping360": Ping Viewer log or raw Ping360 ping-protocol stream (readPing360), `.bin`
+  kRosBag,   ///< "rosbag": ROS 1 bag, its sonar topic found by its fields (readRosBag), `.bag`
 };
 
-/// The format named `name`: "mat", "csv", "v4log", "seanet" or "ping360" (case-insensitive).
+/// The format named `name`: "mat", "csv", "v4log", "seanet", "ping360" or "rosbag" (case-insensitive).
 /// @throws ValueError for any other name, listing the names.
 LogFormat parseLogFormat(std::string_view name);
 
-/// The name parseLogFormat takes for `format` ("mat", "csv", "v4log", "seanet", "ping360").
+/// The name parseLogFormat takes for `format` ("mat", "csv", "v4log", "seanet", "ping360", "rosbag").
 std::string_view logFormatName(LogFormat format);
 
 /// The format of a file by its extension, case-insensitive: `.mat`, `.csv`, `.v4log`, `.seanet`,
-/// `.bin`; std::nullopt for any other.
+/// `.bin`, `.bag`; std::nullopt for any other.
 std::optional<LogFormat> logFormatOfPath(const std::string& path);
 
 /// The beam of the sonar a format comes from, as its maker states it (−3 dB widths).
@@ -39,8 +40,8 @@ struct NominalBeam {
 
 /// The nominal beam of the sonar that writes `format`: Blue Robotics Ping360 (ping360) 2° × 25°
 /// (Ping360 datasheet); Tritech heads (mat: the CRAS Micron; v4log, seanet: SeaNet, whose Micron
-/// and SeaKing DST are 3° wide, 35° and about 40° tall) and the beam CSV (no sonar named) 3° × 35°,
-/// the Micron's and the mapper's defaults.
+/// and SeaKing DST are 3° wide, 35° and about 40° tall), the beam CSV and the ROS bag (no sonar
+/// named) 3° × 35°, the Micron's and the mapper's defaults.
 NominalBeam nominalBeam(LogFormat format);
 
 /// Reads the beams of a sonar log in the format its extension names (logFormatOfPath), with each

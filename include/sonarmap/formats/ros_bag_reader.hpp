@@ -1,0 +1,48 @@
+#pragma once
+/// @file ros_bag_reader.hpp
+/// ROS 1 bags (format 2.0: `.bag`) as sonar logs: the container read by Debian's rosbag_storage
+/// (chunks, bz2 and lz4 compression, the index), each message decoded from the definition the bag
+/// stores with its connection, so that a driver's own message needs no compiled package
+/// (docs/formats.md, "ROS 1 bags").
+///
+/// The sonar topic is found by its fields' roles, on the message's top level:
+///  - a bearing: a number named `angle`, `bearing` (either with `_deg` or `_rad`), or `head_angle`;
+///  - a bin length: `bin_distance_step`, `bin_length`, `bin_length_m`, `bin_size`,
+///    `range_resolution` or `step_dist` (metres); or a range, `range`, `range_m`, `max_range` or
+///    `range_max` (metres), divided by the bins;
+///  - the intensities: a uint8/int8/byte array named `intensities`, `intensity`, `data`, `bins`,
+///    `samples` or `echo`, or an array of messages holding a number named `intensity` or `value`
+///    (micron_driver_ros/ScanLine's `IntensityBin[] bins`); values clamped to 0…255.
+/// Each beam's time is its `header.stamp` (seconds since the epoch) when the message has a
+/// std_msgs/Header with a stamp, else the time the bag recorded it. Units and direction of the
+/// bearing: `_rad` and `_deg` say it; otherwise degrees when any bearing of the topic exceeds 2π,
+/// else radians. The bearing grows clockwise seen from above, as the Tritech head counts it (the
+/// micron_driver_ros driver publishes the SeaNet head's bearing, 1/16 gradian clockwise, in
+/// degrees; docs/formats.md, SeaNet), and is turned into beam.hpp's counter-clockwise radians.
+/// What was decided is said in SonarLog::notes.
+
+#include <string>
+
+#include "sonarmap/sonar/beam.hpp"
+
+namespace sonarmap {
+
+/// Options of readRosBag().
+struct RosBagOptions {
+  /// The sonar topic; empty: the first topic, in the bag's connection order, whose message has a
+  /// sonar beam's fields (see the file's comment).
+  std::string sonar_topic;
+};
+
+/// Reads the sonar beams of a ROS 1 bag (see the file's comment), in the bag's time order.
+/// Messages that do not decode (a truncated message, a count beyond its bytes) are skipped and
+/// counted in SonarLog::skipped_beams with their reason; the valid ones before and after are kept.
+/// SonarLog::sonar names the topic and its type.
+/// @throws FileError naming the file when it cannot be opened or is not a readable ROS 1 bag (the
+///         container's error: a truncated chunk, an unknown compression, a missing index), when a
+///         connection's message definition does not parse, when `options.sonar_topic` is not in the
+///         bag or has no sonar fields, when no topic has them (listing the topics and their types),
+///         or when no message of the topic decodes.
+SonarLog readRosBag(const std::string& path, const RosBagOptions& options = {});
+
+}  // namespace sonarmap

@@ -1,0 +1,71 @@
+#pragma once
+/// @file ros_message.hpp
+/// Private to formats: ROS 1 messages read from the definitions a bag stores with each connection
+/// (the `message_definition` of the connection header), so that a driver's own message needs no
+/// compiled package. Sources: the ROS msg format (wiki.ros.org/msg: field and constant lines,
+/// `Header` as std_msgs/Header, a type without a package taken from the message's own package) and
+/// the ROS 1 serialization (wiki.ros.org/roscpp/Overview/MessagesSerializationAndAdaptingTypes:
+/// little-endian, no padding, a string or a variable-length array as a uint32 count and its
+/// elements, a fixed-length array as its elements alone, time and duration as two 32-bit integers).
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sonarmap::detail {
+
+/// One field of a message type.
+struct RosField {
+  std::string name;
+  std::string type;   ///< a builtin ("float32", "time", …) or a full message name ("std_msgs/Header")
+  int array = -1;     ///< −1: not an array; 0: variable length; > 0: fixed length
+};
+
+/// The message types of one connection: its top type and every type it uses.
+class RosSchema {
+ public:
+  /// Parses `definition` (the connection's message_definition) of the message type `type`
+  /// ("pkg/Name"): its first section defines `type`, each "MSG: pkg/Name" section after a line of
+  /// '=' another; comments (#) and constants (TYPE NAME=VALUE) are dropped.
+  /// @throws Error (core/errors.hpp) naming the line for a field that does not parse, or a field
+  ///         whose message type the definition does not define.
+  RosSchema(const std::string& type, const std::string& definition);
+
+  const std::string& root() const { return root_; }
+  /// The fields of message type `type`, in order.
+  /// @throws Error when the schema does not define it.
+  const std::vector<RosField>& fields(const std::string& type) const;
+  /// Whether `type` is a builtin type (numbers, bool, byte, char, string, time, duration).
+  static bool isBuiltin(const std::string& type);
+
+ private:
+  std::string root_;
+  std::map<std::string, std::vector<RosField>> types_;
+};
+
+struct RosValue;
+/// A message or a nested message: its fields' names and values, in the schema's order.
+struct RosStruct {
+  std::vector<std::string> names;
+  std::vector<RosValue> values;
+};
+
+/// A decoded value: a number (every numeric builtin and bool; time and duration in seconds), a
+/// string, the bytes of a uint8, int8, byte or char array (kept as bytes: a sonar's intensities),
+/// an array of other values, or a nested message.
+struct RosValue {
+  std::variant<double, std::string, std::vector<std::uint8_t>, std::vector<RosValue>, RosStruct> value;
+
+  /// The field `name` of a nested message, nullptr when this is no message or has no such field.
+  const RosValue* field(const std::string& name) const;
+};
+
+/// Decodes one serialized message of the schema's root type.
+/// @throws Error naming the field when the bytes end before the message does, or when bytes remain
+///         after it.
+RosValue decodeRosMessage(const RosSchema& schema, std::span<const std::uint8_t> bytes);
+
+}  // namespace sonarmap::detail

@@ -1,0 +1,125 @@
+/// Tests of ROS 1 bags as sonar logs (ros_bag_reader.hpp, ros_bag_writer.hpp): a simulated log
+/// written as micron_driver_ros/ScanLine messages and read back, the shared real bag, and errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "common/temp_dir.hpp"
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/ros_bag_reader.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
+#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sim/builtin_scenes.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+
+namespace sonarmap {
+namespace {
+
+SonarLog simulatedTank(std::size_t turns) {
+  MsisSimulationOptions options;
+  options.turns = turns;
+  SonarLog log = simulateMsis(builtinScene("tank"), options).log;
+  for (Beam& beam : log.beams) beam.time_s += 1.4e9;  // ROS stamps are seconds since 1970
+  return log;
+}
+
+TEST(formatsRosBag, ASimulatedLogReadsBackAsItWasWritten) {
+  const test::TempDir dir;
+  const SonarLog written = simulatedTank(2);
+  writeScanLineBag(dir.file("tank.bag"), written, "/micron/scan_line");
+  const SonarLog read = readSonarLog(dir.file("tank.bag"));
+  ASSERT_EQ(read.beams.size(), written.beams.size());
+  EXPECT_EQ(read.skipped_beams, 0u);
+  EXPECT_EQ(read.sonar, "ROS topic /micron/scan_line (micron_driver_ros/ScanLine)");
+  ASSERT_EQ(read.notes.size(), 1u);
+  EXPECT_NE(read.notes[0].find("read as degrees, clockwise"), std::string::npos) << read.notes[0];
+  for (std::size_t i = 0; i < read.beams.size(); ++i) {
+    const Beam& a = written.beams[i];
+    const Beam& b = read.beams[i];
+    EXPECT_EQ(b.intensities, a.intensities) << "beam " << i;
+    // the message holds the bearing in float32 degrees and the bin length in float32 metres
+    EXPECT_NEAR(std::remainder(b.bearing_rad - a.bearing_rad, 2.0 * std::numbers::pi), 0.0, 1e-6) << "beam " << i;
+    EXPECT_NEAR(b.bin_length_m, a.bin_length_m, 1e-7 * a.bin_length_m);
+    EXPECT_NEAR(b.time_s, a.time_s, 1e-6);
+  }
+  // And it maps as the log does, within the float32 rounding of its bearings.
+  const std::size_t direct = mapSonarLog(written).stats().obstacles;
+  EXPECT_EQ(mapSonarLog(read).stats().obstacles, direct);
+}
+
+TEST(formatsRosBag, Bz2AndLz4ChunksReadAsUncompressedOnes) {
+  const test::TempDir dir;
+  const SonarLog written = simulatedTank(1);
+  writeScanLineBag(dir.file("plain.bag"), written, "/sonar");
+  const SonarLog plain = readSonarLog(dir.file("plain.bag"));
+  for (const BagCompression compression : {BagCompression::kBz2, BagCompression::kLz4}) {
+    writeScanLineBag(dir.file("packed.bag"), written, "/sonar", compression);
+    EXPECT_LT(std::filesystem::file_size(dir.file("packed.bag")), std::filesystem::file_size(dir.file("plain.bag")));
+    const SonarLog read = readSonarLog(dir.file("packed.bag"));
+    ASSERT_EQ(read.beams.size(), plain.beams.size());
+    for (std::size_t i = 0; i < read.beams.size(); ++i) {
+      EXPECT_EQ(read.beams[i].intensities, plain.beams[i].intensities);
+      EXPECT_EQ(read.beams[i].bearing_rad, plain.beams[i].bearing_rad);
+    }
+  }
+}
+
+TEST(formatsRosBag, TheSonarTopicCanBeNamedAndAWrongNameIsAClearError) {
+  const test::TempDir dir;
+  writeScanLineBag(dir.file("tank.bag"), simulatedTank(1), "/sonar");
+  EXPECT_EQ(readRosBag(dir.file("tank.bag"), RosBagOptions{"/sonar"}).beams.size(), 200u);
+  try {
+    readRosBag(dir.file("tank.bag"), RosBagOptions{"/other"});
+    FAIL() << "no error for a topic the bag does not hold";
+  } catch (const FileError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("tank.bag"), std::string::npos) << what;
+    EXPECT_NE(what.find("no topic /other (topics: /sonar (micron_driver_ros/ScanLine))"), std::string::npos) << what;
+  }
+}
+
+TEST(formatsRosBag, AFileThatIsNoBagOrIsCutShortIsAClearError) {
+  const test::TempDir dir;
+  std::ofstream(dir.file("text.bag")) << "not a bag\n";
+  EXPECT_THROW(readRosBag(dir.file("text.bag")), FileError);
+  EXPECT_THROW(readRosBag(dir.file("missing.bag")), FileError);
+  writeScanLineBag(dir.file("tank.bag"), simulatedTank(1));
+  std::filesystem::resize_file(dir.file("tank.bag"), std::filesystem::file_size(dir.file("tank.bag")) / 2);
+  EXPECT_THROW(readRosBag(dir.file("tank.bag")), FileError);
+}
+
+TEST(formatsRosBag, TheWriterRefusesBeamsItCannotStamp) {
+  const test::TempDir dir;
+  SonarLog log = simulatedTank(1);
+  log.beams[3].time_s = -1.0;
+  EXPECT_THROW(writeScanLineBag(dir.file("bad.bag"), log), ValueError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.bag")));
+}
+
+TEST(formatsRosBag, TheSharedPoolBagMapsByDefault) {
+  const std::string path = std::string(SONARMAP_SHARED_DATA) + "/micron_pool_ros1.bag";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
+  const SonarLog log = readSonarLog(path);
+  ASSERT_EQ(log.beams.size(), 3616u);  // the data README: 3,616 beams on /micron_driver/scan_line
+  EXPECT_EQ(log.skipped_beams, 0u);
+  EXPECT_EQ(log.sonar, "ROS topic /micron_driver/scan_line (micron_driver_ros/ScanLine)");
+  for (const Beam& beam : log.beams) {
+    ASSERT_EQ(beam.intensities.size(), 200u);
+    ASSERT_NEAR(beam.bin_length_m, 0.05, 1e-6);
+  }
+  // 1.8° steps of bearing, stamps of 2014-07-18 about 43 ms apart
+  const double step_rad = std::abs(std::remainder(log.beams[1].bearing_rad - log.beams[0].bearing_rad, 2.0 * std::numbers::pi));
+  EXPECT_NEAR(step_rad, 1.8 * std::numbers::pi / 180.0, 1e-5);
+  EXPECT_NEAR(log.beams.front().time_s, 1405709972.9, 0.1);
+  EXPECT_NEAR((log.beams.back().time_s - log.beams.front().time_s) / (log.beams.size() - 1), 0.043, 0.002);
+  const SonarMapper mapper = mapSonarLog(log);
+  EXPECT_GT(mapper.stats().obstacles, 100u);
+}
+
+}  // namespace
+}  // namespace sonarmap
