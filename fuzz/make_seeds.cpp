@@ -21,6 +21,7 @@
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
 
 namespace fs = std::filesystem;
 using namespace sonarmap;
@@ -155,6 +156,22 @@ void wireSeeds() {
   seed("wire_stream", "ping360.bin", [&](std::ostream& out) { out << '\x01' << "xx" << stream; });
 }
 
+/// A bag of a few ScanLine messages as the micron_driver_ros driver records them.
+void rosBagSeeds() {
+  SonarLog log;
+  for (int i = 0; i < 4; ++i) {
+    Beam beam;
+    beam.time_s = 1.4e9 + 0.043 * i;
+    beam.bearing_rad = 0.0314 * i;
+    beam.bin_length_m = 0.05;
+    beam.intensities = {0, 3, 200, 90, 10, 0};
+    log.beams.push_back(beam);
+  }
+  const fs::path path = g_out / "ros_bag" / "scan_lines.bag";
+  fs::create_directories(path.parent_path());
+  writeScanLineBag(path.string(), log);
+}
+
 void cloudSeeds() {
   Scan scan;
   for (int i = 0; i < 8; ++i) scan.points_m.emplace_back(0.5 * i, 1.0, -0.25 * i);
@@ -176,6 +193,7 @@ int main(int argc, char** argv) {
   g_out = argv[1];
   sonarSeeds();
   wireSeeds();
+  rosBagSeeds();
   cloudSeeds();
   return 0;
 }

@@ -18,6 +18,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
 cmake --build build-asan
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/scripts/lsan-suppressions.txt  # leaks inside Debian libraries
 # Left out here, run by scripts/test.sh: the 2 cm twins of the OctoMap parity tests (their 5 cm
 # twins run the same code, in a third of the time under the sanitizers) and the pages opened in
 # Chromium (the browser is not instrumented; the page writer runs here in the other cliView tests).

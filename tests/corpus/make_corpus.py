@@ -10,9 +10,11 @@ scene, broken/MANIFEST.tsv) are kept in tests/corpus/broken and valid and copied
 Layouts: ../shared/docs/formats.md and the readers' headers (MAT-file level 5: MathWorks'
 "MAT-File Format" document; SeaNet V4LOG: include/sonarmap/formats/v4log_reader.hpp; SeaNet wire
 packets: include/sonarmap/formats/seanet_capture.hpp; Ping360 ping-protocol messages and Ping Viewer
-logs: include/sonarmap/formats/ping360_reader.hpp).
+logs: include/sonarmap/formats/ping360_reader.hpp; ROS 1 bags: the ROS wiki's "Bags/Format/2.0" and
+include/sonarmap/formats/ros_bag_reader.hpp).
 """
 
+import bz2
 import pathlib
 import shutil
 import struct
@@ -404,6 +406,88 @@ def ot_files():
     }, {"tree_small.ot": octomap_header(OT, 12) + ot_records(OT_TREE)}
 
 
+# ---- ROS 1 bags (format 2.0, uncompressed chunks) -------------------------------------------------
+
+SCAN_LINE_DEFINITION = (b"Header header\nfloat32 angle\nfloat32 bin_distance_step\nmicron_driver_ros/IntensityBin[] bins\n"
+                        b"\n" + b"=" * 80 + b"\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n"
+                        b"\n" + b"=" * 80 + b"\nMSG: micron_driver_ros/IntensityBin\nfloat32 distance\nuint8 intensity\n")
+
+
+def bag_header(fields):
+    """A record header: each field a uint32 length and NAME=VALUE."""
+    return b"".join(struct.pack("<I", len(name) + 1 + len(value)) + name + b"=" + value for name, value in fields)
+
+
+def bag_record(fields, data):
+    header = bag_header(fields)
+    return struct.pack("<I", len(header)) + header + struct.pack("<I", len(data)) + data
+
+
+def scan_line(seq, angle_deg, intensities, step=0.05, seconds=1000):
+    out = struct.pack("<IIII", seq, seconds + seq, 0, 0) + struct.pack("<ffI", angle_deg, step, len(intensities))
+    return out + b"".join(struct.pack("<fB", (i + 0.5) * step, v) for i, v in enumerate(intensities))
+
+
+def ros_bag(messages, topic=b"/sonar", datatype=b"micron_driver_ros/ScanLine", definition=SCAN_LINE_DEFINITION,
+            compression=b"none", index_shift=0, pack=lambda data: data):
+    """A bag of one connection and one chunk holding `messages` (serialized), one second apart; its
+    index entries' offsets moved by `index_shift` bytes, its chunk's records stored as `pack` gives."""
+    u32, u64 = (lambda v: struct.pack("<I", v)), (lambda v: struct.pack("<Q", v))
+    connection_fields = [(b"topic", topic), (b"type", datatype), (b"md5sum", b"*")]
+    if definition is not None:
+        connection_fields.append((b"message_definition", definition))
+    connection = bag_record([(b"op", b"\x07"), (b"conn", u32(0)), (b"topic", topic)], bag_header(connection_fields))
+    chunk_data, index = connection, b""
+    for i, message in enumerate(messages):
+        stamp = struct.pack("<II", 1000 + i, 0)
+        index += stamp + u32(len(chunk_data) + index_shift)
+        chunk_data += bag_record([(b"op", b"\x02"), (b"conn", u32(0)), (b"time", stamp)], message)
+    chunk = bag_record([(b"op", b"\x05"), (b"compression", compression), (b"size", u32(len(chunk_data)))], pack(chunk_data))
+    index_record = bag_record([(b"op", b"\x04"), (b"ver", u32(1)), (b"conn", u32(0)), (b"count", u32(len(messages)))], index)
+    chunk_pos = 13 + 4096
+    index_pos = chunk_pos + len(chunk) + len(index_record)
+    times = [struct.pack("<II", 1000, 0), struct.pack("<II", 1000 + max(len(messages) - 1, 0), 0)]
+    chunk_info = bag_record([(b"op", b"\x06"), (b"ver", u32(1)), (b"chunk_pos", u64(chunk_pos)),
+                             (b"start_time", times[0]), (b"end_time", times[1]), (b"count", u32(1))],
+                            u32(0) + u32(len(messages)))
+    header_fields = bag_header([(b"op", b"\x03"), (b"index_pos", u64(index_pos)), (b"conn_count", u32(1)),
+                                (b"chunk_count", u32(1))])
+    padding = 4096 - 4 - len(header_fields) - 4
+    bag_header_record = struct.pack("<I", len(header_fields)) + header_fields + struct.pack("<I", padding) + b" " * padding
+    return b"#ROSBAG V2.0\n" + bag_header_record + chunk + index_record + connection + chunk_info
+
+
+def huge_chunk(beams):
+    bag = ros_bag(beams)
+    at = bag.index(b"compression=none") + len(b"compression=none") + 4 + len(b"size=")
+    return bag[:at] + struct.pack("<I", 4_000_000_000) + bag[at + 4:]
+
+
+def ros_bag_files():
+    beams = [scan_line(i, 1.8 * i, [0, 2, 9, 180, 120, 40]) for i in range(3)]
+    small = ros_bag(beams)
+    # a message whose bins array declares far more elements than its bytes hold
+    lying = scan_line(0, 0.0, [1, 2])[:-10] + struct.pack("<I", HUGE)
+    return {
+        "bag_text.bag": b"this is not a ROS bag\n",
+        "bag_truncated.bag": small[:len(small) // 2],
+        "bag_unknown_compression.bag": ros_bag(beams, compression=b"zip"),
+        "bag_no_definition.bag": ros_bag(beams, definition=None),
+        "bag_bad_definition.bag": ros_bag(beams, definition=b"float32\n"),
+        "bag_no_sonar.bag": ros_bag([struct.pack("<I", 2) + b"hi"], topic=b"/chatter", datatype=b"std_msgs/String",
+                                    definition=b"string data\n"),
+        "bag_messages_cut.bag": ros_bag([scan_line(0, 0.0, [1, 2])[:-3], lying]),
+        # lengths rosbag_storage would allocate as they stand (a 4 GiB record header, a chunk of 4 GB)
+        "bag_huge_header.bag": small[:13] + struct.pack("<I", 0xFFFFFFF0) + small[17:],
+        "bag_huge_chunk.bag": huge_chunk(beams),
+        # an index entry pointing into a message, not at its start (rosbag_storage would read its
+        # header length from the middle of the message)
+        "bag_index_mid_message.bag": ros_bag(beams, index_shift=6),
+        "bag_bz2_not_bz2.bag": ros_bag(beams, compression=b"bz2"),
+        "bag_version_1_2.bag": b"#ROSBAG V1.2\n" + small[13:],
+    }, {"bag_small.bag": small, "bag_small_bz2.bag": ros_bag(beams, compression=b"bz2", pack=bz2.compress)}
+
+
 # ---- text readers fed bytes that are not text ------------------------------------------------------
 
 def binary_text_files():
@@ -424,7 +508,7 @@ def main():
         for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
             shutil.copyfile(text, folder / text.name)
     for make in (mat_files, v4_files, seanet_files, ping360_files, real_viewer_files, graph_files, bt_files,
-                 ot_files, binary_text_files):
+                 ot_files, ros_bag_files, binary_text_files):
         for kind, files in zip(("broken", "valid"), make()):
             for name, data in files.items():
                 (out / kind / name).write_bytes(data)

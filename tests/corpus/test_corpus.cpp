@@ -213,6 +213,7 @@ constexpr Seed kSeeds[] = {
     {"seanet_small.seanet", "map"},  {"ping_small.bin", "map"},           {"viewer_small.bin", "map"},
     {"viewer_small_utf16.bin", "map"}, {"viewer_locale_digits.bin", "map"}, {"viewer_chunked.bin", "map"},
     {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
+    {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 
