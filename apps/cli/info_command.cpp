@@ -225,7 +225,7 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
 Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "info", "What a sonar log holds, before mapping it: beams, sweeps, range scales and gains, skipped data");
-  cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin (or any name with --format)")
+  cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag (or any name with --format)")
       ->required();
   addLogFormatOption(*cmd, args.format);
   cmd->add_option("--nav", args.nav_csv,

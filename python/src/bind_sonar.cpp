@@ -316,7 +316,7 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
       .def_property_readonly("skip_reasons", [](const PySonarLog& log) { return log.log.skip_reasons; },
                              "One line per skipped beam.")
       .def_property_readonly("format", [](const PySonarLog& log) { return log.format; },
-                             "The format read (\"mat\", \"csv\", \"v4log\", \"seanet\", \"ping360\") or \"simulated\".")
+                             "The format read (\"mat\", \"csv\", \"v4log\", \"seanet\", \"ping360\", \"rosbag\") or \"simulated\".")
       .def_property_readonly(
           "nominal_beam_deg",
           [](const PySonarLog& log) {
@@ -343,7 +343,7 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
   m.def("read_sonar_log", &readLog, py::arg("path"), py::arg("format") = "auto",
         R"doc(Reads a sonar log: CRAS Micron ``.mat``, beam ``.csv``, SeaNet ``.V4LOG``, raw SeaNet capture
 ``.seanet``, Ping360 ``.bin`` (by extension, any case), or any name with ``format`` = "mat", "csv",
-"v4log", "seanet", "ping360" (the CLI's --format). Malformed beams are dropped and counted
+"v4log", "seanet", "ping360", "rosbag" (the CLI's --format). Malformed beams are dropped and counted
 (skipped_beams). Returns sonarmap.SonarLog. Raises sonarmap.FileError for an unknown extension or a
 file the reader rejects; sonarmap.ValueError for an unknown format name.)doc");
 
