@@ -1,13 +1,16 @@
 // libFuzzer harness: ROS 1 bag bytes → readRosBag (the container through rosbag_storage, each
-// message decoded from the definition the bag stores), then the sonar log it gives.
+// message decoded from the definition the bag stores), listRosBagTopics and readRosBagNavigation.
 #include <cstddef>
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "sonarmap/formats/ros_bag_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static sonarmap::fuzz::InputFile file(".bag");
   const std::string& path = file.write(data, size);
-  return sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBag(path); });
+  sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBag(path); });
+  sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::listRosBagTopics(path); });
+  return sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBagNavigation(path); });
 }

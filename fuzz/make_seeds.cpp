@@ -169,7 +169,16 @@ void rosBagSeeds() {
   }
   const fs::path path = g_out / "ros_bag" / "scan_lines.bag";
   fs::create_directories(path.parent_path());
-  writeScanLineBag(path.string(), log);
+  writeRosBag(path.string(), log);
+  NavTrack nav(3);
+  for (std::size_t i = 0; i < nav.size(); ++i) {
+    nav[i].time_s = 1.4e9 + 0.1 * static_cast<double>(i);
+    nav[i].position_ned_m = Eigen::Vector3d(0.1 * static_cast<double>(i), 0.0, 1.0);
+    nav[i].yaw_rad = 0.2;
+  }
+  writeRosBag((g_out / "ros_bag" / "with_odometry.bag").string(), log, nav);
+  writeRosBag((g_out / "ros_bag" / "with_odometry_ned_lz4.bag").string(), log, nav,
+              {.nav_frame = "odom_ned", .compression = BagCompression::kLz4});
 }
 
 void cloudSeeds() {

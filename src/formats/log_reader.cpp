@@ -68,14 +68,14 @@ std::optional<LogFormat> logFormatOfPath(const std::string& path) {
   return std::nullopt;
 }
 
-SonarLog readSonarLog(const std::string& path, LogFormat format) {
+SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOptions& options) {
   switch (format) {
     case LogFormat::kMat: return readCrasMat(path);
     case LogFormat::kCsv: return readBeamCsv(path);
     case LogFormat::kV4Log: return readSeaNetV4Log(path);
     case LogFormat::kSeaNet: return readSeaNetCapture(path);
     case LogFormat::kPing360: return readPing360(path);
-    case LogFormat::kRosBag: return readRosBag(path);
+    case LogFormat::kRosBag: return readRosBag(path, RosBagOptions{options.sonar_topic});
   }
   throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
 }

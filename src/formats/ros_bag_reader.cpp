@@ -11,12 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-#include <ros/serialization.h>
-
-#include "ros_bag_check.hpp"
-#include "ros_message.hpp"
+#include "ros_bag_file.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
@@ -134,10 +129,6 @@ RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record
   return raw;
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw FileError("'" + path + "': ROS bag: " + what);
-}
-
 }  // namespace
 
 SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
@@ -145,58 +136,40 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
   std::vector<RawBeam> raw;
   std::string topic;
   std::optional<SonarFields> fields;
-  try {
-    detail::checkBagRecords(path);
-    rosbag::Bag bag(path, rosbag::bagmode::Read);
-    rosbag::View everything(bag);
+  detail::withBagErrors(path, [&] {
+    detail::RosBagFile bag(path);
     std::optional<RosSchema> schema;
-    std::string listing;
-    for (const rosbag::ConnectionInfo* connection : everything.getConnections()) {
-      listing += (listing.empty() ? "" : ", ") + connection->topic + " (" + connection->datatype +
-                 (connection->msg_def.empty() ? ", no message definition)" : ")");
-      if (fields || (!options.sonar_topic.empty() && connection->topic != options.sonar_topic)) continue;
-      if (connection->msg_def.empty()) {
-        if (connection->topic == options.sonar_topic) fail(path, "the connection of " + connection->topic + " has no message definition");
+    for (const RosBagTopic& candidate : bag.topics()) {
+      if (!options.sonar_topic.empty() && candidate.topic != options.sonar_topic) continue;
+      const std::string& definition = bag.definition(candidate);
+      if (definition.empty()) {
+        if (candidate.topic == options.sonar_topic) bag.fail("the connection of " + candidate.topic + " has no message definition");
         continue;
       }
-      RosSchema candidate(connection->datatype, connection->msg_def);
-      fields = sonarFields(candidate);
+      RosSchema parsed(candidate.type, definition);
+      fields = sonarFields(parsed);
       if (fields) {
-        schema = std::move(candidate);
-        topic = connection->topic;
-        log.sonar = "ROS topic " + topic + " (" + connection->datatype + ")";
-      } else if (connection->topic == options.sonar_topic) {
-        fail(path, "the topic " + connection->topic + " (" + connection->datatype + ") has no sonar beam's fields "
-                   "(a bearing, a bin length or range, and intensities: docs/formats.md)");
+        schema = std::move(parsed);
+        topic = candidate.topic;
+        log.sonar = "ROS topic " + topic + " (" + candidate.type + ")";
+        break;
+      }
+      if (candidate.topic == options.sonar_topic) {
+        bag.fail("the topic " + candidate.topic + " (" + candidate.type + ") has no sonar beam's fields "
+                 "(a bearing, a bin length or range, and intensities: docs/formats.md)");
       }
     }
     if (!fields) {
-      if (!options.sonar_topic.empty()) fail(path, "no topic " + options.sonar_topic + " (topics: " + listing + ")");
-      fail(path, "no topic holds sonar beams (a bearing, a bin length or range, and intensities); topics: " +
-                     (listing.empty() ? std::string("none") : listing));
+      if (!options.sonar_topic.empty()) bag.fail("no topic " + options.sonar_topic + " (topics: " + bag.listing() + ")");
+      bag.fail("no topic holds sonar beams (a bearing, a bin length or range, and intensities); topics: " + bag.listing());
     }
-    rosbag::View view(bag, rosbag::TopicQuery(topic));
-    std::vector<std::uint8_t> bytes;
-    std::size_t index = 0;
-    for (const rosbag::MessageInstance& message : view) {
-      ++index;
-      try {
-        bytes.resize(message.size());
-        ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
-        message.write(stream);
-        raw.push_back(beamOf(detail::decodeRosMessage(*schema, bytes), *fields, message.getTime().toSec()));
-      } catch (const Error& error) {
-        ++log.skipped_beams;
-        log.skip_reasons.push_back("message " + std::to_string(index) + " of " + topic + ": " + error.what());
-      }
-    }
-  } catch (const Error& error) {
-    if (dynamic_cast<const FileError*>(&error) != nullptr) throw;
-    fail(path, error.what());
-  } catch (const std::exception& error) {  // rosbag's BagException and its kin, boost's
-    fail(path, error.what());
-  }
-  if (raw.empty()) fail(path, "no message of " + topic + " decodes" + (log.skip_reasons.empty() ? "" : ": " + log.skip_reasons.front()));
+    const detail::RosSkipped skipped = bag.forEachMessage(topic, *schema, [&](const RosValue& message, double time_s) {
+      raw.push_back(beamOf(message, *fields, time_s));
+    });
+    log.skipped_beams = skipped.count;
+    log.skip_reasons = skipped.reasons;
+  });
+  if (raw.empty()) detail::failBag(path, "no message of " + topic + " decodes" + (log.skip_reasons.empty() ? "" : ": " + log.skip_reasons.front()));
   // Degrees unless the field's name says radians or every bearing fits in a turn of radians;
   // clockwise, as the Tritech head counts it (ros_bag_reader.hpp).
   double largest = 0.0;

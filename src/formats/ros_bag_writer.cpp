@@ -20,6 +20,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "ros_frames.hpp"
 
 namespace sonarmap {
 
@@ -40,16 +41,78 @@ const char* const kScanLineDefinition =
     "float32 distance\n"
     "uint8 intensity\n";
 
+const char* const kOdometryDefinition =
+    "Header header\n"
+    "string child_frame_id\n"
+    "geometry_msgs/PoseWithCovariance pose\n"
+    "geometry_msgs/TwistWithCovariance twist\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: std_msgs/Header\n"
+    "uint32 seq\n"
+    "time stamp\n"
+    "string frame_id\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/PoseWithCovariance\n"
+    "geometry_msgs/Pose pose\n"
+    "float64[36] covariance\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/Pose\n"
+    "geometry_msgs/Point position\n"
+    "geometry_msgs/Quaternion orientation\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/Point\n"
+    "float64 x\n"
+    "float64 y\n"
+    "float64 z\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/Quaternion\n"
+    "float64 x\n"
+    "float64 y\n"
+    "float64 z\n"
+    "float64 w\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/TwistWithCovariance\n"
+    "geometry_msgs/Twist twist\n"
+    "float64[36] covariance\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/Twist\n"
+    "geometry_msgs/Vector3 linear\n"
+    "geometry_msgs/Vector3 angular\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/Vector3\n"
+    "float64 x\n"
+    "float64 y\n"
+    "float64 z\n";
+
 namespace {
+
+/// The message types written: name, MD5 sum (as ROS computes it from the definition; the ScanLine's
+/// as the driver's bags record it, micron_pool_ros1.bag) and definition.
+struct ScanLineType {
+  static constexpr const char* kName = "micron_driver_ros/ScanLine";
+  static constexpr const char* kMd5 = "6798122952303f12e50da3a7e7eed1f0";
+  static const char* definition() { return kScanLineDefinition; }
+};
+struct OdometryType {
+  static constexpr const char* kName = "nav_msgs/Odometry";
+  static constexpr const char* kMd5 = "cd5e73d190d741a2f92e81eda573aca7";
+  static const char* definition() { return kOdometryDefinition; }
+};
 
 /// A message already serialized, with what its connection records (as topic_tools' ShapeShifter
 /// hands a message it does not know to rosbag).
+template <class Type>
 struct SerializedMessage {
   std::vector<std::uint8_t> bytes;
 };
-
-/// The ScanLine type's MD5 sum as the driver's bags record it (micron_pool_ros1.bag).
-constexpr const char* kScanLineMd5 = "6798122952303f12e50da3a7e7eed1f0";
 
 template <class T>
 void append(std::vector<std::uint8_t>& out, T value) {
@@ -57,14 +120,23 @@ void append(std::vector<std::uint8_t>& out, T value) {
   out.insert(out.end(), bytes, bytes + sizeof(T));
 }
 
-/// One beam as a serialized ScanLine (ros_message.hpp's layout).
-SerializedMessage scanLine(const Beam& beam, std::uint32_t seq, const ros::Time& stamp) {
-  SerializedMessage message;
-  std::vector<std::uint8_t>& out = message.bytes;
+void appendString(std::vector<std::uint8_t>& out, const std::string& text) {
+  append<std::uint32_t>(out, static_cast<std::uint32_t>(text.size()));
+  out.insert(out.end(), text.begin(), text.end());
+}
+
+void appendHeader(std::vector<std::uint8_t>& out, std::uint32_t seq, const ros::Time& stamp, const std::string& frame_id) {
   append<std::uint32_t>(out, seq);
   append<std::uint32_t>(out, stamp.sec);
   append<std::uint32_t>(out, stamp.nsec);
-  append<std::uint32_t>(out, 0);  // frame_id: empty
+  appendString(out, frame_id);
+}
+
+/// One beam as a serialized ScanLine (ros_message.hpp's layout).
+SerializedMessage<ScanLineType> scanLine(const Beam& beam, std::uint32_t seq, const ros::Time& stamp) {
+  SerializedMessage<ScanLineType> message;
+  std::vector<std::uint8_t>& out = message.bytes;
+  appendHeader(out, seq, stamp, "");
   double clockwise_deg = std::fmod(360.0 - beam.bearing_rad * 180.0 / std::numbers::pi, 360.0);
   if (clockwise_deg >= 360.0) clockwise_deg -= 360.0;
   append<float>(out, static_cast<float>(clockwise_deg));
@@ -77,35 +149,56 @@ SerializedMessage scanLine(const Beam& beam, std::uint32_t seq, const ros::Time&
   return message;
 }
 
+/// One fix as a serialized nav_msgs/Odometry in the world frame `frame_id`: NED with a
+/// forward-right-down body "base_link_frd" when the name contains "ned", else ROS's ENU with the
+/// forward-left-up body "base_link" (REP 103, REP 105); covariances and twist zero.
+SerializedMessage<OdometryType> odometry(const NavSample& fix, std::uint32_t seq, const ros::Time& stamp,
+                                         const std::string& frame_id) {
+  SerializedMessage<OdometryType> message;
+  std::vector<std::uint8_t>& out = message.bytes;
+  const bool ned = detail::namesNedFrame(frame_id);
+  appendHeader(out, seq, stamp, frame_id);
+  appendString(out, ned ? "base_link_frd" : "base_link");
+  Eigen::Vector3d position = fix.position_ned_m;
+  Eigen::Quaterniond orientation(bodyToNed(fix).linear());
+  if (!ned) detail::nedToRosEnu(fix, position, orientation);
+  for (const double value : {position.x(), position.y(), position.z(), orientation.x(), orientation.y(),
+                             orientation.z(), orientation.w()}) {
+    append<double>(out, value);
+  }
+  for (int i = 0; i < 36 + 6 + 36; ++i) append<double>(out, 0.0);  // pose covariance, twist, twist covariance
+  return message;
+}
+
 }  // namespace
 }  // namespace sonarmap
 
 namespace ros::message_traits {
-template <>
-struct MD5Sum<sonarmap::SerializedMessage> {
-  static const char* value() { return sonarmap::kScanLineMd5; }
-  static const char* value(const sonarmap::SerializedMessage&) { return value(); }
+template <class Type>
+struct MD5Sum<sonarmap::SerializedMessage<Type>> {
+  static const char* value() { return Type::kMd5; }
+  static const char* value(const sonarmap::SerializedMessage<Type>&) { return value(); }
 };
-template <>
-struct DataType<sonarmap::SerializedMessage> {
-  static const char* value() { return "micron_driver_ros/ScanLine"; }
-  static const char* value(const sonarmap::SerializedMessage&) { return value(); }
+template <class Type>
+struct DataType<sonarmap::SerializedMessage<Type>> {
+  static const char* value() { return Type::kName; }
+  static const char* value(const sonarmap::SerializedMessage<Type>&) { return value(); }
 };
-template <>
-struct Definition<sonarmap::SerializedMessage> {
-  static const char* value() { return sonarmap::kScanLineDefinition; }
-  static const char* value(const sonarmap::SerializedMessage&) { return value(); }
+template <class Type>
+struct Definition<sonarmap::SerializedMessage<Type>> {
+  static const char* value() { return Type::definition(); }
+  static const char* value(const sonarmap::SerializedMessage<Type>&) { return value(); }
 };
 }  // namespace ros::message_traits
 
 namespace ros::serialization {
-template <>
-struct Serializer<sonarmap::SerializedMessage> {
+template <class Type>
+struct Serializer<sonarmap::SerializedMessage<Type>> {
   template <typename Stream>
-  static void write(Stream& stream, const sonarmap::SerializedMessage& message) {
+  static void write(Stream& stream, const sonarmap::SerializedMessage<Type>& message) {
     std::memcpy(stream.advance(static_cast<std::uint32_t>(message.bytes.size())), message.bytes.data(), message.bytes.size());
   }
-  static std::uint32_t serializedLength(const sonarmap::SerializedMessage& message) {
+  static std::uint32_t serializedLength(const sonarmap::SerializedMessage<Type>& message) {
     return static_cast<std::uint32_t>(message.bytes.size());
   }
 };
@@ -113,10 +206,16 @@ struct Serializer<sonarmap::SerializedMessage> {
 
 namespace sonarmap {
 
-void writeScanLineBag(const std::string& path, const SonarLog& log, const std::string& topic, BagCompression compression) {
+std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav, const RosBagWriteOptions& options) {
   for (const Beam& beam : log.beams) {
-    if (!(std::isfinite(beam.time_s) && beam.time_s >= 0.0)) throw ValueError("writeScanLineBag: a beam's time must be finite and >= 0 s");
-    if (!(beam.bin_length_m > 0.0) || !std::isfinite(beam.bin_length_m)) throw ValueError("writeScanLineBag: a beam's bin length must be > 0 m");
+    if (!(std::isfinite(beam.time_s) && beam.time_s >= 0.0)) throw ValueError("rosBagBytes: a beam's time must be finite and >= 0 s");
+    if (!(beam.bin_length_m > 0.0) || !std::isfinite(beam.bin_length_m)) throw ValueError("rosBagBytes: a beam's bin length must be > 0 m");
+  }
+  for (const NavSample& fix : nav) {
+    if (!(std::isfinite(fix.time_s) && fix.time_s >= 0.0)) throw ValueError("rosBagBytes: a fix's time must be finite and >= 0 s");
+    if (!fix.position_ned_m.allFinite() || !std::isfinite(fix.roll_rad + fix.pitch_rad + fix.yaw_rad)) {
+      throw ValueError("rosBagBytes: a fix holds a value that is not finite");
+    }
   }
   // rosbag writes to a path: a scratch file first, its bytes then put in place atomically.
   static std::atomic<unsigned> written{0};
@@ -126,22 +225,40 @@ void writeScanLineBag(const std::string& path, const SonarLog& log, const std::s
   try {
     {
       rosbag::Bag bag(scratch.string(), rosbag::bagmode::Write);
-      bag.setCompression(compression == BagCompression::kBz2   ? rosbag::compression::BZ2
-                         : compression == BagCompression::kLz4 ? rosbag::compression::LZ4
-                                                               : rosbag::compression::Uncompressed);
-      std::uint32_t seq = 0;
-      for (const Beam& beam : log.beams) {
-        const ros::Time stamp(beam.time_s);
-        bag.write(topic, std::max(stamp, ros::TIME_MIN), scanLine(beam, seq++, stamp));
+      bag.setCompression(options.compression == BagCompression::kBz2   ? rosbag::compression::BZ2
+                         : options.compression == BagCompression::kLz4 ? rosbag::compression::LZ4
+                                                                       : rosbag::compression::Uncompressed);
+      // Both streams in time order, as a recorder writes them.
+      std::size_t b = 0, f = 0;
+      while (b < log.beams.size() || f < nav.size()) {
+        if (f == nav.size() || (b < log.beams.size() && log.beams[b].time_s <= nav[f].time_s)) {
+          const ros::Time stamp(log.beams[b].time_s);
+          bag.write(options.sonar_topic, std::max(stamp, ros::TIME_MIN), scanLine(log.beams[b], static_cast<std::uint32_t>(b), stamp));
+          ++b;
+        } else {
+          const ros::Time stamp(nav[f].time_s);
+          bag.write(options.nav_topic, std::max(stamp, ros::TIME_MIN), odometry(nav[f], static_cast<std::uint32_t>(f), stamp, options.nav_frame));
+          ++f;
+        }
       }
     }
     std::ifstream in(scratch, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   } catch (const std::exception& error) {
     std::filesystem::remove(scratch);
-    throw FileError("'" + path + "': cannot write the ROS bag: " + error.what());
+    throw FileError(std::string("cannot write the ROS bag: ") + error.what());
   }
   std::filesystem::remove(scratch);
+  return bytes;
+}
+
+void writeRosBag(const std::string& path, const SonarLog& log, const NavTrack& nav, const RosBagWriteOptions& options) {
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = rosBagBytes(log, nav, options);
+  } catch (const FileError& error) {
+    throw FileError("'" + path + "': " + error.what());
+  }
   writeBytesAtomically(path, bytes);
 }
 

@@ -429,32 +429,55 @@ def scan_line(seq, angle_deg, intensities, step=0.05, seconds=1000):
 
 
 def ros_bag(messages, topic=b"/sonar", datatype=b"micron_driver_ros/ScanLine", definition=SCAN_LINE_DEFINITION,
-            compression=b"none", index_shift=0, pack=lambda data: data):
-    """A bag of one connection and one chunk holding `messages` (serialized), one second apart; its
-    index entries' offsets moved by `index_shift` bytes, its chunk's records stored as `pack` gives."""
+            compression=b"none", index_shift=0, pack=lambda data: data, more=()):
+    """A bag of one chunk holding `messages` (serialized) on one connection, one second apart, and
+    the connections of `more` ((topic, datatype, definition, messages) each) after it; its index
+    entries' offsets moved by `index_shift` bytes, its chunk's records stored as `pack` gives."""
     u32, u64 = (lambda v: struct.pack("<I", v)), (lambda v: struct.pack("<Q", v))
-    connection_fields = [(b"topic", topic), (b"type", datatype), (b"md5sum", b"*")]
-    if definition is not None:
-        connection_fields.append((b"message_definition", definition))
-    connection = bag_record([(b"op", b"\x07"), (b"conn", u32(0)), (b"topic", topic)], bag_header(connection_fields))
-    chunk_data, index = connection, b""
-    for i, message in enumerate(messages):
-        stamp = struct.pack("<II", 1000 + i, 0)
-        index += stamp + u32(len(chunk_data) + index_shift)
-        chunk_data += bag_record([(b"op", b"\x02"), (b"conn", u32(0)), (b"time", stamp)], message)
+    connections, chunk_data, indexes = b"", b"", []
+    all_connections = [(topic, datatype, definition, messages)] + list(more)
+    for conn, (name, kind, text, payloads) in enumerate(all_connections):
+        fields = [(b"topic", name), (b"type", kind), (b"md5sum", b"*")]
+        if text is not None:
+            fields.append((b"message_definition", text))
+        connection = bag_record([(b"op", b"\x07"), (b"conn", u32(conn)), (b"topic", name)], bag_header(fields))
+        connections += connection
+        chunk_data += connection
+        index = b""
+        for i, message in enumerate(payloads):
+            stamp = struct.pack("<II", 1000 + i, 0)
+            index += stamp + u32(len(chunk_data) + index_shift)
+            chunk_data += bag_record([(b"op", b"\x02"), (b"conn", u32(conn)), (b"time", stamp)], message)
+        indexes.append(bag_record([(b"op", b"\x04"), (b"ver", u32(1)), (b"conn", u32(conn)),
+                                   (b"count", u32(len(payloads)))], index))
     chunk = bag_record([(b"op", b"\x05"), (b"compression", compression), (b"size", u32(len(chunk_data)))], pack(chunk_data))
-    index_record = bag_record([(b"op", b"\x04"), (b"ver", u32(1)), (b"conn", u32(0)), (b"count", u32(len(messages)))], index)
     chunk_pos = 13 + 4096
-    index_pos = chunk_pos + len(chunk) + len(index_record)
-    times = [struct.pack("<II", 1000, 0), struct.pack("<II", 1000 + max(len(messages) - 1, 0), 0)]
+    index_pos = chunk_pos + len(chunk) + sum(len(i) for i in indexes)
+    longest = max(len(c[3]) for c in all_connections)
+    times = [struct.pack("<II", 1000, 0), struct.pack("<II", 1000 + max(longest - 1, 0), 0)]
     chunk_info = bag_record([(b"op", b"\x06"), (b"ver", u32(1)), (b"chunk_pos", u64(chunk_pos)),
-                             (b"start_time", times[0]), (b"end_time", times[1]), (b"count", u32(1))],
-                            u32(0) + u32(len(messages)))
-    header_fields = bag_header([(b"op", b"\x03"), (b"index_pos", u64(index_pos)), (b"conn_count", u32(1)),
+                             (b"start_time", times[0]), (b"end_time", times[1]), (b"count", u32(len(all_connections)))],
+                            b"".join(u32(conn) + u32(len(c[3])) for conn, c in enumerate(all_connections)))
+    header_fields = bag_header([(b"op", b"\x03"), (b"index_pos", u64(index_pos)), (b"conn_count", u32(len(all_connections))),
                                 (b"chunk_count", u32(1))])
     padding = 4096 - 4 - len(header_fields) - 4
     bag_header_record = struct.pack("<I", len(header_fields)) + header_fields + struct.pack("<I", padding) + b" " * padding
-    return b"#ROSBAG V2.0\n" + bag_header_record + chunk + index_record + connection + chunk_info
+    return b"#ROSBAG V2.0\n" + bag_header_record + chunk + b"".join(indexes) + connections + chunk_info
+
+
+ODOMETRY_DEFINITION = (b"Header header\nstring child_frame_id\ngeometry_msgs/PoseWithCovariance pose\n"
+                       b"\n" + b"=" * 80 + b"\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n"
+                       b"\n" + b"=" * 80 + b"\nMSG: geometry_msgs/PoseWithCovariance\ngeometry_msgs/Pose pose\nfloat64[36] covariance\n"
+                       b"\n" + b"=" * 80 + b"\nMSG: geometry_msgs/Pose\ngeometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"
+                       b"\n" + b"=" * 80 + b"\nMSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n"
+                       b"\n" + b"=" * 80 + b"\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n")
+
+
+def odometry(seq, position, quaternion, frame=b"odom"):
+    """A nav_msgs/Odometry as ODOMETRY_DEFINITION lays it out (its pose only, no twist)."""
+    header = struct.pack("<III", seq, 1000 + seq, 0) + struct.pack("<I", len(frame)) + frame
+    child = struct.pack("<I", 9) + b"base_link"
+    return header + child + struct.pack("<3d", *position) + struct.pack("<4d", *quaternion) + struct.pack("<36d", *([0.0] * 36))
 
 
 def huge_chunk(beams):
@@ -485,7 +508,12 @@ def ros_bag_files():
         "bag_index_mid_message.bag": ros_bag(beams, index_shift=6),
         "bag_bz2_not_bz2.bag": ros_bag(beams, compression=b"bz2"),
         "bag_version_1_2.bag": b"#ROSBAG V1.2\n" + small[13:],
-    }, {"bag_small.bag": small, "bag_small_bz2.bag": ros_bag(beams, compression=b"bz2", pack=bz2.compress)}
+        # navigation whose every orientation is no rotation (a pose left at zero)
+        "bag_odometry_zero_quaternion.bag": ros_bag(beams, more=[(b"/odom", b"nav_msgs/Odometry", ODOMETRY_DEFINITION,
+                                                                  [odometry(i, (i, 0, 0), (0, 0, 0, 0)) for i in range(3)])]),
+    }, {"bag_small.bag": small, "bag_small_bz2.bag": ros_bag(beams, compression=b"bz2", pack=bz2.compress),
+        "bag_with_odometry.bag": ros_bag(beams, more=[(b"/odom", b"nav_msgs/Odometry", ODOMETRY_DEFINITION,
+                                                       [odometry(i, (0.1 * i, 0, 0), (0, 0, 0, 1)) for i in range(3)])])}
 
 
 # ---- text readers fed bytes that are not text ------------------------------------------------------

@@ -33,6 +33,7 @@
 #include "sonarmap/nav/tum_trajectory.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/navigation_reader.hpp"
 
 namespace sonarmap {
 namespace {
@@ -62,7 +63,11 @@ std::string in(const fs::path& out, const char* name) { return (out / name).stri
 
 const std::vector<Route>& routes() {
   static const std::vector<Route> table = {
-      {"map", [](const std::string& f) { readSonarLog(f); },
+      {"map",
+       [](const std::string& f) {  // the log, and its own navigation as map reads it (a ROS bag's)
+         readSonarLog(f);
+         if (const auto format = logFormatOfPath(f)) readLogNavigation(f, *format);
+       },
        [](const std::string& f, const fs::path& out) -> Args { return {"map", f, "-o", in(out, "map.bt"), "-q"}; }},
       {"convert", [](const std::string& f) { readSonarLog(f); },
        [](const std::string& f, const fs::path& out) -> Args { return {"convert", f, "-o", in(out, "beams.csv")}; }},
@@ -213,7 +218,7 @@ constexpr Seed kSeeds[] = {
     {"seanet_small.seanet", "map"},  {"ping_small.bin", "map"},           {"viewer_small.bin", "map"},
     {"viewer_small_utf16.bin", "map"}, {"viewer_locale_digits.bin", "map"}, {"viewer_chunked.bin", "map"},
     {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
-    {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},
+    {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

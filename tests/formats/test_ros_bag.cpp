@@ -11,6 +11,8 @@
 #include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "sonarmap/formats/ros_bag_reader.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
@@ -31,7 +33,7 @@ SonarLog simulatedTank(std::size_t turns) {
 TEST(formatsRosBag, ASimulatedLogReadsBackAsItWasWritten) {
   const test::TempDir dir;
   const SonarLog written = simulatedTank(2);
-  writeScanLineBag(dir.file("tank.bag"), written, "/micron/scan_line");
+  writeRosBag(dir.file("tank.bag"), written, {}, {.sonar_topic = "/micron/scan_line"});
   const SonarLog read = readSonarLog(dir.file("tank.bag"));
   ASSERT_EQ(read.beams.size(), written.beams.size());
   EXPECT_EQ(read.skipped_beams, 0u);
@@ -55,10 +57,10 @@ TEST(formatsRosBag, ASimulatedLogReadsBackAsItWasWritten) {
 TEST(formatsRosBag, Bz2AndLz4ChunksReadAsUncompressedOnes) {
   const test::TempDir dir;
   const SonarLog written = simulatedTank(1);
-  writeScanLineBag(dir.file("plain.bag"), written, "/sonar");
+  writeRosBag(dir.file("plain.bag"), written);
   const SonarLog plain = readSonarLog(dir.file("plain.bag"));
   for (const BagCompression compression : {BagCompression::kBz2, BagCompression::kLz4}) {
-    writeScanLineBag(dir.file("packed.bag"), written, "/sonar", compression);
+    writeRosBag(dir.file("packed.bag"), written, {}, {.compression = compression});
     EXPECT_LT(std::filesystem::file_size(dir.file("packed.bag")), std::filesystem::file_size(dir.file("plain.bag")));
     const SonarLog read = readSonarLog(dir.file("packed.bag"));
     ASSERT_EQ(read.beams.size(), plain.beams.size());
@@ -71,7 +73,7 @@ TEST(formatsRosBag, Bz2AndLz4ChunksReadAsUncompressedOnes) {
 
 TEST(formatsRosBag, TheSonarTopicCanBeNamedAndAWrongNameIsAClearError) {
   const test::TempDir dir;
-  writeScanLineBag(dir.file("tank.bag"), simulatedTank(1), "/sonar");
+  writeRosBag(dir.file("tank.bag"), simulatedTank(1), {}, {.sonar_topic = "/sonar"});
   EXPECT_EQ(readRosBag(dir.file("tank.bag"), RosBagOptions{"/sonar"}).beams.size(), 200u);
   try {
     readRosBag(dir.file("tank.bag"), RosBagOptions{"/other"});
@@ -88,7 +90,7 @@ TEST(formatsRosBag, AFileThatIsNoBagOrIsCutShortIsAClearError) {
   std::ofstream(dir.file("text.bag")) << "not a bag\n";
   EXPECT_THROW(readRosBag(dir.file("text.bag")), FileError);
   EXPECT_THROW(readRosBag(dir.file("missing.bag")), FileError);
-  writeScanLineBag(dir.file("tank.bag"), simulatedTank(1));
+  writeRosBag(dir.file("tank.bag"), simulatedTank(1));
   std::filesystem::resize_file(dir.file("tank.bag"), std::filesystem::file_size(dir.file("tank.bag")) / 2);
   EXPECT_THROW(readRosBag(dir.file("tank.bag")), FileError);
 }
@@ -97,8 +99,89 @@ TEST(formatsRosBag, TheWriterRefusesBeamsItCannotStamp) {
   const test::TempDir dir;
   SonarLog log = simulatedTank(1);
   log.beams[3].time_s = -1.0;
-  EXPECT_THROW(writeScanLineBag(dir.file("bad.bag"), log), ValueError);
+  EXPECT_THROW(writeRosBag(dir.file("bad.bag"), log), ValueError);
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad.bag")));
+}
+
+/// The tilted loop of a Micron (a moving, rolling and pitching vehicle), its clock moved to
+/// seconds since 1970 as ROS stamps are.
+MissionRun movingMission() {
+  MissionRun run = simulateMission(SimulatedMission{"micron", "quay3d", "tilted-loop"});
+  for (Beam& beam : run.simulation.log.beams) beam.time_s += 1.4e9;
+  for (NavSample& fix : run.simulation.nav) fix.time_s += 1.4e9;
+  return run;
+}
+
+void expectSameTrack(const NavTrack& read, const NavTrack& written) {
+  ASSERT_EQ(read.size(), written.size());
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_NEAR(read[i].time_s, written[i].time_s, 1e-6) << "fix " << i;  // a stamp's nanoseconds
+    EXPECT_LT((read[i].position_ned_m - written[i].position_ned_m).norm(), 1e-9) << "fix " << i;
+    EXPECT_NEAR(read[i].roll_rad, written[i].roll_rad, 1e-9) << "fix " << i;
+    EXPECT_NEAR(read[i].pitch_rad, written[i].pitch_rad, 1e-9) << "fix " << i;
+    EXPECT_NEAR(std::remainder(read[i].yaw_rad - written[i].yaw_rad, 2.0 * std::numbers::pi), 0.0, 1e-9) << "fix " << i;
+  }
+}
+
+TEST(formatsRosBag, OdometryInEnuOrNedReadsBackAsTheNedTrack) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  const NavTrack& nav = run.simulation.nav;
+  ASSERT_GT(nav.size(), 100u);
+  for (const std::string frame : {"odom", "odom_ned"}) {
+    writeRosBag(dir.file("mission.bag"), run.simulation.log, nav, {.nav_frame = frame});
+    const std::optional<RosBagNavigation> read = readRosBagNavigation(dir.file("mission.bag"));
+    ASSERT_TRUE(read.has_value());
+    EXPECT_EQ(read->topic, "/odometry");
+    EXPECT_EQ(read->type, "nav_msgs/Odometry");
+    EXPECT_EQ(read->frame, frame == "odom" ? "ENU (REP 103), turned into NED" : "NED");
+    EXPECT_EQ(read->skipped, 0u);
+    expectSameTrack(read->track, nav);
+  }
+  // Every topic listed with its type, count and span.
+  const std::vector<RosBagTopic> topics = listRosBagTopics(dir.file("mission.bag"));
+  ASSERT_EQ(topics.size(), 2u);
+  EXPECT_EQ(topics[0].topic, "/sonar/scan_line");
+  EXPECT_EQ(topics[0].messages, run.simulation.log.beams.size());
+  EXPECT_EQ(topics[1].type, "nav_msgs/Odometry");
+  EXPECT_EQ(topics[1].messages, nav.size());
+  EXPECT_NEAR(topics[1].first_s, nav.front().time_s, 1e-6);
+  EXPECT_NEAR(topics[1].last_s, nav.back().time_s, 1e-6);
+}
+
+TEST(formatsRosBag, AMovingMissionMapsFromItsBagAsFromItsLogAndTrack) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  writeRosBag(dir.file("mission.bag"), run.simulation.log, run.simulation.nav);
+  const SonarLog log = readRosBag(dir.file("mission.bag"));
+  const NavTrack nav = readRosBagNavigation(dir.file("mission.bag"))->track;
+  MapperOptions options;
+  options.resolution_m = 0.1;
+  const SonarMapper direct = mapSonarLog(run.simulation.log, run.simulation.nav, run.options.sonar_to_body, options);
+  const SonarMapper from_bag = mapSonarLog(log, nav, run.options.sonar_to_body, options);
+  ASSERT_GT(direct.stats().obstacles, 100u);
+  // The bag holds bearings in float32 degrees: a few obstacles may fall in a neighbouring voxel.
+  EXPECT_NEAR(static_cast<double>(from_bag.stats().obstacles), static_cast<double>(direct.stats().obstacles),
+              0.01 * static_cast<double>(direct.stats().obstacles));
+}
+
+TEST(formatsRosBag, ANavigationTopicIsChosenOrNamedAndWrongNamesAreClearErrors) {
+  const test::TempDir dir;
+  writeRosBag(dir.file("sonar_only.bag"), simulatedTank(1));
+  EXPECT_FALSE(readRosBagNavigation(dir.file("sonar_only.bag")).has_value());
+  try {
+    readRosBagNavigation(dir.file("sonar_only.bag"), {.nav_topic = "/sonar/scan_line"});
+    FAIL() << "a sonar topic read as navigation";
+  } catch (const FileError& error) {
+    EXPECT_NE(std::string(error.what()).find("the topic /sonar/scan_line holds no pose"), std::string::npos) << error.what();
+  }
+  try {
+    readRosBagNavigation(dir.file("sonar_only.bag"), {.nav_topic = "/odom"});
+    FAIL() << "a topic that is not there";
+  } catch (const FileError& error) {
+    EXPECT_NE(std::string(error.what()).find("no topic /odom (topics: /sonar/scan_line (micron_driver_ros/ScanLine))"),
+              std::string::npos) << error.what();
+  }
 }
 
 TEST(formatsRosBag, TheSharedPoolBagMapsByDefault) {

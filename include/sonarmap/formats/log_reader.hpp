@@ -51,9 +51,16 @@ NominalBeam nominalBeam(LogFormat format);
 ///   reader rejects.
 SonarLog readSonarLog(const std::string& path);
 
+/// What a caller may choose where a file holds more than one sonar.
+struct LogReadOptions {
+  /// A ROS bag's sonar topic (RosBagOptions::sonar_topic); empty: found by its fields. Other
+  /// formats hold one sonar and ignore it.
+  std::string sonar_topic;
+};
+
 /// Reads the beams of a sonar log in `format` whatever its file name, with the reader's default
-/// options (e.g. `readSonarLog("capture.raw", parseLogFormat("seanet"))`).
+/// options but for `options` (e.g. `readSonarLog("capture.raw", parseLogFormat("seanet"))`).
 /// @throws FileError for a file the format's reader rejects.
-SonarLog readSonarLog(const std::string& path, LogFormat format);
+SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOptions& options = {});
 
 }  // namespace sonarmap

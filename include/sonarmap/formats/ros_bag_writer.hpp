@@ -1,14 +1,19 @@
 #pragma once
 /// @file ros_bag_writer.hpp
-/// Writes a sonar log as a ROS 1 bag (format 2.0, through Debian's rosbag_storage), its beams as
+/// Writes a sonar log and its navigation as a ROS 1 bag (format 2.0, through Debian's
+/// rosbag_storage), its beams as
 /// messages of the micron_driver_ros driver's `micron_driver_ros/ScanLine` (a std_msgs/Header, the
 /// bearing `angle` in degrees clockwise seen from above as the Tritech head counts it,
 /// `bin_distance_step` in metres, and `IntensityBin[] bins`, each a `distance` in metres and an
 /// `intensity`), with the message's definition in its connection, as the driver records them
-/// (docs/formats.md, "ROS 1 bags"). readRosBag reads it back.
+/// (docs/formats.md, "ROS 1 bags"); its navigation as nav_msgs/Odometry in ROS's ENU world frame
+/// `odom` with the FLU body `base_link` (REP 103, REP 105). readRosBag and readRosBagNavigation
+/// read them back (or in NED, RosBagWriteOptions::nav_frame).
 
 #include <string>
+#include <vector>
 
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
 
 namespace sonarmap {
@@ -21,13 +26,31 @@ extern const char* const kScanLineDefinition;
 /// does (the ROS wiki's "Bags/Format/2.0", chunk `compression` field).
 enum class BagCompression { kNone, kBz2, kLz4 };
 
-/// Writes the beams of `log` to `path` as ScanLine messages on `topic`, in log order, each stamped
-/// (header and record) with its time_s in seconds since the epoch (the record's time at least
-/// 1 ns: a bag records no time 0), its chunks stored with `compression`. Written to a temporary
-/// file and renamed (atomic_file.hpp).
-/// @throws FileError when the file cannot be written; ValueError for a beam whose time is negative or
-///         not finite, or whose bin length is not > 0.
-void writeScanLineBag(const std::string& path, const SonarLog& log, const std::string& topic = "/sonar/scan_line",
-                      BagCompression compression = BagCompression::kNone);
+/// The definition written with each nav_msgs/Odometry connection (ROS's, without its comments).
+extern const char* const kOdometryDefinition;
+
+/// Options of writeRosBag().
+struct RosBagWriteOptions {
+  std::string sonar_topic = "/sonar/scan_line";
+  std::string nav_topic = "/odometry";
+  /// The fixes' world frame: ROS's ENU (REP 103) unless the name contains "ned" (the fixes then
+  /// written as they are, NED with a forward-right-down body).
+  std::string nav_frame = "odom";
+  BagCompression compression = BagCompression::kNone;
+};
+
+/// Writes the beams of `log` to `path` as ScanLine messages on `options.sonar_topic` and the fixes
+/// of `nav` (may be empty) as Odometry on `options.nav_topic`, the two in time order, each stamped
+/// (header and record) with its time in seconds since the epoch (the record's time at least 1 ns:
+/// a bag records no time 0), chunks stored with `options.compression`. Written to a temporary file
+/// and renamed (atomic_file.hpp).
+/// @throws FileError when the file cannot be written; ValueError for a beam or fix whose time is
+///         negative or not finite, a beam whose bin length is not > 0, a fix with a non-finite value.
+void writeRosBag(const std::string& path, const SonarLog& log, const NavTrack& nav = {},
+                 const RosBagWriteOptions& options = {});
+
+/// The bytes writeRosBag writes (to stage them with other outputs, io/atomic_file.hpp).
+/// @throws ValueError as writeRosBag; FileError when rosbag_storage cannot write its scratch file.
+std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav = {}, const RosBagWriteOptions& options = {});
 
 }  // namespace sonarmap

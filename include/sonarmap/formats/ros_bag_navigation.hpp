@@ -1,0 +1,71 @@
+#pragma once
+/// @file ros_bag_navigation.hpp
+/// A ROS 1 bag's topics, and the vehicle's navigation it records, as the NavTrack the mapper and
+/// the localizer take (nav/navigation.hpp), so that a bag maps with the navigation recorded beside
+/// its sonar (docs/formats.md, "ROS 1 bags").
+///
+/// A navigation topic is found by its fields' roles: a std_msgs/Header and a pose, either
+/// `pose.position` and `pose.orientation` (geometry_msgs/PoseStamped) or `pose.pose.position` and
+/// `pose.pose.orientation` (nav_msgs/Odometry, geometry_msgs/PoseWithCovarianceStamped, and any
+/// vendor message laid out the same way): a position x, y, z in metres and an orientation
+/// quaternion x, y, z, w. Among several, nav_msgs/Odometry comes first, then the one with most
+/// messages.
+///
+/// Frames. ROS's convention (REP 103) is a world frame x east, y north, z up (ENU) and a body
+/// frame x forward, y left, z up (FLU); marine stacks that publish in NED say so in the frame's
+/// name (`odom_ned`, `map_ned`: REP 105's suffix convention, as MAVROS and the UUV simulator use
+/// it). A pose whose header frame_id contains "ned" is read as NED with a forward-right-down body;
+/// any other as ENU with FLU, turned into NED and FRD: north = y, east = x, down = −z, and the body
+/// rotation R_ned_frd = A · R_enu_flu · B with A the ENU → NED axis swap and B = diag(1, −1, −1).
+/// Times are each message's header stamp (seconds since the epoch), the bag's record time when the
+/// stamp is zero.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sonarmap/nav/navigation.hpp"
+
+namespace sonarmap {
+
+/// One topic of a bag: its name, message type, message count and the record times of its first and
+/// last message (seconds since the epoch; 0 when it has none).
+struct RosBagTopic {
+  std::string topic;
+  std::string type;
+  std::size_t messages = 0;
+  double first_s = 0.0;
+  double last_s = 0.0;
+};
+
+/// Every topic of the ROS 1 bag at `path`, in the bag's connection order.
+/// @throws FileError naming the file when it is no readable ROS 1 bag (format 2.0).
+std::vector<RosBagTopic> listRosBagTopics(const std::string& path);
+
+/// Options of readRosBagNavigation().
+struct RosBagNavOptions {
+  /// The navigation topic; empty: chosen by its fields' roles (see the file's comment).
+  std::string nav_topic;
+};
+
+/// A bag's navigation: the fixes, which topic they came from and how it was read.
+struct RosBagNavigation {
+  NavTrack track;
+  std::string topic;
+  std::string type;
+  std::string frame;       ///< "NED" or "ENU (REP 103), turned into NED"
+  std::size_t skipped = 0;  ///< messages that did not decode or whose time did not increase
+  std::vector<std::string> skip_reasons;
+};
+
+/// Reads the navigation of the ROS 1 bag at `path` (see the file's comment), in time order; a
+/// message whose time is not after the previous fix's, or that does not decode, is skipped and
+/// counted.
+/// @return nullopt when `options.nav_topic` is empty and no topic holds a pose.
+/// @throws FileError naming the file when it is no readable bag, when `options.nav_topic` is not in
+///         it or holds no pose, or when no message of the topic gives a fix (a NaN or non-unit
+///         quaternion, a non-finite position).
+std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, const RosBagNavOptions& options = {});
+
+}  // namespace sonarmap

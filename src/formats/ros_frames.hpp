@@ -1,0 +1,26 @@
+#pragma once
+/// @file ros_frames.hpp
+/// Private to formats: a ROS pose turned into a NavSample (NED world, forward-right-down body) and
+/// back. ROS's convention (REP 103) is ENU with a forward-left-up body; marine stacks publishing NED
+/// say so in the frame's name (REP 105's suffix, "_ned"). See ros_bag_navigation.hpp.
+
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "sonarmap/nav/navigation.hpp"
+
+namespace sonarmap::detail {
+
+/// Whether a frame's name says NED: it contains "ned", in any case ("odom_ned", "map_NED").
+bool namesNedFrame(const std::string& frame_id);
+
+/// The fix at `time_s` of a pose given as a position (metres) and a body-to-world quaternion in
+/// NED/FRD (`ned`) or ENU/FLU (REP 103). Roll, pitch, yaw are the Z-Y-X angles of navigation.hpp.
+/// @throws Error when the quaternion's norm is not within 1 ± 0.1 (a pose left at zero, a NaN).
+NavSample rosPoseToNed(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& body_to_world, bool ned);
+
+/// The inverse for ENU/FLU: the fix's position in ENU (metres) and its body-to-ENU rotation.
+void nedToRosEnu(const NavSample& fix, Eigen::Vector3d& position_enu_m, Eigen::Quaterniond& flu_to_enu);
+
+}  // namespace sonarmap::detail
