@@ -53,12 +53,12 @@ const SimulatedMission k3dMission{"micron", "quay3d", "tilted-loop"};
 constexpr const char* k3dResolution_m = "0.05";
 
 /// `map --3d` with its defaults at 5 cm, the head's beam widths, and the top view, writing into
-/// `dir` (the 3D run's folder) under the name "map"; input and nav_csv name the simulated files
+/// `dir` (the 3D run's folder) under the name "map"; input and nav_file name the simulated files
 /// written beside it (for the command printed to remake the map).
 MapArgs demo3dMapArgs(const OutputDir& dir, const MsisHeadOptions& head, bool quiet) {
   MapArgs args;
   args.input = dir.file("beams.csv");
-  args.nav_csv = dir.file("nav.csv");
+  args.nav_file = dir.file("nav.csv");
   args.output_bt = dir.file("map.bt");
   args.map_png = dir.file("map_top.png");
   args.volume = true;
@@ -122,7 +122,7 @@ void print3dCommands(const MapArgs& map_args, const std::string& side_png, const
               k3dMission.preset.c_str());
   std::printf("3d: map it again:  sonarmap map %s --nav %s --mounting %s --3d --resolution %s "
               "--beam-width %g --vertical-aperture %g -o %s --png %s --side-png %s\n",
-              map_args.input.c_str(), map_args.nav_csv.c_str(), mounting,
+              map_args.input.c_str(), map_args.nav_file.c_str(), mounting,
               map_args.resolution.c_str(), map_args.beam_width_deg, map_args.vertical_aperture_deg,
               map_args.output_bt.c_str(), map_args.map_png.c_str(), side_png.c_str());
 }

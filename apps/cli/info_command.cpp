@@ -12,7 +12,9 @@
 #include "map_options.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapping_arguments.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "navigation_input.hpp"
 #include "sonarmap/sonar/log_summary.hpp"
 
 namespace sonarmap::cli {
@@ -112,14 +114,13 @@ void printSkipsAndNotes(const LogSummary& s, const std::string& path) {
   if (s.notes.size() > kMaxNoteLines) std::printf("            ... %zu more notes\n", s.notes.size() - kMaxNoteLines);
 }
 
-void printNav(const LogSummary& s, const std::string& nav_csv) {
+void printNav(const LogSummary& s, const std::string& nav_source) {
   if (!s.nav) {
     std::printf("navigation  none given (the head taken as static; --nav NAV.csv to check a track)\n");
     return;
   }
   const NavCoverage& n = *s.nav;
-  std::printf("navigation  %s: %zu fixes, %.1f .. %.1f s (%.1f s), %.2f m travelled\n",
-              std::filesystem::path(nav_csv).filename().c_str(), n.fixes, n.first_time_s, n.last_time_s, n.duration_s,
+  std::printf("navigation  %s: %zu fixes, %.1f .. %.1f s (%.1f s), %.2f m travelled\n", nav_source.c_str(), n.fixes, n.first_time_s, n.last_time_s, n.duration_s,
               n.distance_m);
   if (n.coversBeams()) {
     std::printf("            covers every beam\n");
@@ -129,7 +130,32 @@ void printNav(const LogSummary& s, const std::string& nav_csv) {
   }
 }
 
-void printText(const LogSummary& s, const InfoArgs& args, LogFormat format) {
+/// What a ROS bag input holds beside its sonar: every topic, and which ones are read.
+struct BagTopics {
+  std::vector<RosBagTopic> topics;
+  std::string sonar_topic, nav_topic;
+};
+
+const char* topicUse(const BagTopics& bag, const RosBagTopic& topic) {
+  if (topic.topic == bag.sonar_topic) return "sonar (a bearing, a bin length or range, intensities)";
+  if (topic.topic == bag.nav_topic) return "navigation (a header and a pose)";
+  return "";
+}
+
+void printTopics(const BagTopics& bag) {
+  for (std::size_t i = 0; i < bag.topics.size(); ++i) {
+    const RosBagTopic& t = bag.topics[i];
+    const double span_s = t.last_s - t.first_s;
+    std::printf("%s%s  %s  %zu messages", i == 0 ? "topics      " : "            ", t.topic.c_str(), t.type.c_str(), t.messages);
+    if (t.messages > 1 && span_s > 0.0) std::printf(", %.3g Hz", static_cast<double>(t.messages - 1) / span_s);
+    if (t.messages > 0) std::printf(", %.1f .. %.1f s", t.first_s, t.last_s);
+    const std::string use = topicUse(bag, t);
+    std::printf("%s\n", use.empty() ? "" : (": " + use).c_str());
+  }
+}
+
+void printText(const LogSummary& s, const InfoArgs& args, LogFormat format, const BagTopics& bag,
+               const std::string& nav_source) {
   const NominalBeam beam = nominalBeam(format);
   std::printf("%s: %s log (nominal beam %.3g° wide x %.3g° tall)\n",
               std::filesystem::path(args.input).filename().c_str(), std::string(logFormatName(format)).c_str(),
@@ -144,7 +170,8 @@ void printText(const LogSummary& s, const InfoArgs& args, LogFormat format) {
     printSettings(s);
   }
   printSkipsAndNotes(s, args.input);
-  printNav(s, args.nav_csv);
+  printTopics(bag);
+  printNav(s, nav_source);
 }
 
 /// null for an unset optional.
@@ -162,7 +189,8 @@ nlohmann::json scaleJson(const RangeScale& scale) {
           {"first_beam", scale.first_beam}};
 }
 
-nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat format) {
+nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat format, const BagTopics& bag,
+                      const std::string& nav_source) {
   const NominalBeam beam = nominalBeam(format);
   nlohmann::json sweeps = nlohmann::json::array();
   for (const SweepSummary& w : s.sweeps) {
@@ -187,10 +215,16 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
   nlohmann::json nav = nullptr;
   if (s.nav) {
     const NavCoverage& n = *s.nav;
-    nav = {{"file", args.nav_csv}, {"fixes", n.fixes}, {"first_time_s", n.first_time_s},
+    nav = {{"source", nav_source}, {"fixes", n.fixes}, {"first_time_s", n.first_time_s},
            {"last_time_s", n.last_time_s}, {"duration_s", n.duration_s}, {"distance_m", n.distance_m},
            {"beams_before", n.beams_before}, {"beams_after", n.beams_after}, {"beams_outside", n.beams_outside},
            {"covers_beams", n.coversBeams()}};
+  }
+  nlohmann::json topics = nlohmann::json::array();
+  for (const RosBagTopic& t : bag.topics) {
+    const std::string use = topicUse(bag, t);
+    topics.push_back({{"topic", t.topic}, {"type", t.type}, {"messages", t.messages}, {"first_s", t.first_s},
+                      {"last_s", t.last_s}, {"use", use.empty() ? nlohmann::json(nullptr) : nlohmann::json(use)}});
   }
   nlohmann::json bearings = arcJson(s.bearings);
   bearings["step_deg"] = s.step_deg;
@@ -217,6 +251,7 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
           {"head_settings", settings},
           {"range_scales", scales},
           {"auto_resolution_scale", s.followed_scale ? scaleJson(*s.followed_scale) : nlohmann::json(nullptr)},
+          {"topics", topics},
           {"navigation", nav}};
 }
 
@@ -228,9 +263,9 @@ Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag (or any name with --format)")
       ->required();
   addLogFormatOption(*cmd, args.format);
-  cmd->add_option("--nav", args.nav_csv,
-                  "Navigation CSV (time_s,x_m,...: the log's clock): how many fixes, the distance travelled, "
-                  "and which beams fall outside its time span (map would skip them)");
+  addLogInputOptions(*cmd, args.nav_file, args.sonar_topic, args.nav_topic,
+                     "The vehicle's navigation: how many fixes, the distance travelled, and which beams fall "
+                     "outside its time span (map would skip them)");
   cmd->add_flag("--json", args.json, "Print one JSON object instead of the text (units in the keys' names)");
   return {cmd,
           [&args] {
@@ -241,13 +276,22 @@ Command addInfoCommand(CLI::App& app, InfoArgs& args) {
 
 void runInfo(const InfoArgs& args) {
   const LogFormat format = inputFormat(args.input, args.format);
-  const SonarLog log = readSonarLog(args.input, format);
-  const NavTrack nav = args.nav_csv.empty() ? NavTrack{} : readNavCsv(args.nav_csv);
-  const LogSummary summary = summarizeLog(log, nav);
+  const SonarLog log = readSonarLog(args.input, format, LogReadOptions{args.sonar_topic});
+  const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
+  const LogSummary summary = summarizeLog(log, navigation ? navigation->track : NavTrack{});
+  BagTopics bag;
+  if (format == LogFormat::kRosBag) {
+    bag.topics = listRosBagTopics(args.input);
+    for (const RosBagTopic& t : bag.topics) {
+      if (log.sonar == "ROS topic " + t.topic + " (" + t.type + ")") bag.sonar_topic = t.topic;
+      if (navigation && args.nav_file.empty() && navigation->description.rfind(t.topic + " (", 0) == 0) bag.nav_topic = t.topic;
+    }
+  }
+  const std::string nav_source = navigation ? navigation->description : std::string();
   if (args.json) {
-    std::printf("%s\n", toJson(summary, args, format).dump(2).c_str());
+    std::printf("%s\n", toJson(summary, args, format, bag, nav_source).dump(2).c_str());
   } else {
-    printText(summary, args, format);
+    printText(summary, args, format, bag, nav_source);
   }
 }
 

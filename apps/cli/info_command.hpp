@@ -16,7 +16,9 @@ namespace sonarmap::cli {
 struct InfoArgs {
   std::string input;
   std::string format = "auto";  ///< input format, or auto (by extension): inputFormat
-  std::string nav_csv;          ///< navigation CSV whose coverage of the beams is reported (empty: none)
+  std::string nav_file;         ///< --nav: navigation CSV or bag whose coverage is reported ("none"; empty: the input bag's own)
+  std::string sonar_topic;      ///< --sonar-topic of a ROS bag input
+  std::string nav_topic;        ///< --nav-topic of a ROS bag
   bool json = false;            ///< --json: one JSON object on stdout instead of the text
 };
 

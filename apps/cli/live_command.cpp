@@ -56,18 +56,18 @@ class LiveMapping {
   LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, Clock::time_point start)
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
-    const bool navigation = !args.map.nav_csv.empty() || !args.nav_stream.empty();
+    const bool navigation = !args.map.nav_file.empty() || !args.nav_stream.empty();
     if (args.map.slam) {
       slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, SlamOptions{}, integration);
-      if (!args.map.nav_csv.empty()) {
-        for (const NavSample& fix : readNavCsv(args.map.nav_csv)) slam_->addNavFix(fix);
+      if (!args.map.nav_file.empty()) {
+        for (const NavSample& fix : readNavCsv(args.map.nav_file)) slam_->addNavFix(fix);
       }
-    } else if (args.map.nav_csv.empty() && args.nav_stream.empty()) {
+    } else if (args.map.nav_file.empty() && args.nav_stream.empty()) {
       mapper_ = std::make_unique<OnlineMapper>(options, integration);
-    } else if (args.map.nav_csv.empty()) {  // the fixes arrive on their own stream
+    } else if (args.map.nav_file.empty()) {  // the fixes arrive on their own stream
       mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
     } else {
-      const NavTrack nav = readNavCsv(args.map.nav_csv);
+      const NavTrack nav = readNavCsv(args.map.nav_file);
       mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
       for (const NavSample& fix : nav) mapper_->addNavFix(fix);
     }
@@ -278,7 +278,7 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   const std::vector<std::string> warnings =
       mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
-  const bool with_nav = !args.map.nav_csv.empty() || !args.nav_stream.empty();
+  const bool with_nav = !args.map.nav_file.empty() || !args.nav_stream.empty();
   printMapSummary(run, args.map.output_bt, with_nav || args.map.slam, warnings.size());
   if (slam_report) printSlamSummary(*slam_report, with_nav);
 }
@@ -306,7 +306,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   cmd->add_option("--idle-timeout", args.idle_timeout_s,
                   "End the stream after this many SECONDS without a byte (0: never; UDP has no end of stream)")
       ->capture_default_str();
-  cmd->add_option("--nav", args.map.nav_csv,
+  cmd->add_option("--nav", args.map.nav_file,
                   "Navigation CSV loaded at the start (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad): its times are "
                   "seconds since `live` started, the clock beams are stamped with on arrival");
   cmd->add_option("--nav-stream", args.nav_stream,
@@ -334,7 +334,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     }
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
-    if (!args.map.mounting.empty() && args.map.nav_csv.empty() && args.nav_stream.empty() && !args.map.slam) {
+    if (!args.map.mounting.empty() && args.map.nav_file.empty() && args.nav_stream.empty() && !args.map.slam) {
       throw ValueError("--mounting needs --nav, --nav-stream or --slam");
     }
     if (!args.map.trajectory_out.empty() && !args.map.slam) throw ValueError("live --trajectory needs --slam");

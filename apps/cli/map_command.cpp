@@ -10,13 +10,27 @@
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
+#include "navigation_input.hpp"
 #include "slam_outputs.hpp"
 
 namespace sonarmap::cli {
+namespace {
+
+/// --mounting and --trajectory place and follow a moving sonar: without navigation (or --slam)
+/// they are usage errors.
+void requireNavigation(const MapArgs& args, bool without_navigation) {
+  if (!without_navigation || args.slam) return;
+  if (!args.mounting.empty()) throw ValueError("--mounting needs --nav or --slam");
+  if (!args.trajectory_out.empty()) throw ValueError("--trajectory needs --nav or --slam: a static log has no trajectory");
+}
+
+}  // namespace
 
 Command addMapCommand(CLI::App& app, MapArgs& args) {
-  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, beam .csv) into an occupancy octree (.bt)");
-  cmd->add_option("input", args.input, "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG or beam .csv")->required();
+  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, .seanet, .bin, .bag, beam .csv) into an occupancy octree (.bt)");
+  cmd->add_option("input", args.input,
+                  "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG, SeaNet .seanet, Ping360 .bin, ROS 1 .bag or beam .csv")
+      ->required();
   cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
   // MapArgs (map_options.hpp) has no field for the side view: it lives beside the checked options.
   struct Checked {
@@ -40,10 +54,9 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--cartesian-png", args.cartesian_png,
                   "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0), as --polar-png");
   addMappingOptions(*cmd, args);
-  cmd->add_option("--nav", args.nav_csv,
-                  "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, the log's "
-                  "clock): each beam is placed with the vehicle's pose at its time; beams outside its time span "
-                  "are skipped");
+  addLogInputOptions(*cmd, args.nav_file, args.sonar_topic, args.nav_topic,
+                     "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
+                     "outside its time span are skipped");
   cmd->add_option("--mounting", args.mounting,
                   "With --nav: the sonar's frame (x along bearing 0, y left, z up) in the vehicle's body frame "
                   "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
@@ -58,10 +71,8 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "Write the trajectory the map was built with (the corrected one with --slam, else --nav's): "
                   "a navigation CSV, or TUM format (time x y z qx qy qz qw, NED) when the name ends in .tum or .txt");
   auto check = [&args, checked] {
-    if (!args.mounting.empty() && args.nav_csv.empty() && !args.slam) throw ValueError("--mounting needs --nav or --slam");
-    if (!args.trajectory_out.empty() && args.nav_csv.empty() && !args.slam) {
-      throw ValueError("--trajectory needs --nav or --slam: a static log has no trajectory");
-    }
+    // A bag may hold its own navigation: known once it is read (requireNavigation).
+    if (inputFormat(args.input, args.format) != LogFormat::kRosBag) requireNavigation(args, args.nav_file.empty() || args.nav_file == "none");
     if (!checked->side_png.empty() && !args.volume) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
     }
@@ -89,7 +100,7 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
         },
         args.quiet);
   }
-  if (args.nav_csv.empty()) {
+  if (nav.empty()) {
     return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(log, options, progress); },
                            args.quiet);
   }
@@ -113,10 +124,16 @@ std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
   const LogFormat format = inputFormat(args.input, args.format);
-  const SonarLog log = readSonarLog(args.input, format);
+  const SonarLog log = readSonarLog(args.input, format, LogReadOptions{args.sonar_topic});
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
-  const NavTrack nav = args.nav_csv.empty() ? NavTrack{} : readNavCsv(args.nav_csv);
+  const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
+  requireNavigation(args, !navigation);
+  const NavTrack nav = navigation ? navigation->track : NavTrack{};
+  if (navigation && logFormatOfPath(args.nav_file.empty() ? args.input : args.nav_file) == LogFormat::kRosBag) {
+    std::printf("navigation %s: %zu fixes%s\n", navigation->description.c_str(), nav.size(),
+                navigation->skipped > 0 ? (", " + std::to_string(navigation->skipped) + " messages skipped").c_str() : "");
+  }
   SlamResult slam;
   MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body, slam);
   mapped.resolution_note = resolutionNote(log, sonar_options);

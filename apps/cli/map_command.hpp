@@ -29,7 +29,7 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting);
 std::string resolutionNote(const SonarLog& log, const MapperOptions& options);
 
 /// Reads, maps and writes. Prints the warnings about the options and the mapping (mappingWarnings)
-/// on stderr and the one-line summary on stdout. With args.nav_csv, each beam is placed with the
+/// on stderr and the one-line summary on stdout. With navigation (args.nav_file, or the input bag's own), each beam is placed with the
 /// vehicle's pose at its time and `sonar_to_body`. A non-empty `side_png` (--side-png) receives the
 /// side view of the map (stageMapOutputs).
 /// @throws sonarmap::Error (or std::exception) for bad data, a log beyond the work budget, a map no

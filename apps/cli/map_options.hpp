@@ -23,7 +23,9 @@ struct MapArgs : MappingArguments {
   std::string cartesian_png;
   bool quiet = false;
   bool tank_report = false;
-  std::string nav_csv;           ///< navigation CSV (empty: the sonar is static at the map origin)
+  std::string nav_file;          ///< --nav: a navigation CSV or a ROS bag; "none"; empty: the input bag's own, if any
+  std::string sonar_topic;       ///< --sonar-topic of a ROS bag input (empty: found by its fields)
+  std::string nav_topic;         ///< --nav-topic of a ROS bag (empty: found by its fields)
   std::vector<double> mounting;  ///< X,Y,Z (m), ROLL,PITCH,YAW (degrees) of the sonar in the body; empty: default
   bool slam = false;             ///< --slam: correct the navigation by scan matching (slam/localizer.hpp)
   std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "output_dir.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/nav/navigation.hpp"
@@ -59,6 +60,9 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   OutputDir dir(args.output_dir);
   FileTransaction outputs;
   stageSimulation(outputs, args.output_dir, simulation);
+  if (!args.bag.empty()) {
+    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning));
+  }
   outputs.commit();
   dir.keep();
   char turns[64] = "turns";
@@ -123,6 +127,10 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--sector-center", args.sector_center_deg,
                   "Bearing of the sector's centre in degrees, counter-clockwise from the sonar's forward axis")
       ->capture_default_str();
+  cmd->add_option("--bag", args.bag,
+                  "Also write the log as a ROS 1 bag: the beams as micron_driver_ros/ScanLine on /sonar/scan_line, "
+                  "the navigation nav.csv holds as nav_msgs/Odometry on /odometry (ENU, REP 103), the simulator's "
+                  "clock as the stamps; `sonarmap map FILE.bag` maps it with that navigation");
   cmd->add_option("--seed", args.seed, "Seed of the speckle and noise: a seed always gives the same files")
       ->capture_default_str();
   cmd->add_option("--turns", args.turns,

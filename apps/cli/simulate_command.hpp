@@ -23,6 +23,7 @@ struct SimulateArgs : SimulationArguments {
   std::string scene;  ///< a built-in scene name or a scene file (sceneOf)
   std::string output_dir;
   bool quiet = false;  ///< -q: no progress bar
+  std::string bag;     ///< --bag: also the log and its believed navigation as a ROS 1 bag (empty: none)
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.

@@ -110,6 +110,7 @@ py::array_t<double> toPointsArray(const std::vector<Eigen::Vector3d>& points) {
 }  // namespace sonarmap::python
 
 #include "navigation_arrays.hpp"
+#include "sonarmap/formats/navigation_reader.hpp"
 
 namespace sonarmap::python {
 
@@ -127,7 +128,7 @@ py::array_t<double> navArray(const NavTrack& track) {
 
 NavTrack navTrackOf(const py::object& nav) {
   if (py::isinstance<py::str>(nav) || py::hasattr(nav, "__fspath__")) {  // a path: str or os.PathLike
-    return readNavCsv(py::module_::import("os").attr("fspath")(nav).cast<std::string>());
+    return readNavigation(py::module_::import("os").attr("fspath")(nav).cast<std::string>()).track;  // CSV or ROS bag
   }
   const auto array = requireFloat64(nav, "nav", 2);
   if (array.shape(1) != 7) {

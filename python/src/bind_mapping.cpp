@@ -11,6 +11,7 @@
 #include "bindings.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_arrays.hpp"
+#include "sonarmap/formats/navigation_reader.hpp"
 #include "numpy_checks.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
@@ -118,7 +119,7 @@ library call, the same option translation): each beam's first obstacle is detect
 its wedge (planar model) or cone (volume=True) updated free up to it, the obstacle occupied.
 
 log: sonarmap.SonarLog. nav: None (the sonar static at the map origin), the path of a navigation
-CSV, or an (N, 7) float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad]
+CSV or of a ROS 1 bag (its navigation topic, read_navigation), or an (N, 7) float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad]
 (NED metres, body FRD Z-Y-X radians, on the beams' clock; the CLI's --nav). mounting: with nav,
 (x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting;
 default upright and aligned). progress: callable(sweeps_done, sweeps_total) or None. slam: correct
@@ -142,6 +143,15 @@ TypeError for an unknown keyword.)doc";
       "read_nav_csv", [](const std::filesystem::path& path) { return navArray(readNavCsv(path.string())); }, py::arg("path"),
       R"doc(Reads a navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad) as an (N, 7) float64 array:
 seconds, NED metres, radians (body FRD, Z-Y-X). Raises sonarmap.FileError naming the line and field.)doc");
+  m.def(
+      "read_navigation",
+      [](const std::filesystem::path& path, const std::string& nav_topic) { return navArray(readNavigation(path.string(), nav_topic).track); },
+      py::arg("path"), py::arg("nav_topic") = "",
+      R"doc(Reads a vehicle's navigation as an (N, 7) float64 array (time_s, x_m, y_m, z_m, roll_rad, pitch_rad,
+yaw_rad: seconds, NED metres, radians, body FRD, Z-Y-X): a navigation CSV, or a ROS 1 bag's navigation topic
+(`.bag`: nav_topic, or nav_msgs/Odometry, else the topic with a header and a pose that has most messages; ENU
+poses, REP 103, turned into NED; frames named *ned* taken as NED). Raises sonarmap.FileError (an unreadable
+file, a bag without a navigation topic or without the topic named).)doc");
   m.def(
       "write_nav_csv",
       [](const std::filesystem::path& path, const py::object& nav) { writeNavCsv(path.string(), navTrackOf(py::reinterpret_borrow<py::object>(nav))); },

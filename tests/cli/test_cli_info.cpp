@@ -13,6 +13,7 @@
 #include "cli_fixture.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
@@ -137,6 +138,49 @@ TEST_F(cliInfo, NavigationIsDescribedWithItsCoverage) {
   const std::size_t outside = summarizeLog(readBeamCsv(beams_.string()), half).nav->beams_outside;
   EXPECT_GT(outside, 100U);
   EXPECT_NE(result.out.find(std::to_string(outside) + " of 400 beams outside it"), std::string::npos) << result.out;
+}
+
+// A ROS bag with its own navigation: info lists its topics and says which it reads; map places the
+// beams with the bag's navigation as it does with the same track given as a CSV, and --nav none
+// maps the head static.
+TEST_F(cliInfo, ARosBagsTopicsAreListedAndItsNavigationIsUsed) {
+  SonarLog log = run_.log;
+  NavTrack nav = run_.nav;
+  for (Beam& beam : log.beams) beam.time_s += 1.4e9;  // ROS stamps: seconds since 1970
+  for (NavSample& fix : nav) fix.time_s += 1.4e9;
+  const fs::path bag = root_ / "run.bag";
+  writeRosBag(bag.string(), log, nav);
+  const nlohmann::json info = infoJson({bag.string()});
+  ASSERT_EQ(info["topics"].size(), 2U) << info.dump();
+  EXPECT_EQ(info["topics"][0]["topic"], "/sonar/scan_line");
+  EXPECT_EQ(info["topics"][0]["messages"], 400);
+  EXPECT_NE(info["topics"][0]["use"].get<std::string>().find("sonar"), std::string::npos);
+  EXPECT_EQ(info["topics"][1]["type"], "nav_msgs/Odometry");
+  EXPECT_NE(info["topics"][1]["use"].get<std::string>().find("navigation"), std::string::npos);
+  EXPECT_EQ(info["navigation"]["fixes"], nav.size());
+  EXPECT_TRUE(info["navigation"]["covers_beams"].get<bool>());
+
+  const ProgramRun from_bag = run({"map", bag.string(), "-o", (root_ / "bag.bt").string(), "-q"});
+  ASSERT_EQ(from_bag.exit_code, 0) << from_bag.err;
+  EXPECT_NE(from_bag.out.find("navigation /odometry (nav_msgs/Odometry, ENU (REP 103), turned into NED) of run.bag: " +
+                              std::to_string(nav.size()) + " fixes"),
+            std::string::npos) << from_bag.out;
+  EXPECT_NE(from_bag.out.find("0 without navigation"), std::string::npos) << from_bag.out;
+  const ProgramRun from_csv = run({"map", beams_.string(), "--nav", nav_.string(), "-o", (root_ / "csv.bt").string(), "-q"});
+  ASSERT_EQ(from_csv.exit_code, 0) << from_csv.err;
+  auto obstacles = [](const std::string& out) { return std::stoul(out.substr(out.find(" sweeps, ") + 9)); };
+  EXPECT_NEAR(static_cast<double>(obstacles(from_bag.out)), static_cast<double>(obstacles(from_csv.out)),
+              0.02 * static_cast<double>(obstacles(from_csv.out)));
+
+  const ProgramRun still = run({"map", bag.string(), "--nav", "none", "-o", (root_ / "still.bt").string(), "-q"});
+  ASSERT_EQ(still.exit_code, 0) << still.err;
+  EXPECT_EQ(still.out.find("navigation"), std::string::npos) << still.out;
+  EXPECT_EQ(still.out.find("without navigation"), std::string::npos) << still.out;
+  // A topic named that is not in the bag is a one-line error.
+  const ProgramRun wrong = run({"map", bag.string(), "--nav-topic", "/odom", "-o", (root_ / "wrong.bt").string()});
+  EXPECT_EQ(wrong.exit_code, 1);
+  EXPECT_NE(wrong.err.find("no topic /odom"), std::string::npos) << wrong.err;
+  EXPECT_FALSE(fs::exists(root_ / "wrong.bt"));
 }
 
 TEST_F(cliInfo, FormatNamesTheReaderOfAnyFileName) {

@@ -93,3 +93,19 @@ def test_demo_3d_mission_same_bt_from_python(cli, tmp_path):
                                vertical_aperture=mission.vertical_aperture)
     m.write(tmp_path / "map.bt")
     assert (tmp_path / "map.bt").read_bytes() == (tmp_path / "demo" / "3d-mission" / "map.bt").read_bytes()
+
+
+def test_simulated_bag_maps_with_its_own_navigation_as_the_cli_does(cli, tmp_path):
+    bag = tmp_path / "run.bag"
+    cli("simulate", "harbour", "-o", tmp_path / "sim", "--turns", "2", "--speed", "0.1", "--heading", "30", "--bag", bag, "-q")
+    nav_csv = sonarmap.read_nav_csv(str(tmp_path / "sim" / "nav.csv"))
+    nav_bag = sonarmap.read_navigation(bag)
+    assert nav_bag.shape == nav_csv.shape
+    assert np.allclose(nav_bag[:, 0], nav_csv[:, 0], rtol=0, atol=1e-6)  # stamps hold nanoseconds
+    assert np.allclose(nav_bag[:, 1:], nav_csv[:, 1:], rtol=0, atol=1e-9)
+    cli("map", bag, "-o", tmp_path / "cli.bt", "-q", "--resolution", "0.05")
+    m = sonarmap.map_sonar_log(sonarmap.read_sonar_log(str(bag)), nav=bag, resolution=0.05)
+    m.write(str(tmp_path / "py.bt"))
+    assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
+    with pytest.raises(sonarmap.FileError, match="no topic /odom"):
+        sonarmap.read_navigation(bag, nav_topic="/odom")
