@@ -263,7 +263,7 @@ Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag (or any name with --format)")
       ->required();
   addLogFormatOption(*cmd, args.format);
-  addLogInputOptions(*cmd, args.nav_file, args.sonar_topic, args.nav_topic,
+  addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic,
                      "The vehicle's navigation: how many fixes, the distance travelled, and which beams fall "
                      "outside its time span (map would skip them)");
   cmd->add_flag("--json", args.json, "Print one JSON object instead of the text (units in the keys' names)");
@@ -276,7 +276,7 @@ Command addInfoCommand(CLI::App& app, InfoArgs& args) {
 
 void runInfo(const InfoArgs& args) {
   const LogFormat format = inputFormat(args.input, args.format);
-  const SonarLog log = readSonarLog(args.input, format, LogReadOptions{args.sonar_topic});
+  const SonarLog log = readSonarLog(args.input, format, args.log_read);
   const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
   const LogSummary summary = summarizeLog(log, navigation ? navigation->track : NavTrack{});
   BagTopics bag;

@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "sonarmap/formats/log_reader.hpp"
+
 #include <CLI/CLI.hpp>
 
 #include "command.hpp"
@@ -17,7 +19,7 @@ struct InfoArgs {
   std::string input;
   std::string format = "auto";  ///< input format, or auto (by extension): inputFormat
   std::string nav_file;         ///< --nav: navigation CSV or bag whose coverage is reported ("none"; empty: the input bag's own)
-  std::string sonar_topic;      ///< --sonar-topic of a ROS bag input
+  LogReadOptions log_read;      ///< --sonar-topic, --bearing-unit, --bearing-direction of a ROS bag input
   std::string nav_topic;        ///< --nav-topic of a ROS bag
   bool json = false;            ///< --json: one JSON object on stdout instead of the text
 };

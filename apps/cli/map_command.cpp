@@ -54,7 +54,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--cartesian-png", args.cartesian_png,
                   "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0), as --polar-png");
   addMappingOptions(*cmd, args);
-  addLogInputOptions(*cmd, args.nav_file, args.sonar_topic, args.nav_topic,
+  addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic,
                      "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
                      "outside its time span are skipped");
   cmd->add_option("--mounting", args.mounting,
@@ -124,7 +124,7 @@ std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
   const LogFormat format = inputFormat(args.input, args.format);
-  const SonarLog log = readSonarLog(args.input, format, LogReadOptions{args.sonar_topic});
+  const SonarLog log = readSonarLog(args.input, format, args.log_read);
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
   const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);

@@ -24,7 +24,7 @@ struct MapArgs : MappingArguments {
   bool quiet = false;
   bool tank_report = false;
   std::string nav_file;          ///< --nav: a navigation CSV or a ROS bag; "none"; empty: the input bag's own, if any
-  std::string sonar_topic;       ///< --sonar-topic of a ROS bag input (empty: found by its fields)
+  LogReadOptions log_read;       ///< --sonar-topic, --bearing-unit, --bearing-direction of a ROS bag input
   std::string nav_topic;         ///< --nav-topic of a ROS bag (empty: found by its fields)
   std::vector<double> mounting;  ///< X,Y,Z (m), ROLL,PITCH,YAW (degrees) of the sonar in the body; empty: default
   bool slam = false;             ///< --slam: correct the navigation by scan matching (slam/localizer.hpp)

@@ -12,8 +12,9 @@
 
 namespace sonarmap::cli {
 
-/// Adds --nav (`nav_help` first in its help) into `nav_file`, and --sonar-topic and --nav-topic.
-void addLogInputOptions(CLI::App& cmd, std::string& nav_file, std::string& sonar_topic, std::string& nav_topic,
+/// Adds --nav (`nav_help` first in its help) into `nav_file`, --nav-topic, and a ROS bag's
+/// --sonar-topic, --bearing-unit and --bearing-direction into `log_read`.
+void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& log_read, std::string& nav_topic,
                         const std::string& nav_help);
 
 /// The navigation for the log `input` in `format`: `nav_file`'s ("none": nothing), else the input

@@ -75,7 +75,9 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
     case LogFormat::kV4Log: return readSeaNetV4Log(path);
     case LogFormat::kSeaNet: return readSeaNetCapture(path);
     case LogFormat::kPing360: return readPing360(path);
-    case LogFormat::kRosBag: return readRosBag(path, RosBagOptions{options.sonar_topic});
+    case LogFormat::kRosBag:
+      return readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
+                                            parseBearingDirection(options.bearing_direction)});
   }
   throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
 }

@@ -131,6 +131,20 @@ RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record
 
 }  // namespace
 
+BearingUnit parseBearingUnit(std::string_view name) {
+  if (name == "auto") return BearingUnit::kAuto;
+  if (name == "deg") return BearingUnit::kDegrees;
+  if (name == "rad") return BearingUnit::kRadians;
+  if (name == "grad") return BearingUnit::kGradians;
+  throw ValueError("unknown bearing unit '" + std::string(name) + "' (auto, deg, rad, grad)");
+}
+
+BearingDirection parseBearingDirection(std::string_view name) {
+  if (name == "cw") return BearingDirection::kClockwise;
+  if (name == "ccw") return BearingDirection::kCounterClockwise;
+  throw ValueError("unknown bearing direction '" + std::string(name) + "' (cw, ccw)");
+}
+
 SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
   SonarLog log;
   std::vector<RawBeam> raw;
@@ -171,16 +185,24 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
   });
   if (raw.empty()) detail::failBag(path, "no message of " + topic + " decodes" + (log.skip_reasons.empty() ? "" : ": " + log.skip_reasons.front()));
   // Degrees unless the field's name says radians or every bearing fits in a turn of radians;
-  // clockwise, as the Tritech head counts it (ros_bag_reader.hpp).
+  // clockwise, as the Tritech head counts it (ros_bag_reader.hpp); the options override both.
   double largest = 0.0;
   for (const RawBeam& beam : raw) largest = std::max(largest, std::abs(beam.bearing));
-  const bool degrees = fields->bearing_in_degrees || (!fields->bearing_in_radians && largest > 2.0 * std::numbers::pi + 1e-6);
+  BearingUnit unit = options.bearing_unit;
+  if (unit == BearingUnit::kAuto) {
+    const bool degrees = fields->bearing_in_degrees || (!fields->bearing_in_radians && largest > 2.0 * std::numbers::pi + 1e-6);
+    unit = degrees ? BearingUnit::kDegrees : BearingUnit::kRadians;
+  }
+  const double turn = unit == BearingUnit::kDegrees ? 360.0 : unit == BearingUnit::kGradians ? 400.0 : 2.0 * std::numbers::pi;
+  const bool clockwise = options.bearing_direction == BearingDirection::kClockwise;
   log.notes.push_back("bearings of " + topic + "'s `" + fields->bearing + "` read as " +
-                      (degrees ? "degrees" : "radians") + ", clockwise seen from above (the Tritech head's count)");
+                      (unit == BearingUnit::kDegrees ? "degrees" : unit == BearingUnit::kGradians ? "gradians" : "radians") +
+                      (options.bearing_unit == BearingUnit::kAuto ? "" : " (as told)") +
+                      (clockwise ? ", clockwise seen from above (the Tritech head's count)" : ", counter-clockwise seen from above (as told)"));
   log.beams.reserve(raw.size());
   for (RawBeam& beam : raw) {
-    const double clockwise_rad = degrees ? beam.bearing * std::numbers::pi / 180.0 : beam.bearing;
-    double bearing_rad = std::fmod(-clockwise_rad, 2.0 * std::numbers::pi);
+    const double turned_rad = beam.bearing * 2.0 * std::numbers::pi / turn;
+    double bearing_rad = std::fmod(clockwise ? -turned_rad : turned_rad, 2.0 * std::numbers::pi);
     if (bearing_rad < 0.0) bearing_rad += 2.0 * std::numbers::pi;
     if (!(bearing_rad < 2.0 * std::numbers::pi)) bearing_rad = 0.0;  // −0 and rounding up to a whole turn
     beam.beam.bearing_rad = bearing_rad + 0.0;

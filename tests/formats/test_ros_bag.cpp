@@ -85,6 +85,29 @@ TEST(formatsRosBag, TheSonarTopicCanBeNamedAndAWrongNameIsAClearError) {
   }
 }
 
+TEST(formatsRosBag, TheBearingsUnitAndDirectionCanBeTold) {
+  const test::TempDir dir;
+  writeRosBag(dir.file("tank.bag"), simulatedTank(1));
+  const SonarLog clockwise_deg = readRosBag(dir.file("tank.bag"));
+  const SonarLog anticlockwise = readRosBag(dir.file("tank.bag"), {.bearing_direction = BearingDirection::kCounterClockwise});
+  const SonarLog gradians = readRosBag(dir.file("tank.bag"), {.bearing_unit = BearingUnit::kGradians});
+  ASSERT_EQ(anticlockwise.beams.size(), clockwise_deg.beams.size());
+  const double turn = 2.0 * std::numbers::pi;
+  for (std::size_t i = 0; i < clockwise_deg.beams.size(); ++i) {
+    const double bearing_rad = clockwise_deg.beams[i].bearing_rad;
+    EXPECT_NEAR(std::remainder(anticlockwise.beams[i].bearing_rad + bearing_rad, turn), 0.0, 1e-9) << "beam " << i;
+    // the same number read as gradians: 0.9 of the angle (a turn is 400 grad)
+    const double clockwise_read_rad = std::fmod(turn - bearing_rad, turn);
+    EXPECT_NEAR(std::remainder(gradians.beams[i].bearing_rad + 0.9 * clockwise_read_rad, turn), 0.0, 1e-9) << "beam " << i;
+  }
+  EXPECT_NE(gradians.notes[0].find("read as gradians (as told)"), std::string::npos) << gradians.notes[0];
+  EXPECT_NE(anticlockwise.notes[0].find("counter-clockwise"), std::string::npos) << anticlockwise.notes[0];
+  EXPECT_EQ(parseBearingUnit("rad"), BearingUnit::kRadians);
+  EXPECT_EQ(parseBearingDirection("ccw"), BearingDirection::kCounterClockwise);
+  EXPECT_THROW(parseBearingUnit("degrees"), ValueError);
+  EXPECT_THROW(parseBearingDirection("clockwise"), ValueError);
+}
+
 TEST(formatsRosBag, AFileThatIsNoBagOrIsCutShortIsAClearError) {
   const test::TempDir dir;
   std::ofstream(dir.file("text.bag")) << "not a bag\n";

@@ -56,6 +56,10 @@ struct LogReadOptions {
   /// A ROS bag's sonar topic (RosBagOptions::sonar_topic); empty: found by its fields. Other
   /// formats hold one sonar and ignore it.
   std::string sonar_topic;
+  /// A ROS bag's bearing unit: "auto", "deg", "rad" or "grad" (parseBearingUnit).
+  std::string bearing_unit = "auto";
+  /// A ROS bag's bearing direction seen from above: "cw" or "ccw" (parseBearingDirection).
+  std::string bearing_direction = "cw";
 };
 
 /// Reads the beams of a sonar log in `format` whatever its file name, with the reader's default

@@ -19,19 +19,35 @@
 /// else radians. The bearing grows clockwise seen from above, as the Tritech head counts it (the
 /// micron_driver_ros driver publishes the SeaNet head's bearing, 1/16 gradian clockwise, in
 /// degrees; docs/formats.md, SeaNet), and is turned into beam.hpp's counter-clockwise radians.
-/// What was decided is said in SonarLog::notes.
+/// RosBagOptions::bearing_unit and bearing_direction override both. What was decided is said in
+/// SonarLog::notes.
 
 #include <string>
+#include <string_view>
 
 #include "sonarmap/sonar/beam.hpp"
 
 namespace sonarmap {
+
+/// The unit of a topic's bearings: decided from the field's name and values (kAuto, see the
+/// file's comment) or said by the user where a bag cannot tell (a turn is 360°, 2π rad, 400 grad).
+enum class BearingUnit { kAuto, kDegrees, kRadians, kGradians };
+/// Which way a topic's bearings grow seen from above: clockwise as Tritech heads count (the
+/// default), or counter-clockwise as ROS's REP 103 angles do.
+enum class BearingDirection { kClockwise, kCounterClockwise };
+
+/// "auto", "deg", "rad" or "grad". @throws ValueError for any other, listing them.
+BearingUnit parseBearingUnit(std::string_view name);
+/// "cw" or "ccw". @throws ValueError for any other, listing them.
+BearingDirection parseBearingDirection(std::string_view name);
 
 /// Options of readRosBag().
 struct RosBagOptions {
   /// The sonar topic; empty: the first topic, in the bag's connection order, whose message has a
   /// sonar beam's fields (see the file's comment).
   std::string sonar_topic;
+  BearingUnit bearing_unit = BearingUnit::kAuto;
+  BearingDirection bearing_direction = BearingDirection::kClockwise;
 };
 
 /// Reads the sonar beams of a ROS 1 bag (see the file's comment), in the bag's time order.
