@@ -179,6 +179,7 @@ void rosBagSeeds() {
   writeRosBag((g_out / "ros_bag" / "with_odometry.bag").string(), log, nav);
   writeRosBag((g_out / "ros_bag" / "with_odometry_ned_lz4.bag").string(), log, nav,
               {.nav_frame = "odom_ned", .compression = BagCompression::kLz4});
+  writeRosBag((g_out / "ros_bag" / "with_imu_dvl_pressure.bag").string(), log, nav, {.odometry = false, .raw_sensors = true});
 }
 
 void cloudSeeds() {

@@ -72,7 +72,9 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "a navigation CSV, or TUM format (time x y z qx qy qz qw, NED) when the name ends in .tum or .txt");
   auto check = [&args, checked] {
     // A bag may hold its own navigation: known once it is read (requireNavigation).
-    if (inputFormat(args.input, args.format) != LogFormat::kRosBag) requireNavigation(args, args.nav_file.empty() || args.nav_file == "none");
+    const bool bag = args.format == "auto" ? logFormatOfPath(args.input) == LogFormat::kRosBag
+                                           : parseLogFormat(args.format) == LogFormat::kRosBag;
+    if (!bag) requireNavigation(args, args.nav_file.empty() || args.nav_file == "none");
     if (!checked->side_png.empty() && !args.volume) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
     }

@@ -61,7 +61,8 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   FileTransaction outputs;
   stageSimulation(outputs, args.output_dir, simulation);
   if (!args.bag.empty()) {
-    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning));
+    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning,
+                                             {.raw_sensors = true}));
   }
   outputs.commit();
   dir.keep();
@@ -129,8 +130,10 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->capture_default_str();
   cmd->add_option("--bag", args.bag,
                   "Also write the log as a ROS 1 bag: the beams as micron_driver_ros/ScanLine on /sonar/scan_line, "
-                  "the navigation nav.csv holds as nav_msgs/Odometry on /odometry (ENU, REP 103), the simulator's "
-                  "clock as the stamps; `sonarmap map FILE.bag` maps it with that navigation");
+                  "the navigation nav.csv holds as nav_msgs/Odometry on /odometry (ENU, REP 103) and as the raw "
+                  "sensors it is dead-reckoned from (sensor_msgs/Imu on /imu/data, a DVL's TwistStamped on /dvl/twist, "
+                  "sensor_msgs/FluidPressure on /pressure), the simulator's clock as the stamps; `sonarmap map FILE.bag` "
+                  "maps it with that navigation");
   cmd->add_option("--seed", args.seed, "Seed of the speckle and noise: a seed always gives the same files")
       ->capture_default_str();
   cmd->add_option("--turns", args.turns,

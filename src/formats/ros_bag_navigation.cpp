@@ -8,6 +8,7 @@
 
 #include "ros_bag_file.hpp"
 #include "ros_frames.hpp"
+#include "ros_inertial_navigation.hpp"
 
 namespace sonarmap {
 namespace {
@@ -107,7 +108,7 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
                  "pose.orientation, or pose.pose.*: docs/formats.md)");
       }
     }
-    if (candidates.empty()) return std::nullopt;
+    if (candidates.empty()) return detail::inertialNavigation(bag, options);
     std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
       const bool a_odometry = a.topic->type == "nav_msgs/Odometry", b_odometry = b.topic->type == "nav_msgs/Odometry";
       if (a_odometry != b_odometry) return a_odometry;

@@ -94,6 +94,24 @@ const char* const kOdometryDefinition =
 
 namespace {
 
+constexpr const char* kRule = "================================================================================\n";
+constexpr const char* kHeaderSection = "MSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n";
+constexpr const char* kQuaternionSection = "MSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n";
+constexpr const char* kVector3Section = "MSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n";
+
+/// ROS's definitions (without their comments) of the raw navigation sensors' messages.
+const std::string kImuDefinition = std::string(
+    "Header header\n"
+    "geometry_msgs/Quaternion orientation\nfloat64[9] orientation_covariance\n"
+    "geometry_msgs/Vector3 angular_velocity\nfloat64[9] angular_velocity_covariance\n"
+    "geometry_msgs/Vector3 linear_acceleration\nfloat64[9] linear_acceleration_covariance\n\n") +
+    kRule + kHeaderSection + "\n" + kRule + kQuaternionSection + "\n" + kRule + kVector3Section;
+const std::string kTwistStampedDefinition = std::string("Header header\ngeometry_msgs/Twist twist\n\n") + kRule +
+    kHeaderSection + "\n" + kRule + "MSG: geometry_msgs/Twist\ngeometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n\n" +
+    kRule + kVector3Section;
+const std::string kFluidPressureDefinition = std::string("Header header\nfloat64 fluid_pressure\nfloat64 variance\n\n") +
+    kRule + kHeaderSection;
+
 /// The message types written: name, MD5 sum (as ROS computes it from the definition; the ScanLine's
 /// as the driver's bags record it, micron_pool_ros1.bag) and definition.
 struct ScanLineType {
@@ -105,6 +123,22 @@ struct OdometryType {
   static constexpr const char* kName = "nav_msgs/Odometry";
   static constexpr const char* kMd5 = "cd5e73d190d741a2f92e81eda573aca7";
   static const char* definition() { return kOdometryDefinition; }
+};
+
+struct ImuType {
+  static constexpr const char* kName = "sensor_msgs/Imu";
+  static constexpr const char* kMd5 = "6a62c6daae103f4ff57a132d6f95cec2";
+  static const char* definition() { return kImuDefinition.c_str(); }
+};
+struct TwistStampedType {
+  static constexpr const char* kName = "geometry_msgs/TwistStamped";
+  static constexpr const char* kMd5 = "98d34b0043a2093cf9d9345ab6eef12e";
+  static const char* definition() { return kTwistStampedDefinition.c_str(); }
+};
+struct FluidPressureType {
+  static constexpr const char* kName = "sensor_msgs/FluidPressure";
+  static constexpr const char* kMd5 = "804dc5cea1c5306d6a2eb80b9833befe";
+  static const char* definition() { return kFluidPressureDefinition.c_str(); }
 };
 
 /// A message already serialized, with what its connection records (as topic_tools' ShapeShifter
@@ -168,6 +202,39 @@ SerializedMessage<OdometryType> odometry(const NavSample& fix, std::uint32_t seq
   }
   for (int i = 0; i < 36 + 6 + 36; ++i) append<double>(out, 0.0);  // pose covariance, twist, twist covariance
   return message;
+}
+
+/// The raw sensors' messages of fix `i` of `nav`, ENU and FLU (REP 103): the IMU's orientation,
+/// the DVL's body velocity (the track's forward difference to the next fix turned into the body,
+/// the last fix's the one before's) and the pressure at the fix's depth.
+struct RawSensors {
+  SerializedMessage<ImuType> imu;
+  SerializedMessage<TwistStampedType> twist;
+  SerializedMessage<FluidPressureType> pressure;
+};
+
+RawSensors rawSensors(const NavTrack& nav, std::size_t i, const ros::Time& stamp, const RosBagWriteOptions& options) {
+  RawSensors out;
+  Eigen::Vector3d position_enu;
+  Eigen::Quaterniond flu_to_enu;
+  detail::nedToRosEnu(nav[i], position_enu, flu_to_enu);
+  appendHeader(out.imu.bytes, static_cast<std::uint32_t>(i), stamp, "imu_link");
+  for (const double value : {flu_to_enu.x(), flu_to_enu.y(), flu_to_enu.z(), flu_to_enu.w()}) append<double>(out.imu.bytes, value);
+  for (int k = 0; k < 9 + 3 + 9 + 3 + 9; ++k) append<double>(out.imu.bytes, 0.0);  // covariances, rates, accelerations
+
+  Eigen::Vector3d velocity_ned = Eigen::Vector3d::Zero();
+  const std::size_t from = i + 1 < nav.size() ? i : (i > 0 ? i - 1 : i);
+  if (from + 1 < nav.size()) {
+    velocity_ned = (nav[from + 1].position_ned_m - nav[from].position_ned_m) / (nav[from + 1].time_s - nav[from].time_s);
+  }
+  const Eigen::Vector3d frd = bodyToNed(nav[i]).linear().transpose() * velocity_ned;
+  appendHeader(out.twist.bytes, static_cast<std::uint32_t>(i), stamp, "dvl_link");
+  for (const double value : {frd.x(), -frd.y(), -frd.z(), 0.0, 0.0, 0.0}) append<double>(out.twist.bytes, value);
+
+  appendHeader(out.pressure.bytes, static_cast<std::uint32_t>(i), stamp, "pressure_link");
+  append<double>(out.pressure.bytes, options.surface_pressure_pa + options.water_density_kg_m3 * 9.80665 * nav[i].position_ned_m.z());
+  append<double>(out.pressure.bytes, 0.0);
+  return out;
 }
 
 }  // namespace
@@ -237,7 +304,14 @@ std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav,
           ++b;
         } else {
           const ros::Time stamp(nav[f].time_s);
-          bag.write(options.nav_topic, std::max(stamp, ros::TIME_MIN), odometry(nav[f], static_cast<std::uint32_t>(f), stamp, options.nav_frame));
+          const ros::Time recorded = std::max(stamp, ros::TIME_MIN);
+          if (options.odometry) bag.write(options.nav_topic, recorded, odometry(nav[f], static_cast<std::uint32_t>(f), stamp, options.nav_frame));
+          if (options.raw_sensors) {
+            const RawSensors raw = rawSensors(nav, f, stamp, options);
+            bag.write("/imu/data", recorded, raw.imu);
+            bag.write("/dvl/twist", recorded, raw.twist);
+            bag.write("/pressure", recorded, raw.pressure);
+          }
           ++f;
         }
       }

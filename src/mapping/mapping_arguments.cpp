@@ -33,8 +33,8 @@ LogFormat inputFormat(const std::string& input, const std::string& format) {
   if (format != "auto") return parseLogFormat(format);
   if (const std::optional<LogFormat> by_extension = logFormatOfPath(input)) return *by_extension;
   throw FileError("'" + input + "': unknown sonar log type '" + std::filesystem::path(input).extension().string() +
-                  "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture) or .bin (Ping360), or name it with "
-                  "--format");
+                  "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) or .bag (ROS 1), or "
+                  "name it with --format");
 }
 
 MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args, LogFormat format) {

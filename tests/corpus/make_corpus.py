@@ -473,6 +473,18 @@ ODOMETRY_DEFINITION = (b"Header header\nstring child_frame_id\ngeometry_msgs/Pos
                        b"\n" + b"=" * 80 + b"\nMSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n")
 
 
+# miniking_ros/AcousticBeam (the srv/miniking_ros driver's msg/AcousticBeam.msg, with its comments)
+MINIKING_DEFINITION = (b"Header header\nfloat32 range_max   # Maximum range value [m]\n"
+                       b"int32 bins          # Number of bins of the returned echoes\n"
+                       b"float32 angle       # Angle of the current scan\nuint8[] intensities # Intensities of the returned echoes\n"
+                       b"\n" + b"=" * 80 + b"\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n")
+
+
+def acoustic_beam(seq, angle_deg, intensities, range_m=10.0):
+    header = struct.pack("<IIII", seq, 1000 + seq, 0, 5) + b"sonar"
+    return header + struct.pack("<fif", range_m, len(intensities), angle_deg) + struct.pack("<I", len(intensities)) + bytes(intensities)
+
+
 def odometry(seq, position, quaternion, frame=b"odom"):
     """A nav_msgs/Odometry as ODOMETRY_DEFINITION lays it out (its pose only, no twist)."""
     header = struct.pack("<III", seq, 1000 + seq, 0) + struct.pack("<I", len(frame)) + frame
@@ -512,6 +524,9 @@ def ros_bag_files():
         "bag_odometry_zero_quaternion.bag": ros_bag(beams, more=[(b"/odom", b"nav_msgs/Odometry", ODOMETRY_DEFINITION,
                                                                   [odometry(i, (i, 0, 0), (0, 0, 0, 0)) for i in range(3)])]),
     }, {"bag_small.bag": small, "bag_small_bz2.bag": ros_bag(beams, compression=b"bz2", pack=bz2.compress),
+        "bag_miniking.bag": ros_bag([acoustic_beam(i, 90.0 + 0.9 * i, [0, 1, 5, 200, 80, 9, 4, 2]) for i in range(3)],
+                                    topic=b"/miniking_node/sonar", datatype=b"miniking_ros/AcousticBeam",
+                                    definition=MINIKING_DEFINITION),
         "bag_with_odometry.bag": ros_bag(beams, more=[(b"/odom", b"nav_msgs/Odometry", ODOMETRY_DEFINITION,
                                                        [odometry(i, (0.1 * i, 0, 0), (0, 0, 0, 1)) for i in range(3)])])}
 

@@ -219,6 +219,7 @@ constexpr Seed kSeeds[] = {
     {"viewer_small_utf16.bin", "map"}, {"viewer_locale_digits.bin", "map"}, {"viewer_chunked.bin", "map"},
     {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
     {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
+    {"bag_miniking.bag", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 
@@ -293,6 +294,18 @@ TEST(corpusTrajectory, validTumFileReadsEveryPoseAndTheCliScoresIt) {
                        dir.path());
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("poses 4\n"), std::string::npos) << run.out;
+}
+
+// A MiniKing's miniking_ros/AcousticBeam (a range and a bin count, `uint8[] intensities`, its
+// angle in degrees) is found by its fields, as the Micron's ScanLine is.
+TEST(corpusRosBag, aMiniKingTopicReadsByItsFields) {
+  const SonarLog log = readSonarLog(valid("bag_miniking.bag"));
+  ASSERT_EQ(log.beams.size(), 3u);
+  EXPECT_EQ(log.sonar, "ROS topic /miniking_node/sonar (miniking_ros/AcousticBeam)");
+  EXPECT_DOUBLE_EQ(log.beams[0].bin_length_m, 10.0 / 8.0);  // range_max over the bins
+  EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{0, 1, 5, 200, 80, 9, 4, 2}));
+  EXPECT_NEAR(log.beams[1].bearing_rad, 2.0 * 3.14159265358979 - (90.9 * 3.14159265358979 / 180.0), 1e-6);
+  EXPECT_DOUBLE_EQ(log.beams[2].time_s, 1002.0);
 }
 
 // ---- what real Ping Viewer logs do (../shared/data/README.md), in files made by make_corpus.py ---------

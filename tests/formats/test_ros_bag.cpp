@@ -172,6 +172,37 @@ TEST(formatsRosBag, OdometryInEnuOrNedReadsBackAsTheNedTrack) {
   EXPECT_NEAR(topics[1].last_s, nav.back().time_s, 1e-6);
 }
 
+// Without a pose topic, the track is dead-reckoned from the IMU's attitude, the DVL's velocity and
+// the pressure's depth; written from the track itself, they give it back.
+TEST(formatsRosBag, ImuDvlAndPressureAloneAreDeadReckonedIntoTheTrack) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  const NavTrack& nav = run.simulation.nav;
+  writeRosBag(dir.file("raw.bag"), run.simulation.log, nav, {.odometry = false, .raw_sensors = true});
+  const std::vector<RosBagTopic> topics = listRosBagTopics(dir.file("raw.bag"));
+  ASSERT_EQ(topics.size(), 4u);
+  const std::optional<RosBagNavigation> read = readRosBagNavigation(dir.file("raw.bag"));
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->topic, "/imu/data");
+  EXPECT_EQ(read->frame, "ENU (REP 103) turned into NED, dead reckoning: attitude of /imu/data, velocity of /dvl/twist, "
+                         "depth of /pressure");
+  ASSERT_EQ(read->track.size(), nav.size());
+  // North and east count from where the DVL's first velocity was (0, 0); down is the pressure's.
+  const Eigen::Vector3d start(nav.front().position_ned_m.x(), nav.front().position_ned_m.y(), 0.0);
+  double worst_m = 0.0;
+  for (std::size_t i = 0; i < nav.size(); ++i) {
+    worst_m = std::max(worst_m, (read->track[i].position_ned_m - (nav[i].position_ned_m - start)).norm());
+    EXPECT_NEAR(read->track[i].pitch_rad, nav[i].pitch_rad, 1e-9) << "fix " << i;
+    EXPECT_NEAR(std::remainder(read->track[i].yaw_rad - nav[i].yaw_rad, 2.0 * std::numbers::pi), 0.0, 1e-9) << "fix " << i;
+  }
+  EXPECT_LT(worst_m, 1e-6);  // the integration's rounding over the whole loop
+  // A fresh-water pressure read as sea water puts the vehicle 2.5 % deeper.
+  const std::optional<RosBagNavigation> fresh =
+      readRosBagNavigation(dir.file("raw.bag"), {.water_density_kg_m3 = 1000.0});
+  const std::size_t deep = nav.size() / 2;
+  EXPECT_NEAR(fresh->track[deep].position_ned_m.z(), 1.025 * nav[deep].position_ned_m.z(), 1e-9);
+}
+
 TEST(formatsRosBag, AMovingMissionMapsFromItsBagAsFromItsLogAndTrack) {
   const test::TempDir dir;
   const MissionRun run = movingMission();

@@ -19,6 +19,11 @@
 /// rotation R_ned_frd = A · R_enu_flu · B with A the ENU → NED axis swap and B = diag(1, −1, −1).
 /// Times are each message's header stamp (seconds since the epoch), the bag's record time when the
 /// stamp is zero.
+///
+/// A bag without a pose topic is dead-reckoned from the raw sensors it records: an IMU's attitude
+/// (sensor_msgs/Imu), a pressure sensor's depth (sensor_msgs/FluidPressure) and a DVL's velocity
+/// (TwistStamped, TwistWithCovarianceStamped, or a vendor message with a `velocity` vector); see
+/// src/formats/ros_inertial_navigation.hpp.
 
 #include <cstddef>
 #include <optional>
@@ -45,8 +50,15 @@ std::vector<RosBagTopic> listRosBagTopics(const std::string& path);
 
 /// Options of readRosBagNavigation().
 struct RosBagNavOptions {
-  /// The navigation topic; empty: chosen by its fields' roles (see the file's comment).
+  /// The navigation topic (one holding poses); empty: chosen by its fields' roles (see the file's
+  /// comment).
   std::string nav_topic;
+  /// Sea water's density, kg/m³, turning a pressure into a depth (UNESCO's equation of state gives
+  /// 1020–1030 at the surface; fresh water: 1000).
+  double water_density_kg_m3 = 1025.0;
+  /// The pressure at the surface, Pa, a pressure sensor's reading at depth 0 (the standard
+  /// atmosphere, 101,325 Pa; a sensor that reads gauge pressure: 0).
+  double surface_pressure_pa = 101325.0;
 };
 
 /// A bag's navigation: the fixes, which topic they came from and how it was read.
@@ -62,7 +74,7 @@ struct RosBagNavigation {
 /// Reads the navigation of the ROS 1 bag at `path` (see the file's comment), in time order; a
 /// message whose time is not after the previous fix's, or that does not decode, is skipped and
 /// counted.
-/// @return nullopt when `options.nav_topic` is empty and no topic holds a pose.
+/// @return nullopt when `options.nav_topic` is empty and no topic holds a pose or an attitude.
 /// @throws FileError naming the file when it is no readable bag, when `options.nav_topic` is not in
 ///         it or holds no pose, or when no message of the topic gives a fix (a NaN or non-unit
 ///         quaternion, a non-finite position).

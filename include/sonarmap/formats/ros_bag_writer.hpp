@@ -36,6 +36,15 @@ struct RosBagWriteOptions {
   /// The fixes' world frame: ROS's ENU (REP 103) unless the name contains "ned" (the fixes then
   /// written as they are, NED with a forward-right-down body).
   std::string nav_frame = "odom";
+  /// Whether the fixes are written as nav_msgs/Odometry on nav_topic.
+  bool odometry = true;
+  /// Whether the fixes are also written as the raw sensors dead reckoning starts from, ENU and FLU
+  /// (REP 103): sensor_msgs/Imu on /imu/data (the orientation), geometry_msgs/TwistStamped on
+  /// /dvl/twist (the body velocity to the next fix), sensor_msgs/FluidPressure on /pressure (the
+  /// depth's pressure with water_density_kg_m3 and surface_pressure_pa).
+  bool raw_sensors = false;
+  double water_density_kg_m3 = 1025.0;
+  double surface_pressure_pa = 101325.0;
   BagCompression compression = BagCompression::kNone;
 };
 

@@ -1,0 +1,222 @@
+/// @file ros_inertial_navigation.cpp
+/// Dead reckoning from a bag's IMU, pressure sensor and DVL (see ros_inertial_navigation.hpp).
+
+#include "ros_inertial_navigation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "ros_frames.hpp"
+
+namespace sonarmap::detail {
+namespace {
+
+/// Standard gravity, m/s² (the CGPM's conventional value).
+constexpr double kGravity_m_s2 = 9.80665;
+
+/// The type reached from the message's top type along `path`, or empty when a step is missing.
+std::string typeAt(const RosSchema& schema, const std::vector<std::string>& path) {
+  std::string type = schema.root();
+  for (const std::string& name : path) {
+    if (RosSchema::isBuiltin(type)) return {};
+    const std::vector<RosField>& fields = schema.fields(type);
+    const auto field = std::find_if(fields.begin(), fields.end(), [&](const RosField& f) { return f.name == name && f.array < 0; });
+    if (field == fields.end()) return {};
+    type = field->type;
+  }
+  return type;
+}
+
+bool holds(const RosSchema& schema, const std::vector<std::string>& path, std::initializer_list<const char*> names) {
+  const std::string type = typeAt(schema, path);
+  if (type.empty() || RosSchema::isBuiltin(type)) return false;
+  for (const char* name : names) {
+    std::vector<std::string> child = path;
+    child.emplace_back(name);
+    const std::string field_type = typeAt(schema, child);
+    if (field_type.empty() || !RosSchema::isBuiltin(field_type) || field_type == "string") return false;
+  }
+  return true;
+}
+
+/// The first of `paths` that holds the fields `names`, or empty.
+std::vector<std::string> firstPath(const RosSchema& schema, std::initializer_list<std::vector<std::string>> paths,
+                                   std::initializer_list<const char*> names) {
+  if (typeAt(schema, {"header"}) != "std_msgs/Header") return {};
+  for (const std::vector<std::string>& path : paths) {
+    if (holds(schema, path, names)) return path;
+  }
+  return {};
+}
+
+const RosValue& at(const RosValue& message, const std::vector<std::string>& path) {
+  const RosValue* value = &message;
+  for (const std::string& name : path) value = value->field(name);
+  return *value;
+}
+
+double number(const RosValue* value, const std::string& what) {
+  const double* out = value != nullptr ? std::get_if<double>(&value->value) : nullptr;
+  if (out == nullptr || !std::isfinite(*out)) throw Error("its " + what + " is not a finite number");
+  return *out;
+}
+
+Eigen::Vector3d vectorOf(const RosValue& value, const std::string& what) {
+  return {number(value.field("x"), what + " x"), number(value.field("y"), what + " y"), number(value.field("z"), what + " z")};
+}
+
+double stampOf(const RosValue& message, double record_time_s) {
+  const double stamp = number(message.field("header")->field("stamp"), "header stamp");
+  return stamp > 0.0 ? stamp : record_time_s;
+}
+
+bool nedFrame(const RosValue& message) {
+  const RosValue* frame = message.field("header")->field("frame_id");
+  const std::string* name = frame != nullptr ? std::get_if<std::string>(&frame->value) : nullptr;
+  return name != nullptr && namesNedFrame(*name);
+}
+
+/// A topic chosen for a role: the first, in the bag's order, whose message holds it.
+struct Role {
+  const RosBagTopic* topic = nullptr;
+  std::vector<std::string> path;
+  std::optional<RosSchema> schema;
+};
+
+template <class Matches>
+Role findRole(RosBagFile& bag, Matches&& matches) {
+  for (const RosBagTopic& topic : bag.topics()) {
+    const std::string& definition = bag.definition(topic);
+    if (definition.empty()) continue;
+    RosSchema schema(topic.type, definition);
+    std::vector<std::string> path = matches(schema);
+    if (!path.empty()) return Role{&topic, std::move(path), std::move(schema)};
+  }
+  return {};
+}
+
+template <class T>
+struct Timed {
+  double time_s;
+  T value;
+};
+
+/// Keeps the samples in strictly increasing time (a recorder may write two at one stamp).
+template <class T>
+void keepIncreasing(std::vector<Timed<T>>& samples) {
+  std::stable_sort(samples.begin(), samples.end(), [](const Timed<T>& a, const Timed<T>& b) { return a.time_s < b.time_s; });
+  samples.erase(std::unique(samples.begin(), samples.end(), [](const Timed<T>& a, const Timed<T>& b) { return a.time_s == b.time_s; }),
+                samples.end());
+}
+
+/// `samples` (sorted) linearly interpolated at `time_s`, held at the ends.
+template <class T>
+T interpolated(const std::vector<Timed<T>>& samples, double time_s) {
+  const auto after = std::lower_bound(samples.begin(), samples.end(), time_s,
+                                      [](const Timed<T>& s, double t) { return s.time_s < t; });
+  if (after == samples.begin()) return samples.front().value;
+  if (after == samples.end()) return samples.back().value;
+  const Timed<T>& before = *(after - 1);
+  const double w = (time_s - before.time_s) / (after->time_s - before.time_s);
+  return before.value + w * (after->value - before.value);
+}
+
+}  // namespace
+
+std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBagNavOptions& options) {
+  const Role attitude = findRole(bag, [](const RosSchema& s) {
+    return firstPath(s, {{"orientation"}}, {"x", "y", "z", "w"});
+  });
+  if (attitude.topic == nullptr) return std::nullopt;
+  const Role pressure = findRole(bag, [](const RosSchema& s) {
+    return typeAt(s, {"header"}) == "std_msgs/Header" && holds(s, {}, {"fluid_pressure"}) ? std::vector<std::string>{"fluid_pressure"}
+                                                                                           : std::vector<std::string>{};
+  });
+  const Role velocity = findRole(bag, [](const RosSchema& s) {
+    return firstPath(s, {{"twist", "linear"}, {"twist", "twist", "linear"}, {"velocity"}}, {"x", "y", "z"});
+  });
+
+  RosBagNavigation nav;
+  nav.topic = attitude.topic->topic;
+  nav.type = attitude.topic->type;
+  std::vector<Timed<NavSample>> attitudes;
+  bool any_ned = false, any_enu = false;
+  RosSkipped skipped = bag.forEachMessage(attitude.topic->topic, *attitude.schema, [&](const RosValue& message, double record_s) {
+    if (const RosValue* covariance = message.field("orientation_covariance")) {
+      const auto* values = std::get_if<std::vector<RosValue>>(&covariance->value);
+      if (values != nullptr && !values->empty() && number(&values->front(), "orientation covariance") == -1.0) {
+        throw Error("its orientation_covariance[0] is -1: it has no orientation");
+      }
+    }
+    const RosValue& q = at(message, attitude.path);
+    const bool ned = nedFrame(message);
+    (ned ? any_ned : any_enu) = true;
+    const double time_s = stampOf(message, record_s);
+    attitudes.push_back({time_s, rosPoseToNed(time_s, Eigen::Vector3d::Zero(),
+                                              Eigen::Quaterniond(number(q.field("w"), "orientation w"), number(q.field("x"), "orientation x"),
+                                                                 number(q.field("y"), "orientation y"), number(q.field("z"), "orientation z")),
+                                              ned)});
+  });
+  keepIncreasing(attitudes);
+  if (attitudes.empty()) bag.fail("no message of " + nav.topic + " gives an attitude" + (skipped.reasons.empty() ? "" : ": " + skipped.reasons.front()));
+  auto attitudeAt = [&](double time_s) -> const NavSample& {
+    const auto after = std::lower_bound(attitudes.begin(), attitudes.end(), time_s,
+                                        [](const Timed<NavSample>& s, double t) { return s.time_s < t; });
+    if (after == attitudes.begin()) return after->value;
+    if (after == attitudes.end() || time_s - (after - 1)->time_s < after->time_s - time_s) return (after - 1)->value;
+    return after->value;
+  };
+
+  std::vector<Timed<double>> depths;
+  if (pressure.topic != nullptr) {
+    const double pascals_per_metre = options.water_density_kg_m3 * kGravity_m_s2;
+    const RosSkipped more = bag.forEachMessage(pressure.topic->topic, *pressure.schema, [&](const RosValue& message, double record_s) {
+      depths.push_back({stampOf(message, record_s),
+                        (number(message.field("fluid_pressure"), "fluid pressure") - options.surface_pressure_pa) / pascals_per_metre});
+    });
+    skipped.count += more.count;
+    skipped.reasons.insert(skipped.reasons.end(), more.reasons.begin(), more.reasons.end());
+    keepIncreasing(depths);
+  }
+
+  // Positions integrated from the velocities: each held until the next (a DVL's ping to ping).
+  std::vector<Timed<Eigen::Vector3d>> positions;
+  if (velocity.topic != nullptr) {
+    std::vector<Timed<Eigen::Vector3d>> velocities;
+    const RosSkipped more = bag.forEachMessage(velocity.topic->topic, *velocity.schema, [&](const RosValue& message, double record_s) {
+      const Eigen::Vector3d v = vectorOf(at(message, velocity.path), "velocity");
+      velocities.push_back({stampOf(message, record_s), nedFrame(message) ? v : Eigen::Vector3d(v.x(), -v.y(), -v.z())});  // FLU → FRD
+    });
+    skipped.count += more.count;
+    skipped.reasons.insert(skipped.reasons.end(), more.reasons.begin(), more.reasons.end());
+    keepIncreasing(velocities);
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < velocities.size(); ++k) {
+      positions.push_back({velocities[k].time_s, position});
+      if (k + 1 == velocities.size()) break;
+      const double dt_s = velocities[k + 1].time_s - velocities[k].time_s;
+      position += bodyToNed(attitudeAt(velocities[k].time_s)).linear() * velocities[k].value * dt_s;
+    }
+  }
+
+  for (const Timed<NavSample>& sample : attitudes) {
+    NavSample fix = sample.value;
+    fix.time_s = sample.time_s;
+    if (!positions.empty()) fix.position_ned_m = interpolated(positions, sample.time_s);
+    if (!depths.empty()) fix.position_ned_m.z() = interpolated(depths, sample.time_s);
+    nav.track.push_back(fix);
+  }
+  nav.skipped = skipped.count;
+  nav.skip_reasons = std::move(skipped.reasons);
+  std::string frame = any_ned && any_enu ? "NED and ENU (REP 103)" : any_ned ? "NED" : "ENU (REP 103) turned into NED";
+  frame += std::string(", dead reckoning: attitude of ") + nav.topic;
+  frame += velocity.topic != nullptr ? ", velocity of " + velocity.topic->topic : std::string(", no velocity (north, east 0)");
+  frame += pressure.topic != nullptr ? ", depth of " + pressure.topic->topic : std::string(", no pressure");
+  nav.frame = frame;
+  return nav;
+}
+
+}  // namespace sonarmap::detail
