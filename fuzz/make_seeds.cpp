@@ -21,6 +21,7 @@
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/mcap_writer.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
 
 namespace fs = std::filesystem;
@@ -180,6 +181,10 @@ void rosBagSeeds() {
   writeRosBag((g_out / "ros_bag" / "with_odometry_ned_lz4.bag").string(), log, nav,
               {.nav_frame = "odom_ned", .compression = BagCompression::kLz4});
   writeRosBag((g_out / "ros_bag" / "with_imu_dvl_pressure.bag").string(), log, nav, {.odometry = false, .raw_sensors = true});
+  fs::create_directories(g_out / "mcap");
+  writeMcap((g_out / "mcap" / "plain.mcap").string(), log, nav, {.compression = McapCompression::kNone});
+  writeMcap((g_out / "mcap" / "zstd.mcap").string(), log, nav, {.compression = McapCompression::kZstd});
+  writeMcap((g_out / "mcap" / "lz4.mcap").string(), log, {}, {.compression = McapCompression::kLz4});
 }
 
 void cloudSeeds() {

@@ -260,7 +260,7 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
 Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "info", "What a sonar log holds, before mapping it: beams, sweeps, range scales and gains, skipped data");
-  cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag (or any name with --format)")
+  cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag, .mcap (or any name with --format)")
       ->required();
   addLogFormatOption(*cmd, args.format);
   addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic,
@@ -280,7 +280,7 @@ void runInfo(const InfoArgs& args) {
   const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
   const LogSummary summary = summarizeLog(log, navigation ? navigation->track : NavTrack{});
   BagTopics bag;
-  if (format == LogFormat::kRosBag) {
+  if (isRosLog(format)) {
     bag.topics = listRosBagTopics(args.input);
     for (const RosBagTopic& t : bag.topics) {
       if (log.sonar == "ROS topic " + t.topic + " (" + t.type + ")") bag.sonar_topic = t.topic;

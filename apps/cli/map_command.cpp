@@ -27,9 +27,9 @@ void requireNavigation(const MapArgs& args, bool without_navigation) {
 }  // namespace
 
 Command addMapCommand(CLI::App& app, MapArgs& args) {
-  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, .seanet, .bin, .bag, beam .csv) into an occupancy octree (.bt)");
+  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, .seanet, .bin, .bag, .mcap, beam .csv) into an occupancy octree (.bt)");
   cmd->add_option("input", args.input,
-                  "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG, SeaNet .seanet, Ping360 .bin, ROS 1 .bag or beam .csv")
+                  "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG, SeaNet .seanet, Ping360 .bin, ROS 1 .bag, ROS 2 .mcap or beam .csv")
       ->required();
   cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
   // MapArgs (map_options.hpp) has no field for the side view: it lives beside the checked options.
@@ -72,8 +72,8 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                   "a navigation CSV, or TUM format (time x y z qx qy qz qw, NED) when the name ends in .tum or .txt");
   auto check = [&args, checked] {
     // A bag may hold its own navigation: known once it is read (requireNavigation).
-    const bool bag = args.format == "auto" ? logFormatOfPath(args.input) == LogFormat::kRosBag
-                                           : parseLogFormat(args.format) == LogFormat::kRosBag;
+    const std::optional<LogFormat> format = args.format == "auto" ? logFormatOfPath(args.input) : parseLogFormat(args.format);
+    const bool bag = format && isRosLog(*format);
     if (!bag) requireNavigation(args, args.nav_file.empty() || args.nav_file == "none");
     if (!checked->side_png.empty() && !args.volume) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
@@ -132,7 +132,8 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
   requireNavigation(args, !navigation);
   const NavTrack nav = navigation ? navigation->track : NavTrack{};
-  if (navigation && logFormatOfPath(args.nav_file.empty() ? args.input : args.nav_file) == LogFormat::kRosBag) {
+  const std::optional<LogFormat> nav_format = args.nav_file.empty() ? std::optional<LogFormat>(format) : logFormatOfPath(args.nav_file);
+  if (navigation && nav_format && isRosLog(*nav_format)) {
     std::printf("navigation %s: %zu fixes%s\n", navigation->description.c_str(), nav.size(),
                 navigation->skipped > 0 ? (", " + std::to_string(navigation->skipped) + " messages skipped").c_str() : "");
   }

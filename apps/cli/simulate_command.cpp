@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "output_dir.hpp"
+#include "sonarmap/formats/mcap_writer.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -60,9 +61,10 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   OutputDir dir(args.output_dir);
   FileTransaction outputs;
   stageSimulation(outputs, args.output_dir, simulation);
+  const NavTrack& believed = simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning;
+  if (!args.mcap.empty()) outputs.stageBytes(args.mcap, mcapBytes(simulation.log, believed));
   if (!args.bag.empty()) {
-    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning,
-                                             {.raw_sensors = true}));
+    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, believed, {.raw_sensors = true}));
   }
   outputs.commit();
   dir.keep();
@@ -134,6 +136,10 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "sensors it is dead-reckoned from (sensor_msgs/Imu on /imu/data, a DVL's TwistStamped on /dvl/twist, "
                   "sensor_msgs/FluidPressure on /pressure), the simulator's clock as the stamps; `sonarmap map FILE.bag` "
                   "maps it with that navigation");
+  cmd->add_option("--mcap", args.mcap,
+                  "Also write the log as a ROS 2 log in MCAP (zstd chunks, CDR): the beams as "
+                  "micron_driver_ros/msg/ScanLine on /sonar/scan_line, nav.csv's track as nav_msgs/msg/Odometry on "
+                  "/odometry (ENU, REP 103); `sonarmap map FILE.mcap` maps it with that navigation");
   cmd->add_option("--seed", args.seed, "Seed of the speckle and noise: a seed always gives the same files")
       ->capture_default_str();
   cmd->add_option("--turns", args.turns,

@@ -24,6 +24,7 @@ struct SimulateArgs : SimulationArguments {
   std::string output_dir;
   bool quiet = false;  ///< -q: no progress bar
   std::string bag;     ///< --bag: also the log and its believed navigation as a ROS 1 bag (empty: none)
+  std::string mcap;    ///< --mcap: also as a ROS 2 log in MCAP (empty: none)
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.

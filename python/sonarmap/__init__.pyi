@@ -188,7 +188,13 @@ class SonarLog:
     def write_csv(self, path: PathLike) -> None: ...
     def __len__(self) -> int: ...
 
-def read_sonar_log(path: PathLike, format: str = "auto") -> SonarLog: ...
+def read_sonar_log(
+    path: PathLike,
+    format: str = "auto",
+    sonar_topic: str = "",
+    bearing_unit: str = "auto",
+    bearing_direction: str = "cw",
+) -> SonarLog: ...
 
 class PolarImage:
     def __init__(

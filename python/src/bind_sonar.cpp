@@ -82,13 +82,14 @@ py::array_t<std::int64_t> sweepArray(const std::vector<SweepRange>& sweeps) {
   return out;
 }
 
-PySonarLog readLog(const std::filesystem::path& file, const std::string& format) {
+PySonarLog readLog(const std::filesystem::path& file, const std::string& format, const std::string& sonar_topic,
+                   const std::string& bearing_unit, const std::string& bearing_direction) {
   const std::string path = file.string();
   PySonarLog out;
   const LogFormat log_format = inputFormat(path, format);
   {
     py::gil_scoped_release release;
-    out.log = readSonarLog(path, log_format);
+    out.log = readSonarLog(path, log_format, LogReadOptions{sonar_topic, bearing_unit, bearing_direction});
   }
   out.format = std::string(logFormatName(log_format));
   out.beam = nominalBeam(log_format);
@@ -316,7 +317,7 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
       .def_property_readonly("skip_reasons", [](const PySonarLog& log) { return log.log.skip_reasons; },
                              "One line per skipped beam.")
       .def_property_readonly("format", [](const PySonarLog& log) { return log.format; },
-                             "The format read (\"mat\", \"csv\", \"v4log\", \"seanet\", \"ping360\", \"rosbag\") or \"simulated\".")
+                             "The format read (\"mat\", \"csv\", \"v4log\", \"seanet\", \"ping360\", \"rosbag\", \"mcap\") or \"simulated\".")
       .def_property_readonly(
           "nominal_beam_deg",
           [](const PySonarLog& log) {
@@ -340,12 +341,16 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
                ", skipped_beams=" + std::to_string(log.log.skipped_beams) + ")";
       });
 
-  m.def("read_sonar_log", &readLog, py::arg("path"), py::arg("format") = "auto",
+  m.def("read_sonar_log", &readLog, py::arg("path"), py::arg("format") = "auto", py::arg("sonar_topic") = "",
+        py::arg("bearing_unit") = "auto", py::arg("bearing_direction") = "cw",
         R"doc(Reads a sonar log: CRAS Micron ``.mat``, beam ``.csv``, SeaNet ``.V4LOG``, raw SeaNet capture
-``.seanet``, Ping360 ``.bin`` (by extension, any case), or any name with ``format`` = "mat", "csv",
-"v4log", "seanet", "ping360", "rosbag" (the CLI's --format). Malformed beams are dropped and counted
-(skipped_beams). Returns sonarmap.SonarLog. Raises sonarmap.FileError for an unknown extension or a
-file the reader rejects; sonarmap.ValueError for an unknown format name.)doc");
+``.seanet``, Ping360 ``.bin``, ROS 1 bag ``.bag``, ROS 2 MCAP ``.mcap`` (by extension, any case), or any
+name with ``format`` = "mat", "csv", "v4log", "seanet", "ping360", "rosbag", "mcap" (the CLI's --format).
+For a ROS log: ``sonar_topic`` (default: found by its fields), ``bearing_unit`` "auto" | "deg" | "rad" |
+"grad" and ``bearing_direction`` "cw" | "ccw" (the CLI's --sonar-topic, --bearing-unit,
+--bearing-direction; docs/formats.md). Malformed beams are dropped and counted (skipped_beams). Returns
+sonarmap.SonarLog. Raises sonarmap.FileError for an unknown extension or a file the reader rejects;
+sonarmap.ValueError for an unknown format name, bearing unit or direction.)doc");
 
   py::class_<PolarImage>(m, "PolarImage", R"doc(
 The polar image of consecutive beams (C++ sonarmap::PolarImage; paper §2.1, Fig. 3): row r is

@@ -24,12 +24,13 @@ struct FormatNames {
   std::string_view extension;  ///< lower case, with the dot
 };
 
-constexpr std::array<FormatNames, 6> kFormats{{{LogFormat::kMat, "mat", ".mat"},
+constexpr std::array<FormatNames, 7> kFormats{{{LogFormat::kMat, "mat", ".mat"},
                                                {LogFormat::kCsv, "csv", ".csv"},
                                                {LogFormat::kV4Log, "v4log", ".v4log"},
                                                {LogFormat::kSeaNet, "seanet", ".seanet"},
                                                {LogFormat::kPing360, "ping360", ".bin"},
-                                               {LogFormat::kRosBag, "rosbag", ".bag"}}};
+                                               {LogFormat::kRosBag, "rosbag", ".bag"},
+                                               {LogFormat::kMcap, "mcap", ".mcap"}}};
 
 std::string lowerCase(std::string_view text) {
   std::string lower(text);
@@ -44,7 +45,7 @@ LogFormat parseLogFormat(std::string_view name) {
   for (const FormatNames& entry : kFormats) {
     if (entry.name == lower) return entry.format;
   }
-  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet, ping360 or rosbag");
+  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet, ping360, rosbag or mcap");
 }
 
 NominalBeam nominalBeam(LogFormat format) {
@@ -76,6 +77,7 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
     case LogFormat::kSeaNet: return readSeaNetCapture(path);
     case LogFormat::kPing360: return readPing360(path);
     case LogFormat::kRosBag:
+    case LogFormat::kMcap:  // the reader tells the two apart by their first bytes
       return readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
                                             parseBearingDirection(options.bearing_direction)});
   }
@@ -86,7 +88,7 @@ SonarLog readSonarLog(const std::string& path) {
   const std::optional<LogFormat> format = logFormatOfPath(path);
   if (!format) {
     throw FileError("'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() +
-                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) or .bag (ROS 1)");
+                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) .bag (ROS 1) or .mcap (ROS 2)");
   }
   return readSonarLog(path, *format);
 }

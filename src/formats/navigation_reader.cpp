@@ -22,7 +22,7 @@ NavigationSource fromBag(const std::string& path, RosBagNavigation nav) {
 }  // namespace
 
 NavigationSource readNavigation(const std::string& path, const std::string& nav_topic) {
-  if (logFormatOfPath(path) == LogFormat::kRosBag) {
+  if (const auto format = logFormatOfPath(path); format && isRosLog(*format)) {
     std::optional<RosBagNavigation> nav = readRosBagNavigation(path, RosBagNavOptions{nav_topic});
     if (!nav) {
       throw FileError("'" + path + "': ROS bag: no topic holds a pose (nav_msgs/Odometry, geometry_msgs/PoseStamped or "
@@ -37,7 +37,7 @@ NavigationSource readNavigation(const std::string& path, const std::string& nav_
 }
 
 std::optional<NavigationSource> readLogNavigation(const std::string& log_path, LogFormat format, const std::string& nav_topic) {
-  if (format != LogFormat::kRosBag) return std::nullopt;
+  if (!isRosLog(format)) return std::nullopt;
   std::optional<RosBagNavigation> nav = readRosBagNavigation(log_path, RosBagNavOptions{nav_topic});
   if (!nav) return std::nullopt;
   return fromBag(log_path, std::move(*nav));

@@ -14,6 +14,37 @@ namespace sonarmap::detail {
 void failBag(const std::string& path, const std::string& what) { throw FileError("'" + path + "': ROS bag: " + what); }
 
 RosBagFile::RosBagFile(const std::string& path) : path_(path) {
+  if (startsLikeMcap(path)) {
+    // MCAP: a topic's channels grouped; ROS 2 messages (a ros2msg schema, cdr) and ROS 1 ones
+    // (ros1msg, ros1) are read; others (protobuf, JSON) are listed without a definition.
+    mcap_ = std::make_unique<McapFile>(path);
+    for (const auto& [id, channel] : mcap_->channels()) {
+      const auto schema = mcap_->schemas().find(channel.schema_id);
+      std::size_t index = topics_.size();
+      for (std::size_t i = 0; i < topics_.size(); ++i) {
+        if (topics_[i].topic == channel.topic) index = i;
+      }
+      if (index == topics_.size()) {
+        RosBagTopic topic;
+        topic.topic = channel.topic;
+        topic.type = schema != mcap_->schemas().end() ? schema->second.name : std::string("(no schema)");
+        topics_.push_back(topic);
+        const bool ros2 = schema != mcap_->schemas().end() && schema->second.encoding == "ros2msg" && channel.message_encoding == "cdr";
+        const bool ros1 = schema != mcap_->schemas().end() && schema->second.encoding == "ros1msg" && channel.message_encoding == "ros1";
+        definitions_.push_back(ros1 || ros2 ? schema->second.data : std::string());
+        encodings_.push_back(ros2 ? RosEncoding::kCdr : RosEncoding::kRos1);
+        channels_.emplace_back();
+      }
+      RosBagTopic& topic = topics_[index];
+      if (channel.messages > 0) {
+        topic.first_s = topic.messages == 0 ? channel.first_s : std::min(topic.first_s, channel.first_s);
+        topic.last_s = topic.messages == 0 ? channel.last_s : std::max(topic.last_s, channel.last_s);
+      }
+      topic.messages += channel.messages;
+      channels_[index].push_back(id);
+    }
+    return;
+  }
   checkBagRecords(path);
   bag_ = std::make_unique<rosbag::Bag>(path, rosbag::bagmode::Read);
   rosbag::View everything(*bag_);
@@ -32,19 +63,31 @@ RosBagFile::RosBagFile(const std::string& path) : path_(path) {
     }
     topics_.push_back(topic);
     definitions_.push_back(connection->msg_def);
+    encodings_.push_back(RosEncoding::kRos1);
+    channels_.emplace_back();
   }
 }
 
 RosBagFile::~RosBagFile() = default;
 
-const std::string& RosBagFile::definition(const RosBagTopic& topic) const {
+std::size_t RosBagFile::indexOf(const std::string& topic) const {
   for (std::size_t i = 0; i < topics_.size(); ++i) {
-    if (topics_[i].topic == topic.topic) return definitions_[i];
+    if (topics_[i].topic == topic) return i;
   }
-  fail("no topic " + topic.topic);
+  fail("no topic " + topic);
 }
 
-void RosBagFile::fail(const std::string& what) const { failBag(path_, what); }
+const std::string& RosBagFile::definition(const RosBagTopic& topic) const { return definitions_[indexOf(topic.topic)]; }
+
+RosSchema RosBagFile::schema(const RosBagTopic& topic) const {
+  const std::size_t i = indexOf(topic.topic);
+  return RosSchema(topic.type, definitions_[i], encodings_[i]);
+}
+
+void RosBagFile::fail(const std::string& what) const {
+  if (mcap_) throw FileError("'" + path_ + "': MCAP: " + what);
+  failBag(path_, what);
+}
 
 std::string RosBagFile::listing() const {
   std::string out;
@@ -58,8 +101,20 @@ std::string RosBagFile::listing() const {
 RosSkipped RosBagFile::forEachMessage(const std::string& topic, const RosSchema& schema,
                                       const std::function<void(const RosValue&, double)>& use) {
   RosSkipped skipped;
-  std::vector<std::uint8_t> bytes;
   std::size_t index = 0;
+  if (mcap_) {
+    mcap_->forEachMessage(channels_[indexOf(topic)], [&](const std::vector<std::uint8_t>& data, double time_s) {
+      ++index;
+      try {
+        use(decodeRosMessage(schema, data), time_s);
+      } catch (const Error& error) {
+        ++skipped.count;
+        skipped.reasons.push_back("message " + std::to_string(index) + " of " + topic + ": " + error.what());
+      }
+    });
+    return skipped;
+  }
+  std::vector<std::uint8_t> bytes;
   for (const rosbag::MessageInstance& message : rosbag::View(*bag_, rosbag::TopicQuery(topic))) {
     ++index;
     try {

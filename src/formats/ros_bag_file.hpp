@@ -1,9 +1,11 @@
 #pragma once
 /// @file ros_bag_file.hpp
-/// Private to formats: a ROS 1 bag opened for reading, shared by the sonar reader
-/// (ros_bag_reader.cpp) and the navigation reader (ros_bag_navigation.cpp). The file is checked
-/// first (ros_bag_check.hpp), then opened with Debian's rosbag_storage; each topic's messages are
-/// decoded from the definition its connection stores (ros_message.hpp).
+/// Private to formats: a ROS log opened for reading, shared by the sonar reader
+/// (ros_bag_reader.cpp) and the navigation readers (ros_bag_navigation.cpp,
+/// ros_inertial_navigation.cpp): a ROS 1 bag (checked first, ros_bag_check.hpp, then opened with
+/// Debian's rosbag_storage) or an MCAP file (ROS 2's storage, mcap_file.hpp), told apart by their
+/// first bytes. Each topic's messages are decoded from the definition the file stores with it
+/// (ros_message.hpp), ROS 1 serialized or CDR.
 
 #include <cstddef>
 #include <functional>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mcap_file.hpp"
 #include "ros_message.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 
@@ -28,8 +31,9 @@ struct RosSkipped {
 
 class RosBagFile {
  public:
-  /// Checks and opens the bag at `path`.
-  /// @throws FileError naming the file for a file that is no readable ROS 1 bag (format 2.0).
+  /// Checks and opens the ROS 1 bag or MCAP file at `path`.
+  /// @throws FileError naming the file for a file that is neither a readable ROS 1 bag (format
+  ///         2.0) nor a readable MCAP file.
   explicit RosBagFile(const std::string& path);
   ~RosBagFile();
   RosBagFile(const RosBagFile&) = delete;
@@ -39,6 +43,9 @@ class RosBagFile {
   /// connection stores none).
   const std::vector<RosBagTopic>& topics() const { return topics_; }
   const std::string& definition(const RosBagTopic& topic) const;
+  /// The topic's message types parsed from its definition, in its encoding (ROS 1 or CDR).
+  /// @throws Error when the definition does not parse.
+  RosSchema schema(const RosBagTopic& topic) const;
 
   /// Calls `use(message, record_time_s)` for each message of `topic`, in the bag's time order,
   /// each decoded with `schema`. A message that does not decode, or that `use` rejects by throwing
@@ -46,16 +53,21 @@ class RosBagFile {
   RosSkipped forEachMessage(const std::string& topic, const RosSchema& schema,
                             const std::function<void(const RosValue&, double)>& use);
 
-  /// Throws FileError("'PATH': ROS bag: WHAT").
+  /// Throws FileError("'PATH': ROS bag: WHAT") (or "MCAP:").
   [[noreturn]] void fail(const std::string& what) const;
   /// "TOPIC (TYPE), ..." of every topic (for errors that list them).
   std::string listing() const;
 
  private:
+  std::size_t indexOf(const std::string& topic) const;
+
   std::string path_;
-  std::unique_ptr<rosbag::Bag> bag_;
+  std::unique_ptr<rosbag::Bag> bag_;  ///< a ROS 1 bag's
+  std::unique_ptr<McapFile> mcap_;    ///< an MCAP file's
   std::vector<RosBagTopic> topics_;
   std::vector<std::string> definitions_;
+  std::vector<RosEncoding> encodings_;
+  std::vector<std::vector<std::uint16_t>> channels_;  ///< an MCAP topic's channels
 };
 
 /// Runs `read` and turns what rosbag_storage, boost and the decoder throw into FileError naming

@@ -97,7 +97,7 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
       named = true;
       const std::string& definition = bag.definition(topic);
       if (definition.empty()) continue;
-      const RosSchema schema(topic.type, definition);
+      const RosSchema schema = bag.schema(topic);
       std::vector<std::string> found = posePath(schema);
       if (!found.empty()) candidates.push_back({&topic, std::move(found)});
     }
@@ -110,7 +110,8 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
     }
     if (candidates.empty()) return detail::inertialNavigation(bag, options);
     std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-      const bool a_odometry = a.topic->type == "nav_msgs/Odometry", b_odometry = b.topic->type == "nav_msgs/Odometry";
+      auto odometry = [](const RosBagTopic* t) { return t->type == "nav_msgs/Odometry" || t->type == "nav_msgs/msg/Odometry"; };
+      const bool a_odometry = odometry(a.topic), b_odometry = odometry(b.topic);
       if (a_odometry != b_odometry) return a_odometry;
       return a.topic->messages > b.topic->messages;
     });
@@ -118,7 +119,7 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
     RosBagNavigation nav;
     nav.topic = chosen.topic->topic;
     nav.type = chosen.topic->type;
-    const RosSchema schema(chosen.topic->type, bag.definition(*chosen.topic));
+    const RosSchema schema = bag.schema(*chosen.topic);
     bool any_ned = false, any_enu = false;
     const detail::RosSkipped skipped = bag.forEachMessage(nav.topic, schema, [&](const RosValue& message, double time_s) {
       bool ned = false;

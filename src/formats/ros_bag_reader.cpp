@@ -160,7 +160,7 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
         if (candidate.topic == options.sonar_topic) bag.fail("the connection of " + candidate.topic + " has no message definition");
         continue;
       }
-      RosSchema parsed(candidate.type, definition);
+      RosSchema parsed = bag.schema(candidate);
       fields = sonarFields(parsed);
       if (fields) {
         schema = std::move(parsed);

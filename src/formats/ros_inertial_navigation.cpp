@@ -91,7 +91,7 @@ Role findRole(RosBagFile& bag, Matches&& matches) {
   for (const RosBagTopic& topic : bag.topics()) {
     const std::string& definition = bag.definition(topic);
     if (definition.empty()) continue;
-    RosSchema schema(topic.type, definition);
+    RosSchema schema = bag.schema(topic);
     std::vector<std::string> path = matches(schema);
     if (!path.empty()) return Role{&topic, std::move(path), std::move(schema)};
   }

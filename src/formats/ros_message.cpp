@@ -1,5 +1,5 @@
 /// @file ros_message.cpp
-/// ROS 1 message definitions and their serialized messages (see ros_message.hpp).
+/// ROS message definitions and their serialized messages, ROS 1 and CDR (see ros_message.hpp).
 
 #include "ros_message.hpp"
 
@@ -38,12 +38,34 @@ std::string packageOf(const std::string& type) {
   return slash == std::string::npos ? std::string() : type.substr(0, slash);
 }
 
-/// Parses one field line ("float32[] ranges", "uint8[16] id"); false for a constant.
-bool parseField(const std::string& line, const std::string& package, RosField& field) {
+/// A ROS 2 type name as a ROS 1 one: "pkg/msg/Name" is "pkg/Name"; builtin_interfaces' Time and
+/// Duration are the builtins time and duration (the same two 32-bit integers); a bounded string
+/// "string<=N" is a string and a bounded sequence "T[<=N]" a sequence (rosidl's interface
+/// definition: design.ros2.org/articles/legacy_interface_definition.html).
+std::string ros2Name(const std::string& type) {
+  const auto open = type.find('[');
+  std::string base = type.substr(0, open);
+  std::string suffix = open == std::string::npos ? std::string() : type.substr(open);
+  if (suffix.rfind("[<=", 0) == 0) suffix = "[]";
+  base = base.substr(0, base.find("<="));
+  if (const auto msg = base.find("/msg/"); msg != std::string::npos) base.erase(msg, 4);
+  if (base == "builtin_interfaces/Time") base = "time";
+  if (base == "builtin_interfaces/Duration") base = "duration";
+  return base + suffix;
+}
+
+/// Parses one field line ("float32[] ranges", "uint8[16] id"; ROS 2: a default value may follow
+/// the name); false for a constant.
+bool parseField(const std::string& line, const std::string& package, RosEncoding encoding, RosField& field) {
   std::istringstream words(line);
   std::string type, name;
   if (!(words >> type >> name)) throw Error("the message definition line '" + line + "' is not TYPE NAME");
-  if (line.find('=') != std::string::npos) return false;  // a constant: not in the serialized message
+  // A constant ("int32 X=1", "int32 X = 1") is not in the serialized message; a ROS 2 default
+  // value ("int32 x 5", "string s \"a=b\"") is.
+  const auto after_name = line.find(name, line.find(type) + type.size()) + name.size();
+  const auto next = line.find_first_not_of(" \t", after_name);
+  if (name.find('=') != std::string::npos || (next != std::string::npos && line[next] == '=')) return false;
+  if (encoding == RosEncoding::kCdr) type = ros2Name(type);
   field.array = -1;
   if (const auto open = type.find('['); open != std::string::npos) {
     const auto close = type.find(']', open);
@@ -65,13 +87,21 @@ bool parseField(const std::string& line, const std::string& package, RosField& f
   return true;
 }
 
-/// Reads the message bytes in order.
+/// Reads the message bytes in order; in CDR each number is first aligned to its size (at most 8)
+/// from `origin`, the byte after the encapsulation header (OMG's CDR, DDS-XTYPES 1.3, 7.4.3.2).
 class Reader {
  public:
-  explicit Reader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  Reader(std::span<const std::uint8_t> bytes, bool cdr, std::size_t origin) : bytes_(bytes), at_(origin), origin_(origin), cdr_(cdr) {}
   template <class T>
   T take(const std::string& what) {
     T value;
+    if (cdr_) {
+      const std::size_t misaligned = (at_ - origin_) % sizeof(T);
+      if (misaligned != 0) {
+        need(sizeof(T) - misaligned, what);
+        at_ += sizeof(T) - misaligned;
+      }
+    }
     need(sizeof(T), what);
     std::memcpy(&value, bytes_.data() + at_, sizeof(T));  // ROS 1 and this machine: little-endian
     at_ += sizeof(T);
@@ -84,6 +114,7 @@ class Reader {
     return out;
   }
   std::size_t remaining() const { return bytes_.size() - at_; }
+  bool cdr() const { return cdr_; }
 
  private:
   void need(std::size_t count, const std::string& what) const {
@@ -94,6 +125,8 @@ class Reader {
   }
   std::span<const std::uint8_t> bytes_;
   std::size_t at_ = 0;
+  std::size_t origin_ = 0;
+  bool cdr_ = false;
 };
 
 RosValue decodeType(const RosSchema& schema, const std::string& type, Reader& in, const std::string& path, int depth);
@@ -110,7 +143,12 @@ RosValue decodeBuiltin(const std::string& type, Reader& in, const std::string& p
   if (type == "float32") return {static_cast<double>(in.take<float>(path))};
   if (type == "float64") return {in.take<double>(path)};
   if (type == "time" || type == "duration") {
-    // time: uint32 seconds and nanoseconds; duration: int32 both.
+    // time: uint32 seconds and nanoseconds; duration: int32 both. ROS 2 (builtin_interfaces): an
+    // int32 sec and a uint32 nanosec for both.
+    if (in.cdr()) {
+      const double seconds = in.take<std::int32_t>(path);
+      return {seconds + 1e-9 * in.take<std::uint32_t>(path)};
+    }
     if (type == "time") {
       const double seconds = in.take<std::uint32_t>(path);
       return {seconds + 1e-9 * in.take<std::uint32_t>(path)};
@@ -118,10 +156,12 @@ RosValue decodeBuiltin(const std::string& type, Reader& in, const std::string& p
     const double seconds = in.take<std::int32_t>(path);
     return {seconds + 1e-9 * in.take<std::int32_t>(path)};
   }
-  // string
+  // string: a uint32 length, then the bytes (CDR: the length counts a terminating NUL)
   const auto length = in.take<std::uint32_t>(path);
   const auto text = in.takeBytes(length, path);
-  return {std::string(text.begin(), text.end())};
+  std::string out(text.begin(), text.end());
+  if (in.cdr() && !out.empty() && out.back() == '\0') out.pop_back();
+  return {std::move(out)};
 }
 
 RosValue decodeField(const RosSchema& schema, const RosField& field, Reader& in, const std::string& path, int depth) {
@@ -160,21 +200,23 @@ bool RosSchema::isBuiltin(const std::string& type) {
   return false;
 }
 
-RosSchema::RosSchema(const std::string& type, const std::string& definition) : root_(type) {
+RosSchema::RosSchema(const std::string& type, const std::string& definition, RosEncoding encoding)
+    : root_(encoding == RosEncoding::kCdr ? ros2Name(type) : type), encoding_(encoding) {
   std::istringstream lines(definition);
-  std::string line, current = type;
-  std::vector<RosField>* fields = &types_[type];
+  std::string line, current = root_;
+  std::vector<RosField>* fields = &types_[root_];
   while (std::getline(lines, line)) {
     line = trimmed(line.substr(0, line.find('#')));
     if (line.empty()) continue;
     if (line.find_first_not_of('=') == std::string::npos) continue;  // the separator before a section
     if (line.rfind("MSG:", 0) == 0) {
       current = trimmed(line.substr(4));
+      if (encoding == RosEncoding::kCdr) current = ros2Name(current);
       fields = &types_[current];
       continue;
     }
     RosField field;
-    if (parseField(line, packageOf(current), field)) fields->push_back(field);
+    if (parseField(line, packageOf(current), encoding, field)) fields->push_back(field);
   }
   for (const auto& [name, list] : types_) {
     for (const RosField& field : list) {
@@ -202,9 +244,17 @@ const RosValue* RosValue::field(const std::string& name) const {
 }
 
 RosValue decodeRosMessage(const RosSchema& schema, std::span<const std::uint8_t> bytes) {
-  Reader in(bytes);
+  const bool cdr = schema.encoding() == RosEncoding::kCdr;
+  if (cdr) {
+    // The encapsulation header: 0x00 0x01 is plain CDR, little-endian; 0x00 0x00 big-endian.
+    if (bytes.size() < 4) throw Error("the message is shorter than its CDR encapsulation header");
+    if (bytes[0] != 0x00 || bytes[1] != 0x01) {
+      throw Error("the message's CDR encapsulation is not little-endian plain CDR (0x00 0x01)");
+    }
+  }
+  Reader in(bytes, cdr, cdr ? 4 : 0);
   RosValue message = decodeType(schema, schema.root(), in, "", 0);
-  if (in.remaining() != 0) {
+  if (in.remaining() > (cdr ? 3u : 0u)) {  // CDR pads a message to a multiple of 4 bytes
     throw Error(std::to_string(in.remaining()) + " bytes remain after the " + schema.root() + " message");
   }
   return message;

@@ -1,12 +1,16 @@
 #pragma once
 /// @file ros_message.hpp
-/// Private to formats: ROS 1 messages read from the definitions a bag stores with each connection
-/// (the `message_definition` of the connection header), so that a driver's own message needs no
-/// compiled package. Sources: the ROS msg format (wiki.ros.org/msg: field and constant lines,
-/// `Header` as std_msgs/Header, a type without a package taken from the message's own package) and
-/// the ROS 1 serialization (wiki.ros.org/roscpp/Overview/MessagesSerializationAndAdaptingTypes:
-/// little-endian, no padding, a string or a variable-length array as a uint32 count and its
-/// elements, a fixed-length array as its elements alone, time and duration as two 32-bit integers).
+/// Private to formats: ROS messages read from the definitions a log stores with each topic (a ROS 1
+/// bag's connection `message_definition`, an MCAP file's `ros2msg` schema), so that a driver's own
+/// message needs no compiled package. Sources: the ROS msg format (wiki.ros.org/msg: field and
+/// constant lines, `Header` as std_msgs/Header, a type without a package taken from the message's
+/// own package; ROS 2's adds `pkg/msg/Name`, bounded strings and sequences and default values:
+/// design.ros2.org/articles/legacy_interface_definition.html); the ROS 1 serialization
+/// (wiki.ros.org/roscpp/Overview/MessagesSerializationAndAdaptingTypes: little-endian, no padding,
+/// a string or a variable-length array as a uint32 count and its elements, a fixed-length array as
+/// its elements alone, time and duration as two 32-bit integers); ROS 2's CDR (OMG CDR as DDS-XTYPES
+/// 1.3 section 7.4.3 lays it out: a 4-byte encapsulation header, each number aligned to its size,
+/// strings counting their terminating NUL).
 
 #include <cstdint>
 #include <map>
@@ -24,6 +28,9 @@ struct RosField {
   int array = -1;     ///< −1: not an array; 0: variable length; > 0: fixed length
 };
 
+/// How a log serializes its messages: ROS 1's, or CDR (ROS 2).
+enum class RosEncoding { kRos1, kCdr };
+
 /// The message types of one connection: its top type and every type it uses.
 class RosSchema {
  public:
@@ -32,9 +39,12 @@ class RosSchema {
   /// '=' another; comments (#) and constants (TYPE NAME=VALUE) are dropped.
   /// @throws Error (core/errors.hpp) naming the line for a field that does not parse, or a field
   ///         whose message type the definition does not define.
-  RosSchema(const std::string& type, const std::string& definition);
+  /// With kCdr, ROS 2 names are read as ROS 1 ones ("pkg/msg/Name" as "pkg/Name",
+  /// builtin_interfaces/Time as time), bounds dropped and default values ignored.
+  RosSchema(const std::string& type, const std::string& definition, RosEncoding encoding = RosEncoding::kRos1);
 
   const std::string& root() const { return root_; }
+  RosEncoding encoding() const { return encoding_; }
   /// The fields of message type `type`, in order.
   /// @throws Error when the schema does not define it.
   const std::vector<RosField>& fields(const std::string& type) const;
@@ -43,6 +53,7 @@ class RosSchema {
 
  private:
   std::string root_;
+  RosEncoding encoding_ = RosEncoding::kRos1;
   std::map<std::string, std::vector<RosField>> types_;
 };
 
@@ -63,7 +74,7 @@ struct RosValue {
   const RosValue* field(const std::string& name) const;
 };
 
-/// Decodes one serialized message of the schema's root type.
+/// Decodes one serialized message of the schema's root type, in the schema's encoding.
 /// @throws Error naming the field when the bytes end before the message does, or when bytes remain
 ///         after it.
 RosValue decodeRosMessage(const RosSchema& schema, std::span<const std::uint8_t> bytes);

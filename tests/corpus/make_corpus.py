@@ -531,6 +531,63 @@ def ros_bag_files():
                                                        [odometry(i, (0.1 * i, 0, 0), (0, 0, 0, 1)) for i in range(3)])])}
 
 
+# ---- ROS 2 logs in MCAP (mcap.dev/spec, version 0; CDR messages, ros2msg schemas) ------------------
+
+MCAP_MAGIC = b"\x89MCAP0\r\n"
+SCAN_LINE_2 = (b"std_msgs/Header header\nfloat32 angle\nfloat32 bin_distance_step\nmicron_driver_ros/IntensityBin[] bins\n"
+               + b"=" * 80 + b"\nMSG: std_msgs/Header\nbuiltin_interfaces/Time stamp\nstring frame_id\n"
+               + b"=" * 80 + b"\nMSG: builtin_interfaces/Time\nint32 sec\nuint32 nanosec\n"
+               + b"=" * 80 + b"\nMSG: micron_driver_ros/IntensityBin\nfloat32 distance\nuint8 intensity\n")
+
+
+def mcap_record(opcode, content):
+    return struct.pack("<BQ", opcode, len(content)) + content
+
+
+def mcap_text(value):
+    return struct.pack("<I", len(value)) + value
+
+
+def cdr_scan_line(seq, angle_deg, intensities, step=0.05, encapsulation=b"\x00\x01\x00\x00"):
+    """A micron_driver_ros/msg/ScanLine in plain little-endian CDR (each number aligned to its size)."""
+    out = struct.pack("<iI", 1000 + seq, 0) + struct.pack("<I", 6) + b"sonar\x00"
+    out += b"\x00" * (-len(out) % 4) + struct.pack("<ffI", angle_deg, step, len(intensities))
+    for i, value in enumerate(intensities):
+        out += b"\x00" * (-len(out) % 4) + struct.pack("<fB", (i + 0.5) * step, value)
+    return encapsulation + out
+
+
+def mcap_file(messages, definition=SCAN_LINE_2, compression=b"", pack=lambda data: data, size=None):
+    """An MCAP file of one schema, one channel and one chunk holding `messages` (CDR bytes)."""
+    schema = mcap_record(0x03, struct.pack("<H", 1) + mcap_text(b"micron_driver_ros/msg/ScanLine") + mcap_text(b"ros2msg")
+                         + mcap_text(definition))
+    channel = mcap_record(0x04, struct.pack("<HH", 1, 1) + mcap_text(b"/sonar") + mcap_text(b"cdr") + struct.pack("<I", 0))
+    records = b"".join(mcap_record(0x05, struct.pack("<HIQQ", 1, i, (1000 + i) * 10**9, (1000 + i) * 10**9) + m)
+                       for i, m in enumerate(messages))
+    packed = pack(records)
+    chunk = mcap_record(0x06, struct.pack("<QQQI", 1000 * 10**9, (1000 + len(messages)) * 10**9,
+                                          len(records) if size is None else size, 0)
+                        + mcap_text(compression) + struct.pack("<Q", len(packed)) + packed)
+    end = mcap_record(0x0F, struct.pack("<I", 0)) + mcap_record(0x02, struct.pack("<QQI", 0, 0, 0))
+    return MCAP_MAGIC + mcap_record(0x01, mcap_text(b"ros2") + mcap_text(b"corpus")) + schema + channel + chunk + end + MCAP_MAGIC
+
+
+def mcap_files():
+    beams = [cdr_scan_line(i, 1.8 * i, [0, 2, 9, 180, 120, 40]) for i in range(3)]
+    small = mcap_file(beams)
+    past_end = bytearray(small)
+    past_end[len(MCAP_MAGIC) + 1:len(MCAP_MAGIC) + 9] = struct.pack("<Q", 2**40)  # the header record's length
+    return {
+        "mcap_text.mcap": b"\x89MCAP but not really\n",
+        "mcap_truncated.mcap": small[:len(small) // 2],
+        "mcap_record_past_end.mcap": bytes(past_end),
+        "mcap_unknown_compression.mcap": mcap_file(beams, compression=b"zip"),
+        "mcap_huge_chunk.mcap": mcap_file(beams, size=4_000_000_000),
+        "mcap_bad_definition.mcap": mcap_file(beams, definition=b"float32\n"),
+        "mcap_big_endian.mcap": mcap_file([cdr_scan_line(0, 0.0, [1, 2], encapsulation=b"\x00\x00\x00\x00")]),
+    }, {"scan_small.mcap": small}
+
+
 # ---- text readers fed bytes that are not text ------------------------------------------------------
 
 def binary_text_files():
@@ -551,7 +608,7 @@ def main():
         for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
             shutil.copyfile(text, folder / text.name)
     for make in (mat_files, v4_files, seanet_files, ping360_files, real_viewer_files, graph_files, bt_files,
-                 ot_files, ros_bag_files, binary_text_files):
+                 ot_files, ros_bag_files, mcap_files, binary_text_files):
         for kind, files in zip(("broken", "valid"), make()):
             for name, data in files.items():
                 (out / kind / name).write_bytes(data)

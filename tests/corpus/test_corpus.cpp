@@ -219,7 +219,7 @@ constexpr Seed kSeeds[] = {
     {"viewer_small_utf16.bin", "map"}, {"viewer_locale_digits.bin", "map"}, {"viewer_chunked.bin", "map"},
     {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
     {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
-    {"bag_miniking.bag", "map"},
+    {"bag_miniking.bag", "map"},     {"scan_small.mcap", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

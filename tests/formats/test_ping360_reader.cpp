@@ -267,19 +267,20 @@ TEST(formatsPingViewerLog, ReadPing360TellsALogFromAStreamAndReadSonarLogTakesTh
 
 TEST(formatsLogFormat, NamesAndExtensions) {
   for (const LogFormat format : {LogFormat::kMat, LogFormat::kCsv, LogFormat::kV4Log, LogFormat::kSeaNet, LogFormat::kPing360,
-                                  LogFormat::kRosBag}) {
+                                  LogFormat::kRosBag, LogFormat::kMcap}) {
     EXPECT_EQ(parseLogFormat(logFormatName(format)), format);
   }
   EXPECT_EQ(logFormatOfPath("a/b.V4LOG"), LogFormat::kV4Log);
   EXPECT_EQ(logFormatOfPath("x.seanet"), LogFormat::kSeaNet);
   EXPECT_EQ(logFormatOfPath("20250101-120000000.bin"), LogFormat::kPing360);
   EXPECT_EQ(logFormatOfPath("2014-07-18-20-59-31.BAG"), LogFormat::kRosBag);
+  EXPECT_EQ(logFormatOfPath("rosbag2_2024_05_01/rosbag2_0.mcap"), LogFormat::kMcap);
   EXPECT_EQ(logFormatOfPath("x.txt"), std::nullopt);
   try {
     parseLogFormat("micron");
     ADD_FAILURE() << "no ValueError for an unknown format name";
   } catch (const ValueError& e) {
-    EXPECT_TRUE(contains(e.what(), "'micron', expected mat, csv, v4log, seanet, ping360 or rosbag")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "'micron', expected mat, csv, v4log, seanet, ping360, rosbag or mcap")) << e.what();
   }
 }
 

@@ -109,3 +109,17 @@ def test_simulated_bag_maps_with_its_own_navigation_as_the_cli_does(cli, tmp_pat
     assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
     with pytest.raises(sonarmap.FileError, match="no topic /odom"):
         sonarmap.read_navigation(bag, nav_topic="/odom")
+
+
+def test_simulated_mcap_reads_as_its_csv(cli, tmp_path):
+    mcap = tmp_path / "run.mcap"
+    cli("simulate", "tank", "-o", tmp_path / "sim", "--turns", "1", "--mcap", mcap, "-q")
+    from_mcap = sonarmap.read_sonar_log(mcap)
+    from_csv = sonarmap.read_sonar_log(str(tmp_path / "sim" / "beams.csv"))
+    assert from_mcap.format == "mcap"
+    assert np.array_equal(from_mcap.intensities, from_csv.intensities)
+    mirrored = sonarmap.read_sonar_log(mcap, bearing_direction="ccw")
+    total = mirrored.bearing_rad + from_mcap.bearing_rad  # counter-clockwise: the mirror image
+    assert np.allclose(np.sin(total), 0, atol=1e-6) and np.allclose(np.cos(total), 1, atol=1e-6)
+    with pytest.raises(sonarmap.ValueError):
+        sonarmap.read_sonar_log(mcap, bearing_unit="degrees")

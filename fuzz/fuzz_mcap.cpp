@@ -1,0 +1,17 @@
+// libFuzzer harness: MCAP bytes (ROS 2 logs) → readRosBag (the records and chunks read from the
+// MCAP specification, each message CDR-decoded from the schema the file stores), listRosBagTopics
+// and readRosBagNavigation.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_input.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
+#include "sonarmap/formats/ros_bag_reader.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static sonarmap::fuzz::InputFile file(".mcap");
+  const std::string& path = file.write(data, size);
+  sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBag(path); });
+  sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::listRosBagTopics(path); });
+  return sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBagNavigation(path); });
+}
