@@ -96,9 +96,7 @@ class Cdr {
 std::vector<unsigned char> scanLine(const Beam& beam) {
   Cdr out;
   out.header(beam.time_s, "sonar");
-  double clockwise_deg = std::fmod(360.0 - beam.bearing_rad * 180.0 / std::numbers::pi, 360.0);
-  if (clockwise_deg >= 360.0) clockwise_deg -= 360.0;
-  out.put<float>(static_cast<float>(clockwise_deg));
+  out.put<float>(static_cast<float>(detail::clockwiseDegrees(beam.bearing_rad)));
   out.put<float>(static_cast<float>(beam.bin_length_m));
   out.put<std::uint32_t>(static_cast<std::uint32_t>(beam.intensities.size()));
   for (std::size_t i = 0; i < beam.intensities.size(); ++i) {
@@ -146,16 +144,7 @@ std::uint64_t nanoseconds(double time_s) { return static_cast<std::uint64_t>(std
 }  // namespace
 
 std::vector<unsigned char> mcapBytes(const SonarLog& log, const NavTrack& nav, const McapWriteOptions& options) {
-  for (const Beam& beam : log.beams) {
-    if (!(std::isfinite(beam.time_s) && beam.time_s >= 0.0)) throw ValueError("mcapBytes: a beam's time must be finite and >= 0 s");
-    if (!(beam.bin_length_m > 0.0) || !std::isfinite(beam.bin_length_m)) throw ValueError("mcapBytes: a beam's bin length must be > 0 m");
-  }
-  for (const NavSample& fix : nav) {
-    if (!(std::isfinite(fix.time_s) && fix.time_s >= 0.0)) throw ValueError("mcapBytes: a fix's time must be finite and >= 0 s");
-    if (!fix.position_ned_m.allFinite() || !std::isfinite(fix.roll_rad + fix.pitch_rad + fix.yaw_rad)) {
-      throw ValueError("mcapBytes: a fix holds a value that is not finite");
-    }
-  }
+  detail::checkWritable("mcapBytes", log, nav);
   Out file;
   for (const unsigned char c : kMagic) file.put<unsigned char>(c);
   Out header;

@@ -171,9 +171,7 @@ SerializedMessage<ScanLineType> scanLine(const Beam& beam, std::uint32_t seq, co
   SerializedMessage<ScanLineType> message;
   std::vector<std::uint8_t>& out = message.bytes;
   appendHeader(out, seq, stamp, "");
-  double clockwise_deg = std::fmod(360.0 - beam.bearing_rad * 180.0 / std::numbers::pi, 360.0);
-  if (clockwise_deg >= 360.0) clockwise_deg -= 360.0;
-  append<float>(out, static_cast<float>(clockwise_deg));
+  append<float>(out, static_cast<float>(detail::clockwiseDegrees(beam.bearing_rad)));
   append<float>(out, static_cast<float>(beam.bin_length_m));
   append<std::uint32_t>(out, static_cast<std::uint32_t>(beam.intensities.size()));
   for (std::size_t i = 0; i < beam.intensities.size(); ++i) {
@@ -274,16 +272,7 @@ struct Serializer<sonarmap::SerializedMessage<Type>> {
 namespace sonarmap {
 
 std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav, const RosBagWriteOptions& options) {
-  for (const Beam& beam : log.beams) {
-    if (!(std::isfinite(beam.time_s) && beam.time_s >= 0.0)) throw ValueError("rosBagBytes: a beam's time must be finite and >= 0 s");
-    if (!(beam.bin_length_m > 0.0) || !std::isfinite(beam.bin_length_m)) throw ValueError("rosBagBytes: a beam's bin length must be > 0 m");
-  }
-  for (const NavSample& fix : nav) {
-    if (!(std::isfinite(fix.time_s) && fix.time_s >= 0.0)) throw ValueError("rosBagBytes: a fix's time must be finite and >= 0 s");
-    if (!fix.position_ned_m.allFinite() || !std::isfinite(fix.roll_rad + fix.pitch_rad + fix.yaw_rad)) {
-      throw ValueError("rosBagBytes: a fix holds a value that is not finite");
-    }
-  }
+  detail::checkWritable("rosBagBytes", log, nav);
   // rosbag writes to a path: a scratch file first, its bytes then put in place atomically.
   static std::atomic<unsigned> written{0};
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() /

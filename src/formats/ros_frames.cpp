@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <numbers>
+#include <string>
 
 #include "sonarmap/core/errors.hpp"
 
@@ -43,6 +45,26 @@ NavSample rosPoseToNed(double time_s, const Eigen::Vector3d& position_m, const E
   fix.pitch_rad = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
   fix.roll_rad = std::atan2(r(2, 1), r(2, 2));
   return fix;
+}
+
+double clockwiseDegrees(double bearing_rad) {
+  double degrees = std::fmod(360.0 - bearing_rad * 180.0 / std::numbers::pi, 360.0);
+  if (degrees < 0.0) degrees += 360.0;
+  return degrees >= 360.0 ? degrees - 360.0 : degrees;
+}
+
+void checkWritable(const char* writer, const SonarLog& log, const NavTrack& nav) {
+  const std::string who(writer);
+  for (const Beam& beam : log.beams) {
+    if (!(std::isfinite(beam.time_s) && beam.time_s >= 0.0)) throw ValueError(who + ": a beam's time must be finite and >= 0 s");
+    if (!(beam.bin_length_m > 0.0) || !std::isfinite(beam.bin_length_m)) throw ValueError(who + ": a beam's bin length must be > 0 m");
+  }
+  for (const NavSample& fix : nav) {
+    if (!(std::isfinite(fix.time_s) && fix.time_s >= 0.0)) throw ValueError(who + ": a fix's time must be finite and >= 0 s");
+    if (!fix.position_ned_m.allFinite() || !std::isfinite(fix.roll_rad + fix.pitch_rad + fix.yaw_rad)) {
+      throw ValueError(who + ": a fix holds a value that is not finite");
+    }
+  }
 }
 
 void nedToRosEnu(const NavSample& fix, Eigen::Vector3d& position_enu_m, Eigen::Quaterniond& flu_to_enu) {

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sonar/beam.hpp"
 
 namespace sonarmap::detail {
 
@@ -19,6 +20,15 @@ bool namesNedFrame(const std::string& frame_id);
 /// NED/FRD (`ned`) or ENU/FLU (REP 103). Roll, pitch, yaw are the Z-Y-X angles of navigation.hpp.
 /// @throws Error when the quaternion's norm is not within 1 ± 0.1 (a pose left at zero, a NaN).
 NavSample rosPoseToNed(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& body_to_world, bool ned);
+
+/// A beam's bearing as the Tritech drivers publish it: degrees in [0, 360), clockwise seen from
+/// above (beam.hpp's bearing_rad is counter-clockwise).
+double clockwiseDegrees(double bearing_rad);
+
+/// Checks what a ROS log writer writes: every beam's time finite and >= 0 s (a stamp) and bin length
+/// > 0, every fix's time likewise and its values finite.
+/// @throws ValueError naming `writer` and what is wrong.
+void checkWritable(const char* writer, const SonarLog& log, const NavTrack& nav);
 
 /// The inverse for ENU/FLU: the fix's position in ENU (metres) and its body-to-ENU rotation.
 void nedToRosEnu(const NavSample& fix, Eigen::Vector3d& position_enu_m, Eigen::Quaterniond& flu_to_enu);
