@@ -75,30 +75,41 @@ std::vector<std::uint8_t> decompressed(const std::string& path, std::uint64_t at
     if (data.size() != size) fail(path, at, "an uncompressed chunk's size differs from its records");
     return data;
   }
+  if (compression != "zstd" && compression != "lz4") {
+    fail(path, at, "unknown chunk compression '" + compression + "' (none, zstd and lz4 are known)");
+  }
+  // Before allocating what the chunk declares: a zstd frame that states its size must state this one;
+  // an lz4 frame cannot expand more than 255 times (a literal run of 255-byte length codes).
+  if (compression == "zstd") {
+    const unsigned long long stated = ZSTD_getFrameContentSize(data.data(), data.size());
+    if (stated == ZSTD_CONTENTSIZE_ERROR || (stated != ZSTD_CONTENTSIZE_UNKNOWN && stated != size)) {
+      fail(path, at, "a zstd chunk's frame does not hold its declared size");
+    }
+  } else if (compression == "lz4" && size > 255 * static_cast<std::uint64_t>(data.size()) + 64) {
+    fail(path, at, "an lz4 chunk of " + std::to_string(data.size()) + " bytes cannot hold " + std::to_string(size));
+  }
   std::vector<std::uint8_t> out(size);
   if (compression == "zstd") {
     const std::size_t written = ZSTD_decompress(out.data(), out.size(), data.data(), data.size());
     if (ZSTD_isError(written) || written != size) fail(path, at, "a zstd chunk does not decompress into its declared size");
     return out;
   }
-  if (compression == "lz4") {
-    LZ4F_dctx* raw = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) fail(path, at, "cannot start lz4");
-    const std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> context(raw, LZ4F_freeDecompressionContext);
-    std::size_t in_at = 0, out_at = 0;
-    while (in_at < data.size()) {
-      std::size_t in_size = data.size() - in_at, out_size = out.size() - out_at;
-      const std::size_t hint = LZ4F_decompress(context.get(), out.data() + out_at, &out_size, data.data() + in_at, &in_size, nullptr);
-      if (LZ4F_isError(hint)) fail(path, at, std::string("an lz4 chunk does not decompress: ") + LZ4F_getErrorName(hint));
-      in_at += in_size;
-      out_at += out_size;
-      if (hint == 0) break;  // the frame ended
-      if (in_size == 0 && out_size == 0) fail(path, at, "an lz4 chunk does not decompress into its declared size");
-    }
-    if (out_at != size) fail(path, at, "an lz4 chunk does not decompress into its declared size");
-    return out;
+  // lz4 frames
+  LZ4F_dctx* raw = nullptr;
+  if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) fail(path, at, "cannot start lz4");
+  const std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> context(raw, LZ4F_freeDecompressionContext);
+  std::size_t in_at = 0, out_at = 0;
+  while (in_at < data.size()) {
+    std::size_t in_size = data.size() - in_at, out_size = out.size() - out_at;
+    const std::size_t hint = LZ4F_decompress(context.get(), out.data() + out_at, &out_size, data.data() + in_at, &in_size, nullptr);
+    if (LZ4F_isError(hint)) fail(path, at, std::string("an lz4 chunk does not decompress: ") + LZ4F_getErrorName(hint));
+    in_at += in_size;
+    out_at += out_size;
+    if (hint == 0) break;  // the frame ended
+    if (in_size == 0 && out_size == 0) fail(path, at, "an lz4 chunk does not decompress into its declared size");
   }
-  fail(path, at, "unknown chunk compression '" + compression + "' (none, zstd and lz4 are known)");
+  if (out_at != size) fail(path, at, "an lz4 chunk does not decompress into its declared size");
+  return out;
 }
 
 }  // namespace
