@@ -6,7 +6,7 @@ packages=(build-essential cmake ninja-build pkg-config
   libopencv-dev libmatio-dev zlib1g-dev libicu-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev libeigen3-dev libabsl-dev libceres-dev
   # ROS 1 bags: the container (chunks, bz2, lz4, index) from Debian's rosbag_storage; ROS 2's MCAP
   # chunks: zstd and lz4 frames
-  librosbag-storage-dev libzstd-dev liblz4-dev
+  librosbag-storage-dev libzstd-dev liblz4-dev libsqlite3-dev
   libgtest-dev libbenchmark-dev liboctomap-dev
   # the Python module and its examples (Debian's python3, not PyPI)
   python3-dev pybind11-dev python3-numpy python3-matplotlib

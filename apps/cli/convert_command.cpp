@@ -64,7 +64,7 @@ Command addConvertCommand(CLI::App& app, ConvertArgs& args) {
                   "Output by extension: .csv beam CSV (time_s,bearing_deg,bin_length_m,b0,...), .seanet SeaNet "
                   "mtHeadData packets, .bin Ping360 device_data messages (no clock: times are lost)")
       ->required();
-  cmd->add_option("--format", args.format, "Input format: auto (by extension) | mat | csv | v4log | seanet | ping360 | rosbag | mcap")
+  cmd->add_option("--format", args.format, "Input format: auto (by extension) | mat | csv | v4log | seanet | ping360 | rosbag | mcap | rosbag2")
       ->capture_default_str();
   cmd->add_option("--sound-speed", args.sound_speed_m_s,
                   "Speed of sound in M/S turning bin lengths into the sample intervals of a .seanet or .bin output")

@@ -7,8 +7,8 @@ namespace sonarmap::cli {
 
 void addLogFormatOption(CLI::App& cmd, std::string& format) {
   cmd.add_option("--format", format,
-                 "Log format: auto (by extension: .mat, .csv, .V4LOG, .seanet, .bin, .bag, .mcap) | mat | csv | v4log | seanet | "
-                 "ping360 (a raw capture of any name) | rosbag (ROS 1) | mcap (ROS 2)")
+                 "Log format: auto (by extension: .mat, .csv, .V4LOG, .seanet, .bin, .bag, .mcap, .db3, a rosbag2 folder) | mat | csv | v4log | seanet | "
+                 "ping360 (a raw capture of any name) | rosbag (ROS 1) | mcap | rosbag2 (ROS 2: MCAP, rosbag2 SQLite)")
       ->capture_default_str();
 }
 

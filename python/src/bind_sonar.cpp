@@ -317,7 +317,7 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
       .def_property_readonly("skip_reasons", [](const PySonarLog& log) { return log.log.skip_reasons; },
                              "One line per skipped beam.")
       .def_property_readonly("format", [](const PySonarLog& log) { return log.format; },
-                             "The format read (\"mat\", \"csv\", \"v4log\", \"seanet\", \"ping360\", \"rosbag\", \"mcap\") or \"simulated\".")
+                             "The format read (\"mat\", \"csv\", \"v4log\", \"seanet\", \"ping360\", \"rosbag\", \"mcap\", \"rosbag2\") or \"simulated\".")
       .def_property_readonly(
           "nominal_beam_deg",
           [](const PySonarLog& log) {
@@ -344,8 +344,9 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
   m.def("read_sonar_log", &readLog, py::arg("path"), py::arg("format") = "auto", py::arg("sonar_topic") = "",
         py::arg("bearing_unit") = "auto", py::arg("bearing_direction") = "cw",
         R"doc(Reads a sonar log: CRAS Micron ``.mat``, beam ``.csv``, SeaNet ``.V4LOG``, raw SeaNet capture
-``.seanet``, Ping360 ``.bin``, ROS 1 bag ``.bag``, ROS 2 MCAP ``.mcap`` (by extension, any case), or any
-name with ``format`` = "mat", "csv", "v4log", "seanet", "ping360", "rosbag", "mcap" (the CLI's --format).
+``.seanet``, Ping360 ``.bin``, ROS 1 bag ``.bag``, ROS 2 MCAP ``.mcap``, rosbag2 SQLite ``.db3`` or bag
+folder (by extension, any case), or any name with ``format`` = "mat", "csv", "v4log", "seanet", "ping360",
+"rosbag", "mcap", "rosbag2" (the CLI's --format).
 For a ROS log: ``sonar_topic`` (default: found by its fields), ``bearing_unit`` "auto" | "deg" | "rad" |
 "grad" and ``bearing_direction`` "cw" | "ccw" (the CLI's --sonar-topic, --bearing-unit,
 --bearing-direction; docs/formats.md). Malformed beams are dropped and counted (skipped_beams). Returns

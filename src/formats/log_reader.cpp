@@ -24,13 +24,14 @@ struct FormatNames {
   std::string_view extension;  ///< lower case, with the dot
 };
 
-constexpr std::array<FormatNames, 7> kFormats{{{LogFormat::kMat, "mat", ".mat"},
+constexpr std::array<FormatNames, 8> kFormats{{{LogFormat::kMat, "mat", ".mat"},
                                                {LogFormat::kCsv, "csv", ".csv"},
                                                {LogFormat::kV4Log, "v4log", ".v4log"},
                                                {LogFormat::kSeaNet, "seanet", ".seanet"},
                                                {LogFormat::kPing360, "ping360", ".bin"},
                                                {LogFormat::kRosBag, "rosbag", ".bag"},
-                                               {LogFormat::kMcap, "mcap", ".mcap"}}};
+                                               {LogFormat::kMcap, "mcap", ".mcap"},
+                                               {LogFormat::kRosbag2, "rosbag2", ".db3"}}};
 
 std::string lowerCase(std::string_view text) {
   std::string lower(text);
@@ -45,7 +46,7 @@ LogFormat parseLogFormat(std::string_view name) {
   for (const FormatNames& entry : kFormats) {
     if (entry.name == lower) return entry.format;
   }
-  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet, ping360, rosbag or mcap");
+  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet, ping360, rosbag, mcap or rosbag2");
 }
 
 NominalBeam nominalBeam(LogFormat format) {
@@ -62,6 +63,8 @@ std::string_view logFormatName(LogFormat format) {
 }
 
 std::optional<LogFormat> logFormatOfPath(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return LogFormat::kRosbag2;  // a rosbag2 folder
   const std::string extension = lowerCase(std::filesystem::path(path).extension().string());
   for (const FormatNames& entry : kFormats) {
     if (entry.extension == extension) return entry.format;
@@ -77,7 +80,8 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
     case LogFormat::kSeaNet: return readSeaNetCapture(path);
     case LogFormat::kPing360: return readPing360(path);
     case LogFormat::kRosBag:
-    case LogFormat::kMcap:  // the reader tells the two apart by their first bytes
+    case LogFormat::kMcap:  // the reader tells them apart by their first bytes
+    case LogFormat::kRosbag2:
       return readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
                                             parseBearingDirection(options.bearing_direction)});
   }
@@ -88,7 +92,7 @@ SonarLog readSonarLog(const std::string& path) {
   const std::optional<LogFormat> format = logFormatOfPath(path);
   if (!format) {
     throw FileError("'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() +
-                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) .bag (ROS 1) or .mcap (ROS 2)");
+                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) .bag (ROS 1), .mcap or .db3 (ROS 2) or a rosbag2 folder");
   }
   return readSonarLog(path, *format);
 }

@@ -9,15 +9,46 @@
 
 #include "ros_bag_check.hpp"
 
+#include <filesystem>
+
 namespace sonarmap::detail {
 
 void failBag(const std::string& path, const std::string& what) { throw FileError("'" + path + "': ROS bag: " + what); }
 
+namespace {
+
+/// The file to read for `path`: a rosbag2 folder's only .mcap file, else `path` itself.
+std::string mcapOfFolder(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(path, error)) return path;
+  std::vector<std::string> found;
+  for (const auto& entry : std::filesystem::directory_iterator(path, error)) {
+    if (entry.path().extension() == ".mcap") found.push_back(entry.path().string());
+  }
+  if (found.size() != 1) {
+    failBag(path, found.empty() ? "the folder holds no .db3 or .mcap file" : "the folder holds several .mcap files: give each one");
+  }
+  return found.front();
+}
+
+}  // namespace
+
 RosBagFile::RosBagFile(const std::string& path) : path_(path) {
-  if (startsLikeMcap(path)) {
+  if (looksLikeRosbag2Sqlite(path)) {
+    sqlite_ = std::make_unique<Rosbag2Sqlite>(path);
+    for (const Rosbag2Sqlite::Topic& t : sqlite_->topics()) {
+      topics_.push_back(RosBagTopic{t.name, t.type, t.messages, t.first_s, t.last_s});
+      definitions_.push_back(t.serialization_format == "cdr" ? t.definition : std::string());
+      encodings_.push_back(RosEncoding::kCdr);
+      channels_.emplace_back();
+    }
+    return;
+  }
+  const std::string file = mcapOfFolder(path);
+  if (startsLikeMcap(file)) {
     // MCAP: a topic's channels grouped; ROS 2 messages (a ros2msg schema, cdr) and ROS 1 ones
     // (ros1msg, ros1) are read; others (protobuf, JSON) are listed without a definition.
-    mcap_ = std::make_unique<McapFile>(path);
+    mcap_ = std::make_unique<McapFile>(file);
     for (const auto& [id, channel] : mcap_->channels()) {
       const auto schema = mcap_->schemas().find(channel.schema_id);
       std::size_t index = topics_.size();
@@ -86,6 +117,7 @@ RosSchema RosBagFile::schema(const RosBagTopic& topic) const {
 
 void RosBagFile::fail(const std::string& what) const {
   if (mcap_) throw FileError("'" + path_ + "': MCAP: " + what);
+  if (sqlite_) throw FileError("'" + path_ + "': rosbag2: " + what);
   failBag(path_, what);
 }
 
@@ -102,8 +134,8 @@ RosSkipped RosBagFile::forEachMessage(const std::string& topic, const RosSchema&
                                       const std::function<void(const RosValue&, double)>& use) {
   RosSkipped skipped;
   std::size_t index = 0;
-  if (mcap_) {
-    mcap_->forEachMessage(channels_[indexOf(topic)], [&](const std::vector<std::uint8_t>& data, double time_s) {
+  if (mcap_ || sqlite_) {
+    auto decode = [&](const std::vector<std::uint8_t>& data, double time_s) {
       ++index;
       try {
         use(decodeRosMessage(schema, data), time_s);
@@ -111,7 +143,12 @@ RosSkipped RosBagFile::forEachMessage(const std::string& topic, const RosSchema&
         ++skipped.count;
         skipped.reasons.push_back("message " + std::to_string(index) + " of " + topic + ": " + error.what());
       }
-    });
+    };
+    if (mcap_) {
+      mcap_->forEachMessage(channels_[indexOf(topic)], decode);
+    } else {
+      sqlite_->forEachMessage(topic, decode);
+    }
     return skipped;
   }
   std::vector<std::uint8_t> bytes;

@@ -3,8 +3,9 @@
 /// Private to formats: a ROS log opened for reading, shared by the sonar reader
 /// (ros_bag_reader.cpp) and the navigation readers (ros_bag_navigation.cpp,
 /// ros_inertial_navigation.cpp): a ROS 1 bag (checked first, ros_bag_check.hpp, then opened with
-/// Debian's rosbag_storage) or an MCAP file (ROS 2's storage, mcap_file.hpp), told apart by their
-/// first bytes. Each topic's messages are decoded from the definition the file stores with it
+/// Debian's rosbag_storage), an MCAP file (ROS 2's storage, mcap_file.hpp) or a rosbag2 SQLite log
+/// (a folder of .db3 files or one of them, rosbag2_sqlite.hpp), told apart by their first bytes; a
+/// rosbag2 folder holding one .mcap file is read as that file. Each topic's messages are decoded from the definition the file stores with it
 /// (ros_message.hpp), ROS 1 serialized or CDR.
 
 #include <cstddef>
@@ -15,6 +16,7 @@
 
 #include "mcap_file.hpp"
 #include "ros_message.hpp"
+#include "rosbag2_sqlite.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 
 namespace rosbag {
@@ -64,6 +66,7 @@ class RosBagFile {
   std::string path_;
   std::unique_ptr<rosbag::Bag> bag_;  ///< a ROS 1 bag's
   std::unique_ptr<McapFile> mcap_;    ///< an MCAP file's
+  std::unique_ptr<Rosbag2Sqlite> sqlite_;  ///< a rosbag2 SQLite log's
   std::vector<RosBagTopic> topics_;
   std::vector<std::string> definitions_;
   std::vector<RosEncoding> encodings_;

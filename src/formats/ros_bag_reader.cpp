@@ -182,8 +182,8 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
     });
     log.skipped_beams = skipped.count;
     log.skip_reasons = skipped.reasons;
+    if (raw.empty()) bag.fail("no message of " + topic + " decodes" + (log.skip_reasons.empty() ? "" : ": " + log.skip_reasons.front()));
   });
-  if (raw.empty()) detail::failBag(path, "no message of " + topic + " decodes" + (log.skip_reasons.empty() ? "" : ": " + log.skip_reasons.front()));
   // Degrees unless the field's name says radians or every bearing fits in a turn of radians;
   // clockwise, as the Tritech head counts it (ros_bag_reader.hpp); the options override both.
   double largest = 0.0;

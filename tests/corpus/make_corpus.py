@@ -17,8 +17,10 @@ include/sonarmap/formats/ros_bag_reader.hpp).
 import bz2
 import pathlib
 import shutil
+import sqlite3
 import struct
 import sys
+import tempfile
 import zlib
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -588,6 +590,48 @@ def mcap_files():
     }, {"scan_small.mcap": small}
 
 
+# ---- ROS 2 logs in rosbag2's SQLite storage (Humble: type names only) -------------------------------
+
+def sonar_echo(seq, angle_rad, samples):
+    """A ping360_sonar_msgs/msg/SonarEcho in plain little-endian CDR (range 2 m)."""
+    out = struct.pack("<iI", 1000 + seq, 0) + struct.pack("<I", 6) + b"sonar\x00"
+    out += b"\x00" * (-len(out) % 4) + struct.pack("<fBxHHHB", angle_rad, 1, len(samples), 750, 1500, 2)
+    out += b"\x00" * (-len(out) % 4) + struct.pack("<I", len(samples)) + bytes(samples)
+    return b"\x00\x01\x00\x00" + out
+
+
+def rosbag2_db3(messages, type_name="ping360_sonar_msgs/msg/SonarEcho", tables=True):
+    """The bytes of a rosbag2 SQLite database holding `messages` on one topic."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = pathlib.Path(folder) / "bag_0.db3"
+        db = sqlite3.connect(path)
+        if tables:
+            db.execute("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+                       "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL)")
+            db.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, "
+                       "timestamp INTEGER NOT NULL, data BLOB NOT NULL)")
+            db.execute("INSERT INTO topics VALUES(1, '/sonar', ?, 'cdr', '')", (type_name,))
+            db.executemany("INSERT INTO messages(topic_id, timestamp, data) VALUES(1, ?, ?)",
+                           [((1000 + i) * 10**9, m) for i, m in enumerate(messages)])
+        else:
+            db.execute("CREATE TABLE notes(text TEXT)")
+        db.commit()
+        db.close()
+        return path.read_bytes()
+
+
+def rosbag2_files():
+    beams = [sonar_echo(i, 0.05 * i, [0, 2, 9, 180, 120, 40]) for i in range(3)]
+    small = rosbag2_db3(beams)
+    return {
+        "rosbag2_text.db3": b"this is not an SQLite database\n",
+        "rosbag2_truncated.db3": small[:len(small) // 2],
+        "rosbag2_no_tables.db3": rosbag2_db3([], tables=False),
+        "rosbag2_unknown_type.db3": rosbag2_db3(beams, type_name="vendor_msgs/msg/Echo"),
+        "rosbag2_messages_cut.db3": rosbag2_db3([b[:-3] for b in beams]),
+    }, {"rosbag2_small.db3": small}
+
+
 # ---- text readers fed bytes that are not text ------------------------------------------------------
 
 def binary_text_files():
@@ -608,7 +652,7 @@ def main():
         for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
             shutil.copyfile(text, folder / text.name)
     for make in (mat_files, v4_files, seanet_files, ping360_files, real_viewer_files, graph_files, bt_files,
-                 ot_files, ros_bag_files, mcap_files, binary_text_files):
+                 ot_files, ros_bag_files, mcap_files, rosbag2_files, binary_text_files):
         for kind, files in zip(("broken", "valid"), make()):
             for name, data in files.items():
                 (out / kind / name).write_bytes(data)

@@ -220,6 +220,7 @@ constexpr Seed kSeeds[] = {
     {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
     {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
     {"bag_miniking.bag", "map"},     {"scan_small.mcap", "map"},
+    {"rosbag2_small.db3", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

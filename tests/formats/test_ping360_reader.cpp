@@ -267,7 +267,7 @@ TEST(formatsPingViewerLog, ReadPing360TellsALogFromAStreamAndReadSonarLogTakesTh
 
 TEST(formatsLogFormat, NamesAndExtensions) {
   for (const LogFormat format : {LogFormat::kMat, LogFormat::kCsv, LogFormat::kV4Log, LogFormat::kSeaNet, LogFormat::kPing360,
-                                  LogFormat::kRosBag, LogFormat::kMcap}) {
+                                  LogFormat::kRosBag, LogFormat::kMcap, LogFormat::kRosbag2}) {
     EXPECT_EQ(parseLogFormat(logFormatName(format)), format);
   }
   EXPECT_EQ(logFormatOfPath("a/b.V4LOG"), LogFormat::kV4Log);
@@ -280,7 +280,7 @@ TEST(formatsLogFormat, NamesAndExtensions) {
     parseLogFormat("micron");
     ADD_FAILURE() << "no ValueError for an unknown format name";
   } catch (const ValueError& e) {
-    EXPECT_TRUE(contains(e.what(), "'micron', expected mat, csv, v4log, seanet, ping360, rosbag or mcap")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "'micron', expected mat, csv, v4log, seanet, ping360, rosbag, mcap or rosbag2")) << e.what();
   }
 }
 

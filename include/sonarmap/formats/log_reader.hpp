@@ -20,23 +20,26 @@ enum class LogFormat {
   kPing360,  ///< "ping360": Ping Viewer log or raw Ping360 ping-protocol stream (readPing360), `.bin`
   kRosBag,   ///< "rosbag": ROS 1 bag, its sonar topic found by its fields (readRosBag), `.bag`
   kMcap,     ///< "mcap": ROS 2 log in MCAP, read as a ROS 1 bag is (readRosBag), `.mcap`
+  kRosbag2,  ///< "rosbag2": ROS 2 log in rosbag2's SQLite storage (readRosBag): a folder, or `.db3`
 };
 
 /// Whether `format` is a ROS log (a ROS 1 bag or an MCAP file): topics, a sonar's and the
 /// vehicle's navigation (ros_bag_navigation.hpp).
-constexpr bool isRosLog(LogFormat format) { return format == LogFormat::kRosBag || format == LogFormat::kMcap; }
+constexpr bool isRosLog(LogFormat format) {
+  return format == LogFormat::kRosBag || format == LogFormat::kMcap || format == LogFormat::kRosbag2;
+}
 
-/// The format named `name`: "mat", "csv", "v4log", "seanet", "ping360", "rosbag" or "mcap"
-/// (case-insensitive).
+/// The format named `name`: "mat", "csv", "v4log", "seanet", "ping360", "rosbag", "mcap" or
+/// "rosbag2" (case-insensitive).
 /// @throws ValueError for any other name, listing the names.
 LogFormat parseLogFormat(std::string_view name);
 
 /// The name parseLogFormat takes for `format` ("mat", "csv", "v4log", "seanet", "ping360", "rosbag",
-/// "mcap").
+/// "mcap", "rosbag2").
 std::string_view logFormatName(LogFormat format);
 
 /// The format of a file by its extension, case-insensitive: `.mat`, `.csv`, `.v4log`, `.seanet`,
-/// `.bin`, `.bag`, `.mcap`; std::nullopt for any other.
+/// `.bin`, `.bag`, `.mcap`, `.db3`, and a folder (a rosbag2 log); std::nullopt for any other.
 std::optional<LogFormat> logFormatOfPath(const std::string& path);
 
 /// The beam of the sonar a format comes from, as its maker states it (−3 dB widths).

@@ -1,0 +1,19 @@
+#pragma once
+/// @file ros2_definitions.hpp
+/// Private to formats: the ros2msg definitions of the message types a vehicle's ROS 2 log most
+/// often holds, for rosbag2 SQLite logs that store only type names (rosbag2 before ROS 2 Iron,
+/// which added the `message_definitions` table). Each is the type's .msg file as its package
+/// publishes it (ROS 2 Humble's common_interfaces; CentraleNantesRobotics/ping360_sonar's
+/// msg/SonarEcho.msg), without comments, with every type it uses after a rule, as rosbag2 writes
+/// definitions: std_msgs/msg/Header, geometry_msgs/msg/{PoseStamped, PoseWithCovarianceStamped,
+/// TwistStamped, TwistWithCovarianceStamped}, nav_msgs/msg/Odometry, sensor_msgs/msg/{Imu,
+/// FluidPressure}, ping360_sonar_msgs/msg/SonarEcho.
+
+#include <string>
+
+namespace sonarmap::detail {
+
+/// The definition of `type` ("pkg/msg/Name"), or empty when it is not one of the types above.
+std::string builtinRos2Definition(const std::string& type);
+
+}  // namespace sonarmap::detail
