@@ -11,6 +11,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "ros2_definitions.hpp"
 #include "ros_frames.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
@@ -28,18 +29,6 @@ const std::string kScanLine2 = std::string("std_msgs/Header header\nfloat32 angl
                                            "micron_driver_ros/IntensityBin[] bins\n") +
                                kRule + kHeader2 + kRule + kTime2 + kRule +
                                "MSG: micron_driver_ros/IntensityBin\nfloat32 distance\nuint8 intensity\n";
-const std::string kOdometry2 =
-    std::string("std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/PoseWithCovariance pose\n"
-                "geometry_msgs/TwistWithCovariance twist\n") +
-    kRule + kHeader2 + kRule + kTime2 + kRule +
-    "MSG: geometry_msgs/PoseWithCovariance\ngeometry_msgs/Pose pose\nfloat64[36] covariance\n" + kRule +
-    "MSG: geometry_msgs/Pose\ngeometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n" + kRule +
-    "MSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n" + kRule +
-    "MSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n" + kRule +
-    "MSG: geometry_msgs/TwistWithCovariance\ngeometry_msgs/Twist twist\nfloat64[36] covariance\n" + kRule +
-    "MSG: geometry_msgs/Twist\ngeometry_msgs/Vector3 linear\ngeometry_msgs/Vector3 angular\n" + kRule +
-    "MSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n";
-
 /// Little-endian bytes, MCAP's fields.
 class Out {
  public:
@@ -172,7 +161,7 @@ std::vector<unsigned char> mcapBytes(const SonarLog& log, const NavTrack& nav, c
   schema(1, "micron_driver_ros/msg/ScanLine", kScanLine2);
   channel(1, 1, options.sonar_topic);
   if (!nav.empty()) {
-    schema(2, "nav_msgs/msg/Odometry", kOdometry2);
+    schema(2, "nav_msgs/msg/Odometry", detail::builtinRos2Definition("nav_msgs/msg/Odometry"));
     channel(2, 2, options.nav_topic);
   }
   // Messages in time order, in chunks of about 1 MiB.

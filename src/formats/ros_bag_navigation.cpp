@@ -13,67 +13,34 @@
 namespace sonarmap {
 namespace {
 
-using detail::RosField;
 using detail::RosSchema;
 using detail::RosValue;
-
-bool hasFields(const RosSchema& schema, const std::string& type, std::initializer_list<const char*> names) {
-  if (RosSchema::isBuiltin(type)) return false;
-  const std::vector<RosField>& fields = schema.fields(type);
-  return std::all_of(names.begin(), names.end(), [&](const char* name) {
-    return std::any_of(fields.begin(), fields.end(), [&](const RosField& f) { return f.name == name && f.array < 0; });
-  });
-}
-
-const RosField* fieldNamed(const RosSchema& schema, const std::string& type, const char* name) {
-  if (RosSchema::isBuiltin(type)) return nullptr;
-  for (const RosField& field : schema.fields(type)) {
-    if (field.name == name && field.array < 0) return &field;
-  }
-  return nullptr;
-}
 
 /// The fields leading from the message to its pose (a message with `position` x, y, z and
 /// `orientation` x, y, z, w), or empty when it has none, or no std_msgs/Header.
 std::vector<std::string> posePath(const RosSchema& schema) {
-  const RosField* header = fieldNamed(schema, schema.root(), "header");
-  if (header == nullptr || header->type != "std_msgs/Header") return {};
-  auto isPose = [&](const std::string& type) {
-    const RosField* position = fieldNamed(schema, type, "position");
-    const RosField* orientation = fieldNamed(schema, type, "orientation");
-    return position != nullptr && orientation != nullptr && hasFields(schema, position->type, {"x", "y", "z"}) &&
-           hasFields(schema, orientation->type, {"x", "y", "z", "w"});
-  };
-  const RosField* pose = fieldNamed(schema, schema.root(), "pose");
-  if (pose == nullptr) return {};
-  if (isPose(pose->type)) return {"pose"};
-  const RosField* inner = fieldNamed(schema, pose->type, "pose");
-  if (inner != nullptr && isPose(inner->type)) return {"pose", "pose"};
+  if (schema.typeAt({"header"}) != "std_msgs/Header") return {};
+  for (std::vector<std::string> path : {std::vector<std::string>{"pose"}, std::vector<std::string>{"pose", "pose"}}) {
+    std::vector<std::string> position = path, orientation = path;
+    position.emplace_back("position");
+    orientation.emplace_back("orientation");
+    if (schema.holdsNumbers(position, {"x", "y", "z"}) && schema.holdsNumbers(orientation, {"x", "y", "z", "w"})) return path;
+  }
   return {};
 }
 
-double number(const RosValue* value, const char* what) {
-  const double* out = value != nullptr ? std::get_if<double>(&value->value) : nullptr;
-  if (out == nullptr || !std::isfinite(*out)) throw Error(std::string("its ") + what + " is not a finite number");
-  return *out;
-}
-
-/// One message's fix, NED and FRD.
+/// One message's fix, NED and FRD; `ned` says which frame its header named.
 NavSample fixOf(const RosValue& message, const std::vector<std::string>& path, double record_time_s, bool& ned) {
-  const RosValue* header = message.field("header");
-  const RosValue* frame = header->field("frame_id");
-  const std::string* frame_id = frame != nullptr ? std::get_if<std::string>(&frame->value) : nullptr;
-  ned = frame_id != nullptr && detail::namesNedFrame(*frame_id);
-  const RosValue* pose = &message;
-  for (const std::string& name : path) pose = pose->field(name);
-  const RosValue* position = pose->field("position");
-  const RosValue* orientation = pose->field("orientation");
-  const Eigen::Vector3d p(number(position->field("x"), "position x"), number(position->field("y"), "position y"),
-                          number(position->field("z"), "position z"));
-  const Eigen::Quaterniond q(number(orientation->field("w"), "orientation w"), number(orientation->field("x"), "orientation x"),
-                             number(orientation->field("y"), "orientation y"), number(orientation->field("z"), "orientation z"));
-  const double stamp = number(header->field("stamp"), "header stamp");
-  return detail::rosPoseToNed(stamp > 0.0 ? stamp : record_time_s, p, q, ned);
+  using detail::finiteNumber;
+  ned = detail::headerNamesNed(message);
+  const RosValue& pose = detail::valueAt(message, path);
+  const RosValue* position = pose.field("position");
+  const RosValue* orientation = pose.field("orientation");
+  const Eigen::Vector3d p(finiteNumber(position->field("x"), "position x"), finiteNumber(position->field("y"), "position y"),
+                          finiteNumber(position->field("z"), "position z"));
+  const Eigen::Quaterniond q(finiteNumber(orientation->field("w"), "orientation w"), finiteNumber(orientation->field("x"), "orientation x"),
+                             finiteNumber(orientation->field("y"), "orientation y"), finiteNumber(orientation->field("z"), "orientation z"));
+  return detail::rosPoseToNed(detail::headerTime(message, record_time_s), p, q, ned);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ros_bag_file.hpp"
+#include "ros_frames.hpp"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
@@ -88,12 +89,6 @@ std::optional<SonarFields> sonarFields(const RosSchema& schema) {
   return found;
 }
 
-double numberOf(const RosValue* value, const char* what) {
-  const double* number = value != nullptr ? std::get_if<double>(&value->value) : nullptr;
-  if (number == nullptr || !std::isfinite(*number)) throw Error(std::string("its ") + what + " is not a finite number");
-  return *number;
-}
-
 /// One beam of a decoded message (bearing as the message gives it; converted afterwards).
 struct RawBeam {
   double time_s = 0.0, bearing = 0.0;
@@ -102,30 +97,25 @@ struct RawBeam {
 
 RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record_time_s) {
   RawBeam raw;
-  raw.bearing = numberOf(message.field(fields.bearing), "bearing");
+  raw.bearing = detail::finiteNumber(message.field(fields.bearing), "bearing");
   const RosValue* intensities = message.field(fields.intensities);
   std::vector<std::uint8_t>& out = raw.beam.intensities;
   if (const auto* bytes = std::get_if<std::vector<std::uint8_t>>(&intensities->value)) {
     out = *bytes;
   } else {
     for (const RosValue& element : std::get<std::vector<RosValue>>(intensities->value)) {
-      const double value = numberOf(element.field(fields.element_intensity), "intensity");
+      const double value = detail::finiteNumber(element.field(fields.element_intensity), "intensity");
       out.push_back(static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L)));
     }
   }
   if (!fields.bin_length.empty()) {
-    raw.beam.bin_length_m = numberOf(message.field(fields.bin_length), "bin length");
+    raw.beam.bin_length_m = detail::finiteNumber(message.field(fields.bin_length), "bin length");
   } else if (!out.empty()) {
-    raw.beam.bin_length_m = numberOf(message.field(fields.range), "range") / static_cast<double>(out.size());
+    raw.beam.bin_length_m = detail::finiteNumber(message.field(fields.range), "range") / static_cast<double>(out.size());
   }
   if (!(raw.beam.bin_length_m > 0.0)) throw Error("its bin length is not > 0 m");
   if (out.empty()) throw Error("it holds no bins");
-  raw.time_s = record_time_s;
-  if (fields.header) {
-    const RosValue* header = message.field("header");
-    const double stamp = numberOf(header->field("stamp"), "header stamp");
-    if (stamp > 0.0) raw.time_s = stamp;
-  }
+  raw.time_s = fields.header ? detail::headerTime(message, record_time_s) : record_time_s;
   return raw;
 }
 

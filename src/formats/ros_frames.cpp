@@ -32,6 +32,20 @@ bool namesNedFrame(const std::string& frame_id) {
   return lower.find("ned") != std::string::npos;
 }
 
+double headerTime(const RosValue& message, double record_time_s) {
+  const RosValue* header = message.field("header");
+  if (header == nullptr) return record_time_s;
+  const double stamp = finiteNumber(header->field("stamp"), "header stamp");
+  return stamp > 0.0 ? stamp : record_time_s;
+}
+
+bool headerNamesNed(const RosValue& message) {
+  const RosValue* header = message.field("header");
+  const RosValue* frame = header != nullptr ? header->field("frame_id") : nullptr;
+  const std::string* name = frame != nullptr ? std::get_if<std::string>(&frame->value) : nullptr;
+  return name != nullptr && namesNedFrame(*name);
+}
+
 NavSample rosPoseToNed(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& body_to_world, bool ned) {
   const double norm = body_to_world.norm();
   if (!(std::abs(norm - 1.0) <= 0.1)) throw Error("its orientation is no unit quaternion (norm " + std::to_string(norm) + ")");

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "ros_message.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
 
@@ -15,6 +16,13 @@ namespace sonarmap::detail {
 
 /// Whether a frame's name says NED: it contains "ned", in any case ("odom_ned", "map_NED").
 bool namesNedFrame(const std::string& frame_id);
+
+/// A message's time: its std_msgs/Header stamp (seconds since the epoch), or `record_time_s` (the
+/// log's) when it has no header or the stamp is zero. @throws Error for a stamp that is no number.
+double headerTime(const RosValue& message, double record_time_s);
+
+/// Whether a message's std_msgs/Header frame_id names a NED frame (namesNedFrame).
+bool headerNamesNed(const RosValue& message);
 
 /// The fix at `time_s` of a pose given as a position (metres) and a body-to-world quaternion in
 /// NED/FRD (`ned`) or ENU/FLU (REP 103). Roll, pitch, yaw are the Z-Y-X angles of navigation.hpp.

@@ -17,66 +17,20 @@ namespace {
 /// Standard gravity, m/s² (the CGPM's conventional value).
 constexpr double kGravity_m_s2 = 9.80665;
 
-/// The type reached from the message's top type along `path`, or empty when a step is missing.
-std::string typeAt(const RosSchema& schema, const std::vector<std::string>& path) {
-  std::string type = schema.root();
-  for (const std::string& name : path) {
-    if (RosSchema::isBuiltin(type)) return {};
-    const std::vector<RosField>& fields = schema.fields(type);
-    const auto field = std::find_if(fields.begin(), fields.end(), [&](const RosField& f) { return f.name == name && f.array < 0; });
-    if (field == fields.end()) return {};
-    type = field->type;
-  }
-  return type;
-}
-
-bool holds(const RosSchema& schema, const std::vector<std::string>& path, std::initializer_list<const char*> names) {
-  const std::string type = typeAt(schema, path);
-  if (type.empty() || RosSchema::isBuiltin(type)) return false;
-  for (const char* name : names) {
-    std::vector<std::string> child = path;
-    child.emplace_back(name);
-    const std::string field_type = typeAt(schema, child);
-    if (field_type.empty() || !RosSchema::isBuiltin(field_type) || field_type == "string") return false;
-  }
-  return true;
-}
-
-/// The first of `paths` that holds the fields `names`, or empty.
+/// The first of `paths` that holds the number fields `names`, or empty; empty too for a message
+/// without a std_msgs/Header.
 std::vector<std::string> firstPath(const RosSchema& schema, std::initializer_list<std::vector<std::string>> paths,
                                    std::initializer_list<const char*> names) {
-  if (typeAt(schema, {"header"}) != "std_msgs/Header") return {};
+  if (schema.typeAt({"header"}) != "std_msgs/Header") return {};
   for (const std::vector<std::string>& path : paths) {
-    if (holds(schema, path, names)) return path;
+    if (schema.holdsNumbers(path, names)) return path;
   }
   return {};
 }
 
-const RosValue& at(const RosValue& message, const std::vector<std::string>& path) {
-  const RosValue* value = &message;
-  for (const std::string& name : path) value = value->field(name);
-  return *value;
-}
-
-double number(const RosValue* value, const std::string& what) {
-  const double* out = value != nullptr ? std::get_if<double>(&value->value) : nullptr;
-  if (out == nullptr || !std::isfinite(*out)) throw Error("its " + what + " is not a finite number");
-  return *out;
-}
-
 Eigen::Vector3d vectorOf(const RosValue& value, const std::string& what) {
-  return {number(value.field("x"), what + " x"), number(value.field("y"), what + " y"), number(value.field("z"), what + " z")};
-}
-
-double stampOf(const RosValue& message, double record_time_s) {
-  const double stamp = number(message.field("header")->field("stamp"), "header stamp");
-  return stamp > 0.0 ? stamp : record_time_s;
-}
-
-bool nedFrame(const RosValue& message) {
-  const RosValue* frame = message.field("header")->field("frame_id");
-  const std::string* name = frame != nullptr ? std::get_if<std::string>(&frame->value) : nullptr;
-  return name != nullptr && namesNedFrame(*name);
+  return {finiteNumber(value.field("x"), what + " x"), finiteNumber(value.field("y"), what + " y"),
+          finiteNumber(value.field("z"), what + " z")};
 }
 
 /// A topic chosen for a role: the first, in the bag's order, whose message holds it.
@@ -132,8 +86,8 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
   });
   if (attitude.topic == nullptr) return std::nullopt;
   const Role pressure = findRole(bag, [](const RosSchema& s) {
-    return typeAt(s, {"header"}) == "std_msgs/Header" && holds(s, {}, {"fluid_pressure"}) ? std::vector<std::string>{"fluid_pressure"}
-                                                                                           : std::vector<std::string>{};
+    const bool pressure = s.typeAt({"header"}) == "std_msgs/Header" && s.holdsNumbers({}, {"fluid_pressure"});
+    return pressure ? std::vector<std::string>{"fluid_pressure"} : std::vector<std::string>{};
   });
   const Role velocity = findRole(bag, [](const RosSchema& s) {
     return firstPath(s, {{"twist", "linear"}, {"twist", "twist", "linear"}, {"velocity"}}, {"x", "y", "z"});
@@ -147,17 +101,17 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
   RosSkipped skipped = bag.forEachMessage(attitude.topic->topic, *attitude.schema, [&](const RosValue& message, double record_s) {
     if (const RosValue* covariance = message.field("orientation_covariance")) {
       const auto* values = std::get_if<std::vector<RosValue>>(&covariance->value);
-      if (values != nullptr && !values->empty() && number(&values->front(), "orientation covariance") == -1.0) {
+      if (values != nullptr && !values->empty() && finiteNumber(&values->front(), "orientation covariance") == -1.0) {
         throw Error("its orientation_covariance[0] is -1: it has no orientation");
       }
     }
-    const RosValue& q = at(message, attitude.path);
-    const bool ned = nedFrame(message);
+    const RosValue& q = valueAt(message, attitude.path);
+    const bool ned = headerNamesNed(message);
     (ned ? any_ned : any_enu) = true;
-    const double time_s = stampOf(message, record_s);
+    const double time_s = headerTime(message, record_s);
     attitudes.push_back({time_s, rosPoseToNed(time_s, Eigen::Vector3d::Zero(),
-                                              Eigen::Quaterniond(number(q.field("w"), "orientation w"), number(q.field("x"), "orientation x"),
-                                                                 number(q.field("y"), "orientation y"), number(q.field("z"), "orientation z")),
+                                              Eigen::Quaterniond(finiteNumber(q.field("w"), "orientation w"), finiteNumber(q.field("x"), "orientation x"),
+                                                                 finiteNumber(q.field("y"), "orientation y"), finiteNumber(q.field("z"), "orientation z")),
                                               ned)});
   });
   keepIncreasing(attitudes);
@@ -174,8 +128,8 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
   if (pressure.topic != nullptr) {
     const double pascals_per_metre = options.water_density_kg_m3 * kGravity_m_s2;
     const RosSkipped more = bag.forEachMessage(pressure.topic->topic, *pressure.schema, [&](const RosValue& message, double record_s) {
-      depths.push_back({stampOf(message, record_s),
-                        (number(message.field("fluid_pressure"), "fluid pressure") - options.surface_pressure_pa) / pascals_per_metre});
+      depths.push_back({headerTime(message, record_s),
+                        (finiteNumber(message.field("fluid_pressure"), "fluid pressure") - options.surface_pressure_pa) / pascals_per_metre});
     });
     skipped.count += more.count;
     skipped.reasons.insert(skipped.reasons.end(), more.reasons.begin(), more.reasons.end());
@@ -187,8 +141,8 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
   if (velocity.topic != nullptr) {
     std::vector<Timed<Eigen::Vector3d>> velocities;
     const RosSkipped more = bag.forEachMessage(velocity.topic->topic, *velocity.schema, [&](const RosValue& message, double record_s) {
-      const Eigen::Vector3d v = vectorOf(at(message, velocity.path), "velocity");
-      velocities.push_back({stampOf(message, record_s), nedFrame(message) ? v : Eigen::Vector3d(v.x(), -v.y(), -v.z())});  // FLU → FRD
+      const Eigen::Vector3d v = vectorOf(valueAt(message, velocity.path), "velocity");
+      velocities.push_back({headerTime(message, record_s), headerNamesNed(message) ? v : Eigen::Vector3d(v.x(), -v.y(), -v.z())});  // FLU → FRD
     });
     skipped.count += more.count;
     skipped.reasons.insert(skipped.reasons.end(), more.reasons.begin(), more.reasons.end());

@@ -3,7 +3,9 @@
 
 #include "ros_message.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -226,6 +228,42 @@ RosSchema::RosSchema(const std::string& type, const std::string& definition, Ros
       }
     }
   }
+}
+
+std::string RosSchema::typeAt(const std::vector<std::string>& path) const {
+  std::string type = root_;
+  for (const std::string& name : path) {
+    if (isBuiltin(type)) return {};
+    const std::vector<RosField>& list = fields(type);
+    const auto field = std::find_if(list.begin(), list.end(), [&](const RosField& f) { return f.name == name && f.array < 0; });
+    if (field == list.end()) return {};
+    type = field->type;
+  }
+  return type;
+}
+
+bool RosSchema::holdsNumbers(const std::vector<std::string>& path, std::initializer_list<const char*> names) const {
+  const std::string type = typeAt(path);
+  if (type.empty() || isBuiltin(type)) return false;
+  for (const char* name : names) {
+    std::vector<std::string> child = path;
+    child.emplace_back(name);
+    const std::string field_type = typeAt(child);
+    if (field_type.empty() || !isBuiltin(field_type) || field_type == "string") return false;
+  }
+  return true;
+}
+
+const RosValue& valueAt(const RosValue& message, const std::vector<std::string>& path) {
+  const RosValue* value = &message;
+  for (const std::string& name : path) value = value->field(name);
+  return *value;
+}
+
+double finiteNumber(const RosValue* value, const std::string& what) {
+  const double* number = value != nullptr ? std::get_if<double>(&value->value) : nullptr;
+  if (number == nullptr || !std::isfinite(*number)) throw Error("its " + what + " is not a finite number");
+  return *number;
 }
 
 const std::vector<RosField>& RosSchema::fields(const std::string& type) const {

@@ -13,6 +13,7 @@
 /// strings counting their terminating NUL).
 
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <span>
 #include <string>
@@ -50,6 +51,11 @@ class RosSchema {
   const std::vector<RosField>& fields(const std::string& type) const;
   /// Whether `type` is a builtin type (numbers, bool, byte, char, string, time, duration).
   static bool isBuiltin(const std::string& type);
+  /// The type reached from the top type along the fields `path` (none of them arrays), or empty
+  /// when a step is missing.
+  std::string typeAt(const std::vector<std::string>& path) const;
+  /// Whether the message at `path` holds every field of `names` as a number (not an array).
+  bool holdsNumbers(const std::vector<std::string>& path, std::initializer_list<const char*> names) const;
 
  private:
   std::string root_;
@@ -73,6 +79,13 @@ struct RosValue {
   /// The field `name` of a nested message, nullptr when this is no message or has no such field.
   const RosValue* field(const std::string& name) const;
 };
+
+/// The decoded value reached along the fields `path` (as RosSchema::typeAt found them).
+const RosValue& valueAt(const RosValue& message, const std::vector<std::string>& path);
+
+/// The number `value` holds. @throws Error("its WHAT is not a finite number") for none, a NaN or
+/// an infinity.
+double finiteNumber(const RosValue* value, const std::string& what);
 
 /// Decodes one serialized message of the schema's root type, in the schema's encoding.
 /// @throws Error naming the field when the bytes end before the message does, or when bytes remain
