@@ -114,14 +114,32 @@ void printSkipsAndNotes(const LogSummary& s, const std::string& path) {
   if (s.notes.size() > kMaxNoteLines) std::printf("            ... %zu more notes\n", s.notes.size() - kMaxNoteLines);
 }
 
-void printNav(const LogSummary& s, const std::string& nav_source) {
-  if (!s.nav) {
+/// The navigation info prints, and the sonar log's clock.
+struct InfoNavigation {
+  const AlignedNavigation* navigation = nullptr;
+  std::optional<double> log_clock_utc_s;
+};
+
+/// The sonar's and the navigation's spans, each on its own clock (in UTC where the file says), and
+/// how they were joined.
+void printClocks(const LogSummary& s, const InfoNavigation& info) {
+  const AlignedNavigation& nav = *info.navigation;
+  std::printf("clocks      sonar       %s\n", spanText(s.first_time_s, s.last_time_s, info.log_clock_utc_s).c_str());
+  std::printf("            navigation  %s\n", spanText(nav.first_own_s, nav.last_own_s, nav.own_clock_utc_s).c_str());
+  std::printf("            joined: %s (navigation times moved by %+.3f s)\n", nav.clock.how.c_str(), nav.clock.shift_s);
+}
+
+void printNav(const LogSummary& s, const InfoNavigation& info) {
+  if (!s.nav || info.navigation == nullptr) {
     std::printf("navigation  none given (the head taken as static; --nav NAV.csv to check a track)\n");
     return;
   }
   const NavCoverage& n = *s.nav;
+  const std::string& nav_source = info.navigation->source.description;
   std::printf("navigation  %s: %zu fixes, %.1f .. %.1f s (%.1f s), %.2f m travelled\n", nav_source.c_str(), n.fixes, n.first_time_s, n.last_time_s, n.duration_s,
               n.distance_m);
+  for (const std::string& note : info.navigation->source.notes) std::printf("            %s\n", note.c_str());
+  printClocks(s, info);
   if (n.coversBeams()) {
     std::printf("            covers every beam\n");
   } else {
@@ -155,7 +173,7 @@ void printTopics(const BagTopics& bag) {
 }
 
 void printText(const LogSummary& s, const InfoArgs& args, LogFormat format, const BagTopics& bag,
-               const std::string& nav_source) {
+               const InfoNavigation& nav_info) {
   const NominalBeam beam = nominalBeam(format);
   std::printf("%s: %s log (nominal beam %.3g° wide x %.3g° tall)\n",
               std::filesystem::path(args.input).filename().c_str(), std::string(logFormatName(format)).c_str(),
@@ -171,7 +189,7 @@ void printText(const LogSummary& s, const InfoArgs& args, LogFormat format, cons
   }
   printSkipsAndNotes(s, args.input);
   printTopics(bag);
-  printNav(s, nav_source);
+  printNav(s, nav_info);
 }
 
 /// null for an unset optional.
@@ -190,7 +208,7 @@ nlohmann::json scaleJson(const RangeScale& scale) {
 }
 
 nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat format, const BagTopics& bag,
-                      const std::string& nav_source) {
+                      const InfoNavigation& nav_info) {
   const NominalBeam beam = nominalBeam(format);
   nlohmann::json sweeps = nlohmann::json::array();
   for (const SweepSummary& w : s.sweeps) {
@@ -213,9 +231,13 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
     reasons.push_back({{"pattern", g.pattern}, {"first_reason", g.first_reason}, {"count", g.count}});
   }
   nlohmann::json nav = nullptr;
-  if (s.nav) {
+  if (s.nav && nav_info.navigation != nullptr) {
     const NavCoverage& n = *s.nav;
-    nav = {{"source", nav_source}, {"fixes", n.fixes}, {"first_time_s", n.first_time_s},
+    const AlignedNavigation& a = *nav_info.navigation;
+    nav = {{"source", a.source.description}, {"notes", a.source.notes},
+           {"clock_utc_s", orNull(a.own_clock_utc_s)}, {"own_first_time_s", a.first_own_s},
+           {"own_last_time_s", a.last_own_s}, {"time_shift_s", a.clock.shift_s}, {"clock_joined", a.clock.how},
+           {"fixes", n.fixes}, {"first_time_s", n.first_time_s},
            {"last_time_s", n.last_time_s}, {"duration_s", n.duration_s}, {"distance_m", n.distance_m},
            {"beams_before", n.beams_before}, {"beams_after", n.beams_after}, {"beams_outside", n.beams_outside},
            {"covers_beams", n.coversBeams()}};
@@ -237,7 +259,8 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
           {"skipped_beams", s.skipped_beams},
           {"skip_reasons", reasons},
           {"notes", s.notes},
-          {"time", {{"first_s", s.first_time_s}, {"last_s", s.last_time_s}, {"duration_s", s.duration_s}}},
+          {"time", {{"first_s", s.first_time_s}, {"last_s", s.last_time_s}, {"duration_s", s.duration_s},
+                    {"clock_utc_s", orNull(nav_info.log_clock_utc_s)}}},
           {"beam_rate_hz", orNull(s.beam_rate_hz)},
           {"bearings", bearings},
           {"sweeps", {{"count", s.sweeps.size()},
@@ -263,7 +286,7 @@ Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag, .mcap (or any name with --format)")
       ->required();
   addLogFormatOption(*cmd, args.format);
-  addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic,
+  addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
                      "The vehicle's navigation: how many fixes, the distance travelled, and which beams fall "
                      "outside its time span (map would skip them)");
   cmd->add_flag("--json", args.json, "Print one JSON object instead of the text (units in the keys' names)");
@@ -277,21 +300,24 @@ Command addInfoCommand(CLI::App& app, InfoArgs& args) {
 void runInfo(const InfoArgs& args) {
   const LogFormat format = inputFormat(args.input, args.format);
   const SonarLog log = readSonarLog(args.input, format, args.log_read);
-  const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
-  const LogSummary summary = summarizeLog(log, navigation ? navigation->track : NavTrack{});
+  const std::optional<AlignedNavigation> navigation =
+      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s);
+  const LogSummary summary = summarizeLog(log, navigation ? navigation->source.track : NavTrack{});
   BagTopics bag;
   if (isRosLog(format)) {
     bag.topics = listRosBagTopics(args.input);
     for (const RosBagTopic& t : bag.topics) {
       if (log.sonar == "ROS topic " + t.topic + " (" + t.type + ")") bag.sonar_topic = t.topic;
-      if (navigation && args.nav_file.empty() && navigation->description.rfind(t.topic + " (", 0) == 0) bag.nav_topic = t.topic;
+      if (navigation && args.nav_file.empty() && navigation->source.description.rfind(t.topic + " (", 0) == 0) {
+        bag.nav_topic = t.topic;
+      }
     }
   }
-  const std::string nav_source = navigation ? navigation->description : std::string();
+  const InfoNavigation nav_info{navigation ? &*navigation : nullptr, log.clock_utc_s};
   if (args.json) {
-    std::printf("%s\n", toJson(summary, args, format, bag, nav_source).dump(2).c_str());
+    std::printf("%s\n", toJson(summary, args, format, bag, nav_info).dump(2).c_str());
   } else {
-    printText(summary, args, format, bag, nav_source);
+    printText(summary, args, format, bag, nav_info);
   }
 }
 

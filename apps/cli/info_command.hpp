@@ -21,6 +21,7 @@ struct InfoArgs {
   std::string nav_file;         ///< --nav: navigation CSV or bag whose coverage is reported ("none"; empty: the input bag's own)
   LogReadOptions log_read;      ///< --sonar-topic, --bearing-unit, --bearing-direction of a ROS bag input
   std::string nav_topic;        ///< --nav-topic of a ROS bag
+  double nav_time_offset_s = 0.0;  ///< --nav-time-offset: seconds added to the navigation's clock
   bool json = false;            ///< --json: one JSON object on stdout instead of the text
 };
 

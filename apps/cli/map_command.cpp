@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 
@@ -54,7 +56,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   cmd->add_option("--cartesian-png", args.cartesian_png,
                   "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0), as --polar-png");
   addMappingOptions(*cmd, args);
-  addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic,
+  addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
                      "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
                      "outside its time span are skipped");
   cmd->add_option("--mounting", args.mounting,
@@ -123,19 +125,39 @@ std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
   return note;
 }
 
+namespace {
+
+/// One line on where the navigation came from, unless it is the navigation CSV the user named;
+/// how its clock was joined to the log's when either clock is known or an offset was given; the
+/// reader's notes.
+void printNavigationSource(const AlignedNavigation& navigation, const std::string& nav_file) {
+  const NavigationSource& source = navigation.source;
+  const bool csv = !nav_file.empty() && source.description == std::filesystem::path(nav_file).filename().string();
+  if (!csv) {
+    std::printf("navigation %s: %zu fixes%s\n", source.description.c_str(), source.track.size(),
+                source.skipped > 0 ? (", " + std::to_string(source.skipped) + " messages skipped").c_str() : "");
+  }
+  if (navigation.clock.both_utc || navigation.clock.shift_s != 0.0) {
+    std::printf("navigation clock: %s (times moved by %+.3f s)\n", navigation.clock.how.c_str(), navigation.clock.shift_s);
+  }
+  for (const std::string& note : source.notes) std::fprintf(stderr, "warning: %s\n", note.c_str());
+}
+
+}  // namespace
+
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
   const LogFormat format = inputFormat(args.input, args.format);
   const SonarLog log = readSonarLog(args.input, format, args.log_read);
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
-  const std::optional<NavigationSource> navigation = navigationFor(args.input, format, args.nav_file, args.nav_topic);
+  const std::optional<AlignedNavigation> navigation =
+      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s);
   requireNavigation(args, !navigation);
-  const NavTrack nav = navigation ? navigation->track : NavTrack{};
-  const std::optional<LogFormat> nav_format = args.nav_file.empty() ? std::optional<LogFormat>(format) : logFormatOfPath(args.nav_file);
-  if (navigation && nav_format && isRosLog(*nav_format)) {
-    std::printf("navigation %s: %zu fixes%s\n", navigation->description.c_str(), nav.size(),
-                navigation->skipped > 0 ? (", " + std::to_string(navigation->skipped) + " messages skipped").c_str() : "");
+  const NavTrack nav = navigation ? navigation->source.track : NavTrack{};
+  if (navigation) {
+    printNavigationSource(*navigation, args.nav_file);
+    requireClockOverlap(log, *navigation);
   }
   SlamResult slam;
   MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body, slam);

@@ -26,6 +26,7 @@ struct MapArgs : MappingArguments {
   std::string nav_file;          ///< --nav: a navigation CSV or a ROS bag; "none"; empty: the input bag's own, if any
   LogReadOptions log_read;       ///< --sonar-topic, --bearing-unit, --bearing-direction of a ROS bag input
   std::string nav_topic;         ///< --nav-topic of a ROS bag (empty: found by its fields)
+  double nav_time_offset_s = 0.0;  ///< --nav-time-offset: seconds added to the navigation's clock
   std::vector<double> mounting;  ///< X,Y,Z (m), ROLL,PITCH,YAW (degrees) of the sonar in the body; empty: default
   bool slam = false;             ///< --slam: correct the navigation by scan matching (slam/localizer.hpp)
   std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)

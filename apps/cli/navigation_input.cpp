@@ -1,15 +1,23 @@
-// --nav, --sonar-topic and --nav-topic (see navigation_input.hpp).
+// --nav, --sonar-topic, --nav-topic, --nav-time-offset and --timezone (see navigation_input.hpp).
 
 #include "navigation_input.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/log_clock.hpp"
 
 namespace sonarmap::cli {
 
 void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& log_read, std::string& nav_topic,
-                        const std::string& nav_help) {
+                        double& nav_time_offset_s, const std::string& nav_help) {
   cmd.add_option("--nav", nav_file,
                  nav_help + ". A navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, "
-                            "the log's clock) or a ROS 1 bag (.bag: its nav_msgs/Odometry or pose topic, ENU turned into "
-                            "NED). Default: the input bag's own navigation topic when it has one; `none`: no navigation");
+                            "the log's clock), a ROS log (.bag, .mcap, .db3: its nav_msgs/Odometry or pose topic, ENU "
+                            "turned into NED), a BlueROV2's MAVLink telemetry (.tlog) or ArduPilot dataflash log (.BIN). "
+                            "Default: the input bag's own navigation topic when it has one; `none`: no navigation");
   cmd.add_option("--sonar-topic", log_read.sonar_topic,
                  "The sonar topic of a ROS bag input. Default: the first topic whose message has a bearing, a bin "
                  "length or range, and intensities");
@@ -26,13 +34,65 @@ void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& lo
   cmd.add_option("--nav-topic", nav_topic,
                  "The navigation topic of a ROS bag (the input's, or --nav's). Default: nav_msgs/Odometry, else the "
                  "topic with a header and a pose that has most messages");
+  cmd.add_option("--nav-time-offset", nav_time_offset_s,
+                 "Seconds added to the navigation's times after both clocks are put on UTC where the files say "
+                 "(a Ping Viewer log's name, a .tlog, a bag, a dataflash log's GPS); alone, when either does not. "
+                 "`info --nav` prints both spans")
+      ->capture_default_str();
+  cmd.add_option_function<std::string>(
+         "--timezone",
+         [&log_read](const std::string& zone) {
+           try {
+             log_read.utc_offset_s = parseUtcOffset(zone);
+           } catch (const ValueError& e) {
+             throw CLI::ValidationError("--timezone", e.what());
+           }
+         },
+         "The recording computer's offset from UTC, for a log named in local time (Ping Viewer: "
+         "yyyyMMdd-hhmmsszzz.bin): UTC | +03:30 | -05:00. Default: UTC")
+      ->type_name("ZONE");
 }
 
-std::optional<NavigationSource> navigationFor(const std::string& input, LogFormat format, const std::string& nav_file,
-                                              const std::string& nav_topic) {
+std::optional<AlignedNavigation> navigationFor(const std::string& input, LogFormat format, const SonarLog& log,
+                                               const std::string& nav_file, const std::string& nav_topic,
+                                               double nav_time_offset_s) {
   if (nav_file == "none") return std::nullopt;
-  if (!nav_file.empty()) return readNavigation(nav_file, nav_topic);
-  return readLogNavigation(input, format, nav_topic);
+  std::optional<NavigationSource> source =
+      nav_file.empty() ? readLogNavigation(input, format, nav_topic) : readNavigation(nav_file, nav_topic);
+  if (!source) return std::nullopt;
+  AlignedNavigation nav;
+  nav.own_clock_utc_s = source->clock_utc_s;
+  if (!source->track.empty()) {
+    nav.first_own_s = source->track.front().time_s;
+    nav.last_own_s = source->track.back().time_s;
+  }
+  nav.clock = alignNavigationClock(*source, log.clock_utc_s, nav_time_offset_s);
+  nav.source = std::move(*source);
+  return nav;
+}
+
+std::string spanText(double first_s, double last_s, const std::optional<double>& clock_utc_s) {
+  if (clock_utc_s) return utcText(*clock_utc_s + first_s) + " .. " + utcText(*clock_utc_s + last_s);
+  char text[96];
+  std::snprintf(text, sizeof text, "%.3f .. %.3f s", first_s, last_s);
+  return text;
+}
+
+void requireClockOverlap(const SonarLog& log, const AlignedNavigation& nav) {
+  const NavTrack& track = nav.source.track;
+  if (track.empty() || log.beams.empty()) return;
+  const bool any = std::any_of(log.beams.begin(), log.beams.end(), [&](const Beam& b) {
+    return b.time_s >= track.front().time_s && b.time_s <= track.back().time_s;
+  });
+  if (any) return;
+  double first = log.beams.front().time_s, last = first;
+  for (const Beam& b : log.beams) {
+    first = std::min(first, b.time_s);
+    last = std::max(last, b.time_s);
+  }
+  throw FileError("no beam within the navigation's time span: sonar " + spanText(first, last, log.clock_utc_s) +
+                  ", navigation " + spanText(nav.first_own_s, nav.last_own_s, nav.own_clock_utc_s) + " (" +
+                  nav.clock.how + "); give --nav-time-offset SECONDS or --timezone");
 }
 
 }  // namespace sonarmap::cli

@@ -12,15 +12,34 @@
 
 namespace sonarmap::cli {
 
-/// Adds --nav (`nav_help` first in its help) into `nav_file`, --nav-topic, and a ROS bag's
-/// --sonar-topic, --bearing-unit and --bearing-direction into `log_read`.
+/// Adds --nav (`nav_help` first in its help) into `nav_file`, --nav-topic, --nav-time-offset into
+/// `nav_time_offset_s`, --timezone and a ROS bag's --sonar-topic, --bearing-unit and
+/// --bearing-direction into `log_read`.
 void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& log_read, std::string& nav_topic,
-                        const std::string& nav_help);
+                        double& nav_time_offset_s, const std::string& nav_help);
 
-/// The navigation for the log `input` in `format`: `nav_file`'s ("none": nothing), else the input
-/// bag's own navigation topic, else nothing.
+/// A navigation put on the sonar log's clock, and how.
+struct AlignedNavigation {
+  NavigationSource source;
+  NavClockAlignment clock;
+  std::optional<double> own_clock_utc_s;  ///< the navigation file's clock before alignment
+  double first_own_s = 0.0, last_own_s = 0.0;  ///< its span on its own clock
+};
+
+/// The navigation for `log` (read from `input` in `format`): `nav_file`'s ("none": nothing), else
+/// the input bag's own navigation topic, else nothing; its times put on the log's clock
+/// (alignNavigationClock).
 /// @throws FileError as readNavigation and readLogNavigation.
-std::optional<NavigationSource> navigationFor(const std::string& input, LogFormat format, const std::string& nav_file,
-                                              const std::string& nav_topic);
+std::optional<AlignedNavigation> navigationFor(const std::string& input, LogFormat format, const SonarLog& log,
+                                               const std::string& nav_file, const std::string& nav_topic,
+                                               double nav_time_offset_s);
+
+/// "2024-08-14 10:15:02.123 UTC .. 10:19:14.456 UTC" for a span on a clock known in UTC, else
+/// "12.300 .. 15.800 s".
+std::string spanText(double first_s, double last_s, const std::optional<double>& clock_utc_s);
+
+/// @throws FileError naming both spans (spanText) when no beam of `log` lies within the track's
+/// span: the navigation is on another clock (--nav-time-offset, --timezone).
+void requireClockOverlap(const SonarLog& log, const AlignedNavigation& nav);
 
 }  // namespace sonarmap::cli

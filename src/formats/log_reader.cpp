@@ -78,12 +78,19 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
     case LogFormat::kCsv: return readBeamCsv(path);
     case LogFormat::kV4Log: return readSeaNetV4Log(path);
     case LogFormat::kSeaNet: return readSeaNetCapture(path);
-    case LogFormat::kPing360: return readPing360(path);
+    case LogFormat::kPing360: {
+      SonarLog log = readPing360(path);
+      if (log.clock_utc_s) *log.clock_utc_s -= options.utc_offset_s;  // the name's local time → UTC
+      return log;
+    }
     case LogFormat::kRosBag:
     case LogFormat::kMcap:  // the reader tells them apart by their first bytes
-    case LogFormat::kRosbag2:
-      return readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
-                                            parseBearingDirection(options.bearing_direction)});
+    case LogFormat::kRosbag2: {
+      SonarLog log = readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
+                                                    parseBearingDirection(options.bearing_direction)});
+      log.clock_utc_s = 0.0;  // header stamps: seconds since 1970
+      return log;
+    }
   }
   throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
 }

@@ -3,10 +3,16 @@
 
 #include "sonarmap/formats/navigation_reader.hpp"
 
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/log_clock.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
+#include "sonarmap/formats/vehicle_log_navigation.hpp"
 
 namespace sonarmap {
 namespace {
@@ -15,8 +21,22 @@ NavigationSource fromBag(const std::string& path, RosBagNavigation nav) {
   NavigationSource source;
   source.track = std::move(nav.track);
   source.skipped = nav.skipped;
+  source.clock_utc_s = 0.0;  // header stamps: seconds since 1970
   source.description = nav.topic + " (" + nav.type + ", " + nav.frame + ") of " + std::filesystem::path(path).filename().string();
   return source;
+}
+
+bool startsAsDataflash(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::array<std::uint8_t, 3> head{};
+  file.read(reinterpret_cast<char*>(head.data()), head.size());
+  return file.gcount() == static_cast<std::streamsize>(head.size()) && isDataflashLog(head);
+}
+
+std::string secondsText(double s) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%+.3f s", s);
+  return text;
 }
 
 }  // namespace
@@ -30,6 +50,10 @@ NavigationSource readNavigation(const std::string& path, const std::string& nav_
     }
     return fromBag(path, std::move(*nav));
   }
+  if (std::filesystem::path(path).extension() == ".tlog" || std::filesystem::path(path).extension() == ".TLOG") {
+    return readMavlinkTlogNavigation(path);
+  }
+  if (startsAsDataflash(path)) return readDataflashNavigation(path);
   NavigationSource source;
   source.track = readNavCsv(path);
   source.description = std::filesystem::path(path).filename().string();
@@ -41,6 +65,28 @@ std::optional<NavigationSource> readLogNavigation(const std::string& log_path, L
   std::optional<RosBagNavigation> nav = readRosBagNavigation(log_path, RosBagNavOptions{nav_topic});
   if (!nav) return std::nullopt;
   return fromBag(log_path, std::move(*nav));
+}
+
+NavClockAlignment alignNavigationClock(NavigationSource& nav, const std::optional<double>& log_clock_utc_s,
+                                       double nav_time_offset_s) {
+  if (!std::isfinite(nav_time_offset_s)) {
+    throw ValueError("navigation time offset " + std::to_string(nav_time_offset_s) + " s: expected a finite number");
+  }
+  NavClockAlignment alignment;
+  alignment.both_utc = nav.clock_utc_s && log_clock_utc_s;
+  alignment.shift_s = nav_time_offset_s + (alignment.both_utc ? *nav.clock_utc_s - *log_clock_utc_s : 0.0);
+  if (alignment.both_utc) {
+    alignment.how = "both clocks in UTC";
+  } else {
+    alignment.how = std::string("taken as on the sonar log's clock (") +
+                    (log_clock_utc_s ? "" : "the sonar log does not say when it started") +
+                    (!log_clock_utc_s && !nav.clock_utc_s ? ", " : "") +
+                    (nav.clock_utc_s ? "" : "the navigation's clock is not UTC") + ")";
+  }
+  if (nav_time_offset_s != 0.0) alignment.how += ", moved by --nav-time-offset " + secondsText(nav_time_offset_s);
+  for (NavSample& fix : nav.track) fix.time_s += alignment.shift_s;
+  nav.clock_utc_s = log_clock_utc_s;
+  return alignment;
 }
 
 }  // namespace sonarmap

@@ -4,6 +4,7 @@
 
 #include "sonarmap/formats/ping360_reader.hpp"
 
+#include "sonarmap/formats/log_clock.hpp"
 #include "sonarmap/formats/wire_stream.hpp"
 #include "reader_support.hpp"
 
@@ -24,7 +25,10 @@ SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& s
 }
 
 SonarLog readPing360(const std::string& path, const CaptureOptions& options) {
-  return parsePing360(detail::readFileBytes(path), path, options);
+  const std::vector<unsigned char> bytes = detail::readFileBytes(path);
+  SonarLog log = parsePing360(bytes, path, options);
+  if (isPingViewerLog(bytes)) log.clock_utc_s = pingViewerNameTime_s(path);
+  return log;
 }
 
 }  // namespace sonarmap

@@ -1,5 +1,5 @@
 /// @file ping_viewer_time.cpp
-/// pingViewerTime_s, pingViewerText (see ping_viewer_time.hpp).
+/// pingViewerTime_s, pingViewerText, asciiDigits (see ping_viewer_time.hpp).
 
 #include "ping_viewer_time.hpp"
 
@@ -54,6 +54,22 @@ std::string pingViewerText(std::span<const unsigned char> bytes, bool utf16) {
   std::string utf8;
   decode(bytes, utf16).toUTF8String(utf8);
   return utf8;
+}
+
+std::string asciiDigits(std::string_view text) {
+  const icu::UnicodeString unicode =
+      icu::UnicodeString::fromUTF8(icu::StringPiece(text.data(), static_cast<std::int32_t>(text.size())));
+  std::string ascii;
+  for (std::int32_t i = 0; i < unicode.length(); i = unicode.moveIndex32(i, 1)) {
+    const UChar32 c = unicode.char32At(i);
+    const std::int32_t digit = u_charDigitValue(c);
+    if (digit >= 0 && digit <= 9) {
+      ascii.push_back(static_cast<char>('0' + digit));
+    } else {
+      ascii.push_back(c < 0x80 ? static_cast<char>(c) : '?');
+    }
+  }
+  return ascii;
 }
 
 }  // namespace sonarmap::detail

@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 
 namespace sonarmap::detail {
 
@@ -24,5 +25,9 @@ std::optional<double> pingViewerTime_s(std::span<const unsigned char> bytes, boo
 
 /// The text of a QString's bytes as UTF-8 (for messages); invalid sequences become U+FFFD.
 std::string pingViewerText(std::span<const unsigned char> bytes, bool utf16);
+
+/// UTF-8 `text` with every decimal digit of any script written as its ASCII digit and every other
+/// character but ASCII ones as '?' (a file name Qt wrote in the recording computer's digits).
+std::string asciiDigits(std::string_view text);
 
 }  // namespace sonarmap::detail

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_fixture.hpp"
+#include "formats/vehicle_log_fixture.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
@@ -181,6 +182,51 @@ TEST_F(cliInfo, ARosBagsTopicsAreListedAndItsNavigationIsUsed) {
   EXPECT_EQ(wrong.exit_code, 1);
   EXPECT_NE(wrong.err.find("no topic /odom"), std::string::npos) << wrong.err;
   EXPECT_FALSE(fs::exists(root_ / "wrong.bt"));
+}
+
+// A BlueROV2's telemetry log beside a sonar log without a clock: its UTC clock cannot meet the
+// log's, so info prints both spans and map refuses with both; --nav-time-offset joins them and the
+// map matches the one made with the same track as a CSV.
+TEST_F(cliInfo, ABlueRov2TelemetryLogIsJoinedByItsTimeOffset) {
+  const std::uint64_t boot_utc_us = 1723630500000000ULL;  // 2024-08-14 10:15:00 UTC; the log's 0 is boot + 5 s
+  std::string tlog;
+  for (const NavSample& fix : run_.nav) {
+    const auto boot_ms = static_cast<std::uint32_t>(std::llround(fix.time_s * 1000.0) + 5000);
+    const std::uint64_t received = boot_utc_us + boot_ms * 1000ULL;
+    tlog += tlogRecord(received, attitudeFrame(boot_ms, static_cast<float>(fix.roll_rad), static_cast<float>(fix.pitch_rad),
+                                               static_cast<float>(fix.yaw_rad)));
+    tlog += tlogRecord(received, localPositionNedFrame(boot_ms, static_cast<float>(fix.position_ned_m.x()),
+                                                       static_cast<float>(fix.position_ned_m.y()),
+                                                       static_cast<float>(fix.position_ned_m.z())));
+  }
+  const fs::path nav = root_ / "flight.tlog";
+  writeFile(nav, tlog);
+  const nlohmann::json apart = infoJson({beams_.string(), "--nav", nav.string()});
+  EXPECT_FALSE(apart["navigation"]["covers_beams"].get<bool>()) << apart.dump();
+  EXPECT_EQ(apart["navigation"]["clock_utc_s"], 0.0);
+  EXPECT_TRUE(apart["time"]["clock_utc_s"].is_null());
+  const ProgramRun text = run({"info", beams_.string(), "--nav", nav.string()});
+  EXPECT_NE(text.out.find("navigation  2024-08-14 10:15:05.000 UTC .. "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("the sonar log does not say when it started"), std::string::npos) << text.out;
+
+  const ProgramRun refused = run({"map", beams_.string(), "--nav", nav.string(), "-o", (root_ / "apart.bt").string()});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("no beam within the navigation's time span"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--nav-time-offset"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(root_ / "apart.bt"));
+
+  const ProgramRun joined = run({"map", beams_.string(), "--nav", nav.string(), "--nav-time-offset=-1723630505",
+                                 "-o", (root_ / "tlog.bt").string(), "-q"});
+  ASSERT_EQ(joined.exit_code, 0) << joined.err;
+  EXPECT_NE(joined.out.find("navigation MAVLink telemetry flight.tlog (attitude ATTITUDE, position LOCAL_POSITION_NED): " +
+                            std::to_string(run_.nav.size()) + " fixes"),
+            std::string::npos) << joined.out;
+  EXPECT_NE(joined.out.find("0 without navigation"), std::string::npos) << joined.out;
+  const ProgramRun from_csv = run({"map", beams_.string(), "--nav", nav_.string(), "-o", (root_ / "csv.bt").string(), "-q"});
+  ASSERT_EQ(from_csv.exit_code, 0) << from_csv.err;
+  auto obstacles = [](const std::string& out) { return std::stoul(out.substr(out.find(" sweeps, ") + 9)); };
+  EXPECT_NEAR(static_cast<double>(obstacles(joined.out)), static_cast<double>(obstacles(from_csv.out)),
+              0.02 * static_cast<double>(obstacles(from_csv.out)));
 }
 
 TEST_F(cliInfo, FormatNamesTheReaderOfAnyFileName) {

@@ -70,6 +70,10 @@ struct LogReadOptions {
   std::string bearing_unit = "auto";
   /// A ROS bag's bearing direction seen from above: "cw" or "ccw" (parseBearingDirection).
   std::string bearing_direction = "cw";
+  /// Seconds east of UTC of the recording computer's clock, for a log whose name gives its start in
+  /// local time (a Ping Viewer log: SonarLog::clock_utc_s = the name's time − this); parseUtcOffset
+  /// reads `+03:30`.
+  double utc_offset_s = 0.0;
 };
 
 /// Reads the beams of a sonar log in `format` whatever its file name, with the reader's default

@@ -8,21 +8,17 @@
 #include <string>
 
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/navigation_source.hpp"
 #include "sonarmap/nav/navigation.hpp"
 
 namespace sonarmap {
 
-/// A navigation track and where it came from, in words for a summary ("nav.csv", or
-/// "/odometry (nav_msgs/Odometry, ENU (REP 103), turned into NED) of run.bag").
-struct NavigationSource {
-  NavTrack track;
-  std::string description;
-  std::size_t skipped = 0;  ///< fixes skipped (a bag's messages that gave none)
-};
-
-/// Reads the navigation at `path`: a ROS 1 bag's navigation topic when its extension is `.bag`
-/// (`nav_topic`, or the one its fields name), else a navigation CSV (readNavCsv).
-/// @throws FileError when the file cannot be read, or a bag holds no navigation topic.
+/// Reads the navigation at `path`: a ROS log's navigation topic when its extension names one
+/// (`.bag`, `.mcap`, `.db3`, a rosbag2 folder; `nav_topic`, or the one its fields name); a MAVLink
+/// telemetry log when it ends in `.tlog` (readMavlinkTlogNavigation); an ArduPilot dataflash log
+/// when its bytes start as one, whatever its name (readDataflashNavigation); else a navigation CSV
+/// (readNavCsv).
+/// @throws FileError when the file cannot be read, or holds no navigation.
 NavigationSource readNavigation(const std::string& path, const std::string& nav_topic = {});
 
 /// The navigation recorded in a sonar log's own file: a ROS 1 bag's navigation topic; nullopt for
@@ -30,5 +26,20 @@ NavigationSource readNavigation(const std::string& path, const std::string& nav_
 /// @throws FileError as readRosBagNavigation.
 std::optional<NavigationSource> readLogNavigation(const std::string& log_path, LogFormat format,
                                                   const std::string& nav_topic = {});
+
+/// How a navigation track's times were put on a sonar log's clock.
+struct NavClockAlignment {
+  double shift_s = 0.0;  ///< added to every fix's time
+  bool both_utc = false;  ///< both files said what their clock is in UTC
+  std::string how;        ///< in words, for a summary
+};
+
+/// Puts `nav`'s fix times on the sonar log's clock: each time + shift, with shift =
+/// nav_time_offset_s + (nav.clock_utc_s − log_clock_utc_s) when both clocks are known in UTC
+/// (log_clock.hpp), else nav_time_offset_s alone (the two files are taken to share a clock, as a
+/// navigation CSV written for its log does). `nav.clock_utc_s` becomes `log_clock_utc_s`.
+/// @throws ValueError when nav_time_offset_s is not finite.
+NavClockAlignment alignNavigationClock(NavigationSource& nav, const std::optional<double>& log_clock_utc_s,
+                                       double nav_time_offset_s);
 
 }  // namespace sonarmap

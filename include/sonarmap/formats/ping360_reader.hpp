@@ -35,7 +35,9 @@
 
 namespace sonarmap {
 
-/// Reads a Ping360 file (see parsePing360).
+/// Reads a Ping360 file (see parsePing360). A Ping Viewer log whose file name starts with its
+/// start time (`yyyyMMdd-hhmmsszzz`, log_clock.hpp) gets `clock_utc_s` = that local time counted
+/// as UTC (readSonarLog moves it by LogReadOptions::utc_offset_s).
 /// @throws FileError when the file cannot be opened or read, or the parser rejects it.
 /// @throws ValueError for options out of range (see parsePing360Stream).
 SonarLog readPing360(const std::string& path, const CaptureOptions& options = {});

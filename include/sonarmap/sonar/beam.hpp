@@ -47,6 +47,10 @@ struct SonarLog {
   /// Lines for the user about data the reader kept but had to interpret (a time stamp it could not
   /// read, a clock that wrapped); not skips.
   std::vector<std::string> notes;
+  /// UTC, in seconds since 1970, at the beams' time_s = 0, when the file says
+  /// (formats/log_clock.hpp): 0 for a ROS log (header stamps are UTC), a Ping Viewer log's start
+  /// from its file name; unset for files that do not say.
+  std::optional<double> clock_utc_s;
 };
 
 }  // namespace sonarmap

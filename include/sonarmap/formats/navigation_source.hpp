@@ -1,0 +1,28 @@
+#pragma once
+/// @file navigation_source.hpp
+/// A navigation track as a reader found it: the fixes, where they came from, and what its clock is.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sonarmap/nav/navigation.hpp"
+
+namespace sonarmap {
+
+/// A navigation track and where it came from, in words for a summary ("nav.csv", or
+/// "/odometry (nav_msgs/Odometry, ENU (REP 103), turned into NED) of run.bag").
+struct NavigationSource {
+  NavTrack track;
+  std::string description;
+  std::size_t skipped = 0;  ///< messages or records skipped (that gave no fix, or could not be read)
+  /// UTC, in seconds since 1970, at the track's time_s = 0 when the file says (log_clock.hpp): 0 for
+  /// a ROS log or a MAVLink telemetry log, a dataflash log's boot time from its GPS fixes; unset for
+  /// a navigation CSV or a dataflash log without a GPS fix.
+  std::optional<double> clock_utc_s;
+  /// Lines for the user about the reading: where a file was cut and what was kept before it.
+  std::vector<std::string> notes;
+};
+
+}  // namespace sonarmap
