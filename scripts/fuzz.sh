@@ -13,13 +13,13 @@
 #   bash scripts/fuzz.sh list                  the harness names
 set -euo pipefail
 cd "$(dirname "$0")/.."
-names=(v4log seanet ping360 wire_stream mat beam_csv nav_csv nav_stream trajectory scan_graph point_text octomap_bt octomap_ot scene map_beam_csv ros_bag mcap rosbag2)
+names=(v4log seanet ping360 wire_stream mat beam_csv nav_csv nav_stream trajectory scan_graph point_text octomap_bt octomap_ot scene map_beam_csv ros_bag mcap rosbag2 tlog dataflash)
 # Files of the hand-made corpus each harness also starts from: tests/corpus/make_corpus.py builds
 # it (binary files generated, text files copied) into build-fuzz/corpus.
 declare -A corpus_glob=([v4log]='*.V4LOG' [seanet]='*.seanet' [ping360]='*.bin' [wire_stream]='*_small.seanet' [mat]='*.mat' [beam_csv]='beams*.csv' [nav_csv]='nav*.csv' [nav_stream]='nav*.csv'
   [trajectory]='tum_*'
   [scan_graph]='*.graph' [point_text]='*.xyz' [octomap_bt]='*.bt' [octomap_ot]='*.ot'
-  [scene]='scene*' [map_beam_csv]='beams*.csv' [ros_bag]='bag*.bag' [mcap]='*.mcap' [rosbag2]='rosbag2*.db3')
+  [scene]='scene*' [map_beam_csv]='beams*.csv' [ros_bag]='bag*.bag' [mcap]='*.mcap' [rosbag2]='rosbag2*.db3' [tlog]='*.tlog' [dataflash]='*.BIN')
 build=build-fuzz
 # Shared by every run: 10 s per input is a hang; 2 GiB of memory (also the largest single
 # allocation) is an out-of-memory finding.
@@ -52,7 +52,7 @@ replay() {
   local name dirs files
   for name in "${names[@]}"; do
     dirs=()
-    [ -d "$build"/seeds/"$name" ] && dirs+=("$build"/seeds/"$name")  # rosbag2: the hand-made corpus only
+    [ -d "$build"/seeds/"$name" ] && dirs+=("$build"/seeds/"$name")  # rosbag2, tlog, dataflash: the hand-made corpus only
     [ -d fuzz/regressions/"$name" ] && dirs+=(fuzz/regressions/"$name")
     mapfile -t files < <(if [ ${#dirs[@]} -gt 0 ]; then find "${dirs[@]}" -type f; fi; handmade "$name")
     echo "replay $name: ${#files[@]} inputs"

@@ -53,6 +53,7 @@ class _MappingOptions(TypedDict, total=False):
 
 class _MapSonarLogOptions(_MappingOptions, total=False):
     format: str
+    nav_time_offset_s: float
 
 class Error(builtins.RuntimeError): ...
 class FileError(Error, builtins.OSError): ...
@@ -179,6 +180,8 @@ class SonarLog:
     @property
     def skipped_beams(self) -> int: ...
     @property
+    def clock_utc_s(self) -> Optional[float]: ...
+    @property
     def skip_reasons(self) -> list[str]: ...
     @property
     def format(self) -> str: ...
@@ -194,6 +197,7 @@ def read_sonar_log(
     sonar_topic: str = "",
     bearing_unit: str = "auto",
     bearing_direction: str = "cw",
+    timezone: str = "UTC",
 ) -> SonarLog: ...
 
 class PolarImage:

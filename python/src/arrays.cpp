@@ -126,9 +126,21 @@ py::array_t<double> navArray(const NavTrack& track) {
   return out;
 }
 
+NavTrack navTrackForLog(const py::object& nav, const std::optional<double>& log_clock_utc_s, double nav_time_offset_s) {
+  if (py::isinstance<py::str>(nav) || py::hasattr(nav, "__fspath__")) {
+    NavigationSource source = readNavigation(py::module_::import("os").attr("fspath")(nav).cast<std::string>());
+    alignNavigationClock(source, log_clock_utc_s, nav_time_offset_s);
+    return std::move(source.track);
+  }
+  if (!std::isfinite(nav_time_offset_s)) throwValueError("nav_time_offset_s must be finite");
+  NavTrack track = navTrackOf(nav);
+  for (NavSample& fix : track) fix.time_s += nav_time_offset_s;
+  return track;
+}
+
 NavTrack navTrackOf(const py::object& nav) {
   if (py::isinstance<py::str>(nav) || py::hasattr(nav, "__fspath__")) {  // a path: str or os.PathLike
-    return readNavigation(py::module_::import("os").attr("fspath")(nav).cast<std::string>()).track;  // CSV or ROS bag
+    return readNavigation(py::module_::import("os").attr("fspath")(nav).cast<std::string>()).track;  // CSV, ROS log, BlueROV2 log
   }
   const auto array = requireFloat64(nav, "nav", 2);
   if (array.shape(1) != 7) {

@@ -48,7 +48,9 @@ void warn(const std::vector<std::string>& lines) {
 
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
-  const MappingArguments args = mappingArguments(kwargs, {"format"});
+  const MappingArguments args = mappingArguments(kwargs, {"format", "nav_time_offset_s"});
+  const double nav_time_offset_s =
+      kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
   NominalBeam beam = log.beam;
   if (kwargs.contains("format") && !kwargs["format"].is_none()) {
     const std::string format = textArgument(kwargs["format"], "format");
@@ -62,7 +64,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   if (!mounting.is_none()) mounting_values = mounting.cast<std::vector<double>>();
   const Eigen::Isometry3d sonar_to_body = sonarToBodyOfMounting(mounting_values);
   std::optional<NavTrack> track;
-  if (!nav.is_none()) track = navTrackOf(nav);
+  if (!nav.is_none()) track = navTrackForLog(nav, log.log.clock_utc_s, nav_time_offset_s);
   warn(optionWarnings(options, log.log));
   ProgressCallback callback;
   if (!progress.is_none()) {
@@ -148,10 +150,12 @@ seconds, NED metres, radians (body FRD, Z-Y-X). Raises sonarmap.FileError naming
       [](const std::filesystem::path& path, const std::string& nav_topic) { return navArray(readNavigation(path.string(), nav_topic).track); },
       py::arg("path"), py::arg("nav_topic") = "",
       R"doc(Reads a vehicle's navigation as an (N, 7) float64 array (time_s, x_m, y_m, z_m, roll_rad, pitch_rad,
-yaw_rad: seconds, NED metres, radians, body FRD, Z-Y-X): a navigation CSV, or a ROS 1 bag's navigation topic
-(`.bag`: nav_topic, or nav_msgs/Odometry, else the topic with a header and a pose that has most messages; ENU
-poses, REP 103, turned into NED; frames named *ned* taken as NED). Raises sonarmap.FileError (an unreadable
-file, a bag without a navigation topic or without the topic named).)doc");
+yaw_rad: seconds, NED metres, radians, body FRD, Z-Y-X): a navigation CSV; a ROS log's navigation topic
+(`.bag`, `.mcap`, `.db3`: nav_topic, or nav_msgs/Odometry, else the topic with a header and a pose that has
+most messages; ENU poses, REP 103, turned into NED; frames named *ned* taken as NED); a BlueROV2's MAVLink
+telemetry log (`.tlog`: seconds since 1970, UTC) or ArduPilot dataflash log (`.BIN`: seconds since boot).
+Times are the file's own clock (map_sonar_log joins them to the log's). Raises sonarmap.FileError (an
+unreadable file, a file without navigation, a bag without the topic named).)doc");
   m.def(
       "write_nav_csv",
       [](const std::filesystem::path& path, const py::object& nav) { writeNavCsv(path.string(), navTrackOf(py::reinterpret_borrow<py::object>(nav))); },

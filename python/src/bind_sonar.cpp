@@ -15,6 +15,7 @@
 #include "numpy_checks.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/log_clock.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
@@ -83,13 +84,14 @@ py::array_t<std::int64_t> sweepArray(const std::vector<SweepRange>& sweeps) {
 }
 
 PySonarLog readLog(const std::filesystem::path& file, const std::string& format, const std::string& sonar_topic,
-                   const std::string& bearing_unit, const std::string& bearing_direction) {
+                   const std::string& bearing_unit, const std::string& bearing_direction, const std::string& timezone) {
   const std::string path = file.string();
   PySonarLog out;
   const LogFormat log_format = inputFormat(path, format);
+  const double utc_offset_s = parseUtcOffset(timezone);
   {
     py::gil_scoped_release release;
-    out.log = readSonarLog(path, log_format, LogReadOptions{sonar_topic, bearing_unit, bearing_direction});
+    out.log = readSonarLog(path, log_format, LogReadOptions{sonar_topic, bearing_unit, bearing_direction, utc_offset_s});
   }
   out.format = std::string(logFormatName(log_format));
   out.beam = nominalBeam(log_format);
@@ -312,6 +314,10 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
             return readOnlyView(log.intensity_span_db, {static_cast<py::ssize_t>(log.intensity_span_db.size())}, self);
           },
           "float64 (beams,): dB span of 0…255 when the format records it (SeaNet), NaN otherwise.")
+      .def_property_readonly(
+          "clock_utc_s", [](const PySonarLog& log) { return log.log.clock_utc_s; },
+          "UTC (seconds since 1970) at time_s = 0 when the file says (a ROS log: 0; a Ping Viewer log named "
+          "yyyyMMdd-hhmmsszzz: its start), else None.")
       .def_property_readonly("skipped_beams", [](const PySonarLog& log) { return log.log.skipped_beams; },
                              "Malformed beams the reader dropped.")
       .def_property_readonly("skip_reasons", [](const PySonarLog& log) { return log.log.skip_reasons; },
@@ -342,14 +348,16 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
       });
 
   m.def("read_sonar_log", &readLog, py::arg("path"), py::arg("format") = "auto", py::arg("sonar_topic") = "",
-        py::arg("bearing_unit") = "auto", py::arg("bearing_direction") = "cw",
+        py::arg("bearing_unit") = "auto", py::arg("bearing_direction") = "cw", py::arg("timezone") = "UTC",
         R"doc(Reads a sonar log: CRAS Micron ``.mat``, beam ``.csv``, SeaNet ``.V4LOG``, raw SeaNet capture
 ``.seanet``, Ping360 ``.bin``, ROS 1 bag ``.bag``, ROS 2 MCAP ``.mcap``, rosbag2 SQLite ``.db3`` or bag
 folder (by extension, any case), or any name with ``format`` = "mat", "csv", "v4log", "seanet", "ping360",
 "rosbag", "mcap", "rosbag2" (the CLI's --format).
 For a ROS log: ``sonar_topic`` (default: found by its fields), ``bearing_unit`` "auto" | "deg" | "rad" |
 "grad" and ``bearing_direction`` "cw" | "ccw" (the CLI's --sonar-topic, --bearing-unit,
---bearing-direction; docs/formats.md). Malformed beams are dropped and counted (skipped_beams). Returns
+--bearing-direction; docs/formats.md). ``timezone``: the recording computer's offset from UTC for a log
+named in local time ("UTC", "+03:30"; the CLI's --timezone): a Ping Viewer log named yyyyMMdd-hhmmsszzz
+then has ``clock_utc_s``. Malformed beams are dropped and counted (skipped_beams). Returns
 sonarmap.SonarLog. Raises sonarmap.FileError for an unknown extension or a file the reader rejects;
 sonarmap.ValueError for an unknown format name, bearing unit or direction.)doc");
 

@@ -2,6 +2,8 @@
 // Navigation tracks (nav/navigation.hpp) as (N, 7) float64 arrays whose columns are the
 // navigation CSV's: time_s, x_m, y_m, z_m (NED), roll_rad, pitch_rad, yaw_rad (body FRD, Z-Y-X).
 
+#include <optional>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -17,6 +19,12 @@ py::array_t<double> navArray(const NavTrack& track);
 /// @throws sonarmap.ValueError for another shape or dtype, or non-finite values; sonarmap.FileError
 ///         for an unreadable CSV. Time order is checked by the library where the track is used.
 NavTrack navTrackOf(const py::object& nav);
+
+/// The track `nav` (as navTrackOf) on the clock of a sonar log whose clock is `log_clock_utc_s`: a
+/// path's navigation joined by alignNavigationClock (formats/navigation_reader.hpp), an array's
+/// times moved by `nav_time_offset_s`.
+/// @throws sonarmap.ValueError for a non-finite offset; as navTrackOf.
+NavTrack navTrackForLog(const py::object& nav, const std::optional<double>& log_clock_utc_s, double nav_time_offset_s);
 
 /// map_sonar_log (bind_mapping.cpp), also used by the online mapper's tests of equality; `slam`:
 /// localize first (slam/slam_mapping.hpp) and keep the trajectory and report in the map.

@@ -133,7 +133,7 @@ DataflashScan scanDataflash(std::span<const std::uint8_t> bytes, const std::stri
     const DataflashFormat& f = format->second;
     if (offset + f.length > bytes.size()) {
       scan.stop_note = "'" + source + "': record " + std::to_string(scan.records + 1) + " at byte " +
-                       std::to_string(offset) + ": a " + f.name + " record cut short (" +
+                       std::to_string(offset) + ": a record cut short (" + f.name + ", " +
                        std::to_string(bytes.size() - offset) + " of its " + std::to_string(f.length) +
                        " bytes); the " + std::to_string(scan.records) + " records before it are kept";
       return scan;

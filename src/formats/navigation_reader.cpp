@@ -3,7 +3,9 @@
 
 #include "sonarmap/formats/navigation_reader.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -50,10 +52,12 @@ NavigationSource readNavigation(const std::string& path, const std::string& nav_
     }
     return fromBag(path, std::move(*nav));
   }
-  if (std::filesystem::path(path).extension() == ".tlog" || std::filesystem::path(path).extension() == ".TLOG") {
-    return readMavlinkTlogNavigation(path);
-  }
-  if (startsAsDataflash(path)) return readDataflashNavigation(path);
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".tlog") return readMavlinkTlogNavigation(path);
+  // .BIN is ArduPilot's name for a dataflash log (a Ping Viewer .bin holds no navigation)
+  if (extension == ".bin" || startsAsDataflash(path)) return readDataflashNavigation(path);
   NavigationSource source;
   source.track = readNavCsv(path);
   source.description = std::filesystem::path(path).filename().string();

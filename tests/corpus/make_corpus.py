@@ -632,6 +632,59 @@ def rosbag2_files():
     }, {"rosbag2_small.db3": small}
 
 
+# ---- BlueROV2 logs: MAVLink telemetry (.tlog) and ArduPilot dataflash (.BIN) --------------------------
+
+def mcrf4xx(data, crc=0xFFFF):
+    """CRC-16/MCRF4XX, MAVLink's checksum (mavlink.io/en/guide/serialization.html)."""
+    for byte in data:
+        tmp = (byte ^ (crc & 0xFF)) & 0xFF
+        tmp = (tmp ^ (tmp << 4)) & 0xFF
+        crc = ((crc >> 8) ^ (tmp << 8) ^ (tmp << 3) ^ (tmp >> 4)) & 0xFFFF
+    return crc
+
+
+def mavlink2(msgid, crc_extra, payload, seq=0, crc_delta=0):
+    payload = payload.rstrip(b"\0") or b"\0"
+    body = bytes([len(payload), 0, 0, seq & 255, 1, 1]) + struct.pack("<I", msgid)[:3] + payload
+    return b"\xfd" + body + struct.pack("<H", mcrf4xx(bytes([crc_extra]), mcrf4xx(body)) ^ crc_delta)
+
+
+def tlog_fixes(count, crc_delta=0):
+    out = b""
+    for i in range(count):
+        stamp = struct.pack(">Q", 1723630500_000000 + 100000 * i)
+        out += stamp + mavlink2(30, 39, struct.pack("<I6f", 100 * i, 0.01 * i, 0.0, 0.5, 0, 0, 0), i, crc_delta)
+        out += stamp + mavlink2(32, 185, struct.pack("<I6f", 100 * i, 0.1 * i, 0.0, 2.0, 0, 0, 0), i, crc_delta)
+    return out
+
+
+def dataflash_fmt(type_id, name, fmt, columns):
+    sizes = {"B": 1, "b": 1, "h": 2, "H": 2, "c": 2, "C": 2, "i": 4, "I": 4, "f": 4, "Q": 8, "X": 1}
+    length = 3 + sum(sizes[c] for c in fmt)
+    return (b"\xa3\x95\x80" + bytes([type_id, length]) + name.ljust(4, b"\0") + fmt.encode().ljust(16, b"\0")
+            + columns.ljust(64, b"\0"))
+
+
+def dataflash_files():
+    att = dataflash_fmt(129, b"ATT", "QccccCCCC", b"TimeUS,DesRoll,Roll,DesPitch,Pitch,DesYaw,Yaw,ErrRP,ErrYaw")
+    ekf = dataflash_fmt(130, b"XKF1", "QBccCfffffff", b"TimeUS,C,Roll,Pitch,Yaw,VN,VE,VD,dPD,PN,PE,PD")
+    records = b""
+    for i in range(4):
+        records += b"\xa3\x95\x81" + struct.pack("<Q4h4H", 1000000 + 100000 * i, 0, 100 * i, 0, -50, 0, 9000, 0, 0)
+        records += b"\xa3\x95\x82" + struct.pack("<QB2hH7f", 1000000 + 100000 * i, 0, 0, 0, 0, 0, 0, 0, 0, 0.2 * i, 0.0, 3.0)
+    small = att + ekf + records
+    return {
+        "tlog_text.tlog": b"this is not a MAVLink telemetry log\n",
+        "tlog_no_attitude.tlog": struct.pack(">Q", 1723630500_000000) + mavlink2(0, 50, b"\0\0\0\0\x0c\x03\x51\x04\x03"),
+        "tlog_cut_first_frame.tlog": tlog_fixes(1)[:20],
+        "tlog_bad_checksums.tlog": tlog_fixes(3, crc_delta=0x5A5A),
+        "dataflash_text.BIN": b"this is not a dataflash log\n",
+        "dataflash_no_att.BIN": att + ekf,
+        "dataflash_cut_att.BIN": small[:len(att) + len(ekf) + 10],
+        "dataflash_unknown_format.BIN": dataflash_fmt(129, b"ATT", "QccccCCCX", b"TimeUS,DesRoll,Roll,DesPitch,Pitch,DesYaw,Yaw,ErrRP,ErrYaw") + records[:24],
+    }, {"tlog_small.tlog": tlog_fixes(4), "dataflash_small.BIN": small}
+
+
 # ---- text readers fed bytes that are not text ------------------------------------------------------
 
 def binary_text_files():
@@ -652,7 +705,7 @@ def main():
         for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
             shutil.copyfile(text, folder / text.name)
     for make in (mat_files, v4_files, seanet_files, ping360_files, real_viewer_files, graph_files, bt_files,
-                 ot_files, ros_bag_files, mcap_files, rosbag2_files, binary_text_files):
+                 ot_files, ros_bag_files, mcap_files, rosbag2_files, dataflash_files, binary_text_files):
         for kind, files in zip(("broken", "valid"), make()):
             for name, data in files.items():
                 (out / kind / name).write_bytes(data)

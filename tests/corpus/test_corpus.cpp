@@ -71,7 +71,7 @@ const std::vector<Route>& routes() {
        [](const std::string& f, const fs::path& out) -> Args { return {"map", f, "-o", in(out, "map.bt"), "-q"}; }},
       {"convert", [](const std::string& f) { readSonarLog(f); },
        [](const std::string& f, const fs::path& out) -> Args { return {"convert", f, "-o", in(out, "beams.csv")}; }},
-      {"map --nav", [](const std::string& f) { readNavCsv(f); },
+      {"map --nav", [](const std::string& f) { readNavigation(f); },
        [](const std::string& f, const fs::path& out) -> Args {
          return {"map", valid("beams_small.csv"), "--nav", f, "-o", in(out, "map.bt"), "-q"};
        }},
@@ -220,7 +220,7 @@ constexpr Seed kSeeds[] = {
     {"viewer_range_changes.bin", "map"}, {"tum_small.txt", "eval-trajectory"},
     {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
     {"bag_miniking.bag", "map"},     {"scan_small.mcap", "map"},
-    {"rosbag2_small.db3", "map"},
+    {"rosbag2_small.db3", "map"},    {"tlog_small.tlog", "map --nav"},    {"dataflash_small.BIN", "map --nav"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

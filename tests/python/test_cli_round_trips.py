@@ -123,3 +123,52 @@ def test_simulated_mcap_reads_as_its_csv(cli, tmp_path):
     assert np.allclose(np.sin(total), 0, atol=1e-6) and np.allclose(np.cos(total), 1, atol=1e-6)
     with pytest.raises(sonarmap.ValueError):
         sonarmap.read_sonar_log(mcap, bearing_unit="degrees")
+
+
+def _mavlink2_frame(msgid, crc_extra, payload, seq):
+    """A MAVLink 2 frame (mavlink.io/en/guide/serialization.html): trailing zeros truncated,
+    CRC-16/MCRF4XX over the bytes after the magic, then CRC_EXTRA."""
+    import struct
+
+    def crc(data, c=0xFFFF):
+        for b in data:
+            t = (b ^ (c & 0xFF)) & 0xFF
+            t = (t ^ (t << 4)) & 0xFF
+            c = ((c >> 8) ^ (t << 8) ^ (t << 3) ^ (t >> 4)) & 0xFFFF
+        return c
+
+    payload = payload.rstrip(b"\0") or b"\0"
+    body = bytes([len(payload), 0, 0, seq & 255, 1, 1]) + struct.pack("<I", msgid)[:3] + payload
+    return b"\xfd" + body + struct.pack("<H", crc(bytes([crc_extra]), crc(body)))
+
+
+def test_a_telemetry_log_joined_by_its_offset_maps_as_the_csv_does(cli, tmp_path):
+    """A BlueROV2's .tlog (ATTITUDE + LOCAL_POSITION_NED, UTC receive stamps) as map_sonar_log's nav:
+    its times are UTC; nav_time_offset_s puts them on the log's clock, as --nav-time-offset does."""
+    import struct
+
+    cli("simulate", "tank", "-o", tmp_path / "sim", "--turns", "2", "--seed", "3", "-q")
+    nav = sonarmap.read_nav_csv(str(tmp_path / "sim" / "nav.csv"))
+    boot_utc_us = 1723630500_000000
+    tlog = bytearray()
+    for i, (t, x, y, z, roll, pitch, yaw) in enumerate(nav):
+        boot_ms = int(round(t * 1000)) + 5000
+        stamp = struct.pack(">Q", boot_utc_us + boot_ms * 1000)
+        tlog += stamp + _mavlink2_frame(30, 39, struct.pack("<I6f", boot_ms, roll, pitch, yaw, 0, 0, 0), i)
+        tlog += stamp + _mavlink2_frame(32, 185, struct.pack("<I6f", boot_ms, x, y, z, 0, 0, 0), i)
+    (tmp_path / "flight.tlog").write_bytes(bytes(tlog))
+    fixes = sonarmap.read_navigation(tmp_path / "flight.tlog")
+    assert fixes.shape == nav.shape
+    assert np.allclose(fixes[:, 0] - 1723630505.0, nav[:, 0], atol=1e-3)
+    assert np.allclose(fixes[:, 1:], nav[:, 1:], atol=1e-5)
+
+    log = sonarmap.read_sonar_log(tmp_path / "sim" / "beams.csv")
+    assert log.clock_utc_s is None
+    joined = sonarmap.map_sonar_log(log, nav=tmp_path / "flight.tlog", nav_time_offset_s=-1723630505.0)
+    from_csv = sonarmap.map_sonar_log(log, nav=tmp_path / "sim" / "nav.csv")
+    assert joined.stats.beams_used == from_csv.stats.beams_used
+    assert abs(joined.stats.obstacles - from_csv.stats.obstacles) <= 0.02 * from_csv.stats.obstacles
+    cli("map", tmp_path / "sim" / "beams.csv", "--nav", tmp_path / "flight.tlog", "--nav-time-offset=-1723630505",
+        "-o", tmp_path / "cli.bt", "-q")
+    joined.write(str(tmp_path / "py.bt"))
+    assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()

@@ -16,7 +16,8 @@ namespace sonarmap {
 /// Reads the navigation at `path`: a ROS log's navigation topic when its extension names one
 /// (`.bag`, `.mcap`, `.db3`, a rosbag2 folder; `nav_topic`, or the one its fields name); a MAVLink
 /// telemetry log when it ends in `.tlog` (readMavlinkTlogNavigation); an ArduPilot dataflash log
-/// when its bytes start as one, whatever its name (readDataflashNavigation); else a navigation CSV
+/// when it ends in `.bin` (any case) or its bytes start as one (readDataflashNavigation); else a
+/// navigation CSV
 /// (readNavCsv).
 /// @throws FileError when the file cannot be read, or holds no navigation.
 NavigationSource readNavigation(const std::string& path, const std::string& nav_topic = {});
