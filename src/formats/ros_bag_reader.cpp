@@ -100,13 +100,23 @@ RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record
   raw.bearing = detail::finiteNumber(message.field(fields.bearing), "bearing");
   const RosValue* intensities = message.field(fields.intensities);
   std::vector<std::uint8_t>& out = raw.beam.intensities;
+  const auto byteOf = [](double value) {
+    if (!std::isfinite(value)) throw Error("its intensity is not a finite number");
+    return static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L));
+  };
   if (const auto* bytes = std::get_if<std::vector<std::uint8_t>>(&intensities->value)) {
     out = *bytes;
-  } else {
-    for (const RosValue& element : std::get<std::vector<RosValue>>(intensities->value)) {
-      const double value = detail::finiteNumber(element.field(fields.element_intensity), "intensity");
-      out.push_back(static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L)));
+  } else if (const auto* table = std::get_if<detail::RosTable>(&intensities->value)) {
+    const std::size_t column = table->column(fields.element_intensity);
+    if (column == table->columns()) throw Error("its intensity is not a finite number");
+    out.reserve(table->rows());
+    for (std::size_t row = 0; row < table->rows(); ++row) out.push_back(byteOf(table->values[row * table->columns() + column]));
+  } else if (const auto* elements = std::get_if<std::vector<RosValue>>(&intensities->value)) {
+    for (const RosValue& element : *elements) {
+      out.push_back(byteOf(detail::finiteNumber(element.field(fields.element_intensity), "intensity")));
     }
+  } else {
+    throw Error("its intensities are not an array");
   }
   if (!fields.bin_length.empty()) {
     raw.beam.bin_length_m = detail::finiteNumber(message.field(fields.bin_length), "bin length");

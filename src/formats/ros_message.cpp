@@ -14,10 +14,6 @@
 namespace sonarmap::detail {
 namespace {
 
-/// The builtin types of the msg format.
-constexpr std::array<const char*, 16> kBuiltins{"bool",   "int8",   "uint8",   "byte",    "char",   "int16",
-                                                 "uint16", "int32",  "uint32",  "int64",   "uint64", "float32",
-                                                 "float64", "string", "time",   "duration"};
 /// Deepest nesting of messages decoded: a definition whose type holds itself would never end.
 constexpr int kMaxDepth = 32;
 
@@ -89,28 +85,44 @@ bool parseField(const std::string& line, const std::string& package, RosEncoding
   return true;
 }
 
+/// Where a value lies in its message, kept as a chain on the stack and written out only for an
+/// error ("bins[12].intensity"): decoding builds no text.
+struct Path {
+  const Path* parent = nullptr;
+  const std::string* name = nullptr;  ///< a field, or nullptr for an array element
+  std::size_t index = 0;              ///< the element's index
+};
+
+std::string pathText(const Path* path) {
+  if (path == nullptr) return "the message";
+  std::string text = pathText(path->parent);
+  if (text == "the message") text.clear();
+  if (path->name != nullptr) return text.empty() ? *path->name : text + "." + *path->name;
+  return text + "[" + std::to_string(path->index) + "]";
+}
+
 /// Reads the message bytes in order; in CDR each number is first aligned to its size (at most 8)
 /// from `origin`, the byte after the encapsulation header (OMG's CDR, DDS-XTYPES 1.3, 7.4.3.2).
 class Reader {
  public:
   Reader(std::span<const std::uint8_t> bytes, bool cdr, std::size_t origin) : bytes_(bytes), at_(origin), origin_(origin), cdr_(cdr) {}
   template <class T>
-  T take(const std::string& what) {
+  T take(const Path* where) {
     T value;
     if (cdr_) {
       const std::size_t misaligned = (at_ - origin_) % sizeof(T);
       if (misaligned != 0) {
-        need(sizeof(T) - misaligned, what);
+        need(sizeof(T) - misaligned, where);
         at_ += sizeof(T) - misaligned;
       }
     }
-    need(sizeof(T), what);
+    need(sizeof(T), where);
     std::memcpy(&value, bytes_.data() + at_, sizeof(T));  // ROS 1 and this machine: little-endian
     at_ += sizeof(T);
     return value;
   }
-  std::span<const std::uint8_t> takeBytes(std::size_t count, const std::string& what) {
-    need(count, what);
+  std::span<const std::uint8_t> takeBytes(std::size_t count, const Path* where) {
+    need(count, where);
     const auto out = bytes_.subspan(at_, count);
     at_ += count;
     return out;
@@ -119,9 +131,9 @@ class Reader {
   bool cdr() const { return cdr_; }
 
  private:
-  void need(std::size_t count, const std::string& what) const {
+  void need(std::size_t count, const Path* where) const {
     if (count > bytes_.size() - at_) {
-      throw Error("the message ends within " + what + " (byte " + std::to_string(at_) + " of " +
+      throw Error("the message ends within " + pathText(where) + " (byte " + std::to_string(at_) + " of " +
                   std::to_string(bytes_.size()) + ")");
     }
   }
@@ -131,82 +143,129 @@ class Reader {
   bool cdr_ = false;
 };
 
-RosValue decodeType(const RosSchema& schema, const std::string& type, Reader& in, const std::string& path, int depth);
-
-RosValue decodeBuiltin(const std::string& type, Reader& in, const std::string& path) {
-  if (type == "bool" || type == "uint8" || type == "byte" || type == "char") return {static_cast<double>(in.take<std::uint8_t>(path))};
-  if (type == "int8") return {static_cast<double>(in.take<std::int8_t>(path))};
-  if (type == "int16") return {static_cast<double>(in.take<std::int16_t>(path))};
-  if (type == "uint16") return {static_cast<double>(in.take<std::uint16_t>(path))};
-  if (type == "int32") return {static_cast<double>(in.take<std::int32_t>(path))};
-  if (type == "uint32") return {static_cast<double>(in.take<std::uint32_t>(path))};
-  if (type == "int64") return {static_cast<double>(in.take<std::int64_t>(path))};
-  if (type == "uint64") return {static_cast<double>(in.take<std::uint64_t>(path))};
-  if (type == "float32") return {static_cast<double>(in.take<float>(path))};
-  if (type == "float64") return {in.take<double>(path)};
-  if (type == "time" || type == "duration") {
-    // time: uint32 seconds and nanoseconds; duration: int32 both. ROS 2 (builtin_interfaces): an
-    // int32 sec and a uint32 nanosec for both.
-    if (in.cdr()) {
-      const double seconds = in.take<std::int32_t>(path);
-      return {seconds + 1e-9 * in.take<std::uint32_t>(path)};
-    }
-    if (type == "time") {
-      const double seconds = in.take<std::uint32_t>(path);
-      return {seconds + 1e-9 * in.take<std::uint32_t>(path)};
-    }
-    const double seconds = in.take<std::int32_t>(path);
-    return {seconds + 1e-9 * in.take<std::int32_t>(path)};
+/// The kind of a builtin type name; kMessage for any other.
+RosKind kindOf(const std::string& type) {
+  static const std::array<std::pair<const char*, RosKind>, 16> kinds{{
+      {"bool", RosKind::kBool},       {"int8", RosKind::kInt8},       {"uint8", RosKind::kUint8},
+      {"byte", RosKind::kUint8},      {"char", RosKind::kUint8},      {"int16", RosKind::kInt16},
+      {"uint16", RosKind::kUint16},   {"int32", RosKind::kInt32},     {"uint32", RosKind::kUint32},
+      {"int64", RosKind::kInt64},     {"uint64", RosKind::kUint64},   {"float32", RosKind::kFloat32},
+      {"float64", RosKind::kFloat64}, {"string", RosKind::kString},   {"time", RosKind::kTime},
+      {"duration", RosKind::kDuration}}};
+  for (const auto& [name, kind] : kinds) {
+    if (type == name) return kind;
   }
+  return RosKind::kMessage;
+}
+
+double decodeNumber(RosKind kind, Reader& in, const Path* where) {
+  switch (kind) {
+    case RosKind::kBool:
+    case RosKind::kUint8: return in.take<std::uint8_t>(where);
+    case RosKind::kInt8: return in.take<std::int8_t>(where);
+    case RosKind::kInt16: return in.take<std::int16_t>(where);
+    case RosKind::kUint16: return in.take<std::uint16_t>(where);
+    case RosKind::kInt32: return in.take<std::int32_t>(where);
+    case RosKind::kUint32: return in.take<std::uint32_t>(where);
+    case RosKind::kInt64: return static_cast<double>(in.take<std::int64_t>(where));
+    case RosKind::kUint64: return static_cast<double>(in.take<std::uint64_t>(where));
+    case RosKind::kFloat32: return in.take<float>(where);
+    case RosKind::kFloat64: return in.take<double>(where);
+    case RosKind::kTime:
+    case RosKind::kDuration: {
+      // time: uint32 seconds and nanoseconds; duration: int32 both. ROS 2 (builtin_interfaces): an
+      // int32 sec and a uint32 nanosec for both.
+      if (in.cdr()) {
+        const double seconds = in.take<std::int32_t>(where);
+        return seconds + 1e-9 * in.take<std::uint32_t>(where);
+      }
+      if (kind == RosKind::kTime) {
+        const double seconds = in.take<std::uint32_t>(where);
+        return seconds + 1e-9 * in.take<std::uint32_t>(where);
+      }
+      const double seconds = in.take<std::int32_t>(where);
+      return seconds + 1e-9 * in.take<std::int32_t>(where);
+    }
+    default: return 0.0;  // kString, kMessage: not numbers (decodeElement)
+  }
+}
+
+RosValue decodeStruct(const RosSchema& schema, std::size_t type, Reader& in, const Path* where, int depth);
+
+RosValue decodeElement(const RosSchema& schema, const RosField& field, Reader& in, const Path* where, int depth) {
+  if (field.kind == RosKind::kMessage) return decodeStruct(schema, field.message, in, where, depth);
+  if (field.kind != RosKind::kString) return {decodeNumber(field.kind, in, where)};
   // string: a uint32 length, then the bytes (CDR: the length counts a terminating NUL)
-  const auto length = in.take<std::uint32_t>(path);
-  const auto text = in.takeBytes(length, path);
+  const auto length = in.take<std::uint32_t>(where);
+  const auto text = in.takeBytes(length, where);
   std::string out(text.begin(), text.end());
   if (in.cdr() && !out.empty() && out.back() == '\0') out.pop_back();
   return {std::move(out)};
 }
 
-RosValue decodeField(const RosSchema& schema, const RosField& field, Reader& in, const std::string& path, int depth) {
-  if (field.array < 0) return decodeType(schema, field.type, in, path, depth);
-  const std::size_t count = field.array > 0 ? static_cast<std::size_t>(field.array) : in.take<std::uint32_t>(path);
-  if (field.type == "uint8" || field.type == "byte" || field.type == "char" || field.type == "int8") {
-    const auto bytes = in.takeBytes(count, path);
+RosValue decodeField(const RosSchema& schema, const RosField& field, Reader& in, const Path* where, int depth) {
+  if (field.array < 0) return decodeElement(schema, field, in, where, depth);
+  const std::size_t count = field.array > 0 ? static_cast<std::size_t>(field.array) : in.take<std::uint32_t>(where);
+  if (field.kind == RosKind::kUint8 || field.kind == RosKind::kInt8) {
+    const auto bytes = in.takeBytes(count, where);
     return {std::vector<std::uint8_t>(bytes.begin(), bytes.end())};
   }
   // Every element takes a byte at least: a count beyond the bytes left cannot be honest.
-  if (count > in.remaining()) throw Error("the array " + path + " declares " + std::to_string(count) + " elements in " +
-                                          std::to_string(in.remaining()) + " bytes");
+  if (count > in.remaining()) {
+    throw Error("the array " + pathText(where) + " declares " + std::to_string(count) + " elements in " +
+                std::to_string(in.remaining()) + " bytes");
+  }
+  if (field.kind == RosKind::kMessage && schema.isTable(field.message)) {
+    RosTable table;
+    table.fields = &schema.fieldsAt(field.message);
+    table.values.reserve(count * table.fields->size());
+    for (std::size_t i = 0; i < count; ++i) {
+      const Path element{where, nullptr, i};
+      for (const RosField& column : *table.fields) {
+        const Path cell{&element, &column.name, 0};
+        table.values.push_back(decodeNumber(column.kind, in, &cell));
+      }
+    }
+    return {std::move(table)};
+  }
   std::vector<RosValue> items;
   items.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) items.push_back(decodeType(schema, field.type, in, path + "[" + std::to_string(i) + "]", depth));
+  for (std::size_t i = 0; i < count; ++i) {
+    const Path element{where, nullptr, i};
+    items.push_back(decodeElement(schema, field, in, &element, depth));
+  }
   return {std::move(items)};
 }
 
-RosValue decodeType(const RosSchema& schema, const std::string& type, Reader& in, const std::string& path, int depth) {
-  if (RosSchema::isBuiltin(type)) return decodeBuiltin(type, in, path);
-  if (depth >= kMaxDepth) throw Error("the message nests deeper than " + std::to_string(kMaxDepth) + " at " + path);
-  RosStruct fields;
-  for (const RosField& field : schema.fields(type)) {
-    fields.names.push_back(field.name);
-    fields.values.push_back(decodeField(schema, field, in, path.empty() ? field.name : path + "." + field.name, depth + 1));
+RosValue decodeStruct(const RosSchema& schema, std::size_t type, Reader& in, const Path* where, int depth) {
+  if (depth >= kMaxDepth) throw Error("the message nests deeper than " + std::to_string(kMaxDepth) + " at " + pathText(where));
+  const std::vector<RosField>& fields = schema.fieldsAt(type);
+  RosStruct decoded;
+  decoded.fields = &fields;
+  decoded.values.reserve(fields.size());
+  for (const RosField& field : fields) {
+    const Path child{where, &field.name, 0};
+    decoded.values.push_back(decodeField(schema, field, in, &child, depth + 1));
   }
-  return {std::move(fields)};
+  return {std::move(decoded)};
 }
 
 }  // namespace
 
-bool RosSchema::isBuiltin(const std::string& type) {
-  for (const char* builtin : kBuiltins) {
-    if (type == builtin) return true;
-  }
-  return false;
-}
+bool RosSchema::isBuiltin(const std::string& type) { return kindOf(type) != RosKind::kMessage; }
 
 RosSchema::RosSchema(const std::string& type, const std::string& definition, RosEncoding encoding)
     : root_(encoding == RosEncoding::kCdr ? ros2Name(type) : type), encoding_(encoding) {
+  const auto typeIndex = [this](const std::string& name) {
+    const auto found = std::find(names_.begin(), names_.end(), name);
+    if (found != names_.end()) return static_cast<std::size_t>(found - names_.begin());
+    names_.push_back(name);
+    types_.emplace_back();
+    return names_.size() - 1;
+  };
   std::istringstream lines(definition);
   std::string line, current = root_;
-  std::vector<RosField>* fields = &types_[root_];
+  std::size_t fields = typeIndex(root_);
   while (std::getline(lines, line)) {
     line = trimmed(line.substr(0, line.find('#')));
     if (line.empty()) continue;
@@ -214,19 +273,28 @@ RosSchema::RosSchema(const std::string& type, const std::string& definition, Ros
     if (line.rfind("MSG:", 0) == 0) {
       current = trimmed(line.substr(4));
       if (encoding == RosEncoding::kCdr) current = ros2Name(current);
-      fields = &types_[current];
+      fields = typeIndex(current);
       continue;
     }
     RosField field;
-    if (parseField(line, packageOf(current), encoding, field)) fields->push_back(field);
+    if (parseField(line, packageOf(current), encoding, field)) types_[fields].push_back(field);
   }
-  for (const auto& [name, list] : types_) {
-    for (const RosField& field : list) {
-      if (!isBuiltin(field.type) && types_.find(field.type) == types_.end()) {
-        throw Error("the message definition of " + type + " uses " + field.type + " (field " + name + "." + field.name +
-                    ") without defining it");
+  for (std::size_t t = 0; t < types_.size(); ++t) {
+    for (RosField& field : types_[t]) {
+      field.kind = kindOf(field.type);
+      if (field.kind != RosKind::kMessage) continue;
+      const auto found = std::find(names_.begin(), names_.end(), field.type);
+      if (found == names_.end()) {
+        throw Error("the message definition of " + type + " uses " + field.type + " (field " + names_[t] + "." +
+                    field.name + ") without defining it");
       }
+      field.message = static_cast<std::size_t>(found - names_.begin());
     }
+  }
+  for (const std::vector<RosField>& fields : types_) {
+    tables_.push_back(!fields.empty() && std::all_of(fields.begin(), fields.end(), [](const RosField& f) {
+      return f.array < 0 && f.kind != RosKind::kMessage && f.kind != RosKind::kString;
+    }));
   }
 }
 
@@ -267,18 +335,25 @@ double finiteNumber(const RosValue* value, const std::string& what) {
 }
 
 const std::vector<RosField>& RosSchema::fields(const std::string& type) const {
-  const auto found = types_.find(type);
-  if (found == types_.end()) throw Error("the message definition does not define " + type);
-  return found->second;
+  const auto found = std::find(names_.begin(), names_.end(), type);
+  if (found == names_.end()) throw Error("the message definition does not define " + type);
+  return types_[static_cast<std::size_t>(found - names_.begin())];
 }
 
 const RosValue* RosValue::field(const std::string& name) const {
-  const auto* fields = std::get_if<RosStruct>(&value);
-  if (fields == nullptr) return nullptr;
-  for (std::size_t i = 0; i < fields->names.size(); ++i) {
-    if (fields->names[i] == name) return &fields->values[i];
+  const auto* decoded = std::get_if<RosStruct>(&value);
+  if (decoded == nullptr) return nullptr;
+  for (std::size_t i = 0; i < decoded->values.size(); ++i) {
+    if ((*decoded->fields)[i].name == name) return &decoded->values[i];
   }
   return nullptr;
+}
+
+std::size_t RosTable::column(const std::string& name) const {
+  for (std::size_t c = 0; c < fields->size(); ++c) {
+    if ((*fields)[c].name == name) return c;
+  }
+  return fields->size();
 }
 
 RosValue decodeRosMessage(const RosSchema& schema, std::span<const std::uint8_t> bytes) {
@@ -291,7 +366,7 @@ RosValue decodeRosMessage(const RosSchema& schema, std::span<const std::uint8_t>
     }
   }
   Reader in(bytes, cdr, cdr ? 4 : 0);
-  RosValue message = decodeType(schema, schema.root(), in, "", 0);
+  RosValue message = decodeStruct(schema, 0, in, nullptr, 0);
   if (in.remaining() > (cdr ? 3u : 0u)) {  // CDR pads a message to a multiple of 4 bytes
     throw Error(std::to_string(in.remaining()) + " bytes remain after the " + schema.root() + " message");
   }

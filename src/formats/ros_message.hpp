@@ -14,7 +14,6 @@
 
 #include <cstdint>
 #include <initializer_list>
-#include <map>
 #include <span>
 #include <string>
 #include <variant>
@@ -22,11 +21,19 @@
 
 namespace sonarmap::detail {
 
+/// What a field's elements are, resolved once when the schema is parsed (not per message).
+enum class RosKind : std::uint8_t {
+  kBool, kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kInt64, kUint64, kFloat32, kFloat64,
+  kString, kTime, kDuration, kMessage
+};
+
 /// One field of a message type.
 struct RosField {
   std::string name;
   std::string type;   ///< a builtin ("float32", "time", …) or a full message name ("std_msgs/Header")
   int array = -1;     ///< −1: not an array; 0: variable length; > 0: fixed length
+  RosKind kind = RosKind::kMessage;  ///< set by RosSchema from `type`
+  std::size_t message = 0;           ///< kMessage: the type's index in its schema (RosSchema::fieldsAt)
 };
 
 /// How a log serializes its messages: ROS 1's, or CDR (ROS 2).
@@ -49,6 +56,11 @@ class RosSchema {
   /// The fields of message type `type`, in order.
   /// @throws Error when the schema does not define it.
   const std::vector<RosField>& fields(const std::string& type) const;
+  /// The fields of the message type of index `index` (RosField::message; 0 is the root type).
+  const std::vector<RosField>& fieldsAt(std::size_t index) const { return types_[index]; }
+  /// Whether every field of the message type of index `index` is a single number (an array of it
+  /// decodes as a RosTable).
+  bool isTable(std::size_t index) const { return tables_[index]; }
   /// Whether `type` is a builtin type (numbers, bool, byte, char, string, time, duration).
   static bool isBuiltin(const std::string& type);
   /// The type reached from the top type along the fields `path` (none of them arrays), or empty
@@ -60,21 +72,37 @@ class RosSchema {
  private:
   std::string root_;
   RosEncoding encoding_ = RosEncoding::kRos1;
-  std::map<std::string, std::vector<RosField>> types_;
+  /// The message types: names_[i] has the fields types_[i]; index 0 is the root.
+  std::vector<std::string> names_;
+  std::vector<std::vector<RosField>> types_;
+  std::vector<bool> tables_;
 };
 
 struct RosValue;
-/// A message or a nested message: its fields' names and values, in the schema's order.
+/// A message or a nested message: its fields (the schema's: valid while the schema that decoded
+/// it lives) and their values, in the same order.
 struct RosStruct {
-  std::vector<std::string> names;
+  const std::vector<RosField>* fields = nullptr;
   std::vector<RosValue> values;
+};
+
+/// An array of a message type whose fields are all single numbers (RosSchema::isTable: a sonar's
+/// IntensityBin[] of a distance and an intensity), decoded as one table of numbers, row by row,
+/// instead of one value per element.
+struct RosTable {
+  const std::vector<RosField>* fields = nullptr;  ///< the element type's (valid while its schema lives)
+  std::vector<double> values;                     ///< rows × columns, row-major
+  std::size_t columns() const { return fields->size(); }
+  std::size_t rows() const { return fields->empty() ? 0 : values.size() / fields->size(); }
+  /// The column of field `name`, or columns() when the element type has none.
+  std::size_t column(const std::string& name) const;
 };
 
 /// A decoded value: a number (every numeric builtin and bool; time and duration in seconds), a
 /// string, the bytes of a uint8, int8, byte or char array (kept as bytes: a sonar's intensities),
-/// an array of other values, or a nested message.
+/// an array of messages of numbers as a table, an array of other values, or a nested message.
 struct RosValue {
-  std::variant<double, std::string, std::vector<std::uint8_t>, std::vector<RosValue>, RosStruct> value;
+  std::variant<double, std::string, std::vector<std::uint8_t>, std::vector<RosValue>, RosStruct, RosTable> value;
 
   /// The field `name` of a nested message, nullptr when this is no message or has no such field.
   const RosValue* field(const std::string& name) const;
