@@ -19,9 +19,11 @@
 #include <vector>
 
 #include "live_source.hpp"
+#include "navigation_input.hpp"
 #include "map_command.hpp"
 #include "map_outputs.hpp"
 #include "sonarmap/core/statistics.hpp"
+#include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/wire_stream.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
@@ -53,39 +55,42 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 /// The mapper fed by the stream, with each beam's arrival kept until it is integrated.
 class LiveMapping {
  public:
-  LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, Clock::time_point start)
+  /// `known_fixes`: the navigation known at the start (--nav, a replayed log's own); `navigation`:
+  /// whether fixes come at all (those, or a --nav-stream's).
+  LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
+              Clock::time_point start, const NavTrack& known_fixes, bool navigation)
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
-    const bool navigation = !args.map.nav_file.empty() || !args.nav_stream.empty();
     if (args.map.slam) {
       slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, SlamOptions{}, integration);
-      if (!args.map.nav_file.empty()) {
-        for (const NavSample& fix : readNavCsv(args.map.nav_file)) slam_->addNavFix(fix);
-      }
-    } else if (args.map.nav_file.empty() && args.nav_stream.empty()) {
+      for (const NavSample& fix : known_fixes) slam_->addNavFix(fix);
+    } else if (!navigation) {
       mapper_ = std::make_unique<OnlineMapper>(options, integration);
-    } else if (args.map.nav_file.empty()) {  // the fixes arrive on their own stream
-      mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
     } else {
-      const NavTrack nav = readNavCsv(args.map.nav_file);
       mapper_ = std::make_unique<OnlineMapper>(options, sonar_to_body, integration);
-      for (const NavSample& fix : nav) mapper_->addNavFix(fix);
+      for (const NavSample& fix : known_fixes) mapper_->addNavFix(fix);
     }
   }
 
-  /// Maps `beams`, whose last bytes arrived at `arrival_s` (seconds since the start).
+  /// Maps `beams`, whose last bytes arrived at `arrival_s` (seconds since the start): the raw
+  /// protocols carry no clock, so the arrival is the beam's time.
   void add(std::vector<Beam> beams, double arrival_s) {
     for (Beam& beam : beams) {
-      beam.time_s = arrival_s;  // the raw protocols carry no clock: the arrival is the beam's time
-      arrivals_.push_back({arrival_s, sweepsIntegrated() == 0});
-      if (slam_) {
-        slam_->addBeam(std::move(beam));
-      } else {
-        mapper_->addBeam(std::move(beam));
-      }
-      ++beams_;
-      collect();
+      beam.time_s = arrival_s;
+      addRecorded(std::move(beam), arrival_s);
     }
+  }
+
+  /// Maps one beam of a replayed log, with its recorded time, fed at `arrival_s`.
+  void addRecorded(Beam beam, double arrival_s) {
+    arrivals_.push_back({arrival_s, sweepsIntegrated() == 0});
+    if (slam_) {
+      slam_->addBeam(std::move(beam));
+    } else {
+      mapper_->addBeam(std::move(beam));
+    }
+    ++beams_;
+    collect();
   }
   void finish() {
     if (slam_) {
@@ -155,7 +160,7 @@ class LiveMapping {
 
 /// One status line: the latencies since the last line, or with `whole_run` those of every beam after
 /// the first sweep (the median and the 99th percentile; the first sweep's beams wait for its end).
-void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double elapsed_s, double rate_per_s,
+void printStatus(LiveMapping& live, std::size_t bytes, std::size_t skipped, double elapsed_s, double rate_per_s,
                  bool whole_run = false) {
   std::vector<double> recent = live.takeRecentLatencies();
   std::vector<double>& latencies = whole_run ? live.allLatencies() : recent;
@@ -163,7 +168,7 @@ void printStatus(LiveMapping& live, const WireStreamDecoder& decoder, double ela
   std::fprintf(stderr,
                "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
                "latency median %.1f ms",
-               elapsed_s, decoder.bytesFed(), live.beams(), rate_per_s, decoder.skippedItems(), live.sweepsIntegrated(),
+               elapsed_s, bytes, live.beams(), rate_per_s, skipped, live.sweepsIntegrated(),
                mapper.mapper().map().counts().nodes, 1000.0 * percentile(latencies, 0.5));
   if (whole_run) {
     std::fprintf(stderr, ", 99th percentile %.1f ms (from read to map, after the first sweep; its beams waited %.0f ms)",
@@ -196,11 +201,42 @@ class PeriodicWriter {
   std::jthread thread_;  // last: stopped and joined first
 };
 
+/// The end of a live run: the last sweep integrated, the map (and with --slam the trajectory)
+/// written, the summary printed.
+void finishLive(const LiveArgs& args, LiveMapping& live, Clock::time_point start, std::size_t bytes, std::size_t skipped,
+                bool with_nav) {
+  live.finish();
+  const double seconds = secondsSince(start);
+  if (!args.map.quiet) printStatus(live, bytes, skipped, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9), true);
+  const NavTrack trajectory = live.slam() ? live.slam()->trajectory() : NavTrack{};
+  const std::optional<SlamReport> slam_report =
+      live.slam() ? std::optional<SlamReport>(live.slam()->localizer().report()) : std::nullopt;
+  MappedLog run{std::move(live.mapper()).release(), seconds};
+  if (const std::size_t changes = run.mapper.stats().resolution_changes; changes > 0) {
+    run.resolution_note = " (auto: coarsened " + std::to_string(changes) + (changes == 1 ? " time" : " times") +
+                          " as the range scale grew)";
+  }
+  run.mapper.stats().beams_skipped = skipped;
+  writeMapFile(run.mapper.map(), args.map.output_bt);
+  if (!args.map.trajectory_out.empty()) {
+    FileTransaction outputs;
+    stageTrajectory(outputs, args.map.trajectory_out, trajectory);
+    outputs.commit();
+  }
+  const std::vector<std::string> warnings =
+      mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
+  printWarnings(warnings);
+  printMapSummary(run, args.map.output_bt, with_nav || args.map.slam, warnings.size());
+  if (slam_report) printSlamSummary(*slam_report, with_nav);
+}
+
 void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const LogFormat format = parseLogFormat(args.map.format);
   const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
   const Clock::time_point start = Clock::now();
-  LiveMapping live(args, sonar_options, sonar_to_body, start);
+  const NavTrack known_fixes = args.map.nav_file.empty() ? NavTrack{} : readNavCsv(args.map.nav_file);
+  LiveMapping live(args, sonar_options, sonar_to_body, start, known_fixes,
+                   !args.map.nav_file.empty() || !args.nav_stream.empty());
   g_stop = 0;
   catchStopSignals();
   LiveSource source(args.map.input, args.baud);
@@ -242,7 +278,7 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
     if (args.idle_timeout_s > 0.0 && now_s - last_byte_s >= args.idle_timeout_s) break;
     if (now_s >= last_status_s + 1.0) {
       const double rate_per_s = static_cast<double>(live.beams() - beams_at_status) / (now_s - last_status_s);
-      if (!args.map.quiet) printStatus(live, decoder, now_s, rate_per_s);
+      if (!args.map.quiet) printStatus(live, decoder.bytesFed(), decoder.skippedItems(), now_s, rate_per_s);
       beams_at_status = live.beams();
       last_status_s = now_s;
     }
@@ -257,30 +293,50 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
                  nav_rows->lastSkipReason().c_str());
   }
   writer.reset();  // no periodic write races the final one
-  live.finish();
-  const double seconds = secondsSince(start);
-  if (!args.map.quiet) printStatus(live, decoder, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9), true);
-  const NavTrack trajectory = live.slam() ? live.slam()->trajectory() : NavTrack{};
-  const std::optional<SlamReport> slam_report =
-      live.slam() ? std::optional<SlamReport>(live.slam()->localizer().report()) : std::nullopt;
-  MappedLog run{std::move(live.mapper()).release(), seconds};
-  if (const std::size_t changes = run.mapper.stats().resolution_changes; changes > 0) {
-    run.resolution_note = " (auto: coarsened " + std::to_string(changes) + (changes == 1 ? " time" : " times") +
-                          " as the range scale grew)";
+  finishLive(args, live, start, decoder.bytesFed(), decoder.skippedItems(), !args.map.nav_file.empty() || !args.nav_stream.empty());
+}
+
+/// Whether `live` replays a recorded ROS log (by --format, or the source's name) rather than reading
+/// a wire stream.
+bool isReplay(const LiveArgs& args) {
+  if (args.map.format != "auto") return isRosLog(parseLogFormat(args.map.format));
+  const std::optional<LogFormat> format = logFormatOfPath(args.map.input);
+  return format && isRosLog(*format);
+}
+
+/// `live` on a recorded ROS log (a replay): its beams fed in order with their recorded times, its
+/// own navigation (or --nav's, any file `map --nav` reads, joined by its clock) known from the start.
+void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
+  const LogFormat format = inputFormat(args.map.input, args.map.format);
+  const SonarLog log = readSonarLog(args.map.input, format, args.map.log_read);
+  const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
+  const std::optional<AlignedNavigation> navigation =
+      navigationFor(args.map.input, format, log, args.map.nav_file, args.map.nav_topic, args.map.nav_time_offset_s);
+  if (navigation) {
+    printNavigationSource(*navigation, args.map.nav_file);
+    requireClockOverlap(log, *navigation);
   }
-  run.mapper.stats().beams_skipped = decoder.skippedItems();
-  writeMapFile(run.mapper.map(), args.map.output_bt);
-  if (!args.map.trajectory_out.empty()) {
-    FileTransaction outputs;
-    stageTrajectory(outputs, args.map.trajectory_out, trajectory);
-    outputs.commit();
+  const Clock::time_point start = Clock::now();
+  LiveMapping live(args, sonar_options, sonar_to_body, start, navigation ? navigation->source.track : NavTrack{},
+                   navigation.has_value());
+  g_stop = 0;
+  catchStopSignals();
+  if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: replaying %s\n", args.map.input.c_str());
+  std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.write_every_s);
+  double last_status_s = 0.0;
+  std::size_t beams_at_status = 0;
+  for (const Beam& beam : log.beams) {
+    if (g_stop != 0) break;
+    live.addRecorded(beam, secondsSince(start));
+    if (const double now_s = secondsSince(start); now_s >= last_status_s + 1.0) {
+      const double rate_per_s = static_cast<double>(live.beams() - beams_at_status) / (now_s - last_status_s);
+      if (!args.map.quiet) printStatus(live, 0, log.skipped_beams, now_s, rate_per_s);
+      beams_at_status = live.beams();
+      last_status_s = now_s;
+    }
   }
-  const std::vector<std::string> warnings =
-      mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
-  printWarnings(warnings);
-  const bool with_nav = !args.map.nav_file.empty() || !args.nav_stream.empty();
-  printMapSummary(run, args.map.output_bt, with_nav || args.map.slam, warnings.size());
-  if (slam_report) printSlamSummary(*slam_report, with_nav);
+  writer.reset();
+  finishLive(args, live, start, 0, log.skipped_beams, navigation.has_value());
 }
 
 }  // namespace
@@ -290,7 +346,9 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       "live", "Map beams as they arrive from a sonar (SeaNet or Ping360 wire stream) into an occupancy octree (.bt)");
   cmd->add_option("source", args.map.input,
                   "Where the bytes come from: a serial device (/dev/ttyUSB0), udp://HOST:PORT (bound; port 0 picks "
-                  "one, printed), tcp://HOST:PORT (connected), - for standard input, or a capture file (a replay)")
+                  "one, printed), tcp://HOST:PORT (connected), - for standard input, or a capture file (a replay); or a "
+                  "recorded ROS log (.bag, .mcap, .db3, a rosbag2 folder), replayed beam by beam with its own times "
+                  "and navigation")
       ->required();
   cmd->add_option("-o,--output", args.map.output_bt,
                   "Output map, OctoMap binary tree (.bt): rewritten atomically every --write-every seconds and at the end")
@@ -308,7 +366,8 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       ->capture_default_str();
   cmd->add_option("--nav", args.map.nav_file,
                   "Navigation CSV loaded at the start (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad): its times are "
-                  "seconds since `live` started, the clock beams are stamped with on arrival");
+                  "seconds since `live` started, the clock beams are stamped with on arrival. Replaying a ROS log: any "
+                  "navigation `map --nav` takes, on the log's clock (default: the log's own navigation topic)");
   cmd->add_option("--nav-stream", args.nav_stream,
                   "A second SOURCE (serial, udp://, tcp://, a file) of navigation CSV rows as they are sent: each fix "
                   "timed on the arrival clock (the stream's own clock aligned at its first row); bad rows skipped")
@@ -329,9 +388,11 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   };
   auto checked = std::make_shared<Checked>();
   auto check = [&args, checked] {
-    if (args.map.format != "seanet" && args.map.format != "ping360") {
-      throw ValueError("live needs --format seanet or --format ping360 (a raw wire stream), got '" + args.map.format + "'");
+    if (!isReplay(args) && args.map.format != "seanet" && args.map.format != "ping360") {
+      throw ValueError("live needs --format seanet or --format ping360 (a raw wire stream), or a recorded ROS log "
+                       "(.bag, .mcap, .db3, a rosbag2 folder), got '" + args.map.format + "'");
     }
+    if (isReplay(args) && !args.nav_stream.empty()) throw ValueError("a replayed ROS log takes --nav, not --nav-stream");
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
     if (!args.map.mounting.empty() && args.map.nav_file.empty() && args.nav_stream.empty() && !args.map.slam) {
@@ -341,7 +402,13 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     checked->options = toMapperOptions(args.map);
     checked->sonar_to_body = toSonarToBody(args.map.mounting);
   };
-  return {cmd, check, [&args, checked] { runLive(args, checked->options, checked->sonar_to_body); }};
+  return {cmd, check, [&args, checked] {
+            if (isReplay(args)) {
+              runLiveReplay(args, checked->options, checked->sonar_to_body);
+            } else {
+              runLive(args, checked->options, checked->sonar_to_body);
+            }
+          }};
 }
 
 }  // namespace sonarmap::cli

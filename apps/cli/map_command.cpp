@@ -125,25 +125,6 @@ std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
   return note;
 }
 
-namespace {
-
-/// One line on where the navigation came from, unless it is the navigation CSV the user named;
-/// how its clock was joined to the log's when either clock is known or an offset was given; the
-/// reader's notes.
-void printNavigationSource(const AlignedNavigation& navigation, const std::string& nav_file) {
-  const NavigationSource& source = navigation.source;
-  const bool csv = !nav_file.empty() && source.description == std::filesystem::path(nav_file).filename().string();
-  if (!csv) {
-    std::printf("navigation %s: %zu fixes%s\n", source.description.c_str(), source.track.size(),
-                source.skipped > 0 ? (", " + std::to_string(source.skipped) + " messages skipped").c_str() : "");
-  }
-  if (navigation.clock.both_utc || navigation.clock.shift_s != 0.0) {
-    std::printf("navigation clock: %s (times moved by %+.3f s)\n", navigation.clock.how.c_str(), navigation.clock.shift_s);
-  }
-  for (const std::string& note : source.notes) std::fprintf(stderr, "warning: %s\n", note.c_str());
-}
-
-}  // namespace
 
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {

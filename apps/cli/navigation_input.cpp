@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/log_clock.hpp"
@@ -93,6 +94,22 @@ void requireClockOverlap(const SonarLog& log, const AlignedNavigation& nav) {
   throw FileError("no beam within the navigation's time span: sonar " + spanText(first, last, log.clock_utc_s) +
                   ", navigation " + spanText(nav.first_own_s, nav.last_own_s, nav.own_clock_utc_s) + " (" +
                   nav.clock.how + "); give --nav-time-offset SECONDS or --timezone");
+}
+
+/// One line on where the navigation came from, unless it is the navigation CSV the user named;
+/// how its clock was joined to the log's when either clock is known or an offset was given; the
+/// reader's notes.
+void printNavigationSource(const AlignedNavigation& navigation, const std::string& nav_file) {
+  const NavigationSource& source = navigation.source;
+  const bool csv = !nav_file.empty() && source.description == std::filesystem::path(nav_file).filename().string();
+  if (!csv) {
+    std::printf("navigation %s: %zu fixes%s\n", source.description.c_str(), source.track.size(),
+                source.skipped > 0 ? (", " + std::to_string(source.skipped) + " messages skipped").c_str() : "");
+  }
+  if (navigation.clock.shift_s != 0.0 || (navigation.clock.both_utc && !nav_file.empty())) {
+    std::printf("navigation clock: %s (times moved by %+.3f s)\n", navigation.clock.how.c_str(), navigation.clock.shift_s);
+  }
+  for (const std::string& note : source.notes) std::fprintf(stderr, "warning: %s\n", note.c_str());
 }
 
 }  // namespace sonarmap::cli

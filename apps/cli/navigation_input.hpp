@@ -38,6 +38,11 @@ std::optional<AlignedNavigation> navigationFor(const std::string& input, LogForm
 /// "12.300 .. 15.800 s".
 std::string spanText(double first_s, double last_s, const std::optional<double>& clock_utc_s);
 
+/// One line on where the navigation came from, unless it is the navigation CSV named `nav_file`;
+/// how its clock was joined to the log's when either clock is known or an offset was given; the
+/// reader's notes as warnings on standard error.
+void printNavigationSource(const AlignedNavigation& navigation, const std::string& nav_file);
+
 /// @throws FileError naming both spans (spanText) when no beam of `log` lies within the track's
 /// span: the navigation is on another clock (--nav-time-offset, --timezone).
 void requireClockOverlap(const SonarLog& log, const AlignedNavigation& nav);

@@ -28,6 +28,7 @@
 
 #include "cli_fixture.hpp"
 #include "formats/wire_fixture.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
@@ -350,6 +351,32 @@ TEST_F(CliLive, NavigationStreamPlacesTheBeams) {
   EXPECT_NE(run.out.find("0 without navigation"), std::string::npos) << run.out;
   EXPECT_TRUE(readFile(out_ / "live.bt") == moved_map) << "live map differs from `sonarmap map --nav`";
   EXPECT_NE(run.err.find("1 navigation rows skipped"), std::string::npos) << run.err;
+}
+
+// A recorded ROS bag replayed: beams with their own stamps and the bag's own navigation, the map of
+// `sonarmap map` on the bag byte for byte (--integrate sweep); beam by beam it maps too.
+TEST_F(CliLive, AReplayedRosBagGivesTheBatchMapWithItsNavigation) {
+  MsisSimulationOptions options;
+  options.turns = 2;
+  NavSample start;
+  start.position_ned_m = Eigen::Vector3d(-0.8, -0.4, 0.0);
+  options.trajectory = constantVelocityTrajectory(start, Eigen::Vector3d(0.1, 0.0, 0.0));
+  MsisSimulation run_moving = simulateMsis(builtinScene("tank"), options);
+  for (Beam& beam : run_moving.log.beams) beam.time_s += 1.4e9;  // ROS stamps: seconds since 1970
+  for (NavSample& fix : run_moving.nav) fix.time_s += 1.4e9;
+  const fs::path bag = root_ / "run.bag";
+  writeRosBag(bag.string(), run_moving.log, run_moving.nav);
+  const ProgramRun batch = run({"map", bag.string(), "-q", "-o", (root_ / "batch.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  const ProgramRun replay = run({"live", bag.string(), "--integrate", "sweep", "-q", "-o", (out_ / "live.bt").string()});
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_NE(replay.out.find("navigation /odometry (nav_msgs/Odometry"), std::string::npos) << replay.out;
+  EXPECT_NE(replay.out.find("0 without navigation"), std::string::npos) << replay.out;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "replayed map differs from `sonarmap map`";
+  const ProgramRun beams = run({"live", bag.string(), "-q", "-o", (out_ / "beams.bt").string()});
+  ASSERT_EQ(beams.exit_code, 0) << beams.err;
+  EXPECT_FALSE(readMapFile((out_ / "beams.bt").string()).empty());
+  expectError(run({"live", bag.string(), "--nav-stream", "udp://127.0.0.1:0", "-o", (out_ / "m.bt").string()}), 2);
 }
 
 TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {
