@@ -316,8 +316,10 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
     printNavigationSource(*navigation, args.map.nav_file);
     requireClockOverlap(log, *navigation);
   }
+  const Eigen::Isometry3d mounting =
+      mountingFor(args.map.input, format, log, navigation, !args.map.mounting.empty(), sonar_to_body);
   const Clock::time_point start = Clock::now();
-  LiveMapping live(args, sonar_options, sonar_to_body, start, navigation ? navigation->source.track : NavTrack{},
+  LiveMapping live(args, sonar_options, mounting, start, navigation ? navigation->source.track : NavTrack{},
                    navigation.has_value());
   g_stop = 0;
   catchStopSignals();

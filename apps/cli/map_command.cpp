@@ -140,8 +140,10 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
     printNavigationSource(*navigation, args.nav_file);
     requireClockOverlap(log, *navigation);
   }
+  const Eigen::Isometry3d mounting =
+      mountingFor(args.input, format, log, navigation, !args.mounting.empty(), sonar_to_body);
   SlamResult slam;
-  MappedLog mapped = mapLog(args, log, sonar_options, nav, sonar_to_body, slam);
+  MappedLog mapped = mapLog(args, log, sonar_options, nav, mounting, slam);
   mapped.resolution_note = resolutionNote(log, sonar_options);
   const NavTrack& trajectory = args.slam ? slam.trajectory : nav;
   FileTransaction outputs;  // nothing appears unless every output could be written
@@ -150,7 +152,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
   stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
                   trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
-                                     : sonarTrack(trajectory, sonar_to_body, log));
+                                     : sonarTrack(trajectory, mounting, log));
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());

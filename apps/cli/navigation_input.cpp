@@ -9,6 +9,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/log_clock.hpp"
+#include "sonarmap/formats/ros_bag_mounting.hpp"
 
 namespace sonarmap::cli {
 
@@ -70,6 +71,18 @@ std::optional<AlignedNavigation> navigationFor(const std::string& input, LogForm
   nav.clock = alignNavigationClock(*source, log.clock_utc_s, nav_time_offset_s);
   nav.source = std::move(*source);
   return nav;
+}
+
+Eigen::Isometry3d mountingFor(const std::string& input, LogFormat format, const SonarLog& log,
+                              const std::optional<AlignedNavigation>& navigation, bool mounting_given,
+                              const Eigen::Isometry3d& given) {
+  if (mounting_given || !navigation || !isRosLog(format)) return given;
+  const std::optional<RosBagMounting> mounting = readRosBagMounting(input, log.frame_id, navigation->source.body_frame);
+  if (!mounting) return given;
+  const Eigen::Vector3d t = mounting->sonar_to_body.translation();
+  std::printf("mounting from /tf_static: %s (sonar at %.3f, %.3f, %.3f m in the body frame, FRD)\n",
+              mounting->chain.c_str(), t.x(), t.y(), t.z());
+  return mounting->sonar_to_body;
 }
 
 std::string spanText(double first_s, double last_s, const std::optional<double>& clock_utc_s) {

@@ -38,6 +38,15 @@ std::optional<AlignedNavigation> navigationFor(const std::string& input, LogForm
 /// "12.300 .. 15.800 s".
 std::string spanText(double first_s, double last_s, const std::optional<double>& clock_utc_s);
 
+/// The sonar's mounting (sonar frame → body FRD): `given` (--mounting's) when `mounting_given`;
+/// else, for a ROS log input with navigation, the chain of its /tf_static transforms from the
+/// navigation's body frame to the frame its sonar messages name (ros_bag_mounting.hpp), said in
+/// one line; else `given` (the default mounting).
+/// @throws FileError as readRosBagMounting.
+Eigen::Isometry3d mountingFor(const std::string& input, LogFormat format, const SonarLog& log,
+                              const std::optional<AlignedNavigation>& navigation, bool mounting_given,
+                              const Eigen::Isometry3d& given);
+
 /// One line on where the navigation came from, unless it is the navigation CSV named `nav_file`;
 /// how its clock was joined to the log's when either clock is known or an offset was given; the
 /// reader's notes as warnings on standard error.

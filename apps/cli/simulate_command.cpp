@@ -64,7 +64,11 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   const NavTrack& believed = simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning;
   if (!args.mcap.empty()) outputs.stageBytes(args.mcap, mcapBytes(simulation.log, believed));
   if (!args.bag.empty()) {
-    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, believed, {.raw_sensors = true}));
+    // the sonar's mounting on /tf_static, so that `map FILE.bag` needs no --mounting
+    RosBagWriteOptions bag;
+    bag.raw_sensors = true;
+    if (!believed.empty()) bag.sonar_to_body = options.sonar_to_body;
+    outputs.stageBytes(args.bag, rosBagBytes(simulation.log, believed, bag));
   }
   outputs.commit();
   dir.keep();

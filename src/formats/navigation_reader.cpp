@@ -24,6 +24,7 @@ NavigationSource fromBag(const std::string& path, RosBagNavigation nav) {
   source.track = std::move(nav.track);
   source.skipped = nav.skipped;
   source.clock_utc_s = 0.0;  // header stamps: seconds since 1970
+  source.body_frame = nav.body_frame;
   source.description = nav.topic + " (" + nav.type + ", " + nav.frame + ") of " + std::filesystem::path(path).filename().string();
   return source;
 }

@@ -95,6 +95,12 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
         throw Error("its time " + std::to_string(fix.time_s) + " s is not after the previous fix's");
       }
       (ned ? any_ned : any_enu) = true;
+      if (nav.track.empty()) {
+        const RosValue* child = message.field("child_frame_id");
+        const std::string* name = child != nullptr ? std::get_if<std::string>(&child->value) : nullptr;
+        nav.body_frame = name != nullptr && !name->empty() ? (name->starts_with('/') ? name->substr(1) : *name)
+                                                           : (ned ? "base_link_frd" : "base_link");
+      }
       nav.track.push_back(fix);
     });
     nav.skipped = skipped.count;

@@ -179,6 +179,7 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
     }
     const detail::RosSkipped skipped = bag.forEachMessage(topic, *schema, [&](const RosValue& message, double time_s) {
       raw.push_back(beamOf(message, *fields, time_s));
+      if (raw.size() == 1 && fields->header) log.frame_id = detail::headerFrame(message);
     });
     log.skipped_beams = skipped.count;
     log.skip_reasons = skipped.reasons;

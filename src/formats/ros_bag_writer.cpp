@@ -135,6 +135,15 @@ struct TwistStampedType {
   static constexpr const char* kMd5 = "98d34b0043a2093cf9d9345ab6eef12e";
   static const char* definition() { return kTwistStampedDefinition.c_str(); }
 };
+const std::string kTfMessageDefinition = std::string("geometry_msgs/TransformStamped[] transforms\n\n") + kRule +
+    "MSG: geometry_msgs/TransformStamped\nHeader header\nstring child_frame_id\nTransform transform\n\n" + kRule +
+    kHeaderSection + "\n" + kRule + "MSG: geometry_msgs/Transform\nVector3 translation\nQuaternion rotation\n\n" + kRule +
+    kVector3Section + "\n" + kRule + kQuaternionSection;
+struct TfMessageType {
+  static constexpr const char* kName = "tf2_msgs/TFMessage";
+  static constexpr const char* kMd5 = "94810edda583a504dfda3829e70d7eec";
+  static const char* definition() { return kTfMessageDefinition.c_str(); }
+};
 struct FluidPressureType {
   static constexpr const char* kName = "sensor_msgs/FluidPressure";
   static constexpr const char* kMd5 = "804dc5cea1c5306d6a2eb80b9833befe";
@@ -166,11 +175,38 @@ void appendHeader(std::vector<std::uint8_t>& out, std::uint32_t seq, const ros::
   appendString(out, frame_id);
 }
 
+constexpr const char* kSonarFrame = "sonar";
+
+/// The body frame of the fixes written in the world frame `nav_frame` (REP 105's name; FRD for NED).
+std::string bodyFrame(const std::string& nav_frame) { return detail::namesNedFrame(nav_frame) ? "base_link_frd" : "base_link"; }
+
+/// The mounting as a tf2_msgs/TFMessage of one transform, body → sonar: the body FLU (REP 103)
+/// unless the world frame is NED.
+SerializedMessage<TfMessageType> tfStatic(const Eigen::Isometry3d& sonar_to_body, const ros::Time& stamp,
+                                          const std::string& nav_frame) {
+  SerializedMessage<TfMessageType> message;
+  std::vector<std::uint8_t>& out = message.bytes;
+  Eigen::Isometry3d pose = sonar_to_body;
+  if (!detail::namesNedFrame(nav_frame)) {
+    Eigen::Isometry3d frd_to_flu = Eigen::Isometry3d::Identity();
+    frd_to_flu.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+    pose = frd_to_flu * sonar_to_body;
+  }
+  const Eigen::Quaterniond q(pose.linear());
+  append<std::uint32_t>(out, 1);
+  appendHeader(out, 0, stamp, bodyFrame(nav_frame));
+  appendString(out, kSonarFrame);
+  for (const double value : {pose.translation().x(), pose.translation().y(), pose.translation().z(), q.x(), q.y(), q.z(), q.w()}) {
+    append<double>(out, value);
+  }
+  return message;
+}
+
 /// One beam as a serialized ScanLine (ros_message.hpp's layout).
 SerializedMessage<ScanLineType> scanLine(const Beam& beam, std::uint32_t seq, const ros::Time& stamp) {
   SerializedMessage<ScanLineType> message;
   std::vector<std::uint8_t>& out = message.bytes;
-  appendHeader(out, seq, stamp, "");
+  appendHeader(out, seq, stamp, kSonarFrame);
   append<float>(out, static_cast<float>(detail::clockwiseDegrees(beam.bearing_rad)));
   append<float>(out, static_cast<float>(beam.bin_length_m));
   append<std::uint32_t>(out, static_cast<std::uint32_t>(beam.intensities.size()));
@@ -190,7 +226,7 @@ SerializedMessage<OdometryType> odometry(const NavSample& fix, std::uint32_t seq
   std::vector<std::uint8_t>& out = message.bytes;
   const bool ned = detail::namesNedFrame(frame_id);
   appendHeader(out, seq, stamp, frame_id);
-  appendString(out, ned ? "base_link_frd" : "base_link");
+  appendString(out, bodyFrame(frame_id));
   Eigen::Vector3d position = fix.position_ned_m;
   Eigen::Quaterniond orientation(bodyToNed(fix).linear());
   if (!ned) detail::nedToRosEnu(fix, position, orientation);
@@ -284,6 +320,12 @@ std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav,
       bag.setCompression(options.compression == BagCompression::kBz2   ? rosbag::compression::BZ2
                          : options.compression == BagCompression::kLz4 ? rosbag::compression::LZ4
                                                                        : rosbag::compression::Uncompressed);
+      if (options.sonar_to_body) {  // latched before the first message, as a recorder finds it
+        double first_s = log.beams.empty() ? 0.0 : log.beams.front().time_s;
+        if (!nav.empty()) first_s = std::min(first_s, nav.front().time_s);
+        const ros::Time stamp(first_s);
+        bag.write("/tf_static", std::max(stamp, ros::TIME_MIN), tfStatic(*options.sonar_to_body, stamp, options.nav_frame));
+      }
       // Both streams in time order, as a recorder writes them.
       std::size_t b = 0, f = 0;
       while (b < log.beams.size() || f < nav.size()) {

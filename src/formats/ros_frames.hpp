@@ -21,6 +21,9 @@ bool namesNedFrame(const std::string& frame_id);
 /// log's) when it has no header or the stamp is zero. @throws Error for a stamp that is no number.
 double headerTime(const RosValue& message, double record_time_s);
 
+/// The header's frame_id of `message` (its leading '/' dropped, as tf2 does), or empty.
+std::string headerFrame(const RosValue& message);
+
 /// Whether a message's std_msgs/Header frame_id names a NED frame (namesNedFrame).
 bool headerNamesNed(const RosValue& message);
 

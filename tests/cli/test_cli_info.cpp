@@ -15,6 +15,7 @@
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
+#include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
@@ -182,6 +183,31 @@ TEST_F(cliInfo, ARosBagsTopicsAreListedAndItsNavigationIsUsed) {
   EXPECT_EQ(wrong.exit_code, 1);
   EXPECT_NE(wrong.err.find("no topic /odom"), std::string::npos) << wrong.err;
   EXPECT_FALSE(fs::exists(root_ / "wrong.bt"));
+}
+
+// A bag whose /tf_static mounts the sonar: map places the beams with that mounting as `map
+// --mounting` does with the same numbers; --mounting given overrides it.
+TEST_F(cliInfo, ABagsTfStaticMountsTheSonar) {
+  SonarLog log = run_.log;
+  NavTrack nav = run_.nav;
+  for (Beam& beam : log.beams) beam.time_s += 1.4e9;
+  for (NavSample& fix : nav) fix.time_s += 1.4e9;
+  const std::vector<double> numbers{0.3, 0.1, 0.2, 180.0, 0.0, 30.0};  // X,Y,Z m, roll, pitch, yaw deg
+  const fs::path bag = root_ / "mounted.bag";
+  writeRosBag(bag.string(), log, nav, {.sonar_to_body = sonarToBodyOfMounting(numbers)});
+  const ProgramRun from_bag = run({"map", bag.string(), "-o", (root_ / "bag.bt").string(), "-q"});
+  ASSERT_EQ(from_bag.exit_code, 0) << from_bag.err;
+  EXPECT_NE(from_bag.out.find("mounting from /tf_static: base_link -> sonar (sonar at 0.300, 0.100, 0.200 m"),
+            std::string::npos) << from_bag.out;
+  const ProgramRun from_csv = run({"map", beams_.string(), "--nav", nav_.string(), "--mounting", "0.3,0.1,0.2,180,0,30",
+                                   "-o", (root_ / "csv.bt").string(), "-q"});
+  ASSERT_EQ(from_csv.exit_code, 0) << from_csv.err;
+  auto obstacles = [](const std::string& out) { return std::stoul(out.substr(out.find(" sweeps, ") + 9)); };
+  EXPECT_NEAR(static_cast<double>(obstacles(from_bag.out)), static_cast<double>(obstacles(from_csv.out)),
+              0.02 * static_cast<double>(obstacles(from_csv.out)));
+  const ProgramRun told = run({"map", bag.string(), "--mounting", "0,0,0,180,0,0", "-o", (root_ / "told.bt").string(), "-q"});
+  ASSERT_EQ(told.exit_code, 0) << told.err;
+  EXPECT_EQ(told.out.find("mounting from /tf_static"), std::string::npos) << told.out;
 }
 
 // A BlueROV2's telemetry log beside a sonar log without a clock: its UTC clock cannot meet the

@@ -12,6 +12,7 @@
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
+#include "sonarmap/formats/ros_bag_mounting.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "sonarmap/formats/ros_bag_reader.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
@@ -170,6 +171,33 @@ TEST(formatsRosBag, OdometryInEnuOrNedReadsBackAsTheNedTrack) {
   EXPECT_EQ(topics[1].messages, nav.size());
   EXPECT_NEAR(topics[1].first_s, nav.front().time_s, 1e-6);
   EXPECT_NEAR(topics[1].last_s, nav.back().time_s, 1e-6);
+}
+
+// The sonar's mounting written on /tf_static (body FLU under an ENU world, FRD under a NED one)
+// reads back as the sonar_to_body it was, chained from the odometry's child frame to the sonar
+// messages' frame; without /tf_static, or between frames it does not join, there is none.
+TEST(formatsRosBag, TheMountingOnTfStaticReadsBackAsSonarToBody) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  Eigen::Isometry3d sonar_to_body = defaultSonarToBody();
+  sonar_to_body.prerotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()));  // tilted 23 degrees
+  sonar_to_body.pretranslate(Eigen::Vector3d(0.3, -0.1, 0.25));
+  for (const std::string frame : {"odom", "odom_ned"}) {
+    writeRosBag(dir.file("mounted.bag"), run.simulation.log, run.simulation.nav,
+                {.nav_frame = frame, .sonar_to_body = sonar_to_body});
+    const SonarLog log = readRosBag(dir.file("mounted.bag"));
+    EXPECT_EQ(log.frame_id, "sonar");
+    const std::optional<RosBagNavigation> nav = readRosBagNavigation(dir.file("mounted.bag"));
+    ASSERT_TRUE(nav.has_value());
+    EXPECT_EQ(nav->body_frame, frame == "odom" ? "base_link" : "base_link_frd");
+    const std::optional<RosBagMounting> mounting = readRosBagMounting(dir.file("mounted.bag"), log.frame_id, nav->body_frame);
+    ASSERT_TRUE(mounting.has_value()) << frame;
+    EXPECT_TRUE(mounting->sonar_to_body.isApprox(sonar_to_body, 1e-9)) << frame << "\n" << mounting->sonar_to_body.matrix();
+    EXPECT_EQ(mounting->chain, nav->body_frame + " -> sonar");
+    EXPECT_FALSE(readRosBagMounting(dir.file("mounted.bag"), "camera", nav->body_frame).has_value());
+  }
+  writeRosBag(dir.file("bare.bag"), run.simulation.log, run.simulation.nav);
+  EXPECT_FALSE(readRosBagMounting(dir.file("bare.bag"), "sonar", "base_link").has_value());
 }
 
 // Without a pose topic, the track is dead-reckoned from the IMU's attitude, the DVL's velocity and

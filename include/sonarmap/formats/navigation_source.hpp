@@ -21,6 +21,9 @@ struct NavigationSource {
   /// a ROS log or a MAVLink telemetry log, a dataflash log's boot time from its GPS fixes; unset for
   /// a navigation CSV or a dataflash log without a GPS fix.
   std::optional<double> clock_utc_s;
+  /// The vehicle's body frame the fixes are of, where the file names it (a ROS log's
+  /// child_frame_id: where its /tf_static mounts the sonar, ros_bag_mounting.hpp); empty otherwise.
+  std::string body_frame;
   /// Lines for the user about the reading: where a file was cut and what was kept before it.
   std::vector<std::string> notes;
 };

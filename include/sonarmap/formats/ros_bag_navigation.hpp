@@ -67,6 +67,9 @@ struct RosBagNavigation {
   std::string topic;
   std::string type;
   std::string frame;       ///< "NED" or "ENU (REP 103), turned into NED"
+  /// The vehicle's body frame the poses are of: the first message's child_frame_id (Odometry),
+  /// else "base_link" (REP 105's name), "base_link_frd" for a NED pose.
+  std::string body_frame;
   std::size_t skipped = 0;  ///< messages that did not decode or whose time did not increase
   std::vector<std::string> skip_reasons;
 };

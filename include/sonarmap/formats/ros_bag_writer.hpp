@@ -10,8 +10,11 @@
 /// `odom` with the FLU body `base_link` (REP 103, REP 105). readRosBag and readRosBagNavigation
 /// read them back (or in NED, RosBagWriteOptions::nav_frame).
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -46,6 +49,10 @@ struct RosBagWriteOptions {
   double water_density_kg_m3 = 1025.0;
   double surface_pressure_pa = 101325.0;
   BagCompression compression = BagCompression::kNone;
+  /// The sonar's mounting on the vehicle (navigation.hpp's sonar_to_body): written as one static
+  /// transform on /tf_static (tf2_msgs/TFMessage) from the body frame ("base_link", FLU; with a
+  /// NED nav_frame "base_link_frd") to the sonar messages' frame "sonar" (ros_bag_mounting.hpp).
+  std::optional<Eigen::Isometry3d> sonar_to_body;
 };
 
 /// Writes the beams of `log` to `path` as ScanLine messages on `options.sonar_topic` and the fixes

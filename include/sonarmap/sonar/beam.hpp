@@ -51,6 +51,9 @@ struct SonarLog {
   /// (formats/log_clock.hpp): 0 for a ROS log (header stamps are UTC), a Ping Viewer log's start
   /// from its file name; unset for files that do not say.
   std::optional<double> clock_utc_s;
+  /// The frame the file names for the sonar (a ROS log's header frame_id: where /tf_static places
+  /// it on the vehicle); empty when it names none.
+  std::string frame_id;
 };
 
 }  // namespace sonarmap
