@@ -301,11 +301,11 @@ void runInfo(const InfoArgs& args) {
   const LogFormat format = inputFormat(args.input, args.format);
   const SonarLog log = readSonarLog(args.input, format, args.log_read);
   const std::optional<AlignedNavigation> navigation =
-      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s);
+      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s, args.log_read.msg_path);
   const LogSummary summary = summarizeLog(log, navigation ? navigation->source.track : NavTrack{});
   BagTopics bag;
   if (isRosLog(format)) {
-    bag.topics = listRosBagTopics(args.input);
+    bag.topics = listRosBagTopics(args.input, args.log_read.msg_path);
     for (const RosBagTopic& t : bag.topics) {
       if (log.sonar == "ROS topic " + t.topic + " (" + t.type + ")") bag.sonar_topic = t.topic;
       if (navigation && args.nav_file.empty() && navigation->source.description.rfind(t.topic + " (", 0) == 0) {

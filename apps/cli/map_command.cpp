@@ -133,7 +133,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   printWarnings(optionWarnings(sonar_options, log));
   const std::optional<AlignedNavigation> navigation =
-      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s);
+      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s, args.log_read.msg_path);
   requireNavigation(args, !navigation);
   const NavTrack nav = navigation ? navigation->source.track : NavTrack{};
   if (navigation) {

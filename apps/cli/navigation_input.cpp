@@ -53,14 +53,18 @@ void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& lo
          "The recording computer's offset from UTC, for a log named in local time (Ping Viewer: "
          "yyyyMMdd-hhmmsszzz.bin): UTC | +03:30 | -05:00. Default: UTC")
       ->type_name("ZONE");
+  cmd.add_option("--msg-path", log_read.msg_path,
+                 "A folder of .msg files (PKG/msg/NAME.msg) for the message types a ROS 2 log in rosbag2's SQLite "
+                 "storage (before Iron) names without definitions. Default: the common types, built in")
+      ->type_name("DIR");
 }
 
 std::optional<AlignedNavigation> navigationFor(const std::string& input, LogFormat format, const SonarLog& log,
                                                const std::string& nav_file, const std::string& nav_topic,
-                                               double nav_time_offset_s) {
+                                               double nav_time_offset_s, const std::string& msg_path) {
   if (nav_file == "none") return std::nullopt;
-  std::optional<NavigationSource> source =
-      nav_file.empty() ? readLogNavigation(input, format, nav_topic) : readNavigation(nav_file, nav_topic);
+  std::optional<NavigationSource> source = nav_file.empty() ? readLogNavigation(input, format, nav_topic, msg_path)
+                                                            : readNavigation(nav_file, nav_topic, msg_path);
   if (!source) return std::nullopt;
   AlignedNavigation nav;
   nav.own_clock_utc_s = source->clock_utc_s;

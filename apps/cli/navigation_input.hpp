@@ -13,7 +13,7 @@
 namespace sonarmap::cli {
 
 /// Adds --nav (`nav_help` first in its help) into `nav_file`, --nav-topic, --nav-time-offset into
-/// `nav_time_offset_s`, --timezone and a ROS bag's --sonar-topic, --bearing-unit and
+/// `nav_time_offset_s`, --timezone, --msg-path and a ROS bag's --sonar-topic, --bearing-unit and
 /// --bearing-direction into `log_read`.
 void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& log_read, std::string& nav_topic,
                         double& nav_time_offset_s, const std::string& nav_help);
@@ -32,7 +32,7 @@ struct AlignedNavigation {
 /// @throws FileError as readNavigation and readLogNavigation.
 std::optional<AlignedNavigation> navigationFor(const std::string& input, LogFormat format, const SonarLog& log,
                                                const std::string& nav_file, const std::string& nav_topic,
-                                               double nav_time_offset_s);
+                                               double nav_time_offset_s, const std::string& msg_path = {});
 
 /// "2024-08-14 10:15:02.123 UTC .. 10:19:14.456 UTC" for a span on a clock known in UTC, else
 /// "12.300 .. 15.800 s".

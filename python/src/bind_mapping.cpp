@@ -147,8 +147,10 @@ TypeError for an unknown keyword.)doc";
 seconds, NED metres, radians (body FRD, Z-Y-X). Raises sonarmap.FileError naming the line and field.)doc");
   m.def(
       "read_navigation",
-      [](const std::filesystem::path& path, const std::string& nav_topic) { return navArray(readNavigation(path.string(), nav_topic).track); },
-      py::arg("path"), py::arg("nav_topic") = "",
+      [](const std::filesystem::path& path, const std::string& nav_topic, const std::string& msg_path) {
+        return navArray(readNavigation(path.string(), nav_topic, msg_path).track);
+      },
+      py::arg("path"), py::arg("nav_topic") = "", py::arg("msg_path") = "",
       R"doc(Reads a vehicle's navigation as an (N, 7) float64 array (time_s, x_m, y_m, z_m, roll_rad, pitch_rad,
 yaw_rad: seconds, NED metres, radians, body FRD, Z-Y-X): a navigation CSV; a ROS log's navigation topic
 (`.bag`, `.mcap`, `.db3`: nav_topic, or nav_msgs/Odometry, else the topic with a header and a pose that has

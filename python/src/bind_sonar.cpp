@@ -84,14 +84,15 @@ py::array_t<std::int64_t> sweepArray(const std::vector<SweepRange>& sweeps) {
 }
 
 PySonarLog readLog(const std::filesystem::path& file, const std::string& format, const std::string& sonar_topic,
-                   const std::string& bearing_unit, const std::string& bearing_direction, const std::string& timezone) {
+                   const std::string& bearing_unit, const std::string& bearing_direction, const std::string& timezone,
+                   const std::string& msg_path) {
   const std::string path = file.string();
   PySonarLog out;
   const LogFormat log_format = inputFormat(path, format);
   const double utc_offset_s = parseUtcOffset(timezone);
   {
     py::gil_scoped_release release;
-    out.log = readSonarLog(path, log_format, LogReadOptions{sonar_topic, bearing_unit, bearing_direction, utc_offset_s});
+    out.log = readSonarLog(path, log_format, LogReadOptions{sonar_topic, bearing_unit, bearing_direction, utc_offset_s, msg_path});
   }
   out.format = std::string(logFormatName(log_format));
   out.beam = nominalBeam(log_format);
@@ -348,7 +349,7 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
       });
 
   m.def("read_sonar_log", &readLog, py::arg("path"), py::arg("format") = "auto", py::arg("sonar_topic") = "",
-        py::arg("bearing_unit") = "auto", py::arg("bearing_direction") = "cw", py::arg("timezone") = "UTC",
+        py::arg("bearing_unit") = "auto", py::arg("bearing_direction") = "cw", py::arg("timezone") = "UTC", py::arg("msg_path") = "",
         R"doc(Reads a sonar log: CRAS Micron ``.mat``, beam ``.csv``, SeaNet ``.V4LOG``, raw SeaNet capture
 ``.seanet``, Ping360 ``.bin``, ROS 1 bag ``.bag``, ROS 2 MCAP ``.mcap``, rosbag2 SQLite ``.db3`` or bag
 folder (by extension, any case), or any name with ``format`` = "mat", "csv", "v4log", "seanet", "ping360",
@@ -357,7 +358,8 @@ For a ROS log: ``sonar_topic`` (default: found by its fields), ``bearing_unit`` 
 "grad" and ``bearing_direction`` "cw" | "ccw" (the CLI's --sonar-topic, --bearing-unit,
 --bearing-direction; docs/formats.md). ``timezone``: the recording computer's offset from UTC for a log
 named in local time ("UTC", "+03:30"; the CLI's --timezone): a Ping Viewer log named yyyyMMdd-hhmmsszzz
-then has ``clock_utc_s``. Malformed beams are dropped and counted (skipped_beams). Returns
+then has ``clock_utc_s``. ``msg_path``: a folder of ``.msg`` files (PKG/msg/NAME.msg) for the types a
+rosbag2 SQLite log before ROS 2 Iron names without definitions (the CLI's --msg-path). Malformed beams are dropped and counted (skipped_beams). Returns
 sonarmap.SonarLog. Raises sonarmap.FileError for an unknown extension or a file the reader rejects;
 sonarmap.ValueError for an unknown format name, bearing unit or direction.)doc");
 

@@ -87,7 +87,7 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
     case LogFormat::kMcap:  // the reader tells them apart by their first bytes
     case LogFormat::kRosbag2: {
       SonarLog log = readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
-                                                    parseBearingDirection(options.bearing_direction)});
+                                                    parseBearingDirection(options.bearing_direction), options.msg_path});
       log.clock_utc_s = 0.0;  // header stamps: seconds since 1970
       return log;
     }

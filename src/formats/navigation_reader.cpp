@@ -44,9 +44,9 @@ std::string secondsText(double s) {
 
 }  // namespace
 
-NavigationSource readNavigation(const std::string& path, const std::string& nav_topic) {
+NavigationSource readNavigation(const std::string& path, const std::string& nav_topic, const std::string& msg_path) {
   if (const auto format = logFormatOfPath(path); format && isRosLog(*format)) {
-    std::optional<RosBagNavigation> nav = readRosBagNavigation(path, RosBagNavOptions{nav_topic});
+    std::optional<RosBagNavigation> nav = readRosBagNavigation(path, RosBagNavOptions{.nav_topic = nav_topic, .msg_path = msg_path});
     if (!nav) {
       throw FileError("'" + path + "': ROS bag: no topic holds a pose (nav_msgs/Odometry, geometry_msgs/PoseStamped or "
                       "PoseWithCovarianceStamped, or a message laid out as one)");
@@ -65,9 +65,10 @@ NavigationSource readNavigation(const std::string& path, const std::string& nav_
   return source;
 }
 
-std::optional<NavigationSource> readLogNavigation(const std::string& log_path, LogFormat format, const std::string& nav_topic) {
+std::optional<NavigationSource> readLogNavigation(const std::string& log_path, LogFormat format, const std::string& nav_topic,
+                                                  const std::string& msg_path) {
   if (!isRosLog(format)) return std::nullopt;
-  std::optional<RosBagNavigation> nav = readRosBagNavigation(log_path, RosBagNavOptions{nav_topic});
+  std::optional<RosBagNavigation> nav = readRosBagNavigation(log_path, RosBagNavOptions{.nav_topic = nav_topic, .msg_path = msg_path});
   if (!nav) return std::nullopt;
   return fromBag(log_path, std::move(*nav));
 }

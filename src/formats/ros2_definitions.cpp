@@ -3,8 +3,14 @@
 
 #include "ros2_definitions.hpp"
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <vector>
+
+#include "sonarmap/core/errors.hpp"
 
 namespace sonarmap::detail {
 namespace {
@@ -74,6 +80,89 @@ std::string builtinRos2Definition(const std::string& type) {
   collect(name, used);
   for (const std::string& u : used) {
     definition += std::string(80, '=') + "\nMSG: " + u + "\n" + types().at(u).fields;
+  }
+  return definition;
+}
+
+namespace {
+
+/// "pkg/msg/Name" or "pkg/Name" as ("pkg", "Name"); a name without a package keeps `package`.
+std::pair<std::string, std::string> splitType(const std::string& type, const std::string& package) {
+  const auto first = type.find('/');
+  if (first == std::string::npos) return {type == "Header" ? "std_msgs" : package, type};
+  return {type.substr(0, first), type.substr(type.rfind('/') + 1)};
+}
+
+bool isPrimitive(const std::string& base) {
+  static const std::vector<std::string> primitives{"bool",  "byte",  "char",   "float32", "float64", "int8",
+                                                   "uint8", "int16", "uint16", "int32",   "uint32",  "int64",
+                                                   "uint64", "string", "wstring"};
+  return std::find(primitives.begin(), primitives.end(), base) != primitives.end() ||
+         base.rfind("builtin_interfaces/", 0) == 0;
+}
+
+/// The `.msg` file of pkg/Name under `dir`, or empty.
+std::filesystem::path msgFile(const std::string& dir, const std::string& package, const std::string& name) {
+  namespace fs = std::filesystem;
+  for (const fs::path& candidate : {fs::path(dir) / package / "msg" / (name + ".msg"), fs::path(dir) / package / (name + ".msg"),
+                                    fs::path(dir) / (name + ".msg")}) {
+    std::error_code error;
+    if (fs::is_regular_file(candidate, error)) return candidate;
+  }
+  return {};
+}
+
+/// The types a .msg text uses (not primitives), as "pkg/Name".
+std::vector<std::string> usedTypes(const std::string& text, const std::string& package) {
+  std::vector<std::string> used;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::string type, name;
+    if (!(words >> type >> name) || name.find('=') != std::string::npos) continue;  // blank, or a constant
+    std::string base = type.substr(0, type.find('['));
+    base = base.substr(0, base.find("<="));
+    if (isPrimitive(base)) continue;
+    const auto [pkg, message] = splitType(base, package);
+    used.push_back(pkg + "/" + message);
+  }
+  return used;
+}
+
+}  // namespace
+
+std::string msgPathDefinition(const std::string& type, const std::string& msg_path) {
+  if (msg_path.empty()) return {};
+  const auto [package, name] = splitType(type, "");
+  const std::filesystem::path root = msgFile(msg_path, package, name);
+  if (root.empty()) return {};
+  const auto textOf = [](const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  std::string definition = textOf(root);
+  std::vector<std::string> pending = usedTypes(definition, package), done{package + "/" + name};
+  while (!pending.empty()) {
+    const std::string next = pending.front();
+    pending.erase(pending.begin());
+    if (std::find(done.begin(), done.end(), next) != done.end()) continue;
+    done.push_back(next);
+    const auto [pkg, message] = splitType(next, "");
+    std::string fields;
+    if (const std::filesystem::path file = msgFile(msg_path, pkg, message); !file.empty()) {
+      fields = textOf(file);
+    } else if (const auto builtin = types().find(next); builtin != types().end()) {
+      fields = builtin->second.fields;
+    } else {
+      throw Error("the message " + type + " uses " + next + ", found neither under " + msg_path + " (" + pkg + "/msg/" +
+                  message + ".msg) nor among the built-in types");
+    }
+    const std::vector<std::string> more = usedTypes(fields, pkg);
+    pending.insert(pending.end(), more.begin(), more.end());
+    definition += "\n" + std::string(80, '=') + "\nMSG: " + next + "\n" + fields;
   }
   return definition;
 }

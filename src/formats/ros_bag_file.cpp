@@ -33,9 +33,9 @@ std::string mcapOfFolder(const std::string& path) {
 
 }  // namespace
 
-RosBagFile::RosBagFile(const std::string& path) : path_(path) {
+RosBagFile::RosBagFile(const std::string& path, const std::string& msg_path) : path_(path) {
   if (looksLikeRosbag2Sqlite(path)) {
-    sqlite_ = std::make_unique<Rosbag2Sqlite>(path);
+    sqlite_ = std::make_unique<Rosbag2Sqlite>(path, msg_path);
     for (const Rosbag2Sqlite::Topic& t : sqlite_->topics()) {
       topics_.push_back(RosBagTopic{t.name, t.type, t.messages, t.first_s, t.last_s});
       definitions_.push_back(t.serialization_format == "cdr" ? t.definition : std::string());

@@ -36,7 +36,9 @@ class RosBagFile {
   /// Checks and opens the ROS 1 bag or MCAP file at `path`.
   /// @throws FileError naming the file for a file that is neither a readable ROS 1 bag (format
   ///         2.0) nor a readable MCAP file.
-  explicit RosBagFile(const std::string& path);
+  /// `msg_path`: `.msg` files for the types a rosbag2 SQLite log names without definitions
+  /// (msgPathDefinition).
+  explicit RosBagFile(const std::string& path, const std::string& msg_path = {});
   ~RosBagFile();
   RosBagFile(const RosBagFile&) = delete;
   RosBagFile& operator=(const RosBagFile&) = delete;

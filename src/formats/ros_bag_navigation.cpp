@@ -45,13 +45,13 @@ NavSample fixOf(const RosValue& message, const std::vector<std::string>& path, d
 
 }  // namespace
 
-std::vector<RosBagTopic> listRosBagTopics(const std::string& path) {
-  return detail::withBagErrors(path, [&] { return detail::RosBagFile(path).topics(); });
+std::vector<RosBagTopic> listRosBagTopics(const std::string& path, const std::string& msg_path) {
+  return detail::withBagErrors(path, [&] { return detail::RosBagFile(path, msg_path).topics(); });
 }
 
 std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, const RosBagNavOptions& options) {
   return detail::withBagErrors(path, [&]() -> std::optional<RosBagNavigation> {
-    detail::RosBagFile bag(path);
+    detail::RosBagFile bag(path, options.msg_path);
     // The candidates: every topic with a pose, nav_msgs/Odometry first, then by message count.
     struct Candidate {
       const RosBagTopic* topic;

@@ -151,7 +151,7 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
   std::string topic;
   std::optional<SonarFields> fields;
   detail::withBagErrors(path, [&] {
-    detail::RosBagFile bag(path);
+    detail::RosBagFile bag(path, options.msg_path);
     std::optional<RosSchema> schema;
     for (const RosBagTopic& candidate : bag.topics()) {
       if (!options.sonar_topic.empty() && candidate.topic != options.sonar_topic) continue;

@@ -80,7 +80,7 @@ bool looksLikeRosbag2Sqlite(const std::string& path) {
   return in.read(magic, 16) && std::memcmp(magic, "SQLite format 3", 16) == 0;
 }
 
-Rosbag2Sqlite::Rosbag2Sqlite(const std::string& path) : path_(path) {
+Rosbag2Sqlite::Rosbag2Sqlite(const std::string& path, const std::string& msg_path) : path_(path) {
   std::error_code error;
   if (fs::is_directory(path, error)) {
     for (const fs::directory_entry& entry : fs::directory_iterator(path, error)) {
@@ -113,6 +113,13 @@ Rosbag2Sqlite::Rosbag2Sqlite(const std::string& path) : path_(path) {
             fresh.serialization_format = column(s, 2);
             for (const auto& [type, text] : definitions) {
               if (type == fresh.type) fresh.definition = text;
+            }
+            if (fresh.definition.empty()) {
+              try {
+                fresh.definition = msgPathDefinition(fresh.type, msg_path);
+              } catch (const Error&) {
+                // a type whose .msg files are incomplete: listed without a definition
+              }
             }
             if (fresh.definition.empty()) fresh.definition = builtinRos2Definition(fresh.type);
             topics_.push_back(fresh);

@@ -27,9 +27,11 @@ class Rosbag2Sqlite {
     double first_s = 0.0, last_s = 0.0;
   };
 
-  /// Opens every `.db3` file of the folder `path` (in name order), or the one file `path`.
+  /// Opens every `.db3` file of the folder `path` (in name order), or the one file `path`. A
+  /// topic's definition: the log's own (Iron's message_definitions), else the `.msg` files under
+  /// `msg_path` (msgPathDefinition; a type whose files are incomplete gets none), else a built-in.
   /// @throws FileError naming the file for one that is no rosbag2 SQLite database.
-  explicit Rosbag2Sqlite(const std::string& path);
+  explicit Rosbag2Sqlite(const std::string& path, const std::string& msg_path = {});
 
   const std::vector<Topic>& topics() const { return topics_; }
 

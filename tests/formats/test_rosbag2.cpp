@@ -157,6 +157,40 @@ TEST(formatsRosbag2, AnIronDatabaseCarriesTheDefinitionOfADriversOwnMessage) {
   EXPECT_NEAR(log.beams[0].bearing_rad, 1.5 * std::numbers::pi, 1e-9);  // 90° clockwise
 }
 
+// A Humble database of a driver's own message (no definitions stored): unreadable with the
+// built-in types alone, read with --msg-path's .msg files (PKG/msg/NAME.msg, a nested type of
+// the same package named without it, std_msgs/Header from the built-in ones).
+TEST(formatsRosbag2, AHumbleDriversOwnMessageReadsWithItsMsgFiles) {
+  const test::TempDir dir;
+  const std::string file = dir.file("run_0.db3");
+  {
+    Db3 db(file);
+    db.topic(1, "/sonar", "vendor_sonar/msg/Scan");
+    Cdr scan;
+    scan.header(kSec, "sonar").put<float>(0.5F).put<double>(0.1).put<std::uint32_t>(3);
+    for (const std::uint8_t v : {5, 250, 7}) scan.put<float>(static_cast<float>(v) * 0.1F).put<std::uint8_t>(v);
+    db.message(1, kSec * 1000000000LL, scan.done());
+  }
+  EXPECT_THROW(readSonarLog(file), FileError);  // vendor_sonar/msg/Scan: no definition
+  fs::create_directories(dir.path() / "msgs" / "vendor_sonar" / "msg");
+  std::ofstream(dir.path() / "msgs" / "vendor_sonar" / "msg" / "Scan.msg")
+      << "# one beam of the head\nstd_msgs/Header header\nfloat32 angle  # radians\nfloat64 bin_size\nBin[] bins\n"
+         "uint8 MODE_FAST=1\n";
+  std::ofstream(dir.path() / "msgs" / "vendor_sonar" / "msg" / "Bin.msg") << "float32 distance\nuint8 intensity\n";
+  LogReadOptions options;
+  options.msg_path = (dir.path() / "msgs").string();
+  const SonarLog log = readSonarLog(file, LogFormat::kRosbag2, options);
+  ASSERT_EQ(log.beams.size(), 1u);
+  EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{5, 250, 7}));
+  EXPECT_NEAR(log.beams[0].bin_length_m, 0.1, 1e-12);
+  EXPECT_EQ(log.frame_id, "sonar");
+  const std::vector<RosBagTopic> topics = listRosBagTopics(file, options.msg_path);
+  ASSERT_EQ(topics.size(), 1u);
+  // A used type found nowhere leaves the topic without a definition.
+  fs::remove(dir.path() / "msgs" / "vendor_sonar" / "msg" / "Bin.msg");
+  EXPECT_THROW(readSonarLog(file, LogFormat::kRosbag2, options), FileError);
+}
+
 TEST(formatsRosbag2, BrokenLogsAreClearErrors) {
   const test::TempDir dir;
   const fs::path empty = fs::path(dir.file("empty_bag"));

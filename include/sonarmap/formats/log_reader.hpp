@@ -74,6 +74,8 @@ struct LogReadOptions {
   /// local time (a Ping Viewer log: SonarLog::clock_utc_s = the name's time − this); parseUtcOffset
   /// reads `+03:30`.
   double utc_offset_s = 0.0;
+  /// A folder of `.msg` files for a rosbag2 SQLite log's types (RosBagOptions::msg_path).
+  std::string msg_path;
 };
 
 /// Reads the beams of a sonar log in `format` whatever its file name, with the reader's default

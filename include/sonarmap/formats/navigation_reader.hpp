@@ -20,13 +20,15 @@ namespace sonarmap {
 /// navigation CSV
 /// (readNavCsv).
 /// @throws FileError when the file cannot be read, or holds no navigation.
-NavigationSource readNavigation(const std::string& path, const std::string& nav_topic = {});
+/// `msg_path`: as RosBagOptions::msg_path.
+NavigationSource readNavigation(const std::string& path, const std::string& nav_topic = {},
+                                const std::string& msg_path = {});
 
 /// The navigation recorded in a sonar log's own file: a ROS 1 bag's navigation topic; nullopt for
 /// a bag without one (and `nav_topic` empty) and for every other format, which records none.
 /// @throws FileError as readRosBagNavigation.
 std::optional<NavigationSource> readLogNavigation(const std::string& log_path, LogFormat format,
-                                                  const std::string& nav_topic = {});
+                                                  const std::string& nav_topic = {}, const std::string& msg_path = {});
 
 /// How a navigation track's times were put on a sonar log's clock.
 struct NavClockAlignment {

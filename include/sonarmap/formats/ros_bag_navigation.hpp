@@ -46,7 +46,8 @@ struct RosBagTopic {
 
 /// Every topic of the ROS 1 bag at `path`, in the bag's connection order.
 /// @throws FileError naming the file when it is no readable ROS 1 bag (format 2.0).
-std::vector<RosBagTopic> listRosBagTopics(const std::string& path);
+/// `msg_path`: as RosBagOptions::msg_path.
+std::vector<RosBagTopic> listRosBagTopics(const std::string& path, const std::string& msg_path = {});
 
 /// Options of readRosBagNavigation().
 struct RosBagNavOptions {
@@ -59,6 +60,8 @@ struct RosBagNavOptions {
   /// The pressure at the surface, Pa, a pressure sensor's reading at depth 0 (the standard
   /// atmosphere, 101,325 Pa; a sensor that reads gauge pressure: 0).
   double surface_pressure_pa = 101325.0;
+  /// As RosBagOptions::msg_path.
+  std::string msg_path;
 };
 
 /// A bag's navigation: the fixes, which topic they came from and how it was read.
