@@ -12,6 +12,7 @@
 #include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_arrays.hpp"
 #include "sonarmap/formats/navigation_reader.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "numpy_checks.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
@@ -158,6 +159,26 @@ most messages; ENU poses, REP 103, turned into NED; frames named *ned* taken as 
 telemetry log (`.tlog`: seconds since 1970, UTC) or ArduPilot dataflash log (`.BIN`: seconds since boot).
 Times are the file's own clock (map_sonar_log joins them to the log's). Raises sonarmap.FileError (an
 unreadable file, a file without navigation, a bag without the topic named).)doc");
+  m.def(
+      "read_bag_topics",
+      [](const std::filesystem::path& path, const std::string& msg_path) {
+        py::list topics;
+        for (const RosBagTopic& t : listRosBagTopics(path.string(), msg_path)) {
+          py::dict topic;
+          topic["topic"] = t.topic;
+          topic["type"] = t.type;
+          topic["messages"] = t.messages;
+          topic["first_s"] = t.first_s;
+          topic["last_s"] = t.last_s;
+          topics.append(topic);
+        }
+        return topics;
+      },
+      py::arg("path"), py::arg("msg_path") = "",
+      R"doc(Every topic of a ROS log (a ROS 1 ``.bag``, a ROS 2 ``.mcap``, a rosbag2 ``.db3`` or folder), in the
+log's order, as dicts: ``topic``, ``type``, ``messages`` (count), ``first_s`` and ``last_s`` (the first and
+last message's record time, seconds since 1970; 0 without messages); ``msg_path`` as read_sonar_log's. The
+CLI's ``sonarmap info LOG`` lists the same. Raises sonarmap.FileError for a file that is no readable ROS log.)doc");
   m.def(
       "write_nav_csv",
       [](const std::filesystem::path& path, const py::object& nav) { writeNavCsv(path.string(), navTrackOf(py::reinterpret_borrow<py::object>(nav))); },

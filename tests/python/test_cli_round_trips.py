@@ -109,6 +109,12 @@ def test_simulated_bag_maps_with_its_own_navigation_as_the_cli_does(cli, tmp_pat
     assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
     with pytest.raises(sonarmap.FileError, match="no topic /odom"):
         sonarmap.read_navigation(bag, nav_topic="/odom")
+    topics = {t["topic"]: t for t in sonarmap.read_bag_topics(bag)}
+    assert topics["/odometry"]["type"] == "nav_msgs/Odometry"
+    assert topics["/odometry"]["messages"] == len(nav_csv)
+    assert topics["/sonar/scan_line"]["messages"] == sonarmap.read_sonar_log(str(bag)).time_s.shape[0]
+    assert topics["/tf_static"]["type"] == "tf2_msgs/TFMessage"
+    assert topics["/odometry"]["first_s"] == pytest.approx(nav_csv[0, 0], abs=1e-6)
 
 
 def test_simulated_mcap_reads_as_its_csv(cli, tmp_path):
