@@ -111,6 +111,7 @@ py::array_t<double> toPointsArray(const std::vector<Eigen::Vector3d>& points) {
 
 #include "navigation_arrays.hpp"
 #include "sonarmap/formats/navigation_reader.hpp"
+#include "sonarmap/formats/ros_bag_mounting.hpp"
 
 namespace sonarmap::python {
 
@@ -126,10 +127,17 @@ py::array_t<double> navArray(const NavTrack& track) {
   return out;
 }
 
-NavTrack navTrackForLog(const py::object& nav, const std::optional<double>& log_clock_utc_s, double nav_time_offset_s) {
+NavTrack navTrackForLog(const py::object& nav, const SonarLog& log, double nav_time_offset_s,
+                        std::optional<Eigen::Isometry3d>* sonar_to_body) {
   if (py::isinstance<py::str>(nav) || py::hasattr(nav, "__fspath__")) {
-    NavigationSource source = readNavigation(py::module_::import("os").attr("fspath")(nav).cast<std::string>());
-    alignNavigationClock(source, log_clock_utc_s, nav_time_offset_s);
+    const std::string path = py::module_::import("os").attr("fspath")(nav).cast<std::string>();
+    NavigationSource source = readNavigation(path);
+    alignNavigationClock(source, log.clock_utc_s, nav_time_offset_s);
+    if (const std::optional<LogFormat> format = logFormatOfPath(path); sonar_to_body && format && isRosLog(*format)) {
+      if (const std::optional<RosBagMounting> mounting = readRosBagMounting(path, log.frame_id, source.body_frame)) {
+        *sonar_to_body = mounting->sonar_to_body;
+      }
+    }
     return std::move(source.track);
   }
   if (!std::isfinite(nav_time_offset_s)) throwValueError("nav_time_offset_s must be finite");

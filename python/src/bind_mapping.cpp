@@ -63,9 +63,10 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   }
   std::vector<double> mounting_values;
   if (!mounting.is_none()) mounting_values = mounting.cast<std::vector<double>>();
-  const Eigen::Isometry3d sonar_to_body = sonarToBodyOfMounting(mounting_values);
+  std::optional<Eigen::Isometry3d> from_log;  // a ROS log's /tf_static, when mounting is not given
   std::optional<NavTrack> track;
-  if (!nav.is_none()) track = navTrackForLog(nav, log.log.clock_utc_s, nav_time_offset_s);
+  if (!nav.is_none()) track = navTrackForLog(nav, log.log, nav_time_offset_s, mounting.is_none() ? &from_log : nullptr);
+  const Eigen::Isometry3d sonar_to_body = from_log ? *from_log : sonarToBodyOfMounting(mounting_values);
   warn(optionWarnings(options, log.log));
   ProgressCallback callback;
   if (!progress.is_none()) {
@@ -122,10 +123,12 @@ library call, the same option translation): each beam's first obstacle is detect
 its wedge (planar model) or cone (volume=True) updated free up to it, the obstacle occupied.
 
 log: sonarmap.SonarLog. nav: None (the sonar static at the map origin), the path of a navigation
-CSV or of a ROS 1 bag (its navigation topic, read_navigation), or an (N, 7) float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad]
-(NED metres, body FRD Z-Y-X radians, on the beams' clock; the CLI's --nav). mounting: with nav,
-(x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting;
-default upright and aligned). progress: callable(sweeps_done, sweeps_total) or None. slam: correct
+file (a CSV, a ROS log's navigation topic, a BlueROV2 .tlog or dataflash .BIN: read_navigation; its
+clock joined to the log's as the CLI does, moved by the keyword nav_time_offset_s), or an (N, 7)
+float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED metres, body FRD
+Z-Y-X radians, on the beams' clock; the CLI's --nav). mounting: with nav, (x_m, y_m, z_m, roll_deg,
+pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting); default: a ROS log nav's
+/tf_static mounting of the log's sonar frame when it has one, else upright and aligned. progress: callable(sweeps_done, sweeps_total) or None. slam: correct
 the navigation by scan matching first and map with the corrected trajectory (the CLI's --slam; without
 nav the vehicle is believed still and its motion comes from the scans); the map's ``trajectory`` and
 ``slam`` then hold the corrected trajectory and what the localization did.

@@ -20,11 +20,14 @@ py::array_t<double> navArray(const NavTrack& track);
 ///         for an unreadable CSV. Time order is checked by the library where the track is used.
 NavTrack navTrackOf(const py::object& nav);
 
-/// The track `nav` (as navTrackOf) on the clock of a sonar log whose clock is `log_clock_utc_s`: a
-/// path's navigation joined by alignNavigationClock (formats/navigation_reader.hpp), an array's
-/// times moved by `nav_time_offset_s`.
+/// The track `nav` (as navTrackOf) on the clock of `log`: a path's navigation joined by
+/// alignNavigationClock (formats/navigation_reader.hpp), an array's times moved by
+/// `nav_time_offset_s`. When `sonar_to_body` is given and `nav` is a ROS log whose /tf_static
+/// joins its body frame to `log`'s sonar frame, that mounting is written there
+/// (formats/ros_bag_mounting.hpp).
 /// @throws sonarmap.ValueError for a non-finite offset; as navTrackOf.
-NavTrack navTrackForLog(const py::object& nav, const std::optional<double>& log_clock_utc_s, double nav_time_offset_s);
+NavTrack navTrackForLog(const py::object& nav, const SonarLog& log, double nav_time_offset_s,
+                        std::optional<Eigen::Isometry3d>* sonar_to_body = nullptr);
 
 /// map_sonar_log (bind_mapping.cpp), also used by the online mapper's tests of equality; `slam`:
 /// localize first (slam/slam_mapping.hpp) and keep the trajectory and report in the map.
