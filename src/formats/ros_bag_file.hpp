@@ -11,8 +11,11 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "mcap_file.hpp"
 #include "ros_message.hpp"
@@ -74,6 +77,18 @@ class RosBagFile {
   std::vector<RosEncoding> encodings_;
   std::vector<std::vector<std::uint16_t>> channels_;  ///< an MCAP topic's channels
 };
+
+/// A chain of a log's static transforms (/tf_static, tf2_msgs/TFMessage): the pose of frame `to`
+/// in frame `from` (both without a leading '/'), and the frames it passes, "from -> ... -> to".
+struct StaticTransform {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  std::string chain;
+};
+
+/// The chain of the bag's /tf_static transforms (a transform given twice: the last) from `from` to
+/// `to`, found breadth-first both ways; nullopt when either is empty or none joins them (a message
+/// that does not decode is skipped). Implemented in ros_bag_mounting.cpp.
+std::optional<StaticTransform> staticTransform(RosBagFile& bag, const std::string& from, const std::string& to);
 
 /// Runs `read` and turns what rosbag_storage, boost and the decoder throw into FileError naming
 /// `path` ("'PATH': ROS bag: ..."); FileError passes through.

@@ -15,7 +15,9 @@
 namespace sonarmap {
 namespace {
 
+using detail::RosSchema;
 using detail::RosValue;
+using detail::headerFrame;
 
 std::string withoutSlash(const std::string& frame) { return frame.starts_with('/') ? frame.substr(1) : frame; }
 
@@ -51,40 +53,38 @@ Eigen::Isometry3d transformOf(const RosValue& transform) {
 
 }  // namespace
 
-std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const std::string& sonar_frame,
-                                                 const std::string& body_frame) {
-  const std::string sonar = withoutSlash(sonar_frame), body = withoutSlash(body_frame);
-  if (sonar.empty() || body.empty()) return std::nullopt;
+namespace detail {
+
+std::optional<StaticTransform> staticTransform(RosBagFile& bag, const std::string& from_frame, const std::string& to_frame) {
+  const std::string from = withoutSlash(from_frame), to = withoutSlash(to_frame);
+  if (from.empty() || to.empty()) return std::nullopt;
   std::map<std::pair<std::string, std::string>, Eigen::Isometry3d> transforms;  // (parent, child) → pose of child
-  detail::withBagErrors(path, [&] {
-    detail::RosBagFile bag(path);
-    for (const RosBagTopic& topic : bag.topics()) {
-      if (withoutSlash(topic.topic) != "tf_static" || bag.definition(topic).empty()) continue;
-      const detail::RosSchema schema = bag.schema(topic);
-      bag.forEachMessage(topic.topic, schema, [&](const RosValue& message, double) {
-        const RosValue* list = message.field("transforms");
-        const auto* items = list != nullptr ? std::get_if<std::vector<RosValue>>(&list->value) : nullptr;
-        if (items == nullptr) throw Error("it holds no transforms[]");
-        for (const RosValue& item : *items) {
-          const std::string* child = textOf(item.field("child_frame_id"));
-          const RosValue* transform = item.field("transform");
-          if (child == nullptr || transform == nullptr) throw Error("a transform has no child_frame_id or transform");
-          transforms[{detail::headerFrame(item), withoutSlash(*child)}] = transformOf(*transform);
-        }
-      });
-    }
-  });
-  // Breadth-first from the body frame over the transforms, both ways.
+  for (const RosBagTopic& topic : bag.topics()) {
+    if (withoutSlash(topic.topic) != "tf_static" || bag.definition(topic).empty()) continue;
+    const RosSchema schema = bag.schema(topic);
+    bag.forEachMessage(topic.topic, schema, [&](const RosValue& message, double) {
+      const RosValue* list = message.field("transforms");
+      const auto* items = list != nullptr ? std::get_if<std::vector<RosValue>>(&list->value) : nullptr;
+      if (items == nullptr) throw Error("it holds no transforms[]");
+      for (const RosValue& item : *items) {
+        const std::string* child = textOf(item.field("child_frame_id"));
+        const RosValue* transform = item.field("transform");
+        if (child == nullptr || transform == nullptr) throw Error("a transform has no child_frame_id or transform");
+        transforms[{headerFrame(item), withoutSlash(*child)}] = transformOf(*transform);
+      }
+    });
+  }
+  // Breadth-first from `from` over the transforms, both ways.
   std::map<std::string, std::vector<Edge>> edges;
   for (const auto& [frames, pose] : transforms) {
     edges[frames.first].push_back({frames.second, pose});
     edges[frames.second].push_back({frames.first, pose.inverse()});
   }
-  std::map<std::string, std::pair<std::string, Eigen::Isometry3d>> reached;  // frame → (previous, pose in body)
-  reached[body] = {"", Eigen::Isometry3d::Identity()};
+  std::map<std::string, std::pair<std::string, Eigen::Isometry3d>> reached;  // frame → (previous, pose in `from`)
+  reached[from] = {"", Eigen::Isometry3d::Identity()};
   std::queue<std::string> next;
-  next.push(body);
-  while (!next.empty() && reached.find(sonar) == reached.end()) {
+  next.push(from);
+  while (!next.empty() && reached.find(to) == reached.end()) {
     const std::string frame = next.front();
     next.pop();
     for (const Edge& edge : edges[frame]) {
@@ -93,16 +93,31 @@ std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const 
       next.push(edge.to);
     }
   }
-  const auto found = reached.find(sonar);
+  const auto found = reached.find(to);
   if (found == reached.end()) return std::nullopt;
-  RosBagMounting mounting;
-  Eigen::Isometry3d to_frd = Eigen::Isometry3d::Identity();
-  if (!namesFrd(body)) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
-  mounting.sonar_to_body = to_frd * found->second.second;
-  for (std::string frame = sonar; !frame.empty(); frame = reached[frame].first) {
-    mounting.chain = mounting.chain.empty() ? frame : frame + " -> " + mounting.chain;
+  StaticTransform result;
+  result.pose = found->second.second;
+  for (std::string frame = to; !frame.empty(); frame = reached[frame].first) {
+    result.chain = result.chain.empty() ? frame : frame + " -> " + result.chain;
   }
-  return mounting;
+  return result;
+}
+
+}  // namespace detail
+
+std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const std::string& sonar_frame,
+                                                 const std::string& body_frame) {
+  return detail::withBagErrors(path, [&]() -> std::optional<RosBagMounting> {
+    detail::RosBagFile bag(path);
+    const std::optional<detail::StaticTransform> found = detail::staticTransform(bag, body_frame, sonar_frame);
+    if (!found) return std::nullopt;
+    RosBagMounting mounting;
+    Eigen::Isometry3d to_frd = Eigen::Isometry3d::Identity();
+    if (!namesFrd(withoutSlash(body_frame))) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
+    mounting.sonar_to_body = to_frd * found->pose;
+    mounting.chain = found->chain;
+    return mounting;
+  });
 }
 
 }  // namespace sonarmap

@@ -180,24 +180,40 @@ constexpr const char* kSonarFrame = "sonar";
 /// The body frame of the fixes written in the world frame `nav_frame` (REP 105's name; FRD for NED).
 std::string bodyFrame(const std::string& nav_frame) { return detail::namesNedFrame(nav_frame) ? "base_link_frd" : "base_link"; }
 
-/// The mounting as a tf2_msgs/TFMessage of one transform, body → sonar: the body FLU (REP 103)
-/// unless the world frame is NED.
-SerializedMessage<TfMessageType> tfStatic(const Eigen::Isometry3d& sonar_to_body, const ros::Time& stamp,
-                                          const std::string& nav_frame) {
+/// One static transform: the pose of `child` in `parent`.
+struct StaticTransform {
+  std::string parent, child;
+  Eigen::Isometry3d pose;
+};
+
+/// The mountings as one tf2_msgs/TFMessage: the sonar's (body → sonar: the body FLU, REP 103,
+/// unless the world frame is NED) and the DVL's (imu_link → dvl_link, with imu_link at the body).
+SerializedMessage<TfMessageType> tfStatic(const RosBagWriteOptions& options, const ros::Time& stamp) {
+  std::vector<StaticTransform> transforms;
+  if (options.sonar_to_body) {
+    Eigen::Isometry3d pose = *options.sonar_to_body;
+    if (!detail::namesNedFrame(options.nav_frame)) {
+      Eigen::Isometry3d frd_to_flu = Eigen::Isometry3d::Identity();
+      frd_to_flu.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+      pose = frd_to_flu * pose;
+    }
+    transforms.push_back({bodyFrame(options.nav_frame), kSonarFrame, pose});
+  }
+  if (options.raw_sensors && options.dvl_rotation_flu) {
+    Eigen::Isometry3d dvl = Eigen::Isometry3d::Identity();
+    dvl.linear() = options.dvl_rotation_flu->normalized().toRotationMatrix();
+    transforms.push_back({"imu_link", "dvl_link", dvl});
+  }
   SerializedMessage<TfMessageType> message;
   std::vector<std::uint8_t>& out = message.bytes;
-  Eigen::Isometry3d pose = sonar_to_body;
-  if (!detail::namesNedFrame(nav_frame)) {
-    Eigen::Isometry3d frd_to_flu = Eigen::Isometry3d::Identity();
-    frd_to_flu.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-    pose = frd_to_flu * sonar_to_body;
-  }
-  const Eigen::Quaterniond q(pose.linear());
-  append<std::uint32_t>(out, 1);
-  appendHeader(out, 0, stamp, bodyFrame(nav_frame));
-  appendString(out, kSonarFrame);
-  for (const double value : {pose.translation().x(), pose.translation().y(), pose.translation().z(), q.x(), q.y(), q.z(), q.w()}) {
-    append<double>(out, value);
+  append<std::uint32_t>(out, static_cast<std::uint32_t>(transforms.size()));
+  for (const StaticTransform& t : transforms) {
+    const Eigen::Quaterniond q(t.pose.linear());
+    appendHeader(out, 0, stamp, t.parent);
+    appendString(out, t.child);
+    for (const double value : {t.pose.translation().x(), t.pose.translation().y(), t.pose.translation().z(), q.x(), q.y(), q.z(), q.w()}) {
+      append<double>(out, value);
+    }
   }
   return message;
 }
@@ -262,8 +278,10 @@ RawSensors rawSensors(const NavTrack& nav, std::size_t i, const ros::Time& stamp
     velocity_ned = (nav[from + 1].position_ned_m - nav[from].position_ned_m) / (nav[from + 1].time_s - nav[from].time_s);
   }
   const Eigen::Vector3d frd = bodyToNed(nav[i]).linear().transpose() * velocity_ned;
+  Eigen::Vector3d flu(frd.x(), -frd.y(), -frd.z());
+  if (options.dvl_rotation_flu) flu = options.dvl_rotation_flu->normalized().conjugate() * flu;  // in the DVL's own frame
   appendHeader(out.twist.bytes, static_cast<std::uint32_t>(i), stamp, "dvl_link");
-  for (const double value : {frd.x(), -frd.y(), -frd.z(), 0.0, 0.0, 0.0}) append<double>(out.twist.bytes, value);
+  for (const double value : {flu.x(), flu.y(), flu.z(), 0.0, 0.0, 0.0}) append<double>(out.twist.bytes, value);
 
   appendHeader(out.pressure.bytes, static_cast<std::uint32_t>(i), stamp, "pressure_link");
   append<double>(out.pressure.bytes, options.surface_pressure_pa + options.water_density_kg_m3 * 9.80665 * nav[i].position_ned_m.z());
@@ -320,11 +338,11 @@ std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav,
       bag.setCompression(options.compression == BagCompression::kBz2   ? rosbag::compression::BZ2
                          : options.compression == BagCompression::kLz4 ? rosbag::compression::LZ4
                                                                        : rosbag::compression::Uncompressed);
-      if (options.sonar_to_body) {  // latched before the first message, as a recorder finds it
+      if (options.sonar_to_body || (options.raw_sensors && options.dvl_rotation_flu)) {  // latched first, as a recorder finds it
         double first_s = log.beams.empty() ? 0.0 : log.beams.front().time_s;
         if (!nav.empty()) first_s = std::min(first_s, nav.front().time_s);
         const ros::Time stamp(first_s);
-        bag.write("/tf_static", std::max(stamp, ros::TIME_MIN), tfStatic(*options.sonar_to_body, stamp, options.nav_frame));
+        bag.write("/tf_static", std::max(stamp, ros::TIME_MIN), tfStatic(options, stamp));
       }
       // Both streams in time order, as a recorder writes them.
       std::size_t b = 0, f = 0;

@@ -98,6 +98,7 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
   nav.type = attitude.topic->type;
   std::vector<Timed<NavSample>> attitudes;
   bool any_ned = false, any_enu = false;
+  std::string attitude_frame;  // the IMU's frame: its orientation is that frame's
   RosSkipped skipped = bag.forEachMessage(attitude.topic->topic, *attitude.schema, [&](const RosValue& message, double record_s) {
     if (const RosValue* covariance = message.field("orientation_covariance")) {
       const auto* values = std::get_if<std::vector<RosValue>>(&covariance->value);
@@ -108,6 +109,7 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
     const RosValue& q = valueAt(message, attitude.path);
     const bool ned = headerNamesNed(message);
     (ned ? any_ned : any_enu) = true;
+    if (attitude_frame.empty()) attitude_frame = headerFrame(message);
     const double time_s = headerTime(message, record_s);
     attitudes.push_back({time_s, rosPoseToNed(time_s, Eigen::Vector3d::Zero(),
                                               Eigen::Quaterniond(finiteNumber(q.field("w"), "orientation w"), finiteNumber(q.field("x"), "orientation x"),
@@ -138,15 +140,30 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
 
   // Positions integrated from the velocities: each held until the next (a DVL's ping to ping).
   std::vector<Timed<Eigen::Vector3d>> positions;
+  std::optional<std::string> dvl_mounting;
   if (velocity.topic != nullptr) {
     std::vector<Timed<Eigen::Vector3d>> velocities;
+    // A DVL mounted turned on the vehicle (a Water Linked A50 at 45 degrees, say): its velocity is
+    // turned into the IMU's frame by the rotation /tf_static records between the two (its lever
+    // arm, the rotation's own contribution, is not added).
+    std::vector<bool> flu;  // per velocity: FLU (to be turned into the IMU's frame, then FRD), else FRD
+    std::string dvl_frame;
     const RosSkipped more = bag.forEachMessage(velocity.topic->topic, *velocity.schema, [&](const RosValue& message, double record_s) {
-      const Eigen::Vector3d v = vectorOf(valueAt(message, velocity.path), "velocity");
-      velocities.push_back({headerTime(message, record_s), headerNamesNed(message) ? v : Eigen::Vector3d(v.x(), -v.y(), -v.z())});  // FLU → FRD
+      velocities.push_back({headerTime(message, record_s), vectorOf(valueAt(message, velocity.path), "velocity")});
+      flu.push_back(!headerNamesNed(message));
+      if (dvl_frame.empty() && flu.back()) dvl_frame = headerFrame(message);
     });
+    const std::optional<StaticTransform> dvl_in_imu =
+        dvl_frame != attitude_frame ? staticTransform(bag, attitude_frame, dvl_frame) : std::nullopt;
+    for (std::size_t k = 0; k < velocities.size(); ++k) {
+      if (!flu[k]) continue;
+      const Eigen::Vector3d v = dvl_in_imu ? Eigen::Vector3d(dvl_in_imu->pose.linear() * velocities[k].value) : velocities[k].value;
+      velocities[k].value = Eigen::Vector3d(v.x(), -v.y(), -v.z());  // FLU → FRD
+    }
     skipped.count += more.count;
     skipped.reasons.insert(skipped.reasons.end(), more.reasons.begin(), more.reasons.end());
     keepIncreasing(velocities);
+    if (dvl_in_imu) dvl_mounting = dvl_in_imu->chain;
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < velocities.size(); ++k) {
       positions.push_back({velocities[k].time_s, position});
@@ -168,6 +185,7 @@ std::optional<RosBagNavigation> inertialNavigation(RosBagFile& bag, const RosBag
   std::string frame = any_ned && any_enu ? "NED and ENU (REP 103)" : any_ned ? "NED" : "ENU (REP 103) turned into NED";
   frame += std::string(", dead reckoning: attitude of ") + nav.topic;
   frame += velocity.topic != nullptr ? ", velocity of " + velocity.topic->topic : std::string(", no velocity (north, east 0)");
+  if (dvl_mounting) frame += " turned by /tf_static (" + *dvl_mounting + ")";
   frame += pressure.topic != nullptr ? ", depth of " + pressure.topic->topic : std::string(", no pressure");
   nav.frame = frame;
   return nav;

@@ -19,7 +19,9 @@ namespace sonarmap::detail {
 ///  - velocity: a header and `twist.linear` (geometry_msgs/TwistStamped), `twist.twist.linear`
 ///    (TwistWithCovarianceStamped) or `velocity` (vendor DVL messages), x, y, z in m/s in the body.
 /// Frames as poses (ros_frames.hpp): ENU world and FLU body unless the frame_id contains "ned"
-/// (then NED and FRD). The DVL is taken as aligned with the body (its mounting is not read).
+/// (then NED and FRD). The DVL's velocity is turned into the IMU's frame by the rotation of the
+/// /tf_static chain between the two frames (staticTransform) when the log records one, else taken
+/// as aligned with it; its lever arm is not used.
 /// A fix per attitude message: roll, pitch, yaw from it; north and east integrated from the
 /// velocities turned into NED with the attitude nearest in time, each held until the next, from
 /// (0, 0) at the first velocity message (zero without a DVL); down the

@@ -231,6 +231,27 @@ TEST(formatsRosBag, ImuDvlAndPressureAloneAreDeadReckonedIntoTheTrack) {
   EXPECT_NEAR(fresh->track[deep].position_ned_m.z(), 1.025 * nav[deep].position_ned_m.z(), 1e-9);
 }
 
+// A DVL mounted turned (45 degrees in yaw, as a Water Linked A50 often is on a BlueROV2) records
+// its velocities in its own frame: /tf_static's rotation turns them back into the IMU's frame, and
+// the dead-reckoned track is the true one.
+TEST(formatsRosBag, ADvlMountedTurnedIsTurnedBackByTfStatic) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  const NavTrack& nav = run.simulation.nav;
+  const Eigen::Quaterniond turned(Eigen::AngleAxisd(std::numbers::pi / 4.0, Eigen::Vector3d::UnitZ()));
+  writeRosBag(dir.file("turned.bag"), run.simulation.log, nav,
+              {.odometry = false, .raw_sensors = true, .dvl_rotation_flu = turned});
+  const std::optional<RosBagNavigation> read = readRosBagNavigation(dir.file("turned.bag"));
+  ASSERT_TRUE(read.has_value());
+  EXPECT_NE(read->frame.find("turned by /tf_static (imu_link -> dvl_link)"), std::string::npos) << read->frame;
+  const Eigen::Vector3d start(nav.front().position_ned_m.x(), nav.front().position_ned_m.y(), 0.0);
+  double worst_m = 0.0;
+  for (std::size_t i = 0; i < nav.size(); ++i) {
+    worst_m = std::max(worst_m, (read->track[i].position_ned_m - (nav[i].position_ned_m - start)).norm());
+  }
+  EXPECT_LT(worst_m, 1e-6);  // read as the body's, the DVL's own velocities would turn the track 45 degrees away
+}
+
 TEST(formatsRosBag, AMovingMissionMapsFromItsBagAsFromItsLogAndTrack) {
   const test::TempDir dir;
   const MissionRun run = movingMission();
