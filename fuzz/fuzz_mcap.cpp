@@ -1,10 +1,11 @@
 // libFuzzer harness: MCAP bytes (ROS 2 logs) → readRosBag (the records and chunks read from the
-// MCAP specification, each message CDR-decoded from the schema the file stores), listRosBagTopics
-// and readRosBagNavigation.
+// MCAP specification, each message CDR-decoded from the schema the file stores), listRosBagTopics,
+// readRosBagMounting (/tf_static) and readRosBagNavigation.
 #include <cstddef>
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "sonarmap/formats/ros_bag_mounting.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "sonarmap/formats/ros_bag_reader.hpp"
 
@@ -13,5 +14,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string& path = file.write(data, size);
   sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBag(path); });
   sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::listRosBagTopics(path); });
+  sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBagMounting(path, "sonar", "base_link"); });
   return sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBagNavigation(path); });
 }

@@ -181,6 +181,11 @@ void rosBagSeeds() {
   writeRosBag((g_out / "ros_bag" / "with_odometry_ned_lz4.bag").string(), log, nav,
               {.nav_frame = "odom_ned", .compression = BagCompression::kLz4});
   writeRosBag((g_out / "ros_bag" / "with_imu_dvl_pressure.bag").string(), log, nav, {.odometry = false, .raw_sensors = true});
+  Eigen::Isometry3d mounted = defaultSonarToBody();
+  mounted.pretranslate(Eigen::Vector3d(0.2, 0.0, 0.1));
+  writeRosBag((g_out / "ros_bag" / "with_tf_static.bag").string(), log, nav,
+              {.raw_sensors = true, .sonar_to_body = mounted,
+               .dvl_rotation_flu = Eigen::Quaterniond(Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()))});
   fs::create_directories(g_out / "mcap");
   writeMcap((g_out / "mcap" / "plain.mcap").string(), log, nav, {.compression = McapCompression::kNone});
   writeMcap((g_out / "mcap" / "zstd.mcap").string(), log, nav, {.compression = McapCompression::kZstd});
