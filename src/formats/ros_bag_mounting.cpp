@@ -19,8 +19,6 @@ using detail::RosSchema;
 using detail::RosValue;
 using detail::headerFrame;
 
-std::string withoutSlash(const std::string& frame) { return frame.starts_with('/') ? frame.substr(1) : frame; }
-
 const std::string* textOf(const RosValue* value) { return value != nullptr ? std::get_if<std::string>(&value->value) : nullptr; }
 
 /// A body frame named forward-right-down (or NED-fixed, as MAVROS's "base_link_frd").
@@ -56,11 +54,11 @@ Eigen::Isometry3d transformOf(const RosValue& transform) {
 namespace detail {
 
 std::optional<StaticTransform> staticTransform(RosBagFile& bag, const std::string& from_frame, const std::string& to_frame) {
-  const std::string from = withoutSlash(from_frame), to = withoutSlash(to_frame);
+  const std::string from = detail::tfFrame(from_frame), to = detail::tfFrame(to_frame);
   if (from.empty() || to.empty()) return std::nullopt;
   std::map<std::pair<std::string, std::string>, Eigen::Isometry3d> transforms;  // (parent, child) → pose of child
   for (const RosBagTopic& topic : bag.topics()) {
-    if (withoutSlash(topic.topic) != "tf_static" || bag.definition(topic).empty()) continue;
+    if ((topic.topic != "/tf_static" && topic.topic != "tf_static") || bag.definition(topic).empty()) continue;
     const RosSchema schema = bag.schema(topic);
     bag.forEachMessage(topic.topic, schema, [&](const RosValue& message, double) {
       const RosValue* list = message.field("transforms");
@@ -70,7 +68,7 @@ std::optional<StaticTransform> staticTransform(RosBagFile& bag, const std::strin
         const std::string* child = textOf(item.field("child_frame_id"));
         const RosValue* transform = item.field("transform");
         if (child == nullptr || transform == nullptr) throw Error("a transform has no child_frame_id or transform");
-        transforms[{headerFrame(item), withoutSlash(*child)}] = transformOf(*transform);
+        transforms[{headerFrame(item), detail::tfFrame(*child)}] = transformOf(*transform);
       }
     });
   }
@@ -113,7 +111,7 @@ std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const 
     if (!found) return std::nullopt;
     RosBagMounting mounting;
     Eigen::Isometry3d to_frd = Eigen::Isometry3d::Identity();
-    if (!namesFrd(withoutSlash(body_frame))) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
+    if (!namesFrd(detail::tfFrame(body_frame))) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
     mounting.sonar_to_body = to_frd * found->pose;
     mounting.chain = found->chain;
     return mounting;

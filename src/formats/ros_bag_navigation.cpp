@@ -98,7 +98,7 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
       if (nav.track.empty()) {
         const RosValue* child = message.field("child_frame_id");
         const std::string* name = child != nullptr ? std::get_if<std::string>(&child->value) : nullptr;
-        nav.body_frame = name != nullptr && !name->empty() ? (name->starts_with('/') ? name->substr(1) : *name)
+        nav.body_frame = name != nullptr && !name->empty() ? detail::tfFrame(*name)
                                                            : (ned ? "base_link_frd" : "base_link");
       }
       nav.track.push_back(fix);

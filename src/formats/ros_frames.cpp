@@ -39,12 +39,14 @@ double headerTime(const RosValue& message, double record_time_s) {
   return stamp > 0.0 ? stamp : record_time_s;
 }
 
+std::string tfFrame(const std::string& frame_id) { return frame_id.starts_with('/') ? frame_id.substr(1) : frame_id; }
+
 std::string headerFrame(const RosValue& message) {
   const RosValue* header = message.field("header");
   const RosValue* frame = header != nullptr ? header->field("frame_id") : nullptr;
   const std::string* name = frame != nullptr ? std::get_if<std::string>(&frame->value) : nullptr;
   if (name == nullptr) return {};
-  return name->starts_with('/') ? name->substr(1) : *name;
+  return tfFrame(*name);
 }
 
 bool headerNamesNed(const RosValue& message) {

@@ -21,7 +21,10 @@ bool namesNedFrame(const std::string& frame_id);
 /// log's) when it has no header or the stamp is zero. @throws Error for a stamp that is no number.
 double headerTime(const RosValue& message, double record_time_s);
 
-/// The header's frame_id of `message` (its leading '/' dropped, as tf2 does), or empty.
+/// A frame's name as tf2 compares it: without a leading '/' (tf1's "/base_link" is "base_link").
+std::string tfFrame(const std::string& frame_id);
+
+/// The header's frame_id of `message` (tfFrame), or empty.
 std::string headerFrame(const RosValue& message);
 
 /// Whether a message's std_msgs/Header frame_id names a NED frame (namesNedFrame).
