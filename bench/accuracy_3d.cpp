@@ -13,8 +13,9 @@
 // range from the sonar (0.25 m rings): count and height extent against 2 r tan(aperture / 2), the
 // vertical band a static head must give (docs/mapping-3d.md).
 //
-// Usage: sonarmap_accuracy_3d [RESOLUTION_M | auto] [PRESET ... | LOG]   (defaults: 0.05, micron;
-// auto: each log's automatic resolution, autoResolutionForLog, as `sonarmap map` without --resolution)
+// Usage: sonarmap_accuracy_3d [RESOLUTION_M | auto] [PRESET ... | LOG] [--detector NAME]   (defaults: 0.05,
+// micron; auto: each log's automatic resolution, autoResolutionForLog, as `sonarmap map` without
+// --resolution; --detector: every model with that detector instead of the default, e.g. evidence)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -159,7 +160,14 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::vector<std::string> presets;
-  for (int i = 2; i < argc; ++i) presets.emplace_back(argv[i]);
+  DetectorOptions detector;
+  for (int i = 2; i < argc; ++i) {
+    if (std::string(argv[i]) == "--detector" && i + 1 < argc) {
+      selectDetector(detector, argv[++i]);
+    } else {
+      presets.emplace_back(argv[i]);
+    }
+  }
   if (presets.empty()) presets = {"micron"};
   const Model models[] = {{"planar", BeamModel::kPlanar, ArcEvidence::kWholeArc, std::nullopt},
                           {"volume, whole arc", BeamModel::kVolume, ArcEvidence::kWholeArc, std::nullopt},
@@ -197,6 +205,7 @@ int main(int argc, char** argv) {
       for (const Model& model : models) {
         MapperOptions options;
         if (!automatic) options.resolution_m = resolution_m;
+        options.detector = detector;
         options.beam_model = model.beam;
         options.arc_evidence = model.evidence;
         options.clear_without_obstacle = model.clear_without_obstacle;

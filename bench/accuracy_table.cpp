@@ -8,9 +8,12 @@
 //     Every shared real log against its own strong echoes (real_log_table.hpp).
 //  4. With --analysis, where the errors come from (accuracy_analysis.hpp).
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails] [--head PRESET]...   (DATA_DIR holds the shared logs;
+// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails] [--head PRESET]... [--detector NAME]
+//        (DATA_DIR holds the shared logs;
 //        default: the SONARMAP_DATA environment variable, else the configured shared data folder;
-//        --head: only the simulated rows of the named presets, e.g. --head ping360-2m --head ping360-5m)
+//        --head: only the simulated rows of the named presets, e.g. --head ping360-2m --head ping360-5m;
+//        --detector: the simulated rows and the real logs' own-echo table mapped with that detector
+//        instead of the default, e.g. --detector evidence)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,15 +62,15 @@ void printRow(const SimulatedAccuracy& a) {
 }
 
 /// The simulated table; `heads` limits it to those presets (all when empty).
-void printSimulatedTable(const std::vector<std::string>& heads) {
-  std::printf("\n### Simulated heads × scenes, default settings\n\n");
+void printSimulatedTable(const std::vector<std::string>& heads, const MapperOptions& options) {
+  std::printf("\n### Simulated heads × scenes, %s detector\n\n", detectorName(options.detector).c_str());
   std::printf("| head | scene | scan | voxel (m) | occupied | precision | recall | free accuracy | worst \\|offset\\| (m) "
               "| offset per surface (m) | obstacles / sweep | mapping (s) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
   for (const std::string& preset : heads.empty() ? sonarPresetNames() : heads) {
     for (const std::string& scene : builtinSceneNames()) {
       try {
-        printRow(evaluateSimulatedRun(SimulatedRun{preset, scene}));
+        printRow(evaluateSimulatedRun(SimulatedRun{preset, scene}, options));
       } catch (const std::exception& error) {
         std::printf("| %s | %s | 360° | %s |\n", preset.c_str(), scene.c_str(), error.what());
       }
@@ -75,10 +78,10 @@ void printSimulatedTable(const std::vector<std::string>& heads) {
     SimulatedRun sector{preset, "harbour"};
     sector.sector_deg = 90.0;
     sector.turns = 16;
-    printRow(evaluateSimulatedRun(sector));
+    printRow(evaluateSimulatedRun(sector, options));
     SimulatedRun moving{preset, "harbour"};
     moving.speed_range_per_min = 1.0;
-    printRow(evaluateSimulatedRun(moving));
+    printRow(evaluateSimulatedRun(moving, options));
   }
 }
 
@@ -143,6 +146,7 @@ int main(int argc, char** argv) {
   bool real_only = false;  // the real logs' tables only (seconds instead of minutes)
   bool noise_tails_only = false;  // the noise-tail table only
   std::vector<std::string> heads;  // --head NAME: the simulated table's rows of those presets only (no real logs)
+  std::string detector;  // --detector NAME: instead of the default
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--analysis") {
       analysis = true;
@@ -152,6 +156,8 @@ int main(int argc, char** argv) {
       noise_tails_only = true;
     } else if (std::string(argv[i]) == "--head" && i + 1 < argc) {
       heads.emplace_back(argv[++i]);
+    } else if (std::string(argv[i]) == "--detector" && i + 1 < argc) {
+      detector = argv[++i];
     } else {
       data = argv[i];
     }
@@ -161,11 +167,13 @@ int main(int argc, char** argv) {
       sonarmap::bench::printNoiseTailTable(data);
       return 0;
     }
-    if (!real_only) printSimulatedTable(heads);
+    MapperOptions options;
+    if (!detector.empty()) selectDetector(options.detector, detector);
+    if (!real_only) printSimulatedTable(heads, options);
     if (!heads.empty()) return 0;
     printCrasTable(data + "/cras_micron_tank_static.mat");
     printSeaNetRow(data + "/seanet_sector_target.V4LOG");
-    sonarmap::bench::printRealLogTable(data);
+    sonarmap::bench::printRealLogTable(data, options);
     if (analysis) {
       sonarmap::bench::printLeadingEdgeTable();
       sonarmap::bench::printIncidenceTable();

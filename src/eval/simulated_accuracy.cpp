@@ -51,8 +51,15 @@ MsisSimulationOptions simulationOptions(const SimulatedRun& run) {
     options.head.sector_center_rad = 0.0;
   }
   if (run.speed_range_per_min > 0.0) {
+    // Along the scenes' quay face (map y; the scenes' structures lie at x > 0), heading the way it
+    // goes, the run's middle abreast of the map origin: a vehicle passes the piles and the quay
+    // instead of driving through them (the quay is 8 ranges long, the fastest run covers 7.5).
     const double speed_mps = run.speed_range_per_min * preset.head.range_m / 60.0;
-    options.trajectory = constantVelocityTrajectory(NavSample{}, Eigen::Vector3d(speed_mps, 0.0, 0.0));
+    const double duration_s = static_cast<double>(options.turns * options.head.beamsPerTurn()) * options.head.beam_period_s;
+    NavSample start;
+    start.position_ned_m = Eigen::Vector3d(0.0, 0.5 * speed_mps * duration_s, 0.0);  // map y = −east
+    start.yaw_rad = -0.5 * std::numbers::pi;  // body +x to NED −y (west), map +y
+    options.trajectory = constantVelocityTrajectory(start, Eigen::Vector3d(0.0, -speed_mps, 0.0));
   }
   return options;
 }

@@ -19,8 +19,9 @@ struct SimulatedRun {
   std::string scene = "tank";     ///< builtinSceneNames(), built for the preset's range
   std::size_t turns = 8;          ///< full turns, or passes across the sector
   double sector_deg = 360.0;      ///< 360: continuous; less: a sector centred on the map's +x
-  /// Vehicle speed along +x (north), as a share of the head's range per minute: 0 static. The
-  /// beams are then mapped with the simulated navigation (mapSonarLog with a NavTrack).
+  /// Vehicle speed as a share of the head's range per minute: 0 static. A moving vehicle heads
+  /// along the map's +y (the scenes' quay face), the middle of its run at the map origin, and its
+  /// beams are mapped with the simulated navigation (mapSonarLog with a NavTrack).
   double speed_range_per_min = 0.0;
   std::uint64_t seed = 1;
 };
