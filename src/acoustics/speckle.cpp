@@ -191,6 +191,12 @@ double speckleLevelVariance_db2(double looks) {
   return kDbPerNeper * kDbPerNeper * Eigen::numext::polygamma(1.0, looks);
 }
 
+double speckleTailMeanExcess_db(double exceedance) {
+  require(exceedance > 0.0 && exceedance < 1.0, "speckle: exceedance must be in (0, 1)", exceedance);
+  const double q = -std::log(exceedance);
+  return kDbPerNeper * std::exp(q) * -std::expint(-q);  // E1(q) = −Ei(−q)
+}
+
 double quantisedSpeckleProbability(int counts, double mean_power, double looks, const ReceiverScale& scale) {
   requireQuantisedArguments(mean_power, looks, scale);
   require(counts >= 0 && counts <= 255, "speckle: counts must be in 0…255", counts);

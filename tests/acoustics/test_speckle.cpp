@@ -102,6 +102,18 @@ TEST(acousticsSpeckle, LevelMeanAndVarianceMatchTheIntegralOfTheLevelDensity) {
   EXPECT_EQ(speckleLevelQuantile_db(0.0, 2.0), -kInf);
 }
 
+TEST(acousticsSpeckle, TailMeanExcessIsTheIntegralOfTheLevelBeyondItsQuantile) {
+  // E[Y − y_q | Y > y_q] by integrating the one-look level density beyond the quantile.
+  for (const double exceedance : {0.5, 0.1, 0.01}) {
+    const double q_db = speckleLevelQuantile_db(1.0 - exceedance, 1.0);
+    const double mean_excess =
+        test::simpson([&](double y) { return (y - q_db) * speckleLevelPdf(y, 1.0); }, q_db, 40.0, 60000) / exceedance;
+    EXPECT_NEAR(speckleTailMeanExcess_db(exceedance), mean_excess, 1e-6) << exceedance;
+  }
+  EXPECT_NEAR(speckleTailMeanExcess_db(0.1), 1.4067, 1e-4);  // the evidence detector's least tail
+  for (const double bad : {0.0, 1.0, -0.1, std::nan("")}) EXPECT_THROW(speckleTailMeanExcess_db(bad), ValueError) << bad;
+}
+
 TEST(acousticsSpeckle, QuantisedCountsAddUpToOneAndMatchAMonteCarloHistogram) {
   const int looks = 3;
   const double mean_power = powerOfLevel(-15.0);  // about 102 counts

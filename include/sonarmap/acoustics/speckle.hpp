@@ -81,6 +81,17 @@ double speckleLevelMean_db(double looks);
 /// @throws ValueError when looks is not > 0 and finite.
 double speckleLevelVariance_db2(double looks);
 
+/// The mean of a single-look speckle level above its own (1 − `exceedance`) quantile, dB over that
+/// quantile: E[Y − y_q | Y > y_q] with Pr[Y > y_q] = exceedance. For exponential power the excess
+/// over the quantile is exponential again (memoryless), so with q = −ln(exceedance)
+///     E = (10 / ln 10) · e^q · E1(q),   E1 the exponential integral (Abramowitz & Stegun 5.1.1);
+/// exceedance 0.1 (the tail beyond the 90th percentile): 1.41 dB. Fully developed speckle has the
+/// lightest tail water can have in dB (reverberation, fish and interference only add to it), so
+/// this is the least tail the evidence detector grants water it has seen too little of
+/// (water_evidence.hpp).
+/// @throws ValueError when exceedance is not in (0, 1).
+double speckleTailMeanExcess_db(double exceedance);
+
 /// The probability that the A/D (`scale`, receiver_model.hpp) writes `counts` (0…255) for a bin
 /// of power P = mean_power · X, X speckle of `looks` looks: the counts are
 /// round(a · 10 log10 P + b) clipped to 0…255, a = 255 / ad_span_db, b = −a · ad_low_db
