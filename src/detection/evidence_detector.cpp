@@ -11,6 +11,7 @@
 
 #include "column_histogram.hpp"
 #include "detector_internal.hpp"
+#include "sonarmap/acoustics/speckle.hpp"
 #include "sonarmap/detection/water_evidence.hpp"
 #include "sonarmap/sonar/polar_units.hpp"
 
@@ -25,19 +26,25 @@ constexpr std::uint64_t kMinBandSamples = 64;
 
 using ExcessHistogram = std::array<std::uint32_t, WaterEvidence::kExcessValues>;
 
-int excessOf(std::uint8_t value, float level) { return static_cast<int>(std::lround(static_cast<float>(value) - level)); }
+/// The excess of `value` over `level` (both in 0…255) to the nearest count, halves up: the sum is
+/// positive, so truncation floors it (std::lround was a tenth of the detector's time).
+int excessOf(std::uint8_t value, float level) { return static_cast<int>(static_cast<float>(value) - level + 256.5f) - 256; }
 
-/// Replaces the band's oldest column (`oldest`) in `band_counts` by column `c`'s excess over
-/// `level` on the rows in water outside any return (their evidence sum at 0).
-void addToBand(ExcessHistogram& oldest, ExcessHistogram& band_counts, const std::vector<int>& in_water,
-               const std::vector<double>& sum, const PolarImage& polar, const std::uint8_t* column, int c, float level) {
-  for (std::size_t e = 0; e < band_counts.size(); ++e) band_counts[e] -= oldest[e];
-  oldest.fill(0);
+/// Replaces the band's oldest column (`oldest`: its samples' histogram indices) in `band_counts` by
+/// column `c`'s excess over `level` on the rows in water outside any return (their evidence sum at
+/// 0); `band_samples` follows the band's total.
+void addToBand(std::vector<std::uint16_t>& oldest, ExcessHistogram& band_counts, std::uint64_t& band_samples,
+               const std::vector<int>& in_water, const std::vector<double>& sum, const PolarImage& polar,
+               const std::uint8_t* column, int c, float level) {
+  for (const std::uint16_t e : oldest) --band_counts[e];
+  band_samples -= oldest.size();
+  oldest.clear();
   for (const int r : in_water) {
     const auto row = static_cast<std::size_t>(r);
-    if (c < polar.valid_bins[row] && sum[row] == 0.0) ++oldest[static_cast<std::size_t>(excessOf(column[r], level) + 255)];
+    if (c < polar.valid_bins[row] && sum[row] == 0.0) oldest.push_back(static_cast<std::uint16_t>(excessOf(column[r], level) + 255));
   }
-  for (std::size_t e = 0; e < band_counts.size(); ++e) band_counts[e] += oldest[e];
+  for (const std::uint16_t e : oldest) ++band_counts[e];
+  band_samples += oldest.size();
 }
 
 /// Where the return `found` of `row` is loud: the first bin from its start on, up to where it became
@@ -56,6 +63,49 @@ int loudPartOf(const PolarImage& polar, int row, const EvidenceReturn& found, co
     if (excess < 0.5f * water.threshold[i] && c > found.certain_bin) break;
   }
   return -1;
+}
+
+/// The leading edge of a return of `row` with no loud part, found by its evidence (`found`): as a
+/// loud echo's (leadingEdgeAt), the first bin from where its evidence started to add up whose echo
+/// comes within `edge_db` of the echo's level, and at least half of it over the water. A weak
+/// echo's bins are speckle: its level at a bin is the mean excess over a look centred on it (the
+/// pulse, at least 3 bins), and the echo's level the median of those from where the return became
+/// certain to a peak window beyond (a plateau's median is its level; a speckled plateau's highest
+/// look would lie above it and move a step's edge behind the step). A step into reverberation
+/// reaches its level at once: the edge is the step. A face at oblique incidence is lit first by the
+/// skirt of the beam pattern and its echo rises over the range spread across the beam (two-way
+/// pattern, in dB quadratic in the angle off the axis): the edge lies where the echo has risen, as a
+/// loud face's, not where its first weak bins began to add evidence.
+BeamDetection weakLeadingEdge(const PolarImage& polar, int row, const EvidenceReturn& found, const DetectionContext& context,
+                              const SweepCalibration& water, double edge_db) {
+  const auto* values = polar.intensities.ptr<std::uint8_t>(row);
+  const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
+  const int look = polar.pulse_length_m ? static_cast<int>(std::lround(*polar.pulse_length_m / polar.bin_length_m)) : 1;
+  const int half = std::max(1, (std::max(3, look) - 1) / 2);
+  auto level = [&](int c) {  // the mean excess over the look centred on c, from the return's start on
+    double total = 0.0;
+    int n = 0;
+    for (int k = std::max(found.start_bin, c - half); k <= std::min(end - 1, c + half); ++k, ++n) {
+      total += static_cast<double>(values[k]) - water.background[static_cast<std::size_t>(k)];
+    }
+    return n > 0 ? total / n : 0.0;
+  };
+  const int window_end =
+      std::min(end, found.certain_bin + 1 + binsForLength(kPeakWindow_m, polar.bin_length_m, 2, std::max(2, end)));
+  std::vector<double> levels;
+  int peak_bin = found.certain_bin;
+  for (int c = found.certain_bin; c < window_end; ++c) {
+    levels.push_back(level(c));
+    if (levels.back() > level(peak_bin)) peak_bin = c;
+  }
+  std::nth_element(levels.begin(), levels.begin() + static_cast<std::ptrdiff_t>(levels.size() / 2), levels.end());
+  const double echo = levels[levels.size() / 2];  // certain_bin < window_end: one at least
+  const double edge = std::max(echo - countsForDb(edge_db, context.span_db), 0.5 * echo);
+  int first = found.start_bin;
+  while (first < found.certain_bin && level(first) < edge) ++first;
+  BeamDetection detection = detectionAt(polar, row, first);
+  detection.rise_m = std::max(0, peak_bin - first) * polar.bin_length_m;
+  return detection;
 }
 
 /// Whether the weak return of `row` at `range_m` is a loud return of another beam within a beam
@@ -98,9 +148,12 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
   std::vector<double> sum(static_cast<std::size_t>(rows), 0.0);
   std::vector<int> in_water;
   for (int r = 0; r < rows; ++r) in_water.push_back(r);
-  std::vector<ExcessHistogram> ring(static_cast<std::size_t>(band));  // the band's columns, oldest overwritten
+  std::vector<std::vector<std::uint16_t>> ring(static_cast<std::size_t>(band));  // the band's columns, oldest overwritten
   ExcessHistogram band_counts{};
-  WaterEvidence evidence{std::span<const std::uint32_t>(band_counts)};
+  std::uint64_t band_samples = 0;
+  // The least tail water can have: fully developed speckle's beyond the body's end (the 90th percentile).
+  const double least_tail_counts = countsForDb(speckleTailMeanExcess_db(0.1), context.span_db);
+  WaterEvidence evidence{std::span<const std::uint32_t>(band_counts), least_tail_counts};
   IntensityHistogram levels;
   std::deque<float> upcoming;  // the levels of this range and the next ones (−1: too few rows)
   std::deque<std::uint32_t> upcoming_rows;  // the rows in water they were measured on
@@ -138,12 +191,13 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       }
     }
     if (rows_in_water >= min_water) {
-      // The water's excess over the level, from the rows in water outside any return, over the band.
-      addToBand(ring[static_cast<std::size_t>((c - context.min_bin) % band)], band_counts, in_water, sum, polar, column,
-                c, water.background[i]);
-      std::uint64_t band_samples = 0;
-      for (const std::uint32_t count : band_counts) band_samples += count;
-      if (band_samples >= kMinBandSamples) evidence = WaterEvidence{std::span<const std::uint32_t>(band_counts)};
+      // The water's excess over the level, from the rows in water outside any return, over the band
+      // ending at this range (a band that also led it would hold the returns of the rows about to
+      // meet them, as a CFAR's leading window does: measured, it hid a third of the shared pool
+      // log's first returns; docs/accuracy.md).
+      addToBand(ring[static_cast<std::size_t>((c - context.min_bin) % band)], band_counts, band_samples, in_water, sum,
+                polar, column, c, water.background[i]);
+      if (band_samples >= kMinBandSamples) evidence = WaterEvidence{std::span<const std::uint32_t>(band_counts), least_tail_counts};
     }
     // Each row adds its bin's evidence (a CUSUM: a run starts where the sum leaves 0); a row whose
     // sum reaches the decision level has met its first return, where its run started.
@@ -183,12 +237,15 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     const EvidenceReturn& found = first[static_cast<std::size_t>(r)];
     if (detection.hasObstacle() || found.start_bin < 0) continue;
-    // Its range: the leading edge of its loud part if it has one (a slowly rising echo), else where
-    // its evidence started to add up (a step into reverberation has no peak to measure from).
+    // Its range: the leading edge of its loud part if it has one (a slowly rising echo), else the
+    // leading edge of its echo's level (a step into reverberation, a weak face).
     const int loud = loudPartOf(polar, r, found, measured);
     const BeamDetection weak = loud >= 0 ? leadingEdgeAt(polar, r, loud, context, measured, options.leading_edge_db)
-                                         : detectionAt(polar, r, found.start_bin);
-    if (!heardInTheSkirt(polar, r, weak.range_m, loud_returns, context.beam_width_rad)) detection = weak;
+                                         : weakLeadingEdge(polar, r, found, context, measured, options.leading_edge_db);
+    if (!heardInTheSkirt(polar, r, weak.range_m, loud_returns, context.beam_width_rad)) {
+      detection = weak;
+      detection.weak = true;
+    }
   }
   return detections;
 }

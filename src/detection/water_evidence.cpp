@@ -6,16 +6,34 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
+namespace {
 
-WaterEvidence::WaterEvidence(std::span<const std::uint32_t> histogram) {
+/// ln k for the whole counts a band's histogram holds (k < 2¹⁶; beyond, std::log): the table is
+/// rebuilt at every range bin of every sweep, and its 511 logarithms were most of its cost.
+double lnCount(std::uint32_t k) {
+  static const std::vector<double> table = [] {
+    std::vector<double> t(1U << 16);
+    t[0] = -INFINITY;
+    for (std::size_t i = 1; i < t.size(); ++i) t[i] = std::log(static_cast<double>(i));
+    return t;
+  }();
+  return k < table.size() ? table[k] : std::log(static_cast<double>(k));
+}
+
+}  // namespace
+
+WaterEvidence::WaterEvidence(std::span<const std::uint32_t> histogram, double min_tail_scale_counts) {
   if (histogram.size() != static_cast<std::size_t>(kExcessValues)) {
     throw ValueError("WaterEvidence: the histogram must hold " + std::to_string(kExcessValues) + " excess values, got " +
                      std::to_string(histogram.size()));
   }
+  if (std::isnan(min_tail_scale_counts)) throw ValueError("WaterEvidence: the least tail scale is NaN");
+  const double least_scale = std::max(1.0, min_tail_scale_counts);
   for (const std::uint32_t count : histogram) samples_ += count;
   if (samples_ == 0) return;
   const auto total = static_cast<double>(samples_);
@@ -35,23 +53,25 @@ WaterEvidence::WaterEvidence(std::span<const std::uint32_t> histogram) {
     tail_excess += static_cast<double>(histogram[static_cast<std::size_t>(i)]) * (i - q);
   }
   body_end_ = q - 255;
-  tail_scale_ = tail_samples > 0 ? std::max(1.0, tail_excess / static_cast<double>(tail_samples)) : 1.0;
+  body_index_ = q;
+  tail_scale_ = tail_samples > 0 ? std::max(least_scale, tail_excess / static_cast<double>(tail_samples)) : least_scale;
   const double tail_share = std::max(static_cast<double>(tail_samples), 1.0) / total;
   const double ln_uniform = -std::log(256.0);
+  const double ln_total = std::log(total);
   const double ln_min = std::log(kMinProbability);
-  // Per count of the tail: P_t (1 − e^(−1/m)) e^(−(x − 1)/m) at x counts beyond the body's end.
-  const double ln_tail_first = std::log(tail_share) + std::log1p(-std::exp(-1.0 / tail_scale_));
-  for (int i = kExcessValues - 1; i >= 0; --i) {
-    double ln_p;
-    if (i > q) {
-      ln_p = ln_tail_first - (i - q - 1) / tail_scale_;
-    } else {
-      const std::uint32_t count = histogram[static_cast<std::size_t>(i)];
-      ln_p = count > 0 ? std::log(static_cast<double>(count) / total) : -INFINITY;
-    }
-    const auto llr = static_cast<float>(ln_uniform - std::max(ln_p, ln_min));
-    // Non-decreasing in the excess: a gap in the histogram takes the next louder value's evidence.
-    llr_[static_cast<std::size_t>(i)] = i + 1 < kExcessValues ? std::min(llr, llr_[static_cast<std::size_t>(i) + 1]) : llr;
+  // Per count of the tail: P_t (1 − e^(−1/m)) e^(−(x − 1)/m) at x counts beyond the body's end,
+  // λ = ln(1/256) − ln p rising by 1/m a count up to ln(1/256) − ln p_min (logLikelihoodRatio).
+  max_llr_ = ln_uniform - ln_min;
+  tail_first_llr_ = ln_uniform - (std::log(tail_share) + std::log1p(-std::exp(-1.0 / tail_scale_)));
+  lowest_index_ = 0;
+  while (histogram[static_cast<std::size_t>(lowest_index_)] == 0) ++lowest_index_;  // samples_ > 0: one is not
+  // The body, non-decreasing in the excess: a gap in the histogram takes the next louder value's
+  // evidence, the body's end at most the tail's first.
+  float next = static_cast<float>(std::min(tail_first_llr_, max_llr_));
+  for (int i = q; i >= lowest_index_; --i) {
+    const double ln_p = lnCount(histogram[static_cast<std::size_t>(i)]) - ln_total;
+    next = std::min(static_cast<float>(ln_uniform - std::max(ln_p, ln_min)), next);
+    llr_[static_cast<std::size_t>(i)] = next;
   }
 }
 

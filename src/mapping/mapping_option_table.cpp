@@ -29,9 +29,10 @@ constexpr OptionRange above(double lo, double hi = kInf) { return {lo, hi, true,
 constexpr OptionRange openRange(double lo, double hi) { return {lo, hi, true, true}; }
 
 constexpr OptionWord kDetectors[] = {
-    {"background", "calibrated per sweep"},
     {"evidence", "background's loud echoes, and on beams without one the first return whose evidence against the "
-                 "water measured where it is water adds up: steps into reverberation"},
+                 "water measured where it is water adds up (steps into reverberation, soft walls); in 3D those are "
+                 "weak extended returns"},
+    {"background", "loud echoes over the background calibrated per sweep"},
     {"cfar-ca", ""},
     {"cfar-so", ""},
     {"cfar-go", ""},

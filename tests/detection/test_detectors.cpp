@@ -243,7 +243,8 @@ TEST(sonarDetectors, DetectorNamesRoundTrip) {
   }
   EXPECT_EQ(detectorName(Detector::kBackgroundSubtracted), "background");
   EXPECT_THROW(parseDetector("cfar"), ValueError);
-  EXPECT_EQ(DetectorOptions{}.kind, Detector::kBackgroundSubtracted);
+  EXPECT_EQ(DetectorOptions{}.kind, Detector::kEvidence);
+  EXPECT_EQ(parseDetector("evidence"), Detector::kEvidence);
 }
 
 }  // namespace

@@ -98,6 +98,32 @@ TEST(detectionWaterEvidence, MatchesTheLikelihoodRatioComputedByHand) {
   EXPECT_NEAR(clipped.logLikelihoodRatio(200), ln_uniform - std::log(WaterEvidence::kMinProbability), 1e-4);
 }
 
+TEST(detectionWaterEvidence, ALeastTailScaleBoundsTheEvidenceOfWaterSeenClipped) {
+  // Water clipped at the receiver's floor: every sample at excess 0. Its measured tail (one
+  // pseudo-sample, a count wide) makes two 12-count bins certain evidence of a return; the
+  // least tail (speckle's 1.41 dB, 8 counts on a 45 dB span) keeps it to a few nats.
+  auto histogram = emptyHistogram();
+  histogram[255] = 1600;
+  const WaterEvidence measured{std::span<const std::uint32_t>(histogram)};
+  const double least_counts = 1.4067 * 255.0 / 45.0;
+  const WaterEvidence bounded{std::span<const std::uint32_t>(histogram), least_counts};
+  EXPECT_DOUBLE_EQ(measured.tailScale(), 1.0);
+  EXPECT_DOUBLE_EQ(bounded.tailScale(), least_counts);
+  const double ln_uniform = -std::log(256.0);
+  const double p = (1.0 / 1600.0) * (1.0 - std::exp(-1.0 / least_counts)) * std::exp(-11.0 / least_counts);
+  EXPECT_NEAR(bounded.logLikelihoodRatio(12), ln_uniform - std::log(p), 1e-4);
+  EXPECT_GT(2.0 * measured.logLikelihoodRatio(12), 13.8);  // ln(1 / 1e-6): certain in two bins
+  EXPECT_LT(bounded.logLikelihoodRatio(12), 6.0);
+  // A measured tail heavier than the least is kept; the body is unchanged by the bound.
+  auto wide = emptyHistogram();
+  wide[255] = 900;
+  for (int e = 1; e <= 100; ++e) wide[static_cast<std::size_t>(255 + e)] = 1;
+  const WaterEvidence heavy{std::span<const std::uint32_t>(wide), least_counts};
+  EXPECT_NEAR(heavy.tailScale(), 50.5, 1e-9);
+  EXPECT_FLOAT_EQ(heavy.logLikelihoodRatio(0), WaterEvidence{std::span<const std::uint32_t>(wide)}.logLikelihoodRatio(0));
+  EXPECT_THROW(WaterEvidence(std::span<const std::uint32_t>(wide), std::nan("")), ValueError);
+}
+
 TEST(detectionWaterEvidence, AnEmptyBandGivesNoEvidenceAndAWrongSizeThrows) {
   const auto histogram = emptyHistogram();
   const WaterEvidence evidence{std::span<const std::uint32_t>(histogram)};
@@ -163,6 +189,42 @@ TEST(detectionEvidenceDetector, TheWaterIsMeasuredWithoutTheReturnsInItsBeams) {
   std::size_t found = 0;
   for (const BeamDetection& d : detectObstacles(everywhere, detector(Detector::kEvidence))) found += d.hasObstacle() ? 1 : 0;
   EXPECT_LT(found, static_cast<std::size_t>(kRows / 10)) << "a step in every bearing is the water's level there";
+}
+
+// A weak return's range is where its echo has risen (within the leading-edge level of the echo's
+// level, at least half of it), for a step and for a slow rise alike: a step at its first bin; an
+// echo rising over 0.5 m (a face at oblique incidence, lit first by the pattern's skirt) within
+// its rise, behind where its first weak bins began to add evidence.
+TEST(detectionEvidenceDetector, AWeakReturnsRangeIsWhereItsEchoHasRisen) {
+  PolarImage polar = waterSweep(7);
+  std::mt19937 random(11);
+  addStep(polar, 10, 100, random);  // a step at 5 m
+  // A rise from 0 to 60–90 counts over bins 150–160 (7.5 → 8.0 m), then a plateau.
+  for (int c = 150; c < kBins; ++c) {
+    const double share = std::min(1.0, (c - 150) / 10.0);
+    polar.intensities.at<std::uint8_t>(40, c) = static_cast<std::uint8_t>(share * std::uniform_int_distribution<int>(60, 90)(random));
+  }
+  const SweepDetection sweep = detectSweep(polar, detector(Detector::kEvidence));
+  const BeamDetection& step = sweep.detections[10];
+  const BeamDetection& rise = sweep.detections[40];
+  ASSERT_TRUE(step.hasObstacle());
+  ASSERT_TRUE(rise.hasObstacle());
+  EXPECT_TRUE(step.weak);
+  EXPECT_TRUE(rise.weak);
+  EXPECT_NEAR(step.range_m, 5.0 + 0.5 * kBinLength_m, 0.5 * kBinLength_m);  // the step's bin
+  EXPECT_GE(rise.range_m, 7.65);  // where its evidence started: 7.575 m; half its rise: 7.75 m
+  EXPECT_LE(rise.range_m, 8.0);
+  EXPECT_GE(rise.rise_m, 0.0);
+  // The beams as the obstacle threshold alone saw them: the background detector's detections.
+  const SweepDetection background = detectSweep(polar, detector(Detector::kBackgroundSubtracted));
+  ASSERT_EQ(sweep.without_weak.size(), background.detections.size());
+  for (std::size_t r = 0; r < background.detections.size(); ++r) {
+    EXPECT_EQ(sweep.without_weak[r].obstacle_bin, background.detections[r].obstacle_bin) << r;
+    EXPECT_DOUBLE_EQ(sweep.without_weak[r].water_range_m, background.detections[r].water_range_m) << r;
+    EXPECT_DOUBLE_EQ(sweep.without_weak[r].echo_onset_m, background.detections[r].echo_onset_m) << r;
+    EXPECT_FALSE(sweep.without_weak[r].weak);
+  }
+  EXPECT_TRUE(background.without_weak.empty());
 }
 
 TEST(detectionEvidenceDetector, LoudReturnsKeepThePeakDetectorsRanges) {

@@ -22,13 +22,18 @@ SimulatedAccuracy runAndPrint(const SimulatedRun& run) {
   return a;
 }
 
-// Open water, only noise and the near field: no false obstacle, whatever the head.
+// Open water, only noise and the near field: no occupied voxel, whatever the head. A weak return is
+// certain at a false-alarm rate, not never: the Micron's water rises out of the receiver's floor
+// (0 counts) at 1.3 m, where the water measured just before is clipped, and 2 of its 5 × 8 sweeps
+// (seeds 1–5) hold one false weak return there (the other heads none); the sweeps that see water
+// there clear it again (8 turns, as the accuracy table's: seed 1's is in the third).
 TEST(evalSimulatedAccuracy, OpenWaterGivesNoFalseObstacleWithAnyHead) {
   for (const std::string& preset : sonarPresetNames()) {
     SimulatedRun run{preset, "open-water"};
-    run.turns = 3;
+    run.turns = 8;
     const SimulatedAccuracy a = runAndPrint(run);
-    EXPECT_EQ(a.obstacles, 0U) << preset;
+    EXPECT_LE(a.obstacles, 1U) << preset;
+    EXPECT_EQ(a.truth.occupied_voxels, 0U) << preset;
     EXPECT_GT(a.truth.free_voxels, 0U) << preset << ": open water is mapped free";
     EXPECT_DOUBLE_EQ(a.truth.free_accuracy, 1.0) << preset;
   }

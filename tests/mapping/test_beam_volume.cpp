@@ -402,17 +402,25 @@ TEST(mappingBeamVolume, WeakReturnStopsTheFreeCone) {
   EXPECT_EQ(classify(2.5), Occupancy::kUnknown);
 }
 
-// The planar model: a beam whose only return is weak (8.8 dB over the background: a soft or grazing
-// surface, no obstacle) clears its wedge up to where that return starts, not through it; a quiet
-// beam still clears to its full range.
-TEST(mappingBeamVolume, PlanarBeamWithAWeakReturnClearsOnlyUpToIt) {
+/// 60 beams of water (0–2 counts) with beam 0 stepping to 50 counts from 2 m on: a weak return
+/// below the obstacle threshold that lasts to the end of the beam (a step into reverberation).
+PolarImage sweepWithAStepInBeamZero() {
   PolarImage polar = makeSweep(60, 200);  // 4 m of 2 cm bins
   for (int r = 0; r < 60; ++r) {
     for (int c = 10; c < 200; ++c) polar.intensities.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(c % 3);
   }
   for (int c = 100; c < 200; ++c) polar.intensities.at<std::uint8_t>(0, c) = 50;  // from 2 m on
+  return polar;
+}
+
+// The planar model with the loud echoes only (the background detector): a beam whose only return is
+// weak (8.8 dB over the background: a soft or grazing surface, no obstacle) clears its wedge up to
+// where that return starts, not through it; a quiet beam still clears to its full range.
+TEST(mappingBeamVolume, PlanarBeamWithAWeakReturnClearsOnlyUpToIt) {
+  const PolarImage polar = sweepWithAStepInBeamZero();
   MapperOptions options;
   options.resolution_m = kVoxel;
+  selectDetector(options.detector, "background");
   SonarMapper mapper(options);
   PolarImage detected = polar;
   const std::vector<BeamDetection> detections = mapper.detect(detected);
@@ -427,6 +435,46 @@ TEST(mappingBeamVolume, PlanarBeamWithAWeakReturnClearsOnlyUpToIt) {
   EXPECT_EQ(classify(1.5, 0.001), Occupancy::kFree);
   EXPECT_EQ(classify(3.0, 0.001), Occupancy::kUnknown);  // behind the weak return's start
   EXPECT_EQ(classify(0.0, -3.0), Occupancy::kFree);       // the quiet beam at 270°
+}
+
+// The same sweep with the default (evidence) detector: the step is the beam's first return, a weak
+// return certain by its bins' evidence, mapped in the plane at its start: free before, occupied at
+// 2 m, unknown behind. In the volume model the same return is no obstacle (a weak return in a cone
+// is traced as a level surface by the extended returns): its detections are the background's.
+TEST(mappingBeamVolume, StepIntoReverberationIsTheBeamsFirstReturn) {
+  const PolarImage polar = sweepWithAStepInBeamZero();
+  MapperOptions options;
+  options.resolution_m = kVoxel;
+  SonarMapper mapper(options);
+  PolarImage detected = polar;
+  const std::vector<BeamDetection> detections = mapper.detect(detected);
+  ASSERT_TRUE(detections[0].hasObstacle());
+  EXPECT_TRUE(detections[0].weak);
+  EXPECT_NEAR(detections[0].range_m, 2.0, 0.03);
+  for (std::size_t r = 1; r < detections.size(); ++r) EXPECT_FALSE(detections[r].hasObstacle()) << r;
+  mapper.integrateSweep(detected, detections);
+  const auto classify = [&](double x_m) {
+    const std::optional<float> log_odds = mapper.map().search(*mapper.map().coder().keyOf(Eigen::Vector3d(x_m, 0.001, 0.001)));
+    return log_odds ? mapper.map().model().classify(*log_odds) : Occupancy::kUnknown;
+  };
+  EXPECT_EQ(classify(1.5), Occupancy::kFree);
+  EXPECT_EQ(classify(2.01), Occupancy::kOccupied);
+  EXPECT_EQ(classify(3.0), Occupancy::kUnknown);
+
+  MapperOptions volume = volumeOptions();
+  selectDetector(volume.detector, "background");
+  PolarImage loud = polar;
+  const std::vector<BeamDetection> background = SonarMapper(volume).detect(loud);
+  volume.detector = MapperOptions{}.detector;
+  PolarImage weak = polar;
+  const std::vector<BeamDetection> in_the_cone = SonarMapper(volume).detect(weak);
+  ASSERT_EQ(in_the_cone.size(), background.size());
+  for (std::size_t r = 0; r < background.size(); ++r) {
+    EXPECT_EQ(in_the_cone[r].obstacle_bin, background[r].obstacle_bin) << r;
+    EXPECT_EQ(in_the_cone[r].water_range_m, background[r].water_range_m) << r;
+    EXPECT_EQ(in_the_cone[r].echo_onset_m, background[r].echo_onset_m) << r;
+    EXPECT_FALSE(in_the_cone[r].weak) << r;
+  }
 }
 
 // Options: the free aperture must lie within the aperture; the volume model's aperture in (0, π).

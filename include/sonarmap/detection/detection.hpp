@@ -48,6 +48,12 @@ struct BeamDetection {
   /// NaN when the beam has none or the extended returns were not sought.
   double extended_onset_m = std::numeric_limits<double>::quiet_NaN();
   double extended_end_m = std::numeric_limits<double>::quiet_NaN();
+  /// Whether the obstacle is a weak return: one no run of bins above the obstacle threshold found
+  /// (the background detector's), certain by the summed evidence of its bins alone (the evidence
+  /// detector, water_evidence.hpp): a step into reverberation, a soft or oblique face. The planar
+  /// model maps it as any obstacle; the beam-volume model hears it as a weak extended return in its
+  /// cone instead (a grazing seabed or surface is its likeliest source there; SonarMapper).
+  bool weak = false;
   bool hasExtendedReturn() const { return extended_onset_m <= extended_end_m; }
   bool hasObstacle() const { return obstacle_bin >= 0; }
 };

@@ -26,11 +26,12 @@ namespace sonarmap {
 enum class Detector {
   kThreshold,             ///< paper §8.2: first rise between consecutive bins above a threshold
   kCanny,                 ///< paper §9: first Canny edge pixel along the row
-  kBackgroundSubtracted,  ///< ours, the default: first echo above the calibrated background (below)
+  kBackgroundSubtracted,  ///< ours: first echo above the calibrated background (below)
   kCfar,                  ///< first run of CFAR detections above a level floor along the row
                           ///< (cfar.hpp; Richards ch. 6, Rohling 1983), variant in CfarOptions
-  kEvidence,              ///< ours: each bin's evidence of a return against the water measured
-                          ///< where it is water, added along the beam (water_evidence.hpp)
+  kEvidence,              ///< ours, the default: the background detector's loud echoes, and where a
+                          ///< beam has none, its first return certain by each bin's evidence
+                          ///< against the water measured where it is water (water_evidence.hpp)
 };
 
 /// Paper §8.2: an obstacle starts at the first bin c with I[c] − I[c−1] above min_rise_db (both
@@ -52,8 +53,9 @@ struct CannyOptions {
   int aperture_size = 3;  ///< Sobel operator's size: 3, 5 or 7 (a discrete stencil, not a length)
 };
 
-/// Ours, the default: the first echo that rises above what the sweep records at the same range in
-/// most bearings, by more than the sweep's own noise allows (calibration.hpp):
+/// Ours (and the evidence detector's loud echoes): the first echo that rises above what the sweep
+/// records at the same range in most bearings, by more than the sweep's own noise allows
+/// (calibration.hpp):
 ///   1. calibrate the sweep: background B(c), threshold T from the speckle model and the
 ///      false-alarm probability, near field (calibration.hpp);
 ///   2. the obstacle is the first bin c at or beyond the minimum range that starts a run of
@@ -87,7 +89,7 @@ struct BackgroundOptions {
 /// Options of detectObstacles(); each detector reads its own part. All in physical units,
 /// converted with each image's bin length, beam spacing and intensity scale (polar_units.hpp).
 struct DetectorOptions {
-  Detector kind = Detector::kBackgroundSubtracted;
+  Detector kind = Detector::kEvidence;
   /// Bins whose centre is nearer are never reported, metres, ≥ 0 (paper §8.2: "measurements that
   /// are close to the sonar ... are self-reflections"). Unset: the near-field clutter extent
   /// estimated on each sweep (calibration.hpp: CRAS ≈ 0.26 m, the SeaNet sector log ≈ 0.59 m).
@@ -135,6 +137,11 @@ struct DetectionDiagnostics {
 /// One sweep's detections with the calibration they were made with.
 struct SweepDetection {
   std::vector<BeamDetection> detections;  ///< one per row
+  /// One per row as the obstacle threshold alone saw them when `detections` holds weak returns
+  /// (BeamDetection::weak, the evidence detector): each weak return's beam without its obstacle, its
+  /// water range, echo onset and end as the background detector gives them; empty when there is
+  /// none. The beam-volume model maps these (SonarMapper).
+  std::vector<BeamDetection> without_weak;
   SweepCalibration calibration;           ///< background, threshold, near field (calibration.hpp)
   double min_range_m = 0.0;               ///< the minimum range used: the option, or the near-field end
   DetectionDiagnostics diagnostics;

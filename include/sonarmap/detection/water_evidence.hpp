@@ -14,7 +14,12 @@
 /// receiver's floor. So the distribution is the measured one:
 ///  - up to the band's 90th percentile q, the histogram of the samples (the body);
 ///  - beyond q, an exponential tail in counts, P(E > q + x) = P_t · exp(−x / m), with P_t the share
-///    of samples beyond q and m their mean excess over q (at least one count): in dB an exponential
+///    of samples beyond q and m their mean excess over q, at least the least tail m₀ the caller
+///    gives (fully developed speckle's mean excess over its 90th percentile, 1.41 dB:
+///    speckleTailMeanExcess_db, acoustics/speckle.hpp; at least one count): water seen clipped at
+///    the receiver's floor, or with a handful of samples beyond q, says little of its tail, and a
+///    one-count scale would make the first noise rising out of the floor certain evidence of a
+///    return within two bins. In dB an exponential
 ///    tail is heavier than speckle's (whose log-intensity tail falls as exp(−10^(x/10))), as
 ///    K-distributed reverberation's is (Abraham & Lyons 2002, IEEE J. Oceanic Eng. 27(4)), and it
 ///    extrapolates beyond the loudest sample instead of calling everything louder impossible.
@@ -41,14 +46,20 @@ class WaterEvidence {
   static constexpr double kMinProbability = 1e-9;
 
   /// The evidence of a band whose water samples' excess counts are `histogram` (index e + 255,
-  /// kExcessValues entries). An empty histogram gives no evidence either way (λ = 0 everywhere).
-  /// @throws ValueError when the histogram does not hold kExcessValues entries.
-  explicit WaterEvidence(std::span<const std::uint32_t> histogram);
+  /// kExcessValues entries), its tail's mean excess at least `min_tail_scale_counts` (m₀ above,
+  /// counts; below 1: 1). An empty histogram gives no evidence either way (λ = 0 everywhere).
+  /// @throws ValueError when the histogram does not hold kExcessValues entries or the least tail
+  ///         scale is NaN.
+  explicit WaterEvidence(std::span<const std::uint32_t> histogram, double min_tail_scale_counts = 1.0);
 
   /// λ(e) of an excess `excess_counts` (clamped to [−255, 255]), nats.
   float logLikelihoodRatio(int excess_counts) const {
-    const int e = excess_counts < -255 ? -255 : (excess_counts > 255 ? 255 : excess_counts);
-    return llr_[static_cast<std::size_t>(e + 255)];
+    const int i = (excess_counts < -255 ? -255 : (excess_counts > 255 ? 255 : excess_counts)) + 255;
+    if (i > body_index_) {  // the tail: linear in the excess up to the least probability's bound
+      const double llr = tail_first_llr_ + (i - body_index_ - 1) / tail_scale_;
+      return static_cast<float>(llr < max_llr_ ? llr : max_llr_);
+    }
+    return llr_[static_cast<std::size_t>(i > lowest_index_ ? i : lowest_index_)];
   }
   /// The band's 90th percentile of the excess, counts (the end of the measured body).
   int bodyEnd() const { return body_end_; }
@@ -58,7 +69,11 @@ class WaterEvidence {
   std::uint64_t samples() const { return samples_; }
 
  private:
-  std::array<float, kExcessValues> llr_{};
+  std::array<float, kExcessValues> llr_{};  ///< λ over the body's indices [lowest_index_, body_index_]
+  int lowest_index_ = 0;                     ///< the lowest excess seen; below it λ is its λ
+  int body_index_ = kExcessValues - 1;       ///< the body's end (all of it for an empty band)
+  double tail_first_llr_ = 0.0;              ///< λ one count beyond the body's end
+  double max_llr_ = 0.0;                     ///< λ at the least probability
   int body_end_ = 0;
   double tail_scale_ = 1.0;
   std::uint64_t samples_ = 0;
