@@ -304,20 +304,10 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
                                          calibration.span_db, measure_background, options.beam_width_rad};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
-  const int quiet_bins = binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols()));
-  auto complete = [&](std::vector<BeamDetection>& detections) {
-    setWaterRanges(polar, context, result.calibration, detections);
-    setEchoOnsets(polar, options, context, result.calibration, detections);
-    setEchoEnds(polar, result.calibration, quiet_bins, detections);
-  };
-  if (std::any_of(result.detections.begin(), result.detections.end(), [](const BeamDetection& d) { return d.weak; })) {
-    result.without_weak = result.detections;
-    for (BeamDetection& detection : result.without_weak) {
-      if (detection.weak) detection = BeamDetection{};
-    }
-    complete(result.without_weak);
-  }
-  complete(result.detections);
+  setWaterRanges(polar, context, result.calibration, result.detections);
+  setEchoOnsets(polar, options, context, result.calibration, result.detections);
+  setEchoEnds(polar, result.calibration, binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols())),
+              result.detections);
   result.diagnostics = diagnose(polar, context, result.calibration, result.detections);
   return result;
 }

@@ -439,7 +439,7 @@ TEST(mappingBeamVolume, PlanarBeamWithAWeakReturnClearsOnlyUpToIt) {
 
 // The same sweep with the default (evidence) detector: the step is the beam's first return, a weak
 // return certain by its bins' evidence, mapped in the plane at its start: free before, occupied at
-// 2 m, unknown behind. In the volume model the same return is no obstacle (a weak return in a cone
+// 2 m, unknown behind. The volume model detects with the loud echoes alone (a weak return in a cone
 // is traced as a level surface by the extended returns): its detections are the background's.
 TEST(mappingBeamVolume, StepIntoReverberationIsTheBeamsFirstReturn) {
   const PolarImage polar = sweepWithAStepInBeamZero();

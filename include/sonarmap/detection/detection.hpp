@@ -51,8 +51,8 @@ struct BeamDetection {
   /// Whether the obstacle is a weak return: one no run of bins above the obstacle threshold found
   /// (the background detector's), certain by the summed evidence of its bins alone (the evidence
   /// detector, water_evidence.hpp): a step into reverberation, a soft or oblique face. The planar
-  /// model maps it as any obstacle; the beam-volume model hears it as a weak extended return in its
-  /// cone instead (a grazing seabed or surface is its likeliest source there; SonarMapper).
+  /// model maps it as any obstacle; the beam-volume model detects with the loud echoes alone and
+  /// traces weak returns in its cone as extended returns (SonarMapper).
   bool weak = false;
   bool hasExtendedReturn() const { return extended_onset_m <= extended_end_m; }
   bool hasObstacle() const { return obstacle_bin >= 0; }

@@ -137,11 +137,6 @@ struct DetectionDiagnostics {
 /// One sweep's detections with the calibration they were made with.
 struct SweepDetection {
   std::vector<BeamDetection> detections;  ///< one per row
-  /// One per row as the obstacle threshold alone saw them when `detections` holds weak returns
-  /// (BeamDetection::weak, the evidence detector): each weak return's beam without its obstacle, its
-  /// water range, echo onset and end as the background detector gives them; empty when there is
-  /// none. The beam-volume model maps these (SonarMapper).
-  std::vector<BeamDetection> without_weak;
   SweepCalibration calibration;           ///< background, threshold, near field (calibration.hpp)
   double min_range_m = 0.0;               ///< the minimum range used: the option, or the near-field end
   DetectionDiagnostics diagnostics;
