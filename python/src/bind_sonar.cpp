@@ -223,6 +223,7 @@ py::dict detectionsDict(const SweepDetection& sweep) {
   const std::vector<BeamDetection>& d = sweep.detections;
   std::vector<std::int32_t> bins(d.size());
   std::vector<std::uint8_t> intensity(d.size());
+  std::vector<bool> weak(d.size());
   std::vector<double> range(d.size()), water(d.size()), rise(d.size()), onset(d.size()), echo_end(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) {
     bins[i] = d[i].obstacle_bin;
@@ -232,6 +233,7 @@ py::dict detectionsDict(const SweepDetection& sweep) {
     rise[i] = d[i].rise_m;
     onset[i] = d[i].echo_onset_m;
     echo_end[i] = d[i].echo_end_m;
+    weak[i] = d[i].weak;
   }
   py::dict out;
   out["obstacle_bin"] = toArray(bins);
@@ -241,6 +243,9 @@ py::dict detectionsDict(const SweepDetection& sweep) {
   out["rise_m"] = toArray(rise);
   out["echo_onset_m"] = toArray(onset);
   out["echo_end_m"] = toArray(echo_end);
+  py::array_t<bool> weak_array(static_cast<py::ssize_t>(weak.size()));
+  for (std::size_t i = 0; i < weak.size(); ++i) weak_array.mutable_at(static_cast<py::ssize_t>(i)) = weak[i];
+  out["weak"] = weak_array;
   out["min_range_m"] = sweep.min_range_m;
   out["threshold_db"] = sweep.calibration.threshold_db;
   return out;
@@ -434,7 +439,8 @@ names and units (sonarmap.mapping_options() with stage "detection"): )doc" + map
 The input is not modified. Returns a dict of arrays over the rows: obstacle_bin int32 (-1: none),
 range_m float64 (leading edge, metres; NaN: none), intensity uint8, water_range_m, rise_m,
 echo_onset_m, echo_end_m float64 (metres; echo_end_m: where the obstacle's loud echo falls back
-below half the threshold, NaN without an obstacle); and min_range_m, threshold_db (floats), cleaned (the PolarImage the
+below half the threshold, NaN without an obstacle), weak bool (a weak return: no loud echo, certain
+by its bins' evidence against the water, the evidence detector); and min_range_m, threshold_db (floats), cleaned (the PolarImage the
 detector saw). Raises sonarmap.ValueError for an invalid option; TypeError for an unknown keyword.)doc";
   m.def(
       "detect_obstacles",

@@ -30,8 +30,8 @@ constexpr OptionRange openRange(double lo, double hi) { return {lo, hi, true, tr
 
 constexpr OptionWord kDetectors[] = {
     {"evidence", "background's loud echoes, and on beams without one the first return whose evidence against the "
-                 "water measured where it is water adds up (steps into reverberation, soft walls); in 3D those are "
-                 "weak extended returns"},
+                 "water measured where it is water adds up (steps into reverberation, soft walls); --3d detects "
+                 "with the loud echoes alone and traces weak returns as extended returns"},
     {"background", "loud echoes over the background calibrated per sweep"},
     {"cfar-ca", ""},
     {"cfar-so", ""},

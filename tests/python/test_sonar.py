@@ -118,3 +118,20 @@ def test_polar_image_from_arrays():
         sonarmap.PolarImage(image, bearings[:50], 0.02)
     with pytest.raises(sonarmap.ValueError):
         sonarmap.PolarImage(image.astype(np.float64), bearings, 0.02)
+
+
+def test_a_step_into_reverberation_is_a_weak_return():
+    # Water clipped at the receiver's floor (one-look speckle 6 dB under it, 45 dB over 0..255) and
+    # one beam stepping into a reverberation tail of 30..90 counts at 5 m: never the 16.9 dB a
+    # loud echo needs over the background, the default (evidence) detector's weak return.
+    rng = np.random.default_rng(7)
+    level_db = -6.0 + 10.0 * np.log10(rng.exponential(size=(100, 300)))
+    image = np.clip(np.rint(level_db * 255.0 / 45.0), 0, 255).astype(np.uint8)
+    image[10, 100:] = rng.integers(30, 91, size=200)
+    polar = sonarmap.PolarImage(image, np.linspace(0, 2 * np.pi, 100, endpoint=False), 0.05)
+    result = sonarmap.detect_obstacles(polar)
+    assert result["weak"].dtype == np.bool_ and result["weak"].shape == (100,)
+    assert result["weak"][10] and abs(result["range_m"][10] - 5.025) < 0.03
+    assert np.count_nonzero(result["obstacle_bin"] >= 0) == 1
+    loud_only = sonarmap.detect_obstacles(polar, detector="background")
+    assert loud_only["obstacle_bin"][10] == -1 and not loud_only["weak"].any()
