@@ -37,7 +37,7 @@
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 #include "sonarmap/slam/localizer.hpp"
-#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/slam/scan_forming.hpp"
 
 namespace {
 

@@ -1,5 +1,5 @@
 /// @file scan_forming.cpp
-/// formScans (scan.hpp): motion-compensated scans from a log's sweeps and its dead reckoning.
+/// formScans (scan_forming.hpp): motion-compensated scans from a log's sweeps and its dead reckoning.
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
-#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 

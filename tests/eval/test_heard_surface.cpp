@@ -97,7 +97,7 @@ TEST(evalHeardSurface, NothingHeardAndBadOptionsThrow) {
 // The tilted loop of the Micron (the demo's 3D mission), scored as sonarmap_accuracy_3d scores a
 // map: the surfaces a ray meets are nearly all the truth's visible voxels (its field of view is the
 // same aperture), precision is 1 by construction, and demanding the echo reach the floor costs the
-// water surface and the seabed most (sonarmap_heard_surface: 0.956 → 0.798).
+// water surface and the seabed most (sonarmap_mission_reach: 0.956 → 0.798).
 TEST(evalHeardSurface, TheTiltedLoopsHeardSurfaceBoundsItsRecall) {
   const MissionRun run = simulateMission(SimulatedMission{"micron", "quay3d", "tilted-loop"});
   const GroundTruthOptions truth = missionTruthOptions(run);

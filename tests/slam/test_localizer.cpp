@@ -9,7 +9,7 @@
 
 #include "slam_fixture.hpp"
 #include "sonarmap/slam/localizer.hpp"
-#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
 #include "sonarmap/sim/trajectory.hpp"

@@ -65,7 +65,7 @@ SonarLog readSonarLog(const std::string& path);
 struct LogReadOptions {
   /// A ROS bag's sonar topic (RosBagOptions::sonar_topic); empty: found by its fields. Other
   /// formats hold one sonar and ignore it.
-  std::string sonar_topic;
+  std::string sonar_topic{};
   /// A ROS bag's bearing unit: "auto", "deg", "rad" or "grad" (parseBearingUnit).
   std::string bearing_unit = "auto";
   /// A ROS bag's bearing direction seen from above: "cw" or "ccw" (parseBearingDirection).
@@ -75,7 +75,7 @@ struct LogReadOptions {
   /// reads `+03:30`.
   double utc_offset_s = 0.0;
   /// A folder of `.msg` files for a rosbag2 SQLite log's types (RosBagOptions::msg_path).
-  std::string msg_path;
+  std::string msg_path{};
 };
 
 /// Reads the beams of a sonar log in `format` whatever its file name, with the reader's default

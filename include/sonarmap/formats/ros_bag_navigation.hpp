@@ -53,7 +53,7 @@ std::vector<RosBagTopic> listRosBagTopics(const std::string& path, const std::st
 struct RosBagNavOptions {
   /// The navigation topic (one holding poses); empty: chosen by its fields' roles (see the file's
   /// comment).
-  std::string nav_topic;
+  std::string nav_topic{};
   /// Sea water's density, kg/m³, turning a pressure into a depth (UNESCO's equation of state gives
   /// 1020–1030 at the surface; fresh water: 1000).
   double water_density_kg_m3 = 1025.0;
@@ -61,7 +61,7 @@ struct RosBagNavOptions {
   /// atmosphere, 101,325 Pa; a sensor that reads gauge pressure: 0).
   double surface_pressure_pa = 101325.0;
   /// As RosBagOptions::msg_path.
-  std::string msg_path;
+  std::string msg_path{};
 };
 
 /// A bag's navigation: the fixes, which topic they came from and how it was read.

@@ -45,12 +45,12 @@ BearingDirection parseBearingDirection(std::string_view name);
 struct RosBagOptions {
   /// The sonar topic; empty: the first topic, in the bag's connection order, whose message has a
   /// sonar beam's fields (see the file's comment).
-  std::string sonar_topic;
+  std::string sonar_topic{};
   BearingUnit bearing_unit = BearingUnit::kAuto;
   BearingDirection bearing_direction = BearingDirection::kClockwise;
   /// A folder of `.msg` files for the types a rosbag2 SQLite log (before ROS 2 Iron) names without
   /// their definitions: `PKG/msg/NAME.msg` (docs/formats.md); empty: the built-in types only.
-  std::string msg_path;
+  std::string msg_path{};
 };
 
 /// Reads the sonar beams of a ROS 1 bag (see the file's comment), in the bag's time order.

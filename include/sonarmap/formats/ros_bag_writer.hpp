@@ -52,11 +52,11 @@ struct RosBagWriteOptions {
   /// The sonar's mounting on the vehicle (navigation.hpp's sonar_to_body): written as one static
   /// transform on /tf_static (tf2_msgs/TFMessage) from the body frame ("base_link", FLU; with a
   /// NED nav_frame "base_link_frd") to the sonar messages' frame "sonar" (ros_bag_mounting.hpp).
-  std::optional<Eigen::Isometry3d> sonar_to_body;
+  std::optional<Eigen::Isometry3d> sonar_to_body{};
   /// With raw_sensors: the DVL turned by this rotation in the IMU's frame (FLU, as tf records it):
   /// its velocities written in its own frame ("dvl_link") and the rotation on /tf_static
   /// (imu_link -> dvl_link), as a vehicle whose DVL is mounted turned records them.
-  std::optional<Eigen::Quaterniond> dvl_rotation_flu;
+  std::optional<Eigen::Quaterniond> dvl_rotation_flu{};
 };
 
 /// Writes the beams of `log` to `path` as ScanLine messages on `options.sonar_topic` and the fixes

@@ -1,6 +1,6 @@
 #pragma once
 /// @file localizer.hpp
-/// Sonar-aided navigation (the "L" of the paper's SLAM, §9): scans (scan.hpp) matched against the
+/// Sonar-aided navigation (the "L" of the paper's SLAM, §9): scans (scan_forming.hpp) matched against the
 /// scans just before them and against scans seen long before near the current estimate (loop
 /// closures), on a pose graph (pose_graph.hpp) with dead reckoning's odometry. A loop closure is
 /// accepted only when the matcher finds it unambiguous, it agrees with dead reckoning within the
@@ -24,7 +24,7 @@
 #include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/slam/pose_graph.hpp"
-#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/slam/scan_matcher.hpp"
 #include "sonarmap/sonar/beam.hpp"
 

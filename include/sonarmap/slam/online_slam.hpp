@@ -1,7 +1,7 @@
 #pragma once
 /// @file online_slam.hpp
 /// Live mapping with localization (`sonarmap live --slam`): beams and dead-reckoning fixes arrive
-/// one at a time; each completed sweep becomes a scan (scan.hpp) for the Localizer
+/// one at a time; each completed sweep becomes a scan (scan_forming.hpp) for the Localizer
 /// (localizer.hpp); new beams are mapped at once (OnlineMapper) with the dead reckoning corrected
 /// by the latest scan's correction; when a loop closure moves the past poses (a scan by more than
 /// half a voxel at its reach, since the map was last built), the map is rebuilt

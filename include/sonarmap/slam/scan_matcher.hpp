@@ -1,6 +1,6 @@
 #pragma once
 /// @file scan_matcher.hpp
-/// Registration of two scans' points (scan.hpp) in the plane: a probabilistic ICP, point-to-line
+/// Registration of two scans' points (scan_forming.hpp) in the plane: a probabilistic ICP, point-to-line
 /// where the target is locally straight (a wall) and point-to-point elsewhere (a pile), each pair
 /// weighted by both points' covariances (Montesano et al. 2005, "Probabilistic scan matching for
 /// motion estimation in unstructured environments", IROS; its MSIS form MSISpIC, Mallios et al.
@@ -20,7 +20,7 @@
 #include <Eigen/Core>
 
 #include "sonarmap/slam/pose2.hpp"
-#include "sonarmap/slam/scan.hpp"
+#include "sonarmap/slam/scan_forming.hpp"
 
 namespace sonarmap {
 

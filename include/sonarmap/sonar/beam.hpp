@@ -19,20 +19,20 @@ struct Beam {
   double time_s = 0.0;        ///< time of the beam in seconds (the log's own clock)
   double bearing_rad = 0.0;   ///< bearing in the sonar frame, radians in [0, 2π)
   double bin_length_m = 0.0;  ///< length of one bin along the beam, metres (> 0)
-  std::vector<std::uint8_t> intensities;  ///< echo intensity per bin, 0…255, bin 0 nearest
+  std::vector<std::uint8_t> intensities{};  ///< echo intensity per bin, 0…255, bin 0 nearest
   /// dB span the intensities 0…255 cover, when the format records it (SeaNet: ADspan × 80 / 255);
   /// unset otherwise (polar_units.hpp then assumes kDefaultIntensitySpan_db).
-  std::optional<double> intensity_span_db;
+  std::optional<double> intensity_span_db{};
   /// The receiver gain setting the head reports, in the head's own units, when the format records
   /// it (Ping360 device_data gain_setting: 0 low, 1 normal, 2 high; SeaNet mtHeadData: the gain
   /// byte). Beams of different settings are not calibrated together (sweeps.hpp).
-  std::optional<int> gain_setting;
+  std::optional<int> gain_setting{};
   /// Length in range of the transmitted pulse, c·τ/2, metres (> 0), when the format records it
   /// (Ping360 device_data: transmit_duration τ in µs at the reader's sound speed; Ping Viewer sets
   /// τ to 8000·R/c µs, a pulse of 0.4 % of the range R: 8 mm at 2 m, 0.2 m at 50 m); unset
   /// otherwise. A surface's echo is as long as the pulse at least, so the detector never asks an
   /// echo to be longer than this (detectors.hpp, BackgroundOptions::min_echo_length_m).
-  std::optional<double> pulse_length_m;
+  std::optional<double> pulse_length_m{};
 };
 
 /// Beams read from a file, in recording order, with the count of beams the reader rejected.

@@ -1,4 +1,4 @@
-// sonarmap_heard_surface: what the 3D accuracy missions can reach (issue 21). For each simulated
+// sonarmap_mission_reach: what the 3D accuracy missions can reach (issue 21). For each simulated
 // mission of sonarmap_accuracy_3d, the surface its beams could hear (eval/heard_surface.hpp: every
 // surface point a fine grid of rays across each beam meets, kept where its primitive's mean echo is
 // at least L dB over the receiver's floor), scored as sonarmap_accuracy_3d scores a map: recall,
@@ -6,7 +6,7 @@
 // geometry alone (every point a ray meets, L = −∞) and L = −6, 0, 6 and 16.9 dB (16.9: the CRAS
 // tank's obstacle threshold over its background, accuracy.md).
 //
-// Usage: sonarmap_heard_surface [RESOLUTION_M | auto] [PRESET ...]   (defaults: 0.05, micron;
+// Usage: sonarmap_mission_reach [RESOLUTION_M | auto] [PRESET ...]   (defaults: 0.05, micron;
 // auto: each log's automatic resolution, as sonarmap_accuracy_3d auto)
 #include <cmath>
 #include <cstdio>

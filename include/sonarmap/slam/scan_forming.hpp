@@ -1,5 +1,5 @@
 #pragma once
-/// @file scan.hpp
+/// @file scan_forming.hpp
 /// Scans for scan matching: the obstacles a mechanically scanned sonar detects over one sweep (a
 /// full turn, or one pass across a sector), each placed with the dead-reckoning pose at its own
 /// beam's time and expressed in the frame of one reference pose of the sweep, with its uncertainty
