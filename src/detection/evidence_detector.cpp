@@ -27,7 +27,7 @@ constexpr std::uint64_t kMinBandSamples = 64;
 using ExcessHistogram = std::array<std::uint32_t, WaterEvidence::kExcessValues>;
 
 /// The excess of `value` over `level` (both in 0…255) to the nearest count, halves up: the sum is
-/// positive, so truncation floors it (std::lround was a tenth of the detector's time).
+/// positive, so truncation floors it, without a library call per sample.
 int excessOf(std::uint8_t value, float level) { return static_cast<int>(static_cast<float>(value) - level + 256.5f) - 256; }
 
 /// Replaces the band's oldest column (`oldest`: its samples' histogram indices) in `band_counts` by
@@ -96,7 +96,7 @@ BeamDetection weakLeadingEdge(const PolarImage& polar, int row, const EvidenceRe
   int peak_bin = found.certain_bin;
   for (int c = found.certain_bin; c < window_end; ++c) {
     levels.push_back(level(c));
-    if (levels.back() > level(peak_bin)) peak_bin = c;
+    if (levels.back() > levels[static_cast<std::size_t>(peak_bin - found.certain_bin)]) peak_bin = c;
   }
   std::nth_element(levels.begin(), levels.begin() + static_cast<std::ptrdiff_t>(levels.size() / 2), levels.end());
   const double echo = levels[levels.size() / 2];  // certain_bin < window_end: one at least

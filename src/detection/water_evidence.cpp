@@ -13,8 +13,8 @@
 namespace sonarmap {
 namespace {
 
-/// ln k for the whole counts a band's histogram holds (k < 2¹⁶; beyond, std::log): the table is
-/// rebuilt at every range bin of every sweep, and its 511 logarithms were most of its cost.
+/// ln k for the whole counts a band's histogram holds, looked up (k < 2¹⁶; beyond, std::log): the
+/// evidence is rebuilt at every range bin of every sweep.
 double lnCount(std::uint32_t k) {
   static const std::vector<double> table = [] {
     std::vector<double> t(1U << 16);
