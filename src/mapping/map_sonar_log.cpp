@@ -1,5 +1,6 @@
 /// @file map_sonar_log.cpp
-/// mapSonarLog (sonar_mapper.hpp): a log's beams through an OnlineMapper, the one mapping path.
+/// mapSonarLog (sonar_mapper.hpp), detectSonarLog and mapDetectedLog (detected_log.hpp): a log's
+/// beams through an OnlineMapper, the one mapping path.
 
 #include <algorithm>
 #include <cstddef>
@@ -7,6 +8,7 @@
 #include <utility>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
@@ -14,18 +16,24 @@
 namespace sonarmap {
 
 namespace {
-/// mapSonarLog's body: every beam of the log through `online` (an OnlineMapper), in order.
-SonarMapper mapThroughOnline(const SonarLog& log, OnlineMapper& online) {
-  for (const Beam& beam : log.beams) online.addBeam(beam);
+/// The finished mapper of `online`, the reader's `skipped_beams` counted.
+/// @throws ValueError when no beam could be mapped because every one reaches outside the map.
+SonarMapper releaseMapped(OnlineMapper& online, std::size_t skipped_beams) {
   online.finish();
   SonarMapper mapper = std::move(online).release();
-  mapper.stats().beams_skipped = log.skipped_beams;
+  mapper.stats().beams_skipped = skipped_beams;
   const MappingStats& stats = mapper.stats();
   if (stats.beams_used == 0 && stats.out_of_map > 0) {  // an empty map is no answer
     throw ValueError("no beam could be mapped: " +
                      mappingWarnings(stats, mapper.options(), mapper.map().resolution_m()).front());
   }
   return mapper;
+}
+
+/// mapSonarLog's body: every beam of the log through `online` (an OnlineMapper), in order.
+SonarMapper mapThroughOnline(const SonarLog& log, OnlineMapper& online) {
+  for (const Beam& beam : log.beams) online.addBeam(beam);
+  return releaseMapped(online, log.skipped_beams);
 }
 
 /// Reports progress as (sweeps done, sweeps the log holds), when asked.
@@ -52,6 +60,33 @@ SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::I
   OnlineMapper online(resolved, sonar_to_body, OnlineIntegration::kSweep, progressOf(log, options, progress));
   for (const NavSample& fix : nav) online.addNavFix(fix);
   return mapThroughOnline(log, online);
+}
+
+DetectedLog detectSonarLog(const SonarLog& log, const MapperOptions& options) {
+  DetectedLog detected;
+  detected.options = resolveForLog(options, log);
+  checkWorkBudget(log, detected.options);
+  detected.beams_skipped = log.skipped_beams;
+  OnlineMapper online(detected.options, OnlineIntegration::kSweep);
+  online.detectOnly([&detected](DetectedSweep&& sweep) { detected.sweeps.push_back(std::move(sweep)); });
+  for (const Beam& beam : log.beams) online.addBeam(beam);
+  online.finish();
+  detected.beams_uncalibrated = online.mapper().stats().beams_uncalibrated;
+  return detected;
+}
+
+SonarMapper mapDetectedLog(const DetectedLog& detected, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
+                           const ProgressCallback& progress) {
+  const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
+  OnlineMapper::SweepCallback on_sweep;
+  if (progress) {
+    on_sweep = [progress, total = detected.sweeps.size()](std::size_t done) { progress(done, total); };
+  }
+  OnlineMapper online(detected.options, sonar_to_body, OnlineIntegration::kSweep, std::move(on_sweep));
+  for (const NavSample& fix : nav) online.addNavFix(fix);
+  for (const DetectedSweep& sweep : detected.sweeps) online.addDetectedSweep(sweep);
+  online.mapper().stats().beams_uncalibrated += detected.beams_uncalibrated;
+  return releaseMapped(online, detected.beams_skipped);
 }
 
 }  // namespace sonarmap

@@ -16,12 +16,6 @@
 
 namespace sonarmap {
 
-struct OnlineMapper::DetectedSweep {
-  PolarImage polar;
-  SweepDetection detection;
-  HeadSetting setting;  ///< of its beams
-};
-
 namespace {
 std::size_t minBeams(const MapperOptions& options) {
   return static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
@@ -105,7 +99,8 @@ void OnlineMapper::emitGroup(std::size_t beams, bool cut) {
   std::move(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(beams), std::back_inserter(group));
   held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(beams));
   waiting_beams_ += beams;
-  ready_.push_back({std::move(group), cut});
+  ready_.push_back({std::move(group), cut, beams_grouped_});
+  beams_grouped_ += beams;
 }
 
 bool OnlineMapper::navigationCovers(double time_s) const {
@@ -126,12 +121,12 @@ void OnlineMapper::processReady() {
     ReadyGroup ready = std::move(ready_.front());
     ready_.pop_front();
     if (detectedAsShort(ready)) {
-      processShortGroup(std::move(ready.beams));
+      processShortGroup(std::move(ready));
       continue;
     }
     std::vector<Beam> group = std::move(ready.beams);
-    auto detect = [this, group = std::move(group)]() {
-      DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, headSettingOf(group.front())};
+    auto detect = [this, group = std::move(group), first_beam = ready.first_beam]() {
+      DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, headSettingOf(group.front()), first_beam};
       sweep.detection = mapper_.detectSweep(sweep.polar);  // const: touches no mapper state
       return sweep;
     };
@@ -164,7 +159,8 @@ bool OnlineMapper::detectedAsShort(const ReadyGroup& group) {
   return false;
 }
 
-void OnlineMapper::processShortGroup(std::vector<Beam> group) {
+void OnlineMapper::processShortGroup(ReadyGroup ready) {
+  const std::vector<Beam>& group = ready.beams;
   // Too few bearings to measure a background on: detected with the calibration of the last whole
   // sweep of its head setting, which must be known first.
   if (in_flight_) {
@@ -179,7 +175,7 @@ void OnlineMapper::processShortGroup(std::vector<Beam> group) {
     waiting_beams_ -= group.size();
     return;
   }
-  DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, setting};
+  DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, setting, ready.first_beam};
   PolarImage rows = fitToCalibration(sweep.polar, *calibration);
   sweep.detection = mapper_.detectRows(rows, *calibration);
   sweep.polar = std::move(rows);
@@ -204,22 +200,43 @@ void OnlineMapper::keepCalibration(const HeadSetting& setting, SweepCalibration 
   calibrations_.push_back({setting, std::move(calibration), beams});
 }
 
+void OnlineMapper::detectOnly(DetectedSweepSink sink) {
+  if (integration_ == OnlineIntegration::kBeam) throw ValueError("online mapper: detection alone needs whole sweeps (kSweep)");
+  if (beams_grouped_ > 0 || !held_.empty() || finished_) throw ValueError("online mapper: detectOnly after the first beam");
+  if (!sink) throw ValueError("online mapper: detectOnly needs a sink");
+  detect_only_ = std::move(sink);
+}
+
+void OnlineMapper::addDetectedSweep(const DetectedSweep& sweep) {
+  if (detect_only_) throw ValueError("online mapper: a detected sweep given to a detect-only mapper");
+  integrateIntoMap(sweep);
+  // kBeam: the beams that follow are detected with its calibration.
+  keepCalibration(sweep.setting, sweep.detection.calibration, static_cast<std::size_t>(sweep.polar.rows()));
+  if (on_sweep_) on_sweep_(sweeps_);
+}
+
+void OnlineMapper::integrateIntoMap(const DetectedSweep& sweep) {
+  const std::unique_lock lock(map_mutex_);
+  mapper_.recordDetection(sweep.detection);
+  if (!sonar_to_body_) {
+    mapper_.integrateSweep(sweep.polar, sweep.detection.detections);
+  } else {
+    mapper_.integrateSweep(sweep.polar, sweep.detection.detections, posesAt(sweep.polar.time_s));
+  }
+  ++sweeps_;
+}
+
 void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
-  {
-    const std::unique_lock lock(map_mutex_);
-    mapper_.recordDetection(sweep.detection);
-    if (!sonar_to_body_) {
-      mapper_.integrateSweep(sweep.polar, sweep.detection.detections);
-    } else {
-      mapper_.integrateSweep(sweep.polar, sweep.detection.detections, posesAt(sweep.polar.time_s));
-    }
+  const auto rows = static_cast<std::size_t>(sweep.polar.rows());
+  if (detect_only_) {
     ++sweeps_;
-    waiting_beams_ -= static_cast<std::size_t>(sweep.polar.rows());
+  } else {
+    integrateIntoMap(sweep);
   }
+  waiting_beams_ -= rows;
   // The calibration later beams of this setting are detected with (short groups; kBeam's beams).
-  if (calibrates) {
-    keepCalibration(sweep.setting, std::move(sweep.detection.calibration), static_cast<std::size_t>(sweep.polar.rows()));
-  }
+  if (calibrates) keepCalibration(sweep.setting, sweep.detection.calibration, rows);
+  if (detect_only_) detect_only_(std::move(sweep));
   if (on_sweep_) on_sweep_(sweeps_);
 }
 

@@ -256,13 +256,19 @@ NavTrack Localizer::correctedTrack(const NavTrack& dead_reckoning) const {
 SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
                     const MapperOptions& options, const SlamOptions& slam) {
   slam.validate();
+  return localize(detectSonarLog(log, options), dead_reckoning, sonar_to_body, slam);
+}
+
+SlamResult localize(const DetectedLog& detected, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
+                    const SlamOptions& slam) {
+  slam.validate();
   SlamOptions tuned = slam;
   if (dead_reckoning.size() >= 2) {  // the velocity readings' period: the navigation's median fix spacing
     std::vector<double> periods;
     for (std::size_t i = 1; i < dead_reckoning.size(); ++i) periods.push_back(dead_reckoning[i].time_s - dead_reckoning[i - 1].time_s);
     tuned.forming.odometry.nav_period_s = std::max(percentile(periods, 0.5), 1e-3);
   }
-  std::vector<SonarScan> scans = formScans(log, dead_reckoning, sonar_to_body, options, tuned.forming);
+  std::vector<SonarScan> scans = formScans(detected, dead_reckoning, sonar_to_body, tuned.forming);
   Localizer localizer(tuned, !dead_reckoning.empty());
   for (SonarScan& scan : scans) localizer.addScan(std::move(scan));
   localizer.optimize();

@@ -13,8 +13,11 @@
 namespace sonarmap {
 namespace {
 
-std::size_t minBeams(const MapperOptions& options) {
-  return static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
+/// The detector's options: the mapper's, detection not pipelined, so that each sweep reaches the
+/// localizer as soon as it is final.
+MapperOptions detectorOptions(MapperOptions options) {
+  options.pipeline_detection = false;
+  return options;
 }
 
 }  // namespace
@@ -27,8 +30,10 @@ OnlineSlam::OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& so
       slam_(slam),
       integration_(integration),
       localizer_(slam, navigation),
-      grouper_(minBeams(options)),
-      mapper_(std::make_unique<OnlineMapper>(options, sonar_to_body, integration)) {}
+      detector_(std::make_unique<OnlineMapper>(detectorOptions(options), OnlineIntegration::kSweep)),
+      mapper_(std::make_unique<OnlineMapper>(options, sonar_to_body, integration)) {
+  detector_->detectOnly([this](DetectedSweep&& sweep) { addSweep(std::move(sweep)); });
+}
 
 NavSample OnlineSlam::corrected(const NavSample& fix) const {
   const Pose2 pose = correction_ * Pose2{fix.position_ned_m.x(), fix.position_ned_m.y(), fix.yaw_rad};
@@ -46,13 +51,11 @@ void OnlineSlam::addNavFix(const NavSample& fix) {
   }
   mapper_->addNavFix(corrected(fix));  // checks the values
   dead_reckoning_.push_back(fix);
+  if (integration_ == OnlineIntegration::kSweep) mapCoveredSweeps(*mapper_);
 }
 
 void OnlineSlam::addBeam(Beam beam) {
   if (finished_) throw ValueError("live slam: a beam after the end of the stream");
-  const bool starts_sweep = splitter_.startsSweep(beam);
-  const std::size_t final_beams = grouper_.add(starts_sweep, headSettingOf(beam));
-  if (final_beams > 0) closeGroup(final_beams);
   if (!navigation_) {  // the vehicle believed still: a fix at the beam's time, where the scans put it
     NavSample fix;
     fix.time_s = beam.time_s;
@@ -63,30 +66,43 @@ void OnlineSlam::addBeam(Beam beam) {
     }
   }
   beams_.beams.push_back(beam);
-  mapper_->addBeam(std::move(beam));
+  if (integration_ == OnlineIntegration::kBeam) mapper_->addBeam(beam);
+  detector_->addBeam(std::move(beam));  // may finish a sweep: addSweep
 }
 
-void OnlineSlam::closeGroup(std::size_t beams) {
-  SonarLog group;
-  group.beams.assign(beams_.beams.begin() + static_cast<std::ptrdiff_t>(grouped_),
-                     beams_.beams.begin() + static_cast<std::ptrdiff_t>(grouped_ + beams));
+void OnlineSlam::addSweep(DetectedSweep&& sweep) {
+  DetectedLog one;
+  one.options = options_;
+  one.sweeps.push_back(std::move(sweep));
   const NavTrack none;
-  std::vector<SonarScan> scans = formScans(group, navigation_ ? dead_reckoning_ : none, sonar_to_body_, options_, slam_.forming);
+  std::vector<SonarScan> scans = formScans(one, navigation_ ? dead_reckoning_ : none, sonar_to_body_, slam_.forming);
+  sweeps_.push_back(std::move(one.sweeps.front()));
   for (SonarScan& scan : scans) {
-    scan.first_beam += grouped_;
     // The scans before this one are in the map with (about) their poses as they are now.
     const std::vector<Pose2>& poses = localizer_.graph().poses();
     for (std::size_t k = mapped_poses_.size(); k < poses.size(); ++k) mapped_poses_.push_back(poses[k]);
     localizer_.addScan(std::move(scan));
   }
-  grouped_ += beams;
-  if (localizer_.scans().empty()) return;
-  const std::size_t last = localizer_.scans().size() - 1;
-  correction_ = localizer_.graph().pose(last) * localizer_.scans()[last].dead_reckoning.inverse();
-  const std::size_t accepted = localizer_.report().loopClosuresAccepted();
-  if (accepted > accepted_loops_) {
-    accepted_loops_ = accepted;
-    if (movedSinceRebuild()) rebuild();
+  if (!localizer_.scans().empty()) {
+    const std::size_t last = localizer_.scans().size() - 1;
+    correction_ = localizer_.graph().pose(last) * localizer_.scans()[last].dead_reckoning.inverse();
+    const std::size_t accepted = localizer_.report().loopClosuresAccepted();
+    if (accepted > accepted_loops_) {
+      accepted_loops_ = accepted;
+      if (movedSinceRebuild()) rebuild();
+    }
+  }
+  if (integration_ == OnlineIntegration::kSweep) mapCoveredSweeps(*mapper_);
+}
+
+void OnlineSlam::mapCoveredSweeps(OnlineMapper& mapper) {
+  while (sweeps_mapped_ < sweeps_.size()) {
+    const DetectedSweep& sweep = sweeps_[sweeps_mapped_];
+    const double last_beam_s = sweep.polar.time_s.empty() ? 0.0 : sweep.polar.time_s.back();
+    const bool covered = finished_ || !navigation_ || (!dead_reckoning_.empty() && dead_reckoning_.back().time_s >= last_beam_s);
+    if (!covered) return;
+    mapper.addDetectedSweep(sweep);
+    ++sweeps_mapped_;
   }
 }
 
@@ -111,15 +127,29 @@ void OnlineSlam::rebuild() {
   auto mapper = std::make_unique<OnlineMapper>(options_, sonar_to_body_, integration_);
   NavTrack track = trajectory();
   for (const NavSample& fix : track) mapper->addNavFix(fix);
-  for (const Beam& beam : beams_.beams) {
-    if (!navigation_ && (track.empty() || beam.time_s > track.back().time_s)) {
+  if (!navigation_) {  // a fix at each beam's time after the scans' track, as addBeam gives
+    for (const Beam& beam : beams_.beams) {
+      if (!track.empty() && beam.time_s <= track.back().time_s) continue;
       NavSample fix;
       fix.time_s = beam.time_s;
       fix = corrected(fix);
       mapper->addNavFix(fix);
       track.push_back(fix);
     }
-    mapper->addBeam(beam);
+  }
+  if (integration_ == OnlineIntegration::kSweep) {
+    sweeps_mapped_ = 0;
+    mapCoveredSweeps(*mapper);
+  } else {
+    // The detected sweeps, then the beams after the last one as they come (kBeam).
+    std::size_t next_beam = 0;
+    for (const DetectedSweep& sweep : sweeps_) {
+      mapper->addDetectedSweep(sweep);
+      next_beam = sweep.first_beam + static_cast<std::size_t>(sweep.polar.rows());
+    }
+    if (!finished_) {
+      for (std::size_t i = next_beam; i < beams_.beams.size(); ++i) mapper->addBeam(beams_.beams[i]);
+    }
   }
   if (finished_) mapper->finish();
   mapped_poses_ = localizer_.graph().poses();
@@ -130,7 +160,7 @@ void OnlineSlam::rebuild() {
 
 void OnlineSlam::finish() {
   if (finished_) return;
-  if (const std::size_t rest = grouper_.finish(); rest > 0) closeGroup(rest);
+  detector_->finish();  // the last sweeps' scans
   localizer_.optimize();
   finished_ = true;
   rebuild();  // the map with the final trajectory: what the batch path makes
@@ -146,6 +176,11 @@ std::size_t OnlineSlam::sweepsIntegrated() const {
   return mapper_->sweepsIntegrated();
 }
 
-std::size_t OnlineSlam::beamsPending() const { return mapper_->beamsPending(); }
+std::size_t OnlineSlam::beamsPending() const {
+  if (integration_ == OnlineIntegration::kBeam) return mapper_->beamsPending();
+  std::size_t pending = detector_->beamsPending();
+  for (std::size_t k = sweeps_mapped_; k < sweeps_.size(); ++k) pending += static_cast<std::size_t>(sweeps_[k].polar.rows());
+  return pending;
+}
 
 }  // namespace sonarmap

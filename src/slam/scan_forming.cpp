@@ -7,7 +7,7 @@
 #include <string>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
@@ -131,14 +131,9 @@ void OdometryNoise::validate() const {
   requirePositive(unknown_turn_sigma_radps, "unknown_turn_sigma_radps");
 }
 
-Pose2 planarPose(const Eigen::Isometry3d& body_to_ned) {
-  const Eigen::Matrix3d r = body_to_ned.linear();
-  return {body_to_ned.translation().x(), body_to_ned.translation().y(), std::atan2(r(1, 0), r(0, 0))};
-}
-
-std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
-                            const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
-                            const ScanFormingOptions& forming) {
+namespace {
+/// @throws ValueError for invalid scan-forming options.
+void checkScanForming(const ScanFormingOptions& forming) {
   forming.odometry.validate();
   if (!(std::isfinite(forming.range_sigma_m) && forming.range_sigma_m >= 0.0) ||
       !(std::isfinite(forming.bearing_sigma_rad) && forming.bearing_sigma_rad >= 0.0)) {
@@ -147,22 +142,38 @@ std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_recko
   if (!(std::isfinite(forming.max_travel_m) && forming.max_travel_m >= 0.0)) {
     throw ValueError("scan forming: max_travel_m must be ≥ 0 m");
   }
+}
+}  // namespace
+
+Pose2 planarPose(const Eigen::Isometry3d& body_to_ned) {
+  const Eigen::Matrix3d r = body_to_ned.linear();
+  return {body_to_ned.translation().x(), body_to_ned.translation().y(), std::atan2(r(1, 0), r(0, 0))};
+}
+
+std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
+                                 const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
+                                 const ScanFormingOptions& forming) {
+  checkScanForming(forming);
+  return formScans(detectSonarLog(log, options), dead_reckoning, sonar_to_body, forming);
+}
+
+std::vector<SonarScan> formScans(const DetectedLog& detected, const NavTrack& dead_reckoning,
+                                 const Eigen::Isometry3d& sonar_to_body, const ScanFormingOptions& forming) {
+  checkScanForming(forming);
   std::optional<NavInterpolator> nav;
   if (!dead_reckoning.empty()) nav.emplace(dead_reckoning);  // throws ValueError for an invalid track
   const bool known = nav.has_value();
-  const MapperOptions resolved = resolveForLog(options, log);
-  const SonarMapper detector(resolved);
-  const auto min_beams = static_cast<std::size_t>(std::max(1, resolved.detector.background.min_beams));
+  const double beam_width_rad = detected.options.beam_width_rad;
 
   std::vector<SonarScan> scans;
-  for (const SweepRange& sweep : groupSweeps(log.beams, min_beams)) {
-    PolarImage polar = makePolarImage(log.beams, sweep.first, sweep.last_exclusive);
-    const SweepDetection detection = detector.detectSweep(polar);
+  for (const DetectedSweep& sweep : detected.sweeps) {
+    const PolarImage& polar = sweep.polar;
+    const SweepDetection& detection = sweep.detection;
     double step_rad = 0.0;
     if (polar.rows() > 1) step_rad = std::abs(bearingStep_rad(polar.bearing_rad[0], polar.bearing_rad[1]));
     ScanGeometry geometry;
     geometry.bearing_sigma_rad =
-        forming.bearing_sigma_rad > 0.0 ? forming.bearing_sigma_rad : std::max(resolved.beam_width_rad, step_rad) / 2.0;
+        forming.bearing_sigma_rad > 0.0 ? forming.bearing_sigma_rad : std::max(beam_width_rad, step_rad) / 2.0;
     for (int row = 0; row < polar.rows(); ++row) {
       geometry.reach_m = std::max(geometry.reach_m, polar.valid_bins[static_cast<std::size_t>(row)] * polar.bin_length_m);
     }
@@ -184,7 +195,7 @@ std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_recko
       }
       if (!cut) continue;
       std::optional<SonarScan> scan =
-          formScan(polar, detection, first_row, row, sweep.first, nav, sonar_to_body, geometry, forming, known);
+          formScan(polar, detection, first_row, row, sweep.first_beam, nav, sonar_to_body, geometry, forming, known);
       if (scan) scans.push_back(std::move(*scan));
       first_row = row;
     }

@@ -4,12 +4,15 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <vector>
 
 #include <Eigen/Geometry>
 
 #include "slam_fixture.hpp"
 #include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
+#include "sonarmap/slam/slam_mapping.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
 #include "sonarmap/sim/trajectory.hpp"
@@ -65,6 +68,38 @@ TEST(slamLocalizer, IsDeterministic) {
     ASSERT_EQ(a.trajectory[i].position_ned_m, b.trajectory[i].position_ned_m);
     ASSERT_EQ(a.trajectory[i].yaw_rad, b.trajectory[i].yaw_rad);
   }
+}
+
+// `map --slam` detects each sweep once: the scans come from the mapper's detections, and the map
+// is the one mapSonarLog makes with the corrected trajectory.
+TEST(slamLocalizer, MapsWithSlamFromOneDetection) {
+  const HarbourLoop& loop = harbourLoop();
+  const DetectedLog detected = detectSonarLog(loop.run.log, MapperOptions{});
+  const SlamResult from_detected = localize(detected, loop.drift, defaultSonarToBody());
+  const SlamResult from_log = localize(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  ASSERT_EQ(from_detected.trajectory.size(), from_log.trajectory.size());
+  for (std::size_t i = 0; i < from_log.trajectory.size(); ++i) {
+    ASSERT_EQ(from_detected.trajectory[i].position_ned_m, from_log.trajectory[i].position_ned_m);
+  }
+  const std::vector<SonarScan> scans = formScans(detected, loop.drift, defaultSonarToBody());
+  ASSERT_FALSE(scans.empty());
+  std::size_t points = 0;
+  for (const SonarScan& scan : scans) points += scan.points.size();
+  std::size_t obstacles = 0;
+  for (const DetectedSweep& sweep : detected.sweeps) {
+    for (const BeamDetection& hit : sweep.detection.detections) obstacles += hit.hasObstacle() ? 1 : 0;
+  }
+  EXPECT_EQ(points, obstacles);  // every obstacle of the level head's sweeps is one scan point
+
+  const SlamMapping mapped = mapSonarLogWithSlam(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
+  const SonarMapper expected = mapSonarLog(loop.run.log, mapped.slam.trajectory, defaultSonarToBody(), MapperOptions{});
+  std::vector<std::tuple<Key16, int, float>> leaves, expected_leaves;
+  mapped.mapper.map().forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
+  expected.map().forEachLeaf([&](const LeafView<16>& leaf) { expected_leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
+  ASSERT_GT(expected_leaves.size(), 1000U);
+  EXPECT_EQ(leaves, expected_leaves);
+  EXPECT_EQ(mapped.mapper.stats().obstacles, expected.stats().obstacles);
+  EXPECT_EQ(mapped.mapper.stats().free_updates, expected.stats().free_updates);
 }
 
 TEST(slamLocalizer, RefusesAWrongLoopClosureAndKeepsTheGraph) {

@@ -2,7 +2,10 @@
 // path's trajectory, and its map follows the corrections.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
+#include <tuple>
+#include <vector>
 
 #include "slam_fixture.hpp"
 #include "sonarmap/slam/online_slam.hpp"
@@ -11,30 +14,45 @@
 namespace sonarmap {
 namespace {
 
+std::vector<std::tuple<Key16, int, float>> leavesOf(const OcTree16& map) {
+  std::vector<std::tuple<Key16, int, float>> leaves;
+  map.forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
+  return leaves;
+}
+
+// Fed beam by beam, whole sweeps or each beam integrated as it comes: the batch's trajectory, and
+// its map leaf for leaf, after finish().
 TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
   const MsisSimulation run = testing::missionRun("harbour-loop");
   const NavTrack& drift = run.dead_reckoning;
   MapperOptions options;
   options.resolution_m = 0.05;
   const SlamMapping batch = mapSonarLogWithSlam(run.log, drift, defaultSonarToBody(), options);
+  const auto expected = leavesOf(batch.mapper.map());
+  ASSERT_GT(expected.size(), 1000U);
 
-  OnlineSlam live(options, defaultSonarToBody(), true, SlamOptions{}, OnlineIntegration::kSweep);
-  std::size_t next_fix = 0;
-  for (const Beam& beam : run.log.beams) {
-    while (next_fix < drift.size() && drift[next_fix].time_s <= beam.time_s) live.addNavFix(drift[next_fix++]);
-    live.addBeam(beam);
+  for (const OnlineIntegration integration : {OnlineIntegration::kSweep, OnlineIntegration::kBeam}) {
+    OnlineSlam live(options, defaultSonarToBody(), true, SlamOptions{}, integration);
+    std::size_t next_fix = 0;
+    std::size_t integrated_while_running = 0;
+    for (const Beam& beam : run.log.beams) {
+      while (next_fix < drift.size() && drift[next_fix].time_s <= beam.time_s) live.addNavFix(drift[next_fix++]);
+      live.addBeam(beam);
+      integrated_while_running = std::max(integrated_while_running, live.sweepsIntegrated());
+    }
+    while (next_fix < drift.size()) live.addNavFix(drift[next_fix++]);
+    EXPECT_GT(integrated_while_running, 0U);  // the map grows while the vehicle runs
+    live.finish();
+    EXPECT_EQ(live.beamsPending(), 0U);
+    EXPECT_GT(live.rebuilds(), 1U);  // loops closed while running, and the final map
+    const NavTrack trajectory = live.trajectory();
+    ASSERT_EQ(trajectory.size(), batch.slam.trajectory.size());
+    for (std::size_t i = 0; i < trajectory.size(); ++i) {
+      ASSERT_NEAR(trajectory[i].position_ned_m.x(), batch.slam.trajectory[i].position_ned_m.x(), 1e-9);
+      ASSERT_NEAR(trajectory[i].position_ned_m.y(), batch.slam.trajectory[i].position_ned_m.y(), 1e-9);
+    }
+    EXPECT_EQ(leavesOf(live.mapSnapshot()), expected) << "integration " << static_cast<int>(integration);
   }
-  while (next_fix < drift.size()) live.addNavFix(drift[next_fix++]);
-  live.finish();
-  EXPECT_GT(live.rebuilds(), 1U);  // loops closed while running, and the final map
-  const NavTrack trajectory = live.trajectory();
-  ASSERT_EQ(trajectory.size(), batch.slam.trajectory.size());
-  for (std::size_t i = 0; i < trajectory.size(); ++i) {
-    ASSERT_NEAR(trajectory[i].position_ned_m.x(), batch.slam.trajectory[i].position_ned_m.x(), 1e-9);
-    ASSERT_NEAR(trajectory[i].position_ned_m.y(), batch.slam.trajectory[i].position_ned_m.y(), 1e-9);
-  }
-  const OcTree16 map = live.mapSnapshot();
-  EXPECT_EQ(map.counts().leaves, batch.mapper.map().counts().leaves);
 }
 
 TEST(slamOnline, RefusesFixesOutOfOrderAndBeamsAfterTheEnd) {

@@ -31,6 +31,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -59,6 +60,8 @@ class OnlineMapper {
  public:
   /// Called on the feeding thread after each sweep is integrated, with the count so far.
   using SweepCallback = std::function<void(std::size_t sweeps_integrated)>;
+  /// Receives each detected sweep instead of the map (detectOnly).
+  using DetectedSweepSink = std::function<void(DetectedSweep&& sweep)>;
 
   /// A static sonar at the map origin (identity pose), as mapSonarLog without navigation.
   /// @throws ValueError when `options` is invalid (MapperOptions::validate).
@@ -91,6 +94,21 @@ class OnlineMapper {
   /// @throws ValueError  what detecting or integrating a sweep threw.
   void finish();
 
+  /// From now on each final sweep, once detected, goes to `sink` (on the feeding thread, in
+  /// recording order) and is not integrated: the detection stage alone (detectSonarLog). The
+  /// calibrations, the short groups' handling and MappingStats::beams_uncalibrated are as when
+  /// mapping; the map stays empty. Call before the first beam.
+  /// @throws ValueError with OnlineIntegration::kBeam (beams are detected one by one there), after
+  ///         the first beam, or for an empty sink.
+  void detectOnly(DetectedSweepSink sink);
+  /// Integrates a sweep detected by another OnlineMapper with the same options (detectOnly), placed
+  /// with the fixes given so far (navigation mode; a beam beyond them is counted without
+  /// navigation): what integrating it there would have done. Its calibration becomes its
+  /// setting's (kBeam: the beams given after it are detected with it).
+  /// @throws ValueError when the detections and the polar image differ in length, or in detect-only
+  ///         mode.
+  void addDetectedSweep(const DetectedSweep& sweep);
+
   /// Sweeps integrated so far (kBeam: sweeps whose beams are all integrated).
   std::size_t sweepsIntegrated() const;
   /// Beams received and not yet integrated (feeding thread only).
@@ -107,22 +125,25 @@ class OnlineMapper {
   SonarMapper release() &&;
 
  private:
-  struct DetectedSweep;
   /// A final group of beams; `cut`: it ended at a change of head setting or at the end of the
   /// stream, not at the end of a sweep.
   struct ReadyGroup {
     std::vector<Beam> beams;
     bool cut = false;
+    std::size_t first_beam = 0;  ///< index of its first beam in the stream
   };
   void emitGroup(std::size_t beams, bool cut);
   void processReady();
   /// A final group of fewer than min_beams beams (a head setting used for fewer beams), or a cut
   /// group of fewer than half the beams of the sweep its setting was last calibrated on.
-  void processShortGroup(std::vector<Beam> group);
+  void processShortGroup(ReadyGroup group);
   /// Whether `group` is detected with its setting's calibration instead of its own (see above).
   bool detectedAsShort(const ReadyGroup& group);
-  /// Integrates a detected sweep; `calibrates`: its calibration becomes its setting's.
+  /// Integrates a detected sweep (or hands it to the detect-only sink); `calibrates`: its
+  /// calibration becomes its setting's.
   void integrate(DetectedSweep sweep, bool calibrates = true);
+  /// Records and integrates `sweep` into the map with its beams' poses, and counts it.
+  void integrateIntoMap(const DetectedSweep& sweep);
   const SweepCalibration* calibrationOf(const HeadSetting& setting) const;
   /// Keeps `calibration`, measured on a sweep of `beams` beams, as its setting's.
   void keepCalibration(const HeadSetting& setting, SweepCalibration calibration, std::size_t beams);
@@ -149,7 +170,9 @@ class OnlineMapper {
   std::size_t waiting_beams_ = 0;                ///< beams of final groups not yet integrated
   std::unique_ptr<std::future<DetectedSweep>> in_flight_;  ///< detection running beside integration
   std::size_t sweeps_ = 0;
+  std::size_t beams_grouped_ = 0;  ///< beams handed to final groups so far
   bool finished_ = false;
+  DetectedSweepSink detect_only_;  ///< set: detection alone (detectOnly)
   /// The calibration of the last whole sweep of each head setting seen (few: a range knob's stops).
   struct KeptCalibration {
     HeadSetting setting;

@@ -148,9 +148,15 @@ struct SlamResult {
   SlamReport report;
 };
 
-/// Forms the scans of `log` (formScans) with `dead_reckoning` (empty: none; the vehicle believed
-/// still), localizes them in order and optimises the graph. Deterministic.
+/// Forms the scans of a detected log (formScans) with `dead_reckoning` (empty: none; the vehicle
+/// believed still), localizes them in order and optimises the graph. Deterministic. The
+/// odometry's velocity-reading period is the navigation's median fix spacing.
 /// @throws ValueError for invalid options or an invalid navigation track.
+SlamResult localize(const DetectedLog& detected, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
+                    const SlamOptions& slam = {});
+
+/// localize(detectSonarLog(log, options), ...).
+/// @throws ValueError as detectSonarLog and the overload above.
 SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
                     const MapperOptions& options, const SlamOptions& slam = {});
 

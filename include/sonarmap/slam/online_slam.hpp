@@ -1,13 +1,17 @@
 #pragma once
 /// @file online_slam.hpp
 /// Live mapping with localization (`sonarmap live --slam`): beams and dead-reckoning fixes arrive
-/// one at a time; each completed sweep becomes a scan (scan_forming.hpp) for the Localizer
-/// (localizer.hpp); new beams are mapped at once (OnlineMapper) with the dead reckoning corrected
-/// by the latest scan's correction; when a loop closure moves the past poses (a scan by more than
-/// half a voxel at its reach, since the map was last built), the map is rebuilt
-/// from every beam so far with the corrected trajectory (the octree maps a Micron turn in about a
-/// millisecond), so the map is always the current best. After finish() the map and trajectory are
-/// those of the batch path (mapSonarLogWithSlam) on the same beams and fixes.
+/// one at a time; each sweep is detected once, as the batch detects it (an OnlineMapper in
+/// detect-only mode: detected_log.hpp), and becomes a scan (scan_forming.hpp) for the Localizer
+/// (localizer.hpp). The map (an OnlineMapper given the dead reckoning corrected by the latest
+/// scan's correction) integrates those detected sweeps once the navigation covers them
+/// (OnlineIntegration::kSweep), or each beam as it arrives, detected with its setting's last
+/// calibration (kBeam: a beam's latency, and a second, per-beam detection). When a loop closure
+/// moves the past poses (a scan by more than half a voxel at its reach, since the map was last
+/// built), the map is rebuilt from the detected sweeps so far with the corrected trajectory (no
+/// detection again; kBeam: the beams after the last detected sweep follow as beams), so the map is
+/// always the current best. After finish() the map and trajectory are those of the batch path
+/// (mapSonarLogWithSlam) on the same beams and fixes, in either integration.
 
 #include <cstddef>
 #include <memory>
@@ -19,7 +23,6 @@
 
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/slam/localizer.hpp"
-#include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap {
 
@@ -58,8 +61,13 @@ class OnlineSlam {
   std::size_t rebuilds() const { return rebuilds_; }
 
  private:
-  void closeGroup(std::size_t beams);
-  /// Maps every beam so far with the current trajectory into a new OnlineMapper and swaps it in.
+  /// A sweep the detector finished: its scan to the localizer, the sweep kept; may rebuild the map.
+  void addSweep(DetectedSweep&& sweep);
+  /// kSweep: integrates the kept sweeps not yet in `mapper` whose last beam the navigation covers
+  /// (all of them after finish()).
+  void mapCoveredSweeps(OnlineMapper& mapper);
+  /// Maps the detected sweeps so far (and, kBeam, the beams after them) with the current
+  /// trajectory into a new OnlineMapper and swaps it in.
   void rebuild();
   /// Whether a scan's pose moved since the map was last rebuilt by more than half a voxel at its
   /// reach (position, plus reach × heading change): less changes no cell worth a rebuild.
@@ -74,9 +82,9 @@ class OnlineSlam {
   Localizer localizer_;
   SonarLog beams_;        ///< every beam so far
   NavTrack dead_reckoning_;
-  SweepSplitter splitter_;
-  SweepGrouper grouper_;
-  std::size_t grouped_ = 0;  ///< beams already in a scan's group
+  std::unique_ptr<OnlineMapper> detector_;  ///< detect-only: the batch's sweeps and detections
+  std::vector<DetectedSweep> sweeps_;       ///< every sweep detected so far
+  std::size_t sweeps_mapped_ = 0;           ///< kSweep: of sweeps_, those in the current map
   std::size_t accepted_loops_ = 0;
   std::size_t rebuilds_ = 0;
   bool finished_ = false;

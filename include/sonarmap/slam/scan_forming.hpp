@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/slam/pose2.hpp"
@@ -96,15 +97,21 @@ struct ScanFormingOptions {
   double max_travel_m = 0.0;
 };
 
-/// Forms one scan per sweep of `log` (the sweeps the mapper detects: groupSweeps; several when the
-/// vehicle travels farther than ScanFormingOptions::max_travel_m during one), detecting each
-/// sweep's first obstacles exactly as the mapper does (SonarMapper::detectSweep with `options`
-/// resolved for the log, resolveForLog), and placing each obstacle with the dead-reckoning body
+/// Forms one scan per detected sweep of `detected` (detectSonarLog: the mapper's sweeps and
+/// detections; several scans when the vehicle travels farther than
+/// ScanFormingOptions::max_travel_m during one), placing each first obstacle with the dead-reckoning body
 /// pose at its beam's time (interpolateBodyToNed on `dead_reckoning`), the sonar's mounting
 /// `sonar_to_body` and the horizontal projection of the beam. Beams outside the navigation's span
 /// are skipped. An empty `dead_reckoning`: the vehicle is believed still at the origin (every pose
-/// zero). Cost: the detection of every sweep (about the mapper's detection time).
+/// zero). The beams' width (the bearing's uncertainty when ScanFormingOptions leaves it automatic)
+/// is detected.options.beam_width_rad.
 /// @throws ValueError for invalid options or an invalid navigation track (NavInterpolator).
+std::vector<SonarScan> formScans(const DetectedLog& detected, const NavTrack& dead_reckoning,
+                                 const Eigen::Isometry3d& sonar_to_body, const ScanFormingOptions& forming = {});
+
+/// formScans(detectSonarLog(log, options), ...): the log's sweeps detected as the mapper detects
+/// them. Cost: the detection of every sweep (about the mapper's detection time).
+/// @throws ValueError as detectSonarLog and the overload above.
 std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
                             const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
                             const ScanFormingOptions& forming = {});
