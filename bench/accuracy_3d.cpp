@@ -1,7 +1,6 @@
 // sonarmap_accuracy_3d: the 3D accuracy table of docs/accuracy.md (issue 11). Each simulated
-// mission (eval/simulated_mission.hpp) mapped with the planar model and with the beam-volume model
-// under each arc-evidence rule (and the default rule with silent beams clearing, as before issue
-// 11's no-echo rule), at 5 cm voxels, scored in 3D against the scene with the head's
+// mission (eval/simulated_mission.hpp) mapped with the planar model, the beam-volume model, and the
+// beam-volume model without the water surface's depth, at 5 cm voxels, scored in 3D against the scene with the head's
 // field of view: precision, recall, F1, surface error (median, 90th percentile), erosion, free
 // accuracy; obstacles, voxel updates and mapping time. Each map is also scored against the surface
 // its log's beams heard (eval/heard_surface.hpp, issue 40) at 0 dB and at −6 dB over the receiver's
@@ -42,12 +41,6 @@ using namespace sonarmap;
 struct Model {
   const char* name;
   BeamModel beam;
-  ArcEvidence evidence;
-  std::optional<bool> clear_without_obstacle;  ///< unset: the model's default
-  bool extended_returns = true;                ///< MapperOptions::extended_returns
-  ObstacleSurface surface = MapperOptions{}.obstacle_surface;
-  bool seabed_slope = true;                    ///< MapperOptions::seabed_slope
-  bool face_slope = true;                      ///< MapperOptions::face_slope
   double water_surface_depth_m = MapperOptions{}.water_surface_depth_m;  ///< NaN: unknown
 };
 
@@ -169,22 +162,9 @@ int main(int argc, char** argv) {
     }
   }
   if (presets.empty()) presets = {"micron"};
-  const Model models[] = {{"planar", BeamModel::kPlanar, ArcEvidence::kWholeArc, std::nullopt},
-                          {"volume, whole arc", BeamModel::kVolume, ArcEvidence::kWholeArc, std::nullopt},
-                          {"volume, uniform spread", BeamModel::kVolume, ArcEvidence::kSpreadUniform, std::nullopt},
-                          {"volume, beam pattern", BeamModel::kVolume, ArcEvidence::kBeamPattern, std::nullopt},
-                          {"volume, beam pattern, first returns only", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, false},
-                          {"volume, beam pattern, silent beams clear", BeamModel::kVolume, ArcEvidence::kBeamPattern, true},
-                          {"volume, beam pattern, obstacles as shells", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kShell},
-                          {"volume, beam pattern, level seabed traces", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kVertical, false},
-                          {"volume, beam pattern, faces square to each beam", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kVertical, true, false},
-                          {"volume, beam pattern, water surface unknown", BeamModel::kVolume, ArcEvidence::kBeamPattern,
-                           std::nullopt, true, ObstacleSurface::kVertical, true, true,
-                           std::numeric_limits<double>::quiet_NaN()}};
+  const Model models[] = {{"planar", BeamModel::kPlanar},
+                          {"volume", BeamModel::kVolume},
+                          {"volume, water surface unknown", BeamModel::kVolume, std::numeric_limits<double>::quiet_NaN()}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "heard recall / F1, 0 dB | heard recall / F1, −6 dB | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
@@ -207,12 +187,6 @@ int main(int argc, char** argv) {
         if (!automatic) options.resolution_m = resolution_m;
         options.detector = detector;
         options.beam_model = model.beam;
-        options.arc_evidence = model.evidence;
-        options.clear_without_obstacle = model.clear_without_obstacle;
-        options.extended_returns = model.extended_returns;
-        options.obstacle_surface = model.surface;
-        options.seabed_slope = model.seabed_slope;
-        options.face_slope = model.face_slope;
         options.water_surface_depth_m = model.water_surface_depth_m;
         try {
           std::vector<HeardSurfaceScore> scores;
@@ -231,9 +205,7 @@ int main(int argc, char** argv) {
                       t.recall, a.f1(), scores[0].recall, scores[0].f1, scores[1].recall, scores[1].f1,
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
                       static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
-          if (model.beam == BeamModel::kVolume && model.evidence == MapperOptions{}.arc_evidence &&
-              !model.clear_without_obstacle && model.extended_returns && model.surface == MapperOptions{}.obstacle_surface &&
-              model.seabed_slope && model.face_slope && model.water_surface_depth_m == MapperOptions{}.water_surface_depth_m) {
+          if (model.beam == BeamModel::kVolume && model.water_surface_depth_m == MapperOptions{}.water_surface_depth_m) {
             by_surface += recallBySurface(preset, mission, run->simulation.scene, a);
           }
         } catch (const std::exception& error) {

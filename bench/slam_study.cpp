@@ -37,6 +37,7 @@
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 #include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/slam/slam_mapping.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
 
 namespace {
@@ -172,8 +173,10 @@ int main(int argc, char** argv) {
       const Clock::time_point start = Clock::now();
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;
-      const SlamResult slam = localize(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{}, slam_options);
-      const SonarMapper slam_map = mapSonarLog(run.log, slam.trajectory, options.sonar_to_body, MapperOptions{});
+      // What `map --slam` does: each sweep detected once, localized, and mapped with the result.
+      const SlamMapping mapped =
+          mapSonarLogWithSlam(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{}, slam_options);
+      const SlamResult& slam = mapped.slam;
       const double spent_s = seconds(start);
       const double duration_s = run.log.beams.back().time_s - run.log.beams.front().time_s;
       slowest = std::min(slowest, duration_s / spent_s);

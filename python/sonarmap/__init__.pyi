@@ -40,14 +40,7 @@ class _MappingOptions(TypedDict, total=False):
     hit_probability: float
     volume: bool
     vertical_aperture: Optional[float]
-    free_aperture: _NumberOrAuto
-    clear_without_obstacle: Union[bool, str, None]
-    extended_returns: bool
-    seabed_slope: bool
-    face_slope: bool
     water_surface_depth: Optional[float]
-    arc_evidence: str
-    obstacle_surface: str
     threads: int
 # END mapping options
 

@@ -55,13 +55,9 @@ BeamModel parseBeamModel(std::string_view name) {
   throw ValueError("unknown beam model '" + std::string(name) + "', expected planar or volume");
 }
 
-double freeVerticalAperture_rad(const MapperOptions& options) {
-  return options.free_vertical_aperture_rad.value_or(0.5 * options.vertical_aperture_rad);
-}
+double freeVerticalAperture_rad(const MapperOptions& options) { return 0.5 * options.vertical_aperture_rad; }
 
-bool clearsWithoutObstacle(const MapperOptions& options) {
-  return options.clear_without_obstacle.value_or(options.beam_model == BeamModel::kPlanar);
-}
+bool clearsWithoutObstacle(const MapperOptions& options) { return options.beam_model == BeamModel::kPlanar; }
 
 void MapperOptions::validate() const {
   checkOptionalLength(resolution_m, "resolution", false);
@@ -73,11 +69,6 @@ void MapperOptions::validate() const {
   }
   if (beam_model == BeamModel::kVolume && !(vertical_aperture_rad > 0.0 && vertical_aperture_rad < std::numbers::pi)) {
     throw ValueError("vertical aperture must be within (0, pi) rad, got " + std::to_string(vertical_aperture_rad));
-  }
-  if (free_vertical_aperture_rad &&
-      !(*free_vertical_aperture_rad > 0.0 && *free_vertical_aperture_rad <= vertical_aperture_rad)) {
-    throw ValueError("free vertical aperture must be within (0, vertical aperture] rad, got " +
-                     std::to_string(*free_vertical_aperture_rad));
   }
   if (!(max_voxel_updates > 0.0)) {
     throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));

@@ -44,10 +44,6 @@ MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args,
 MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args, const NominalBeam& beam) {
   if (!args.beam_width_given) options.beam_width_rad = beam.width_rad;
   if (!args.vertical_aperture_given) options.vertical_aperture_rad = beam.vertical_aperture_rad;
-  if (options.free_vertical_aperture_rad && *options.free_vertical_aperture_rad > options.vertical_aperture_rad) {
-    throw ValueError("--free-aperture " + std::to_string(*options.free_vertical_aperture_rad / kRadPerDeg) +
-                     " is wider than the vertical aperture");
-  }
   options.validate();
   return options;
 }
@@ -59,11 +55,6 @@ MappingArguments::MappingArguments() {
 MapperOptions toMapperOptions(const MappingArguments& args) {
   MapperOptions options;
   for (const MappingOption& option : mappingOptionTable()) applyArgument(option, args, options);
-  // The vertical aperture may be the default or the user's here; withSonarBeam checks it again
-  // against the sonar's when the user gave none.
-  if (options.free_vertical_aperture_rad && !(*options.free_vertical_aperture_rad <= options.vertical_aperture_rad)) {
-    throw ValueError("--free-aperture expects degrees in (0, the vertical aperture], got '" + args.free_aperture + "'");
-  }
   options.validate();
   return options;
 }

@@ -43,17 +43,6 @@ constexpr OptionWord kDetectors[] = {
 constexpr OptionWord kSmoothings[] = {{"none", ""}, {"gaussian", ""}, {"median", ""}, {"mean", ""}};
 constexpr OptionWord kRays[] = {{"dda", ""}, {"bresenham", ""}};
 constexpr OptionWord kAggregations[] = {{"max", ""}, {"mean", ""}};
-constexpr OptionWord kClearings[] = {
-    {"yes", ""},
-    {"no", ""},
-    {"auto", "yes for the plane, no for --3d, where a grazing seabed returns below any threshold"},
-};
-constexpr OptionWord kArcEvidences[] = {{"whole", ""}, {"uniform", ""}, {"pattern", ""}};
-constexpr OptionWord kObstacleSurfaces[] = {
-    {"vertical", "a face at the echo's range, up to where the echo ends"},
-    {"shell", "the sphere cap at that range"},
-};
-
 constinit const MappingOption kTable[] = {
     {.name = "resolution",
      .unit = Unit::kMetres,
@@ -243,37 +232,6 @@ constinit const MappingOption kTable[] = {
      .link = NumberLink{&Args::vertical_aperture_deg,
                         {.ref = [](Options& o) -> auto& { return o.vertical_aperture_rad; }},
                         &Args::vertical_aperture_given}},
-    {.name = "free-aperture",
-     .unit = Unit::kDegrees,
-     .range = openRange(0.0, 180.0),
-     .unset = {"auto", "half the vertical aperture"},
-     .help = "--3d: vertical extent of the cone a beam clears (where its silence proves water)",
-     .details = "at most the vertical aperture",
-     .link = NumberOrWordLink{&Args::free_aperture,
-                              {.ref = [](Options& o) -> auto& { return o.free_vertical_aperture_rad; }}}},
-    {.name = "clear-without-obstacle",
-     .words = kClearings,
-     .help = "Whether a beam without an obstacle clears its wedge or cone up to where its echo shows water",
-     .link = WordLink{&Args::clear_without_obstacle,
-                      [](Options& o, std::string_view w) {
-                        o.clear_without_obstacle = w == "auto" ? std::nullopt : std::optional<bool>(w == "yes");
-                      },
-                      [](const Options& a, const Options& b) {
-                        return a.clear_without_obstacle == b.clear_without_obstacle;
-                      }}},
-    {.name = "extended-returns",
-     .help = "--3d: seek weak extended returns (a grazing seabed or water surface) in the whole echo of beams without "
-             "an obstacle and map them on the level surface their onset implies",
-     .link = BoolLink{&Args::extended_returns, {.ref = [](Options& o) -> auto& { return o.extended_returns; }}}},
-    {.name = "seabed-slope",
-     .help = "--3d: weak seabed returns follow the seabed's slope, fitted to their onsets over the whole run (a "
-             "robust plane, kept where a test asks for a slope), and a loud level return whose onset lies above that "
-             "seabed stays an obstacle; no: the level through each onset",
-     .link = BoolLink{&Args::seabed_slope, {.ref = [](Options& o) -> auto& { return o.seabed_slope; }}}},
-    {.name = "face-slope",
-     .help = "--3d: a vertical face seen at oblique incidence recedes across its beam as the beams beside it measure; "
-             "no: square to each beam at its leading edge",
-     .link = BoolLink{&Args::face_slope, {.ref = [](Options& o) -> auto& { return o.face_slope; }}}},
     {.name = "water-surface-depth",
      .unit = Unit::kMetres,
      .unset = {"none", "unknown"},
@@ -288,17 +246,6 @@ constinit const MappingOption kTable[] = {
                                .set = [](Options& o, std::optional<double> v) {
                                  o.water_surface_depth_m = v.value_or(std::numeric_limits<double>::quiet_NaN());
                                }}}},
-    {.name = "arc-evidence",
-     .words = kArcEvidences,
-     .help = "--3d: how an echo's evidence is shared over its shell",
-     .link = WordLink{&Args::arc_evidence, [](Options& o, std::string_view w) { o.arc_evidence = parseArcEvidence(w); },
-                      [](const Options& a, const Options& b) { return a.arc_evidence == b.arc_evidence; }}},
-    {.name = "obstacle-surface",
-     .words = kObstacleSurfaces,
-     .help = "--3d: where an obstacle lies in its cone",
-     .link = WordLink{&Args::obstacle_surface,
-                      [](Options& o, std::string_view w) { o.obstacle_surface = parseObstacleSurface(w); },
-                      [](const Options& a, const Options& b) { return a.obstacle_surface == b.obstacle_surface; }}},
     {.name = "threads",
      .unit = Unit::kCount,
      .range = atLeast(1.0, 64.0),

@@ -50,19 +50,19 @@ struct LoudReturn {
 /// leading edge (the obstacle's range: the run may begin earlier, where a loud surface lights bins
 /// in the pattern's skirt outside the nominal aperture, and a level drawn from the aperture's edge
 /// there lies too high: 1.1 m over a seabed 20 m under a tilted Ping360), its loud echo ending where
-/// it falls back (BeamDetection::echo_end_m) or, not measured, with the run. Without a run, when the
-/// whole echo was searched (`searched`): the loud echo alone, from the obstacle's range to where it
+/// it falls back (BeamDetection::echo_end_m) or, not measured, with the run. Without a run: the
+/// loud echo alone, from the obstacle's range to where it
 /// falls back: a seabed loud over most of a tilted head's sweep lifts the background the run
 /// detector compares with (on the Ping360's tilted loop at 50 m, 9 in 10 of the obstacle beams where
 /// the seabed enters the lower edge had no run), yet its loud echo outlasts any face. Nothing
 /// without a measured end.
-std::optional<LoudReturn> loudReturn(const BeamDetection& detection, bool searched) {
+std::optional<LoudReturn> loudReturn(const BeamDetection& detection) {
   const bool fell_back = detection.echo_end_m >= detection.range_m;
   if (detection.hasExtendedReturn()) {
     const double loud_end_m = fell_back ? std::min(detection.echo_end_m, detection.extended_end_m) : detection.extended_end_m;
     return LoudReturn{std::max(detection.extended_onset_m, detection.range_m), loud_end_m, detection.extended_end_m};
   }
-  if (!searched || !fell_back) return std::nullopt;
+  if (!fell_back) return std::nullopt;
   return LoudReturn{detection.range_m, detection.echo_end_m, detection.echo_end_m};
 }
 
@@ -118,7 +118,7 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
   std::sort(work_->occupied_keys.begin(), work_->occupied_keys.end());
 }
 
-SweepDetection SonarMapper::detectSweep(PolarImage& polar) const { return detectSweep(polar, options_.extended_returns); }
+SweepDetection SonarMapper::detectSweep(PolarImage& polar) const { return detectSweep(polar, true); }
 
 SweepCalibration SonarMapper::sweepCalibration(PolarImage& polar) const { return detectSweep(polar, false).calibration; }
 
@@ -331,7 +331,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     beam.surface_z_m = -options_.water_surface_depth_m;  // nedToMap: the map's z is −depth
     std::optional<PlannedBeam> obstacle;  // a loud trace: the obstacle it was detected as
     const std::optional<LoudReturn> loud =
-        hit && options_.beam_model == BeamModel::kVolume ? loudReturn(detection, options_.extended_returns) : std::nullopt;
+        hit && options_.beam_model == BeamModel::kVolume ? loudReturn(detection) : std::nullopt;
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
@@ -355,7 +355,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (beam.traced()) ++stats_.extended_returns;
     if (beam.hit) ++stats_.obstacles;
   }
-  if (options_.beam_model == BeamModel::kVolume && options_.seabed_slope) placeSeabedTraces();
+  if (options_.beam_model == BeamModel::kVolume) placeSeabedTraces();
   planBeams();
   keySweep();
   integrateFreeCells();

@@ -118,17 +118,4 @@ void planSweep(const std::vector<PlannedBeam>& beams, double beam_width_rad, dou
   planArcs(beams, beam_width_rad, voxel_m, tolerance_m, hits);
 }
 
-ArcEvidence parseArcEvidence(std::string_view name) {
-  if (name == "whole") return ArcEvidence::kWholeArc;
-  if (name == "uniform") return ArcEvidence::kSpreadUniform;
-  if (name == "pattern") return ArcEvidence::kBeamPattern;
-  throw ValueError("unknown arc evidence '" + std::string(name) + "', expected whole, uniform or pattern");
-}
-
-ObstacleSurface parseObstacleSurface(std::string_view name) {
-  if (name == "shell") return ObstacleSurface::kShell;
-  if (name == "vertical") return ObstacleSurface::kVertical;
-  throw ValueError("unknown obstacle surface '" + std::string(name) + "', expected shell or vertical");
-}
-
 }  // namespace sonarmap

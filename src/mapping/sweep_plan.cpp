@@ -47,9 +47,11 @@ void SonarMapper::planBeams() {
     return end;
   };
   const BeamShape shape = beamShape();
-  planArcs(beams, shape, voxel_m, work.tolerance_m, options_.arc_evidence, work.hit_points, options_.obstacle_surface,
-           options_.face_slope);  // each beam's own pose
-  // The free space: the cone's loud core only (MapperOptions::free_vertical_aperture_rad).
+  // Each beam's own pose; the volume model's obstacles are vertical faces that recede across their
+  // beam where the neighbours measure it, the evidence shared by the beam pattern (sweep_fan.hpp).
+  planArcs(beams, shape, voxel_m, work.tolerance_m, ArcEvidence::kBeamPattern, work.hit_points, ObstacleSurface::kVertical,
+           true);
+  // The free space: the cone's loud core only (freeVerticalAperture_rad).
   BeamShape fshape = shape;
   if (options_.beam_model == BeamModel::kVolume) fshape.vertical_aperture_rad = freeVerticalAperture_rad(options_);
   if (beams.empty() || groupEnd(0) == beams.size()) {  // one pose (a static sweep): one fan, as always

@@ -154,8 +154,6 @@ TEST(mappingBeamVolume, VerticalFaceObstaclesLieOnTheWallUpToTheEchosEnd) {
   for (const HitPoint& hit : face) {
     EXPECT_LE(std::abs(std::asin(hit.point_m.z() / hit.point_m.norm())), 75.0 * kDegree + 1e-9);
   }
-  EXPECT_THROW(parseObstacleSurface("wall"), ValueError);
-  EXPECT_EQ(parseObstacleSurface("shell"), ObstacleSurface::kShell);
 }
 
 // Another beam that saw water farther carves the part of the shell inside its cone; the evidence
@@ -258,11 +256,10 @@ MapperOptions volumeOptions() {
 }
 
 // One sweep of 200 overlapping cones on an empty map: every known cell holds exactly one update
-// (a miss, or a hit), and the counts add up to the cells.
+// (a miss, or one hit weighted by the beam pattern, at most the whole hit), and the counts add up
+// to the cells.
 TEST(mappingBeamVolume, EachVoxelIsUpdatedOncePerSweep) {
-  MapperOptions options = volumeOptions();
-  options.arc_evidence = ArcEvidence::kWholeArc;  // every hit the same update
-  SonarMapper mapper(options);
+  SonarMapper mapper(volumeOptions());
   PolarImage polar = makeSweep(200, 100);
   std::vector<BeamDetection> detections;
   for (int i = 0; i < 200; ++i) {
@@ -275,45 +272,40 @@ TEST(mappingBeamVolume, EachVoxelIsUpdatedOncePerSweep) {
   map.forEachLeaf([&](const LeafView<16>& leaf) {
     const auto edge = static_cast<std::size_t>(leaf.edgeVoxels());  // pruned leaves: their voxels
     known += edge * edge * edge;
-    if (leaf.log_odds != map.model().miss && leaf.log_odds != map.model().hit) ++other;
+    const bool one_hit = leaf.log_odds > 0.0F && leaf.log_odds <= map.model().hit;
+    if (leaf.log_odds != map.model().miss && !one_hit) ++other;
   });
   EXPECT_EQ(other, 0U);
   EXPECT_EQ(known, mapper.stats().free_updates + mapper.stats().occupied_updates);
   EXPECT_GT(mapper.stats().free_updates, 100000U);  // a 3D volume, not a plane
 }
 
-// A cone whose quiet outer part crosses a cell the map holds occupied leaves it occupied; its loud
-// inner part clears it.
+// A cone whose quieter outer part (half the free core's extent off the axis and beyond) crosses a
+// cell the map holds occupied leaves it occupied; its loud inner part clears it.
 TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
-  MapperOptions options = volumeOptions();
-  options.free_vertical_aperture_rad = options.vertical_aperture_rad;  // clear the whole cone
-  options.clear_without_obstacle = true;  // the water beams below clear (not the 3D default)
-  options.obstacle_surface = ObstacleSurface::kShell;  // the obstacle on the target, on the axis
-  SonarMapper mapper(options);
+  SonarMapper mapper(volumeOptions());
   const Key16 target = *mapper.map().coder().keyOf(Eigen::Vector3d(2.0, 0.0, 0.0));
   const Eigen::Vector3d target_m = mapper.map().coder().centerOf(target);
   auto occupied = [&] {
     const std::optional<float> log_odds = mapper.map().search(target);
     return log_odds && mapper.map().model().isOccupied(*log_odds);
   };
-  PolarImage polar = makeSweep(1, 200);
-  // First: a sonar 2 m back and 0.5 m lower, looking up 14° (0.5 / 2), maps an obstacle at the
-  // target with its axis.
-  const Eigen::Isometry3d below = tiltedPose(target_m + Eigen::Vector3d(-2.0, 0.0, -0.5), 0.0, -std::atan2(0.5, 2.0), 0.0);
-  const double range_m = std::hypot(2.0, 0.5);
-  const int bin = static_cast<int>(range_m / kVoxel);
-  for (int i = 0; i < 4; ++i) mapper.integrateSweep(polar, {BeamDetection{bin, 200, range_m}}, below);
+  PolarImage polar = makeSweep(1, 250);
+  // First: a level sonar 2 m behind the target maps a face through it (the cone's axis is its
+  // most horizontal ray: the face at 2 m).
+  const Eigen::Isometry3d behind = tiltedPose(target_m + Eigen::Vector3d(-2.0, 0.0, 0.0), 0.0, 0.0, 0.0);
+  const int bin = static_cast<int>(2.0 / kVoxel);
+  for (int i = 0; i < 4; ++i) mapper.integrateSweep(polar, {BeamDetection{bin, 200, 2.0}}, behind);
   ASSERT_TRUE(occupied());
-  // Then a level sonar 0.45 m higher sees water to 4 m: the target lies 12.7° below its axis, in
-  // the outer part (|e| > 35° / 4): the cell stays occupied, however often.
-  BeamDetection water;
-  water.water_range_m = 4.0;
-  const Eigen::Vector3d above_m = target_m + Eigen::Vector3d(-2.0, 0.0, 0.45);
-  for (int i = 0; i < 10; ++i) mapper.integrateSweep(polar, {water}, tiltedPose(above_m, 0.0, 0.0, 0.0));
+  // Then a level sonar higher up sees an obstacle at 4.5 m: the target lies 6.5° below its axis,
+  // in the outer part of the cleared core (35° / 8 < |e| ≤ 35° / 4): it stays occupied.
+  const BeamDetection far{static_cast<int>(4.5 / kVoxel), 200, 4.5};
+  const Eigen::Vector3d above_m = target_m + Eigen::Vector3d(-2.0, 0.0, 2.0 * std::tan(6.5 * kDegree));
+  for (int i = 0; i < 10; ++i) mapper.integrateSweep(polar, {far}, tiltedPose(above_m, 0.0, 0.0, 0.0));
   EXPECT_TRUE(occupied());
   // Tilted down onto it, the inner part clears it.
-  const Eigen::Isometry3d looking = tiltedPose(above_m, 0.0, std::atan2(0.45, 2.0), 0.0);
-  for (int i = 0; i < 10; ++i) mapper.integrateSweep(polar, {water}, looking);
+  const Eigen::Isometry3d looking = tiltedPose(above_m, 0.0, 6.5 * kDegree, 0.0);
+  for (int i = 0; i < 10; ++i) mapper.integrateSweep(polar, {far}, looking);
   EXPECT_FALSE(occupied());
 }
 
@@ -322,33 +314,29 @@ TEST(mappingBeamVolume, OuterConeDoesNotErodeOccupiedCells) {
 TEST(mappingBeamVolume, TiltedMountingTiltsTheCone) {
   const Eigen::Isometry3d tilted = tiltedPose({0.0, 0.0, 0.0}, 0.0, 25.0 * kDegree, 0.0);  // nose down
   PolarImage polar = makeSweep(1, 150);
-  BeamDetection water;
-  water.water_range_m = 3.0;
-  auto zExtent = [&](MapperOptions options) {
-    options.clear_without_obstacle = true;  // a beam of water clears (not the 3D default)
+  const BeamDetection obstacle{static_cast<int>(3.0 / kVoxel), 200, 3.0};
+  auto zExtent = [&](const MapperOptions& options) {
     SonarMapper mapper(options);
-    mapper.integrateSweep(polar, {water}, tilted);
+    mapper.integrateSweep(polar, {obstacle}, tilted);
     double lowest_z = 0.0, highest_z = -1.0;
     mapper.map().forEachLeaf([&](const LeafView<16>& leaf) {
+      if (leaf.log_odds >= 0.0F) return;  // the free cells only
       const double z = mapper.map().coder().centerOf(leaf.key).z();
       lowest_z = std::min(lowest_z, z);
       highest_z = std::max(highest_z, z);
     });
     return std::pair{lowest_z, highest_z};
   };
-  // Axis 25° down at 3 m; the free core spans 16.25°…33.75° down: z down to −1.67 m.
+  // Axis 25° down, free to 3 m less the 4 cm tolerance; the free core spans 16.25°…33.75° down:
+  // z down to −1.64 m.
   const auto [core_low, core_high] = zExtent(volumeOptions());
-  EXPECT_NEAR(core_low, -3.0 * std::sin(33.75 * kDegree), 0.05);
+  EXPECT_NEAR(core_low, -2.96 * std::sin(33.75 * kDegree), 0.05);
   EXPECT_LT(core_high, 0.05);  // nothing above the sonar's level
-  // Clearing the whole aperture: 7.5°…42.5° down, to z = −2.03 m.
-  MapperOptions whole = volumeOptions();
-  whole.free_vertical_aperture_rad = whole.vertical_aperture_rad;
-  EXPECT_NEAR(zExtent(whole).first, -3.0 * std::sin(42.5 * kDegree), 0.05);
 }
 
-// Without an obstacle a cone clears nothing by default (MapperOptions::clear_without_obstacle):
-// its silence may hide a grazing seabed. The planar model, or the option set, clears as before.
-TEST(mappingBeamVolume, BeamWithoutObstacleClearsNothingByDefault) {
+// Without an obstacle a cone clears nothing (clearsWithoutObstacle): its silence may hide a grazing
+// seabed. The planar model's wedge clears.
+TEST(mappingBeamVolume, BeamWithoutObstacleClearsNothingInTheCone) {
   PolarImage polar = makeSweep(1, 150);
   BeamDetection water;
   water.water_range_m = 3.0;
@@ -358,15 +346,10 @@ TEST(mappingBeamVolume, BeamWithoutObstacleClearsNothingByDefault) {
     EXPECT_EQ(mapper.stats().beams_without_evidence + mapper.stats().beams_used, 1U);
     return mapper.stats().free_updates;
   };
-  MapperOptions volume = volumeOptions();
-  EXPECT_EQ(freeCells(volume), 0U);
-  volume.clear_without_obstacle = true;
-  EXPECT_GT(freeCells(volume), 1000U);  // the cone's core to 3 m
+  EXPECT_EQ(freeCells(volumeOptions()), 0U);
   MapperOptions planar = volumeOptions();
   planar.beam_model = BeamModel::kPlanar;
   EXPECT_GT(freeCells(planar), 50U);  // the wedge to 3 m
-  planar.clear_without_obstacle = false;
-  EXPECT_EQ(freeCells(planar), 0U);
   // A beam with an obstacle clears up to it either way.
   SonarMapper mapper(volumeOptions());
   mapper.integrateSweep(polar, {BeamDetection{120, 200, 120 * kVoxel}}, Eigen::Isometry3d::Identity());
@@ -477,21 +460,15 @@ TEST(mappingBeamVolume, StepIntoReverberationIsTheBeamsFirstReturn) {
   }
 }
 
-// Options: the free aperture must lie within the aperture; the volume model's aperture in (0, π).
+// Options: the volume model's aperture in (0, π); the cone it clears is half of it.
 TEST(mappingBeamVolume, ApertureOptionsAreChecked) {
   MapperOptions options = volumeOptions();
-  options.free_vertical_aperture_rad = options.vertical_aperture_rad * 1.01;
-  EXPECT_THROW(options.validate(), ValueError);
-  options.free_vertical_aperture_rad = 0.0;
-  EXPECT_THROW(options.validate(), ValueError);
-  options.free_vertical_aperture_rad.reset();
+  EXPECT_DOUBLE_EQ(freeVerticalAperture_rad(options), 0.5 * options.vertical_aperture_rad);
   options.vertical_aperture_rad = std::numbers::pi;
   EXPECT_THROW(options.validate(), ValueError);
   options.beam_model = BeamModel::kPlanar;  // unused by the planar model
   EXPECT_NO_THROW(options.validate());
   EXPECT_EQ(parseBeamModel("volume"), BeamModel::kVolume);
-  EXPECT_EQ(parseArcEvidence("pattern"), ArcEvidence::kBeamPattern);
-  EXPECT_THROW(parseArcEvidence("all"), ValueError);
 }
 
 }  // namespace

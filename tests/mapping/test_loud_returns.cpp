@@ -23,12 +23,11 @@ const BeamShape kMicron{3.0 * kDegree, 35.0 * kDegree};
 using testing::makeFullTurnSweep;
 using testing::tiltedPose;
 
-/// The beam-volume model at 5 cm, with or without the whole echo searched.
-MapperOptions volume(bool extended_returns) {
+/// The beam-volume model at 5 cm.
+MapperOptions volume() {
   MapperOptions options;
   options.beam_model = BeamModel::kVolume;
   options.resolution_m = 0.05;
-  options.extended_returns = extended_returns;
   return options;
 }
 
@@ -64,9 +63,9 @@ TEST(mappingLoudReturns, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
   echo.echo_onset_m = 2.2;
   echo.extended_onset_m = 2.2;
   echo.extended_end_m = 3.6;  // the lit run: the face, then the seabed at its foot
-  auto mapped = [&](double loud_end_m, bool searched = true) {
+  auto mapped = [&](double loud_end_m) {
     echo.echo_end_m = loud_end_m;
-    SonarMapper mapper(volume(searched));
+    SonarMapper mapper(volume());
     mapper.integrateSweep(polar, {echo}, down);
     return mapper.stats();
   };
@@ -83,7 +82,6 @@ TEST(mappingLoudReturns, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
   const MappingStats loud_only = mapped(3.6);
   EXPECT_EQ(loud_only.obstacles, 0U);
   EXPECT_EQ(loud_only.extended_returns, 1U);
-  EXPECT_EQ(mapped(3.6, false).obstacles, 1U);  // first returns only: the obstacle, as before
 }
 
 // A loud face can outlast the nominal cone's face bound too (it is heard beyond the −3 dB edge),
@@ -92,7 +90,7 @@ TEST(mappingLoudReturns, AFacesLoudEchoIntoTheSeabedAtItsFootStaysAFace) {
 // weakly from where it enters the lower edge; one hears it loud from there (traced: its onset lies
 // on the seabed) and one hears a face from 2.2 m whose loud echo lasts to 3.6 m, longer than the
 // face bound 2.2 / cos 42.5° ≈ 2.98 m, but whose onset on the edge lies 0.9 m over the seabed:
-// it stays an obstacle. Without the seabed's onsets (seabed_slope off) both loud beams are traced.
+// it stays an obstacle. Without the weak seabed returns (no onsets to fit) both loud beams are traced.
 TEST(mappingLoudReturns, ALoudTraceAboveTheMeasuredSeabedStaysAnObstacle) {
   const Eigen::Isometry3d down = tiltedPose(Eigen::Vector3d::Zero(), 0.0, 25.0 * kDegree, 0.0);
   PolarImage polar = makeFullTurnSweep(41, 200, 0.025);
@@ -119,16 +117,19 @@ TEST(mappingLoudReturns, ALoudTraceAboveTheMeasuredSeabedStaysAnObstacle) {
       beam.echo_end_m = beam.extended_end_m = 3.6;
     }
   }
-  MapperOptions options = volume(true);
-  SonarMapper measured(options);
+  SonarMapper measured(volume());
   measured.integrateSweep(polar, detections, down);
   EXPECT_EQ(measured.stats().obstacles, 1U);
   EXPECT_EQ(measured.stats().extended_returns, 40U);
-  options.seabed_slope = false;
-  SonarMapper unmeasured(options);
+  for (int i = 0; i < 41; ++i) {
+    if (i == 10 || i == 20) continue;
+    BeamDetection& beam = detections[static_cast<std::size_t>(i)];
+    beam.echo_onset_m = beam.extended_onset_m = beam.extended_end_m = std::numeric_limits<double>::quiet_NaN();
+  }
+  SonarMapper unmeasured(volume());
   unmeasured.integrateSweep(polar, detections, down);
   EXPECT_EQ(unmeasured.stats().obstacles, 0U);
-  EXPECT_EQ(unmeasured.stats().extended_returns, 41U);
+  EXPECT_EQ(unmeasured.stats().extended_returns, 2U);
 }
 
 // A cone that points up under a known water surface meets it first on its top ray: a head tilted

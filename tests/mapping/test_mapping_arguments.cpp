@@ -24,10 +24,6 @@ TEST(MappingArguments, DefaultsAreTheLibrarysOptions) {
   EXPECT_DOUBLE_EQ(options.max_range_m, library.max_range_m);
   EXPECT_DOUBLE_EQ(options.octree.occupancy.prob_hit, library.octree.occupancy.prob_hit);
   EXPECT_EQ(options.beam_model, BeamModel::kPlanar);
-  EXPECT_FALSE(options.clear_without_obstacle.has_value());
-  EXPECT_TRUE(options.extended_returns);
-  EXPECT_TRUE(options.seabed_slope);
-  EXPECT_TRUE(options.face_slope);
 }
 
 TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
@@ -35,26 +31,16 @@ TEST(MappingArguments, UserUnitsBecomeLibraryUnits) {
   args.resolution = "0.05";
   args.beam_width_deg = 2.0;
   args.vertical_aperture_deg = 25.0;
-  args.free_aperture = "10";
   args.volume = true;
   args.detector = "cfar-os";
-  args.clear_without_obstacle = "yes";
   args.min_range = "0.3";
-  args.extended_returns = false;
-  args.seabed_slope = false;
-  args.face_slope = false;
   const MapperOptions options = toMapperOptions(args);
   EXPECT_DOUBLE_EQ(*options.resolution_m, 0.05);
   EXPECT_DOUBLE_EQ(options.beam_width_rad, 2.0 * kRadPerDeg);
   EXPECT_DOUBLE_EQ(options.vertical_aperture_rad, 25.0 * kRadPerDeg);
-  EXPECT_DOUBLE_EQ(*options.free_vertical_aperture_rad, 10.0 * kRadPerDeg);
   EXPECT_EQ(options.beam_model, BeamModel::kVolume);
   EXPECT_EQ(options.detector.kind, Detector::kCfar);
-  EXPECT_EQ(options.clear_without_obstacle, true);
   EXPECT_DOUBLE_EQ(*options.detector.min_range_m, 0.3);
-  EXPECT_FALSE(options.extended_returns);
-  EXPECT_FALSE(options.seabed_slope);
-  EXPECT_FALSE(options.face_slope);
 }
 
 TEST(MappingArguments, BadValuesNameTheOption) {
@@ -93,9 +79,6 @@ TEST(MappingArguments, TheSonarsBeamUnlessGiven) {
   const MapperOptions given = withSonarBeam(toMapperOptions(args), args, NominalBeam{0.01, 0.2});
   EXPECT_DOUBLE_EQ(given.beam_width_rad, 5.0 * kRadPerDeg);
   EXPECT_DOUBLE_EQ(given.vertical_aperture_rad, 0.2);
-  args = {};
-  args.free_aperture = "30";  // wider than a 25° aperture the sonar brings
-  EXPECT_THROW(withSonarBeam(toMapperOptions(args), args, LogFormat::kPing360), ValueError);
 }
 
 TEST(MappingArguments, InputFormatByNameOrExtension) {

@@ -99,11 +99,6 @@ TEST(MappingOptionTable, RefusedValuesNameTheFlagAndWhatItAccepts) {
       }
     }
   }
-  // The free aperture is also checked against the vertical aperture.
-  MappingArguments args;
-  args.free_aperture = "20";
-  args.vertical_aperture_deg = 15.0;
-  EXPECT_THROW(toMapperOptions(args), ValueError);
 }
 
 TEST(MappingOptionTable, HelpStatesUnitRangeAndWords) {

@@ -182,11 +182,10 @@ MsisSimulation tiltedMicron(double altitude_m, bool seabed, double tilt_deg = 25
   return simulateMsis(scene, options);
 }
 
-MapperOptions volume(bool extended_returns) {
+MapperOptions volume() {
   MapperOptions options;
   options.beam_model = BeamModel::kVolume;
   options.resolution_m = 0.05;
-  options.extended_returns = extended_returns;
   return options;
 }
 
@@ -208,77 +207,47 @@ Occupied occupiedAround(const SonarMapper& mapper, double floor_z_m, double tole
 }
 
 // The seabed under a head tilted 25° returns a few dB above the noise per bin (+3.5 dB at 4 m,
-// sonar_equation.hpp): no obstacle, but an extended return. With the whole echo the map has a
-// floor at the seabed's depth; with first returns only it has nothing at all.
+// sonar_equation.hpp): no obstacle, but an extended return. From the whole echo the map has a
+// floor at the seabed's depth (first returns alone had nothing at all).
 TEST(mappingWholeEcho, TiltedHeadMapsTheSeabedAsAFloor) {
   const MsisSimulation run = tiltedMicron(2.0, true);
-  const SonarMapper whole = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), volume(true));
+  const SonarMapper whole = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), volume());
   const Occupied floor = occupiedAround(whole, -2.0);
   std::printf("seabed 2 m under a tilted Micron: %zu occupied, %zu within 0.1 m of it, %zu over 0.3 m above it\n",
               floor.total, floor.on_floor, floor.above_floor);
   EXPECT_GT(floor.total, 500U);
   EXPECT_GE(static_cast<double>(floor.on_floor), 0.8 * static_cast<double>(floor.total));
   EXPECT_EQ(floor.above_floor, 0U);
-  const SonarMapper first = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), volume(false));
-  EXPECT_EQ(occupiedAround(first, -2.0).total, 0U);
-}
-
-// A static head tilted 25° over a seabed sloping 10° down ahead of it: its weak returns' onsets are
-// all seen from one place, looking one way, where the errors of their onsets do not cancel (they
-// fit a slope of about 39°), so the traces stay level through each onset (seabed_slope.hpp): the
-// map is the one of level traces.
-TEST(mappingWholeEcho, AStaticHeadsOnsetsGiveTheSeabedNoSlope) {
-  const Eigen::Vector3d normal(std::sin(10.0 * kDegree), 0.0, std::cos(10.0 * kDegree));  // deeper towards +x
-  MsisSimulationOptions simulation;
-  const SonarPreset head = sonarPreset("micron");
-  simulation.head = head.head;
-  simulation.echo = head.echo;
-  simulation.turns = 6;
-  simulation.sonar_to_body = tiltedMounting(25.0);
-  const MsisSimulation run = simulateMsis(Scene{{Plane{{0.0, 0.0, -2.0}, normal, 0.5}}}, simulation);
-  MapperOptions options = volume(true);
-  const SonarMapper sloped = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), options);
-  options.seabed_slope = false;
-  const SonarMapper level = mapSonarLog(run.log, run.nav, tiltedMounting(25.0), options);
-  EXPECT_GT(sloped.stats().extended_returns, 100U);
-  EXPECT_EQ(sloped.stats().occupied_updates, level.stats().occupied_updates);
-  const Occupied a = occupiedAround(sloped, -2.0), b = occupiedAround(level, -2.0);
-  EXPECT_EQ(a.total, b.total);
-  EXPECT_EQ(a.on_floor, b.on_floor);
 }
 
 // The tilted loop over quay3d turns the head round the seabed: the onsets' errors cancel, their
-// plane gives the seabed's 7° slope, and the traces find more of it than level ones do (issue 21's
-// sixth round, docs/accuracy.md: seabed recall 0.291 → 0.336).
+// plane gives the seabed's 7° slope, and the traces follow it (docs/accuracy.md, issue 21's sixth
+// round: level traces through each onset found less of it).
 TEST(mappingWholeEcho, AVehicleTurningOverASlopeMapsTheSeabedAlongIt) {
   MapperOptions options;
   options.resolution_m = 0.05;
   options.beam_model = BeamModel::kVolume;
   const MissionAccuracy sloped = evaluateMission(SimulatedMission{"micron", "quay3d", "tilted-loop"}, options);
-  options.seabed_slope = false;
-  const MissionAccuracy level = evaluateMission(SimulatedMission{"micron", "quay3d", "tilted-loop"}, options);
   auto seabedRecall = [](const MissionAccuracy& accuracy) {
     for (const SurfaceRecall& surface : accuracy.truth.recall_by_surface) {
       if (surface.primitive == 1) return static_cast<double>(surface.found_voxels) / static_cast<double>(surface.visible_voxels);
     }
     return 0.0;
   };
-  std::printf("quay3d tilted loop, seabed recall: fitted slope %.3f, level traces %.3f; F1 %.3f, %.3f\n",
-              seabedRecall(sloped), seabedRecall(level), sloped.f1(), level.f1());
-  EXPECT_GT(seabedRecall(sloped), seabedRecall(level) + 0.03);
-  EXPECT_GT(sloped.f1(), level.f1());
+  std::printf("quay3d tilted loop, seabed recall %.3f, F1 %.3f\n", seabedRecall(sloped), sloped.f1());
+  EXPECT_GT(seabedRecall(sloped), 0.60);  // 0.630 when written (2026-11-26)
 }
 
 // The Ping360 hears a seabed 20 m under its head tilted 25° as an obstacle, tens of dB above its
 // noise (sonar_equation.hpp), and the echo goes on to the end of its 50 m. Where the cone points
 // only down and the echo outlasts a face's (bearings within about 30° of the tilt's), that makes it
-// a level return: traced, the seabed there is a floor; as shells, arcs 14 m tall above it. Counted
+// a level return: traced, the seabed there is a floor (as shells it was arcs 14 m tall above it). Counted
 // within 25° of bearing 0. The floor lies 0.1–0.9 m high (five 0.2 m voxels): so loud a seabed is
 // heard a little outside the nominal aperture, so its echo starts before the edge the level is
 // drawn from, and each beam's onset has its own error.
 TEST(mappingWholeEcho, ALoudSeabedHeardAsObstaclesIsMappedAsAFloor) {
   const MsisSimulation run = tiltedMicron(20.0, true, 25.0, "ping360");
-  MapperOptions options = volume(true);
+  MapperOptions options = volume();
   options.resolution_m = 0.2;
   const MsisHeadOptions head = sonarPreset("ping360").head;
   options.beam_width_rad = head.horizontal_beam_width_rad;
@@ -295,22 +264,18 @@ TEST(mappingWholeEcho, ALoudSeabedHeardAsObstaclesIsMappedAsAFloor) {
     return counts;
   };
   const Occupied floor = ahead(mapSonarLog(run.log, run.nav, tiltedMounting(25.0), options));
-  options.extended_returns = false;
-  const Occupied shells = ahead(mapSonarLog(run.log, run.nav, tiltedMounting(25.0), options));
   std::printf("seabed 20 m under a tilted Ping360, within 25° of its tilt: traced %zu occupied, %zu within 1 m, "
-              "%zu over 1.2 m above; first returns only %zu, %zu, %zu\n", floor.total, floor.on_floor,
-              floor.above_floor, shells.total, shells.on_floor, shells.above_floor);
+              "%zu over 1.2 m above\n", floor.total, floor.on_floor, floor.above_floor);
   EXPECT_GT(floor.on_floor, 1000U);
   EXPECT_GE(static_cast<double>(floor.on_floor), 0.8 * static_cast<double>(floor.total));
   EXPECT_EQ(floor.above_floor, 0U);
-  EXPECT_GT(shells.above_floor, shells.total / 2);
 }
 
 // Live mapping keeps each whole sweep's calibration for the beams that follow; it does not search
 // that sweep for extended returns, and the calibration is the one the full detection returns.
 TEST(mappingWholeEcho, LiveCalibrationSkipsTheSearchAndKeepsTheSameCalibration) {
   const MsisSimulation run = tiltedMicron(2.0, true);
-  const SonarMapper mapper(volume(true));
+  const SonarMapper mapper(volume());
   const std::size_t beams = run.log.beams.size() / 4;  // one turn
   PolarImage for_detection = makePolarImage(run.log.beams, 0, beams);
   PolarImage for_calibration = for_detection;
@@ -335,7 +300,7 @@ TEST(mappingWholeEcho, SpeckleInOpenWaterDoesNotAccumulate) {
     for (const double tilt_deg : {0.0, 25.0}) {
       for (const double depth_m : {0.0, 3.0}) {
         const MsisSimulation run = tiltedMicron(0.0, false, tilt_deg, preset, depth_m);
-        MapperOptions options = volume(true);
+        MapperOptions options = volume();
         options.resolution_m.reset();
         const SonarMapper mapper = mapSonarLog(run.log, run.nav, tiltedMounting(tilt_deg), options);
         EXPECT_EQ(occupiedAround(mapper, 0.0).total, 0U) << preset << " tilted " << tilt_deg << "°, " << depth_m << " m deep";
@@ -351,14 +316,14 @@ TEST(mappingWholeEcho, SpeckleInOpenWaterDoesNotAccumulate) {
 // elevation is not measured; docs/accuracy.md). With the surface unknown they map nothing.
 TEST(mappingWholeEcho, ALevelHeadUnderTheSurfaceMapsTheSeabed) {
   const MsisSimulation run = tiltedMicron(1.0, true, 0.0, "micron", 2.0);
-  const SonarMapper known = mapSonarLog(run.log, run.nav, tiltedMounting(0.0), volume(true));
+  const SonarMapper known = mapSonarLog(run.log, run.nav, tiltedMounting(0.0), volume());
   const Occupied floor = occupiedAround(known, -3.25, 0.25);
   std::printf("seabed 1 m under a level Micron 2 m deep: %zu occupied, %zu from 0 to 0.5 m below it, %zu higher\n",
               floor.total, floor.on_floor, floor.above_floor);
   EXPECT_GT(known.stats().extended_returns, 0U);
   EXPECT_GT(floor.on_floor, 200U);
   EXPECT_EQ(floor.on_floor, floor.total);
-  MapperOptions unknown = volume(true);
+  MapperOptions unknown = volume();
   unknown.water_surface_depth_m = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(occupiedAround(mapSonarLog(run.log, run.nav, tiltedMounting(0.0), unknown), -3.0).total, 0U);
 }

@@ -34,9 +34,10 @@ RayAlgorithm parseRayAlgorithm(std::string_view name);
 enum class BeamModel {
   /// The sonar's plane (z = 0 of the sonar frame): wedges and arcs, a 2D map (paper §6–§8).
   kPlanar,
-  /// The whole beam: the cone of horizontal width × vertical aperture is free up to the obstacle,
-  /// and the obstacle is the shell across both (issue 11; Moravec & Elfes 1985, Elfes 1987,
-  /// Fairfield et al. 2007). A 3D map once the vehicle moves, turns or tilts the sonar.
+  /// The whole beam: the loud core of the cone of horizontal width × vertical aperture is free up to
+  /// the obstacle, and the obstacle is a vertical face across both, weighted by the beam pattern
+  /// (docs/mapping-3d.md; Moravec & Elfes 1985, Elfes 1987, Fairfield et al. 2007, Ribas et al.
+  /// 2008). A 3D map once the vehicle moves, turns or tilts the sonar.
   kVolume,
 };
 
@@ -44,11 +45,20 @@ enum class BeamModel {
 BeamModel parseBeamModel(std::string_view name);
 
 struct MapperOptions;
-/// The vertical aperture the volume model clears: MapperOptions::free_vertical_aperture_rad, or
-/// half the vertical aperture when unset, radians.
+/// The vertical extent of the cone the volume model clears, radians: half the vertical aperture,
+/// where the Gaussian two-way pattern is above −1.5 dB (g(e) = 4^−(2e/a)², 0.25 at the −3 dB
+/// edges). A beam proves water only where it is loud: towards the aperture's edges a grazing
+/// seabed or surface returns too little to rise above the noise, and clearing the whole aperture
+/// erased them (erosion on the simulated missions: docs/accuracy.md). The obstacle's face and the
+/// carving of other beams' faces use the whole aperture.
 double freeVerticalAperture_rad(const MapperOptions& options);
-/// MapperOptions::clear_without_obstacle, or when unset: true for the planar model, false for the
-/// volume model.
+/// Whether a beam without an obstacle clears (up to BeamDetection::echo_onset_m, where a return
+/// below the obstacle threshold starts): the planar model yes (and it carves other beams' arcs up
+/// to its BeamDetection::water_range_m), the volume model no. In 3D a beam's silence is no proof
+/// of water: a seabed or wall met at grazing incidence returns only 1–3 dB above the noise per bin
+/// over metres of range, below any obstacle threshold, and clearing there eroded 15 % of the
+/// visible surface of the simulated tilted-loop mission and 7 % of the lawnmower's; the volume
+/// model's free space comes from the beams that met something, up to it (docs/accuracy.md).
 bool clearsWithoutObstacle(const MapperOptions& options);
 
 /// OctoMap's defaults with lazy evaluation on.
@@ -104,55 +114,6 @@ struct MapperOptions {
   /// Vertical −3 dB beam width of the volume model, radians, in (0, π) (Tritech Micron 35°,
   /// SeaKing about 40°, Ping360 25°). Unused by the planar model.
   double vertical_aperture_rad = 35.0 * std::numbers::pi / 180.0;
-  /// Vertical extent of the cone the volume model clears, radians, in (0, vertical_aperture_rad].
-  /// A beam without an echo proves water only where it is loud: towards the −3 dB edges of the
-  /// aperture a grazing seabed or surface returns too little to rise above the noise, and clearing
-  /// there erased them (erosion on the simulated missions, before and after: docs/accuracy.md). The obstacle's shell and the carving of other
-  /// beams' shells still use the whole aperture. Unset: half the vertical aperture (the Gaussian
-  /// two-way pattern above −1.5 dB).
-  std::optional<double> free_vertical_aperture_rad;
-  /// Whether a beam without an obstacle clears (up to BeamDetection::echo_onset_m, where a return
-  /// below the obstacle threshold starts; the planar model still carves other beams' arcs up to
-  /// its BeamDetection::water_range_m, where an obstacle's echo would have shown). Unset (clearsWithoutObstacle()): yes for the planar model, no
-  /// for the volume model. In 3D a beam's silence is no proof of water: a seabed or wall met at
-  /// grazing incidence returns only 1–3 dB above the noise per bin over metres of range (the
-  /// simulated missions' seabed; the CRAS log's surface ring is 3–5 dB), below any obstacle
-  /// threshold and below the echo onset's level, and a seabed at the same range in every bearing
-  /// (a tilted head at constant altitude) is in the sweep's background besides. Clearing there
-  /// eroded 15 % of the visible surface of the tilted-loop mission and 7 % of the lawnmower's; the
-  /// volume model's free space therefore comes from the beams that met an obstacle, up to it
-  /// (docs/accuracy.md, before and after).
-  std::optional<bool> clear_without_obstacle;
-  /// How the volume model shares an obstacle's evidence over its shell (sweep_fan.hpp). Unused by
-  /// the planar model (every arc point gets the whole hit).
-  ArcEvidence arc_evidence = ArcEvidence::kBeamPattern;
-  /// Where the volume model puts an obstacle in its cone (sweep_fan.hpp): on a vertical face at the
-  /// echo's range (the default: harbour structures are vertical; docs/accuracy.md, before and
-  /// after), or on the shell. Unused by the planar model.
-  ObstacleSurface obstacle_surface = ObstacleSurface::kVertical;
-  /// Whether a vertical face recedes across its beam where the beams beside it measure it receding
-  /// (planArcs, sweep_fan.hpp): at oblique incidence the leading edge is the face's nearest point,
-  /// at the beam's near edge, and the face at the beam's other bearings lies farther, by up to the
-  /// range spread the echo's length allows. Otherwise every bearing of the beam puts the face at the
-  /// leading edge's distance, in front of an oblique face by up to r · w · tan(incidence). With
-  /// obstacle_surface kVertical; unused by the planar model.
-  bool face_slope = true;
-  /// Whether the volume model seeks weak extended returns in the whole echo of each beam without an
-  /// obstacle (a seabed or water surface met at grazing incidence; extended_returns.hpp) and places
-  /// them on the level surface their onset implies (appendLevelTrace, sweep_fan.hpp). Such a beam
-  /// then also clears its cone's loud core up to the return's onset. An obstacle whose echo lasts
-  /// longer than a face's in a cone that points only down or up is traced the same way instead of
-  /// marked as a shell (isLevelReturn, sweep_fan.hpp: a loud seabed). Whole sweeps only: the live
-  /// mapper's beams, detected a few at a time, use their first returns. Unused by the planar model.
-  bool extended_returns = true;
-  /// Whether the volume model's weak seabed traces follow the seabed's slope, fitted to the onsets of
-  /// every weak seabed return so far (SeabedSlope, seabed_slope.hpp: a robust plane, kept only where
-  /// the F test asks for a slope and the onsets were seen from many directions), instead of the level
-  /// through each onset. The same onsets check the loud traces (isLevelReturn, sweep_fan.hpp): one
-  /// whose onset lies above the seabed they fit, by more than the fit's inlier band plus the range
-  /// tolerance, stays the obstacle it was detected as (a loud face heard beyond the aperture's edge).
-  /// With extended_returns.
-  bool seabed_slope = true;
   /// The water surface's depth in the navigation's NED frame, metres: 0 when the navigation's
   /// depth is a depth sensor's (nedToMap puts it at map z = 0). A level head's cone points both up
   /// and down, so its weak extended return could be the seabed's or the surface's; knowing where
@@ -163,9 +124,15 @@ struct MapperOptions {
   /// navigation) keeps none. A cone that points only up meets the surface first on its top ray: an
   /// obstacle whose echo starts there, within the range tolerance, is the surface, traced on it
   /// (isLevelReturn, sweep_fan.hpp). NaN: unknown (navigation without a depth sensor); finite
-  /// otherwise. With extended_returns.
+  /// otherwise.
   double water_surface_depth_m = 0.0;
-  /// The extended-return detector's false-alarm rates and windows (probabilities, looks, degrees).
+  /// The volume model seeks weak extended returns in the whole echo of each beam without an
+  /// obstacle (a seabed or water surface met at grazing incidence; extended_returns.hpp) and places
+  /// them on the level surface their onset implies (appendLevelTrace, sweep_fan.hpp), following the
+  /// seabed's slope fitted to every weak seabed onset so far (SeabedSlope, seabed_slope.hpp); such
+  /// a beam clears its cone's loud core up to the return's onset. Whole sweeps only: the live
+  /// mapper's beams, detected a few at a time, use their first returns. These are the detector's
+  /// false-alarm rates and windows (probabilities, looks, degrees).
   ExtendedReturnOptions extended{};
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much
   /// before its obstacle, so the obstacle's range uncertainty (a bin, the pulse, a voxel) does not

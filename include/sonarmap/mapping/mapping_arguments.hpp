@@ -54,13 +54,6 @@ struct MappingArguments {
   bool volume = false;  ///< `--3d`
   double vertical_aperture_deg = 0.0;
   bool vertical_aperture_given = false;  ///< the user gave the vertical aperture (else the sonar's)
-  std::string free_aperture;
-  std::string clear_without_obstacle;
-  std::string arc_evidence;
-  std::string obstacle_surface;
-  bool extended_returns = false;
-  bool seabed_slope = false;
-  bool face_slope = false;
   std::string water_surface_depth;
   unsigned threads = 0;
   /// The log's format (parseLogFormat's names), or auto: by the input's extension (inputFormat).
@@ -75,8 +68,7 @@ LogFormat inputFormat(const std::string& input, const std::string& format);
 
 /// `options` with the beam widths of the sonar that writes `format` (nominalBeam) where the user
 /// gave none (beam_width_given, vertical_aperture_given), then validated.
-/// @throws ValueError when the free aperture is wider than the vertical aperture, or as
-///         MapperOptions::validate.
+/// @throws ValueError as MapperOptions::validate.
 MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args, LogFormat format);
 
 /// As above with the beam of a sonar given directly (e.g. a simulated head's widths).
@@ -84,7 +76,7 @@ MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args,
 MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args, const NominalBeam& beam);
 
 /// Turns the arguments into mapper options (applyArgument for each entry of mappingOptionTable()),
-/// checking each value against its range or words, and the free aperture against the vertical one.
+/// checking each value against its range or words.
 /// @throws ValueError naming the option (as its command-line flag), its unit and its range (or
 ///         its words), or as MapperOptions::validate.
 MapperOptions toMapperOptions(const MappingArguments& args);

@@ -50,10 +50,10 @@ struct MappingStats {
   /// in a row, before any whole sweep of that setting calibrated it: too few bearings to measure a
   /// background on (skipped; OnlineMapper).
   std::size_t beams_uncalibrated = 0;
-  /// Beams without an obstacle that clear nothing (MapperOptions::clear_without_obstacle: the
-  /// volume model's default): not in beams_used.
+  /// Beams without an obstacle that clear nothing (clearsWithoutObstacle: the volume model's):
+  /// not in beams_used.
   std::size_t beams_without_evidence = 0;
-  /// Beams mapped as an extended return, in beams_used (MapperOptions::extended_returns): without an
+  /// Beams mapped as an extended return by the volume model, in beams_used: without an
   /// obstacle, a weak return whose whole echo held one (a grazing seabed or water surface) up to the
   /// beam's water range; with one, a return isLevelReturn calls level (then not in obstacles). Each
   /// clears its cone up to the return's onset; one whose aperture points only down or only up maps

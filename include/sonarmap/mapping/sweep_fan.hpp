@@ -12,8 +12,9 @@
 /// neighbours in memory. With w = 0 every beam is one ray from the sonar (paper §6).
 ///
 /// The beam volume (issue 11): a beam of vertical aperture a is the cone bearing ± w/2 × elevation
-/// ± a/2 in its sonar frame (elevation above the sonar's x–y plane). Its free space is the cone up
-/// to the free range; its obstacle the shell at the hit range across both angles. The fan is then a
+/// ± a/2 in its sonar frame (elevation above the sonar's x–y plane). Its free space is the cone's
+/// loud core up to the free range; its obstacle a vertical face (or, for planArcs's callers that
+/// ask, the shell) at the hit range across both angles (docs/mapping-3d.md). The fan is then a
 /// 2D hierarchical grid (grid angle × elevation, the same angular step on both axes): a ray's level
 /// is the finer of its two indices' levels, and it starts where its coarser neighbours on that axis
 /// drift a voxel apart. The rays are at most one voxel apart at the longest range in both
@@ -72,9 +73,10 @@ struct PlannedBeam {
 struct FreeRay {
   Eigen::Vector3d start_m;
   Eigen::Vector3d end_m;
-  /// The ray lies in the outer half of the vertical aperture (|elevation| > a/4), where the beam
-  /// is quieter (Gaussian two-way pattern below −1.5 dB) and a grazing surface may fail to echo:
-  /// its cells do not clear what the map holds occupied (SonarMapper). False in the planar model.
+  /// The ray lies in the outer half of the cone being cleared (|elevation| > a_c/4 for the cleared
+  /// aperture a_c; the volume model clears a_c = a/2, so a/8 < |e| ≤ a/4, where the two-way
+  /// pattern falls from −0.4 to −1.5 dB), where a grazing surface is likelier to fail to echo: its
+  /// cells do not clear what the map holds occupied (SonarMapper). False in the planar model.
   bool outer = false;
 };
 
@@ -93,7 +95,8 @@ struct BeamShape {
 };
 
 /// How an obstacle's evidence is shared over the points of its shell that no other beam carved
-/// away (the beam-volume model; the planar model always gives every point the whole hit). A beam
+/// away (the beam-volume model maps with kBeamPattern; the planar model always gives every point
+/// the whole hit; the others are kept for tests and for OctoMap's comparison in bench/). A beam
 /// says "the first surface in my cone is at range r"; where on the shell's vertical arc the echo
 /// came from, it does not say.
 enum class ArcEvidence {
@@ -112,7 +115,7 @@ enum class ArcEvidence {
   kBeamPattern,
 };
 
-/// Where in its cone the volume model puts an obstacle (MapperOptions::obstacle_surface). The echo's
+/// Where in its cone an obstacle lies (planArcs; the volume model maps with kVertical). The echo's
 /// leading edge is the range r of the nearest surface in the cone; which surface, the beam does not
 /// say.
 enum class ObstacleSurface {
@@ -132,15 +135,9 @@ enum class ObstacleSurface {
   kVertical,
 };
 
-/// Parses "shell" or "vertical". @throws ValueError for any other name.
-ObstacleSurface parseObstacleSurface(std::string_view name);
-
 /// The two-way vertical pattern of a Gaussian beam of −3 dB width `aperture_rad` at `elevation_rad`
 /// off its axis: p(e)² with p(e) = 2^−(2e/a)² (ArcEvidence::kBeamPattern), in (0, 1]. Nothing is thrown.
 double twoWayPattern(double elevation_rad, double aperture_rad);
-
-/// Parses "whole", "uniform" or "pattern". @throws ValueError for any other name.
-ArcEvidence parseArcEvidence(std::string_view name);
 
 /// Plans the free rays of beams that share one pose (or nearly: each ray is placed with its own
 /// beam's pose), in grid-angle order; `rays` is cleared first. With width 0 every beam is one ray.
@@ -183,7 +180,7 @@ void planArcs(const std::vector<PlannedBeam>& beams, double beam_width_rad, doub
 /// the face recedes across the beam along that line, from the near edge its leading edge came
 /// from, instead of standing square to the beam at the leading edge's distance; only as far as the
 /// echo lasted (PlannedBeam::hit_end_m), and not for a head rolled about the beam's axis by more
-/// than asin(w / a) (see MapperOptions::face_slope).
+/// than asin(w / a). The volume model maps with face_slope on.
 void planArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape, double voxel_m, double tolerance_m,
               ArcEvidence evidence, std::vector<HitPoint>& hits, ObstacleSurface surface = ObstacleSurface::kShell,
               bool face_slope = false);
