@@ -158,11 +158,12 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("| sonar | mission | length | seeds | DR ATE median (max) | SLAM ATE median (max) | worst SLAM/DR | "
+              "DR / SLAM ATE from the start, median (max) | "
               "SLAM final drift median (max) | loops accepted (wrong) | x real time (min) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Mission& mission : kMissions) {
     if (!only.empty() && only != std::string(mission.sonar) + ":" + mission.name) continue;
-    std::vector<double> dr_ate, slam_ate, slam_drift;
+    std::vector<double> dr_ate, slam_ate, slam_drift, dr_start, slam_start;
     double worst_ratio = 0.0, slowest = 1e300, length_m = 0.0;
     std::size_t accepted = 0, wrong = 0;
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
@@ -185,6 +186,8 @@ int main(int argc, char** argv) {
       length_m = dr.distance_m;
       dr_ate.push_back(dr.ate_rmse_m);
       slam_ate.push_back(est.ate_rmse_m);
+      dr_start.push_back(dr.ate_start_rmse_m);
+      slam_start.push_back(est.ate_start_rmse_m);
       slam_drift.push_back(est.final_drift_pct);
       worst_ratio = std::max(worst_ratio, est.ate_rmse_m / dr.ate_rmse_m);
       if (verbose) {
@@ -211,10 +214,11 @@ int main(int argc, char** argv) {
     const auto maxOf = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
     char speed[32] = "";
     if (mission.speed_mps > 0.0) std::snprintf(speed, sizeof speed, " at %.1f m/s", mission.speed_mps);
-    std::printf("| %s | %s ×%zu%s | %.0f m | %zu | %.3f (%.3f) m | %.3f (%.3f) m | %.2f | %.2f (%.2f) %% | %zu (%zu) | %.0f |\n",
+    std::printf("| %s | %s ×%zu%s | %.0f m | %zu | %.3f (%.3f) m | %.3f (%.3f) m | %.2f | %.3f (%.3f) / %.3f (%.3f) m | "
+                "%.2f (%.2f) %% | %zu (%zu) | %.0f |\n",
                 mission.sonar, mission.name, mission.laps, speed, length_m, seeds, median(dr_ate), maxOf(dr_ate),
-                median(slam_ate), maxOf(slam_ate), worst_ratio, median(slam_drift), maxOf(slam_drift), accepted, wrong,
-                slowest);
+                median(slam_ate), maxOf(slam_ate), worst_ratio, median(dr_start), maxOf(dr_start), median(slam_start),
+                maxOf(slam_start), median(slam_drift), maxOf(slam_drift), accepted, wrong, slowest);
     std::fflush(stdout);
   }
   return 0;

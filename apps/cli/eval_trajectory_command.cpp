@@ -13,8 +13,8 @@ namespace sonarmap::cli {
 Command addEvalTrajectoryCommand(CLI::App& app, EvalTrajectoryArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "eval-trajectory",
-      "Score an estimated vehicle track against the true one: ATE (after a rigid alignment), RPE over segments and "
-      "final drift; one 'key value' line each");
+      "Score an estimated vehicle track against the true one: ATE (after a rigid alignment, and with the start positions "
+      "matched), RPE over segments and final drift; one 'key value' line each");
   cmd->add_option("estimate", args.estimate,
                   "Estimated track: navigation CSV (time_s,x_m,...) or TUM trajectory (time x y z qx qy qz qw), "
                   "NED, told apart by content")
@@ -45,6 +45,7 @@ void runEvalTrajectory(const EvalTrajectoryArgs& args) {
   std::printf("distance_m %.4f\n", e.distance_m);
   std::printf("ate_rmse_m %.4f\n", e.ate_rmse_m);
   std::printf("ate_max_m %.4f\n", e.ate_max_m);
+  std::printf("ate_start_rmse_m %.4f\n", e.ate_start_rmse_m);
   std::printf("rpe_segments %zu\n", e.rpe_segments);
   std::printf("rpe_rmse_m %.4f\n", e.rpe_rmse_m);
   std::printf("rpe_yaw_rmse_deg %.4f\n", e.rpe_yaw_rmse_deg);

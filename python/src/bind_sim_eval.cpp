@@ -350,6 +350,7 @@ mission, preset or scene.)doc");
         d["distance_m"] = e.distance_m;
         d["ate_rmse_m"] = e.ate_rmse_m;
         d["ate_max_m"] = e.ate_max_m;
+        d["ate_start_rmse_m"] = e.ate_start_rmse_m;
         d["rpe_segments"] = e.rpe_segments;
         d["rpe_rmse_m"] = e.rpe_rmse_m;
         d["rpe_yaw_rmse_deg"] = e.rpe_yaw_rmse_deg;
@@ -360,10 +361,11 @@ mission, preset or scene.)doc");
       py::arg("estimate"), py::arg("truth"), py::arg("se3") = false, py::arg("segment_m") = 10.0,
       R"doc(Scores an estimated vehicle track against the true one, as ``sonarmap eval-trajectory``
 (eval/trajectory_error.hpp): ATE after a rigid alignment (SE(2) in the horizontal plane, or SE(3)
-with se3=True), RPE over segments of segment_m metres travelled, final drift (unaligned).
+with se3=True) and with the start positions matched, RPE over segments of segment_m metres travelled, final drift (unaligned).
 
 estimate, truth: float64 (N, 7) arrays as Simulation.nav, or paths of a navigation CSV or a TUM
-trajectory. Returns a dict: poses, distance_m, ate_rmse_m, ate_max_m, rpe_segments, rpe_rmse_m,
+trajectory. Returns a dict: poses, distance_m, ate_rmse_m, ate_max_m, ate_start_rmse_m (the start
+positions matched instead of a fit), rpe_segments, rpe_rmse_m,
 rpe_yaw_rmse_deg, final_drift_m, final_drift_pct (NaN where undefined). Raises sonarmap.ValueError
 for fewer than 3 estimate fixes within the truth's time span or a bad array; sonarmap.FileError for a
 bad file.)doc");

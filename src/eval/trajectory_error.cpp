@@ -112,6 +112,14 @@ TrajectoryError evaluateTrajectory(const NavTrack& estimate, const NavTrack& tru
   }
   result.ate_rmse_m = std::sqrt(sum_squared / static_cast<double>(n));
 
+  // The error with the start positions matched instead of a fit: the estimate shifted so that its
+  // first associated position is the truth's (north and east; with se3 the depth too), not turned.
+  Eigen::Vector3d shift_m = tru.front().translation() - est.front().translation();
+  if (!options.se3) shift_m.z() = 0.0;  // depth stays unaligned
+  double start_squared = 0.0;
+  for (std::size_t i = 0; i < n; ++i) start_squared += (est[i].translation() + shift_m - tru[i].translation()).squaredNorm();
+  result.ate_start_rmse_m = std::sqrt(start_squared / static_cast<double>(n));
+
   // RPE over segments of segment_m travelled by the truth.
   double translation_sq = 0.0, yaw_sq = 0.0;
   std::size_t j = 0;

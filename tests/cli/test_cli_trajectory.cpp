@@ -54,7 +54,7 @@ TEST_F(cliTrajectory, MissionWithDeadReckoningErrorsAndItsEvaluation) {
   ASSERT_EQ(drift.exit_code, 0) << drift.err;
   EXPECT_EQ(drift.err, "");
   std::map<std::string, std::string> m = metricsOf(drift.out);
-  for (const char* key : {"poses", "distance_m", "ate_rmse_m", "ate_max_m", "rpe_segments", "rpe_rmse_m",
+  for (const char* key : {"poses", "distance_m", "ate_rmse_m", "ate_max_m", "ate_start_rmse_m", "rpe_segments", "rpe_rmse_m",
                           "rpe_yaw_rmse_deg", "final_drift_m", "final_drift_pct"}) {
     EXPECT_EQ(m.count(key), 1U) << key << " in " << drift.out;
   }
@@ -69,6 +69,7 @@ TEST_F(cliTrajectory, MissionWithDeadReckoningErrorsAndItsEvaluation) {
   ASSERT_EQ(same.exit_code, 0) << same.err;
   m = metricsOf(same.out);
   EXPECT_EQ(m["ate_rmse_m"], "0.0000");
+  EXPECT_EQ(m["ate_start_rmse_m"], "0.0000");
   EXPECT_EQ(m["final_drift_m"], "0.0000");
 }
 

@@ -42,6 +42,7 @@ TEST(evalTrajectoryError, IdenticalTracksHaveNoError) {
   EXPECT_NEAR(e.distance_m, 100.0, 1e-9);
   EXPECT_NEAR(e.ate_rmse_m, 0.0, 1e-9);
   EXPECT_NEAR(e.ate_max_m, 0.0, 1e-9);
+  EXPECT_NEAR(e.ate_start_rmse_m, 0.0, 1e-9);
   EXPECT_GT(e.rpe_segments, 100U);
   EXPECT_NEAR(e.rpe_rmse_m, 0.0, 1e-9);
   EXPECT_NEAR(e.rpe_yaw_rmse_deg, 0.0, 1e-9);
@@ -63,6 +64,20 @@ TEST(evalTrajectoryError, RigidMotionIsAlignedAwayButDrifts) {
     EXPECT_GT(e.final_drift_m, 5.0) << se3;
     EXPECT_NEAR(e.final_drift_pct, e.final_drift_m, 1e-9) << se3;  // 100 m travelled
   }
+  // Shifted, the start-matched error is zero too; turned about the start (a heading bias), the fit
+  // turns it away but the start does not: each point is off by the chord 2 |p| sin(1°).
+  const NavTrack shifted = moved(truth, 0.0, Eigen::Vector3d(5.0, -2.0, 0.0));
+  EXPECT_NEAR(evaluateTrajectory(shifted, truth).ate_start_rmse_m, 0.0, 1e-9);
+  const NavTrack biased = moved(truth, 2.0 * std::numbers::pi / 180.0, Eigen::Vector3d::Zero());  // the L starts at 0
+  const TrajectoryError bias = evaluateTrajectory(biased, truth);
+  EXPECT_NEAR(bias.ate_rmse_m, 0.0, 1e-6);
+  double expected_sq = 0.0;
+  for (const NavSample& fix : truth) {
+    const double chord_m = 2.0 * fix.position_ned_m.head<2>().norm() * std::sin(std::numbers::pi / 180.0);
+    expected_sq += chord_m * chord_m;
+  }
+  EXPECT_NEAR(bias.ate_start_rmse_m, std::sqrt(expected_sq / static_cast<double>(truth.size())), 1e-9);
+  EXPECT_GT(bias.ate_start_rmse_m, 1.0);
   // A depth offset stays in the SE(2) ATE (depth is not aligned), not in the SE(3) one.
   const NavTrack deeper = moved(truth, 0.0, Eigen::Vector3d(0.0, 0.0, 0.5));
   EXPECT_NEAR(evaluateTrajectory(deeper, truth).ate_rmse_m, 0.5, 1e-9);

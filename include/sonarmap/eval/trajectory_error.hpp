@@ -30,6 +30,9 @@ struct TrajectoryError {
   double distance_m = 0.0;      ///< distance the truth travels between the first and last of them, metres
   double ate_rmse_m = 0.0;      ///< RMSE of the position error after the rigid alignment, metres
   double ate_max_m = 0.0;       ///< largest position error after the alignment, metres
+  /// RMSE of the position error with the start positions matched instead of a fit, metres: what a
+  /// vehicle whose start position is known (a GPS fix at the surface) sees, a heading bias included.
+  double ate_start_rmse_m = 0.0;
   std::size_t rpe_segments = 0;  ///< segments of segment_m the RPE is taken over (0: the truth travels less)
   double rpe_rmse_m = 0.0;       ///< RMSE of the segments' relative translation error, metres (NaN: no segment)
   double rpe_yaw_rmse_deg = 0.0;  ///< RMSE of the segments' relative yaw error, degrees (NaN: no segment)
@@ -45,6 +48,10 @@ struct TrajectoryError {
 ///    Eigen::umeyama, no scale): in the horizontal plane (SE(2)), the depth error then added
 ///    unaligned, or with options.se3 in 3D (SE(3)); the RMSE and the largest of the remaining
 ///    position errors.
+///  - ATE from the start: the estimate shifted, not turned, so that its first associated position
+///    coincides with the truth's (north and east, the depth unaligned; with options.se3 the depth
+///    too), then the RMSE of the position errors. A heading bias grows with the distance from the
+///    start here, where the fitted ATE turns it away.
 ///  - RPE: for each associated pose i, the first pose j whose truth distance travelled (along the
 ///    truth's own fixes) is at least segment_m beyond i's; the error of the estimate's relative pose
 ///    E_i⁻¹·E_j against the truth's T_i⁻¹·T_j, i.e. (T_i⁻¹·T_j)⁻¹·(E_i⁻¹·E_j): the RMSE over the
