@@ -1,6 +1,7 @@
 // Writes the seed corpus of every fuzz harness: small valid inputs made with the library's own
 // writers and the simulator (no copy of ../shared/data), one folder per harness.
 // Usage: sonarmap_fuzz_seeds OUT_DIR   (scripts/fuzz.sh build writes them to build-fuzz/seeds/).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "sonarmap/io/scan_graph.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/nav/tum_trajectory.hpp"
+#include "sonarmap/slam/point_scans.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene_file.hpp"
@@ -62,6 +64,15 @@ void sonarSeeds() {
   seed("beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("map_beam_csv", "tank_span.csv", [&](std::ostream& out) { writeBeamCsv(out, spanned); });
   seed("nav_csv", "tank_nav.csv", [&](std::ostream& out) { writeNavCsv(out, run.nav); });
+  // Point scans: a quarter of each beam's range, in the body frame, two scans.
+  std::vector<BodyPoint> points;
+  for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
+    const Beam& beam = run.log.beams[i];
+    const double range_m = 0.25 * beam.bin_length_m * static_cast<double>(beam.intensities.size());
+    points.push_back({2 * i / run.log.beams.size(), beam.time_s,
+                      Eigen::Vector2d(range_m * std::cos(beam.bearing_rad), range_m * std::sin(beam.bearing_rad))});
+  }
+  seed("point_scans", "tank_scans.csv", [&](std::ostream& out) { writePointScans(out, points); });
   // readTrajectory (navigation CSV or TUM, told apart by content): the simulator's track in both
   // formats, a hand-written TUM file with comments, blank lines, tabs, a non-unit quaternion and a
   // UTF-8 byte-order mark, and CRLF line ends in both formats.

@@ -23,7 +23,7 @@ Command addEvalTrajectoryCommand(CLI::App& app, EvalTrajectoryArgs& args);
 
 /// Reads both tracks (readTrajectory: navigation CSV or TUM, told apart by content), scores the
 /// estimate and prints one `key value` line per metric on stdout, in this order: poses,
-/// distance_m, ate_rmse_m, ate_max_m, rpe_segments, rpe_rmse_m, rpe_yaw_rmse_deg, final_drift_m,
+/// distance_m, ate_rmse_m, ate_max_m, ate_start_rmse_m, rpe_segments, rpe_rmse_m, rpe_yaw_rmse_deg, final_drift_m,
 /// final_drift_pct (lengths in metres, angles in degrees; "nan" when not defined).
 /// @throws FileError for an unreadable or malformed file; ValueError for tracks that share fewer
 ///         than 3 poses in time.

@@ -14,6 +14,7 @@
 #include "eval_trajectory_command.hpp"
 #include "info_command.hpp"
 #include "live_command.hpp"
+#include "localize_command.hpp"
 #include "map_command.hpp"
 #include "simulate_command.hpp"
 #include "view_command.hpp"
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   sonarmap::cli::EvalArgs eval_args;
   sonarmap::cli::EvalTrajectoryArgs eval_trajectory_args;
   sonarmap::cli::LiveArgs live_args;
+  sonarmap::cli::LocalizeArgs localize_args;
   sonarmap::cli::ViewArgs view_args;
   sonarmap::cli::InfoArgs info_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
@@ -51,6 +53,7 @@ int main(int argc, char** argv) {
                                                      sonarmap::cli::addDemoCommand(app, demo_args),
                                                      sonarmap::cli::addEvalCommand(app, eval_args),
                                                      sonarmap::cli::addEvalTrajectoryCommand(app, eval_trajectory_args),
+                                                     sonarmap::cli::addLocalizeCommand(app, localize_args),
                                                      sonarmap::cli::addViewCommand(app, view_args)};
   try {
     app.parse(argc, argv);

@@ -2,6 +2,7 @@
 // (the library's option table, read as keywords by bind_options.cpp: the translation `sonarmap
 // map` uses), the counts of a mapping (MappingStats) and navigation tracks (nav/navigation.hpp) as
 // (N, 7) arrays.
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -9,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "sonarmap/slam/point_scans.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_arrays.hpp"
 #include "sonarmap/formats/navigation_reader.hpp"
@@ -145,6 +147,54 @@ TypeError for an unknown keyword.)doc";
   m.def("map_sonar_log", &mapLog, py::arg("log"), py::arg("nav") = py::none(), py::arg("mounting") = py::none(),
         py::arg("progress") = py::none(), py::arg("slam") = false, map_doc.c_str());
 
+  m.def(
+      "localize_point_scans",
+      [](const py::object& scans, const py::object& nav, double range_sigma, double bearing_sigma) {
+        std::vector<BodyPoint> points;
+        if (py::isinstance<py::str>(scans) || py::hasattr(scans, "__fspath__")) {
+          points = readPointScansCsv(py::str(py::module_::import("os").attr("fspath")(scans)));
+        } else {
+          const auto array = py::array_t<double, py::array::forcecast>::ensure(scans);
+          if (!array || array.ndim() != 2 || array.shape(1) != 4 || !py::isinstance<py::array_t<double>>(scans)) {
+            throw ValueError("scans: expected a float64 array of shape (N, 4) [scan, time_s, x_m, y_m] or a path");
+          }
+          const auto view = array.unchecked<2>();
+          for (py::ssize_t i = 0; i < view.shape(0); ++i) {
+            const double scan = view(i, 0);
+            if (!(scan >= 0.0 && scan <= 9007199254740992.0 && std::floor(scan) == scan)) {
+              throw ValueError("scans: row " + std::to_string(i) + "'s scan is not an integer in [0, 2^53]");
+            }
+            points.push_back({static_cast<std::size_t>(scan), view(i, 1), Eigen::Vector2d(view(i, 2), view(i, 3))});
+          }
+        }
+        const NavTrack track = nav.is_none() ? NavTrack{} : navTrackOf(nav);
+        PointScanOptions options;
+        options.range_sigma_m = range_sigma;
+        options.bearing_sigma_rad = bearing_sigma * 3.14159265358979323846 / 180.0;
+        SlamResult result;
+        {
+          py::gil_scoped_release release;
+          result = localizePointScans(points, track, options);
+        }
+        py::dict out;
+        out["trajectory"] = navArray(result.trajectory);
+        out["scans"] = result.report.scans;
+        out["matches_accepted"] = result.report.matches_accepted;
+        out["loop_closures_accepted"] = result.report.loopClosuresAccepted();
+        return out;
+      },
+      py::arg("scans"), py::arg("nav") = py::none(), py::arg("range_sigma") = 0.05, py::arg("bearing_sigma") = 1.5,
+      R"doc(Localizes point scans detected elsewhere, as `sonarmap localize` (slam/point_scans.hpp): the scan
+matcher, loop closures and pose graph of map_sonar_log(slam=True).
+
+scans: the path of a point-scan CSV (scan,time_s,x_m,y_m) or a float64 (N, 4) array of the same columns:
+each point's scan (an integer; a scan's rows together, in increasing number), time (s, the navigation's
+clock, never decreasing) and place in the body frame then (m, x forward, y to starboard). nav: the dead
+reckoning, an (N, 7) array or a navigation CSV's path; None: the vehicle believed still. range_sigma
+(metres) and bearing_sigma (degrees): 1-sigma of a point's range and bearing. Returns a dict: trajectory
+(the corrected dead reckoning, an (M, 7) float64 array; without nav, three rows per scan), scans,
+matches_accepted, loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
+sonarmap.ValueError for a bad array, option or track.)doc");
   m.def(
       "read_nav_csv", [](const std::filesystem::path& path) { return navArray(readNavCsv(path.string())); }, py::arg("path"),
       R"doc(Reads a navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad) as an (N, 7) float64 array:

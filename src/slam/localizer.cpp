@@ -259,17 +259,24 @@ SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const E
   return localize(detectSonarLog(log, options), dead_reckoning, sonar_to_body, slam);
 }
 
+SlamOptions withNavigationPeriod(SlamOptions slam, const NavTrack& dead_reckoning) {
+  if (dead_reckoning.size() >= 2) {
+    std::vector<double> periods;
+    for (std::size_t i = 1; i < dead_reckoning.size(); ++i) periods.push_back(dead_reckoning[i].time_s - dead_reckoning[i - 1].time_s);
+    slam.forming.odometry.nav_period_s = std::max(percentile(periods, 0.5), 1e-3);
+  }
+  return slam;
+}
+
 SlamResult localize(const DetectedLog& detected, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
                     const SlamOptions& slam) {
   slam.validate();
-  SlamOptions tuned = slam;
-  if (dead_reckoning.size() >= 2) {  // the velocity readings' period: the navigation's median fix spacing
-    std::vector<double> periods;
-    for (std::size_t i = 1; i < dead_reckoning.size(); ++i) periods.push_back(dead_reckoning[i].time_s - dead_reckoning[i - 1].time_s);
-    tuned.forming.odometry.nav_period_s = std::max(percentile(periods, 0.5), 1e-3);
-  }
-  std::vector<SonarScan> scans = formScans(detected, dead_reckoning, sonar_to_body, tuned.forming);
-  Localizer localizer(tuned, !dead_reckoning.empty());
+  const SlamOptions tuned = withNavigationPeriod(slam, dead_reckoning);
+  return localizeScans(formScans(detected, dead_reckoning, sonar_to_body, tuned.forming), dead_reckoning, tuned);
+}
+
+SlamResult localizeScans(std::vector<SonarScan> scans, const NavTrack& dead_reckoning, const SlamOptions& slam) {
+  Localizer localizer(slam, !dead_reckoning.empty());
   for (SonarScan& scan : scans) localizer.addScan(std::move(scan));
   localizer.optimize();
   SlamResult result;

@@ -11,6 +11,7 @@
 #include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
+#include "scan_points.hpp"
 
 namespace sonarmap {
 namespace {
@@ -22,22 +23,7 @@ void requirePositive(double value, const char* name) {
   if (!(std::isfinite(value) && value > 0.0)) throw ValueError(std::string("odometry noise: ") + name + " must be > 0");
 }
 
-/// Where the body was at `time_s` by dead reckoning; nullopt outside the track. An empty track: the
-/// origin, always.
-std::optional<Eigen::Isometry3d> deadReckoningAt(const std::optional<NavInterpolator>& nav, double time_s) {
-  if (!nav) return Eigen::Isometry3d::Identity();
-  return nav->bodyToNedAt(time_s);
-}
-
-/// The covariance a point at `range_m` along horizontal unit direction `along` (reference frame)
-/// gets from the sensor: σ_r along the beam, range · σ_b across it.
-Eigen::Matrix2d sensorCovariance(const Eigen::Vector2d& along, double range_m, double range_sigma_m,
-                                 double bearing_sigma_rad) {
-  const Eigen::Vector2d across(-along.y(), along.x());
-  const double cross_sigma_m = range_m * bearing_sigma_rad;
-  return along * along.transpose() * (range_sigma_m * range_sigma_m) +
-         across * across.transpose() * (cross_sigma_m * cross_sigma_m);
-}
+using scan_points::deadReckoningAt;
 
 /// What every scan of a sweep shares.
 struct ScanGeometry {
@@ -61,7 +47,6 @@ std::optional<SonarScan> formScan(const PolarImage& polar, const SweepDetection&
   const std::optional<Eigen::Isometry3d> reference = deadReckoningAt(nav, scan.time_s);
   if (!reference) return std::nullopt;  // the scan's middle lies outside the navigation
   scan.dead_reckoning = planarPose(*reference);
-  const Pose2 ned_to_reference = scan.dead_reckoning.inverse();
   for (int row = first_row; row < last_row; ++row) {
     const BeamDetection& hit = detection.detections[static_cast<std::size_t>(row)];
     if (!hit.hasObstacle()) continue;
@@ -71,25 +56,16 @@ std::optional<SonarScan> formScan(const PolarImage& polar, const SweepDetection&
     const double bearing_rad = polar.bearing_rad[static_cast<std::size_t>(row)];
     const Eigen::Vector3d in_sonar(hit.range_m * std::cos(bearing_rad), hit.range_m * std::sin(bearing_rad), 0.0);
     const Eigen::Isometry3d sonar_to_ned = *body * sonar_to_body;
-    const Eigen::Vector3d in_ned = sonar_to_ned * in_sonar;
-    ScanPoint point;
-    point.range_m = hit.range_m;
-    point.xy_m = ned_to_reference * Eigen::Vector2d(in_ned.x(), in_ned.y());
-    Eigen::Vector2d along = ned_to_reference.rotation() * (in_ned - sonar_to_ned.translation()).head<2>();
-    if (along.norm() < 1e-9) continue;  // a beam pointing straight down: no horizontal position
-    along.normalize();
-    point.toward_sonar = -along;
-    const double range_sigma_m =
+    scan_points::Measurement m;
+    m.point_ned_m = sonar_to_ned * in_sonar;
+    m.origin_ned_m = sonar_to_ned.translation();
+    m.body_to_ned = *body;
+    m.time_s = time_s;
+    m.range_m = hit.range_m;
+    m.range_sigma_m =
         forming.range_sigma_m > 0.0 ? forming.range_sigma_m : std::max({polar.bin_length_m, hit.rise_m / 2.0, 0.02});
-    point.covariance_m2 = sensorCovariance(along, hit.range_m, range_sigma_m, geometry.bearing_sigma_rad);
-    // What dead reckoning adds between the beam's time and the reference time: the position's
-    // uncertainty, and the heading's, which swings the point across its beam.
-    const Pose2 motion = scan.dead_reckoning.between(planarPose(*body));
-    const Eigen::Matrix3d drift = forming.odometry.covariance(motion, time_s - scan.time_s, known);
-    point.covariance_m2 += drift.topLeftCorner<2, 2>();  // already in the reference frame
-    const Eigen::Vector2d across(-along.y(), along.x());
-    point.covariance_m2 += across * across.transpose() * (hit.range_m * hit.range_m * drift(2, 2));
-    scan.points.push_back(point);
+    m.bearing_sigma_rad = geometry.bearing_sigma_rad;
+    scan_points::appendPoint(scan, m, forming, known);
   }
   return scan;
 }
@@ -131,19 +107,16 @@ void OdometryNoise::validate() const {
   requirePositive(unknown_turn_sigma_radps, "unknown_turn_sigma_radps");
 }
 
-namespace {
-/// @throws ValueError for invalid scan-forming options.
-void checkScanForming(const ScanFormingOptions& forming) {
-  forming.odometry.validate();
-  if (!(std::isfinite(forming.range_sigma_m) && forming.range_sigma_m >= 0.0) ||
-      !(std::isfinite(forming.bearing_sigma_rad) && forming.bearing_sigma_rad >= 0.0)) {
+void ScanFormingOptions::validate() const {
+  odometry.validate();
+  if (!(std::isfinite(range_sigma_m) && range_sigma_m >= 0.0) ||
+      !(std::isfinite(bearing_sigma_rad) && bearing_sigma_rad >= 0.0)) {
     throw ValueError("scan forming: range and bearing sigmas must be ≥ 0");
   }
-  if (!(std::isfinite(forming.max_travel_m) && forming.max_travel_m >= 0.0)) {
+  if (!(std::isfinite(max_travel_m) && max_travel_m >= 0.0)) {
     throw ValueError("scan forming: max_travel_m must be ≥ 0 m");
   }
 }
-}  // namespace
 
 Pose2 planarPose(const Eigen::Isometry3d& body_to_ned) {
   const Eigen::Matrix3d r = body_to_ned.linear();
@@ -153,13 +126,13 @@ Pose2 planarPose(const Eigen::Isometry3d& body_to_ned) {
 std::vector<SonarScan> formScans(const SonarLog& log, const NavTrack& dead_reckoning,
                                  const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
                                  const ScanFormingOptions& forming) {
-  checkScanForming(forming);
+  forming.validate();
   return formScans(detectSonarLog(log, options), dead_reckoning, sonar_to_body, forming);
 }
 
 std::vector<SonarScan> formScans(const DetectedLog& detected, const NavTrack& dead_reckoning,
                                  const Eigen::Isometry3d& sonar_to_body, const ScanFormingOptions& forming) {
-  checkScanForming(forming);
+  forming.validate();
   std::optional<NavInterpolator> nav;
   if (!dead_reckoning.empty()) nav.emplace(dead_reckoning);  // throws ValueError for an invalid track
   const bool known = nav.has_value();

@@ -1,8 +1,11 @@
 // End-to-end tests of `sonarmap simulate --mission ... --dvl-scale-error ... --heading-bias ...`
-// (the believed nav.csv beside the true truth_nav.csv) and of `sonarmap eval-trajectory`.
+// (the believed nav.csv beside the true truth_nav.csv), of `sonarmap eval-trajectory` and of
+// `sonarmap localize` on point scans.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <string>
 
@@ -156,6 +159,54 @@ TEST_F(cliTrajectory, MapWithSlamCorrectsTheDeadReckoning) {
   EXPECT_EQ(linesOf(refused.err).size(), 1U) << refused.err;
   EXPECT_FALSE(fs::exists(out_ / "static.bt"));
   EXPECT_FALSE(fs::exists(out_ / "static.csv"));
+}
+
+// Point scans of a 6 × 4 m rectangle of walls seen from a still vehicle, six scans: localized with
+// and without navigation, the trajectory written; broken input refused in one line, nothing written.
+TEST_F(cliTrajectory, LocalizeWritesTheTrajectoryOfPointScans) {
+  const fs::path scans = out_ / "scans.csv", nav = out_ / "nav.csv";
+  {
+    std::ofstream csv(scans);
+    csv << "scan,time_s,x_m,y_m\n";
+    for (int scan = 0; scan < 6; ++scan) {
+      for (int k = 0; k < 180; ++k) {
+        const double a = k * 2.0 * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
+        const double r = std::min(std::abs(c) > 1e-9 ? (c > 0 ? 4.0 : 2.0) / std::abs(c) : 1e9,
+                                  std::abs(s) > 1e-9 ? (s > 0 ? 1.5 : 2.5) / std::abs(s) : 1e9);
+        csv << scan << ',' << 10.0 * scan + 0.05 * k << ',' << r * c << ',' << r * s << '\n';
+      }
+    }
+    std::ofstream track(nav);
+    track << "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
+    for (int k = 0; k <= 70; ++k) track << k << ",0,0,1,0,0,0\n";
+  }
+  const ProgramRun alone = run({"localize", scans.string(), "--trajectory", (out_ / "alone.csv").string()});
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  EXPECT_EQ(alone.out.rfind("slam: 6 scans", 0), 0U) << alone.out;
+  EXPECT_NE(alone.out.find("no --nav"), std::string::npos) << alone.out;
+  const ProgramRun with_nav = run({"localize", scans.string(), "--nav", nav.string(), "--trajectory",
+                                   (out_ / "corrected.tum").string(), "-q"});
+  ASSERT_EQ(with_nav.exit_code, 0) << with_nav.err;
+  EXPECT_EQ(with_nav.out, "");
+  std::size_t poses = 0;
+  for (const std::string& line : linesOf(readFile(out_ / "corrected.tum"))) poses += line.rfind('#', 0) == 0 ? 0 : 1;
+  EXPECT_EQ(poses, 71U);  // every fix of the navigation, corrected
+  const ProgramRun scored = run({"eval-trajectory", (out_ / "corrected.tum").string(), "--truth", nav.string()});
+  ASSERT_EQ(scored.exit_code, 0) << scored.err;
+  EXPECT_LT(std::atof(metricsOf(scored.out)["ate_start_rmse_m"].c_str()), 0.03);  // the still vehicle stays put
+
+  {
+    std::ofstream broken(out_ / "broken.csv");
+    broken << "scan,time_s,x_m,y_m\n1,0,1,1\n0,1,1,1\n";
+  }
+  const ProgramRun refused = run({"localize", (out_ / "broken.csv").string(), "--trajectory", (out_ / "no.csv").string()});
+  expectError(refused, 1);
+  EXPECT_NE(refused.err.find("line 3: scan 0 after scan 1"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out_ / "no.csv"));
+  const ProgramRun usage = run({"localize", scans.string(), "--trajectory", (out_ / "no.csv").string(), "--range-sigma", "0"});
+  expectError(usage, 2);
+  EXPECT_NE(usage.err.find("--range-sigma"), std::string::npos) << usage.err;
+  EXPECT_FALSE(fs::exists(out_ / "no.csv"));
 }
 
 }  // namespace

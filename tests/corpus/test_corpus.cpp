@@ -31,6 +31,7 @@
 #include "sonarmap/io/scan_graph.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/nav/tum_trajectory.hpp"
+#include "sonarmap/slam/point_scans.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/navigation_reader.hpp"
@@ -92,6 +93,10 @@ const std::vector<Route>& routes() {
        [](const std::string& f, const fs::path&) -> Args { return {"eval", f, "--truth", valid("scene_small.txt")}; }},
       {"eval --truth", [](const std::string& f) { readScene(f); },
        [](const std::string& f, const fs::path&) -> Args { return {"eval", valid("tree_small.bt"), "--truth", f}; }},
+      {"localize", [](const std::string& f) { readPointScansCsv(f); },
+       [](const std::string& f, const fs::path& out) -> Args {
+         return {"localize", f, "--trajectory", in(out, "trajectory.csv"), "-q"};
+       }},
       {"simulate", [](const std::string& f) { readScene(f); },
        [](const std::string& f, const fs::path& out) -> Args { return {"simulate", f, "-o", in(out, "sim")}; }},
   };
@@ -221,6 +226,7 @@ constexpr Seed kSeeds[] = {
     {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
     {"bag_miniking.bag", "map"},     {"scan_small.mcap", "map"},
     {"rosbag2_small.db3", "map"},    {"tlog_small.tlog", "map --nav"},    {"dataflash_small.BIN", "map --nav"},
+    {"scans_small.csv", "localize"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

@@ -155,6 +155,15 @@ struct SlamResult {
 SlamResult localize(const DetectedLog& detected, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,
                     const SlamOptions& slam = {});
 
+/// `slam` with the odometry's velocity-reading period (OdometryNoise::nav_period_s) set to the
+/// navigation's median fix spacing; unchanged for fewer than two fixes.
+SlamOptions withNavigationPeriod(SlamOptions slam, const NavTrack& dead_reckoning);
+
+/// Localizes formed scans (in time order) with a Localizer, optimises the graph and corrects
+/// `dead_reckoning` (empty: the scans were formed without navigation). Deterministic.
+/// @throws ValueError for invalid options.
+SlamResult localizeScans(std::vector<SonarScan> scans, const NavTrack& dead_reckoning, const SlamOptions& slam = {});
+
 /// localize(detectSonarLog(log, options), ...).
 /// @throws ValueError as detectSonarLog and the overload above.
 SlamResult localize(const SonarLog& log, const NavTrack& dead_reckoning, const Eigen::Isometry3d& sonar_to_body,

@@ -95,6 +95,10 @@ struct ScanFormingOptions {
   /// 1.5 m/s). 0: automatic, half the sweep's reach (the Micron at 0.25 m/s, 2.2 m a turn, keeps
   /// whole turns).
   double max_travel_m = 0.0;
+
+  /// @throws ValueError for a sigma or travel that is negative or not finite, or invalid odometry
+  ///         noise (OdometryNoise::validate).
+  void validate() const;
 };
 
 /// Forms one scan per detected sweep of `detected` (detectSonarLog: the mapper's sweeps and

@@ -1,0 +1,12 @@
+// libFuzzer harness: point-scan CSV bytes (through a temporary file) → readPointScansCsv.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_input.hpp"
+#include "sonarmap/slam/point_scans.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static sonarmap::fuzz::InputFile file(".csv");
+  const std::string& path = file.write(data, size);
+  return sonarmap::fuzz::expectReadOrError([&] { sonarmap::readPointScansCsv(path); });
+}

@@ -1,0 +1,163 @@
+/// @file point_scans.cpp
+/// Point-scan CSV and the SLAM back end on point scans (point_scans.hpp).
+
+#include "sonarmap/slam/point_scans.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "sonarmap/core/errors.hpp"
+#include "../io/csv_fields.hpp"
+#include "scan_points.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr std::string_view kColumns[] = {"scan", "time_s", "x_m", "y_m"};
+constexpr std::string_view kHeader = "scan,time_s,x_m,y_m";
+/// The largest scan number: every integer up to it is a double exactly.
+constexpr double kLargestScan = 9007199254740992.0;  // 2^53
+
+/// Why `next` may not follow `previous` in a point-scan file; empty when it may.
+std::string orderProblem(const BodyPoint& previous, const BodyPoint& next) {
+  if (next.scan < previous.scan) {
+    return "scan " + std::to_string(next.scan) + " after scan " + std::to_string(previous.scan) +
+           ": scans must come in increasing number, each scan's rows together";
+  }
+  if (next.time_s < previous.time_s) {
+    return csv::formatNumber(next.time_s) + " s is earlier than the row before (" + csv::formatNumber(previous.time_s) +
+           " s); times must not decrease";
+  }
+  return {};
+}
+
+}  // namespace
+
+std::vector<BodyPoint> readPointScans(std::istream& in, const std::string& source) {
+  csv::LineReader reader(in, source);
+  if (!reader.next()) reader.failFile("empty, expected the header row " + std::string(kHeader));
+  for (std::size_t c = 0; c < std::size(kColumns); ++c) reader.expectName(c, kColumns[c]);
+  if (reader.fields().size() != std::size(kColumns)) {
+    reader.fail("header has " + std::to_string(reader.fields().size()) + " columns, expected exactly " +
+                std::string(kHeader));
+  }
+  std::vector<BodyPoint> points;
+  while (reader.next()) {
+    if (reader.fields().size() != std::size(kColumns)) {
+      reader.fail(std::to_string(reader.fields().size()) + " field(s), expected 4: " + std::string(kHeader));
+    }
+    const double scan = reader.finiteNumber(0, kColumns[0], "a scan number");
+    if (!(scan >= 0.0 && scan <= kLargestScan && std::floor(scan) == scan)) {
+      reader.failField(0, kColumns[0], "expected an integer in [0, 2^53], got " + csv::formatNumber(scan));
+    }
+    BodyPoint point;
+    point.scan = static_cast<std::size_t>(scan);
+    point.time_s = reader.finiteNumber(1, kColumns[1], "seconds");
+    point.xy_m = Eigen::Vector2d(reader.finiteNumber(2, kColumns[2], "metres"), reader.finiteNumber(3, kColumns[3], "metres"));
+    if (!points.empty()) {
+      const std::string problem = orderProblem(points.back(), point);
+      if (!problem.empty()) reader.fail(problem);
+    }
+    points.push_back(point);
+  }
+  if (points.empty()) reader.failFile("no points: only the header row");
+  return points;
+}
+
+std::vector<BodyPoint> readPointScansCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError("cannot open '" + path + "' for reading");
+  return readPointScans(in, path);
+}
+
+void checkPointScans(const std::vector<BodyPoint>& points) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const BodyPoint& point = points[i];
+    if (!(std::isfinite(point.time_s) && point.xy_m.allFinite()) || static_cast<double>(point.scan) > kLargestScan) {
+      throw ValueError("point scans: point " + std::to_string(i) + " holds a value that is not finite or a scan beyond 2^53");
+    }
+    if (i > 0) {
+      const std::string problem = orderProblem(points[i - 1], point);
+      if (!problem.empty()) throw ValueError("point scans: point " + std::to_string(i) + ": " + problem);
+    }
+  }
+}
+
+void writePointScans(std::ostream& out, const std::vector<BodyPoint>& points) {
+  checkPointScans(points);
+  std::string text(kHeader);
+  text += '\n';
+  for (const BodyPoint& point : points) {
+    text += std::to_string(point.scan);
+    for (const double value : {point.time_s, point.xy_m.x(), point.xy_m.y()}) {
+      text += ',';
+      csv::appendNumber(text, value);
+    }
+    text += '\n';
+  }
+  out << text;
+}
+
+void PointScanOptions::validate() const {
+  if (!(std::isfinite(range_sigma_m) && range_sigma_m > 0.0)) {
+    throw ValueError("point scans: the range sigma must be > 0 m, got " + std::to_string(range_sigma_m));
+  }
+  if (!(std::isfinite(bearing_sigma_rad) && bearing_sigma_rad > 0.0)) {
+    throw ValueError("point scans: the bearing sigma must be > 0 rad, got " + std::to_string(bearing_sigma_rad));
+  }
+}
+
+std::vector<SonarScan> formPointScans(const std::vector<BodyPoint>& points, const NavTrack& dead_reckoning,
+                                      const PointScanOptions& options, const ScanFormingOptions& forming) {
+  options.validate();
+  forming.validate();
+  checkPointScans(points);
+  std::optional<NavInterpolator> nav;
+  if (!dead_reckoning.empty()) nav.emplace(dead_reckoning);  // throws ValueError for an invalid track
+  const bool known = nav.has_value();
+  std::vector<SonarScan> scans;
+  for (std::size_t first = 0; first < points.size();) {
+    std::size_t last = first + 1;
+    while (last < points.size() && points[last].scan == points[first].scan) ++last;
+    SonarScan scan;
+    scan.first_beam = first;  // the scan's first row of the file
+    scan.beams = last - first;
+    scan.start_time_s = points[first].time_s;
+    scan.end_time_s = points[last - 1].time_s;
+    scan.time_s = points[first + (last - first) / 2].time_s;
+    const std::optional<Eigen::Isometry3d> reference = scan_points::deadReckoningAt(nav, scan.time_s);
+    if (reference) {
+      scan.dead_reckoning = planarPose(*reference);
+      for (std::size_t i = first; i < last; ++i) {
+        const BodyPoint& point = points[i];
+        const std::optional<Eigen::Isometry3d> body = scan_points::deadReckoningAt(nav, point.time_s);
+        if (!body) continue;
+        scan_points::Measurement m;
+        m.point_ned_m = *body * Eigen::Vector3d(point.xy_m.x(), point.xy_m.y(), 0.0);
+        m.origin_ned_m = body->translation();
+        m.body_to_ned = *body;
+        m.time_s = point.time_s;
+        m.range_m = point.xy_m.norm();
+        m.range_sigma_m = options.range_sigma_m;
+        m.bearing_sigma_rad = options.bearing_sigma_rad;
+        scan.reach_m = std::max(scan.reach_m, m.range_m);
+        scan_points::appendPoint(scan, m, forming, known);
+      }
+      scans.push_back(std::move(scan));
+    }
+    first = last;
+  }
+  return scans;
+}
+
+SlamResult localizePointScans(const std::vector<BodyPoint>& points, const NavTrack& dead_reckoning,
+                              const PointScanOptions& options, const SlamOptions& slam) {
+  slam.validate();
+  const SlamOptions tuned = withNavigationPeriod(slam, dead_reckoning);
+  return localizeScans(formPointScans(points, dead_reckoning, options, tuned.forming), dead_reckoning, tuned);
+}
+
+}  // namespace sonarmap
