@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
-#include <tuple>
 #include <vector>
 
+#include "octree/octree_testing.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
@@ -18,11 +18,7 @@
 namespace sonarmap {
 namespace {
 
-std::vector<std::tuple<Key16, int, float>> leavesOf(const OcTree16& map) {
-  std::vector<std::tuple<Key16, int, float>> leaves;
-  map.forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
-  return leaves;
-}
+using testing::leavesOf;
 
 /// `turns` turns of the simulated Micron in the tank at `range_m` in 400 bins, moving north at 0.1 m/s.
 MsisSimulation tankRun(double range_m, std::size_t turns, double start_s, std::uint64_t seed) {

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "octree/octree_testing.hpp"
 #include "slam_fixture.hpp"
 #include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
@@ -93,11 +94,9 @@ TEST(slamLocalizer, MapsWithSlamFromOneDetection) {
 
   const SlamMapping mapped = mapSonarLogWithSlam(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
   const SonarMapper expected = mapSonarLog(loop.run.log, mapped.slam.trajectory, defaultSonarToBody(), MapperOptions{});
-  std::vector<std::tuple<Key16, int, float>> leaves, expected_leaves;
-  mapped.mapper.map().forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
-  expected.map().forEachLeaf([&](const LeafView<16>& leaf) { expected_leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
+  const auto expected_leaves = testing::leavesOf(expected.map());
   ASSERT_GT(expected_leaves.size(), 1000U);
-  EXPECT_EQ(leaves, expected_leaves);
+  EXPECT_EQ(testing::leavesOf(mapped.mapper.map()), expected_leaves);
   EXPECT_EQ(mapped.mapper.stats().obstacles, expected.stats().obstacles);
   EXPECT_EQ(mapped.mapper.stats().free_updates, expected.stats().free_updates);
 }

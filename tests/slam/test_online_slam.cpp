@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <numbers>
-#include <tuple>
 #include <vector>
 
+#include "octree/octree_testing.hpp"
 #include "slam_fixture.hpp"
 #include "sonarmap/slam/online_slam.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
@@ -14,11 +14,7 @@
 namespace sonarmap {
 namespace {
 
-std::vector<std::tuple<Key16, int, float>> leavesOf(const OcTree16& map) {
-  std::vector<std::tuple<Key16, int, float>> leaves;
-  map.forEachLeaf([&](const LeafView<16>& leaf) { leaves.emplace_back(leaf.key, leaf.depth, leaf.log_odds); });
-  return leaves;
-}
+using testing::leavesOf;
 
 // Fed beam by beam, whole sweeps or each beam integrated as it comes: the batch's trajectory, and
 // its map leaf for leaf, after finish().
