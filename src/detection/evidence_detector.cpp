@@ -158,9 +158,18 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
   std::deque<float> upcoming;  // the levels of this range and the next ones (−1: too few rows)
   std::deque<std::uint32_t> upcoming_rows;  // the rows in water they were measured on
   const cv::Mat columns = polar.intensities.t();  // row c: column c's values, contiguous
+  // Rows of a sweep in progress: the water a whole sweep measured at each range (one beam holds
+  // too little water to measure its own).
+  const bool kept_water = !context.measure_background && water.water_evidence.size() == static_cast<std::size_t>(cols) &&
+                          water.water_level.size() == static_cast<std::size_t>(cols);
+  if (kept_water) water.background = water.water_level;  // the level the kept evidence was counted from
+  if (context.measure_background) {
+    water.water_evidence.assign(static_cast<std::size_t>(cols), evidence);
+  }
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const auto* column = columns.ptr<std::uint8_t>(c);
+    if (kept_water) evidence = water.water_evidence[i];
     // The level: the background percentile of the rows in water outside a loud run, at this range and
     // the next `ahead` bins, the highest of them: a level surface entering the cone (the water
     // surface of the CRAS tank at 1.5 m) reaches the bearings within a few bins of each other, and
@@ -190,7 +199,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
         water.background[i] = water.background[i - 1];
       }
     }
-    if (rows_in_water >= min_water) {
+    if (!kept_water && rows_in_water >= min_water) {
       // The water's excess over the level, from the rows in water outside any return, over the band
       // ending at this range (a band that also led it would hold the returns of the rows about to
       // meet them, as a CFAR's leading window does: measured, it hid a third of the shared pool
@@ -199,6 +208,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
                 polar, column, c, water.background[i]);
       if (band_samples >= kMinBandSamples) evidence = WaterEvidence{std::span<const std::uint32_t>(band_counts), least_tail_counts};
     }
+    if (context.measure_background) water.water_evidence[i] = evidence;
     // Each row adds its bin's evidence (a CUSUM: a run starts where the sum leaves 0); a row whose
     // sum reaches the decision level has met its first return, where its run started.
     std::erase_if(in_water, [&](int r) {
@@ -232,6 +242,8 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
   if ((context.measure_background && polar.rows() < options.min_beams) || polar.cols() == 0) return detections;
   // A beam whose echo is never loud: its first return certain by the evidence of its bins.
   const std::vector<EvidenceReturn> first = evidencePass(polar, context, options, measured);
+  water.water_evidence = std::move(measured.water_evidence);  // kept with the calibration returned
+  if (context.measure_background) water.water_level = measured.background;  // still used below
   const std::vector<BeamDetection> loud_returns = detections;
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];

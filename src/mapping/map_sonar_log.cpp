@@ -68,7 +68,11 @@ DetectedLog detectSonarLog(const SonarLog& log, const MapperOptions& options) {
   checkWorkBudget(log, detected.options);
   detected.beams_skipped = log.skipped_beams;
   OnlineMapper online(detected.options, OnlineIntegration::kSweep);
-  online.detectOnly([&detected](DetectedSweep&& sweep) { detected.sweeps.push_back(std::move(sweep)); });
+  online.detectOnly([&detected](DetectedSweep&& sweep) {
+    sweep.detection.calibration.water_evidence = {};  // for rows detected later; integration needs none
+    sweep.detection.calibration.water_level = {};
+    detected.sweeps.push_back(std::move(sweep));
+  });
   for (const Beam& beam : log.beams) online.addBeam(beam);
   online.finish();
   detected.beams_uncalibrated = online.mapper().stats().beams_uncalibrated;

@@ -71,6 +71,14 @@ void OnlineSlam::addBeam(Beam beam) {
 }
 
 void OnlineSlam::addSweep(DetectedSweep&& sweep) {
+  // The water evidence (SweepCalibration::water_evidence, about 2 KB a column) is kept only with the
+  // newest sweep of each head setting: a rebuilt kBeam mapper detects the beams after it with it.
+  for (DetectedSweep& kept : sweeps_) {
+    if (kept.setting == sweep.setting) {
+      kept.detection.calibration.water_evidence = {};
+      kept.detection.calibration.water_level = {};
+    }
+  }
   DetectedLog one;
   one.options = options_;
   one.sweeps.push_back(std::move(sweep));

@@ -168,6 +168,50 @@ TEST(detectionEvidenceDetector, FindsStepShapedWallsThatThePeakDetectorMisses) {
   }
 }
 
+// Beams of a sweep in progress, one at a time (live mapping), judged against the water the last
+// whole sweep measured (SweepCalibration::water_evidence and water_level): the step walls of the
+// next sweep are found beam by beam, and its water beams stay water.
+TEST(detectionEvidenceDetector, SingleBeamsAreJudgedAgainstTheLastSweepsWater) {
+  std::mt19937 random(5);
+  const int step = static_cast<int>(5.8 / kBinLength_m);
+  PolarImage last = waterSweep(21);
+  for (int r = 0; r < kRows; r += 3) addStep(last, r, step, random);
+  const SweepDetection calibrating = detectSweep(last, detector(Detector::kEvidence));
+  const SweepCalibration& kept = calibrating.calibration;
+  ASSERT_EQ(kept.water_evidence.size(), static_cast<std::size_t>(kBins));
+  ASSERT_EQ(kept.water_level.size(), static_cast<std::size_t>(kBins));
+  PolarImage next = waterSweep(22);
+  for (int r = 1; r < kRows; r += 3) addStep(next, r, step, random);
+  std::size_t walls = 0, false_walls = 0;
+  for (int r = 0; r < kRows; ++r) {
+    PolarImage beam = next;
+    beam.intensities = next.intensities.row(r).clone();
+    beam.time_s = {next.time_s[static_cast<std::size_t>(r)]};
+    beam.bearing_rad = {next.bearing_rad[static_cast<std::size_t>(r)]};
+    beam.valid_bins = {next.valid_bins[static_cast<std::size_t>(r)]};
+    const BeamDetection found = detectRows(beam, detector(Detector::kEvidence), kept).detections.front();
+    if (r % 3 == 1) {
+      ASSERT_TRUE(found.hasObstacle()) << "row " << r;
+      EXPECT_NEAR(found.range_m, (step + 0.5) * kBinLength_m, 2.0 * kBinLength_m) << "row " << r;
+      ++walls;
+    } else {
+      false_walls += found.hasObstacle() ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(walls, 33U);
+  EXPECT_EQ(false_walls, 0U);
+  // Without the kept water (a calibration from elsewhere) one beam finds no weak return.
+  SweepCalibration bare = kept;
+  bare.water_evidence.clear();
+  bare.water_level.clear();
+  PolarImage beam = next;
+  beam.intensities = next.intensities.row(1).clone();
+  beam.time_s = {next.time_s[1]};
+  beam.bearing_rad = {next.bearing_rad[1]};
+  beam.valid_bins = {next.valid_bins[1]};
+  EXPECT_FALSE(detectRows(beam, detector(Detector::kEvidence), bare).detections.front().hasObstacle());
+}
+
 TEST(detectionEvidenceDetector, TheWaterIsMeasuredWithoutTheReturnsInItsBeams) {
   // The same steps at one range in a growing share of the bearings: the water at that range is
   // measured on the rows still in water, not on those inside a return, so the steps stand out as

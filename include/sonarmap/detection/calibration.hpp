@@ -41,6 +41,7 @@
 
 #include <vector>
 
+#include "sonarmap/detection/water_evidence.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
 
 namespace sonarmap {
@@ -75,6 +76,14 @@ struct SweepCalibration {
   double threshold_db = 0.0;      ///< T in dB
   double band_end_m = 0.0;        ///< end of the self-reflection band, metres
   double near_field_end_m = 0.0;  ///< end of the near-field clutter (≥ band_end_m), metres
+  /// The evidence detector's water at each column, measured over a whole sweep (water_evidence.hpp:
+  /// the band of water ending at that range); empty when not measured (other detectors). Rows of a
+  /// sweep in progress (detectRows) are judged against it: one beam holds too little water to
+  /// measure its own. About 2 KB a column.
+  std::vector<WaterEvidence> water_evidence;
+  /// The level that water's excess is counted from at each column (intensity counts: the evidence
+  /// detector's percentile of the rows in water), with water_evidence; empty when not measured.
+  std::vector<float> water_level;
 };
 
 /// The level above the background percentile that makes a range near-field clutter when the
