@@ -163,13 +163,16 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
   const bool kept_water = !context.measure_background && water.water_evidence.size() == static_cast<std::size_t>(cols) &&
                           water.water_level.size() == static_cast<std::size_t>(cols);
   if (kept_water) water.background = water.water_level;  // the level the kept evidence was counted from
-  if (context.measure_background) {
-    water.water_evidence.assign(static_cast<std::size_t>(cols), evidence);
+  if (context.measure_background) {  // one per column, the nearer ones the empty band's
+    water.water_evidence.clear();
+    water.water_evidence.reserve(static_cast<std::size_t>(cols));
+    water.water_evidence.resize(static_cast<std::size_t>(std::min(context.min_bin, cols)), evidence);
   }
+  const WaterEvidence* judged_by = &evidence;  // the water this column's bins are judged against
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const auto* column = columns.ptr<std::uint8_t>(c);
-    if (kept_water) evidence = water.water_evidence[i];
+    if (kept_water) judged_by = &water.water_evidence[i];
     // The level: the background percentile of the rows in water outside a loud run, at this range and
     // the next `ahead` bins, the highest of them: a level surface entering the cone (the water
     // surface of the CRAS tank at 1.5 m) reaches the bearings within a few bins of each other, and
@@ -208,7 +211,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
                 polar, column, c, water.background[i]);
       if (band_samples >= kMinBandSamples) evidence = WaterEvidence{std::span<const std::uint32_t>(band_counts), least_tail_counts};
     }
-    if (context.measure_background) water.water_evidence[i] = evidence;
+    if (context.measure_background) water.water_evidence.push_back(evidence);
     // Each row adds its bin's evidence (a CUSUM: a run starts where the sum leaves 0); a row whose
     // sum reaches the decision level has met its first return, where its run started.
     std::erase_if(in_water, [&](int r) {
@@ -216,7 +219,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       if (c >= polar.valid_bins[row]) return true;
       const float excess = static_cast<float>(column[r]) - water.background[i];
       loud[row] = excess >= water.threshold[i] ? loud[row] + 1 : 0;
-      const double next = sum[row] + weight * evidence.logLikelihoodRatio(excessOf(column[r], water.background[i]));
+      const double next = sum[row] + weight * judged_by->logLikelihoodRatio(excessOf(column[r], water.background[i]));
       if (next <= 0.0) {
         sum[row] = 0.0;
         start[row] = -1;
@@ -228,6 +231,9 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       first[row] = EvidenceReturn{start[row], c};
       return true;
     });
+  }
+  if (context.measure_background) {  // the columns beyond the last row's return: the last water
+    water.water_evidence.resize(static_cast<std::size_t>(cols), evidence);
   }
   return first;
 }

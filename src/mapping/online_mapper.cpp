@@ -235,7 +235,9 @@ void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
   }
   waiting_beams_ -= rows;
   // The calibration later beams of this setting are detected with (short groups; kBeam's beams).
-  if (calibrates) keepCalibration(sweep.setting, sweep.detection.calibration, rows);
+  if (calibrates) {  // the sink needs the sweep's own; otherwise it is moved, not copied
+    keepCalibration(sweep.setting, detect_only_ ? sweep.detection.calibration : std::move(sweep.detection.calibration), rows);
+  }
   if (detect_only_) detect_only_(std::move(sweep));
   if (on_sweep_) on_sweep_(sweeps_);
 }
