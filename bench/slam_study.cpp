@@ -14,8 +14,12 @@
 // sizes drawn from the seed), a gyro walk of 0.02°/√s and DVL noise of 0.02 m/s; the simulator's
 // speckle and noise are seeded with n too.
 //
-// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale]
+// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav]
 // (--fixed-scale: SlamOptions::estimate_odometry_scale false)
+// (--true-nav: the true navigation is given as the dead reckoning, so --slam should leave it where it
+// is; DR's columns are then 0 and the odometry scale's range is printed on stderr)
+// (--no-nav: no navigation at all, the motion from the scans alone; DR's columns are then the
+// vehicle believed still at its start)
 // (--verbose: one line per seed on stderr: its errors, both ATEs, the estimated odometry scale)
 
 #include <algorithm>
@@ -128,6 +132,16 @@ NavTrack aligned(const NavTrack& estimate, const NavTrack& truth) {
   return moved;
 }
 
+/// The vehicle believed still at its true start: what a map without navigation assumes.
+NavTrack stillAtStart(const NavTrack& truth) {
+  NavTrack still = truth;
+  for (NavSample& fix : still) {
+    fix.position_ned_m = truth.front().position_ned_m;
+    fix.yaw_rad = truth.front().yaw_rad;
+  }
+  return still;
+}
+
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   return values.empty() ? 0.0 : values[values.size() / 2];
@@ -141,6 +155,8 @@ int main(int argc, char** argv) {
   bool maps = false;
   bool verbose = false;
   bool fixed_scale = false;
+  bool true_nav = false;
+  bool no_nav = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
       seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
@@ -152,8 +168,12 @@ int main(int argc, char** argv) {
       verbose = true;
     } else if (std::strcmp(argv[i], "--fixed-scale") == 0) {
       fixed_scale = true;
+    } else if (std::strcmp(argv[i], "--true-nav") == 0) {
+      true_nav = true;
+    } else if (std::strcmp(argv[i], "--no-nav") == 0) {
+      no_nav = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav]\n", argv[0]);
       return 2;
     }
   }
@@ -165,6 +185,7 @@ int main(int argc, char** argv) {
     if (!only.empty() && only != std::string(mission.sonar) + ":" + mission.name) continue;
     std::vector<double> dr_ate, slam_ate, slam_drift, dr_start, slam_start;
     double worst_ratio = 0.0, slowest = 1e300, length_m = 0.0;
+    double scale_min = 1e300, scale_max = -1e300;
     std::size_t accepted = 0, wrong = 0;
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
       const SimulationArguments args = argumentsOf(mission, seed);
@@ -175,13 +196,14 @@ int main(int argc, char** argv) {
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;
       // What `map --slam` does: each sweep detected once, localized, and mapped with the result.
+      const NavTrack& dead_reckoning = no_nav ? NavTrack{} : true_nav ? run.nav : run.dead_reckoning;
       const SlamMapping mapped =
-          mapSonarLogWithSlam(run.log, run.dead_reckoning, options.sonar_to_body, MapperOptions{}, slam_options);
+          mapSonarLogWithSlam(run.log, dead_reckoning, options.sonar_to_body, MapperOptions{}, slam_options);
       const SlamResult& slam = mapped.slam;
       const double spent_s = seconds(start);
       const double duration_s = run.log.beams.back().time_s - run.log.beams.front().time_s;
       slowest = std::min(slowest, duration_s / spent_s);
-      const TrajectoryError dr = evaluateTrajectory(run.dead_reckoning, run.nav);
+      const TrajectoryError dr = evaluateTrajectory(no_nav ? stillAtStart(run.nav) : dead_reckoning, run.nav);
       const TrajectoryError est = evaluateTrajectory(slam.trajectory, run.nav);
       length_m = dr.distance_m;
       dr_ate.push_back(dr.ate_rmse_m);
@@ -189,7 +211,9 @@ int main(int argc, char** argv) {
       dr_start.push_back(dr.ate_start_rmse_m);
       slam_start.push_back(est.ate_start_rmse_m);
       slam_drift.push_back(est.final_drift_pct);
-      worst_ratio = std::max(worst_ratio, est.ate_rmse_m / dr.ate_rmse_m);
+      if (dr.ate_rmse_m > 1e-6) worst_ratio = std::max(worst_ratio, est.ate_rmse_m / dr.ate_rmse_m);
+      scale_min = std::min(scale_min, slam.report.odometry_scale);
+      scale_max = std::max(scale_max, slam.report.odometry_scale);
       if (verbose) {
         std::fprintf(stderr, "%s %s seed %llu: scale error %+.4f, bias %+.2f deg: DR ATE %.3f m, SLAM ATE %.3f m, "
                      "odometry scale %.4f\n", mission.sonar, mission.name, static_cast<unsigned long long>(seed),
@@ -220,6 +244,7 @@ int main(int argc, char** argv) {
                 median(slam_ate), maxOf(slam_ate), worst_ratio, median(dr_start), maxOf(dr_start), median(slam_start),
                 maxOf(slam_start), median(slam_drift), maxOf(slam_drift), accepted, wrong, slowest);
     std::fflush(stdout);
+    std::fprintf(stderr, "%s %s: odometry scale %.4f .. %.4f\n", mission.sonar, mission.name, scale_min, scale_max);
   }
   return 0;
 }
