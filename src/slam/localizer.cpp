@@ -7,6 +7,8 @@
 #include <limits>
 #include <string>
 
+#include <Eigen/Eigenvalues>
+
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/core/statistics.hpp"
 #include "sonarmap/slam/localizer.hpp"
@@ -134,7 +136,12 @@ void Localizer::closeLoop(std::size_t k) {
   const double radius_m = options_.loop_search_radius_m > 0.0 ? options_.loop_search_radius_m : reach_m / 2.0;
   const double min_travel_m = options_.loop_min_travel_m > 0.0 ? options_.loop_min_travel_m : 2.0 * reach_m;
   if (scans_[k].points.size() < options_.matching.min_pairs) return;
-  // The nearest earlier scan that the vehicle left long enough ago.
+  // The nearest earlier scan that the vehicle left long enough ago, sought no farther than where
+  // its true neighbour can be (SlamOptions::loop_search_radius_m): half the old scans' spacing
+  // plus 3σ of dead reckoning's drift along the path since. Two views farther apart than that see
+  // small targets from different sides (a pile's echo comes from the side facing the sonar, so
+  // the two disagree by up to its radius); a later scan passes nearer.
+  const std::vector<Eigen::Matrix3d> drift = pathCovariancesTo(k);
   std::size_t best = k;
   double best_distance_m = std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j + options_.submap_scans < k; ++j) {
@@ -144,7 +151,11 @@ void Localizer::closeLoop(std::size_t k) {
     if (travelled_m < min_travel_m && travelled_m > radius_m) continue;
     if (scans_[j].points.size() < options_.matching.min_pairs) continue;
     const double distance_m = (graph_.pose(j).translation() - graph_.pose(k).translation()).norm();
-    if (distance_m <= radius_m && distance_m < best_distance_m) {
+    const std::size_t before = j > 0 ? j - 1 : j;  // the scans around j (j + 1 < k here)
+    const double spacing_m = (travelled_m_[j + 1] - travelled_m_[before]) / static_cast<double>(j + 1 - before);
+    const double drift_sigma_m = std::sqrt(drift[j].topLeftCorner<2, 2>().eigenvalues().real().maxCoeff());
+    const double reachable_m = options_.loop_search_radius_m > 0.0 ? radius_m : std::min(radius_m, spacing_m / 2.0 + 3.0 * drift_sigma_m);
+    if (distance_m <= reachable_m && distance_m < best_distance_m) {
       best = j;
       best_distance_m = distance_m;
     }

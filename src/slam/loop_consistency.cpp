@@ -38,6 +38,17 @@ Eigen::Matrix3d Localizer::pathCovariance(std::size_t a, std::size_t b) const {
   return covariance;
 }
 
+std::vector<Eigen::Matrix3d> Localizer::pathCovariancesTo(std::size_t b) const {
+  // Backwards: the path from a is odometry a → a+1 followed by the path from a+1.
+  std::vector<Eigen::Matrix3d> covariances(b + 1, Eigen::Matrix3d::Zero());
+  Pose2 chain;  // the path from a+1 to b
+  for (std::size_t a = b; a-- > 0;) {
+    covariances[a] = composeCovariance(odometry_[a + 1], odometry_cov_[a + 1], chain, covariances[a + 1]);
+    chain = odometry_[a + 1] * chain;
+  }
+  return covariances;
+}
+
 /// The cycle of loops (j1 → k1, z1) and (j2 → k2, z2): z1 ∘ est(k1 → k2) ∘ z2⁻¹ ∘ est(j2 → j1)
 /// should be the identity; its covariance adds both matches' and dead reckoning's along the two
 /// paths between their ends.

@@ -121,6 +121,43 @@ TEST(slamLocalizer, RefusesAWrongLoopClosureAndKeepsTheGraph) {
   }
 }
 
+/// Accepted loop closures whose relative pose is off the truth by more than 5 % of the range or 3°.
+std::size_t wrongLoopClosures(const SlamResult& slam, const NavTrack& truth, double range_m) {
+  std::size_t wrong = 0;
+  for (const LoopClosure& loop : slam.report.loop_closures) {
+    if (!loop.accepted) continue;
+    const Pose2 from = planarPose(*interpolateBodyToNed(truth, slam.scan_times_s[loop.from]));
+    const Pose2 to = planarPose(*interpolateBodyToNed(truth, slam.scan_times_s[loop.to]));
+    const Pose2 error = from.between(to).between(loop.measurement);
+    if (error.translation().norm() > 0.05 * range_m || std::abs(error.yaw_rad) > 3.0 * kDeg) ++wrong;
+  }
+  return wrong;
+}
+
+TEST(slamLocalizer, LoopClosuresWaitForTheNearestViewOfAPlace) {
+  // The Micron twice round the moored hull, its true navigation given as dead reckoning. At the end
+  // of the first lap a scan 2.45 m from the first one (5 m range, half of it the old search radius)
+  // sees the mooring pile and the hull's corner from the other side; matched, it is 0.27 m off the
+  // truth. The next scan passes 1.1 m from the first: a loop closure is sought only within the old
+  // scans' half spacing plus dead reckoning's 3σ drift, so it is that one that closes.
+  SimulationArguments args;
+  args.sonar = "micron";
+  args.mission = "hull-loop";
+  args.laps = 2;
+  args.seed = 2;
+  const MsisSimulationOptions options = toSimulationOptions(args);
+  const MsisSimulation run =
+      simulateMsis(sceneOf(missionPlan(args.mission, options.head.range_m, 1.0).scene, options.head), options);
+  const SlamResult slam = localize(run.log, run.nav, options.sonar_to_body, MapperOptions{});
+  EXPECT_GT(slam.report.loopClosuresAccepted(), 5U);
+  EXPECT_EQ(wrongLoopClosures(slam, run.nav, options.head.range_m), 0U);
+  // Sought within half the range wherever the place was seen from, one closes wrongly.
+  SlamOptions wide;
+  wide.loop_search_radius_m = options.head.range_m / 2.0;
+  const SlamResult widely = localize(run.log, run.nav, options.sonar_to_body, MapperOptions{}, wide);
+  EXPECT_GT(wrongLoopClosures(widely, run.nav, options.head.range_m), 0U);
+}
+
 TEST(slamScanForming, MotionCompensationPutsAWallBackOnOneLine) {
   // The Micron heading north at 0.2 m/s straight at the harbour's quay (its face at north 3.5 m),
   // between two piles (east 0 and 2 m): in its 8.6 s turn the vehicle closes 1.7 m.

@@ -41,7 +41,11 @@ struct SlamOptions {
   /// odometry's scale is trusted, its error left in each edge's covariance.
   bool estimate_odometry_scale = true;
   /// A loop closure is sought among the scans whose estimated reference position lies within this
-  /// of the new scan's, metres, ≥ 0; 0: automatic, half the scans' median reach.
+  /// of the new scan's, metres, ≥ 0; 0: automatic, for each older scan the nearer of half the
+  /// scans' median reach and where its true neighbour can be (half the old scans' spacing along
+  /// the path plus 3σ of dead reckoning's drift since, Localizer::pathCovariance): a view of the
+  /// place from farther away sees small targets from another side (a pile's echo comes from the
+  /// side facing the sonar), and a later scan passes nearer.
   double loop_search_radius_m = 0.0;
   /// ... and that the vehicle left at least this far back along its path, metres, ≥ 0; 0:
   /// automatic, twice the scans' median reach (so that a loop closure is not just the last turn),
@@ -123,6 +127,8 @@ class Localizer {
   /// Covariance of dead reckoning's relative pose from scan a to scan b (a < b), composed along the
   /// odometry edges.
   Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;
+  /// pathCovariance(a, b) for every a ≤ b (index a; zero at b), in one pass.
+  std::vector<Eigen::Matrix3d> pathCovariancesTo(std::size_t b) const;
   void matchToSubmap(std::size_t k);
   void closeLoop(std::size_t k);
   /// Whether `loop` is consistent with every accepted loop closure.
