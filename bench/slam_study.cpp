@@ -15,11 +15,14 @@
 // speckle and noise are seeded with n too.
 //
 // Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav]
+//        [--no-nav] [--nav-class NAME]
 // (--fixed-scale: SlamOptions::estimate_odometry_scale false)
 // (--true-nav: the true navigation is given as the dead reckoning, so --slam should leave it where it
 // is; DR's columns are then 0 and the odometry scale's range is printed on stderr)
 // (--no-nav: no navigation at all, the motion from the scans alone; DR's columns are then the
 // vehicle believed still at its start)
+// (--nav-class NAME: the localization's odometry noise is that class's (scan_forming.hpp,
+// odometryNoiseOf), and the dead reckoning's errors below are scaled by its σ over dvl-ahrs's)
 // (--verbose: one line per seed on stderr: its errors, both ATEs, the estimated odometry scale)
 
 #include <algorithm>
@@ -65,7 +68,7 @@ const Mission kMissions[] = {
 
 double seconds(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-SimulationArguments argumentsOf(const Mission& mission, std::uint64_t seed) {
+SimulationArguments argumentsOf(const Mission& mission, std::uint64_t seed, const OdometryNoise& noise) {
   SimulationArguments args;
   args.sonar = mission.sonar;
   args.mission = mission.name;
@@ -74,10 +77,13 @@ SimulationArguments argumentsOf(const Mission& mission, std::uint64_t seed) {
   args.seed = seed;
   std::mt19937_64 draw(seed * 0x9E3779B97F4A7C15ULL + 12345);
   const auto unit = [&draw] { return static_cast<double>(draw() >> 11) * 0x1.0p-53; };
-  args.dvl_scale_error = (unit() < 0.5 ? -1.0 : 1.0) * (0.02 + 0.01 * unit());
-  args.heading_bias_deg = (unit() < 0.5 ? -1.0 : 1.0) * (1.0 + unit());
-  args.gyro_walk_deg_per_sqrt_s = 0.02;
-  args.dvl_noise_mps = 0.02;
+  // Sized for the default class (dvl-ahrs) and scaled by the class's σ over its.
+  const OdometryNoise base;
+  args.dvl_scale_error = (unit() < 0.5 ? -1.0 : 1.0) * (0.02 + 0.01 * unit()) * (noise.scale_sigma / base.scale_sigma);
+  args.heading_bias_deg =
+      (unit() < 0.5 ? -1.0 : 1.0) * (1.0 + unit()) * (noise.heading_sigma_rad / base.heading_sigma_rad);
+  args.gyro_walk_deg_per_sqrt_s = 0.02 * (noise.gyro_walk_rad_per_sqrt_s / base.gyro_walk_rad_per_sqrt_s);
+  args.dvl_noise_mps = 0.02 * (noise.velocity_noise_mps / base.velocity_noise_mps);
   return args;
 }
 
@@ -157,6 +163,7 @@ int main(int argc, char** argv) {
   bool fixed_scale = false;
   bool true_nav = false;
   bool no_nav = false;
+  std::string nav_class = "dvl-ahrs";
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
       seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
@@ -172,8 +179,10 @@ int main(int argc, char** argv) {
       true_nav = true;
     } else if (std::strcmp(argv[i], "--no-nav") == 0) {
       no_nav = true;
+    } else if (std::strcmp(argv[i], "--nav-class") == 0 && i + 1 < argc) {
+      nav_class = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--nav-class NAME]\n", argv[0]);
       return 2;
     }
   }
@@ -188,13 +197,14 @@ int main(int argc, char** argv) {
     double scale_min = 1e300, scale_max = -1e300;
     std::size_t accepted = 0, wrong = 0;
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
-      const SimulationArguments args = argumentsOf(mission, seed);
+      const SimulationArguments args = argumentsOf(mission, seed, odometryNoiseOf(nav_class));
       const MsisSimulationOptions options = toSimulationOptions(args);
       const std::string scene = missionPlan(mission.name, options.head.range_m, 1.0).scene;
       const MsisSimulation run = simulateMsis(sceneOf(scene, options.head), options);
       const Clock::time_point start = Clock::now();
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;
+      slam_options.forming.odometry = odometryNoiseOf(nav_class);
       // What `map --slam` does: each sweep detected once, localized, and mapped with the result.
       const NavTrack& dead_reckoning = no_nav ? NavTrack{} : true_nav ? run.nav : run.dead_reckoning;
       const SlamMapping mapped =

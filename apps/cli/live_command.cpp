@@ -62,7 +62,9 @@ class LiveMapping {
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
     if (args.map.slam) {
-      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, SlamOptions{}, integration);
+      SlamOptions slam_options;
+      slam_options.forming.odometry = toOdometryNoise(args.map.odometry);
+      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, slam_options, integration);
       for (const NavSample& fix : known_fixes) slam_->addNavFix(fix);
     } else if (!navigation) {
       mapper_ = std::make_unique<OnlineMapper>(options, integration);
@@ -382,6 +384,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   cmd->add_flag("--slam", args.map.slam,
                 "Correct the navigation by scan matching as sweeps complete (as `map --slam`); when a loop closes the "
                 "map is rebuilt with the corrected trajectory, so each written map is the current best");
+  addOdometryOptions(*cmd, args.map.odometry);
   cmd->add_option("--trajectory", args.map.trajectory_out,
                   "With --slam: write the corrected trajectory at the end (navigation CSV, or TUM for .tum/.txt)");
   struct Checked {
@@ -396,6 +399,10 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     }
     if (isReplay(args) && !args.nav_stream.empty()) throw ValueError("a replayed ROS log takes --nav, not --nav-stream");
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
+    if (args.map.odometry.stated() && !args.map.slam) {
+      throw ValueError("--nav-class and --nav-*-sigma describe the navigation for --slam: give --slam");
+    }
+    toOdometryNoise(args.map.odometry);  // throws for an unknown class or a bad value
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
     if (!args.map.mounting.empty() && args.map.nav_file.empty() && args.nav_stream.empty() && !args.map.slam) {
       throw ValueError("--mounting needs --nav, --nav-stream or --slam");

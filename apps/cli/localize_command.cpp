@@ -38,8 +38,10 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
   cmd->add_option("--bearing-sigma", args.bearing_sigma_deg,
                   "1-sigma of a point's bearing, DEGREES > 0 (half the horizontal beam width)")
       ->capture_default_str();
+  addOdometryOptions(*cmd, args.odometry);
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
   auto check = [&args] {
+    toOdometryNoise(args.odometry);  // throws for an unknown class or a bad value
     if (!(std::isfinite(args.range_sigma_m) && args.range_sigma_m > 0.0)) {
       throw ValueError("--range-sigma expects METRES > 0");
     }
@@ -57,7 +59,9 @@ void runLocalize(const LocalizeArgs& args) {
   PointScanOptions options;
   options.range_sigma_m = args.range_sigma_m;
   options.bearing_sigma_rad = args.bearing_sigma_deg * std::numbers::pi / 180.0;
-  const SlamResult result = localizePointScans(points, dead_reckoning, options);
+  SlamOptions slam;
+  slam.forming.odometry = toOdometryNoise(args.odometry);
+  const SlamResult result = localizePointScans(points, dead_reckoning, options, slam);
   FileTransaction outputs;
   stageTrajectory(outputs, args.trajectory, result.trajectory);
   outputs.commit();

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "odometry_options.hpp"
 #include "command.hpp"
 
 namespace sonarmap::cli {
@@ -18,6 +19,7 @@ struct LocalizeArgs {
   std::string trajectory;       ///< --trajectory: the corrected track (navigation CSV, or TUM for .tum/.txt)
   double range_sigma_m = 0.05;  ///< --range-sigma, metres, > 0
   double bearing_sigma_deg = 1.5;  ///< --bearing-sigma, degrees, > 0
+  OdometryArgs odometry;           ///< --nav-class and its values: how far the navigation is trusted
   bool quiet = false;
 };
 

@@ -69,6 +69,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                 "Correct the navigation by matching the sonar's scans with each other (motion-compensated scans, "
                 "probabilistic ICP, loop closures, a pose graph) and map with the corrected trajectory. Without "
                 "--nav the vehicle is believed still and its motion comes from the scans alone");
+  addOdometryOptions(*cmd, args.odometry);
   cmd->add_option("--trajectory", args.trajectory_out,
                   "Write the trajectory the map was built with (the corrected one with --slam, else --nav's): "
                   "a navigation CSV, or TUM format (time x y z qx qy qz qw, NED) when the name ends in .tum or .txt");
@@ -80,6 +81,8 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
     if (!checked->side_png.empty() && !args.volume) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
     }
+    if (args.odometry.stated() && !args.slam) throw ValueError("--nav-class and --nav-*-sigma describe the navigation for --slam: give --slam");
+    toOdometryNoise(args.odometry);  // throws for an unknown class or a bad value
     checked->options = toMapperOptions(args);
     checked->sonar_to_body = toSonarToBody(args.mounting);
   };
@@ -98,7 +101,9 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
   if (args.slam) {
     return mapWithProgress(
         [&](const ProgressCallback& progress) {
-          SlamMapping mapped = mapSonarLogWithSlam(log, nav, sonar_to_body, options, SlamOptions{}, progress);
+          SlamOptions slam_options;
+          slam_options.forming.odometry = toOdometryNoise(args.odometry);
+          SlamMapping mapped = mapSonarLogWithSlam(log, nav, sonar_to_body, options, slam_options, progress);
           slam = std::move(mapped.slam);
           return std::move(mapped.mapper);
         },

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "odometry_options.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapping_arguments.hpp"
 
@@ -29,6 +30,7 @@ struct MapArgs : MappingArguments {
   double nav_time_offset_s = 0.0;  ///< --nav-time-offset: seconds added to the navigation's clock
   std::vector<double> mounting;  ///< X,Y,Z (m), ROLL,PITCH,YAW (degrees) of the sonar in the body; empty: default
   bool slam = false;             ///< --slam: correct the navigation by scan matching (slam/localizer.hpp)
+  OdometryArgs odometry;         ///< --nav-class and its values: how far --slam trusts the navigation
   std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)
 };
 

@@ -47,6 +47,7 @@ class _MappingOptions(TypedDict, total=False):
 class _MapSonarLogOptions(_MappingOptions, total=False):
     format: str
     nav_time_offset_s: float
+    nav_class: str
 
 class Error(builtins.RuntimeError): ...
 class FileError(Error, builtins.OSError): ...
@@ -244,6 +245,7 @@ def localize_point_scans(
     nav: Union[None, PathLike, Float64Array] = None,
     range_sigma: float = 0.05,
     bearing_sigma: float = 1.5,
+    nav_class: str = "dvl-ahrs",
 ) -> dict[str, Any]: ...
 
 class OnlineMapper:

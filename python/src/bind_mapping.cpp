@@ -51,7 +51,9 @@ void warn(const std::vector<std::string>& lines) {
 
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
-  const MappingArguments args = mappingArguments(kwargs, {"format", "nav_time_offset_s"});
+  const MappingArguments args = mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class"});
+  SlamOptions slam_options;
+  if (kwargs.contains("nav_class")) slam_options.forming.odometry = odometryNoiseOf(textArgument(kwargs["nav_class"], "nav_class"));
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
   NominalBeam beam = log.beam;
@@ -82,7 +84,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   {
     py::gil_scoped_release release;
     if (slam) {
-      SlamMapping mapped = mapSonarLogWithSlam(log.log, track ? *track : NavTrack{}, sonar_to_body, options, SlamOptions{}, callback);
+      SlamMapping mapped = mapSonarLogWithSlam(log.log, track ? *track : NavTrack{}, sonar_to_body, options, slam_options, callback);
       mapper.emplace(std::move(mapped.mapper));
       localized = std::move(mapped.slam);
     } else {
@@ -133,7 +135,8 @@ pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting); default: a 
 /tf_static mounting of the log's sonar frame when it has one, else upright and aligned. progress: callable(sweeps_done, sweeps_total) or None. slam: correct
 the navigation by scan matching first and map with the corrected trajectory (the CLI's --slam; without
 nav the vehicle is believed still and its motion comes from the scans); the map's ``trajectory`` and
-``slam`` then hold the corrected trajectory and what the localization did.
+``slam`` then hold the corrected trajectory and what the localization did; keyword nav_class (the CLI's
+--nav-class: "dvl-ahrs", the default, "dvl-ins" or "absolute") says how far it trusts the navigation.
 Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "auto" where the CLI
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
@@ -149,7 +152,10 @@ TypeError for an unknown keyword.)doc";
 
   m.def(
       "localize_point_scans",
-      [](const py::object& scans, const py::object& nav, double range_sigma, double bearing_sigma) {
+      [](const py::object& scans, const py::object& nav, double range_sigma, double bearing_sigma,
+         const std::string& nav_class) {
+        SlamOptions slam;
+        slam.forming.odometry = odometryNoiseOf(nav_class);
         std::vector<BodyPoint> points;
         if (py::isinstance<py::str>(scans) || py::hasattr(scans, "__fspath__")) {
           points = readPointScansCsv(py::str(py::module_::import("os").attr("fspath")(scans)));
@@ -174,7 +180,7 @@ TypeError for an unknown keyword.)doc";
         SlamResult result;
         {
           py::gil_scoped_release release;
-          result = localizePointScans(points, track, options);
+          result = localizePointScans(points, track, options, slam);
         }
         py::dict out;
         out["trajectory"] = navArray(result.trajectory);
@@ -184,6 +190,7 @@ TypeError for an unknown keyword.)doc";
         return out;
       },
       py::arg("scans"), py::arg("nav") = py::none(), py::arg("range_sigma") = 0.05, py::arg("bearing_sigma") = 1.5,
+      py::arg("nav_class") = "dvl-ahrs",
       R"doc(Localizes point scans detected elsewhere, as `sonarmap localize` (slam/point_scans.hpp): the scan
 matcher, loop closures and pose graph of map_sonar_log(slam=True).
 
@@ -191,7 +198,9 @@ scans: the path of a point-scan CSV (scan,time_s,x_m,y_m) or a float64 (N, 4) ar
 each point's scan (an integer; a scan's rows together, in increasing number), time (s, the navigation's
 clock, never decreasing) and place in the body frame then (m, x forward, y to starboard). nav: the dead
 reckoning, an (N, 7) array or a navigation CSV's path; None: the vehicle believed still. range_sigma
-(metres) and bearing_sigma (degrees): 1-sigma of a point's range and bearing. Returns a dict: trajectory
+(metres) and bearing_sigma (degrees): 1-sigma of a point's range and bearing. nav_class: how far the
+navigation is trusted, by its sensors (slam/scan_forming.hpp odometryNoiseOf: "dvl-ahrs", "dvl-ins",
+"absolute"; the CLI's --nav-class). Returns a dict: trajectory
 (the corrected dead reckoning, an (M, 7) float64 array; without nav, three rows per scan), scans,
 matches_accepted, loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
 sonarmap.ValueError for a bad array, option or track.)doc");

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/mapping/detected_log.hpp"
@@ -96,6 +98,31 @@ Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s,
   covariance(2, 2) += std::pow(0.01 * 3.14159265358979323846 / 180.0, 2);
   return covariance;
 }
+
+OdometryNoise odometryNoiseOf(std::string_view navigation_class) {
+  constexpr double kDegree = 3.14159265358979323846 / 180.0;
+  OdometryNoise noise;  // "dvl-ahrs"
+  if (navigation_class == "dvl-ahrs") return noise;
+  if (navigation_class == "dvl-ins") {
+    noise.scale_sigma = 0.003;
+    noise.heading_sigma_rad = 0.2 * kDegree;
+    noise.velocity_noise_mps = 0.01;
+    noise.gyro_walk_rad_per_sqrt_s = 0.01 * kDegree;
+    return noise;
+  }
+  if (navigation_class == "absolute") {
+    noise.scale_sigma = 0.001;
+    noise.heading_sigma_rad = 0.1 * kDegree;
+    noise.velocity_noise_mps = 0.005;
+    noise.gyro_walk_rad_per_sqrt_s = 0.005 * kDegree;
+    return noise;
+  }
+  std::string known;
+  for (const std::string& name : navigationClasses()) known += (known.empty() ? "" : ", ") + name;
+  throw ValueError("navigation class '" + std::string(navigation_class) + "' is not one of " + known);
+}
+
+std::vector<std::string> navigationClasses() { return {"dvl-ahrs", "dvl-ins", "absolute"}; }
 
 void OdometryNoise::validate() const {
   requireNonNegative(scale_sigma, "scale_sigma");

@@ -59,6 +59,11 @@ def test_map_sonar_log_with_slam():
     plain = sonarmap.map_sonar_log(run.log, run.dead_reckoning)
     assert plain.trajectory is None and plain.slam is None
     assert slammed.copy().trajectory.shape == slammed.trajectory.shape
+    # The true track given and stated as good navigation is left within a centimetre.
+    kept = sonarmap.map_sonar_log(run.log, run.nav, slam=True, nav_class="absolute")
+    assert sonarmap.eval_trajectory(kept.trajectory, run.nav)["ate_rmse_m"] < 0.01
+    with pytest.raises(sonarmap.ValueError, match="dvl-ins"):
+        sonarmap.map_sonar_log(run.log, run.nav, slam=True, nav_class="submarine")
 
 
 def rectangle_scans(count=6):
@@ -91,6 +96,10 @@ def test_localize_point_scans(tmp_path):
     assert corrected["trajectory"].shape == nav.shape
     e = sonarmap.eval_trajectory(corrected["trajectory"], nav)
     assert e["ate_start_rmse_m"] < 0.03 and e["ate_rmse_m"] <= e["ate_start_rmse_m"] + 1e-9
+    trusted = sonarmap.localize_point_scans(path, nav=nav, nav_class="absolute")
+    assert trusted["trajectory"].shape == nav.shape
+    with pytest.raises(sonarmap.ValueError, match="dvl-ahrs, dvl-ins, absolute"):
+        sonarmap.localize_point_scans(path, nav=nav, nav_class="submarine")
     with pytest.raises(sonarmap.ValueError, match="shape"):
         sonarmap.localize_point_scans(scans[:, :3])
     with pytest.raises(sonarmap.ValueError, match="integer"):

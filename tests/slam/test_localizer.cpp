@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "octree/octree_testing.hpp"
 #include "slam_fixture.hpp"
+#include "sonarmap/core/errors.hpp"
 #include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
@@ -156,6 +158,41 @@ TEST(slamLocalizer, LoopClosuresWaitForTheNearestViewOfAPlace) {
   wide.loop_search_radius_m = options.head.range_m / 2.0;
   const SlamResult widely = localize(run.log, run.nav, options.sonar_to_body, MapperOptions{}, wide);
   EXPECT_GT(wrongLoopClosures(widely, run.nav, options.head.range_m), 0U);
+}
+
+TEST(slamScanForming, NavigationClassesNameTheirNoise) {
+  const std::vector<std::string> classes = navigationClasses();
+  ASSERT_EQ(classes.size(), 3U);
+  EXPECT_EQ(classes.front(), "dvl-ahrs");  // the default: OdometryNoise{}
+  const OdometryNoise base = odometryNoiseOf("dvl-ahrs"), ins = odometryNoiseOf("dvl-ins"), fixed = odometryNoiseOf("absolute");
+  EXPECT_EQ(base.scale_sigma, OdometryNoise{}.scale_sigma);
+  EXPECT_EQ(base.heading_sigma_rad, OdometryNoise{}.heading_sigma_rad);
+  EXPECT_DOUBLE_EQ(ins.scale_sigma, 0.003);
+  EXPECT_NEAR(ins.heading_sigma_rad, 0.2 * kDeg, 1e-12);
+  EXPECT_LT(fixed.scale_sigma, ins.scale_sigma);
+  EXPECT_LT(fixed.velocity_noise_mps, ins.velocity_noise_mps);
+  EXPECT_LT(ins.gyro_walk_rad_per_sqrt_s, base.gyro_walk_rad_per_sqrt_s);
+  for (const std::string& name : classes) EXPECT_NO_THROW(odometryNoiseOf(name).validate()) << name;
+  try {
+    odometryNoiseOf("submarine");
+    ADD_FAILURE() << "an unknown class was accepted";
+  } catch (const ValueError& error) {
+    EXPECT_NE(std::string(error.what()).find("dvl-ins"), std::string::npos) << error.what();
+  }
+}
+
+TEST(slamLocalizer, GoodNavigationStatedAsSuchIsLeftNearlyWhereItIs) {
+  // The true track as dead reckoning: the scans' pull towards less motion (docs/localization.md)
+  // moves it under the default class's 3 % of the distance, barely under a DVL-aided INS's 0.3 %.
+  const HarbourLoop& loop = harbourLoop();
+  SlamOptions ins;
+  ins.forming.odometry = odometryNoiseOf("dvl-ins");
+  const SlamResult stated = localize(loop.run.log, loop.run.nav, defaultSonarToBody(), MapperOptions{}, ins);
+  const SlamResult assumed = localize(loop.run.log, loop.run.nav, defaultSonarToBody(), MapperOptions{});
+  const double stated_m = ate_m(stated.trajectory, loop.run.nav), assumed_m = ate_m(assumed.trajectory, loop.run.nav);
+  EXPECT_LT(stated_m, 0.02);
+  EXPECT_NEAR(stated.report.odometry_scale, 1.0, 0.003);
+  EXPECT_GT(assumed_m, 2.0 * stated_m) << "dvl-ins " << stated_m << " m, dvl-ahrs " << assumed_m << " m";
 }
 
 TEST(slamScanForming, MotionCompensationPutsAWallBackOnOneLine) {

@@ -12,6 +12,8 @@
 /// (x forward, y starboard, metres), the vehicle's dead-reckoning pose at the scan's reference time.
 
 #include <cstddef>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -53,6 +55,24 @@ struct OdometryNoise {
   ///         not finite.
   void validate() const;
 };
+
+/// The odometry noise of a class of navigation sensors (what a user knows of the vehicle), by name:
+/// - "dvl-ahrs" (the default, OdometryNoise{}): a DVL with an AHRS or magnetic compass, drifting a
+///   few per cent of the distance travelled (scale 3 %, heading 1.5°, velocity noise 0.05 m/s,
+///   gyro walk 0.05°/√s);
+/// - "dvl-ins": a DVL-aided inertial navigation system with a fibre-optic gyro, whose makers
+///   state 0.1–0.3 % of the distance travelled (scale 0.3 %, heading 0.2°, velocity noise
+///   0.01 m/s, gyro walk 0.01°/√s);
+/// - "absolute": navigation aided by absolute fixes (USBL, DGPS at the surface) or
+///   post-processed, centimetres over the scans' spacing (scale 0.1 %, heading 0.1°, velocity
+///   noise 0.005 m/s, gyro walk 0.005°/√s).
+/// The scans move the navigation only as far as their information outweighs this noise, so a
+/// good navigation stated as such is left nearly where it is.
+/// @throws ValueError naming the known classes for any other name.
+OdometryNoise odometryNoiseOf(std::string_view navigation_class);
+
+/// The names odometryNoiseOf knows, the default first.
+std::vector<std::string> navigationClasses();
 
 /// One detected obstacle of a scan.
 struct ScanPoint {

@@ -1,0 +1,52 @@
+#include "odometry_options.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "sonarmap/core/errors.hpp"
+
+namespace sonarmap::cli {
+
+bool OdometryArgs::stated() const {
+  return nav_class != "dvl-ahrs" || scale_sigma_pct || heading_sigma_deg || velocity_noise_mps ||
+         gyro_walk_deg_per_sqrt_s;
+}
+
+void addOdometryOptions(CLI::App& cmd, OdometryArgs& args) {
+  std::string classes;
+  for (const std::string& name : navigationClasses()) classes += (classes.empty() ? "" : ", ") + name;
+  cmd.add_option("--nav-class", args.nav_class,
+                 "How far localization (--slam) trusts the navigation, by its sensors (" + classes +
+                     "): dvl-ahrs, a DVL with an AHRS or compass (3 % of the distance, 1.5 deg); dvl-ins, a "
+                     "DVL-aided INS (0.3 %, 0.2 deg); absolute, aided by USBL or GPS fixes or post-processed (0.1 %, "
+                     "0.1 deg). The scans move the navigation only as far as their information outweighs this")
+      ->capture_default_str();
+  cmd.add_option_function<double>("--nav-scale-sigma", [&args](double value) { args.scale_sigma_pct = value; },
+                 "Localization: 1-sigma error of the distance travelled (a DVL's scale), PERCENT >= 0; default: "
+                 "--nav-class's");
+  cmd.add_option_function<double>("--nav-heading-sigma", [&args](double value) { args.heading_sigma_deg = value; },
+                 "Localization: 1-sigma heading error (a compass's bias), DEGREES >= 0; default: --nav-class's");
+  cmd.add_option_function<double>("--nav-velocity-noise", [&args](double value) { args.velocity_noise_mps = value; },
+                 "Localization: 1-sigma white noise of each velocity reading, M/S >= 0; default: --nav-class's");
+  cmd.add_option_function<double>("--nav-gyro-walk", [&args](double value) { args.gyro_walk_deg_per_sqrt_s = value; },
+                 "Localization: heading random walk (a gyro's angle random walk), DEGREES/sqrt(s) >= 0; default: "
+                 "--nav-class's");
+}
+
+OdometryNoise toOdometryNoise(const OdometryArgs& args) {
+  OdometryNoise noise = odometryNoiseOf(args.nav_class);
+  const auto set = [](const std::optional<double>& given, double unit, double& field, const char* flag, const char* units) {
+    if (!given) return;
+    if (!(std::isfinite(*given) && *given >= 0.0)) throw ValueError(std::string(flag) + " expects " + units + " >= 0");
+    field = *given * unit;
+  };
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  set(args.scale_sigma_pct, 0.01, noise.scale_sigma, "--nav-scale-sigma", "PERCENT");
+  set(args.heading_sigma_deg, kDegree, noise.heading_sigma_rad, "--nav-heading-sigma", "DEGREES");
+  set(args.velocity_noise_mps, 1.0, noise.velocity_noise_mps, "--nav-velocity-noise", "M/S");
+  set(args.gyro_walk_deg_per_sqrt_s, kDegree, noise.gyro_walk_rad_per_sqrt_s, "--nav-gyro-walk", "DEGREES/sqrt(s)");
+  noise.validate();
+  return noise;
+}
+
+}  // namespace sonarmap::cli

@@ -1,0 +1,34 @@
+#pragma once
+// The navigation's noise model on the command line (map --slam, live --slam, localize): a class of
+// navigation sensors (slam/scan_forming.hpp, odometryNoiseOf) and its values overridden one by one,
+// in the sensors' own units.
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "sonarmap/slam/scan_forming.hpp"
+
+namespace sonarmap::cli {
+
+/// What the user said of the navigation; unset: the class's value.
+struct OdometryArgs {
+  std::string nav_class = "dvl-ahrs";               ///< --nav-class
+  std::optional<double> scale_sigma_pct;            ///< --nav-scale-sigma, %
+  std::optional<double> heading_sigma_deg;          ///< --nav-heading-sigma, degrees
+  std::optional<double> velocity_noise_mps;         ///< --nav-velocity-noise, m/s
+  std::optional<double> gyro_walk_deg_per_sqrt_s;   ///< --nav-gyro-walk, °/√s
+
+  /// Whether anything but the default class was given.
+  bool stated() const;
+};
+
+/// Adds --nav-class, --nav-scale-sigma, --nav-heading-sigma, --nav-velocity-noise and --nav-gyro-walk.
+void addOdometryOptions(CLI::App& cmd, OdometryArgs& args);
+
+/// The noise model the arguments state.
+/// @throws ValueError for an unknown class or a value that is negative or not finite.
+OdometryNoise toOdometryNoise(const OdometryArgs& args);
+
+}  // namespace sonarmap::cli
