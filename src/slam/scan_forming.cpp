@@ -99,30 +99,44 @@ Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s,
   return covariance;
 }
 
+namespace {
+
+/// The classes odometryNoiseOf knows beside the default (scan_forming.hpp states their sources).
+struct NavigationClass {
+  const char* name;
+  double scale_sigma;
+  double heading_sigma_deg;
+  double velocity_noise_mps;
+  double gyro_walk_deg_per_sqrt_s;
+};
+constexpr NavigationClass kNavigationClasses[] = {{"dvl-ins", 0.003, 0.2, 0.01, 0.01},
+                                                  {"absolute", 0.001, 0.1, 0.005, 0.005}};
+constexpr const char* kDefaultNavigationClass = "dvl-ahrs";  // OdometryNoise{}
+
+}  // namespace
+
 OdometryNoise odometryNoiseOf(std::string_view navigation_class) {
   constexpr double kDegree = 3.14159265358979323846 / 180.0;
-  OdometryNoise noise;  // "dvl-ahrs"
-  if (navigation_class == "dvl-ahrs") return noise;
-  if (navigation_class == "dvl-ins") {
-    noise.scale_sigma = 0.003;
-    noise.heading_sigma_rad = 0.2 * kDegree;
-    noise.velocity_noise_mps = 0.01;
-    noise.gyro_walk_rad_per_sqrt_s = 0.01 * kDegree;
+  OdometryNoise noise;
+  if (navigation_class == kDefaultNavigationClass) return noise;
+  for (const NavigationClass& known : kNavigationClasses) {
+    if (navigation_class != known.name) continue;
+    noise.scale_sigma = known.scale_sigma;
+    noise.heading_sigma_rad = known.heading_sigma_deg * kDegree;
+    noise.velocity_noise_mps = known.velocity_noise_mps;
+    noise.gyro_walk_rad_per_sqrt_s = known.gyro_walk_deg_per_sqrt_s * kDegree;
     return noise;
   }
-  if (navigation_class == "absolute") {
-    noise.scale_sigma = 0.001;
-    noise.heading_sigma_rad = 0.1 * kDegree;
-    noise.velocity_noise_mps = 0.005;
-    noise.gyro_walk_rad_per_sqrt_s = 0.005 * kDegree;
-    return noise;
-  }
-  std::string known;
-  for (const std::string& name : navigationClasses()) known += (known.empty() ? "" : ", ") + name;
-  throw ValueError("navigation class '" + std::string(navigation_class) + "' is not one of " + known);
+  std::string names;
+  for (const std::string& name : navigationClasses()) names += (names.empty() ? "" : ", ") + name;
+  throw ValueError("navigation class '" + std::string(navigation_class) + "' is not one of " + names);
 }
 
-std::vector<std::string> navigationClasses() { return {"dvl-ahrs", "dvl-ins", "absolute"}; }
+std::vector<std::string> navigationClasses() {
+  std::vector<std::string> names{kDefaultNavigationClass};
+  for (const NavigationClass& known : kNavigationClasses) names.emplace_back(known.name);
+  return names;
+}
 
 void OdometryNoise::validate() const {
   requireNonNegative(scale_sigma, "scale_sigma");
