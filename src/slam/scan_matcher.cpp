@@ -28,14 +28,22 @@ struct TargetCloud {
 };
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, TargetCloud>, TargetCloud, 2>;
 
-/// A target point's local shape: the normal of the line its neighbours form, when they form one.
+/// A target point's local shape: the normal of the line its neighbours form, when they form one,
+/// and how far its neighbours reach along the surface either side of it.
 struct LocalShape {
   bool line = false;
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
+  /// Along the surface: the line's direction, else across the point's view; zero for a point
+  /// without neighbours or without a known view (no boundary then).
+  Eigen::Vector2d tangent = Eigen::Vector2d::Zero();
+  double ahead_m = 0.0;   ///< the farthest neighbour's offset along +tangent, ≥ 0
+  double behind_m = 0.0;  ///< ... along −tangent, ≥ 0
 };
 
 /// Lines where a target point and its nearest neighbours (within a few of its own σ) lie along one
-/// direction: the smaller eigenvalue of their scatter below a tenth of the larger (PCA).
+/// direction: the smaller eigenvalue of their scatter below a tenth of the larger (PCA). And every
+/// point's reach along the surface: where its neighbours end, the surface as its sonar saw it ends
+/// (the side of a pile turning away, a shadow, the edge of the beams that heard it).
 std::vector<LocalShape> localShapes(const std::vector<ScanPoint>& target, const KdTree& tree) {
   constexpr std::size_t kNeighbours = 7;
   std::vector<LocalShape> shapes(target.size());
@@ -51,7 +59,7 @@ std::vector<LocalShape> localShapes(const std::vector<ScanPoint>& target, const 
       mean += target[index[k]].xy_m;
       ++used;
     }
-    if (used < 4) continue;
+    if (used < 2) continue;  // alone: no line, no boundary
     mean /= static_cast<double>(used);
     Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
     for (std::size_t k = 0; k < found; ++k) {
@@ -60,16 +68,31 @@ std::vector<LocalShape> localShapes(const std::vector<ScanPoint>& target, const 
       scatter += d * d.transpose();
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
-    if (eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1)) {
+    if (used >= 4 && eigen.eigenvalues()(0) < 0.1 * eigen.eigenvalues()(1)) {
       shapes[i].line = true;
       shapes[i].normal = eigen.eigenvectors().col(0);
+    }
+    const Eigen::Vector2d& view = target[i].toward_sonar;
+    shapes[i].tangent = shapes[i].line ? Eigen::Vector2d(eigen.eigenvectors().col(1))
+                        : view.squaredNorm() > 0.5 ? Eigen::Vector2d(-view.y(), view.x()).normalized()
+                                                   : Eigen::Vector2d::Zero();
+    for (std::size_t k = 0; k < found; ++k) {
+      if (distance_sq[k] > radius_sq) continue;
+      const double along = shapes[i].tangent.dot(target[index[k]].xy_m - target[i].xy_m);
+      shapes[i].ahead_m = std::max(shapes[i].ahead_m, along);
+      shapes[i].behind_m = std::max(shapes[i].behind_m, -along);
     }
   }
   return shapes;
 }
 
 /// One ICP solve from `start`: pairs by nearest neighbour under the Mahalanobis gate, Gauss–Newton
-/// on (x, y, yaw) until the step is below 0.1 mm and 0.001°.
+/// on (x, y, yaw) until the step is below 0.1 mm and 0.001°. A source point that lies beyond the
+/// last of its target's neighbours along the surface has no counterpart in the target (its sonar
+/// did not see that part: a pile's other side, a shadowed stretch of wall) and is not paired: paired
+/// with the target's end it pulls the match towards where the two views' ends meet, which is
+/// towards less motion (Rusinkiewicz & Levoy 2001, "Efficient variants of the ICP algorithm",
+/// rejecting pairs on boundaries; Turk & Levoy 1994; measured in docs/localization.md).
 /// The prior (`prior`, its information `prior_information`) joins the pairs in each step (a MAP
 /// estimate, as MSISpIC's EKF update): a direction the pairs leave free (along a wall, along a row
 /// of equal piles) stays where the prior puts it instead of sliding to the next pile. The reported
@@ -102,6 +125,8 @@ ScanMatch icp(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>
       const Eigen::Vector2d difference = moved - pair.xy_m;
       const Eigen::Matrix2d weight = covariance.inverse();
       if (difference.dot(weight * difference) > options.gate_chi2) continue;
+      const double along = shapes[nearest].tangent.dot(difference);
+      if (along > shapes[nearest].ahead_m || -along > shapes[nearest].behind_m) continue;  // beyond its end
       Eigen::Matrix<double, 2, 3> jacobian;
       jacobian << Eigen::Matrix2d::Identity(), d_rotation * point.xy_m;
       ++match.pairs;
