@@ -1,10 +1,12 @@
 #pragma once
 /// @file scan_matcher.hpp
 /// Registration of two scans' points (scan_forming.hpp) in the plane: a probabilistic ICP, point-to-line
-/// where the target is locally straight (a wall) and point-to-point elsewhere (a pile), each pair
-/// weighted by both points' covariances (Montesano et al. 2005, "Probabilistic scan matching for
-/// motion estimation in unstructured environments", IROS; its MSIS form MSISpIC, Mallios et al.
-/// 2014); and a correlative search (Olson 2009, "Real-time correlative scan matching", ICRA) over
+/// where the target is locally straight (a wall) and along the target's view elsewhere (a pile: the
+/// side facing its sonar), each pair weighted by both points' covariances (Montesano et al. 2005,
+/// "Probabilistic scan matching for motion estimation in unstructured environments", IROS; its MSIS
+/// form MSISpIC, Mallios et al. 2014), leaving out source points beyond the end of the target's
+/// surface as its sonar saw it (Rusinkiewicz & Levoy 2001, "Efficient variants of the ICP
+/// algorithm", 3DIM: pairs on boundaries rejected); and a correlative search (Olson 2009, "Real-time correlative scan matching", ICRA) over
 /// the prior's window as the fallback when ICP's basin is too small or the features few or
 /// repetitive. Ambiguous matches (one long wall: free along it; a row of equal piles: several equal
 /// peaks) are reported with the reason, so a caller can refuse them.
