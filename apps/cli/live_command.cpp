@@ -62,9 +62,8 @@ class LiveMapping {
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
     if (args.map.slam) {
-      SlamOptions slam_options;
-      slam_options.forming.odometry = toOdometryNoise(args.map.odometry);
-      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, slam_options, integration);
+      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, toSlamOptions(args.map.odometry),
+                                           integration);
       for (const NavSample& fix : known_fixes) slam_->addNavFix(fix);
     } else if (!navigation) {
       mapper_ = std::make_unique<OnlineMapper>(options, integration);
@@ -399,10 +398,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     }
     if (isReplay(args) && !args.nav_stream.empty()) throw ValueError("a replayed ROS log takes --nav, not --nav-stream");
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
-    if (args.map.odometry.stated() && !args.map.slam) {
-      throw ValueError("--nav-class and --nav-*-sigma describe the navigation for --slam: give --slam");
-    }
-    toOdometryNoise(args.map.odometry);  // throws for an unknown class or a bad value
+    checkOdometryArgs(args.map.odometry, args.map.slam);
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
     if (!args.map.mounting.empty() && args.map.nav_file.empty() && args.nav_stream.empty() && !args.map.slam) {
       throw ValueError("--mounting needs --nav, --nav-stream or --slam");

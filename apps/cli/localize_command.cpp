@@ -41,7 +41,7 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
   addOdometryOptions(*cmd, args.odometry);
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
   auto check = [&args] {
-    toOdometryNoise(args.odometry);  // throws for an unknown class or a bad value
+    checkOdometryArgs(args.odometry, true);
     if (!(std::isfinite(args.range_sigma_m) && args.range_sigma_m > 0.0)) {
       throw ValueError("--range-sigma expects METRES > 0");
     }
@@ -59,9 +59,7 @@ void runLocalize(const LocalizeArgs& args) {
   PointScanOptions options;
   options.range_sigma_m = args.range_sigma_m;
   options.bearing_sigma_rad = args.bearing_sigma_deg * std::numbers::pi / 180.0;
-  SlamOptions slam;
-  slam.forming.odometry = toOdometryNoise(args.odometry);
-  const SlamResult result = localizePointScans(points, dead_reckoning, options, slam);
+  const SlamResult result = localizePointScans(points, dead_reckoning, options, toSlamOptions(args.odometry));
   FileTransaction outputs;
   stageTrajectory(outputs, args.trajectory, result.trajectory);
   outputs.commit();

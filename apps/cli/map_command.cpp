@@ -81,8 +81,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
     if (!checked->side_png.empty() && !args.volume) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
     }
-    if (args.odometry.stated() && !args.slam) throw ValueError("--nav-class and --nav-*-sigma describe the navigation for --slam: give --slam");
-    toOdometryNoise(args.odometry);  // throws for an unknown class or a bad value
+    checkOdometryArgs(args.odometry, args.slam);
     checked->options = toMapperOptions(args);
     checked->sonar_to_body = toSonarToBody(args.mounting);
   };
@@ -101,9 +100,8 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
   if (args.slam) {
     return mapWithProgress(
         [&](const ProgressCallback& progress) {
-          SlamOptions slam_options;
-          slam_options.forming.odometry = toOdometryNoise(args.odometry);
-          SlamMapping mapped = mapSonarLogWithSlam(log, nav, sonar_to_body, options, slam_options, progress);
+          SlamMapping mapped =
+              mapSonarLogWithSlam(log, nav, sonar_to_body, options, toSlamOptions(args.odometry), progress);
           slam = std::move(mapped.slam);
           return std::move(mapped.mapper);
         },

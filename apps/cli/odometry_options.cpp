@@ -49,4 +49,17 @@ OdometryNoise toOdometryNoise(const OdometryArgs& args) {
   return noise;
 }
 
+void checkOdometryArgs(const OdometryArgs& args, bool slam) {
+  if (args.stated() && !slam) {
+    throw ValueError("--nav-class and --nav-*-sigma describe the navigation for --slam: give --slam");
+  }
+  toOdometryNoise(args);
+}
+
+SlamOptions toSlamOptions(const OdometryArgs& args) {
+  SlamOptions slam;
+  slam.forming.odometry = toOdometryNoise(args);
+  return slam;
+}
+
 }  // namespace sonarmap::cli

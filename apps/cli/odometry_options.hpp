@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
 
 namespace sonarmap::cli {
@@ -30,5 +31,14 @@ void addOdometryOptions(CLI::App& cmd, OdometryArgs& args);
 /// The noise model the arguments state.
 /// @throws ValueError for an unknown class or a value that is negative or not finite.
 OdometryNoise toOdometryNoise(const OdometryArgs& args);
+
+/// Checks the arguments before anything runs: valid (toOdometryNoise), and given only with
+/// `slam` (a command whose localization is optional; localize always localizes: true).
+/// @throws ValueError naming what is wrong.
+void checkOdometryArgs(const OdometryArgs& args, bool slam);
+
+/// The localization's options with the arguments' noise model, the rest default.
+/// @throws ValueError as toOdometryNoise.
+SlamOptions toSlamOptions(const OdometryArgs& args);
 
 }  // namespace sonarmap::cli
