@@ -6,6 +6,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 #include <ceres/ceres.h>
@@ -133,7 +135,30 @@ bool PoseGraph::optimize(const PoseGraphOptions& options) {
   if (!summary.IsSolutionUsable()) return false;
   for (std::size_t i = 0; i < poses_.size(); ++i) poses_[i] = {state[i][0], state[i][1], wrapAngle_rad(state[i][2])};
   odometry_scale_ = scale;
+  odometry_scale_sigma_ = 0.0;
+  if (options.scale_covariance && scale_sigma_ && problem.HasParameterBlock(&scale)) {
+    ceres::Covariance::Options covariance_options;
+    covariance_options.num_threads = 1;
+    ceres::Covariance covariance(covariance_options);
+    const std::vector<std::pair<const double*, const double*>> blocks{{&scale, &scale}};
+    double variance = 0.0;
+    if (covariance.Compute(blocks, &problem) && covariance.GetCovarianceBlock(&scale, &scale, &variance) && variance > 0.0) {
+      odometry_scale_sigma_ = std::sqrt(variance);
+    }
+  }
   return true;
+}
+
+void PoseGraph::fixOdometryScale() {
+  scale_sigma_.reset();
+  odometry_scale_ = 1.0;
+  odometry_scale_sigma_ = 0.0;
+}
+
+void PoseGraph::setInformation(std::size_t edge, const Eigen::Matrix3d& information) {
+  if (edge >= edges_.size()) throw ValueError("pose graph: no such edge");
+  if (!information.allFinite()) throw ValueError("pose graph: an edge's information must be finite");
+  edges_[edge].information = information;
 }
 
 void PoseGraph::estimateOdometryScale(double prior_sigma) {

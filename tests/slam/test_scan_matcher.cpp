@@ -134,5 +134,41 @@ TEST(slamPoseGraph, OdometryAndALoopClosureSpreadTheError) {
   EXPECT_EQ(graph.pose(0).x_m, 0.0);  // the first node is held
 }
 
+TEST(slamPoseGraph, TheScaleSigmaSaysWhetherTheEdgesConstrainIt) {
+  // Ten 1 m odometry steps along x; matches say each step was 1.02 m. With the matches, the scale
+  // is measured (1.02, σ well under the prior's 3 %); with odometry alone, only the prior speaks.
+  const auto chain = [](bool with_matches) {
+    PoseGraph graph;
+    graph.estimateOdometryScale(0.03);
+    graph.addNode(Pose2{});
+    for (std::size_t i = 1; i <= 10; ++i) {
+      graph.addNode(graph.pose(i - 1) * Pose2{1.0, 0.0, 0.0});
+      graph.addEdge({i - 1, i, Pose2{1.0, 0.0, 0.0}, Eigen::Vector3d(1e4, 1e4, 1e6).asDiagonal(), EdgeKind::kOdometry});
+      if (with_matches) {
+        graph.addEdge({i - 1, i, Pose2{1.02, 0.0, 0.0}, Eigen::Vector3d(1e4, 1e4, 1e6).asDiagonal(), EdgeKind::kScanMatch});
+      }
+    }
+    PoseGraphOptions options;
+    options.scale_covariance = true;
+    EXPECT_TRUE(graph.optimize(options));
+    return graph;
+  };
+  const PoseGraph measured = chain(true);
+  EXPECT_NEAR(measured.odometryScale(), 1.02, 0.002);
+  EXPECT_GT(measured.odometryScaleSigma(), 0.0);
+  EXPECT_LT(measured.odometryScaleSigma(), 0.01);
+  const PoseGraph unmeasured = chain(false);
+  EXPECT_NEAR(unmeasured.odometryScaleSigma(), 0.03, 0.003);
+  // Not asked for: not computed.
+  PoseGraph plain = chain(true);
+  ASSERT_TRUE(plain.optimize());
+  EXPECT_EQ(plain.odometryScaleSigma(), 0.0);
+  // Fixed, the scale is 1 and the graph follows the edges as they are.
+  plain.fixOdometryScale();
+  EXPECT_FALSE(plain.estimatesOdometryScale());
+  EXPECT_EQ(plain.odometryScale(), 1.0);
+  EXPECT_THROW(plain.setInformation(plain.edges().size(), Eigen::Matrix3d::Identity()), ValueError);
+}
+
 }  // namespace
 }  // namespace sonarmap

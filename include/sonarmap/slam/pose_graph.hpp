@@ -42,6 +42,9 @@ struct PoseGraphOptions {
   /// off by much more than this many σ is down-weighted like an outlier. > 0.
   double robust_scale_sigma = 3.0;
   int max_iterations = 100;  ///< Levenberg–Marquardt iterations, ≥ 1
+  /// Also compute the odometry scale's marginal σ at the solution (PoseGraph::odometryScaleSigma;
+  /// ceres::Covariance over the whole graph, so asked for once, at the end).
+  bool scale_covariance = false;
 };
 
 /// The graph: nodes (poses, the first held fixed) and edges.
@@ -66,6 +69,18 @@ class PoseGraph {
   void estimateOdometryScale(double prior_sigma);
   /// λ after the last optimize (1 before, or without estimateOdometryScale).
   double odometryScale() const { return odometry_scale_; }
+  /// Whether λ is estimated (estimateOdometryScale, and not fixed since).
+  bool estimatesOdometryScale() const { return scale_sigma_.has_value(); }
+  /// λ's marginal σ (prior and every edge together) from the last optimize with
+  /// PoseGraphOptions::scale_covariance; 0 when not computed, not estimated, or Ceres cannot (a
+  /// rank-deficient graph).
+  double odometryScaleSigma() const { return odometry_scale_sigma_; }
+  /// Stops estimating λ: it is 1 from now on (the odometry edges' information should then carry
+  /// the scale error: setInformation).
+  void fixOdometryScale();
+  /// Replaces edge `edge`'s information. @throws ValueError for an index out of range or an
+  /// information that is not finite.
+  void setInformation(std::size_t edge, const Eigen::Matrix3d& information);
 
   std::size_t size() const { return poses_.size(); }
   const std::vector<Pose2>& poses() const { return poses_; }
@@ -78,6 +93,7 @@ class PoseGraph {
   std::vector<PoseGraphEdge> edges_;
   std::optional<double> scale_sigma_;
   double odometry_scale_ = 1.0;
+  double odometry_scale_sigma_ = 0.0;
 };
 
 /// The square root S of a positive semi-definite information matrix (SᵀS = information), from its
