@@ -33,8 +33,12 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
       commonest = reason;
     }
   }
-  char scale[64] = "";
-  if (with_nav) std::snprintf(scale, sizeof scale, ", odometry scale %.4f", report.odometry_scale);
+  char scale[96] = "";
+  if (with_nav && report.odometry_scale_observed) {
+    std::snprintf(scale, sizeof scale, ", odometry scale %.4f ± %.4f", report.odometry_scale, report.odometry_scale_sigma);
+  } else if (with_nav) {
+    std::snprintf(scale, sizeof scale, ", odometry scale kept 1 (the scans do not constrain it)");
+  }
   std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them, %zu of %zu loop closures "
               "accepted%s%s%s%s\n",
               report.scans, report.scans_with_points, report.matches_accepted, report.loopClosuresAccepted(),

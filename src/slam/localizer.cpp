@@ -218,7 +218,31 @@ bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2
 }
 
 void Localizer::optimize() {
-  graph_.optimize(options_.graph);
+  PoseGraphOptions final_options = options_.graph;
+  final_options.scale_covariance = graph_.estimatesOdometryScale();
+  graph_.optimize(final_options);
+  report_.odometry_scale_observed = false;
+  report_.odometry_scale_sigma = graph_.odometryScaleSigma();
+  if (graph_.estimatesOdometryScale()) {
+    // The scans constrain the scale when they carry at least the prior's information on it: the
+    // marginal variance is then at most half the prior's. Otherwise the estimate is the prior's
+    // pull and the matches' bias (a wall seen along the track has none to give), so the scale is
+    // the navigation's own, its error back in each odometry edge.
+    const double prior_sigma = options_.forming.odometry.scale_sigma;
+    report_.odometry_scale_observed =
+        report_.odometry_scale_sigma > 0.0 && report_.odometry_scale_sigma <= prior_sigma / std::sqrt(2.0);
+    if (!report_.odometry_scale_observed) {
+      graph_.fixOdometryScale();
+      const std::vector<PoseGraphEdge>& edges = graph_.edges();
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        if (edges[e].kind != EdgeKind::kOdometry) continue;
+        const std::size_t k = edges[e].to;
+        const double duration_s = scans_[k].time_s - scans_[k - 1].time_s;
+        graph_.setInformation(e, options_.forming.odometry.covariance(odometry_[k], duration_s).inverse());
+      }
+      graph_.optimize(options_.graph);
+    }
+  }
   report_.odometry_scale = graph_.odometryScale();
 }
 

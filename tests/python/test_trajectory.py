@@ -53,6 +53,9 @@ def test_map_sonar_log_with_slam():
     assert slammed.trajectory.shape == run.dead_reckoning.shape
     assert slammed.slam["scans"] == 17
     assert any(loop["accepted"] for loop in slammed.slam["loop_closures"])
+    # The quay and piles measure the 3 % scale error (distances 3 % long: a scale under 1).
+    assert slammed.slam["odometry_scale_observed"]
+    assert 0.0 < slammed.slam["odometry_scale_sigma"] < 0.03 and slammed.slam["odometry_scale"] < 0.995
     dead = sonarmap.eval_trajectory(run.dead_reckoning, run.nav)["ate_rmse_m"]
     corrected = sonarmap.eval_trajectory(slammed.trajectory, run.nav)["ate_rmse_m"]
     assert corrected < dead / 2.0

@@ -63,6 +63,27 @@ TEST(slamLocalizer, HarbourLoopBeatsDeadReckoning) {
   EXPECT_LT(slam_m, dr_m / 3.0) << "dead reckoning " << dr_m << " m, slam " << slam_m << " m";
 }
 
+TEST(slamLocalizer, TheOdometryScaleIsEstimatedOnlyWhereTheScansConstrainIt) {
+  const HarbourLoop& loop = harbourLoop();
+  const SlamOptions options = withNavigationPeriod(SlamOptions{}, loop.drift);
+  const DetectedLog detected = detectSonarLog(loop.run.log, MapperOptions{});
+  // The piles and the quay along the loop measure the distance travelled: the 3 % scale error is
+  // seen (the dead reckoning's distances 3 % long: a scale near 1/1.03).
+  const SlamResult seen = localize(detected, loop.drift, defaultSonarToBody(), options);
+  EXPECT_TRUE(seen.report.odometry_scale_observed);
+  EXPECT_GT(seen.report.odometry_scale_sigma, 0.0);
+  EXPECT_LT(seen.report.odometry_scale_sigma, 0.03 / std::sqrt(2.0));
+  EXPECT_LT(seen.report.odometry_scale, 0.995);
+  // The same scans without their points (water with nothing in it): only the prior speaks, so the
+  // scale is the navigation's own.
+  std::vector<SonarScan> empty = formScans(detected, loop.drift, defaultSonarToBody(), options.forming);
+  for (SonarScan& scan : empty) scan.points.clear();
+  const SlamResult blind = localizeScans(empty, loop.drift, options);
+  EXPECT_FALSE(blind.report.odometry_scale_observed);
+  EXPECT_EQ(blind.report.odometry_scale, 1.0);
+  EXPECT_NEAR(ate_m(blind.trajectory, loop.drift), 0.0, 1e-6);  // the dead reckoning, unmoved
+}
+
 TEST(slamLocalizer, IsDeterministic) {
   const HarbourLoop& loop = harbourLoop();
   const SlamResult a = localize(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});

@@ -37,8 +37,12 @@ struct SlamOptions {
   PoseGraphOptions graph;
   std::size_t submap_scans = 3;  ///< scans before a scan that it is matched against, ≥ 1
   /// Estimate the odometry's scale factor with the poses (PoseGraph::estimateOdometryScale, prior
-  /// 1 ± forming.odometry.scale_sigma; the odometry edges then keep a fifth of that σ). false: the
-  /// odometry's scale is trusted, its error left in each edge's covariance.
+  /// 1 ± forming.odometry.scale_sigma; the odometry edges then keep a fifth of that σ) where the
+  /// scans constrain it: once the last scan is in (Localizer::optimize), its marginal σ is
+  /// computed, and unless the scans carry at least the prior's information on it (σ ≤ the prior's
+  /// / √2), it is fixed at 1 and the graph solved again with the full scale error in each edge
+  /// (the observability test; SlamReport::odometry_scale_observed). false: the odometry's scale is
+  /// trusted, its error left in each edge's covariance.
   bool estimate_odometry_scale = true;
   /// A loop closure is sought among the scans whose estimated reference position lies within this
   /// of the new scan's, metres, ≥ 0; 0: automatic, for each older scan the nearer of half the
@@ -85,6 +89,11 @@ struct SlamReport {
   /// The odometry's scale factor the graph estimated (PoseGraph::odometryScale; 1 without
   /// navigation): 0.97 says the dead reckoning's distances were 3 % too long.
   double odometry_scale = 1.0;
+  /// Its marginal σ when it was estimated (0: not estimated or not computable).
+  double odometry_scale_sigma = 0.0;
+  /// Whether the scans constrained the scale (SlamOptions::estimate_odometry_scale's test); false:
+  /// odometry_scale is 1, the navigation's own.
+  bool odometry_scale_observed = false;
   std::size_t loopClosuresAccepted() const;
 };
 
@@ -106,7 +115,8 @@ class Localizer {
   /// optimised. Recorded in report() either way. Returns whether it was accepted.
   /// @throws ValueError unless from < to < scans().size() and the values are finite.
   bool proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement, const Eigen::Matrix3d& information);
-  /// Optimises the graph with every edge (call once the last scan is in).
+  /// Optimises the graph with every edge (call once the last scan is in), with the odometry
+  /// scale's observability test (SlamOptions::estimate_odometry_scale).
   void optimize();
 
   const std::vector<SonarScan>& scans() const { return scans_; }
