@@ -10,6 +10,11 @@
 // trajectories first aligned rigidly to the truth as ATE aligns them (a heading bias at the start
 // turns the whole believed world, which no localization can observe).
 //
+// The error from the start (TrajectoryError::ate_start_rmse_m) is scored beside the aligned ATE:
+// the worst seed's SLAM/DR ratio, and its bound: the true track turned by the dead reckoning's
+// heading error at the start (what a perfect localization anchored at the dead reckoning's first
+// pose gives) over dead reckoning's.
+//
 // Dead reckoning of seed n: a DVL scale error of ±(2…3) %, a heading bias of ±(1…2)° (signs and
 // sizes drawn from the seed), a gyro walk of 0.02°/√s and DVL noise of 0.02 m/s; the simulator's
 // speckle and noise are seeded with n too.
@@ -23,7 +28,8 @@
 // vehicle believed still at its start)
 // (--nav-class NAME: the localization's odometry noise is that class's (scan_forming.hpp,
 // odometryNoiseOf), and the dead reckoning's errors below are scaled by its σ over dvl-ahrs's)
-// (--verbose: one line per seed on stderr: its errors, both ATEs, the estimated odometry scale)
+// (--verbose: one line per seed on stderr: its errors, both ATEs, both errors from the start, the
+// estimated odometry scale with its σ and whether the scans constrained it)
 
 #include <algorithm>
 #include <chrono>
@@ -138,6 +144,24 @@ NavTrack aligned(const NavTrack& estimate, const NavTrack& truth) {
   return moved;
 }
 
+/// The true track turned about its start by the dead reckoning's heading error at the start: what a
+/// perfect localization anchored at the dead reckoning's first pose gives (the scans measure
+/// relative poses only, so a heading error at the start stays; Localizer's first node is the dead
+/// reckoning's). Its error from the start bounds what any localization can reach on that score.
+NavTrack truthWithStartHeadingOf(const NavTrack& truth, const NavTrack& dead_reckoning) {
+  const auto believed = interpolateBodyToNed(dead_reckoning, truth.front().time_s);
+  if (!believed) return truth;
+  const double error_rad = planarPose(*believed).yaw_rad - truth.front().yaw_rad;
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(error_rad).toRotationMatrix();
+  NavTrack turned = truth;
+  for (NavSample& fix : turned) {
+    fix.position_ned_m.head<2>() = truth.front().position_ned_m.head<2>() +
+                                   turn * (fix.position_ned_m - truth.front().position_ned_m).head<2>();
+    fix.yaw_rad += error_rad;
+  }
+  return turned;
+}
+
 /// The vehicle believed still at its true start: what a map without navigation assumes.
 NavTrack stillAtStart(const NavTrack& truth) {
   NavTrack still = truth;
@@ -187,13 +211,13 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("| sonar | mission | length | seeds | DR ATE median (max) | SLAM ATE median (max) | worst SLAM/DR | "
-              "DR / SLAM ATE from the start, median (max) | "
+              "DR / SLAM ATE from the start, median (max) | worst SLAM/DR from the start | bound/DR from the start, median (max) | "
               "SLAM final drift median (max) | loops accepted (wrong) | x real time (min) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Mission& mission : kMissions) {
     if (!only.empty() && only != std::string(mission.sonar) + ":" + mission.name) continue;
-    std::vector<double> dr_ate, slam_ate, slam_drift, dr_start, slam_start;
-    double worst_ratio = 0.0, slowest = 1e300, length_m = 0.0;
+    std::vector<double> dr_ate, slam_ate, slam_drift, dr_start, slam_start, bound_ratio;
+    double worst_ratio = 0.0, worst_start_ratio = 0.0, slowest = 1e300, length_m = 0.0;
     double scale_min = 1e300, scale_max = -1e300;
     std::size_t accepted = 0, wrong = 0;
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
@@ -222,12 +246,19 @@ int main(int argc, char** argv) {
       slam_start.push_back(est.ate_start_rmse_m);
       slam_drift.push_back(est.final_drift_pct);
       if (dr.ate_rmse_m > 1e-6) worst_ratio = std::max(worst_ratio, est.ate_rmse_m / dr.ate_rmse_m);
+      if (dr.ate_start_rmse_m > 1e-6) {
+        worst_start_ratio = std::max(worst_start_ratio, est.ate_start_rmse_m / dr.ate_start_rmse_m);
+        if (!no_nav) {
+          const TrajectoryError bound = evaluateTrajectory(truthWithStartHeadingOf(run.nav, dead_reckoning), run.nav);
+          bound_ratio.push_back(bound.ate_start_rmse_m / dr.ate_start_rmse_m);
+        }
+      }
       scale_min = std::min(scale_min, slam.report.odometry_scale);
       scale_max = std::max(scale_max, slam.report.odometry_scale);
       if (verbose) {
         std::fprintf(stderr, "%s %s seed %llu: scale error %+.4f, bias %+.2f deg: DR ATE %.3f m, SLAM ATE %.3f m, "
-                     "odometry scale %.4f\n", mission.sonar, mission.name, static_cast<unsigned long long>(seed),
-                     args.dvl_scale_error, args.heading_bias_deg, dr.ate_rmse_m, est.ate_rmse_m, slam.report.odometry_scale);
+                     "from the start DR %.3f m, SLAM %.3f m, odometry scale %.4f ± %.4f (%s)\n", mission.sonar, mission.name, static_cast<unsigned long long>(seed),
+                     args.dvl_scale_error, args.heading_bias_deg, dr.ate_rmse_m, est.ate_rmse_m, dr.ate_start_rmse_m, est.ate_start_rmse_m, slam.report.odometry_scale, slam.report.odometry_scale_sigma, slam.report.odometry_scale_observed ? "observed" : "not observed");
       }
       accepted += slam.report.loopClosuresAccepted();
       wrong += wrongLoops(slam, run.nav, options.head.range_m, seed);
@@ -249,10 +280,10 @@ int main(int argc, char** argv) {
     char speed[32] = "";
     if (mission.speed_mps > 0.0) std::snprintf(speed, sizeof speed, " at %.1f m/s", mission.speed_mps);
     std::printf("| %s | %s ×%zu%s | %.0f m | %zu | %.3f (%.3f) m | %.3f (%.3f) m | %.2f | %.3f (%.3f) / %.3f (%.3f) m | "
-                "%.2f (%.2f) %% | %zu (%zu) | %.0f |\n",
+                "%.2f | %.2f (%.2f) | %.2f (%.2f) %% | %zu (%zu) | %.0f |\n",
                 mission.sonar, mission.name, mission.laps, speed, length_m, seeds, median(dr_ate), maxOf(dr_ate),
                 median(slam_ate), maxOf(slam_ate), worst_ratio, median(dr_start), maxOf(dr_start), median(slam_start),
-                maxOf(slam_start), median(slam_drift), maxOf(slam_drift), accepted, wrong, slowest);
+                maxOf(slam_start), worst_start_ratio, median(bound_ratio), bound_ratio.empty() ? 0.0 : maxOf(bound_ratio), median(slam_drift), maxOf(slam_drift), accepted, wrong, slowest);
     std::fflush(stdout);
     std::fprintf(stderr, "%s %s: odometry scale %.4f .. %.4f\n", mission.sonar, mission.name, scale_min, scale_max);
   }
