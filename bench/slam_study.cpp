@@ -20,7 +20,7 @@
 // speckle and noise are seeded with n too.
 //
 // Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav]
-//        [--no-nav] [--nav-class NAME]
+//        [--no-nav] [--nav-class NAME] [--leading-edge]
 // (--fixed-scale: SlamOptions::estimate_odometry_scale false)
 // (--true-nav: the true navigation is given as the dead reckoning, so --slam should leave it where it
 // is; DR's columns are then 0 and the odometry scale's range is printed on stderr)
@@ -28,6 +28,8 @@
 // vehicle believed still at its start)
 // (--nav-class NAME: the localization's odometry noise is that class's (scan_forming.hpp,
 // odometryNoiseOf), and the dead reckoning's errors below are scaled by its σ over dvl-ahrs's)
+// (--leading-edge: ScanFormingOptions::leading_edge_bearing, each surface point at the bearing its
+// leading edge came from)
 // (--verbose: one line per seed on stderr: its errors, both ATEs, both errors from the start, the
 // estimated odometry scale with its σ and whether the scans constrained it)
 
@@ -187,6 +189,7 @@ int main(int argc, char** argv) {
   bool fixed_scale = false;
   bool true_nav = false;
   bool no_nav = false;
+  bool leading_edge = false;
   std::string nav_class = "dvl-ahrs";
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
@@ -203,10 +206,12 @@ int main(int argc, char** argv) {
       true_nav = true;
     } else if (std::strcmp(argv[i], "--no-nav") == 0) {
       no_nav = true;
+    } else if (std::strcmp(argv[i], "--leading-edge") == 0) {
+      leading_edge = true;
     } else if (std::strcmp(argv[i], "--nav-class") == 0 && i + 1 < argc) {
       nav_class = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--nav-class NAME]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--nav-class NAME] [--leading-edge]\n", argv[0]);
       return 2;
     }
   }
@@ -229,6 +234,7 @@ int main(int argc, char** argv) {
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;
       slam_options.forming.odometry = odometryNoiseOf(nav_class);
+      slam_options.forming.leading_edge_bearing = leading_edge;
       // What `map --slam` does: each sweep detected once, localized, and mapped with the result.
       const NavTrack& dead_reckoning = no_nav ? NavTrack{} : true_nav ? run.nav : run.dead_reckoning;
       const SlamMapping mapped =

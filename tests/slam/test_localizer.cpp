@@ -264,6 +264,45 @@ TEST(slamScanForming, MotionCompensationPutsAWallBackOnOneLine) {
   EXPECT_LT(on_face(still), 0.3);
 }
 
+TEST(slamScanForming, LeadingEdgeBearingPutsAnObliqueQuayBackOnItsFace) {
+  // A SeaKing at 30 m, still, 24 m off the harbour's quay (its face at north 21 m): seen at 20–50°
+  // incidence through a 3° beam, the quay's leading edges come from the beam's edge nearer its
+  // normal. Placed on the beams' axes they lie tens of centimetres in front of the face; placed
+  // where the leading edge came from, within a few.
+  const SonarPreset preset = sonarPreset("seaking-30");
+  MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  NavSample start;
+  start.position_ned_m = Eigen::Vector3d(-3.0, 0.0, 0.0);
+  options.trajectory = constantVelocityTrajectory(start, Eigen::Vector3d::Zero());
+  options.turns = 1;
+  const Scene scene = builtinScene("harbour", preset.head.range_m, preset.head.vertical_beam_width_rad);
+  const MsisSimulation run = simulateMsis(scene, options);
+  const auto mean_offset_m = [&](bool leading_edge_bearing) {
+    ScanFormingOptions forming;
+    forming.leading_edge_bearing = leading_edge_bearing;
+    const std::vector<SonarScan> scans = formScans(run.log, run.nav, defaultSonarToBody(), MapperOptions{}, forming);
+    double sum_m = 0.0;
+    std::size_t count = 0;
+    for (const SonarScan& scan : scans) {
+      for (const ScanPoint& point : scan.points) {
+        const Eigen::Vector2d ned = scan.dead_reckoning * point.xy_m;
+        const Eigen::Vector2d look = -(scan.dead_reckoning.rotation() * point.toward_sonar);
+        const double incidence_rad = std::acos(std::min(1.0, std::abs(look.x())));
+        if (ned.x() < 19.0 || incidence_rad < 20.0 * kDeg || incidence_rad > 50.0 * kDeg) continue;
+        sum_m += ned.x() - 21.0;
+        ++count;
+      }
+    }
+    EXPECT_GT(count, 20U);
+    return sum_m / static_cast<double>(std::max<std::size_t>(count, 1));
+  };
+  const double on_axis_m = mean_offset_m(false), at_edge_m = mean_offset_m(true);
+  EXPECT_LT(on_axis_m, -0.15);
+  EXPECT_LT(std::abs(at_edge_m), 0.08) << "on the axis " << on_axis_m << " m";
+}
+
 TEST(slamLocalizer, WithoutNavigationAStaticLogStaysPut) {
   const SonarPreset preset = sonarPreset("micron");
   MsisSimulationOptions options;

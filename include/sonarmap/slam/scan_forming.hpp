@@ -115,6 +115,15 @@ struct ScanFormingOptions {
   /// 1.5 m/s). 0: automatic, half the sweep's reach (the Micron at 0.25 m/s, 2.2 m a turn, keeps
   /// whole turns).
   double max_travel_m = 0.0;
+  /// Place each point of a surface seen obliquely at the bearing its leading edge came from (off its
+  /// beam's axis towards the surface's normal, by up to half the beam width: scan_forming.cpp,
+  /// leadingEdgeTurns) instead of on the beam's axis, where a 3° beam at 25 m draws a quay seen at
+  /// 40° a quarter to a third of a metre too near. Off by default: with the true navigation stated
+  /// as a DVL-aided INS it takes the SeaKing's and Ping360's error from 0.035–0.103 m to
+  /// 0.006–0.026 m (the SeaKing hull loop excepted: 0.074 → 0.090 m), but with drifting dead
+  /// reckoning it makes most missions worse and the Micron hull loop closes loops wrongly
+  /// (docs/localization.md, issue 42's third round).
+  bool leading_edge_bearing = false;
 
   /// @throws ValueError for a sigma or travel that is negative or not finite, or invalid odometry
   ///         noise (OdometryNoise::validate).
