@@ -49,6 +49,21 @@ const HarbourLoop& harbourLoop() {
   return loop;
 }
 
+/// One turn of `sonar`'s head in the harbour scaled to its range, from `start_ned_m` at a constant
+/// `velocity_ned_mps`.
+MsisSimulation oneTurnInHarbour(const std::string& sonar, const Eigen::Vector3d& start_ned_m,
+                                const Eigen::Vector3d& velocity_ned_mps) {
+  const SonarPreset preset = sonarPreset(sonar);
+  MsisSimulationOptions options;
+  options.head = preset.head;
+  options.echo = preset.echo;
+  NavSample start;
+  start.position_ned_m = start_ned_m;
+  options.trajectory = constantVelocityTrajectory(start, velocity_ned_mps);
+  options.turns = 1;
+  return simulateMsis(builtinScene("harbour", preset.head.range_m, preset.head.vertical_beam_width_rad), options);
+}
+
 TEST(slamLocalizer, HarbourLoopBeatsDeadReckoning) {
   const HarbourLoop& loop = harbourLoop();
   const SlamResult slam = localize(loop.run.log, loop.drift, defaultSonarToBody(), MapperOptions{});
@@ -227,16 +242,7 @@ TEST(slamLocalizer, GoodNavigationStatedAsSuchIsLeftNearlyWhereItIs) {
 TEST(slamScanForming, MotionCompensationPutsAWallBackOnOneLine) {
   // The Micron heading north at 0.2 m/s straight at the harbour's quay (its face at north 3.5 m),
   // between two piles (east 0 and 2 m): in its 8.6 s turn the vehicle closes 1.7 m.
-  const SonarPreset preset = sonarPreset("micron");
-  MsisSimulationOptions options;
-  options.head = preset.head;
-  options.echo = preset.echo;
-  NavSample start;
-  start.position_ned_m = Eigen::Vector3d(0.0, 1.0, 0.0);
-  options.trajectory = constantVelocityTrajectory(start, Eigen::Vector3d(0.2, 0.0, 0.0));
-  options.turns = 1;
-  const Scene scene = builtinScene("harbour", preset.head.range_m, preset.head.vertical_beam_width_rad);
-  const MsisSimulation run = simulateMsis(scene, options);
+  const MsisSimulation run = oneTurnInHarbour("micron", Eigen::Vector3d(0.0, 1.0, 0.0), Eigen::Vector3d(0.2, 0.0, 0.0));
   // Share of the points placed near the quay (north of 2.9 m, the piles' 2 m well behind; within
   // 2.5 m east or west of the track) that lie within 5 cm of its face.
   const auto on_face = [&](const NavTrack& nav) {
@@ -269,16 +275,7 @@ TEST(slamScanForming, LeadingEdgeBearingPutsAnObliqueQuayBackOnItsFace) {
   // incidence through a 3° beam, the quay's leading edges come from the beam's edge nearer its
   // normal. Placed on the beams' axes they lie tens of centimetres in front of the face; placed
   // where the leading edge came from, within a few.
-  const SonarPreset preset = sonarPreset("seaking-30");
-  MsisSimulationOptions options;
-  options.head = preset.head;
-  options.echo = preset.echo;
-  NavSample start;
-  start.position_ned_m = Eigen::Vector3d(-3.0, 0.0, 0.0);
-  options.trajectory = constantVelocityTrajectory(start, Eigen::Vector3d::Zero());
-  options.turns = 1;
-  const Scene scene = builtinScene("harbour", preset.head.range_m, preset.head.vertical_beam_width_rad);
-  const MsisSimulation run = simulateMsis(scene, options);
+  const MsisSimulation run = oneTurnInHarbour("seaking-30", Eigen::Vector3d(-3.0, 0.0, 0.0), Eigen::Vector3d::Zero());
   const auto mean_offset_m = [&](bool leading_edge_bearing) {
     ScanFormingOptions forming;
     forming.leading_edge_bearing = leading_edge_bearing;
