@@ -235,10 +235,7 @@ void Localizer::optimize() {
       graph_.fixOdometryScale();
       const std::vector<PoseGraphEdge>& edges = graph_.edges();
       for (std::size_t e = 0; e < edges.size(); ++e) {
-        if (edges[e].kind != EdgeKind::kOdometry) continue;
-        const std::size_t k = edges[e].to;
-        const double duration_s = scans_[k].time_s - scans_[k - 1].time_s;
-        graph_.setInformation(e, options_.forming.odometry.covariance(odometry_[k], duration_s).inverse());
+        if (edges[e].kind == EdgeKind::kOdometry) graph_.setInformation(e, odometry_cov_[edges[e].to].inverse());
       }
       graph_.optimize(options_.graph);
     }
