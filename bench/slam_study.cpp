@@ -20,7 +20,7 @@
 // speckle and noise are seeded with n too.
 //
 // Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav]
-//        [--no-nav] [--nav-class NAME] [--leading-edge]
+//        [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S]
 // (--fixed-scale: SlamOptions::estimate_odometry_scale false)
 // (--true-nav: the true navigation is given as the dead reckoning, so --slam should leave it where it
 // is; DR's columns are then 0 and the odometry scale's range is printed on stderr)
@@ -30,6 +30,11 @@
 // odometryNoiseOf), and the dead reckoning's errors below are scaled by its σ over dvl-ahrs's)
 // (--leading-edge: ScanFormingOptions::leading_edge_bearing, each surface point at the bearing its
 // leading edge came from)
+// (--heading-only: the dead reckoning's heading alone, its north and east 0 at every fix, as a
+// BlueROV2's flight log without a DVL gives it, under the "ahrs" class; DR's columns are then that
+// track, the vehicle believed still)
+// (--speed M/S: every mission flown at this speed instead of its own, e.g. a slow ROV whose
+// motion during a sweep is small against the range)
 // (--verbose: one line per seed on stderr: its errors, both ATEs, both errors from the start, the
 // estimated odometry scale with its σ and whether the scans constrained it)
 
@@ -191,6 +196,8 @@ int main(int argc, char** argv) {
   bool no_nav = false;
   bool leading_edge = false;
   std::string nav_class = "dvl-ahrs";
+  double speed_mps = 0.0;
+  bool heading_only = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
       seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
@@ -210,8 +217,13 @@ int main(int argc, char** argv) {
       leading_edge = true;
     } else if (std::strcmp(argv[i], "--nav-class") == 0 && i + 1 < argc) {
       nav_class = argv[++i];
+    } else if (std::strcmp(argv[i], "--heading-only") == 0) {
+      heading_only = true;
+      nav_class = "ahrs";
+    } else if (std::strcmp(argv[i], "--speed") == 0 && i + 1 < argc) {
+      speed_mps = std::stod(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--nav-class NAME] [--leading-edge]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S]\n", argv[0]);
       return 2;
     }
   }
@@ -219,7 +231,8 @@ int main(int argc, char** argv) {
               "DR / SLAM ATE from the start, median (max) | worst SLAM/DR from the start | bound/DR from the start, median (max) | "
               "SLAM final drift median (max) | loops accepted (wrong) | x real time (min) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const Mission& mission : kMissions) {
+  for (Mission mission : kMissions) {
+    if (speed_mps > 0.0) mission.speed_mps = speed_mps;
     if (!only.empty() && only != std::string(mission.sonar) + ":" + mission.name) continue;
     std::vector<double> dr_ate, slam_ate, slam_drift, dr_start, slam_start, bound_ratio;
     double worst_ratio = 0.0, worst_start_ratio = 0.0, slowest = 1e300, length_m = 0.0;
@@ -236,7 +249,12 @@ int main(int argc, char** argv) {
       slam_options.forming.odometry = odometryNoiseOf(nav_class);
       slam_options.forming.leading_edge_bearing = leading_edge;
       // What `map --slam` does: each sweep detected once, localized, and mapped with the result.
-      const NavTrack& dead_reckoning = no_nav ? NavTrack{} : true_nav ? run.nav : run.dead_reckoning;
+      NavTrack heading_track;
+      if (heading_only) {
+        heading_track = true_nav ? run.nav : run.dead_reckoning;
+        for (NavSample& fix : heading_track) fix.position_ned_m.head<2>().setZero();
+      }
+      const NavTrack& dead_reckoning = no_nav ? NavTrack{} : heading_only ? heading_track : true_nav ? run.nav : run.dead_reckoning;
       const SlamMapping mapped =
           mapSonarLogWithSlam(run.log, dead_reckoning, options.sonar_to_body, MapperOptions{}, slam_options);
       const SlamResult& slam = mapped.slam;

@@ -139,6 +139,10 @@ Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s,
     const Eigen::Vector2d across(-along.y(), along.x());
     covariance.topLeftCorner<2, 2>() = along * along.transpose() * along_m2 + across * across.transpose() * cross_m2;
     covariance(2, 2) = gyro_walk_rad_per_sqrt_s * gyro_walk_rad_per_sqrt_s * t;
+    if (!position_measured) {
+      const double position_sigma_m = unknown_speed_sigma_mps * t;
+      covariance.topLeftCorner<2, 2>() = Eigen::Matrix2d::Identity() * position_sigma_m * position_sigma_m;
+    }
   }
   covariance(0, 0) += 1e-6;
   covariance(1, 1) += 1e-6;
@@ -157,7 +161,9 @@ struct NavigationClass {
   double gyro_walk_deg_per_sqrt_s;
 };
 constexpr NavigationClass kNavigationClasses[] = {{"dvl-ins", 0.003, 0.2, 0.01, 0.01},
-                                                  {"absolute", 0.001, 0.1, 0.005, 0.005}};
+                                                  {"absolute", 0.001, 0.1, 0.005, 0.005},
+                                                  {"ahrs", 0.0, 1.5, 0.0, 0.05}};  // position_measured false
+constexpr std::string_view kHeadingOnlyClass = "ahrs";
 constexpr const char* kDefaultNavigationClass = "dvl-ahrs";  // OdometryNoise{}
 
 }  // namespace
@@ -172,6 +178,7 @@ OdometryNoise odometryNoiseOf(std::string_view navigation_class) {
     noise.heading_sigma_rad = known.heading_sigma_deg * kDegree;
     noise.velocity_noise_mps = known.velocity_noise_mps;
     noise.gyro_walk_rad_per_sqrt_s = known.gyro_walk_deg_per_sqrt_s * kDegree;
+    noise.position_measured = known.name != kHeadingOnlyClass;
     return noise;
   }
   std::string names;
@@ -183,6 +190,13 @@ std::vector<std::string> navigationClasses() {
   std::vector<std::string> names{kDefaultNavigationClass};
   for (const NavigationClass& known : kNavigationClasses) names.emplace_back(known.name);
   return names;
+}
+
+std::string navigationClassOf(const NavTrack& track) {
+  const bool still = track.size() >= 2 && std::all_of(track.begin(), track.end(), [&](const NavSample& fix) {
+                       return fix.position_ned_m.head<2>() == track.front().position_ned_m.head<2>();
+                     });
+  return std::string(still ? kHeadingOnlyClass : kDefaultNavigationClass);
 }
 
 void OdometryNoise::validate() const {

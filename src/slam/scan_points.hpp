@@ -43,6 +43,7 @@ inline void appendPoint(SonarScan& scan, const Measurement& m, const ScanForming
   const Pose2 ned_to_reference = scan.dead_reckoning.inverse();
   ScanPoint point;
   point.range_m = m.range_m;
+  point.time_offset_s = m.time_s - scan.time_s;
   point.xy_m = ned_to_reference * Eigen::Vector2d(m.point_ned_m.x(), m.point_ned_m.y());
   Eigen::Vector2d along = ned_to_reference.rotation() * (m.point_ned_m - m.origin_ned_m).head<2>();
   if (along.norm() < 1e-9) return;

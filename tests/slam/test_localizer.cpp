@@ -206,7 +206,7 @@ TEST(slamLocalizer, LoopClosuresWaitForTheNearestViewOfAPlace) {
 
 TEST(slamScanForming, NavigationClassesNameTheirNoise) {
   const std::vector<std::string> classes = navigationClasses();
-  ASSERT_EQ(classes.size(), 3U);
+  ASSERT_EQ(classes.size(), 4U);
   EXPECT_EQ(classes.front(), "dvl-ahrs");  // the default: OdometryNoise{}
   const OdometryNoise base = odometryNoiseOf("dvl-ahrs"), ins = odometryNoiseOf("dvl-ins"), fixed = odometryNoiseOf("absolute");
   EXPECT_EQ(base.scale_sigma, OdometryNoise{}.scale_sigma);
@@ -216,7 +216,10 @@ TEST(slamScanForming, NavigationClassesNameTheirNoise) {
   EXPECT_LT(fixed.scale_sigma, ins.scale_sigma);
   EXPECT_LT(fixed.velocity_noise_mps, ins.velocity_noise_mps);
   EXPECT_LT(ins.gyro_walk_rad_per_sqrt_s, base.gyro_walk_rad_per_sqrt_s);
-  for (const std::string& name : classes) EXPECT_NO_THROW(odometryNoiseOf(name).validate()) << name;
+  for (const std::string& name : classes) {
+    EXPECT_NO_THROW(odometryNoiseOf(name).validate()) << name;
+    EXPECT_EQ(odometryNoiseOf(name).position_measured, name != "ahrs") << name;
+  }
   try {
     odometryNoiseOf("submarine");
     ADD_FAILURE() << "an unknown class was accepted";

@@ -13,6 +13,12 @@
 /// A loop closure is sought for every scan among the scans older than its submap
 /// (SlamOptions::loop_search_radius_m, loop_min_travel_m).
 ///
+/// With the heading alone (OdometryNoise::position_measured false: an AHRS or compass without a
+/// DVL), each scan is predicted at the velocity over the ground of the two scans before it, its
+/// points moved by that velocity to their scan's reference time (the motion compensation a
+/// position would have given), and matched with a correlative search over the unknown motion's
+/// window; no loop closure is sought (the gates assume dead reckoning's drift, not the scans').
+///
 /// One path for batch (localize) and live mapping (Localizer fed scan by scan).
 
 #include <cstddef>
@@ -94,6 +100,9 @@ struct SlamReport {
   /// Whether the scans constrained the scale (SlamOptions::estimate_odometry_scale's test); false:
   /// odometry_scale is 1, the navigation's own.
   bool odometry_scale_observed = false;
+  /// The navigation gave the heading only (OdometryNoise::position_measured false): the position
+  /// came from the scans, and no loop closure was sought.
+  bool heading_only = false;
   std::size_t loopClosuresAccepted() const;
 };
 
@@ -139,6 +148,14 @@ class Localizer {
   Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;
   /// pathCovariance(a, b) for every a ≤ b (index a; zero at b), in one pass.
   std::vector<Eigen::Matrix3d> pathCovariancesTo(std::size_t b) const;
+  /// The navigation measures the heading only (OdometryNoise::position_measured false).
+  bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
+  /// With the heading only: scan k (its dead-reckoning motion from scan k − 1 given by `duration_s`
+  /// and `predicted`'s yaw) is predicted to move at the velocity over the ground (NED) of the last
+  /// two scans' estimated poses (predicted's translation), and its points, placed with the heading alone, are
+  /// moved by that velocity times their ScanPoint::time_offset_s: the motion compensation a
+  /// position would have given. Unchanged for k < 2.
+  void continueAtLastVelocity(std::size_t k, double duration_s, Pose2& predicted, SonarScan& scan) const;
   void matchToSubmap(std::size_t k);
   void closeLoop(std::size_t k);
   /// Whether `loop` is consistent with every accepted loop closure.

@@ -42,13 +42,19 @@ struct OdometryNoise {
   /// unknown_turn_sigma_radps.
   double unknown_speed_sigma_mps = 0.2;
   double unknown_turn_sigma_radps = 2.0 * 3.14159265358979323846 / 180.0;  ///< rad/s, > 0
+  /// false: the navigation measures the heading only (an AHRS or a compass without a DVL or a
+  /// positioning system, as a BlueROV2's flight log without one: north and east stay 0). Its
+  /// position between two poses is then unknown, as without navigation (unknown_speed_sigma_mps),
+  /// and its heading is measured (gyro_walk_rad_per_sqrt_s).
+  bool position_measured = true;
 
   /// Covariance (x, y, yaw; m², rad²) of the relative motion `delta` (in the frame of its start)
   /// measured by dead reckoning over `duration_s`: along-track σ² = (scale_sigma · d)² + noise,
   /// cross-track σ² = (heading_sigma_rad · d)² + noise, where d = |delta's translation| and noise =
   /// velocity_noise² · nav_period · duration (white velocity noise integrated); yaw σ² =
   /// gyro_walk² · duration. `known` false: the no-navigation model, isotropic
-  /// (unknown_speed_sigma · duration)² and (unknown_turn_sigma · duration)². A floor of
+  /// (unknown_speed_sigma · duration)² and (unknown_turn_sigma · duration)²; with `known` but
+  /// position_measured false, the position's part is the no-navigation model's. A floor of
   /// (1 mm)² and (0.01°)² keeps it invertible.
   Eigen::Matrix3d covariance(const Pose2& delta, double duration_s, bool known = true) const;
   /// @throws ValueError naming the field when a value is negative, zero where it must be > 0, or
@@ -65,7 +71,11 @@ struct OdometryNoise {
 ///   0.01 m/s, gyro walk 0.01°/√s);
 /// - "absolute": navigation aided by absolute fixes (USBL, DGPS at the surface) or
 ///   post-processed, centimetres over the scans' spacing (scale 0.1 %, heading 0.1°, velocity
-///   noise 0.005 m/s, gyro walk 0.005°/√s).
+///   noise 0.005 m/s, gyro walk 0.005°/√s);
+/// - "ahrs": the heading only, from an AHRS or a magnetic compass without a DVL (a BlueROV2 without
+///   one: its flight log's north and east stay 0). OdometryNoise::position_measured is false: the
+///   position comes from the scans (Localizer), the heading is the AHRS's (heading 1.5°, gyro walk
+///   0.05°/√s, as dvl-ahrs).
 /// The scans move the navigation only as far as their information outweighs this noise, so a
 /// good navigation stated as such is left nearly where it is.
 /// @throws ValueError naming the known classes for any other name.
@@ -73,6 +83,12 @@ OdometryNoise odometryNoiseOf(std::string_view navigation_class);
 
 /// The names odometryNoiseOf knows, the default first.
 std::vector<std::string> navigationClasses();
+
+/// The navigation class to assume of `track` when the user states none: "ahrs" when it has at
+/// least two fixes and all of them share one north and east (a reader without a horizontal
+/// position writes them 0: vehicle_log_navigation.hpp), else the default, "dvl-ahrs". A vehicle
+/// that truly stayed put with a measured position is then localized from its heading alone too.
+std::string navigationClassOf(const NavTrack& track);
 
 /// One detected obstacle of a scan.
 struct ScanPoint {
@@ -86,6 +102,9 @@ struct ScanPoint {
   /// along this direction only: the same pile seen from elsewhere gives points up to its radius
   /// apart across it, and pairing them as one point would bias the match towards no motion.
   Eigen::Vector2d toward_sonar = Eigen::Vector2d::Zero();
+  /// The time the point was measured, seconds after the scan's reference time (SonarScan::time_s;
+  /// negative before it).
+  double time_offset_s = 0.0;
 };
 
 /// The detections of one sweep, motion-compensated.

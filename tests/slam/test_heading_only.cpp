@@ -1,0 +1,79 @@
+// Localization with the heading alone (the "ahrs" navigation class, OdometryNoise::position_measured
+// false): a BlueROV2 without a DVL logs its attitude and leaves north and east at 0, and the scans
+// must give the position.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "slam_fixture.hpp"
+#include "sonarmap/eval/trajectory_error.hpp"
+#include "sonarmap/sim/msis_simulator.hpp"
+#include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/slam/scan_forming.hpp"
+
+namespace sonarmap {
+namespace {
+
+/// `track` with north and east 0 at every fix: what a vehicle log without a horizontal position gives.
+NavTrack headingOnly(NavTrack track) {
+  for (NavSample& fix : track) fix.position_ned_m.head<2>().setZero();
+  return track;
+}
+
+TEST(slamHeadingOnly, TheClassKnowsThePositionIsNotMeasured) {
+  const OdometryNoise ahrs = odometryNoiseOf("ahrs");
+  EXPECT_FALSE(ahrs.position_measured);
+  const double duration_s = 10.0;
+  const Eigen::Matrix3d covariance = ahrs.covariance(Pose2{}, duration_s);
+  // The position as unknown as without navigation, the heading as the AHRS's.
+  const double position_sigma_m = ahrs.unknown_speed_sigma_mps * duration_s;
+  EXPECT_NEAR(covariance(0, 0), position_sigma_m * position_sigma_m, 1e-5);
+  EXPECT_NEAR(covariance(1, 1), position_sigma_m * position_sigma_m, 1e-5);
+  EXPECT_NEAR(covariance(2, 2), ahrs.gyro_walk_rad_per_sqrt_s * ahrs.gyro_walk_rad_per_sqrt_s * duration_s, 1e-6);
+  EXPECT_EQ(covariance(0, 1), 0.0);
+}
+
+TEST(slamHeadingOnly, ATrackThatNeverMovesIsTakenForTheHeadingAlone) {
+  NavTrack track(3);
+  for (std::size_t i = 0; i < track.size(); ++i) {
+    track[i].time_s = static_cast<double>(i);
+    track[i].position_ned_m.z() = 2.0 + static_cast<double>(i);  // the depth may change
+    track[i].yaw_rad = 0.3 * static_cast<double>(i);
+  }
+  EXPECT_EQ(navigationClassOf(track), "ahrs");
+  track[2].position_ned_m.x() = 0.01;
+  EXPECT_EQ(navigationClassOf(track), "dvl-ahrs");
+  EXPECT_EQ(navigationClassOf(NavTrack{}), "dvl-ahrs");
+  EXPECT_EQ(navigationClassOf(NavTrack(1)), "dvl-ahrs");
+}
+
+TEST(slamHeadingOnly, TheScansGiveThePositionOfAVehicleAlongAHull) {
+  // A SeaKing flying the hull loop (186 m) with a drifting heading (1.5° bias, 0.02°/√s walk) and
+  // no position: the track believed still is 27 m off; the scans, matched from the last scans'
+  // velocity, give the path within a few metres (3.8 m on this seed; docs/localization.md).
+  const MsisSimulation run = testing::missionRun("hull-loop", "seaking-30", 0.0, 1.5, 0.02, 1);
+  const NavTrack heading = headingOnly(run.dead_reckoning);
+  ASSERT_EQ(navigationClassOf(heading), "ahrs");
+  SlamOptions options;
+  options.forming.odometry = odometryNoiseOf("ahrs");
+  const SlamResult slam = localize(run.log, heading, defaultSonarToBody(), MapperOptions{}, options);
+  EXPECT_TRUE(slam.report.heading_only);
+  EXPECT_EQ(slam.report.loop_closures.size(), 0U);  // none sought
+  EXPECT_GT(slam.report.matches_accepted, slam.report.scans / 2);
+  const double still_m = evaluateTrajectory(heading, run.nav).ate_rmse_m;
+  const double slam_m = evaluateTrajectory(slam.trajectory, run.nav).ate_rmse_m;
+  EXPECT_GT(still_m, 20.0);
+  EXPECT_LT(slam_m, 0.25 * still_m) << "still " << still_m << " m";
+  // The heading is the AHRS's: the scans do not turn the track.
+  for (std::size_t i = 0; i < slam.trajectory.size(); i += 50) {
+    EXPECT_LT(std::abs(wrapAngle_rad(slam.trajectory[i].yaw_rad - heading[i].yaw_rad)), 2.0 * std::numbers::pi / 180.0) << i;
+  }
+  // The same navigation stated as a DVL's with an AHRS: the vehicle is believed still.
+  const SlamResult believed = localize(run.log, heading, defaultSonarToBody(), MapperOptions{});
+  EXPECT_FALSE(believed.report.heading_only);
+  EXPECT_GT(evaluateTrajectory(believed.trajectory, run.nav).ate_rmse_m, 0.8 * still_m);
+}
+
+}  // namespace
+}  // namespace sonarmap
