@@ -62,7 +62,7 @@ class LiveMapping {
       : start_(start) {
     const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
     if (args.map.slam) {
-      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, toSlamOptions(args.map.odometry),
+      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, toSlamOptions(args.map.odometry, known_fixes),
                                            integration);
       for (const NavSample& fix : known_fixes) slam_->addNavFix(fix);
     } else if (!navigation) {

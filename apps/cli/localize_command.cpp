@@ -59,7 +59,7 @@ void runLocalize(const LocalizeArgs& args) {
   PointScanOptions options;
   options.range_sigma_m = args.range_sigma_m;
   options.bearing_sigma_rad = args.bearing_sigma_deg * std::numbers::pi / 180.0;
-  const SlamResult result = localizePointScans(points, dead_reckoning, options, toSlamOptions(args.odometry));
+  const SlamResult result = localizePointScans(points, dead_reckoning, options, toSlamOptions(args.odometry, dead_reckoning));
   FileTransaction outputs;
   stageTrajectory(outputs, args.trajectory, result.trajectory);
   outputs.commit();

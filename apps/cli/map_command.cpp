@@ -101,7 +101,7 @@ MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& 
     return mapWithProgress(
         [&](const ProgressCallback& progress) {
           SlamMapping mapped =
-              mapSonarLogWithSlam(log, nav, sonar_to_body, options, toSlamOptions(args.odometry), progress);
+              mapSonarLogWithSlam(log, nav, sonar_to_body, options, toSlamOptions(args.odometry, nav), progress);
           slam = std::move(mapped.slam);
           return std::move(mapped.mapper);
         },

@@ -8,7 +8,7 @@
 namespace sonarmap::cli {
 
 bool OdometryArgs::stated() const {
-  return nav_class != "dvl-ahrs" || scale_sigma_pct || heading_sigma_deg || velocity_noise_mps ||
+  return nav_class != "auto" || scale_sigma_pct || heading_sigma_deg || velocity_noise_mps ||
          gyro_walk_deg_per_sqrt_s;
 }
 
@@ -19,7 +19,10 @@ void addOdometryOptions(CLI::App& cmd, OdometryArgs& args) {
                  "How far localization (--slam) trusts the navigation, by its sensors (" + classes +
                      "): dvl-ahrs, a DVL with an AHRS or compass (3 % of the distance, 1.5 deg); dvl-ins, a "
                      "DVL-aided INS (0.3 %, 0.2 deg); absolute, aided by USBL or GPS fixes or post-processed (0.1 %, "
-                     "0.1 deg). The scans move the navigation only as far as their information outweighs this")
+                     "0.1 deg); ahrs, the heading only, from an AHRS or compass without a DVL (the position comes from "
+                     "the scans). The scans move the navigation only as far as their information outweighs this. "
+                     "auto: ahrs when --nav's north and east never change (a BlueROV2 log without a DVL), else "
+                     "dvl-ahrs")
       ->capture_default_str();
   cmd.add_option_function<double>("--nav-scale-sigma", [&args](double value) { args.scale_sigma_pct = value; },
                  "Localization: 1-sigma error of the distance travelled (a DVL's scale), PERCENT >= 0; default: "
@@ -33,8 +36,8 @@ void addOdometryOptions(CLI::App& cmd, OdometryArgs& args) {
                  "--nav-class's");
 }
 
-OdometryNoise toOdometryNoise(const OdometryArgs& args) {
-  OdometryNoise noise = odometryNoiseOf(args.nav_class);
+OdometryNoise toOdometryNoise(const OdometryArgs& args, const NavTrack& track) {
+  OdometryNoise noise = odometryNoiseOf(args.nav_class == "auto" ? navigationClassOf(track) : args.nav_class);
   const auto set = [](const std::optional<double>& given, double unit, double& field, const char* flag, const char* units) {
     if (!given) return;
     if (!(std::isfinite(*given) && *given >= 0.0)) throw ValueError(std::string(flag) + " expects " + units + " >= 0");
@@ -56,9 +59,9 @@ void checkOdometryArgs(const OdometryArgs& args, bool slam) {
   toOdometryNoise(args);
 }
 
-SlamOptions toSlamOptions(const OdometryArgs& args) {
+SlamOptions toSlamOptions(const OdometryArgs& args, const NavTrack& track) {
   SlamOptions slam;
-  slam.forming.odometry = toOdometryNoise(args);
+  slam.forming.odometry = toOdometryNoise(args, track);
   return slam;
 }
 

@@ -15,7 +15,7 @@ namespace sonarmap::cli {
 
 /// What the user said of the navigation; unset: the class's value.
 struct OdometryArgs {
-  std::string nav_class = "dvl-ahrs";               ///< --nav-class
+  std::string nav_class = "auto";                   ///< --nav-class; auto: navigationClassOf the track
   std::optional<double> scale_sigma_pct;            ///< --nav-scale-sigma, %
   std::optional<double> heading_sigma_deg;          ///< --nav-heading-sigma, degrees
   std::optional<double> velocity_noise_mps;         ///< --nav-velocity-noise, m/s
@@ -28,17 +28,18 @@ struct OdometryArgs {
 /// Adds --nav-class, --nav-scale-sigma, --nav-heading-sigma, --nav-velocity-noise and --nav-gyro-walk.
 void addOdometryOptions(CLI::App& cmd, OdometryArgs& args);
 
-/// The noise model the arguments state.
+/// The noise model the arguments state, of `track` (the navigation given: its class when "auto",
+/// navigationClassOf).
 /// @throws ValueError for an unknown class or a value that is negative or not finite.
-OdometryNoise toOdometryNoise(const OdometryArgs& args);
+OdometryNoise toOdometryNoise(const OdometryArgs& args, const NavTrack& track = {});
 
 /// Checks the arguments before anything runs: valid (toOdometryNoise), and given only with
 /// `slam` (a command whose localization is optional; localize always localizes: true).
 /// @throws ValueError naming what is wrong.
 void checkOdometryArgs(const OdometryArgs& args, bool slam);
 
-/// The localization's options with the arguments' noise model, the rest default.
+/// The localization's options with the arguments' noise model of `track`, the rest default.
 /// @throws ValueError as toOdometryNoise.
-SlamOptions toSlamOptions(const OdometryArgs& args);
+SlamOptions toSlamOptions(const OdometryArgs& args, const NavTrack& track);
 
 }  // namespace sonarmap::cli

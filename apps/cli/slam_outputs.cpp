@@ -36,14 +36,17 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
   char scale[96] = "";
   if (with_nav && report.odometry_scale_observed) {
     std::snprintf(scale, sizeof scale, ", odometry scale %.4f ± %.4f", report.odometry_scale, report.odometry_scale_sigma);
-  } else if (with_nav) {
+  } else if (with_nav && !report.heading_only) {
     std::snprintf(scale, sizeof scale, ", odometry scale kept 1 (the scans do not constrain it)");
   }
   std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them, %zu of %zu loop closures "
               "accepted%s%s%s%s\n",
               report.scans, report.scans_with_points, report.matches_accepted, report.loopClosuresAccepted(),
               report.loop_closures.size(), scale, most > 0 ? "; most refused as " : "", commonest.c_str(),
-              with_nav ? "" : " (no --nav: the motion comes from the scans alone)");
+              !with_nav             ? " (no --nav: the motion comes from the scans alone)"
+              : report.heading_only ? " (--nav gives the heading only: the position comes from the scans, and the "
+                                      "vehicle stays put between scans they cannot place; no loop closure is sought)"
+                                    : "");
 }
 
 }  // namespace sonarmap::cli

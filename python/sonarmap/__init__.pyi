@@ -245,7 +245,7 @@ def localize_point_scans(
     nav: Union[None, PathLike, Float64Array] = None,
     range_sigma: float = 0.05,
     bearing_sigma: float = 1.5,
-    nav_class: str = "dvl-ahrs",
+    nav_class: str = "auto",
 ) -> dict[str, Any]: ...
 
 class OnlineMapper:

@@ -157,6 +157,7 @@ cannot be written (an existing file is then left untouched).)doc")
             report["odometry_scale"] = map.slam->odometry_scale;
             report["odometry_scale_sigma"] = map.slam->odometry_scale_sigma;
             report["odometry_scale_observed"] = map.slam->odometry_scale_observed;
+            report["heading_only"] = map.slam->heading_only;
             py::list loops;
             for (const LoopClosure& loop : map.slam->loop_closures) {
               py::dict entry;
@@ -172,7 +173,8 @@ cannot be written (an existing file is then left untouched).)doc")
           "map_sonar_log(slam=True): what the localization did, a dict (scans, scans_with_points, matches_accepted, "
           "matches_refused, odometry_scale and its 1-sigma odometry_scale_sigma (the dead reckoning's distances times "
           "it are the scans'; slam/localizer.hpp), odometry_scale_observed (False: the scans do not constrain it, "
-          "so it is 1), loop_closures: a list of dicts from_scan, to_scan, accepted, reason); None otherwise.")
+          "so it is 1), heading_only (True: the navigation gave the heading only and the position came from the "
+          "scans), loop_closures: a list of dicts from_scan, to_scan, accepted, reason); None otherwise.")
       .def(
           "insert_point_cloud",
           [](OccupancyMap& map, const py::object& points, const py::object& origin, double max_range, bool discretize,

@@ -52,8 +52,7 @@ void warn(const std::vector<std::string>& lines) {
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
   const MappingArguments args = mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class"});
-  SlamOptions slam_options;
-  if (kwargs.contains("nav_class")) slam_options.forming.odometry = odometryNoiseOf(textArgument(kwargs["nav_class"], "nav_class"));
+  const std::string nav_class = kwargs.contains("nav_class") ? textArgument(kwargs["nav_class"], "nav_class") : "auto";
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
   NominalBeam beam = log.beam;
@@ -70,6 +69,8 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   std::optional<Eigen::Isometry3d> from_log;  // a ROS log's /tf_static, when mounting is not given
   std::optional<NavTrack> track;
   if (!nav.is_none()) track = navTrackForLog(nav, log.log, nav_time_offset_s, mounting.is_none() ? &from_log : nullptr);
+  SlamOptions slam_options;
+  slam_options.forming.odometry = odometryNoiseOf(nav_class == "auto" ? navigationClassOf(track ? *track : NavTrack{}) : nav_class);
   const Eigen::Isometry3d sonar_to_body = from_log ? *from_log : sonarToBodyOfMounting(mounting_values);
   warn(optionWarnings(options, log.log));
   ProgressCallback callback;
@@ -136,7 +137,9 @@ pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting); default: a 
 the navigation by scan matching first and map with the corrected trajectory (the CLI's --slam; without
 nav the vehicle is believed still and its motion comes from the scans); the map's ``trajectory`` and
 ``slam`` then hold the corrected trajectory and what the localization did; keyword nav_class (the CLI's
---nav-class: "dvl-ahrs", the default, "dvl-ins" or "absolute") says how far it trusts the navigation.
+--nav-class: "dvl-ahrs", "dvl-ins", "absolute", "ahrs" (the heading only: the position comes from the
+scans) or "auto", the default: "ahrs" when nav's north and east never change, else "dvl-ahrs") says how
+far it trusts the navigation.
 Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "auto" where the CLI
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
@@ -154,8 +157,6 @@ TypeError for an unknown keyword.)doc";
       "localize_point_scans",
       [](const py::object& scans, const py::object& nav, double range_sigma, double bearing_sigma,
          const std::string& nav_class) {
-        SlamOptions slam;
-        slam.forming.odometry = odometryNoiseOf(nav_class);
         std::vector<BodyPoint> points;
         if (py::isinstance<py::str>(scans) || py::hasattr(scans, "__fspath__")) {
           points = readPointScansCsv(py::str(py::module_::import("os").attr("fspath")(scans)));
@@ -174,6 +175,8 @@ TypeError for an unknown keyword.)doc";
           }
         }
         const NavTrack track = nav.is_none() ? NavTrack{} : navTrackOf(nav);
+        SlamOptions slam;
+        slam.forming.odometry = odometryNoiseOf(nav_class == "auto" ? navigationClassOf(track) : nav_class);
         PointScanOptions options;
         options.range_sigma_m = range_sigma;
         options.bearing_sigma_rad = bearing_sigma * 3.14159265358979323846 / 180.0;
@@ -190,7 +193,7 @@ TypeError for an unknown keyword.)doc";
         return out;
       },
       py::arg("scans"), py::arg("nav") = py::none(), py::arg("range_sigma") = 0.05, py::arg("bearing_sigma") = 1.5,
-      py::arg("nav_class") = "dvl-ahrs",
+      py::arg("nav_class") = "auto",
       R"doc(Localizes point scans detected elsewhere, as `sonarmap localize` (slam/point_scans.hpp): the scan
 matcher, loop closures and pose graph of map_sonar_log(slam=True).
 
@@ -200,7 +203,7 @@ clock, never decreasing) and place in the body frame then (m, x forward, y to st
 reckoning, an (N, 7) array or a navigation CSV's path; None: the vehicle believed still. range_sigma
 (metres) and bearing_sigma (degrees): 1-sigma of a point's range and bearing. nav_class: how far the
 navigation is trusted, by its sensors (slam/scan_forming.hpp odometryNoiseOf: "dvl-ahrs", "dvl-ins",
-"absolute"; the CLI's --nav-class). Returns a dict: trajectory
+"absolute", "ahrs"; the CLI's --nav-class; "auto": navigationClassOf the nav). Returns a dict: trajectory
 (the corrected dead reckoning, an (M, 7) float64 array; without nav, three rows per scan), scans,
 matches_accepted, loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
 sonarmap.ValueError for a bad array, option or track.)doc");

@@ -67,6 +67,23 @@ def test_map_sonar_log_with_slam():
     assert sonarmap.eval_trajectory(kept.trajectory, run.nav)["ate_rmse_m"] < 0.01
     with pytest.raises(sonarmap.ValueError, match="dvl-ins"):
         sonarmap.map_sonar_log(run.log, run.nav, slam=True, nav_class="submarine")
+    assert not slammed.slam["heading_only"]
+
+
+def test_map_sonar_log_with_slam_on_the_heading_only():
+    # A BlueROV2 without a DVL logs its attitude and leaves north and east 0: the position comes
+    # from the scans (nav_class "auto" takes it for "ahrs"), the vehicle believed still otherwise.
+    run = sonarmap.simulate("hull", mission="hull-loop", sonar="seaking-30")
+    heading = run.nav.copy()
+    heading[:, 1:3] = 0.0
+    found = sonarmap.map_sonar_log(run.log, heading, slam=True)
+    assert found.slam["heading_only"] and found.slam["loop_closures"] == []
+    believed = sonarmap.map_sonar_log(run.log, heading, slam=True, nav_class="dvl-ahrs")
+    assert not believed.slam["heading_only"]
+    still = sonarmap.eval_trajectory(heading, run.nav)["ate_rmse_m"]
+    assert still > 20.0
+    assert sonarmap.eval_trajectory(found.trajectory, run.nav)["ate_rmse_m"] < 0.3 * still
+    assert sonarmap.eval_trajectory(believed.trajectory, run.nav)["ate_rmse_m"] > 0.8 * still
 
 
 def rectangle_scans(count=6):
