@@ -289,7 +289,8 @@ int main(int argc, char** argv) {
       if (maps && seed == 1) {
         const SonarMapper true_map = mapSonarLog(run.log, run.nav, options.sonar_to_body, MapperOptions{});
         const SonarMapper dr_map =
-            mapSonarLog(run.log, aligned(run.dead_reckoning, run.nav), options.sonar_to_body, MapperOptions{});
+            mapSonarLog(run.log, aligned(no_nav ? stillAtStart(run.nav) : dead_reckoning, run.nav), options.sonar_to_body,
+                        MapperOptions{});
         const SonarMapper aligned_slam_map =
             mapSonarLog(run.log, aligned(slam.trajectory, run.nav), options.sonar_to_body, MapperOptions{});
         const GroundTruthReport t = scoreMap(true_map, run, options.sonar_to_body);
