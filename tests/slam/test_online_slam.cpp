@@ -51,6 +51,33 @@ TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
   }
 }
 
+// With a navigation that gives the heading only (the ahrs class: the position from the scans at
+// the last scans' velocity), live ends with the batch's trajectory and map too.
+TEST(slamOnline, EndsWithTheBatchTrajectoryOnTheHeadingAlone) {
+  const MsisSimulation run = testing::missionRun("hull-loop", "seaking-30", 0.0, 1.5, 0.02, 1);
+  NavTrack heading = run.dead_reckoning;
+  for (NavSample& fix : heading) fix.position_ned_m.head<2>().setZero();
+  SlamOptions slam;
+  slam.forming.odometry = odometryNoiseOf("ahrs");
+  const SlamMapping batch = mapSonarLogWithSlam(run.log, heading, defaultSonarToBody(), MapperOptions{}, slam);
+  ASSERT_TRUE(batch.slam.report.heading_only);
+  OnlineSlam live(MapperOptions{}, defaultSonarToBody(), true, slam, OnlineIntegration::kSweep);
+  std::size_t next_fix = 0;
+  for (const Beam& beam : run.log.beams) {
+    while (next_fix < heading.size() && heading[next_fix].time_s <= beam.time_s) live.addNavFix(heading[next_fix++]);
+    live.addBeam(beam);
+  }
+  while (next_fix < heading.size()) live.addNavFix(heading[next_fix++]);
+  live.finish();
+  const NavTrack trajectory = live.trajectory();
+  ASSERT_EQ(trajectory.size(), batch.slam.trajectory.size());
+  for (std::size_t i = 0; i < trajectory.size(); ++i) {
+    ASSERT_NEAR(trajectory[i].position_ned_m.x(), batch.slam.trajectory[i].position_ned_m.x(), 1e-9);
+    ASSERT_NEAR(trajectory[i].position_ned_m.y(), batch.slam.trajectory[i].position_ned_m.y(), 1e-9);
+  }
+  EXPECT_EQ(leavesOf(live.mapSnapshot()), leavesOf(batch.mapper.map()));
+}
+
 TEST(slamOnline, RefusesFixesOutOfOrderAndBeamsAfterTheEnd) {
   OnlineSlam live(MapperOptions{}, defaultSonarToBody(), true);
   NavSample fix;
