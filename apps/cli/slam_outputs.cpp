@@ -43,7 +43,8 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
               "accepted%s%s%s%s\n",
               report.scans, report.scans_with_points, report.matches_accepted, report.loopClosuresAccepted(),
               report.loop_closures.size(), scale, most > 0 ? "; most refused as " : "", commonest.c_str(),
-              !with_nav             ? " (no --nav: the motion comes from the scans alone)"
+              !with_nav             ? " (no --nav: the motion comes from the scans alone, and the vehicle stays put "
+                                      "between scans they cannot place)"
               : report.heading_only ? " (--nav gives the heading only: the position comes from the scans, and the "
                                       "vehicle stays put between scans they cannot place; no loop closure is sought)"
                                     : "");

@@ -150,11 +150,11 @@ class Localizer {
   std::vector<Eigen::Matrix3d> pathCovariancesTo(std::size_t b) const;
   /// The navigation measures the heading only (OdometryNoise::position_measured false).
   bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
-  /// With the heading only: scan k (its dead-reckoning motion from scan k − 1 given by `duration_s`
-  /// and `predicted`'s yaw) is predicted to move at the velocity over the ground (NED) of the last
-  /// two scans' estimated poses (predicted's translation), and its points, placed with the heading alone, are
-  /// moved by that velocity times their ScanPoint::time_offset_s: the motion compensation a
-  /// position would have given. Unchanged for k < 2.
+  /// With the heading only: scan k (`duration_s` after scan k − 1, turned by `predicted`'s yaw) is
+  /// predicted to move at the velocity over the ground (NED) of the last two scans' estimated
+  /// poses (predicted's translation, metres in scan k − 1's frame), and its points, placed with
+  /// the heading alone, are moved by that velocity times their ScanPoint::time_offset_s: the
+  /// motion compensation a position would have given. Unchanged for k < 2.
   void continueAtLastVelocity(std::size_t k, double duration_s, Pose2& predicted, SonarScan& scan) const;
   void matchToSubmap(std::size_t k);
   void closeLoop(std::size_t k);
