@@ -96,7 +96,7 @@ void Localizer::addScan(SonarScan scan) {
   // The edge: the scale error is the graph's own parameter (estimateOdometryScale), so the edge
   // keeps only what varies from edge to edge (a fifth of it, and the noise).
   OdometryNoise varying = options_.forming.odometry;
-  if (navigation_known_ && options_.estimate_odometry_scale) varying.scale_sigma /= 5.0;
+  if (graph_.estimatesOdometryScale()) varying.scale_sigma /= 5.0;
   const Eigen::Matrix3d edge_covariance = varying.covariance(motion, duration_s, navigation_known_);
   const double scale = graph_.odometryScale();
   Pose2 predicted{scale * motion.x_m, scale * motion.y_m, motion.yaw_rad};

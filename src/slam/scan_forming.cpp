@@ -66,10 +66,10 @@ std::vector<double> leadingEdgeTurns(const PolarImage& polar, const SweepDetecti
     const double span_rad = bearingStep_rad(bearingOf(before), bearingOf(after));
     // Neighbours more than two beams away on either side do not describe the same surface.
     if (after - before > 4 || std::abs(span_rad) < 1e-9) continue;
-    const double r = rangeOf(row), rise_m = rangeOf(after) - rangeOf(before);
+    const double r = rangeOf(row), range_change_m = rangeOf(after) - rangeOf(before);
     // One surface: the range runs one way across the three beams (a corner or a ridge does not).
     if ((rangeOf(row) - rangeOf(before)) * (rangeOf(after) - rangeOf(row)) < 0.0) continue;
-    const double incidence_rad = std::atan(rise_m / (span_rad * r));  // signed: > 0 when the range grows with bearing
+    const double incidence_rad = std::atan(range_change_m / (span_rad * r));  // signed: > 0 when the range grows with bearing
     // No farther than a surface at 80° could be (beyond, the neighbours are another surface).
     if (std::abs(incidence_rad) > 80.0 * std::numbers::pi / 180.0) continue;
     const double spread_m = r * std::tan(std::abs(incidence_rad)) * edge_rad;
@@ -124,11 +124,9 @@ std::optional<SonarScan> formScan(const PolarImage& polar, const SweepDetection&
 Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s, bool known) const {
   const double t = std::abs(duration_s);
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  if (!known) {
+  if (!known || !position_measured) {
     const double position_sigma_m = unknown_speed_sigma_mps * t;
-    const double yaw_sigma_rad = unknown_turn_sigma_radps * t;
-    covariance.diagonal() << position_sigma_m * position_sigma_m, position_sigma_m * position_sigma_m,
-        yaw_sigma_rad * yaw_sigma_rad;
+    covariance.topLeftCorner<2, 2>() = Eigen::Matrix2d::Identity() * position_sigma_m * position_sigma_m;
   } else {
     const Eigen::Vector2d step = delta.translation();
     const double distance_m = step.norm();
@@ -138,12 +136,8 @@ Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s,
     const Eigen::Vector2d along = distance_m > 1e-9 ? Eigen::Vector2d(step / distance_m) : Eigen::Vector2d::UnitX();
     const Eigen::Vector2d across(-along.y(), along.x());
     covariance.topLeftCorner<2, 2>() = along * along.transpose() * along_m2 + across * across.transpose() * cross_m2;
-    covariance(2, 2) = gyro_walk_rad_per_sqrt_s * gyro_walk_rad_per_sqrt_s * t;
-    if (!position_measured) {
-      const double position_sigma_m = unknown_speed_sigma_mps * t;
-      covariance.topLeftCorner<2, 2>() = Eigen::Matrix2d::Identity() * position_sigma_m * position_sigma_m;
-    }
   }
+  covariance(2, 2) = known ? gyro_walk_rad_per_sqrt_s * gyro_walk_rad_per_sqrt_s * t : std::pow(unknown_turn_sigma_radps * t, 2);
   covariance(0, 0) += 1e-6;
   covariance(1, 1) += 1e-6;
   covariance(2, 2) += std::pow(0.01 * 3.14159265358979323846 / 180.0, 2);
@@ -159,11 +153,12 @@ struct NavigationClass {
   double heading_sigma_deg;
   double velocity_noise_mps;
   double gyro_walk_deg_per_sqrt_s;
+  bool position_measured = true;
 };
+constexpr const char* kHeadingOnlyClass = "ahrs";
 constexpr NavigationClass kNavigationClasses[] = {{"dvl-ins", 0.003, 0.2, 0.01, 0.01},
                                                   {"absolute", 0.001, 0.1, 0.005, 0.005},
-                                                  {"ahrs", 0.0, 1.5, 0.0, 0.05}};  // position_measured false
-constexpr std::string_view kHeadingOnlyClass = "ahrs";
+                                                  {kHeadingOnlyClass, 0.0, 1.5, 0.0, 0.05, false}};
 constexpr const char* kDefaultNavigationClass = "dvl-ahrs";  // OdometryNoise{}
 
 }  // namespace
@@ -178,7 +173,7 @@ OdometryNoise odometryNoiseOf(std::string_view navigation_class) {
     noise.heading_sigma_rad = known.heading_sigma_deg * kDegree;
     noise.velocity_noise_mps = known.velocity_noise_mps;
     noise.gyro_walk_rad_per_sqrt_s = known.gyro_walk_deg_per_sqrt_s * kDegree;
-    noise.position_measured = known.name != kHeadingOnlyClass;
+    noise.position_measured = known.position_measured;
     return noise;
   }
   std::string names;

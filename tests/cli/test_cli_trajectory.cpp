@@ -14,6 +14,7 @@
 
 #include "cli_fixture.hpp"
 #include "formats/vehicle_log_fixture.hpp"
+#include "sonarmap/nav/navigation.hpp"
 
 namespace sonarmap::test {
 namespace {
@@ -209,20 +210,11 @@ TEST_F(cliTrajectory, MapWithSlamTakesThePositionOfAHeadingOnlyFlightLogFromTheS
   ASSERT_EQ(run({"simulate", "hull", "--mission", "hull-loop", "--sonar", "seaking-30", "-o", dir.string(), "-q"}).exit_code, 0);
   const std::uint64_t boot_utc_us = 1723630500000000ULL;  // the log's 0 is boot + 5 s
   std::string tlog;
-  for (const std::string& line : linesOf(readFile(dir / "truth_nav.csv"))) {
-    if (line.rfind("time_s", 0) == 0) continue;
-    std::vector<double> fields;
-    std::size_t start = 0;
-    for (std::size_t comma = line.find(',');; comma = line.find(',', start)) {
-      fields.push_back(std::atof(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start).c_str()));
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
-    ASSERT_EQ(fields.size(), 7U) << line;
-    const auto boot_ms = static_cast<std::uint32_t>(std::llround(fields[0] * 1000.0) + 5000);
+  for (const NavSample& fix : readNavCsv((dir / "truth_nav.csv").string())) {
+    const auto boot_ms = static_cast<std::uint32_t>(std::llround(fix.time_s * 1000.0) + 5000);
     tlog += tlogRecord(boot_utc_us + boot_ms * 1000ULL,
-                       attitudeFrame(boot_ms, static_cast<float>(fields[4]), static_cast<float>(fields[5]),
-                                     static_cast<float>(fields[6])));
+                       attitudeFrame(boot_ms, static_cast<float>(fix.roll_rad), static_cast<float>(fix.pitch_rad),
+                                     static_cast<float>(fix.yaw_rad)));
   }
   writeFile(out_ / "flight.tlog", tlog);
   const auto mapWith = [&](const std::string& name, const std::vector<std::string>& more) {
