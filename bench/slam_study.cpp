@@ -20,7 +20,8 @@
 // speckle and noise are seeded with n too.
 //
 // Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav]
-//        [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S]
+//        [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S] [--max-speed M/S]
+//        [--max-turn-rate DEG/S]
 // (--fixed-scale: SlamOptions::estimate_odometry_scale false)
 // (--true-nav: the true navigation is given as the dead reckoning, so --slam should leave it where it
 // is; DR's columns are then 0 and the odometry scale's range is printed on stderr)
@@ -35,6 +36,8 @@
 // track, the vehicle believed still)
 // (--speed M/S: every mission flown at this speed instead of its own, e.g. a slow ROV whose
 // motion during a sweep is small against the range)
+// (--max-speed M/S, --max-turn-rate DEG/S: the localization's limits on the vehicle's motion where
+// no position is measured, OdometryNoise::max_speed_mps and max_turn_rate_radps)
 // (--verbose: one line per seed on stderr: its errors, both ATEs, both errors from the start, the
 // estimated odometry scale with its σ and whether the scans constrained it)
 
@@ -198,6 +201,7 @@ int main(int argc, char** argv) {
   std::string nav_class = "dvl-ahrs";
   double speed_mps = 0.0;
   bool heading_only = false;
+  double max_speed_mps = 0.0, max_turn_rate_deg_s = 0.0;  // 0: the localization's defaults
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--seeds") == 0 && i + 1 < argc) {
       seeds = static_cast<std::size_t>(std::stoul(argv[++i]));
@@ -222,8 +226,12 @@ int main(int argc, char** argv) {
       nav_class = "ahrs";
     } else if (std::strcmp(argv[i], "--speed") == 0 && i + 1 < argc) {
       speed_mps = std::stod(argv[++i]);
+    } else if (std::strcmp(argv[i], "--max-speed") == 0 && i + 1 < argc) {
+      max_speed_mps = std::stod(argv[++i]);
+    } else if (std::strcmp(argv[i], "--max-turn-rate") == 0 && i + 1 < argc) {
+      max_turn_rate_deg_s = std::stod(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S] [--max-speed M/S] [--max-turn-rate DEG/S]\n", argv[0]);
       return 2;
     }
   }
@@ -247,6 +255,8 @@ int main(int argc, char** argv) {
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;
       slam_options.forming.odometry = odometryNoiseOf(nav_class);
+      if (max_speed_mps > 0.0) slam_options.forming.odometry.max_speed_mps = max_speed_mps;
+      if (max_turn_rate_deg_s > 0.0) slam_options.forming.odometry.max_turn_rate_radps = max_turn_rate_deg_s * std::numbers::pi / 180.0;
       slam_options.forming.leading_edge_bearing = leading_edge;
       // What `map --slam` does: each sweep detected once, localized, and mapped with the result.
       NavTrack heading_track;

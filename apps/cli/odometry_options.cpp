@@ -9,7 +9,7 @@ namespace sonarmap::cli {
 
 bool OdometryArgs::stated() const {
   return nav_class != "auto" || scale_sigma_pct || heading_sigma_deg || velocity_noise_mps ||
-         gyro_walk_deg_per_sqrt_s;
+         gyro_walk_deg_per_sqrt_s || max_speed_mps || max_turn_rate_deg_s;
 }
 
 void addOdometryOptions(CLI::App& cmd, OdometryArgs& args) {
@@ -34,13 +34,24 @@ void addOdometryOptions(CLI::App& cmd, OdometryArgs& args) {
   cmd.add_option_function<double>("--nav-gyro-walk", [&args](double value) { args.gyro_walk_deg_per_sqrt_s = value; },
                  "Localization: heading random walk (a gyro's angle random walk), DEGREES/sqrt(s) >= 0; default: "
                  "--nav-class's");
+  cmd.add_option_function<double>("--max-speed", [&args](double value) { args.max_speed_mps = value; },
+                 "Localization where the navigation gives no position (no --nav, or the heading only): the "
+                 "vehicle's top speed, M/S > 0 (default 2, above a small ROV's or AUV's); a scan match that needs "
+                 "more is refused");
+  cmd.add_option_function<double>("--max-turn-rate", [&args](double value) { args.max_turn_rate_deg_s = value; },
+                 "Localization without --nav: the vehicle's top turn rate, DEGREES/s > 0 (default 30); a scan match "
+                 "that needs more is refused");
 }
 
 OdometryNoise toOdometryNoise(const OdometryArgs& args, const NavTrack& track) {
   OdometryNoise noise = odometryNoiseOf(args.nav_class == "auto" ? navigationClassOf(track) : args.nav_class);
-  const auto set = [](const std::optional<double>& given, double unit, double& field, const char* flag, const char* units) {
+  // A noise may be 0 (a perfect sensor); a limit may not (a vehicle that cannot move).
+  const auto set = [](const std::optional<double>& given, double unit, double& field, const char* flag,
+                      const char* units, bool limit = false) {
     if (!given) return;
-    if (!(std::isfinite(*given) && *given >= 0.0)) throw ValueError(std::string(flag) + " expects " + units + " >= 0");
+    if (!(std::isfinite(*given) && (limit ? *given > 0.0 : *given >= 0.0))) {
+      throw ValueError(std::string(flag) + " expects " + units + (limit ? " > 0" : " >= 0"));
+    }
     field = *given * unit;
   };
   constexpr double kDegree = std::numbers::pi / 180.0;
@@ -48,13 +59,15 @@ OdometryNoise toOdometryNoise(const OdometryArgs& args, const NavTrack& track) {
   set(args.heading_sigma_deg, kDegree, noise.heading_sigma_rad, "--nav-heading-sigma", "DEGREES");
   set(args.velocity_noise_mps, 1.0, noise.velocity_noise_mps, "--nav-velocity-noise", "M/S");
   set(args.gyro_walk_deg_per_sqrt_s, kDegree, noise.gyro_walk_rad_per_sqrt_s, "--nav-gyro-walk", "DEGREES/sqrt(s)");
+  set(args.max_speed_mps, 1.0, noise.max_speed_mps, "--max-speed", "M/S", true);
+  set(args.max_turn_rate_deg_s, kDegree, noise.max_turn_rate_radps, "--max-turn-rate", "DEGREES/s", true);
   noise.validate();
   return noise;
 }
 
 void checkOdometryArgs(const OdometryArgs& args, bool slam) {
   if (args.stated() && !slam) {
-    throw ValueError("--nav-class and --nav-*-sigma describe the navigation for --slam: give --slam");
+    throw ValueError("--nav-class, --nav-* and --max-* describe the navigation for --slam: give --slam");
   }
   toOdometryNoise(args);
 }

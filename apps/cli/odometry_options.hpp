@@ -20,17 +20,21 @@ struct OdometryArgs {
   std::optional<double> heading_sigma_deg;          ///< --nav-heading-sigma, degrees
   std::optional<double> velocity_noise_mps;         ///< --nav-velocity-noise, m/s
   std::optional<double> gyro_walk_deg_per_sqrt_s;   ///< --nav-gyro-walk, °/√s
+  std::optional<double> max_speed_mps;              ///< --max-speed, m/s
+  std::optional<double> max_turn_rate_deg_s;        ///< --max-turn-rate, °/s
 
   /// Whether anything but the default class was given.
   bool stated() const;
 };
 
-/// Adds --nav-class, --nav-scale-sigma, --nav-heading-sigma, --nav-velocity-noise and --nav-gyro-walk.
+/// Adds --nav-class, --nav-scale-sigma, --nav-heading-sigma, --nav-velocity-noise, --nav-gyro-walk,
+/// --max-speed and --max-turn-rate.
 void addOdometryOptions(CLI::App& cmd, OdometryArgs& args);
 
 /// The noise model the arguments state, of `track` (the navigation given: its class when "auto",
 /// navigationClassOf).
-/// @throws ValueError for an unknown class or a value that is negative or not finite.
+/// @throws ValueError for an unknown class, a value that is negative or not finite, or a limit
+///         (--max-speed, --max-turn-rate) that is not > 0.
 OdometryNoise toOdometryNoise(const OdometryArgs& args, const NavTrack& track = {});
 
 /// Checks the arguments before anything runs: valid (toOdometryNoise), and given only with

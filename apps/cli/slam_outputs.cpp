@@ -39,9 +39,14 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
   } else if (with_nav && !report.heading_only) {
     std::snprintf(scale, sizeof scale, ", odometry scale kept 1 (the scans do not constrain it)");
   }
-  std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them, %zu of %zu loop closures "
+  char limits[96] = "";
+  if (report.matches_beyond_limits > 0) {
+    std::snprintf(limits, sizeof limits, " (%zu refused as faster than --max-speed or --max-turn-rate)",
+                  report.matches_beyond_limits);
+  }
+  std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them%s, %zu of %zu loop closures "
               "accepted%s%s%s%s\n",
-              report.scans, report.scans_with_points, report.matches_accepted, report.loopClosuresAccepted(),
+              report.scans, report.scans_with_points, report.matches_accepted, limits, report.loopClosuresAccepted(),
               report.loop_closures.size(), scale, most > 0 ? "; most refused as " : "", commonest.c_str(),
               !with_nav             ? " (no --nav: the motion comes from the scans alone, and the vehicle stays put "
                                       "between scans they cannot place)"

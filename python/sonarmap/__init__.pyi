@@ -48,6 +48,8 @@ class _MapSonarLogOptions(_MappingOptions, total=False):
     format: str
     nav_time_offset_s: float
     nav_class: str
+    max_speed: Optional[float]
+    max_turn_rate: Optional[float]
 
 class Error(builtins.RuntimeError): ...
 class FileError(Error, builtins.OSError): ...
@@ -246,6 +248,8 @@ def localize_point_scans(
     range_sigma: float = 0.05,
     bearing_sigma: float = 1.5,
     nav_class: str = "auto",
+    max_speed: Optional[float] = None,
+    max_turn_rate: Optional[float] = None,
 ) -> dict[str, Any]: ...
 
 class OnlineMapper:

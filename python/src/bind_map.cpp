@@ -154,6 +154,7 @@ cannot be written (an existing file is then left untouched).)doc")
             report["scans_with_points"] = map.slam->scans_with_points;
             report["matches_accepted"] = map.slam->matches_accepted;
             report["matches_refused"] = map.slam->matches_refused;
+            report["matches_beyond_limits"] = map.slam->matches_beyond_limits;
             report["odometry_scale"] = map.slam->odometry_scale;
             report["odometry_scale_sigma"] = map.slam->odometry_scale_sigma;
             report["odometry_scale_observed"] = map.slam->odometry_scale_observed;
@@ -171,7 +172,7 @@ cannot be written (an existing file is then left untouched).)doc")
             return report;
           },
           "map_sonar_log(slam=True): what the localization did, a dict (scans, scans_with_points, matches_accepted, "
-          "matches_refused, odometry_scale and its 1-sigma odometry_scale_sigma (the dead reckoning's distances times "
+          "matches_refused and matches_beyond_limits among them (beyond max_speed or max_turn_rate), odometry_scale and its 1-sigma odometry_scale_sigma (the dead reckoning's distances times "
           "it are the scans'; slam/localizer.hpp), odometry_scale_observed (False: the scans do not constrain it, "
           "so it is 1), heading_only (True: the navigation gave the heading only and the position came from the "
           "scans), loop_closures: a list of dicts from_scan, to_scan, accepted, reason); None otherwise.")

@@ -41,6 +41,27 @@ py::dict statsDict(const MappingStats& s) {
   return d;
 }
 
+/// The navigation's noise model for localization: the class (`auto`: navigationClassOf the track)
+/// and the vehicle's limits where no position is measured (max_speed in m/s, max_turn_rate in °/s,
+/// the CLI's --max-speed and --max-turn-rate; None: the class's).
+OdometryNoise odometryOf(const std::string& nav_class, const py::object& max_speed, const py::object& max_turn_rate,
+                         const NavTrack& track) {
+  OdometryNoise noise = odometryNoiseOf(nav_class == "auto" ? navigationClassOf(track) : nav_class);
+  const auto limit = [](const py::object& given, double unit, double& field, const char* name) {
+    if (given.is_none()) return;
+    const double value = given.cast<double>();
+    if (!(std::isfinite(value) && value > 0.0)) throw ValueError(std::string(name) + " must be > 0");
+    field = value * unit;
+  };
+  limit(max_speed, 1.0, noise.max_speed_mps, "max_speed (m/s)");
+  limit(max_turn_rate, 3.14159265358979323846 / 180.0, noise.max_turn_rate_radps, "max_turn_rate (degrees/s)");
+  return noise;
+}
+
+py::object kwarg(const py::kwargs& kwargs, const char* name) {
+  return kwargs.contains(name) ? py::object(kwargs[name]) : py::object(py::none());
+}
+
 void warn(const std::vector<std::string>& lines) {
   if (lines.empty()) return;
   const py::object warn = py::module_::import("warnings").attr("warn");
@@ -51,7 +72,8 @@ void warn(const std::vector<std::string>& lines) {
 
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
-  const MappingArguments args = mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class"});
+  const MappingArguments args =
+      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate"});
   const std::string nav_class = kwargs.contains("nav_class") ? textArgument(kwargs["nav_class"], "nav_class") : "auto";
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
@@ -70,7 +92,8 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   std::optional<NavTrack> track;
   if (!nav.is_none()) track = navTrackForLog(nav, log.log, nav_time_offset_s, mounting.is_none() ? &from_log : nullptr);
   SlamOptions slam_options;
-  slam_options.forming.odometry = odometryNoiseOf(nav_class == "auto" ? navigationClassOf(track ? *track : NavTrack{}) : nav_class);
+  slam_options.forming.odometry =
+      odometryOf(nav_class, kwarg(kwargs, "max_speed"), kwarg(kwargs, "max_turn_rate"), track ? *track : NavTrack{});
   const Eigen::Isometry3d sonar_to_body = from_log ? *from_log : sonarToBodyOfMounting(mounting_values);
   warn(optionWarnings(options, log.log));
   ProgressCallback callback;
@@ -139,7 +162,9 @@ nav the vehicle is believed still and its motion comes from the scans); the map'
 ``slam`` then hold the corrected trajectory and what the localization did; keyword nav_class (the CLI's
 --nav-class: "dvl-ahrs", "dvl-ins", "absolute", "ahrs" (the heading only: the position comes from the
 scans) or "auto", the default: "ahrs" when nav's north and east never change, else "dvl-ahrs") says how
-far it trusts the navigation.
+far it trusts the navigation; keywords max_speed (m/s, default 2) and max_turn_rate (degrees/s, default
+30, without nav only; the CLI's --max-speed and --max-turn-rate) are the vehicle's limits where nav gives
+no position (no nav, or the heading only): no scan match needing more is accepted.
 Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "auto" where the CLI
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
@@ -156,7 +181,7 @@ TypeError for an unknown keyword.)doc";
   m.def(
       "localize_point_scans",
       [](const py::object& scans, const py::object& nav, double range_sigma, double bearing_sigma,
-         const std::string& nav_class) {
+         const std::string& nav_class, const py::object& max_speed, const py::object& max_turn_rate) {
         std::vector<BodyPoint> points;
         if (py::isinstance<py::str>(scans) || py::hasattr(scans, "__fspath__")) {
           points = readPointScansCsv(py::str(py::module_::import("os").attr("fspath")(scans)));
@@ -176,7 +201,7 @@ TypeError for an unknown keyword.)doc";
         }
         const NavTrack track = nav.is_none() ? NavTrack{} : navTrackOf(nav);
         SlamOptions slam;
-        slam.forming.odometry = odometryNoiseOf(nav_class == "auto" ? navigationClassOf(track) : nav_class);
+        slam.forming.odometry = odometryOf(nav_class, max_speed, max_turn_rate, track);
         PointScanOptions options;
         options.range_sigma_m = range_sigma;
         options.bearing_sigma_rad = bearing_sigma * 3.14159265358979323846 / 180.0;
@@ -189,11 +214,12 @@ TypeError for an unknown keyword.)doc";
         out["trajectory"] = navArray(result.trajectory);
         out["scans"] = result.report.scans;
         out["matches_accepted"] = result.report.matches_accepted;
+        out["matches_beyond_limits"] = result.report.matches_beyond_limits;
         out["loop_closures_accepted"] = result.report.loopClosuresAccepted();
         return out;
       },
       py::arg("scans"), py::arg("nav") = py::none(), py::arg("range_sigma") = 0.05, py::arg("bearing_sigma") = 1.5,
-      py::arg("nav_class") = "auto",
+      py::arg("nav_class") = "auto", py::arg("max_speed") = py::none(), py::arg("max_turn_rate") = py::none(),
       R"doc(Localizes point scans detected elsewhere, as `sonarmap localize` (slam/point_scans.hpp): the scan
 matcher, loop closures and pose graph of map_sonar_log(slam=True).
 
@@ -203,9 +229,12 @@ clock, never decreasing) and place in the body frame then (m, x forward, y to st
 reckoning, an (N, 7) array or a navigation CSV's path; None: the vehicle believed still. range_sigma
 (metres) and bearing_sigma (degrees): 1-sigma of a point's range and bearing. nav_class: how far the
 navigation is trusted, by its sensors (slam/scan_forming.hpp odometryNoiseOf: "dvl-ahrs", "dvl-ins",
-"absolute", "ahrs"; the CLI's --nav-class; "auto": navigationClassOf the nav). Returns a dict: trajectory
+"absolute", "ahrs"; the CLI's --nav-class; "auto": navigationClassOf the nav). max_speed (m/s) and
+max_turn_rate (degrees/s): the vehicle's limits where nav gives no position (the CLI's --max-speed and
+--max-turn-rate; None: 2 m/s and 30 degrees/s). Returns a dict: trajectory
 (the corrected dead reckoning, an (M, 7) float64 array; without nav, three rows per scan), scans,
-matches_accepted, loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
+matches_accepted, matches_beyond_limits (refused as beyond max_speed or max_turn_rate),
+loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
 sonarmap.ValueError for a bad array, option or track.)doc");
   m.def(
       "read_nav_csv", [](const std::filesystem::path& path) { return navArray(readNavCsv(path.string())); }, py::arg("path"),

@@ -142,10 +142,24 @@ void Localizer::matchToSubmap(std::size_t k) {
       return;
     }
   }
+  if (beyondLimits(k - 1, k, graph_.pose(k - 1).between(match.pose))) {
+    ++report_.matches_refused;
+    ++report_.matches_beyond_limits;
+    return;
+  }
   ++report_.matches_accepted;
   graph_.setPose(k, match.pose);
   const Pose2& anchor = graph_.pose(k - 1);
   graph_.addEdge({k - 1, k, anchor.between(match.pose), informationInFrame(match.information, anchor), EdgeKind::kScanMatch});
+}
+
+bool Localizer::beyondLimits(std::size_t from, std::size_t to, const Pose2& motion) const {
+  const OdometryNoise& limits = options_.forming.odometry;
+  if (navigation_known_ && limits.position_measured) return false;
+  const double duration_s = std::abs(scans_[to].time_s - scans_[from].time_s);
+  if (motion.translation().norm() > limits.max_speed_mps * duration_s) return true;
+  // With a heading measured, the turn is the heading sensor's, however fast.
+  return !navigation_known_ && std::abs(motion.yaw_rad) > limits.max_turn_rate_radps * duration_s;
 }
 
 void Localizer::closeLoop(std::size_t k) {
@@ -224,7 +238,9 @@ bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2
   const Eigen::Matrix3d match_cov = (information + 1e-9 * Eigen::Matrix3d::Identity()).inverse();
   const Eigen::Matrix3d path = pathCovariance(from, to);
   const Pose2 estimated = graph_.pose(from).between(graph_.pose(to));
-  if (loopChi2(measurement, estimated, path + match_cov) > options_.loop_gate_chi2) {
+  if (beyondLimits(from, to, measurement)) {
+    loop.reason = "faster than the vehicle's limits (its top speed or turn rate)";
+  } else if (loopChi2(measurement, estimated, path + match_cov) > options_.loop_gate_chi2) {
     loop.reason = "farther from the estimate than dead reckoning can have drifted";
   } else if (!consistentWithAccepted(loop, match_cov)) {
     loop.reason = "inconsistent with an earlier loop closure";

@@ -202,6 +202,8 @@ void OdometryNoise::validate() const {
   requireNonNegative(gyro_walk_rad_per_sqrt_s, "gyro_walk_rad_per_sqrt_s");
   requirePositive(unknown_speed_sigma_mps, "unknown_speed_sigma_mps");
   requirePositive(unknown_turn_sigma_radps, "unknown_turn_sigma_radps");
+  requirePositive(max_speed_mps, "max_speed_mps");
+  requirePositive(max_turn_rate_radps, "max_turn_rate_radps");
 }
 
 void ScanFormingOptions::validate() const {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -288,6 +289,58 @@ TEST_F(cliTrajectory, LocalizeWritesTheTrajectoryOfPointScans) {
   expectError(unknown, 2);
   EXPECT_NE(unknown.err.find("dvl-ahrs, dvl-ins, absolute, ahrs"), std::string::npos) << unknown.err;
   EXPECT_FALSE(fs::exists(out_ / "no.csv"));
+  EXPECT_FALSE(fs::exists(out_ / "no.csv"));
+}
+
+// The vehicle's limits without navigation (--max-speed): the same rectangle from a vehicle moving
+// 0.4 m forward every 10 s (0.04 m/s). Within the default limit the scans give the motion; under
+// a limit of 0.02 m/s the matches that need more are refused and counted in the summary, and the
+// track never moves faster than the limit.
+TEST_F(cliTrajectory, LocalizeRefusesMatchesFasterThanTheMaxSpeed) {
+  const fs::path scans = out_ / "moving.csv";
+  {
+    std::ofstream csv(scans);
+    csv << "scan,time_s,x_m,y_m\n";
+    for (int scan = 0; scan < 6; ++scan) {
+      const double forward_m = 0.4 * scan;
+      for (int k = 0; k < 180; ++k) {
+        const double a = k * 2.0 * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
+        const double r = std::min(std::abs(c) > 1e-9 ? (c > 0 ? 4.0 - forward_m : 2.0 + forward_m) / std::abs(c) : 1e9,
+                                  std::abs(s) > 1e-9 ? (s > 0 ? 1.5 : 2.5) / std::abs(s) : 1e9);
+        csv << scan << ',' << 10.0 * scan + 0.05 * k << ',' << r * c << ',' << r * s << '\n';
+      }
+    }
+  }
+  // The trajectory's rows as (time_s, north_m, east_m).
+  const auto rowsOf = [](const fs::path& path) {
+    std::vector<Eigen::Vector3d> rows;
+    for (const std::string& line : linesOf(readFile(path))) {
+      if (line.rfind("time_s", 0) == 0) continue;
+      double t = 0.0, x = 0.0, y = 0.0;
+      if (std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &y) == 3) rows.emplace_back(t, x, y);
+    }
+    return rows;
+  };
+  const ProgramRun found = run({"localize", scans.string(), "--trajectory", (out_ / "found.csv").string()});
+  ASSERT_EQ(found.exit_code, 0) << found.err;
+  EXPECT_EQ(found.out.find("refused as faster"), std::string::npos) << found.out;
+  ASSERT_FALSE(rowsOf(out_ / "found.csv").empty());
+  EXPECT_NEAR(rowsOf(out_ / "found.csv").back().y(), 2.0, 0.05);
+  const ProgramRun held = run({"localize", scans.string(), "--trajectory", (out_ / "held.csv").string(), "--max-speed", "0.02"});
+  ASSERT_EQ(held.exit_code, 0) << held.err;
+  EXPECT_NE(held.out.find("refused as faster than --max-speed"), std::string::npos) << held.out;
+  const std::vector<Eigen::Vector3d> rows = rowsOf(out_ / "held.csv");
+  ASSERT_EQ(rows.size(), 18U);  // three rows per scan: its start, reference time and end
+  for (std::size_t i = 4; i < rows.size(); i += 3) {  // from one scan's reference time to the next's
+    EXPECT_LE((rows[i].tail<2>() - rows[i - 3].tail<2>()).norm(), 0.02 * (rows[i].x() - rows[i - 3].x()) + 1e-6) << i;
+  }
+  EXPECT_LT(rows.back().y(), 0.5);
+  const ProgramRun zero = run({"localize", scans.string(), "--trajectory", (out_ / "no.csv").string(), "--max-turn-rate", "0"});
+  expectError(zero, 2);
+  EXPECT_NE(zero.err.find("--max-turn-rate expects DEGREES/s > 0"), std::string::npos) << zero.err;
+  const ProgramRun without_slam = run({"map", scans.string(), "-o", (out_ / "no.bt").string(), "--max-speed", "1"});
+  expectError(without_slam, 2);
+  EXPECT_NE(without_slam.err.find("give --slam"), std::string::npos) << without_slam.err;
   EXPECT_FALSE(fs::exists(out_ / "no.csv"));
 }
 

@@ -78,6 +78,9 @@ def test_map_sonar_log_with_slam_on_the_heading_only():
     heading[:, 1:3] = 0.0
     found = sonarmap.map_sonar_log(run.log, heading, slam=True)
     assert found.slam["heading_only"] and found.slam["loop_closures"] == []
+    assert found.slam["matches_beyond_limits"] == 0
+    with pytest.raises(sonarmap.ValueError, match="max_speed"):
+        sonarmap.map_sonar_log(run.log, heading, slam=True, max_speed=0.0)
     believed = sonarmap.map_sonar_log(run.log, heading, slam=True, nav_class="dvl-ahrs")
     assert not believed.slam["heading_only"]
     still = sonarmap.eval_trajectory(heading, run.nav)["ate_rmse_m"]
@@ -86,14 +89,16 @@ def test_map_sonar_log_with_slam_on_the_heading_only():
     assert sonarmap.eval_trajectory(believed.trajectory, run.nav)["ate_rmse_m"] > 0.8 * still
 
 
-def rectangle_scans(count=6):
-    """Point scans of a 6 x 4 m rectangle of walls seen from a still vehicle, every 2 degrees."""
+def rectangle_scans(count=6, forward_m=0.0):
+    """Point scans of a 6 x 4 m rectangle of walls every 2 degrees, seen from a vehicle still or
+    moving forward_m along x between two scans (10 s apart)."""
     rows = []
     for scan in range(count):
+        ahead = forward_m * scan
         for k in range(180):
             a = np.radians(2.0 * k)
             c, s = np.cos(a), np.sin(a)
-            r = min((4.0 if c > 0 else 2.0) / abs(c) if abs(c) > 1e-9 else 1e9,
+            r = min((4.0 - ahead if c > 0 else 2.0 + ahead) / abs(c) if abs(c) > 1e-9 else 1e9,
                     (1.5 if s > 0 else 2.5) / abs(s) if abs(s) > 1e-9 else 1e9)
             rows.append((scan, 10.0 * scan + 0.05 * k, r * c, r * s))
     return np.array(rows, dtype=np.float64)
@@ -130,3 +135,19 @@ def test_localize_point_scans(tmp_path):
     broken.write_text("scan,time_s,x_m,y_m\n0,2,1,1\n0,1,1,1\n")
     with pytest.raises(sonarmap.FileError, match="line 3"):
         sonarmap.localize_point_scans(broken)
+
+
+def test_localize_point_scans_within_the_vehicle_limits():
+    # 0.4 m forward every 10 s (0.04 m/s), no navigation: found within the default limits; under
+    # max_speed 0.02 m/s the matches that need more are refused and the track never goes faster.
+    scans = rectangle_scans(forward_m=0.4)
+    found = sonarmap.localize_point_scans(scans)
+    assert found["matches_beyond_limits"] == 0
+    assert abs(found["trajectory"][-1, 1] - 2.0) < 0.05
+    held = sonarmap.localize_point_scans(scans, max_speed=0.02)
+    assert held["matches_beyond_limits"] >= 1
+    reference = held["trajectory"][1::3]  # each scan's reference time
+    steps = np.linalg.norm(np.diff(reference[:, 1:3], axis=0), axis=1)
+    assert np.all(steps <= 0.02 * np.diff(reference[:, 0]) + 1e-6)
+    with pytest.raises(sonarmap.ValueError, match="max_turn_rate"):
+        sonarmap.localize_point_scans(scans, max_turn_rate=-1.0)

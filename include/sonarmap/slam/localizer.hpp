@@ -90,7 +90,10 @@ struct SlamReport {
   std::size_t scans = 0;
   std::size_t scans_with_points = 0;  ///< scans with enough detected obstacles to match
   std::size_t matches_accepted = 0;   ///< scans matched to the scans before them
-  std::size_t matches_refused = 0;
+  std::size_t matches_refused = 0;   ///< every match refused, those beyond the limits among them
+  /// Matches refused because the motion they need is beyond the vehicle's limits where no position
+  /// is measured (OdometryNoise::max_speed_mps, and max_turn_rate_radps without navigation).
+  std::size_t matches_beyond_limits = 0;
   std::vector<LoopClosure> loop_closures;  ///< every loop closure matched, in order
   /// The odometry's scale factor the graph estimated (PoseGraph::odometryScale; 1 without
   /// navigation): 0.97 says the dead reckoning's distances were 3 % too long.
@@ -119,8 +122,9 @@ class Localizer {
   void addScan(SonarScan scan);
   /// Offers a loop closure found elsewhere (or by closeLoop's match): scan `to` measured at
   /// `measurement` in scan `from`'s frame with `information` (in from's frame). It passes the same
-  /// gates as the matcher's (against the estimate with dead reckoning's drift along the path, and
-  /// pairwise consistency with every accepted loop closure); accepted, it joins the graph, which is
+  /// gates as the matcher's (the vehicle's limits where no position is measured, against the
+  /// estimate with dead reckoning's drift along the path, and pairwise consistency with every
+  /// accepted loop closure); accepted, it joins the graph, which is
   /// optimised. Recorded in report() either way. Returns whether it was accepted.
   /// @throws ValueError unless from < to < scans().size() and the values are finite.
   bool proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement, const Eigen::Matrix3d& information);
@@ -150,6 +154,10 @@ class Localizer {
   std::vector<Eigen::Matrix3d> pathCovariancesTo(std::size_t b) const;
   /// The navigation measures the heading only (OdometryNoise::position_measured false).
   bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
+  /// Whether `motion` (scan `to`'s pose in scan `from`'s frame) needs the vehicle to move or turn
+  /// faster than its limits (OdometryNoise::max_speed_mps, max_turn_rate_radps) between the two
+  /// scans' times, where the navigation measures no position.
+  bool beyondLimits(std::size_t from, std::size_t to, const Pose2& motion) const;
   /// With the heading only: scan k (`duration_s` after scan k − 1, turned by `predicted`'s yaw) is
   /// predicted to move at the velocity over the ground (NED) of the last two scans' estimated
   /// poses (predicted's translation, metres in scan k − 1's frame), and its points, placed with

@@ -42,6 +42,15 @@ struct OdometryNoise {
   /// unknown_turn_sigma_radps.
   double unknown_speed_sigma_mps = 0.2;
   double unknown_turn_sigma_radps = 2.0 * 3.14159265358979323846 / 180.0;  ///< rad/s, > 0
+  /// The vehicle's limits where the navigation measures no position (no navigation, or
+  /// position_measured false): Localizer refuses a scan match that needs the vehicle to have moved
+  /// faster than max_speed_mps (m/s, > 0) since the scan before or, without navigation, to have
+  /// turned faster than max_turn_rate_radps (rad/s, > 0; with a heading sensor the turn is
+  /// measured). The defaults bound small ROVs and AUVs: 2 m/s is above a BlueROV2's or a small
+  /// survey AUV's top speed (1.5–2 m/s), 30°/s above a piloted ROV's usual yaw rate. A user who
+  /// knows the vehicle's motion (a tethered ROV drifting in a pool) states tighter ones.
+  double max_speed_mps = 2.0;
+  double max_turn_rate_radps = 30.0 * 3.14159265358979323846 / 180.0;
   /// false: the navigation measures the heading only (an AHRS or a compass without a DVL or a
   /// positioning system, as a BlueROV2's flight log without one: north and east stay 0). Its
   /// position between two poses is then unknown, as without navigation (unknown_speed_sigma_mps),
