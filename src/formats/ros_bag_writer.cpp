@@ -358,7 +358,7 @@ std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav,
           if (options.raw_sensors) {
             const RawSensors raw = rawSensors(nav, f, stamp, options);
             bag.write("/imu/data", recorded, raw.imu);
-            bag.write("/dvl/twist", recorded, raw.twist);
+            if (options.raw_dvl) bag.write("/dvl/twist", recorded, raw.twist);
             bag.write("/pressure", recorded, raw.pressure);
           }
           ++f;

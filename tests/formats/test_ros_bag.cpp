@@ -231,6 +231,25 @@ TEST(formatsRosBag, ImuDvlAndPressureAloneAreDeadReckonedIntoTheTrack) {
   EXPECT_NEAR(fresh->track[deep].position_ned_m.z(), 1.025 * nav[deep].position_ned_m.z(), 1e-9);
 }
 
+// A vehicle without a DVL (a BlueROV2 logging its IMU and depth sensor to ROS): the track has the
+// attitude and the depth, and north and east stay 0 (slamHeadingOnly takes it from there).
+TEST(formatsRosBag, ImuAndPressureWithoutADvlGiveTheAttitudeAndDepth) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  const NavTrack& nav = run.simulation.nav;
+  writeRosBag(dir.file("imu.bag"), run.simulation.log, nav, {.odometry = false, .raw_sensors = true, .raw_dvl = false});
+  EXPECT_EQ(listRosBagTopics(dir.file("imu.bag")).size(), 3u);
+  const std::optional<RosBagNavigation> read = readRosBagNavigation(dir.file("imu.bag"));
+  ASSERT_TRUE(read.has_value());
+  EXPECT_NE(read->frame.find("no velocity (north, east 0)"), std::string::npos) << read->frame;
+  ASSERT_EQ(read->track.size(), nav.size());
+  for (std::size_t i = 0; i < nav.size(); ++i) {
+    EXPECT_EQ(read->track[i].position_ned_m.head<2>(), Eigen::Vector2d::Zero()) << "fix " << i;
+    EXPECT_NEAR(read->track[i].position_ned_m.z(), nav[i].position_ned_m.z(), 1e-6) << "fix " << i;
+    EXPECT_NEAR(std::remainder(read->track[i].yaw_rad - nav[i].yaw_rad, 2.0 * std::numbers::pi), 0.0, 1e-9) << "fix " << i;
+  }
+}
+
 // A DVL mounted turned (45 degrees in yaw, as a Water Linked A50 often is on a BlueROV2) records
 // its velocities in its own frame: /tf_static's rotation turns them back into the IMU's frame, and
 // the dead-reckoned track is the true one.

@@ -6,7 +6,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/temp_dir.hpp"
 #include "slam_fixture.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
+#include "sonarmap/formats/ros_bag_reader.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
 #include "sonarmap/eval/trajectory_error.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/slam/localizer.hpp"
@@ -73,6 +77,26 @@ TEST(slamHeadingOnly, TheScansGiveThePositionOfAVehicleAlongAHull) {
   const SlamResult believed = localize(run.log, heading, defaultSonarToBody(), MapperOptions{});
   EXPECT_FALSE(believed.report.heading_only);
   EXPECT_GT(evaluateTrajectory(believed.trajectory, run.nav).ate_rmse_m, 0.8 * still_m);
+}
+
+TEST(slamHeadingOnly, AnImuOnlyRosBagIsLocalizedOnItsHeading) {
+  // A vehicle without a DVL recording its IMU and depth sensor to a ROS bag: the bag's navigation
+  // has no position, "auto" takes it for the ahrs class, and the scans give the path.
+  MsisSimulation run = testing::missionRun("hull-loop", "seaking-30", 0.0, 1.5, 0.02, 1);
+  for (Beam& beam : run.log.beams) beam.time_s += 1.4e9;  // a recorder's clock
+  for (NavSample& fix : run.dead_reckoning) fix.time_s += 1.4e9;
+  for (NavSample& fix : run.nav) fix.time_s += 1.4e9;
+  const test::TempDir dir;
+  writeRosBag(dir.file("imu.bag"), run.log, run.dead_reckoning, {.odometry = false, .raw_sensors = true, .raw_dvl = false});
+  const std::optional<RosBagNavigation> read = readRosBagNavigation(dir.file("imu.bag"));
+  ASSERT_TRUE(read.has_value());
+  ASSERT_EQ(navigationClassOf(read->track), "ahrs");
+  SlamOptions options;
+  options.forming.odometry = odometryNoiseOf(navigationClassOf(read->track));
+  const SlamResult slam = localize(readRosBag(dir.file("imu.bag")), read->track, defaultSonarToBody(), MapperOptions{}, options);
+  EXPECT_TRUE(slam.report.heading_only);
+  const double still_m = evaluateTrajectory(read->track, run.nav).ate_rmse_m;
+  EXPECT_LT(evaluateTrajectory(slam.trajectory, run.nav).ate_rmse_m, 0.25 * still_m) << "still " << still_m << " m";
 }
 
 }  // namespace

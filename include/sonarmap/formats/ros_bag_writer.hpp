@@ -46,6 +46,9 @@ struct RosBagWriteOptions {
   /// /dvl/twist (the body velocity to the next fix), sensor_msgs/FluidPressure on /pressure (the
   /// depth's pressure with water_density_kg_m3 and surface_pressure_pa).
   bool raw_sensors = false;
+  /// With raw_sensors: whether the DVL's /dvl/twist is written (false: a vehicle without a DVL,
+  /// whose raw sensors give the attitude and the depth only).
+  bool raw_dvl = true;
   double water_density_kg_m3 = 1025.0;
   double surface_pressure_pa = 101325.0;
   BagCompression compression = BagCompression::kNone;
