@@ -3,8 +3,11 @@
 
 #include "sonarmap/slam/point_scans.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -32,6 +35,62 @@ std::string orderProblem(const BodyPoint& previous, const BodyPoint& next) {
            " s); times must not decrease";
   }
   return {};
+}
+
+/// Which of the points [first, last) of one scan are the leading edges of their echoes. A beam's
+/// echo above a detector's threshold often spans several bins: a user's detections may list every
+/// one, a radial streak behind the surface. The surface is where the sound first met it, the
+/// echo's nearest point (the leading edge: what the beam detector of `map --slam` reports, one
+/// point per beam). Points of one echo share their beam's time and line of sight from the body's
+/// origin; they follow one another along it within 3 range σ, the range resolution's limit for
+/// telling two returns apart, and lie within one range σ of the line through the nearest. Points at
+/// one time that are farther apart (a second target behind a gap, or another bearing) start echoes
+/// of their own.
+std::vector<bool> leadingEdges(const std::vector<BodyPoint>& points, std::size_t first, std::size_t last,
+                               double range_sigma_m) {
+  std::vector<bool> keep(last - first, true);
+  struct Echo {
+    Eigen::Vector2d direction;  // unit vector of the leading edge's line of sight
+    double last_range_m;        // range of the echo's farthest point so far
+  };
+  for (std::size_t begin = first; begin < last;) {
+    std::size_t end = begin + 1;
+    while (end < last && points[end].time_s == points[begin].time_s) ++end;
+    if (end - begin > 1) {
+      std::vector<std::size_t> by_range(end - begin);
+      for (std::size_t i = 0; i < by_range.size(); ++i) by_range[i] = begin + i;
+      std::sort(by_range.begin(), by_range.end(),
+                [&](std::size_t a, std::size_t b) { return points[a].xy_m.norm() < points[b].xy_m.norm(); });
+      // The echoes found so far by the bearing of their line of sight, for the few near a point's.
+      std::multimap<double, Echo> echoes;
+      for (const std::size_t i : by_range) {
+        const Eigen::Vector2d& xy = points[i].xy_m;
+        const double range_m = xy.norm();
+        const double bearing_rad = std::atan2(xy.y(), xy.x());
+        const double window_rad = range_m > range_sigma_m ? std::asin(range_sigma_m / range_m) : std::numbers::pi;
+        bool continues = false;
+        for (const double shift : {0.0, -2.0 * std::numbers::pi, 2.0 * std::numbers::pi}) {  // across ±π
+          const auto lower = echoes.lower_bound(bearing_rad + shift - window_rad);
+          const auto upper = echoes.upper_bound(bearing_rad + shift + window_rad);
+          for (auto it = lower; it != upper && !continues; ++it) {
+            Echo& echo = it->second;
+            const double across_m = std::abs(echo.direction.x() * xy.y() - echo.direction.y() * xy.x());
+            if (range_m - echo.last_range_m <= 3.0 * range_sigma_m && across_m <= range_sigma_m) {
+              echo.last_range_m = range_m;
+              continues = true;
+            }
+          }
+        }
+        if (continues) {
+          keep[i - first] = false;
+        } else {
+          echoes.emplace(bearing_rad, Echo{range_m > 0.0 ? Eigen::Vector2d(xy / range_m) : Eigen::Vector2d::UnitX(), range_m});
+        }
+      }
+    }
+    begin = end;
+  }
+  return keep;
 }
 
 }  // namespace
@@ -131,7 +190,9 @@ std::vector<SonarScan> formPointScans(const std::vector<BodyPoint>& points, cons
     const std::optional<Eigen::Isometry3d> reference = scan_points::deadReckoningAt(nav, scan.time_s);
     if (reference) {
       scan.dead_reckoning = planarPose(*reference);
+      const std::vector<bool> leading = leadingEdges(points, first, last, options.range_sigma_m);
       for (std::size_t i = first; i < last; ++i) {
+        if (!leading[i - first]) continue;
         const BodyPoint& point = points[i];
         const std::optional<Eigen::Isometry3d> body = scan_points::deadReckoningAt(nav, point.time_s);
         if (!body) continue;

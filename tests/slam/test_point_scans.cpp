@@ -116,6 +116,55 @@ TEST(slamPointScans, AMissionsDetectionsAsPointScansAreLocalized) {
   EXPECT_LT(points_m, 1.5 * beams_m);
 }
 
+// A beam's echo listed bin by bin (every bin above a threshold, as detections from elsewhere often
+// come) is kept as its leading edge; a second return behind a gap, and points at other bearings,
+// are kept.
+TEST(slamPointScans, AnEchoListedBinByBinIsKeptAsItsLeadingEdge) {
+  const Eigen::Vector2d beam(std::cos(0.3), std::sin(0.3));
+  std::vector<BodyPoint> points;
+  for (const double range_m : {3.00, 3.04, 3.08, 3.12, 5.00, 5.04}) points.push_back({0, 1.0, range_m * beam});
+  points.push_back({0, 2.0, 3.04 * beam});                                            // the next beam, same bearing
+  points.push_back({0, 2.0, 3.04 * Eigen::Vector2d(std::cos(0.35), std::sin(0.35))});  // 0.15 m across: its own
+  const std::vector<SonarScan> scans = formPointScans(points, NavTrack{});
+  ASSERT_EQ(scans.size(), 1U);
+  std::vector<double> ranges;
+  for (const ScanPoint& point : scans[0].points) ranges.push_back(point.xy_m.norm());
+  ASSERT_EQ(ranges.size(), 4U);
+  EXPECT_NEAR(ranges[0], 3.00, 1e-9);  // the leading edge of the first echo
+  EXPECT_NEAR(ranges[1], 5.00, 1e-9);  // the return behind a 1.88 m gap
+  EXPECT_NEAR(ranges[2], 3.04, 1e-9);
+  EXPECT_NEAR(ranges[3], 3.04, 1e-9);
+}
+
+// The Micron's and the Ping360's detections with every bin behind each for 3 % of the range (a
+// thick echo, thresholded bin by bin): localized exactly as the detections alone. Measured before
+// the leading edges were kept (seed 1): the harbour loops' ATE 0.016 -> 0.100 m (Micron) and
+// 0.196 -> 1.19 m (Ping360); the hull loops' went beyond dead reckoning's (Micron 0.224 m against
+// 0.140 m, Ping360 1.61 m against 1.26 m).
+TEST(slamPointScans, ThickEchoesAreLocalizedAsTheirLeadingEdges) {
+  for (const char* sonar : {"micron", "ping360"}) {
+    const MsisSimulation run = testing::missionRun("harbour-loop", sonar);
+    const DetectedLog detected = detectSonarLog(run.log, MapperOptions{});
+    const std::vector<BodyPoint> points = pointScansOf(detected, defaultSonarToBody());
+    const double range_m = run.log.beams.front().bin_length_m * static_cast<double>(run.log.beams.front().intensities.size());
+    const double bin_m = run.log.beams.front().bin_length_m;
+    std::vector<BodyPoint> thick;
+    for (const BodyPoint& point : points) {
+      thick.push_back(point);
+      for (double behind_m = bin_m; behind_m <= 0.03 * range_m; behind_m += bin_m) {
+        thick.push_back({point.scan, point.time_s, point.xy_m + point.xy_m.normalized() * behind_m});
+      }
+    }
+    ASSERT_GT(thick.size(), 3 * points.size()) << sonar;
+    const SlamResult clean = localizePointScans(points, run.dead_reckoning);
+    const SlamResult streaked = localizePointScans(thick, run.dead_reckoning);
+    ASSERT_EQ(streaked.trajectory.size(), clean.trajectory.size()) << sonar;
+    for (std::size_t i = 0; i < clean.trajectory.size(); ++i) {
+      EXPECT_EQ(streaked.trajectory[i].position_ned_m, clean.trajectory[i].position_ned_m) << sonar << " fix " << i;
+    }
+  }
+}
+
 // Without navigation a static head's point scans stay put.
 TEST(slamPointScans, WithoutNavigationAStaticSceneStaysPut) {
   std::vector<BodyPoint> points;

@@ -64,11 +64,15 @@ struct PointScanOptions {
   void validate() const;
 };
 
-/// One scan per scan number of `points`, motion-compensated as formScans does (scan_forming.hpp):
-/// each point placed with the dead-reckoning body pose at its own time, expressed in the body frame
-/// at the scan's reference time (its middle point's), with its covariance (range_sigma_m along the
-/// line of sight from the body's origin, range · bearing_sigma_rad across it, plus dead
-/// reckoning's drift between the two times). Points outside the navigation's time span are
+/// One scan per scan number of `points`, motion-compensated as formScans does (scan_forming.hpp).
+/// A beam's echo listed as several points (every bin above a threshold: points at one time along one
+/// line of sight from the body's origin, each within 3 range_sigma_m of the one before and within
+/// range_sigma_m of the line through the nearest) is kept as its nearest point, the leading edge, as
+/// the beam detector of `map --slam` reports one point per beam; a return behind a wider gap is kept
+/// as a point of its own. Each kept point is placed with the dead-reckoning body pose at its own
+/// time, expressed in the body frame at the scan's reference time (its middle point's), with its
+/// covariance (range_sigma_m along the line of sight from the body's origin, range ·
+/// bearing_sigma_rad across it, plus dead reckoning's drift between the two times). Points outside the navigation's time span are
 /// skipped, and a scan whose reference time is. An empty `dead_reckoning`: the vehicle believed
 /// still at the origin. `forming`: the dead reckoning's noise model (ScanFormingOptions::odometry;
 /// its sigmas and max_travel_m are the beams' and do not apply).
