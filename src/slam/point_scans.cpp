@@ -160,6 +160,22 @@ void writePointScans(std::ostream& out, const std::vector<BodyPoint>& points) {
   out << text;
 }
 
+std::vector<BodyPoint> pointScansOf(const DetectedLog& detected, const Eigen::Isometry3d& sonar_to_body) {
+  std::vector<BodyPoint> points;
+  for (std::size_t s = 0; s < detected.sweeps.size(); ++s) {
+    const DetectedSweep& sweep = detected.sweeps[s];
+    for (std::size_t row = 0; row < sweep.detection.detections.size(); ++row) {
+      const BeamDetection& hit = sweep.detection.detections[row];
+      if (!hit.hasObstacle()) continue;
+      const double bearing_rad = sweep.polar.bearing_rad[row];
+      const Eigen::Vector3d in_body =
+          sonar_to_body * Eigen::Vector3d(hit.range_m * std::cos(bearing_rad), hit.range_m * std::sin(bearing_rad), 0.0);
+      points.push_back({s, sweep.polar.time_s[row], in_body.head<2>()});
+    }
+  }
+  return points;
+}
+
 void PointScanOptions::validate() const {
   if (!(std::isfinite(range_sigma_m) && range_sigma_m > 0.0)) {
     throw ValueError("point scans: the range sigma must be > 0 m, got " + std::to_string(range_sigma_m));

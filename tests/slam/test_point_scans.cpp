@@ -74,24 +74,6 @@ TEST(slamPointScans, BrokenFilesNameTheLineAndTheField) {
   EXPECT_THROW(formPointScans(parse("scan,time_s,x_m,y_m\n0,1,2,3\n"), NavTrack{}, options), ValueError);
 }
 
-/// The mission's detections as point scans: every obstacle in the body frame at its beam's time,
-/// one scan per detected sweep.
-std::vector<BodyPoint> pointScansOf(const DetectedLog& detected, const Eigen::Isometry3d& sonar_to_body) {
-  std::vector<BodyPoint> points;
-  for (std::size_t s = 0; s < detected.sweeps.size(); ++s) {
-    const DetectedSweep& sweep = detected.sweeps[s];
-    for (std::size_t row = 0; row < sweep.detection.detections.size(); ++row) {
-      const BeamDetection& hit = sweep.detection.detections[row];
-      if (!hit.hasObstacle()) continue;
-      const double bearing_rad = sweep.polar.bearing_rad[row];
-      const Eigen::Vector3d in_body =
-          sonar_to_body * Eigen::Vector3d(hit.range_m * std::cos(bearing_rad), hit.range_m * std::sin(bearing_rad), 0.0);
-      points.push_back({s, sweep.polar.time_s[row], in_body.head<2>()});
-    }
-  }
-  return points;
-}
-
 // The Micron's harbour loop, 3 % scale error and a 2° heading bias: its detections written as point
 // scans are localized as `map --slam` localizes the log (ATE about half dead reckoning's or better).
 TEST(slamPointScans, AMissionsDetectionsAsPointScansAreLocalized) {

@@ -18,7 +18,9 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
+#include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/slam/localizer.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
@@ -51,6 +53,11 @@ void checkPointScans(const std::vector<BodyPoint>& points);
 /// Writes `points` as a point-scan CSV that readPointScans reads back exactly.
 /// @throws ValueError as checkPointScans.
 void writePointScans(std::ostream& out, const std::vector<BodyPoint>& points);
+
+/// The detections of `detected` (one per beam, mapping/detected_log.hpp) as point scans: each in the
+/// body frame (`sonar_to_body`, navigation.hpp) at its beam's time, one scan per detected sweep,
+/// numbered from 0. What `sonarmap localize` reads, from the beam detector of `map --slam`.
+std::vector<BodyPoint> pointScansOf(const DetectedLog& detected, const Eigen::Isometry3d& sonar_to_body);
 
 /// The uncertainty of a point scan's sensor (the dead reckoning's is ScanFormingOptions::odometry).
 struct PointScanOptions {
