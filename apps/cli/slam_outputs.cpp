@@ -44,9 +44,14 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
     std::snprintf(limits, sizeof limits, " (%zu refused as faster than --max-speed or --max-turn-rate)",
                   report.matches_beyond_limits);
   }
-  std::printf("slam: %zu scans (%zu with features), %zu matched to the scans before them%s, %zu of %zu loop closures "
+  char echoes[96] = "";
+  if (report.points_behind_echoes > 0) {
+    std::snprintf(echoes, sizeof echoes, "; %zu points behind their echo's leading edge left out",
+                  report.points_behind_echoes);
+  }
+  std::printf("slam: %zu scans (%zu with features%s), %zu matched to the scans before them%s, %zu of %zu loop closures "
               "accepted%s%s%s%s\n",
-              report.scans, report.scans_with_points, report.matches_accepted, limits, report.loopClosuresAccepted(),
+              report.scans, report.scans_with_points, echoes, report.matches_accepted, limits, report.loopClosuresAccepted(),
               report.loop_closures.size(), scale, most > 0 ? "; most refused as " : "", commonest.c_str(),
               !with_nav             ? " (no --nav: the motion comes from the scans alone, and the vehicle stays put "
                                       "between scans they cannot place)"

@@ -215,6 +215,7 @@ TypeError for an unknown keyword.)doc";
         out["scans"] = result.report.scans;
         out["matches_accepted"] = result.report.matches_accepted;
         out["matches_beyond_limits"] = result.report.matches_beyond_limits;
+        out["points_behind_echoes"] = result.report.points_behind_echoes;
         out["loop_closures_accepted"] = result.report.loopClosuresAccepted();
         return out;
       },
@@ -234,7 +235,8 @@ max_turn_rate (degrees/s): the vehicle's limits where nav gives no position (the
 --max-turn-rate; None: 2 m/s and 30 degrees/s). Returns a dict: trajectory
 (the corrected dead reckoning, an (M, 7) float64 array; without nav, three rows per scan), scans,
 matches_accepted, matches_beyond_limits (refused as beyond max_speed or max_turn_rate),
-loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
+points_behind_echoes (rows left out behind their echo's leading edge: several points of one beam's
+echo are kept as its nearest), loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
 sonarmap.ValueError for a bad array, option or track.)doc");
   m.def(
       "read_nav_csv", [](const std::filesystem::path& path) { return navArray(readNavCsv(path.string())); }, py::arg("path"),

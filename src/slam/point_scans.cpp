@@ -208,7 +208,10 @@ std::vector<SonarScan> formPointScans(const std::vector<BodyPoint>& points, cons
       scan.dead_reckoning = planarPose(*reference);
       const std::vector<bool> leading = leadingEdges(points, first, last, options.range_sigma_m);
       for (std::size_t i = first; i < last; ++i) {
-        if (!leading[i - first]) continue;
+        if (!leading[i - first]) {
+          ++scan.points_behind_echoes;
+          continue;
+        }
         const BodyPoint& point = points[i];
         const std::optional<Eigen::Isometry3d> body = scan_points::deadReckoningAt(nav, point.time_s);
         if (!body) continue;
@@ -234,7 +237,12 @@ SlamResult localizePointScans(const std::vector<BodyPoint>& points, const NavTra
                               const PointScanOptions& options, const SlamOptions& slam) {
   slam.validate();
   const SlamOptions tuned = withNavigationPeriod(slam, dead_reckoning);
-  return localizeScans(formPointScans(points, dead_reckoning, options, tuned.forming), dead_reckoning, tuned);
+  std::vector<SonarScan> scans = formPointScans(points, dead_reckoning, options, tuned.forming);
+  std::size_t behind = 0;
+  for (const SonarScan& scan : scans) behind += scan.points_behind_echoes;
+  SlamResult result = localizeScans(std::move(scans), dead_reckoning, tuned);
+  result.report.points_behind_echoes = behind;
+  return result;
 }
 
 }  // namespace sonarmap

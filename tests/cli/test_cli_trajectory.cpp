@@ -239,8 +239,9 @@ TEST_F(cliTrajectory, MapWithSlamTakesThePositionOfAHeadingOnlyFlightLogFromTheS
   EXPECT_LT(found_m, 0.3 * believed_m);
 }
 
-// Point scans of a 6 × 4 m rectangle of walls seen from a still vehicle, six scans: localized with
-// and without navigation, the trajectory written; broken input refused in one line, nothing written.
+// Point scans of a 6 × 4 m rectangle of walls seen from a still vehicle, six scans, each echo listed
+// as two bins (the second 5 cm behind, left out): localized with and without navigation, the
+// trajectory written; broken input refused in one line, nothing written.
 TEST_F(cliTrajectory, LocalizeWritesTheTrajectoryOfPointScans) {
   const fs::path scans = out_ / "scans.csv", nav = out_ / "nav.csv";
   {
@@ -252,6 +253,7 @@ TEST_F(cliTrajectory, LocalizeWritesTheTrajectoryOfPointScans) {
         const double r = std::min(std::abs(c) > 1e-9 ? (c > 0 ? 4.0 : 2.0) / std::abs(c) : 1e9,
                                   std::abs(s) > 1e-9 ? (s > 0 ? 1.5 : 2.5) / std::abs(s) : 1e9);
         csv << scan << ',' << 10.0 * scan + 0.05 * k << ',' << r * c << ',' << r * s << '\n';
+        csv << scan << ',' << 10.0 * scan + 0.05 * k << ',' << (r + 0.05) * c << ',' << (r + 0.05) * s << '\n';
       }
     }
     std::ofstream track(nav);
@@ -260,7 +262,8 @@ TEST_F(cliTrajectory, LocalizeWritesTheTrajectoryOfPointScans) {
   }
   const ProgramRun alone = run({"localize", scans.string(), "--trajectory", (out_ / "alone.csv").string()});
   ASSERT_EQ(alone.exit_code, 0) << alone.err;
-  EXPECT_EQ(alone.out.rfind("slam: 6 scans", 0), 0U) << alone.out;
+  EXPECT_EQ(alone.out.rfind("slam: 6 scans (6 with features; 1080 points behind their echo's leading edge left out)", 0), 0U)
+      << alone.out;
   EXPECT_NE(alone.out.find("no --nav"), std::string::npos) << alone.out;
   const ProgramRun with_nav = run({"localize", scans.string(), "--nav", nav.string(), "--trajectory",
                                    (out_ / "corrected.tum").string(), "-q"});

@@ -109,6 +109,15 @@ def test_localize_point_scans(tmp_path):
     alone = sonarmap.localize_point_scans(scans)
     assert alone["scans"] == 6 and alone["matches_accepted"] >= 4
     assert np.abs(alone["trajectory"][:, 1:3]).max() < 0.03  # still
+    assert alone["points_behind_echoes"] == 0
+    # Each echo listed as two bins, the second 5 cm behind along the line of sight: left out.
+    behind = scans.copy()
+    behind[:, 2:4] *= (1.0 + 0.05 / np.hypot(scans[:, 2], scans[:, 3]))[:, None]
+    both = np.empty((2 * len(scans), 4))
+    both[0::2], both[1::2] = scans, behind  # each point followed by its second bin, at its time
+    thick = sonarmap.localize_point_scans(both)
+    assert thick["points_behind_echoes"] == len(scans)
+    np.testing.assert_array_equal(thick["trajectory"], alone["trajectory"])
     nav = np.zeros((71, 7))
     nav[:, 0] = np.arange(71.0)
     nav[:, 3] = 1.0

@@ -112,6 +112,7 @@ TEST(slamPointScans, AnEchoListedBinByBinIsKeptAsItsLeadingEdge) {
   std::vector<double> ranges;
   for (const ScanPoint& point : scans[0].points) ranges.push_back(point.xy_m.norm());
   ASSERT_EQ(ranges.size(), 4U);
+  EXPECT_EQ(scans[0].points_behind_echoes, 4U);
   EXPECT_NEAR(ranges[0], 3.00, 1e-9);  // the leading edge of the first echo
   EXPECT_NEAR(ranges[1], 5.00, 1e-9);  // the return behind a 1.88 m gap
   EXPECT_NEAR(ranges[2], 3.04, 1e-9);
@@ -141,6 +142,8 @@ TEST(slamPointScans, ThickEchoesAreLocalizedAsTheirLeadingEdges) {
     const SlamResult clean = localizePointScans(points, run.dead_reckoning);
     const SlamResult streaked = localizePointScans(thick, run.dead_reckoning);
     ASSERT_EQ(streaked.trajectory.size(), clean.trajectory.size()) << sonar;
+    EXPECT_EQ(streaked.report.points_behind_echoes, thick.size() - points.size()) << sonar;
+    EXPECT_EQ(clean.report.points_behind_echoes, 0U) << sonar;
     for (std::size_t i = 0; i < clean.trajectory.size(); ++i) {
       EXPECT_EQ(streaked.trajectory[i].position_ned_m, clean.trajectory[i].position_ned_m) << sonar << " fix " << i;
     }

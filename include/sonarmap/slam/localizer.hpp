@@ -106,6 +106,9 @@ struct SlamReport {
   /// The navigation gave the heading only (OdometryNoise::position_measured false): the position
   /// came from the scans, and no loop closure was sought.
   bool heading_only = false;
+  /// Point scans (localizePointScans): rows left out as lying behind their echo's leading edge
+  /// (formPointScans), over every scan; 0 for a sonar log's own detections.
+  std::size_t points_behind_echoes = 0;
   std::size_t loopClosuresAccepted() const;
 };
 

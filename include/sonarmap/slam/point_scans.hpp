@@ -90,7 +90,8 @@ std::vector<SonarScan> formPointScans(const std::vector<BodyPoint>& points, cons
 
 /// Localizes point scans (formPointScans with slam.forming, then localizeScans as localize does:
 /// the odometry's reading period is the navigation's median fix spacing, withNavigationPeriod). The result's trajectory is the dead
-/// reckoning corrected (Localizer::correctedTrack); without navigation, the scans' poses.
+/// reckoning corrected (Localizer::correctedTrack); without navigation, the scans' poses. Its
+/// report counts the rows left out behind their echoes' leading edges (points_behind_echoes).
 /// @throws ValueError for invalid options or an invalid navigation track.
 SlamResult localizePointScans(const std::vector<BodyPoint>& points, const NavTrack& dead_reckoning,
                               const PointScanOptions& options = {}, const SlamOptions& slam = {});

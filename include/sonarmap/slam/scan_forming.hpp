@@ -126,6 +126,8 @@ struct SonarScan {
   std::size_t beams = 0;          ///< beams in the sweep
   double reach_m = 0.0;           ///< longest beam range of the sweep, metres
   std::vector<ScanPoint> points;  ///< one per beam with an obstacle
+  /// Point scans (formPointScans): rows left out as lying behind their echo's leading edge.
+  std::size_t points_behind_echoes = 0;
 };
 
 /// How scans are formed.
