@@ -22,7 +22,6 @@
 
 #include "sonarmap/eval/trajectory_error.hpp"
 #include "sonarmap/mapping/detected_log.hpp"
-#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 #include "sonarmap/slam/point_scans.hpp"
@@ -39,9 +38,7 @@ MsisSimulation missionRun(const std::string& mission, const std::string& sonar, 
   args.dvl_scale_error = 0.03;
   args.heading_bias_deg = 2.0;
   args.gyro_walk_deg_per_sqrt_s = 0.02;
-  const MsisSimulationOptions options = toSimulationOptions(args);
-  const std::string scene = missionPlan(mission, options.head.range_m, 1.0).scene;
-  return simulateMsis(sceneOf(scene, options.head), options);
+  return simulateInMissionScene(mission, toSimulationOptions(args));
 }
 
 enum class Form { kAsDetected, kClutter, kThick, kClutterEveryBeam };

@@ -56,7 +56,6 @@
 #include "sonarmap/eval/ground_truth.hpp"
 #include "sonarmap/eval/trajectory_error.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
-#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 #include "sonarmap/slam/localizer.hpp"
@@ -249,8 +248,7 @@ int main(int argc, char** argv) {
     for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
       const SimulationArguments args = argumentsOf(mission, seed, odometryNoiseOf(nav_class));
       const MsisSimulationOptions options = toSimulationOptions(args);
-      const std::string scene = missionPlan(mission.name, options.head.range_m, 1.0).scene;
-      const MsisSimulation run = simulateMsis(sceneOf(scene, options.head), options);
+      const MsisSimulation run = simulateInMissionScene(mission.name, options);
       const Clock::time_point start = Clock::now();
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;

@@ -20,7 +20,6 @@
 
 #include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
-#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
@@ -67,8 +66,7 @@ int main() {
     args.mission = "harbour-loop";
     args.seed = 1;
     const MsisSimulationOptions options = toSimulationOptions(args);
-    const MsisSimulation run =
-        simulateMsis(sceneOf(missionPlan(args.mission, options.head.range_m, 1.0).scene, options.head), options);
+    const MsisSimulation run = simulateInMissionScene(args.mission, options);
     const DetectedLog detected = detectSonarLog(run.log, MapperOptions{});
     const double face_m = 3.5 * options.head.range_m / kBuiltinSceneReach_m;
     const Offsets axis = quayOffsets(detected, run, options, face_m, false);

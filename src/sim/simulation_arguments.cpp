@@ -101,6 +101,10 @@ void checkMissionScene(const SimulationArguments& args, const std::string& scene
   }
 }
 
+MsisSimulation simulateInMissionScene(const std::string& mission, const MsisSimulationOptions& options) {
+  return simulateMsis(sceneOf(missionPlan(mission, options.head.range_m, 1.0).scene, options.head), options);
+}
+
 bool isBuiltinSceneName(const std::string& name) {
   const std::vector<std::string> names = allBuiltinSceneNames();
   return std::find(names.begin(), names.end(), name) != names.end();

@@ -4,7 +4,6 @@
 
 #include <string>
 
-#include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 
@@ -22,9 +21,7 @@ inline MsisSimulation missionRun(const std::string& mission, const std::string& 
   args.dvl_scale_error = scale_error;
   args.heading_bias_deg = heading_bias_deg;
   args.gyro_walk_deg_per_sqrt_s = gyro_walk_deg_per_sqrt_s;
-  const MsisSimulationOptions options = toSimulationOptions(args);
-  const std::string scene = missionPlan(mission, options.head.range_m, 1.0).scene;
-  return simulateMsis(sceneOf(scene, options.head), options);
+  return simulateInMissionScene(mission, toSimulationOptions(args));
 }
 
 }  // namespace sonarmap::testing

@@ -185,8 +185,7 @@ TEST(slamLocalizer, LoopClosuresWaitForTheNearestViewOfAPlace) {
   args.laps = 2;
   args.seed = 8;
   const MsisSimulationOptions options = toSimulationOptions(args);
-  const MsisSimulation run =
-      simulateMsis(sceneOf(missionPlan(args.mission, options.head.range_m, 1.0).scene, options.head), options);
+  const MsisSimulation run = simulateInMissionScene(args.mission, options);
   const auto tried = [](const SlamResult& slam, std::size_t from, std::size_t to) {
     return std::any_of(slam.report.loop_closures.begin(), slam.report.loop_closures.end(),
                        [&](const LoopClosure& loop) { return loop.from == from && loop.to == to; });

@@ -64,6 +64,11 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const
 ///         included), or an unknown mission.
 void checkMissionScene(const SimulationArguments& args, const std::string& scene);
 
+/// `options` (toSimulationOptions of a mission) flown in the built-in scene `mission` is drawn for
+/// (MissionPlan::scene), built for options.head's range scale and vertical beam width.
+/// @throws ValueError for an unknown mission, or options that simulateMsis refuses.
+MsisSimulation simulateInMissionScene(const std::string& mission, const MsisSimulationOptions& options);
+
 /// builtinSceneNames() followed by builtinScene3dNames(): every name sceneOf builds.
 std::vector<std::string> allBuiltinSceneNames();
 
