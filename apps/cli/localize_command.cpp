@@ -20,7 +20,8 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
   cmd->add_option("scans", args.scans,
                   "Point scans: a CSV with the header scan,time_s,x_m,y_m, one row per point: its scan (an integer, a "
                   "scan's rows together, in increasing number), when it was measured (s, the navigation's clock, never "
-                  "decreasing) and where it lay in the vehicle's body frame then (m, x forward, y to starboard)")
+                  "decreasing) and where it lay in the vehicle's body frame then (m, x forward, y to starboard); gzipped or "
+                  "not (.csv.gz)")
       ->required();
   cmd->add_option("--nav", args.nav,
                   "The dead reckoning the scans correct: a navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,"

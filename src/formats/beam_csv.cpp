@@ -15,6 +15,7 @@
 #include "../io/message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/io/text_input.hpp"
 
 namespace sonarmap {
 namespace {
@@ -166,9 +167,8 @@ void checkWritable(const SonarLog& log) {
 }  // namespace
 
 SonarLog readBeamCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError("cannot open '" + path + "' for reading");
-  return readBeamCsv(in, path);
+  const std::unique_ptr<std::istream> in = openTextInput(path);
+  return readBeamCsv(*in, path);
 }
 
 SonarLog readBeamCsv(std::istream& in, const std::string& name) {

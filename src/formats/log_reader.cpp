@@ -65,7 +65,10 @@ std::string_view logFormatName(LogFormat format) {
 std::optional<LogFormat> logFormatOfPath(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) return LogFormat::kRosbag2;  // a rosbag2 folder
-  const std::string extension = lowerCase(std::filesystem::path(path).extension().string());
+  std::filesystem::path name(path);
+  std::string extension = lowerCase(name.extension().string());
+  // A gzip-compressed beam CSV (io/text_input.hpp reads it): the extension before ".gz".
+  if (extension == ".gz" && lowerCase(name.stem().extension().string()) == ".csv") extension = ".csv";
   for (const FormatNames& entry : kFormats) {
     if (entry.extension == extension) return entry.format;
   }
@@ -99,7 +102,7 @@ SonarLog readSonarLog(const std::string& path) {
   const std::optional<LogFormat> format = logFormatOfPath(path);
   if (!format) {
     throw FileError("'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() +
-                    "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) .bag (ROS 1), .mcap or .db3 (ROS 2) or a rosbag2 folder");
+                    "', expected .mat, .csv (or .csv.gz), .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) .bag (ROS 1), .mcap or .db3 (ROS 2) or a rosbag2 folder");
   }
   return readSonarLog(path, *format);
 }

@@ -13,6 +13,7 @@
 #include "../io/csv_fields.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/io/text_input.hpp"
 
 namespace sonarmap {
 namespace {
@@ -104,9 +105,8 @@ std::optional<Eigen::Isometry3d> NavInterpolator::bodyToNedAt(double time_s) con
 }
 
 NavTrack readNavCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError("cannot open '" + path + "' for reading");
-  csv::LineReader reader(in, path);
+  const std::unique_ptr<std::istream> in = openTextInput(path);
+  csv::LineReader reader(*in, path);
   if (!reader.next()) reader.failFile("empty, expected the header row " + std::string(kHeader));
   for (std::size_t c = 0; c < kColumns.size(); ++c) reader.expectName(c, kColumns[c]);
   if (reader.fields().size() != kColumns.size()) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "../io/csv_fields.hpp"
+#include "sonarmap/io/text_input.hpp"
 #include "scan_points.hpp"
 
 namespace sonarmap {
@@ -127,9 +129,8 @@ std::vector<BodyPoint> readPointScans(std::istream& in, const std::string& sourc
 }
 
 std::vector<BodyPoint> readPointScansCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError("cannot open '" + path + "' for reading");
-  return readPointScans(in, path);
+  const std::unique_ptr<std::istream> in = openTextInput(path);
+  return readPointScans(*in, path);
 }
 
 void checkPointScans(const std::vector<BodyPoint>& points) {

@@ -15,6 +15,7 @@ include/sonarmap/formats/ros_bag_reader.hpp).
 """
 
 import bz2
+import gzip
 import pathlib
 import shutil
 import sqlite3
@@ -685,6 +686,32 @@ def dataflash_files():
     }, {"tlog_small.tlog": tlog_fixes(4), "dataflash_small.BIN": small}
 
 
+# ---- gzip-compressed CSV (`.csv.gz`: include/sonarmap/io/text_input.hpp) ---------------------------
+
+def gzip_files():
+    scans = (HERE / "valid" / "scans_small.csv").read_bytes()
+    nav = (HERE / "valid" / "nav_small.csv").read_bytes()
+    beams = (HERE / "valid" / "beams_small.csv").read_bytes()
+    packed = gzip.compress(scans, mtime=0)
+    corrupt = bytearray(packed)
+    corrupt[12] ^= 0xFF  # inside the deflate data, past the 10-byte gzip header
+    corrupt[13] ^= 0xFF
+    return {
+        "scans_truncated.csv.gz": packed[:len(packed) // 2],
+        "scans_not_gzip.csv.gz": scans,
+        "scans_corrupt.csv.gz": bytes(corrupt),
+        "scans_wrong_header.csv.gz": gzip.compress(scans.replace(b"time_s", b"t", 1), mtime=0),
+        "nav_truncated.csv.gz": gzip.compress(nav, mtime=0)[:-12],
+        "beams_truncated.csv.gz": gzip.compress(beams, mtime=0)[:-6],
+    }, {
+        "scans_small.csv.gz": packed,
+        # two gzip members one after the other read as one text, as gzip(1) reads them
+        "scans_two_members.csv.gz": gzip.compress(scans[:60], mtime=0) + gzip.compress(scans[60:], mtime=0),
+        "nav_small.csv.gz": gzip.compress(nav, mtime=0),
+        "beams_small.csv.gz": gzip.compress(beams, mtime=0),
+    }
+
+
 # ---- text readers fed bytes that are not text ------------------------------------------------------
 
 def binary_text_files():
@@ -705,7 +732,7 @@ def main():
         for text in (HERE / kind).iterdir():  # the hand-written files, copied as they are
             shutil.copyfile(text, folder / text.name)
     for make in (mat_files, v4_files, seanet_files, ping360_files, real_viewer_files, graph_files, bt_files,
-                 ot_files, ros_bag_files, mcap_files, rosbag2_files, dataflash_files, binary_text_files):
+                 ot_files, ros_bag_files, mcap_files, rosbag2_files, dataflash_files, gzip_files, binary_text_files):
         for kind, files in zip(("broken", "valid"), make()):
             for name, data in files.items():
                 (out / kind / name).write_bytes(data)

@@ -226,7 +226,8 @@ constexpr Seed kSeeds[] = {
     {"bag_small.bag", "map"},        {"bag_small_bz2.bag", "map"},         {"bag_with_odometry.bag", "map"},
     {"bag_miniking.bag", "map"},     {"scan_small.mcap", "map"},
     {"rosbag2_small.db3", "map"},    {"tlog_small.tlog", "map --nav"},    {"dataflash_small.BIN", "map --nav"},
-    {"scans_small.csv", "localize"},
+    {"scans_small.csv", "localize"},  {"scans_small.csv.gz", "localize"},  {"scans_two_members.csv.gz", "localize"},
+    {"nav_small.csv.gz", "map --nav"}, {"beams_small.csv.gz", "map"},
 };
 void PrintTo(const Seed& seed, std::ostream* out) { *out << seed.file << " (" << seed.command << ")"; }
 

@@ -36,10 +36,10 @@ namespace sonarmap {
 
 /// Reads a beam CSV. Bearings are converted to Beam::bearing_rad = radians(bearing_deg wrapped
 /// to [0°, 360°)), computed as deg · π / 180 like readCrasMat. Nothing is skipped: the returned
-/// log has skipped_beams = 0.
+/// log has skipped_beams = 0. The file may be gzip-compressed (`beams.csv.gz`: io/text_input.hpp).
 /// @return the beams in file order.
 /// @throws FileError naming the file, the 1-based line and the field (column name and number)
-///         when the file cannot be opened or is empty; the header is not
+///         when the file cannot be opened, is empty, or its gzip data is truncated or corrupt; the header is not
 ///         `time_s,bearing_deg,bin_length_m[,intensity_span_db][,gain_setting][,pulse_length_m],b0,b1,…`
 ///         with consecutive b-columns; a row has fewer than 3 fields or more bins than the header
 ///         declares; a number is malformed or not finite (a NaN bearing); a bin length, a span or a

@@ -38,7 +38,7 @@ LogFormat parseLogFormat(std::string_view name);
 /// "mcap", "rosbag2").
 std::string_view logFormatName(LogFormat format);
 
-/// The format of a file by its extension, case-insensitive: `.mat`, `.csv`, `.v4log`, `.seanet`,
+/// The format of a file by its extension, case-insensitive: `.mat`, `.csv` (and `.csv.gz`), `.v4log`, `.seanet`,
 /// `.bin`, `.bag`, `.mcap`, `.db3`, and a folder (a rosbag2 log); std::nullopt for any other.
 std::optional<LogFormat> logFormatOfPath(const std::string& path);
 

@@ -90,9 +90,10 @@ class NavInterpolator {
 /// in radians (Z-Y-X, as NavSample). Numbers as std::from_chars reads them (no leading '+').
 /// Spaces and tabs around fields, CRLF line ends, blank lines and a UTF-8 byte-order mark are
 /// accepted.
+/// The file may be gzip-compressed (`nav.csv.gz`: io/text_input.hpp).
 /// @return the fixes in file order (strictly increasing times).
 /// @throws FileError naming the file, the 1-based line and the field for anything malformed: the
-///         file cannot be opened or is empty; the header differs; a row has missing or extra
+///         file cannot be opened, is empty, or its gzip data is truncated or corrupt; the header differs; a row has missing or extra
 ///         fields, a value that is not a number or not finite, or a time not after the previous
 ///         row's; the file has a header row only ("no fixes").
 NavTrack readNavCsv(const std::string& path);

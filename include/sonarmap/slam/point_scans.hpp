@@ -41,8 +41,9 @@ struct BodyPoint {
 ///         time earlier than the row before, or a file without points.
 std::vector<BodyPoint> readPointScans(std::istream& in, const std::string& source);
 
-/// readPointScans of the file at `path`.
-/// @throws FileError as above, or when the file cannot be opened.
+/// readPointScans of the file at `path`, gzip-compressed or not (`.csv.gz`: io/text_input.hpp).
+/// @throws FileError as above, or when the file cannot be opened or its gzip data is truncated or
+///         corrupt (openTextInput).
 std::vector<BodyPoint> readPointScansCsv(const std::string& path);
 
 /// Checks `points` against the format's rules (finite values, scan numbers up to 2^53, a scan's
