@@ -1,14 +1,22 @@
-// Live mapping's provisional layer (ProvisionalBeams): beams integrated one by one into their
-// sweep's map, drawn over a map, dropped when their sweep is committed.
+// Live mapping's provisional layer (ProvisionalBeams; OnlineMapper with
+// OnlineIntegration::kProvisionalBeams): each beam is shown as it arrives and dropped when its sweep
+// is committed; the committed map is mapSonarLog's map of the sweeps final so far at every moment,
+// and the final map is mapSonarLog's (live = batch), on simulated runs with navigation and on every
+// shared log.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstddef>
+#include <filesystem>
+#include <iostream>
+#include <string>
 #include <optional>
 #include <vector>
 
 #include "octree/octree_testing.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/mapping/provisional_beams.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -47,7 +55,7 @@ DetectedRows detectedRows(const MsisSimulation& run, std::size_t first, std::siz
   const SonarMapper detector(atTwoCentimetres());
   const SweepRange sweep = splitSweeps(run.log.beams).front();
   PolarImage polar = makePolarImage(run.log.beams, sweep.first, sweep.last_exclusive);
-  const SweepCalibration calibration = detector.sweepCalibration(polar);
+  const SweepCalibration calibration = detector.detectSweep(polar).calibration;
   const NavInterpolator navigation(run.nav);
   DetectedRows out;
   for (std::size_t i = first; i < last; ++i) {
@@ -135,6 +143,103 @@ TEST(mappingProvisionalBeams, MisuseIsRefused) {
   layer.dropBefore(11);
   layer.overlay(empty);
   EXPECT_TRUE(empty.empty());
+}
+
+// The default live integration on a moving run, each fix given as soon as its time has come and the
+// next one too: after the first sweep every beam is shown on arrival, the committed map equals
+// mapSonarLog's map of the beams of the sweeps committed so far after every beam, and the final
+// map (committed and shown) is the batch's.
+TEST(mappingProvisionalBeams, LiveEqualsBatchAtEveryCommitAndAtTheEnd) {
+  const MsisSimulation run = movingRun(4);
+  const std::vector<SweepRange> sweeps = splitSweeps(run.log.beams);
+  const Eigen::Isometry3d mounting = defaultSonarToBody();
+  OnlineMapper live(atTwoCentimetres(), mounting, OnlineIntegration::kProvisionalBeams);
+  std::size_t next_fix = 0, unshown_after_first_sweep = 0, commits_checked = 0, shown_more = 0;
+  for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
+    const Beam& beam = run.log.beams[i];
+    while (next_fix < run.nav.size() && run.nav[next_fix].time_s <= beam.time_s) live.addNavFix(run.nav[next_fix++]);
+    if (next_fix < run.nav.size()) live.addNavFix(run.nav[next_fix++]);
+    const std::size_t sweeps_before = live.sweepsIntegrated();
+    live.addBeam(beam);
+    if (i >= sweeps[1].first + 20) unshown_after_first_sweep += live.beamsUnshown();  // 20: min_beams
+    if (live.sweepsIntegrated() > sweeps_before) {
+      SonarLog committed;
+      committed.beams.assign(run.log.beams.begin(), run.log.beams.begin() + static_cast<std::ptrdiff_t>(i + 1 - live.beamsPending()));
+      EXPECT_EQ(leavesOf(live.mapSnapshot()), leavesOf(mapSonarLog(committed, run.nav, mounting, atTwoCentimetres()).map()))
+          << "after beam " << i;
+      ++commits_checked;
+    }
+    shown_more += live.shownSnapshot().counts().leaves != live.mapSnapshot().counts().leaves ? 1 : 0;
+  }
+  EXPECT_EQ(unshown_after_first_sweep, 0U);
+  EXPECT_EQ(commits_checked, 3U);  // the last turn ends with the stream
+  EXPECT_GT(shown_more, sweeps[1].size());
+  live.finish();
+  const SonarMapper batch = mapSonarLog(run.log, run.nav, mounting, atTwoCentimetres());
+  EXPECT_EQ(live.beamsPending(), 0U);
+  EXPECT_EQ(live.beamsUnshown(), 0U);
+  EXPECT_EQ(leavesOf(live.mapper().map()), leavesOf(batch.map()));
+  EXPECT_EQ(leavesOf(live.shownSnapshot()), leavesOf(batch.map()));
+  EXPECT_EQ(live.mapper().stats().beams_used, batch.stats().beams_used);
+}
+
+// A beam is shown once the navigation covers it (a fix at or after its time), in order.
+TEST(mappingProvisionalBeams, ABeamWaitsForTheNavigationThatCoversIt) {
+  const MsisSimulation run = movingRun(3);
+  const std::vector<SweepRange> sweeps = splitSweeps(run.log.beams);
+  OnlineMapper live(atTwoCentimetres(), defaultSonarToBody(), OnlineIntegration::kProvisionalBeams);
+  const std::size_t last = sweeps[1].first + 60;
+  double covered_s = 0.0;
+  for (const NavSample& fix : run.nav) {
+    if (fix.time_s > run.log.beams[last - 10].time_s) break;
+    live.addNavFix(fix);
+    covered_s = fix.time_s;
+  }
+  std::size_t uncovered = 0;
+  for (std::size_t i = 0; i < last; ++i) {
+    live.addBeam(run.log.beams[i]);
+    uncovered += run.log.beams[i].time_s > covered_s ? 1 : 0;
+  }
+  EXPECT_EQ(live.sweepsIntegrated(), 1U);
+  ASSERT_GE(uncovered, 10U);
+  EXPECT_EQ(live.beamsUnshown(), uncovered);  // the beams after the last fix
+  for (const NavSample& fix : run.nav) {
+    if (fix.time_s > covered_s) live.addNavFix(fix);
+  }
+  EXPECT_EQ(live.beamsUnshown(), 0U);
+  EXPECT_EQ(live.beamsPending(), 60U);
+}
+
+// Every shared log fed beam by beam in the default live integration: mapSonarLog's map leaf for
+// leaf at a given resolution (range changes, power-on pings, a sector head, a ROS bag, the CRAS
+// .mat), the beams shown before their sweep is committed counted.
+TEST(mappingProvisionalBeams, SharedLogsEndOnTheBatchMap) {
+  const struct {
+    const char* file;
+    double resolution_m;
+  } logs[] = {{"cras_micron_tank_static.mat", 0.02},    {"seanet_sector_target.V4LOG", 0.05},
+              {"micron_pool_ros1.bag", 0.05},           {"ping360_basin.bin", 0.1},
+              {"ping360_harbour_range_changes.bin", 0.1}};
+  for (const auto& [file, resolution_m] : logs) {
+    const std::string path = std::string(SONARMAP_SHARED_DATA) + "/" + file;
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data absent: " << path;
+    const SonarLog log = readSonarLog(path);
+    MapperOptions options;
+    options.resolution_m = resolution_m;
+    const SonarMapper batch = mapSonarLog(log, options);
+    OnlineMapper live(options, OnlineIntegration::kProvisionalBeams);
+    std::size_t shown_early = 0;
+    for (const Beam& beam : log.beams) {
+      live.addBeam(beam);
+      shown_early += live.beamsUnshown() == 0 && live.beamsPending() > 0 ? 1 : 0;
+    }
+    live.finish();
+    EXPECT_EQ(leavesOf(live.mapper().map()), leavesOf(batch.map())) << file;
+    EXPECT_EQ(leavesOf(live.shownSnapshot()), leavesOf(batch.map())) << file;
+    std::cout << file << ": " << shown_early << " of " << log.beams.size()
+              << " beams shown on arrival before their sweep was committed\n";
+    EXPECT_GT(shown_early, log.beams.size() / 2) << file;
+  }
 }
 
 }  // namespace
