@@ -93,7 +93,10 @@ class LiveMapping {
       : start_(start) {
     const OnlineIntegration integration = args.show == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kProvisionalBeams;
     if (args.map.slam) {
-      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, toSlamOptions(args.map.odometry, known_fixes),
+      // The odometry's reading period from the fixes known at the start, as `map --slam` takes it
+      // from its whole track (the default period without them).
+      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation,
+                                           withNavigationPeriod(toSlamOptions(args.map.odometry, known_fixes), known_fixes),
                                            integration);
       for (const NavSample& fix : known_fixes) slam_->addNavFix(fix);
     } else if (!navigation) {
