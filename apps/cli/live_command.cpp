@@ -128,13 +128,14 @@ class LiveMapping {
     ++beams_;
     collect();
   }
+  /// The end of the stream. The beams mapped only now (the last sweep, after an idle timeout or a
+  /// signal) are not timed: their wait is the stream's end, not the mapping's.
   void finish() {
     if (slam_) {
       slam_->finish();
     } else {
       mapper_->finish();
     }
-    collect();
   }
 
   /// Adds navigation fixes whose rows arrived at `arrival_s`: the stream's clock is aligned to the
@@ -197,8 +198,8 @@ void printStatus(LiveMapping& live, std::size_t bytes, std::size_t skipped, doub
                mapper.mapper().map().counts().nodes, 1000.0 * percentile(shown, 0.5), 1000.0 * percentile(committed, 0.5));
   if (whole_run) {
     std::fprintf(stderr,
-                 ", 99th percentile %.1f ms shown, %.1f ms committed (from read, after the first sweep; its beams "
-                 "waited %.0f ms)",
+                 ", 99th percentile %.1f ms shown, %.1f ms committed (from read, after the first sweep, before the "
+                 "end of the stream; the first sweep's beams waited %.0f ms)",
                  1000.0 * percentile(shown, 0.99), 1000.0 * percentile(committed, 0.99),
                  1000.0 * percentile(live.shown().firstSweep(), 0.5));
   }
