@@ -1,8 +1,8 @@
 #pragma once
 /// @file online_mapper.hpp
-/// Mapping beams as they arrive from a sonar: the one mapping path. The batch
-/// mapSonarLog (sonar_mapper.hpp) is a loop over an OnlineMapper fed the log's beams, so a live
-/// run and a log give the same map.
+/// Mapping beams as they arrive from a sonar: the one mapping path. The batch mapSonarLog
+/// (sonar_mapper.hpp) is a loop over an OnlineMapper fed the log's beams, so a live run and a log
+/// give the same map.
 ///
 /// Fed one beam at a time (in recording order) and, for a moving vehicle, navigation fixes as they
 /// arrive, the mapper forms sweeps itself with splitSweeps' rules (SweepSplitter: a full turn, a
@@ -48,7 +48,8 @@ namespace sonarmap {
 /// What an OnlineMapper shows before a sweep is final.
 enum class OnlineIntegration {
   /// Nothing: each sweep is integrated once it is final (see the file's comment), mapSonarLog's
-  /// map byte for byte; a beam waits up to a turn of the head to be in the map.
+  /// map byte for byte; a beam waits for the end of its sweep and min_beams beams of the next one
+  /// to be in the map.
   kSweep,
   /// kSweep's map (the committed map: mapSnapshot), and each beam shown at once on a provisional
   /// layer (shownSnapshot; ProvisionalBeams) until its sweep is committed: detected with the
