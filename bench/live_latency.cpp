@@ -1,15 +1,17 @@
-// sonarmap_live_latency: how long a beam takes from its last byte to the map that contains it
-// (issue 12), on one core for the mapping: a sonar log encoded as the head sends it (a SeaNet
+// sonarmap_live_latency: how long a beam takes from its last byte to the map as shown and to the
+// committed map, on one core for the mapping: a sonar log encoded as the head sends it (a SeaNet
 // capture, wire_encoder.hpp) is replayed beam by beam at the head's own beam rate (the log's
 // median beam interval) and at RATE times it by a producer thread; the mapping thread decodes
-// each beam's bytes as they arrive, maps the beam at once (OnlineMapper, OnlineIntegration::kBeam)
-// and stamps it. Latency = the stamp − the time the beam's last byte was handed over. The beams
-// of the first sweep wait for its end (the calibration) and are reported apart; the --slam row
-// maps through OnlineSlam without navigation (a scan per sweep, matched, the map rebuilt when a
-// loop closes); "late" counts
-// beams still waiting when the next one arrives (a backlog; nothing is dropped: the queue holds
-// every beam, so a backlog shows as latency). At most 30 s of replay per row (at the head's own
-// rate: its first sweeps).
+// each beam's bytes as they arrive and gives the beam to an OnlineMapper with
+// OnlineIntegration::kProvisionalBeams (`live`'s default: shown at once on the provisional layer,
+// committed when its sweep is final), and stamps the beams shown and committed since the last one.
+// Latency = the stamp − the time the beam's last byte was handed over. The beams that arrive
+// before the first sweep is committed wait for its calibration and are reported apart; the
+// --slam row maps through OnlineSlam without navigation (a scan per sweep, matched, the map
+// rebuilt when a loop closes); "late" counts beams still waiting when the next one arrives (a
+// backlog; nothing is dropped: the queue holds every beam, so a backlog shows as latency). Beams
+// committed only at the end of the replay are not timed. At most 30 s of replay per row (at the
+// head's own rate: its first sweeps).
 //
 // Usage: sonarmap_live_latency LOG [RATE ...]   (default rates: 1 20; LOG e.g. the CRAS .mat)
 #include <algorithm>
@@ -31,7 +33,6 @@
 #include "sonarmap/formats/wire_encoder.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/slam/online_slam.hpp"
-#include "sonarmap/sonar/sweeps.hpp"
 
 namespace {
 
@@ -57,14 +58,32 @@ double beamInterval_s(const SonarLog& log) {
 /// The fraction `p` percentile of a copy of `values` (they are printed in arrival order later).
 double percentileOf(std::vector<double> values, double p) { return percentile(values, p); }
 
+double maxOf(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+}
+
+/// The latencies of the beams that reach one stage (shown, committed), in arrival order.
+struct Stage {
+  std::size_t reached = 0;          ///< beams that reached it so far (the oldest)
+  std::vector<double> latency_ms;   ///< of those that arrived after the first sweep was committed
+  std::vector<double> warmup_ms;    ///< of those that arrived before
+  /// The beams up to `reached` reached the stage at `now`.
+  void settle(std::size_t now_reached, Clock::time_point now, const std::vector<Clock::time_point>& sent,
+              const std::vector<bool>& calibrating) {
+    for (; reached < now_reached; ++reached) {
+      (calibrating[reached] ? warmup_ms : latency_ms)
+          .push_back(std::chrono::duration<double, std::milli>(now - sent[reached]).count());
+    }
+  }
+};
+
 struct Arrival {
   std::vector<std::uint8_t> bytes;  // one beam's packet
   Clock::time_point sent;
 };
 
 /// Replays `packets` every `interval_s` seconds into a mapper; prints one table row.
-void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size_t first_sweep_beams, double interval_s,
-            double rate, const Case& c) {
+void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, double interval_s, double rate, const Case& c) {
   // At most 30 s of replay: at the head's own rate, the first few sweeps.
   const auto beams = std::min(all_packets.size(), static_cast<std::size_t>(30.0 * rate / interval_s));
   const std::vector<std::vector<std::uint8_t>> packets(all_packets.begin(), all_packets.begin() + static_cast<std::ptrdiff_t>(beams));
@@ -92,13 +111,14 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
   std::optional<OnlineMapper> plain;
   std::optional<OnlineSlam> slam;
   if (c.slam) {
-    slam.emplace(options, defaultSonarToBody(), false, SlamOptions{}, OnlineIntegration::kBeam);
+    slam.emplace(options, defaultSonarToBody(), false, SlamOptions{}, OnlineIntegration::kProvisionalBeams);
   } else {
-    plain.emplace(options, OnlineIntegration::kBeam);
+    plain.emplace(options, OnlineIntegration::kProvisionalBeams);
   }
   std::vector<Clock::time_point> sent;
-  std::vector<double> latency_ms, warmup_ms;
-  std::size_t late = 0, pending_before = 0;
+  std::vector<bool> calibrating;  ///< arrived before the first sweep was committed
+  Stage shown, committed;
+  std::size_t late = 0;
   for (;;) {
     Arrival arrival;
     {
@@ -112,21 +132,17 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
     const SonarLog decoded = parseSeaNetCapture(std::span(arrival.bytes.data(), arrival.bytes.size()), "wire");
     for (const Beam& beam : decoded.beams) {
       sent.push_back(arrival.sent);
+      calibrating.push_back((slam ? slam->sweepsIntegrated() : plain->sweepsIntegrated()) == 0);
       if (slam) {
         slam->addBeam(beam);
       } else {
         plain->addBeam(beam);
       }
     }
-    // Every beam no longer pending is in the map now.
+    // Beams are shown and committed in arrival order: those not waiting are the oldest.
     const Clock::time_point now = Clock::now();
-    const std::size_t pending = slam ? slam->beamsPending() : plain->beamsPending();
-    const std::size_t integrated = sent.size() - pending;
-    for (std::size_t i = sent.size() - decoded.beams.size() - pending_before; i < integrated; ++i) {
-      const double ms = std::chrono::duration<double, std::milli>(now - sent[i]).count();
-      (i < first_sweep_beams ? warmup_ms : latency_ms).push_back(ms);
-    }
-    pending_before = pending;
+    shown.settle(sent.size() - (slam ? slam->beamsUnshown() : plain->beamsUnshown()), now, sent, calibrating);
+    committed.settle(sent.size() - (slam ? slam->beamsPending() : plain->beamsPending()), now, sent, calibrating);
   }
   producer.join();
   if (slam) {
@@ -135,10 +151,11 @@ void replay(const std::vector<std::vector<std::uint8_t>>& all_packets, std::size
     plain->finish();
   }
   const std::size_t mapped = slam ? slam->mapper().mapper().stats().beams_used : plain->mapper().stats().beams_used;
-  std::printf("| %s | %.0f× (%.0f beams/s) | %zu | %.3f | %.3f | %.3f | %.0f | %zu | %zu |\n", c.name, rate,
-              rate / interval_s, latency_ms.size(), percentileOf(latency_ms, 0.5), percentileOf(latency_ms, 0.99),
-              latency_ms.empty() ? 0.0 : *std::max_element(latency_ms.begin(), latency_ms.end()),
-              percentileOf(warmup_ms, 0.5), late, mapped);
+  std::printf("| %s | %.0f× (%.0f beams/s) | %zu | %.3f | %.3f | %.3f | %zu | %.0f | %.0f | %.0f | %.0f | %zu | %zu |\n",
+              c.name, rate, rate / interval_s, shown.latency_ms.size(), percentileOf(shown.latency_ms, 0.5),
+              percentileOf(shown.latency_ms, 0.99), maxOf(shown.latency_ms), committed.latency_ms.size(),
+              percentileOf(committed.latency_ms, 0.5), percentileOf(committed.latency_ms, 0.99), maxOf(committed.latency_ms),
+              percentileOf(shown.warmup_ms, 0.5), late, mapped);
   std::fflush(stdout);
 }
 
@@ -156,16 +173,16 @@ int main(int argc, char** argv) {
     if (rates.empty()) rates = {1.0, 20.0};
     std::vector<std::vector<std::uint8_t>> packets;
     for (const Beam& beam : log.beams) packets.push_back(encodeSeaNetCapture({beam}));
-    const std::size_t first_sweep = groupSweeps(log.beams, 20).front().size();
     const double interval_s = beamInterval_s(log);
-    std::printf("| model | replay rate | beams timed | median (ms) | 99th pct (ms) | max (ms) | first sweep median (ms) | "
-                "late | beams mapped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("| model | replay rate | shown: beams | median (ms) | 99th pct (ms) | max (ms) | committed: beams | "
+                "median (ms) | 99th pct (ms) | max (ms) | before the first sweep: shown, median (ms) | late | beams "
+                "mapped |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     const Case cases[] = {{"planar, 2 cm", BeamModel::kPlanar, 0.02},
                           {"volume, 5 cm", BeamModel::kVolume, 0.05},
                           {"volume, 2 cm", BeamModel::kVolume, 0.02},
                           {"planar, 2 cm, --slam", BeamModel::kPlanar, 0.02, true}};
     for (const Case& c : cases) {
-      for (const double rate : rates) replay(packets, first_sweep, interval_s, rate, c);
+      for (const double rate : rates) replay(packets, interval_s, rate, c);
     }
   } catch (const std::exception& error) {
     std::fprintf(stderr, "sonarmap_live_latency: %s\n", error.what());

@@ -52,7 +52,38 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-/// The mapper fed by the stream, with each beam's arrival kept until it is integrated.
+/// The latencies of beams from their arrival to one stage (shown, or in the committed map). Beams
+/// reach a stage in arrival order, so those still waiting are the newest.
+class StageLatencies {
+ public:
+  void arrived(double arrival_s, bool calibrating) { waiting_.push_back({arrival_s, calibrating}); }
+  /// `waiting`: how many of the beams that arrived have not reached the stage at `now_s`.
+  void settle(std::size_t waiting, double now_s) {
+    while (waiting_.size() > waiting) {
+      const auto [arrival_s, calibrating] = waiting_.front();
+      waiting_.pop_front();
+      recent_.push_back(now_s - arrival_s);
+      (calibrating ? first_sweep_ : all_).push_back(now_s - arrival_s);
+    }
+  }
+  /// Latencies (s) since the last call.
+  std::vector<double> takeRecent() { return std::exchange(recent_, {}); }
+  /// Latencies (s) of the beams that arrived after the first sweep was integrated, and before.
+  std::vector<double>& all() { return all_; }
+  std::vector<double>& firstSweep() { return first_sweep_; }
+
+ private:
+  struct Arrival {
+    double arrival_s = 0.0;
+    bool calibrating = false;  ///< arrived before the first sweep was integrated
+  };
+  std::deque<Arrival> waiting_;
+  std::vector<double> recent_;
+  std::vector<double> all_;          ///< after the first sweep
+  std::vector<double> first_sweep_;  ///< waiting for the first sweep's calibration
+};
+
+/// The mapper fed by the stream, with each beam's arrival kept until it is shown and committed.
 class LiveMapping {
  public:
   /// `known_fixes`: the navigation known at the start (--nav, a replayed log's own); `navigation`:
@@ -60,9 +91,12 @@ class LiveMapping {
   LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
               Clock::time_point start, const NavTrack& known_fixes, bool navigation)
       : start_(start) {
-    const OnlineIntegration integration = args.integrate == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kBeam;
+    const OnlineIntegration integration = args.show == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kProvisionalBeams;
     if (args.map.slam) {
-      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation, toSlamOptions(args.map.odometry, known_fixes),
+      // The odometry's reading period from the fixes known at the start, as `map --slam` takes it
+      // from its whole track (the default period without them).
+      slam_ = std::make_unique<OnlineSlam>(options, sonar_to_body, navigation,
+                                           withNavigationPeriod(toSlamOptions(args.map.odometry, known_fixes), known_fixes),
                                            integration);
       for (const NavSample& fix : known_fixes) slam_->addNavFix(fix);
     } else if (!navigation) {
@@ -84,7 +118,8 @@ class LiveMapping {
 
   /// Maps one beam of a replayed log, with its recorded time, fed at `arrival_s`.
   void addRecorded(Beam beam, double arrival_s) {
-    arrivals_.push_back({arrival_s, sweepsIntegrated() == 0});
+    shown_.arrived(arrival_s, sweepsIntegrated() == 0);
+    committed_.arrived(arrival_s, sweepsIntegrated() == 0);
     if (slam_) {
       slam_->addBeam(std::move(beam));
     } else {
@@ -93,13 +128,14 @@ class LiveMapping {
     ++beams_;
     collect();
   }
+  /// The end of the stream. The beams mapped only now (the last sweep, after an idle timeout or a
+  /// signal) are not timed: their wait is the stream's end, not the mapping's.
   void finish() {
     if (slam_) {
       slam_->finish();
     } else {
       mapper_->finish();
     }
-    collect();
   }
 
   /// Adds navigation fixes whose rows arrived at `arrival_s`: the stream's clock is aligned to the
@@ -119,66 +155,58 @@ class LiveMapping {
 
   /// The mapper of the current map (with --slam: rebuilt when a loop closes; feeding thread only).
   OnlineMapper& mapper() { return slam_ ? slam_->mapper() : *mapper_; }
-  /// Safe from any thread (the periodic writer's).
-  OcTree16 mapSnapshot() const { return slam_ ? slam_->mapSnapshot() : mapper_->mapSnapshot(); }
+  /// The map as shown (the provisional beams over the committed map); safe from any thread (the
+  /// periodic writer's).
+  OcTree16 shownSnapshot() const { return slam_ ? slam_->shownSnapshot() : mapper_->shownSnapshot(); }
   std::size_t sweepsIntegrated() const { return slam_ ? slam_->sweepsIntegrated() : mapper_->sweepsIntegrated(); }
   const OnlineSlam* slam() const { return slam_.get(); }
   std::size_t beams() const { return beams_; }
-  /// Latencies (s) of the beams integrated since the last call, and of the whole run.
-  std::vector<double> takeRecentLatencies() { return std::exchange(recent_, {}); }
-  /// Latencies (s) of the beams that arrived after the first sweep was integrated, and before.
-  std::vector<double>& allLatencies() { return all_; }
-  std::vector<double>& firstSweepLatencies() { return first_sweep_; }
+  /// From a beam's arrival to the map as shown, and to the committed map.
+  StageLatencies& shown() { return shown_; }
+  StageLatencies& committed() { return committed_; }
 
  private:
-  /// The beams integrated since the last call: the oldest arrivals (the mapper keeps beam order).
   void collect() {
-    const std::size_t pending = slam_ ? slam_->beamsPending() : mapper_->beamsPending();
-    if (arrivals_.size() <= pending) return;
     const double now_s = secondsSince(start_);
-    while (arrivals_.size() > pending) {
-      const auto [arrival_s, calibrating] = arrivals_.front();
-      arrivals_.pop_front();
-      recent_.push_back(now_s - arrival_s);
-      (calibrating ? first_sweep_ : all_).push_back(now_s - arrival_s);
-    }
+    shown_.settle(slam_ ? slam_->beamsUnshown() : mapper_->beamsUnshown(), now_s);
+    committed_.settle(slam_ ? slam_->beamsPending() : mapper_->beamsPending(), now_s);
   }
 
   Clock::time_point start_;
   std::unique_ptr<OnlineMapper> mapper_;
   std::unique_ptr<OnlineSlam> slam_;  ///< with --slam, instead of mapper_
-  struct Arrival {
-    double arrival_s = 0.0;
-    bool calibrating = false;  ///< arrived before the first sweep was integrated
-  };
-  std::deque<Arrival> arrivals_;
-  std::vector<double> recent_;
-  std::vector<double> all_;          ///< after the first sweep
-  std::vector<double> first_sweep_;  ///< waiting for the first sweep's calibration
+  StageLatencies shown_;
+  StageLatencies committed_;
   std::size_t beams_ = 0;
   std::optional<double> nav_offset_s_;  ///< arrival clock − the navigation stream's clock
 };
 
-/// One status line: the latencies since the last line, or with `whole_run` those of every beam after
-/// the first sweep (the median and the 99th percentile; the first sweep's beams wait for its end).
+/// One status line: the latencies from a beam's read to the map as shown and to the committed map,
+/// since the last line, or with `whole_run` those of every beam after the first sweep (the median
+/// and the 99th percentile; the first sweep's beams wait for its end).
 void printStatus(LiveMapping& live, std::size_t bytes, std::size_t skipped, double elapsed_s, double rate_per_s,
                  bool whole_run = false) {
-  std::vector<double> recent = live.takeRecentLatencies();
-  std::vector<double>& latencies = whole_run ? live.allLatencies() : recent;
+  std::vector<double> recent_shown = live.shown().takeRecent();
+  std::vector<double> recent_committed = live.committed().takeRecent();
+  std::vector<double>& shown = whole_run ? live.shown().all() : recent_shown;
+  std::vector<double>& committed = whole_run ? live.committed().all() : recent_committed;
   const OnlineMapper& mapper = live.mapper();
   std::fprintf(stderr,
                "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
-               "latency median %.1f ms",
+               "latency median %.1f ms shown, %.1f ms committed",
                elapsed_s, bytes, live.beams(), rate_per_s, skipped, live.sweepsIntegrated(),
-               mapper.mapper().map().counts().nodes, 1000.0 * percentile(latencies, 0.5));
+               mapper.mapper().map().counts().nodes, 1000.0 * percentile(shown, 0.5), 1000.0 * percentile(committed, 0.5));
   if (whole_run) {
-    std::fprintf(stderr, ", 99th percentile %.1f ms (from read to map, after the first sweep; its beams waited %.0f ms)",
-                 1000.0 * percentile(latencies, 0.99), 1000.0 * percentile(live.firstSweepLatencies(), 0.5));
+    std::fprintf(stderr,
+                 ", 99th percentile %.1f ms shown, %.1f ms committed (from read, after the first sweep, before the "
+                 "end of the stream; the first sweep's beams waited %.0f ms)",
+                 1000.0 * percentile(shown, 0.99), 1000.0 * percentile(committed, 0.99),
+                 1000.0 * percentile(live.shown().firstSweep(), 0.5));
   }
   std::fputc('\n', stderr);
 }
 
-/// Rewrites the map atomically every `every_s` seconds from a snapshot (OnlineMapper::mapSnapshot),
+/// Rewrites the map as shown atomically every `every_s` seconds from a snapshot (shownSnapshot),
 /// on its own thread, so that writing a large map never holds up the beams.
 class PeriodicWriter {
  public:
@@ -190,7 +218,7 @@ class PeriodicWriter {
             if (stop.stop_requested()) return;
             if (mapper.sweepsIntegrated() == 0) continue;  // a map from the first sweep on
             try {
-              writeMapFile(mapper.mapSnapshot(), path);
+              writeMapFile(mapper.shownSnapshot(), path);
             } catch (const std::exception& error) {  // the last good map stays; the final write reports for good
               std::fprintf(stderr, "sonarmap: warning: periodic map write failed: %s\n", error.what());
             }
@@ -358,9 +386,11 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       ->required();
   addMappingOptions(*cmd, args.map);
   cmd->add_option("--baud", args.baud, "Serial devices: bits per second (8N1, raw)")->capture_default_str();
-  cmd->add_option("--integrate", args.integrate,
-                  "beam: each beam is mapped on arrival (the least latency; the first sweep calibrates) | sweep: each "
-                  "sweep once complete (the map of `sonarmap map` on the same bytes, byte for byte)")
+  cmd->add_option("--show", args.show,
+                  "When a beam shows in the written map. beam: on arrival, on a provisional layer until its sweep is "
+                  "complete (after a first sweep of its range and gain) | sweep: once its sweep is complete (no "
+                  "per-beam work: a replay faster than real time). Either way the map is built sweep by sweep as "
+                  "`sonarmap map` builds it, and the final map is `map`'s on the same bytes")
       ->check(CLI::IsMember({"beam", "sweep"}))
       ->capture_default_str();
   cmd->add_option("--write-every", args.write_every_s, "SECONDS between map writes (> 0)")->capture_default_str();

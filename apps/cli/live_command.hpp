@@ -16,7 +16,7 @@ namespace sonarmap::cli {
 struct LiveArgs {
   MapArgs map;
   unsigned baud = 115200;      ///< serial devices: bits per second
-  std::string integrate = "beam";  ///< beam (OnlineIntegration::kBeam) | sweep (kSweep)
+  std::string show = "beam";        ///< beam (OnlineIntegration::kProvisionalBeams) | sweep (kSweep)
   double write_every_s = 10.0;     ///< seconds between map writes (> 0)
   double idle_timeout_s = 0.0;     ///< end the stream after this many seconds without a byte (0: never)
   std::string nav_stream;          ///< a second source of navigation CSV rows (empty: none)

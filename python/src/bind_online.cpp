@@ -15,21 +15,21 @@
 namespace sonarmap::python {
 namespace {
 
-OnlineIntegration integrationOf(const std::string& name) {
-  if (name == "sweep") return OnlineIntegration::kSweep;
-  if (name == "beam") return OnlineIntegration::kBeam;
-  throwValueError("integration expects 'sweep' or 'beam', got '" + name + "'");
+OnlineIntegration integrationOf(const std::string& show) {
+  if (show == "sweep") return OnlineIntegration::kSweep;
+  if (show == "beam") return OnlineIntegration::kProvisionalBeams;
+  throwValueError("show expects 'sweep' or 'beam', got '" + show + "'");
 }
 
-std::unique_ptr<OnlineMapper> makeMapper(bool nav, const py::object& mounting, const std::string& integration,
+std::unique_ptr<OnlineMapper> makeMapper(bool nav, const py::object& mounting, const std::string& show,
                                          const std::string& format, const py::kwargs& kwargs) {
   const MappingArguments args = mappingArguments(kwargs);
   const MapperOptions options = withSonarBeam(toMapperOptions(args), args, nominalBeam(parseLogFormat(format)));
   if (!mounting.is_none() && !nav) throwValueError("mounting needs nav=True");
-  if (!nav) return std::make_unique<OnlineMapper>(options, integrationOf(integration));
+  if (!nav) return std::make_unique<OnlineMapper>(options, integrationOf(show));
   std::vector<double> values;
   if (!mounting.is_none()) values = mounting.cast<std::vector<double>>();
-  return std::make_unique<OnlineMapper>(options, sonarToBodyOfMounting(values), integrationOf(integration));
+  return std::make_unique<OnlineMapper>(options, sonarToBodyOfMounting(values), integrationOf(show));
 }
 
 Beam beamOf(double time_s, double bearing_rad, double bin_length_m, const py::object& intensities,
@@ -50,19 +50,21 @@ Beam beamOf(double time_s, double bearing_rad, double bin_length_m, const py::ob
 
 void bindOnline(py::module_& m) {
   py::class_<OnlineMapper, std::unique_ptr<OnlineMapper>>(m, "OnlineMapper", R"doc(
-Maps beams as they arrive from a sonar (C++ sonarmap::OnlineMapper, issue 12). Beams are fed in
-recording order; the mapper forms sweeps itself (a full turn, a sector reversal, a range change)
-and integrates each once it is final and, with navigation, once the fixes cover it.
-integration="sweep" gives map_sonar_log's map byte for byte; "beam" integrates each beam as it
-arrives with the last whole sweep's calibration (the latency of a beam, not of a turn).
+Maps beams as they arrive from a sonar (C++ sonarmap::OnlineMapper). Beams are fed in recording
+order; the mapper forms sweeps itself (a full turn, a sector reversal, a range change) and
+integrates each once it is final and, with navigation, once the fixes cover it: map() is
+map_sonar_log's map of the sweeps so far, byte for byte. show="beam" also shows each beam as it
+arrives on a provisional layer (shown_map()), detected with the last whole sweep's calibration,
+until its sweep is integrated (the latency of a beam, not of a turn); show="sweep" shows nothing
+before.
 )doc")
       .def(py::init(&makeMapper), py::arg("nav") = false, py::arg("mounting") = py::none(),
-           py::arg("integration") = "sweep", py::arg("format") = "csv",
+           py::arg("show") = "sweep", py::arg("format") = "csv",
            R"doc(A mapper with map_sonar_log's keyword options (the CLI's names and units).
 
 nav: False: the sonar static at the map origin; True: beams placed by the fixes given to
 add_nav_fix (NED, body FRD), mounted by ``mounting`` (x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg;
-default upright and aligned). integration: "sweep" or "beam". format: whose nominal beam widths
+default upright and aligned). show: "sweep" or "beam". format: whose nominal beam widths
 apply when beam_width / vertical_aperture are not given ("csv": Tritech 3° × 35°).
 Raises sonarmap.ValueError for invalid options; TypeError for an unknown keyword.)doc")
       .def(
@@ -127,10 +129,19 @@ Raises sonarmap.ValueError for a non-finite fix, one not after the previous, or 
           },
           "A copy of the map as of the last integrated sweep, with its stats (sonarmap.OccupancyMap).")
       .def(
+          "shown_map",
+          [](const OnlineMapper& mapper) {
+            py::gil_scoped_release release;
+            return OccupancyMap{mapper.shownSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt};
+          },
+          "map() with the provisional beams' log-odds added (show=\"beam\"; else map()).")
+      .def(
           "stats", [](const OnlineMapper& mapper) { return mapper.statsSnapshot(); },
           "A copy of the counts as of the last integrated sweep (sonarmap.MappingStats).")
       .def_property_readonly("sweeps_integrated", &OnlineMapper::sweepsIntegrated, "Sweeps integrated so far.")
-      .def_property_readonly("beams_pending", &OnlineMapper::beamsPending, "Beams received and not yet integrated.");
+      .def_property_readonly("beams_pending", &OnlineMapper::beamsPending, "Beams received and not yet integrated.")
+      .def_property_readonly("beams_unshown", &OnlineMapper::beamsUnshown,
+                             "Beams received and in neither map() nor shown_map() (the newest).");
 }
 
 }  // namespace sonarmap::python

@@ -36,7 +36,9 @@ PolarImage fitToCalibration(PolarImage polar, const SweepCalibration& calibratio
 }  // namespace
 
 OnlineMapper::OnlineMapper(const MapperOptions& options, OnlineIntegration integration, SweepCallback on_sweep)
-    : mapper_(options), integration_(integration), on_sweep_(std::move(on_sweep)), grouper_(minBeams(options)) {}
+    : mapper_(options), integration_(integration), on_sweep_(std::move(on_sweep)), grouper_(minBeams(options)) {
+  if (integration == OnlineIntegration::kProvisionalBeams) provisional_ = std::make_unique<ProvisionalBeams>(options);
+}
 
 OnlineMapper::OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
                            OnlineIntegration integration, SweepCallback on_sweep)
@@ -60,7 +62,7 @@ void OnlineMapper::addNavFix(const NavSample& fix) {
   }
   fixes_.push_back(fix);
   processReady();
-  processBeamQueue();
+  showWaitingBeams();
 }
 
 void OnlineMapper::addBeam(Beam beam) {
@@ -68,25 +70,45 @@ void OnlineMapper::addBeam(Beam beam) {
   if (!(std::isfinite(beam.bin_length_m) && beam.bin_length_m > 0.0)) {
     throw ValueError("online mapper: beam at " + std::to_string(beam.time_s) + " s has a bin length that is not > 0 m");
   }
+  if (shows_given_beams_) throw ValueError("online mapper: addBeam on a mapper given beams to show (showBeam)");
   const bool starts_sweep = splitter_.startsSweep(beam);
-  if (integration_ == OnlineIntegration::kBeam) {
-    addLiveBeam(std::move(beam), starts_sweep);
-    return;
-  }
   const HeadSetting setting = headSettingOf(beam);
   const std::size_t final_beams = grouper_.add(starts_sweep, setting);
   if (final_beams > 0) emitGroup(final_beams, headSettingOf(held_[final_beams - 1]) != setting);
+  if (provisional_) unshown_.push_back({beams_added_, starts_sweep, beam});
+  ++beams_added_;
   held_.push_back(std::move(beam));
   processReady();
+  showWaitingBeams();
+}
+
+void OnlineMapper::showBeam(std::size_t index, Beam beam) {
+  if (!provisional_) throw ValueError("online mapper: showBeam needs OnlineIntegration::kProvisionalBeams");
+  if (beams_added_ > 0) throw ValueError("online mapper: showBeam on a mapper fed beams (addBeam), which shows them itself");
+  if (finished_) throw ValueError("online mapper: beam after finish()");
+  if (!(std::isfinite(beam.bin_length_m) && beam.bin_length_m > 0.0)) {
+    throw ValueError("online mapper: beam at " + std::to_string(beam.time_s) + " s has a bin length that is not > 0 m");
+  }
+  if (shows_given_beams_ && index <= last_shown_index_) {
+    throw ValueError("online mapper: beam " + std::to_string(index) + " to show is not after the previous one");
+  }
+  shows_given_beams_ = true;
+  last_shown_index_ = index;
+  const bool starts_sweep = splitter_.startsSweep(beam);
+  if (index >= committed_end_) unshown_.push_back({index, starts_sweep, std::move(beam)});
+  showWaitingBeams();
+}
+
+void OnlineMapper::calibrateWith(const DetectedSweep& sweep) {
+  keepCalibration(sweep.setting, sweep.detection.calibration, static_cast<std::size_t>(sweep.polar.rows()));
+  showWaitingBeams();
 }
 
 void OnlineMapper::finish() {
   if (finished_) return;
   finished_ = true;
-  if (integration_ == OnlineIntegration::kBeam) closeLiveSweep(std::nullopt);
   if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last, true);
   processReady();
-  processBeamQueue();
   if (in_flight_) {
     std::unique_ptr<std::future<DetectedSweep>> last = std::move(in_flight_);
     integrate(last->get());
@@ -130,7 +152,7 @@ void OnlineMapper::processReady() {
       sweep.detection = mapper_.detectSweep(sweep.polar);  // const: touches no mapper state
       return sweep;
     };
-    if (!mapper_.options().pipeline_detection || integration_ == OnlineIntegration::kBeam) {
+    if (!mapper_.options().pipeline_detection || provisional_) {
       integrate(detect());
       continue;
     }
@@ -173,6 +195,7 @@ void OnlineMapper::processShortGroup(ReadyGroup ready) {
     const std::unique_lock lock(map_mutex_);
     mapper_.stats().beams_uncalibrated += group.size();
     waiting_beams_ -= group.size();
+    committedBefore(ready.first_beam + group.size());
     return;
   }
   DetectedSweep sweep{makePolarImage(group, 0, group.size()), {}, setting, ready.first_beam};
@@ -201,7 +224,7 @@ void OnlineMapper::keepCalibration(const HeadSetting& setting, SweepCalibration 
 }
 
 void OnlineMapper::detectOnly(DetectedSweepSink sink) {
-  if (integration_ == OnlineIntegration::kBeam) throw ValueError("online mapper: detection alone needs whole sweeps (kSweep)");
+  if (provisional_) throw ValueError("online mapper: detection alone shows nothing (kSweep)");
   if (beams_grouped_ > 0 || !held_.empty() || finished_) throw ValueError("online mapper: detectOnly after the first beam");
   if (!sink) throw ValueError("online mapper: detectOnly needs a sink");
   detect_only_ = std::move(sink);
@@ -210,9 +233,8 @@ void OnlineMapper::detectOnly(DetectedSweepSink sink) {
 void OnlineMapper::addDetectedSweep(const DetectedSweep& sweep) {
   if (detect_only_) throw ValueError("online mapper: a detected sweep given to a detect-only mapper");
   integrateIntoMap(sweep);
-  // kBeam: the beams that follow are detected with its calibration.
-  keepCalibration(sweep.setting, sweep.detection.calibration, static_cast<std::size_t>(sweep.polar.rows()));
   if (on_sweep_) on_sweep_(sweeps_);
+  showWaitingBeams();
 }
 
 void OnlineMapper::integrateIntoMap(const DetectedSweep& sweep) {
@@ -224,6 +246,43 @@ void OnlineMapper::integrateIntoMap(const DetectedSweep& sweep) {
     mapper_.integrateSweep(sweep.polar, sweep.detection.detections, posesAt(sweep.polar.time_s));
   }
   ++sweeps_;
+  committedBefore(sweep.first_beam + static_cast<std::size_t>(sweep.polar.rows()));
+}
+
+void OnlineMapper::committedBefore(std::size_t end) {
+  if (!provisional_) return;
+  committed_end_ = std::max(committed_end_, end);
+  while (!unshown_.empty() && unshown_.front().index < committed_end_) unshown_.pop_front();
+  provisional_->dropBefore(committed_end_);
+  // A longer range scale coarsened the committed map: the beams still shown follow it.
+  if (mapper_.options().resolution_m) provisional_->atResolution(*mapper_.options().resolution_m);
+}
+
+void OnlineMapper::showWaitingBeams() {
+  while (!unshown_.empty()) {
+    const UnshownBeam& next = unshown_.front();
+    if (!navigationCovers(next.beam.time_s)) return;
+    // Otherwise a beam without a calibration waits for its setting's first whole sweep, and every
+    // beam for the committed map's first sweep (its resolution).
+    const SweepCalibration* calibration = calibrationOf(headSettingOf(next.beam));
+    if (calibration == nullptr && shows_given_beams_ && headSettingOf(unshown_.back().beam) != headSettingOf(next.beam)) {
+      // Given to show, with a beam of another setting after it: its group ended and was detected
+      // (calibrateWith comes with it) without a calibration (too few beams to calibrate on), so
+      // it is never shown. Fed by addBeam, such a group leaves with its commit.
+      unshown_.pop_front();
+      continue;
+    }
+    if (calibration == nullptr || !mapper_.options().resolution_m) return;
+    PolarImage row = fitToCalibration(makePolarImage(std::vector<Beam>{next.beam}, 0, 1), *calibration);
+    SweepDetection detection = mapper_.detectRows(row, *calibration);
+    const std::optional<Eigen::Isometry3d> pose = posesAt(row.time_s).front();
+    {
+      const std::unique_lock lock(map_mutex_);
+      provisional_->atResolution(*mapper_.options().resolution_m);
+      provisional_->add(next.index, next.starts_sweep, std::move(row), detection.detections.front(), pose);
+    }
+    unshown_.pop_front();
+  }
 }
 
 void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
@@ -234,7 +293,7 @@ void OnlineMapper::integrate(DetectedSweep sweep, bool calibrates) {
     integrateIntoMap(sweep);
   }
   waiting_beams_ -= rows;
-  // The calibration later beams of this setting are detected with (short groups; kBeam's beams).
+  // The calibration later beams of this setting are detected with (short groups, provisional beams).
   if (calibrates) {  // the sink needs the sweep's own; otherwise it is moved, not copied
     keepCalibration(sweep.setting, detect_only_ ? sweep.detection.calibration : std::move(sweep.detection.calibration), rows);
   }
@@ -262,61 +321,6 @@ std::vector<std::optional<Eigen::Isometry3d>> OnlineMapper::posesAt(const std::v
   return poses;
 }
 
-void OnlineMapper::addLiveBeam(Beam beam, bool starts_sweep) {
-  const HeadSetting setting = headSettingOf(beam);
-  if (starts_sweep) {
-    closeLiveSweep(setting);
-    processReady();  // a whole sweep that ended calibrates this beam
-  }
-  const bool per_beam = !live_whole_ && calibrationOf(setting) != nullptr;
-  if (!per_beam) live_whole_ = true;  // no calibration for it yet: the sweep is integrated whole
-  live_sweep_.push_back(beam);        // the raw sweep, for the next calibration
-  if (per_beam) beam_queue_.push_back(std::move(beam));
-  processReady();
-  processBeamQueue();
-}
-
-void OnlineMapper::closeLiveSweep(const std::optional<HeadSetting>& next) {
-  if (live_sweep_.empty()) return;
-  const HeadSetting setting = headSettingOf(live_sweep_.front());
-  const std::size_t min_beams = minBeams(mapper_.options());
-  if (live_whole_) {
-    // Too short to calibrate on: it joins the next sweep of the same setting (processReady detects
-    // a short one with its setting's calibration, or counts it uncalibrated).
-    if (next && *next == setting && live_sweep_.size() < min_beams) return;
-    waiting_beams_ += live_sweep_.size();
-    ready_.push_back({std::exchange(live_sweep_, {}), false});
-    live_whole_ = false;
-    return;
-  }
-  std::vector<Beam> sweep = std::exchange(live_sweep_, {});
-  if (sweep.size() >= min_beams) {
-    // Its beams are (or will be) integrated one by one; calibrate the next ones on it.
-    PolarImage polar = makePolarImage(sweep, 0, sweep.size());
-    keepCalibration(setting, mapper_.sweepCalibration(polar), sweep.size());
-  }
-  const std::unique_lock lock(map_mutex_);
-  ++mapper_.stats().sweeps;
-  ++sweeps_;
-}
-
-void OnlineMapper::processBeamQueue() {
-  while (ready_.empty() && !beam_queue_.empty() && navigationCovers(beam_queue_.front().time_s)) {
-    const Beam beam = std::move(beam_queue_.front());
-    beam_queue_.pop_front();
-    integrateLiveBeam(beam);
-  }
-}
-
-void OnlineMapper::integrateLiveBeam(const Beam& beam) {
-  const SweepCalibration& calibration = *calibrationOf(headSettingOf(beam));
-  PolarImage row = fitToCalibration(makePolarImage(std::vector<Beam>{beam}, 0, 1), calibration);
-  const SweepDetection detection = mapper_.detectRows(row, calibration);
-  const std::unique_lock lock(map_mutex_);
-  mapper_.recordDetection(detection);
-  mapper_.integrateBeams(row, detection.detections, posesAt(row.time_s));
-}
-
 std::size_t OnlineMapper::sweepsIntegrated() const {
   const std::shared_lock lock(map_mutex_);
   return sweeps_;
@@ -325,6 +329,13 @@ std::size_t OnlineMapper::sweepsIntegrated() const {
 OcTree16 OnlineMapper::mapSnapshot() const {
   const std::shared_lock lock(map_mutex_);
   return mapper_.map();
+}
+
+OcTree16 OnlineMapper::shownSnapshot() const {
+  const std::shared_lock lock(map_mutex_);
+  OcTree16 map = mapper_.map();
+  if (provisional_) provisional_->overlay(map);
+  return map;
 }
 
 MappingStats OnlineMapper::statsSnapshot() const {

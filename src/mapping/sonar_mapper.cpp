@@ -118,11 +118,7 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
   std::sort(work_->occupied_keys.begin(), work_->occupied_keys.end());
 }
 
-SweepDetection SonarMapper::detectSweep(PolarImage& polar) const { return detectSweep(polar, true); }
-
-SweepCalibration SonarMapper::sweepCalibration(PolarImage& polar) const { return detectSweep(polar, false).calibration; }
-
-SweepDetection SonarMapper::detectSweep(PolarImage& polar, bool extended_returns) const {
+SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
   // Calibrate on the image as recorded: the band and the near field are measured before the band is
   // zeroed and before any smoothing spreads it.
   DetectorOptions detector = detectorOf(options_);
@@ -142,7 +138,7 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar, bool extended_returns
     smoothed.near_field_end_m = recorded.near_field_end_m;
     detection = sonarmap::detectSweep(polar, detector, smoothed);
   }
-  if (options_.beam_model == BeamModel::kVolume && extended_returns) {
+  if (options_.beam_model == BeamModel::kVolume) {
     addExtendedReturns(polar, detector.background.calibration.background_percentile, detection, options_.extended);
   }
   return detection;

@@ -51,7 +51,7 @@ void OnlineSlam::addNavFix(const NavSample& fix) {
   }
   mapper_->addNavFix(corrected(fix));  // checks the values
   dead_reckoning_.push_back(fix);
-  if (integration_ == OnlineIntegration::kSweep) mapCoveredSweeps(*mapper_);
+  mapCoveredSweeps(*mapper_);
 }
 
 void OnlineSlam::addBeam(Beam beam) {
@@ -66,13 +66,16 @@ void OnlineSlam::addBeam(Beam beam) {
     }
   }
   beams_.beams.push_back(beam);
-  if (integration_ == OnlineIntegration::kBeam) mapper_->addBeam(beam);
-  detector_->addBeam(std::move(beam));  // may finish a sweep: addSweep
+  detector_->addBeam(beam);  // may finish a sweep: addSweep
+  if (integration_ == OnlineIntegration::kProvisionalBeams) {
+    mapper_->showBeam(beams_shown_, std::move(beam));
+    ++beams_shown_;
+  }
 }
 
 void OnlineSlam::addSweep(DetectedSweep&& sweep) {
   // The water evidence (SweepCalibration::water_evidence, about 2 KB a column) is kept only with the
-  // newest sweep of each head setting: a rebuilt kBeam mapper detects the beams after it with it.
+  // newest sweep of each head setting: the provisional beams after it are detected with it.
   for (DetectedSweep& kept : sweeps_) {
     if (kept.setting == sweep.setting) {
       kept.detection.calibration.water_evidence = {};
@@ -85,6 +88,7 @@ void OnlineSlam::addSweep(DetectedSweep&& sweep) {
   const NavTrack none;
   std::vector<SonarScan> scans = formScans(one, navigation_ ? dead_reckoning_ : none, sonar_to_body_, slam_.forming);
   sweeps_.push_back(std::move(one.sweeps.front()));
+  if (integration_ == OnlineIntegration::kProvisionalBeams) mapper_->calibrateWith(sweeps_.back());
   for (SonarScan& scan : scans) {
     // The scans before this one are in the map with (about) their poses as they are now.
     const std::vector<Pose2>& poses = localizer_.graph().poses();
@@ -100,7 +104,7 @@ void OnlineSlam::addSweep(DetectedSweep&& sweep) {
       if (movedSinceRebuild()) rebuild();
     }
   }
-  if (integration_ == OnlineIntegration::kSweep) mapCoveredSweeps(*mapper_);
+  mapCoveredSweeps(*mapper_);
 }
 
 void OnlineSlam::mapCoveredSweeps(OnlineMapper& mapper) {
@@ -145,20 +149,9 @@ void OnlineSlam::rebuild() {
       track.push_back(fix);
     }
   }
-  if (integration_ == OnlineIntegration::kSweep) {
-    sweeps_mapped_ = 0;
-    mapCoveredSweeps(*mapper);
-  } else {
-    // The detected sweeps, then the beams after the last one as they come (kBeam).
-    std::size_t next_beam = 0;
-    for (const DetectedSweep& sweep : sweeps_) {
-      mapper->addDetectedSweep(sweep);
-      next_beam = sweep.first_beam + static_cast<std::size_t>(sweep.polar.rows());
-    }
-    if (!finished_) {
-      for (std::size_t i = next_beam; i < beams_.beams.size(); ++i) mapper->addBeam(beams_.beams[i]);
-    }
-  }
+  sweeps_mapped_ = 0;
+  mapCoveredSweeps(*mapper);
+  if (integration_ == OnlineIntegration::kProvisionalBeams && !finished_) showUnmappedBeams(*mapper);
   if (finished_) mapper->finish();
   mapped_poses_ = localizer_.graph().poses();
   std::unique_lock lock(swap_mutex_);
@@ -184,8 +177,30 @@ std::size_t OnlineSlam::sweepsIntegrated() const {
   return mapper_->sweepsIntegrated();
 }
 
+std::size_t OnlineSlam::beamsUnshown() const {
+  return integration_ == OnlineIntegration::kProvisionalBeams ? mapper_->beamsUnshown() : beamsPending();
+}
+
+OcTree16 OnlineSlam::shownSnapshot() const {
+  std::shared_lock lock(swap_mutex_);
+  return mapper_->shownSnapshot();
+}
+
+void OnlineSlam::showUnmappedBeams(OnlineMapper& mapper) const {
+  // The newest sweep of each head setting calibrates it (the older ones' water was dropped).
+  std::vector<HeadSetting> calibrated;
+  for (auto sweep = sweeps_.rbegin(); sweep != sweeps_.rend(); ++sweep) {
+    if (std::find(calibrated.begin(), calibrated.end(), sweep->setting) != calibrated.end()) continue;
+    calibrated.push_back(sweep->setting);
+    mapper.calibrateWith(*sweep);
+  }
+  const std::size_t first = sweeps_mapped_ == 0 ? 0
+                                                : sweeps_[sweeps_mapped_ - 1].first_beam +
+                                                      static_cast<std::size_t>(sweeps_[sweeps_mapped_ - 1].polar.rows());
+  for (std::size_t i = first; i < beams_shown_; ++i) mapper.showBeam(i, beams_.beams[i]);
+}
+
 std::size_t OnlineSlam::beamsPending() const {
-  if (integration_ == OnlineIntegration::kBeam) return mapper_->beamsPending();
   std::size_t pending = detector_->beamsPending();
   for (std::size_t k = sweeps_mapped_; k < sweeps_.size(); ++k) pending += static_cast<std::size_t>(sweeps_[k].polar.rows());
   return pending;

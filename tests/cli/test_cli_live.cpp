@@ -1,9 +1,10 @@
 /// End-to-end tests of `sonarmap live`: a simulated tank run encoded byte by byte as a raw SeaNet
 /// capture and as a Ping360 stream (wire_fixture.hpp), with line noise and a final frame cut short,
 /// is replayed over a pseudo-terminal (a serial device), loopback UDP and standard input, and the
-/// shared SeaNet log's packets over UDP; with --integrate sweep the final map equals `sonarmap map`
-/// of the same bytes byte for byte. Navigation on a second stream places the beams. SIGTERM mid-stream ends the run
-/// with exit 0 and a readable map; bad usage is one error line.
+/// shared logs' bytes; the final map equals `sonarmap map` of the same bytes byte for byte, with
+/// each beam shown as it arrives (the default) or not (--show sweep). Navigation on a second stream
+/// places the beams. SIGTERM mid-stream ends the run with exit 0 and a readable map; bad usage is
+/// one error line.
 
 #include <gtest/gtest.h>
 
@@ -159,7 +160,7 @@ void writeAll(int fd, const std::string& bytes, std::size_t chunk = 4096) {
 
 class CliLive : public CliTest {
  protected:
-  /// `sonarmap map` of the capture: the map live --integrate sweep must give.
+  /// `sonarmap map` of the capture: the map live must give.
   std::string batchMap(const std::string& capture = tankCapture(), const std::string& format = "seanet") {
     writeFile(root_ / "capture.raw", capture);
     const ProgramRun run = this->run({"map", (root_ / "capture.raw").string(), "--format", format, "-q", "-o",
@@ -167,9 +168,11 @@ class CliLive : public CliTest {
     EXPECT_EQ(run.exit_code, 0) << run.err;
     return readFile(root_ / "batch.bt");
   }
-  Names liveArgs(const std::string& source, const std::string& integrate = "sweep",
-                 const std::string& format = "seanet") const {
-    return {"live", source, "--format", format, "--integrate", integrate, "-o", (out_ / "live.bt").string()};
+  /// `live` on `source` in its default integration, or `--show show`.
+  Names liveArgs(const std::string& source, const std::string& format = "seanet", const std::string& show = "") const {
+    Names args{"live", source, "--format", format, "-o", (out_ / "live.bt").string()};
+    if (!show.empty()) args.insert(args.end(), {"--show", show});
+    return args;
   }
   /// The UDP port `child` printed after `what` ("reading", "navigation from"), or 0 when it did not.
   static int boundPort(Child& child, const std::string& what) {
@@ -200,7 +203,7 @@ class CliLive : public CliTest {
     ::close(sender);
   }
   /// `live` on a pseudo-terminal (a serial device at 115200 baud) fed `capture`, then hung up.
-  ProgramRun replayOverPty(const std::string& capture, const std::string& format) {
+  ProgramRun replayOverPty(const std::string& capture, const std::string& format, const std::string& show = "") {
     const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
     EXPECT_GE(master, 0);
     EXPECT_EQ(::grantpt(master), 0);
@@ -214,7 +217,7 @@ class CliLive : public CliTest {
     EXPECT_EQ(::tcgetattr(slave, &raw), 0);
     ::cfmakeraw(&raw);
     EXPECT_EQ(::tcsetattr(slave, TCSANOW, &raw), 0);
-    Names args = liveArgs(slave_path, "sweep", format);
+    Names args = liveArgs(slave_path, format, show);
     args.insert(args.end(), {"--baud", "115200"});
     Child child(args, root_, -1);
     writeAll(master, capture, 512);
@@ -229,7 +232,7 @@ class CliLive : public CliTest {
   }
   /// `live` on udp://127.0.0.1:0 fed `capture` over UDP: its final run.
   ProgramRun replayOverUdp(const std::string& capture, const std::string& format) {
-    Names args = liveArgs("udp://127.0.0.1:0", "sweep", format);
+    Names args = liveArgs("udp://127.0.0.1:0", format);
     args.insert(args.end(), {"--idle-timeout", "0.5"});
     Child child(args, root_, -1);
     if (const int port = boundPort(child, "reading"); port > 0) sendUdp(port, capture);
@@ -255,7 +258,10 @@ TEST_F(CliLive, StandardInputGivesTheBatchMapByteForByte) {
   expectFinished(run);
   EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
   EXPECT_NE(run.err.find("sonarmap: live: reading standard input"), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find("latency median"), std::string::npos) << run.err;  // the final status line
+  // The final status line: from a read to the map as shown and to the committed map.
+  EXPECT_TRUE(std::regex_search(run.err, std::regex("latency median [0-9.]+ ms shown, [0-9.]+ ms committed, 99th "
+                                                    "percentile [0-9.]+ ms shown, [0-9.]+ ms committed")))
+      << run.err;
 }
 
 // --slam without navigation on a static head: the scans say the vehicle stayed put, the map is
@@ -287,9 +293,9 @@ TEST_F(CliLive, APseudoTerminalIsReadAsASerialDevice) {
   EXPECT_NE(run.err.find("at 115200 baud"), std::string::npos) << run.err;
 }
 
-TEST_F(CliLive, Ping360OverAPseudoTerminalGivesTheBatchMap) {
+TEST_F(CliLive, Ping360OverAPseudoTerminalGivesTheBatchMapShowingSweepsOnly) {
   const std::string batch = batchMap(tankPing360Capture(), "ping360");
-  const ProgramRun run = replayOverPty(tankPing360Capture(), "ping360");
+  const ProgramRun run = replayOverPty(tankPing360Capture(), "ping360", "sweep");
   expectFinished(run);
   EXPECT_TRUE(readFile(out_ / "live.bt") == batch) << "live map differs from `sonarmap map`";
 }
@@ -304,6 +310,27 @@ TEST_F(CliLive, SharedSeaNetLogPacketsGiveTheLogsMap) {
   const ProgramRun live = replayOverUdp(readFile(root_ / "sector.seanet"), "seanet");
   expectFinished(live);
   EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "log.bt")) << "live map differs from the log's";
+}
+
+// A shared Ping Viewer log whose range changed seven times, as the bytes its head sent read from a
+// capture file, and the shared ROS bag replayed: `live` ends on the map `sonarmap map` makes of the
+// same input (at a given resolution: live cannot know which range scale most beams will use).
+TEST_F(CliLive, SharedLogsEndOnTheBatchMapByteForByte) {
+  const fs::path harbour = fs::path(SONARMAP_SHARED_DATA) / "ping360_harbour_range_changes.bin";
+  const fs::path pool = fs::path(SONARMAP_SHARED_DATA) / "micron_pool_ros1.bag";
+  if (!fs::exists(harbour) || !fs::exists(pool)) GTEST_SKIP() << "shared data absent: " << harbour << ", " << pool;
+  const std::string capture = (root_ / "harbour.bin").string();
+  ASSERT_EQ(run({"convert", harbour.string(), "-o", capture}).exit_code, 0);
+  ASSERT_EQ(run({"map", capture, "--format", "ping360", "--resolution", "0.1", "-q", "-o", (root_ / "harbour.bt").string()})
+                .exit_code,
+            0);
+  const ProgramRun live = run({"live", capture, "--format", "ping360", "--resolution", "0.1", "-q", "-o",
+                               (out_ / "harbour.bt").string()});
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  EXPECT_TRUE(readFile(out_ / "harbour.bt") == readFile(root_ / "harbour.bt")) << "live map differs from `sonarmap map`";
+  ASSERT_EQ(run({"map", pool.string(), "-q", "-o", (root_ / "pool.bt").string()}).exit_code, 0);
+  ASSERT_EQ(run({"live", pool.string(), "-q", "-o", (out_ / "pool.bt").string()}).exit_code, 0);
+  EXPECT_TRUE(readFile(out_ / "pool.bt") == readFile(root_ / "pool.bt")) << "replayed map differs from `sonarmap map`";
 }
 
 TEST_F(CliLive, LoopbackUdpDatagramsGiveTheBatchMap) {
@@ -354,7 +381,7 @@ TEST_F(CliLive, NavigationStreamPlacesTheBeams) {
 }
 
 // A recorded ROS bag replayed: beams with their own stamps and the bag's own navigation, the map of
-// `sonarmap map` on the bag byte for byte (--integrate sweep); beam by beam it maps too.
+// `sonarmap map` on the bag byte for byte, each beam shown as it arrives or not (--show sweep).
 TEST_F(CliLive, AReplayedRosBagGivesTheBatchMapWithItsNavigation) {
   MsisSimulationOptions options;
   options.turns = 2;
@@ -368,21 +395,32 @@ TEST_F(CliLive, AReplayedRosBagGivesTheBatchMapWithItsNavigation) {
   writeRosBag(bag.string(), run_moving.log, run_moving.nav);
   const ProgramRun batch = run({"map", bag.string(), "-q", "-o", (root_ / "batch.bt").string()});
   ASSERT_EQ(batch.exit_code, 0) << batch.err;
-  const ProgramRun replay = run({"live", bag.string(), "--integrate", "sweep", "-q", "-o", (out_ / "live.bt").string()});
+  const ProgramRun replay = run({"live", bag.string(), "-q", "-o", (out_ / "live.bt").string()});
   ASSERT_EQ(replay.exit_code, 0) << replay.err;
   EXPECT_NE(replay.out.find("navigation /odometry (nav_msgs/Odometry"), std::string::npos) << replay.out;
   EXPECT_NE(replay.out.find("0 without navigation"), std::string::npos) << replay.out;
   EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "replayed map differs from `sonarmap map`";
-  const ProgramRun beams = run({"live", bag.string(), "-q", "-o", (out_ / "beams.bt").string()});
-  ASSERT_EQ(beams.exit_code, 0) << beams.err;
-  EXPECT_FALSE(readMapFile((out_ / "beams.bt").string()).empty());
+  const ProgramRun sweeps = run({"live", bag.string(), "--show", "sweep", "-q", "-o", (out_ / "sweeps.bt").string()});
+  ASSERT_EQ(sweeps.exit_code, 0) << sweeps.err;
+  EXPECT_TRUE(readFile(out_ / "sweeps.bt") == readFile(root_ / "batch.bt")) << "replayed map differs from `sonarmap map`";
   expectError(run({"live", bag.string(), "--nav-stream", "udp://127.0.0.1:0", "-o", (out_ / "m.bt").string()}), 2);
+  // With --slam: `map --slam`'s map and trajectory, byte for byte (its stamps are not 0.1 s apart to
+  // the last digit: the odometry's period comes from the fixes, in both).
+  ASSERT_EQ(run({"map", bag.string(), "--slam", "--trajectory", (root_ / "batch.csv").string(), "-q", "-o",
+                 (root_ / "batch_slam.bt").string()})
+                .exit_code,
+            0);
+  const ProgramRun slam = run({"live", bag.string(), "--slam", "--trajectory", (out_ / "live.csv").string(), "-q", "-o",
+                               (out_ / "live_slam.bt").string()});
+  ASSERT_EQ(slam.exit_code, 0) << slam.err;
+  EXPECT_TRUE(readFile(out_ / "live_slam.bt") == readFile(root_ / "batch_slam.bt")) << "live --slam map differs";
+  EXPECT_TRUE(readFile(out_ / "live.csv") == readFile(root_ / "batch.csv")) << "live --slam trajectory differs";
 }
 
 TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {
   int pipe_fds[2];
   ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);  // the child inherits only its stdin
-  Names args = liveArgs("-", "beam");
+  Names args = liveArgs("-");
   args.insert(args.end(), {"--write-every", "0.1"});
   Child child(args, root_, pipe_fds[0]);
   ::close(pipe_fds[0]);
@@ -401,7 +439,8 @@ TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {
 
 TEST_F(CliLive, RejectsAFileFormatAndNoBeamIsAnError) {
   expectError(run({"live", "-", "--format", "mat", "-o", (out_ / "m.bt").string()}), 2);
-  expectError(run({"live", "-", "--format", "seanet", "--integrate", "turn", "-o", (out_ / "m.bt").string()}), 2);
+  expectError(run({"live", "-", "--format", "seanet", "--show", "turn", "-o", (out_ / "m.bt").string()}), 2);
+  expectError(run({"live", "-", "--format", "seanet", "--integrate", "sweep", "-o", (out_ / "m.bt").string()}), 2);
   expectError(run({"live", "udp://127.0.0.1", "--format", "seanet", "-o", (out_ / "m.bt").string()}), 1);
   expectError(run({"live", "-", "--format", "ping360", "-q", "-o", (out_ / "m.bt").string()}), 1);  // /dev/null: no beam
   EXPECT_TRUE(listDir(out_).empty());

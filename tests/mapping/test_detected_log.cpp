@@ -102,7 +102,7 @@ TEST(mappingDetectedLog, TheSweepsAreTheMappersAndCoverTheLog) {
 }
 
 TEST(mappingDetectedLog, MisuseIsRefused) {
-  OnlineMapper live(atTwoCentimetres(), OnlineIntegration::kBeam);
+  OnlineMapper live(atTwoCentimetres(), OnlineIntegration::kProvisionalBeams);
   EXPECT_THROW(live.detectOnly([](DetectedSweep&&) {}), ValueError);
   OnlineMapper empty_sink(atTwoCentimetres());
   EXPECT_THROW(empty_sink.detectOnly({}), ValueError);

@@ -1,6 +1,7 @@
 // OnlineMapper: beams fed one at a time give mapSonarLog's map (the batch is a loop over it), a
 // sweep is integrated as soon as it is final and the navigation covers it, the map can be read
-// from another thread while beams arrive, and bad input is refused.
+// from another thread while beams arrive, and bad input is refused (the provisional layer:
+// test_provisional_beams.cpp).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -138,67 +139,6 @@ TEST(mappingOnlineMapper, MapCanBeReadFromAnotherThreadWhileBeamsArrive) {
   EXPECT_EQ(online.statsSnapshot().sweeps, 3U);
 }
 
-/// Share of the occupied voxels of `a` that `b` also holds occupied.
-double occupiedAgreement(const OcTree16& a, const OcTree16& b) {
-  std::size_t occupied = 0, shared = 0;
-  a.forEachLeaf([&](const LeafView<16>& leaf) {
-    if (!a.model().isOccupied(leaf.log_odds)) return;
-    ++occupied;
-    const std::optional<float> other = b.search(leaf.key);
-    shared += other && b.model().isOccupied(*other) ? 1 : 0;
-  });
-  return occupied == 0 ? 0.0 : static_cast<double>(shared) / static_cast<double>(occupied);
-}
-
-/// Share of the occupied voxels within 0.1 m of a surface of `scene`.
-double onSurface(const OcTree16& map, const Scene& scene) {
-  std::size_t occupied = 0, near = 0;
-  map.forEachLeaf([&](const LeafView<16>& leaf) {
-    if (!map.model().isOccupied(leaf.log_odds)) return;
-    ++occupied;
-    near += distanceToSurface(scene, map.coder().centerOf(leaf.key)) <= 0.1 ? 1 : 0;
-  });
-  return occupied == 0 ? 0.0 : static_cast<double>(near) / static_cast<double>(occupied);
-}
-
-// Per-beam integration: after the first sweep (integrated whole, to calibrate), every beam is in
-// the map as soon as it arrives (and the navigation covers it), and the map is nearly the batch's.
-TEST(mappingOnlineMapper, EachBeamIsIntegratedOnArrivalAfterTheFirstSweep) {
-  const MsisSimulation run = movingRun(4);
-  const std::vector<SweepRange> sweeps = splitSweeps(run.log.beams);
-  const Eigen::Isometry3d mounting = defaultSonarToBody();
-  OnlineMapper live(atTwoCentimetres(false), mounting, OnlineIntegration::kBeam);
-  std::size_t next_fix = 0, late = 0;
-  for (std::size_t i = 0; i < run.log.beams.size(); ++i) {
-    const Beam& beam = run.log.beams[i];
-    // Each fix as soon as its time has come, and the next one too: the beam lies between two.
-    while (next_fix < run.nav.size() && run.nav[next_fix].time_s <= beam.time_s) live.addNavFix(run.nav[next_fix++]);
-    if (next_fix < run.nav.size()) live.addNavFix(run.nav[next_fix++]);
-    live.addBeam(beam);
-    if (i < sweeps[1].first) {
-      EXPECT_EQ(live.beamsPending(), i + 1);  // the first sweep waits for its end
-    } else {
-      late += live.beamsPending() > 0 ? 1 : 0;
-    }
-  }
-  EXPECT_EQ(late, 0U);
-  EXPECT_EQ(live.sweepsIntegrated(), 3U);  // the last turn ends with the stream
-  live.finish();
-  EXPECT_EQ(live.sweepsIntegrated(), 4U);
-  EXPECT_EQ(live.mapper().stats().sweeps, 4U);
-  const SonarMapper batch = mapSonarLog(run.log, run.nav, mounting, atTwoCentimetres(true));
-  EXPECT_EQ(live.mapper().stats().beams_used, batch.stats().beams_used);
-  // Nearly every batch obstacle is in the live map; the live map has more (a beam's arc is not
-  // carved by its neighbours' water, which a sweep does), and they lie on the walls as well.
-  const double batch_in_live = occupiedAgreement(batch.map(), live.mapper().map());
-  const double live_on_walls = onSurface(live.mapper().map(), run.scene);
-  const double batch_on_walls = onSurface(batch.map(), run.scene);
-  std::cout << "batch obstacles in the live map: " << batch_in_live << "; occupied within 0.1 m of a wall: live "
-            << live_on_walls << ", batch " << batch_on_walls << "\n";
-  EXPECT_GT(batch_in_live, 0.9);
-  EXPECT_GT(live_on_walls, batch_on_walls - 0.05);
-}
-
 TEST(mappingOnlineMapper, BadInputIsRefused) {
   OnlineMapper still(atTwoCentimetres(false));
   EXPECT_THROW(still.addNavFix(NavSample{}), ValueError);  // no navigation constructor
@@ -222,6 +162,24 @@ TEST(mappingOnlineMapper, BadInputIsRefused) {
   Eigen::Isometry3d broken = Eigen::Isometry3d::Identity();
   broken(0, 0) = std::numeric_limits<double>::infinity();
   EXPECT_THROW(OnlineMapper(atTwoCentimetres(false), broken), ValueError);
+
+  // Beams to show only: with kProvisionalBeams, never mixed with addBeam, in increasing order.
+  Beam valid;
+  valid.bin_length_m = 0.01;
+  valid.intensities.assign(10, 0);
+  OnlineMapper sweeps_only(atTwoCentimetres(false), defaultSonarToBody());
+  EXPECT_THROW(sweeps_only.showBeam(0, valid), ValueError);
+  OnlineMapper fed(atTwoCentimetres(false), defaultSonarToBody(), OnlineIntegration::kProvisionalBeams);
+  fed.addBeam(valid);
+  EXPECT_THROW(fed.showBeam(1, valid), ValueError);
+  OnlineMapper shows(atTwoCentimetres(false), defaultSonarToBody(), OnlineIntegration::kProvisionalBeams);
+  shows.showBeam(3, valid);
+  EXPECT_THROW(shows.showBeam(3, valid), ValueError);  // not after the previous one
+  EXPECT_THROW(shows.addBeam(valid), ValueError);
+  valid.bin_length_m = 0.0;
+  EXPECT_THROW(shows.showBeam(4, valid), ValueError);
+  EXPECT_EQ(shows.beamsUnshown(), 1U);  // no calibration yet
+  EXPECT_TRUE(shows.shownSnapshot().empty());
 }
 
 }  // namespace

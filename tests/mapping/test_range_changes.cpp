@@ -113,9 +113,13 @@ TEST(mappingRangeChanges, AGainChangeEndsASweepAsARangeChangeDoes) {
 
 TEST(mappingRangeChanges, LiveMapsEveryScaleAndItsResolutionGrowsWithTheRange) {
   const SonarLog log = powerOnThenUserRange();
-  for (const OnlineIntegration integration : {OnlineIntegration::kSweep, OnlineIntegration::kBeam}) {
+  for (const OnlineIntegration integration : {OnlineIntegration::kSweep, OnlineIntegration::kProvisionalBeams}) {
     OnlineMapper online(MapperOptions{}, integration);
-    for (const Beam& beam : log.beams) online.addBeam(beam);
+    for (const Beam& beam : log.beams) {
+      online.addBeam(beam);
+      // The map as shown follows the committed map's resolution as it coarsens.
+      EXPECT_EQ(online.shownSnapshot().resolution_m(), online.mapSnapshot().resolution_m());
+    }
     online.finish();
     const SonarMapper& mapper = online.mapper();
     // The first sweep (2.5 m) fixed 1 cm; the 5 m sweeps coarsened it to 2 cm (the 10 m stop was
@@ -128,15 +132,18 @@ TEST(mappingRangeChanges, LiveMapsEveryScaleAndItsResolutionGrowsWithTheRange) {
   }
 }
 
-TEST(mappingRangeChanges, LiveSweepByBeamGivesTheBatchMapAtAGivenResolution) {
+TEST(mappingRangeChanges, LiveGivesTheBatchMapAtAGivenResolution) {
   const SonarLog log = powerOnThenUserRange();
   MapperOptions options;
   options.resolution_m = 0.02;
   const SonarMapper batch = mapSonarLog(log, options);
-  OnlineMapper online(options, OnlineIntegration::kSweep);
-  for (const Beam& beam : log.beams) online.addBeam(beam);
-  online.finish();
-  EXPECT_EQ(leavesOf(online.mapper().map()), leavesOf(batch.map()));
+  for (const OnlineIntegration integration : {OnlineIntegration::kSweep, OnlineIntegration::kProvisionalBeams}) {
+    OnlineMapper online(options, integration);
+    for (const Beam& beam : log.beams) online.addBeam(beam);
+    online.finish();
+    EXPECT_EQ(leavesOf(online.mapper().map()), leavesOf(batch.map()));
+    EXPECT_EQ(leavesOf(online.shownSnapshot()), leavesOf(batch.map()));
+  }
 }
 
 }  // namespace

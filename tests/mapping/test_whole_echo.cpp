@@ -271,27 +271,6 @@ TEST(mappingWholeEcho, ALoudSeabedHeardAsObstaclesIsMappedAsAFloor) {
   EXPECT_EQ(floor.above_floor, 0U);
 }
 
-// Live mapping keeps each whole sweep's calibration for the beams that follow; it does not search
-// that sweep for extended returns, and the calibration is the one the full detection returns.
-TEST(mappingWholeEcho, LiveCalibrationSkipsTheSearchAndKeepsTheSameCalibration) {
-  const MsisSimulation run = tiltedMicron(2.0, true);
-  const SonarMapper mapper(volume());
-  const std::size_t beams = run.log.beams.size() / 4;  // one turn
-  PolarImage for_detection = makePolarImage(run.log.beams, 0, beams);
-  PolarImage for_calibration = for_detection;
-  for_calibration.intensities = for_detection.intensities.clone();  // cv::Mat copies share their pixels
-  const SweepDetection detection = mapper.detectSweep(for_detection);
-  const SweepCalibration calibration = mapper.sweepCalibration(for_calibration);
-  std::size_t extended = 0;
-  for (const BeamDetection& beam : detection.detections) extended += beam.hasExtendedReturn() ? 1 : 0;
-  EXPECT_GT(extended, beams / 10);  // the full detection finds the seabed in the whole echo (61 of 200)
-  EXPECT_EQ(calibration.background, detection.calibration.background);
-  EXPECT_EQ(calibration.threshold, detection.calibration.threshold);
-  EXPECT_EQ(calibration.threshold_db, detection.calibration.threshold_db);
-  EXPECT_EQ(calibration.near_field_end_m, detection.calibration.near_field_end_m);
-  EXPECT_EQ(cv::norm(for_calibration.intensities, for_detection.intensities, cv::NORM_INF), 0.0);  // cleaned alike
-}
-
 // Speckle must not accumulate: turns of open water, the head level or tilted, map no occupied
 // voxel, whatever the head (the detector's false alarms are 10⁻⁴ per beam), the level head at the
 // surface (no trace) or 3 m under it (its weak returns would be traced as the seabed).

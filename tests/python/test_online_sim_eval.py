@@ -27,6 +27,24 @@ def test_online_mapper_gives_map_sonar_logs_map(simulated_tank, tmp_path):
         online.add_beam(0.0, 0.0, 0.01, np.zeros(10, dtype=np.uint8))  # after finish()
 
 
+def test_shown_beams_end_on_map_sonar_logs_map(simulated_tank, tmp_path):
+    log = simulated_tank.log
+    batch = sonarmap.map_sonar_log(log, resolution=0.05)
+    online = sonarmap.OnlineMapper(resolution=0.05, show="beam")
+    first_sweep = 200  # the simulated Micron's beams per turn: the first sweep calibrates
+    online.add_beams(log, 0, first_sweep + 30)
+    assert online.beams_unshown == 0  # every beam after the first sweep is shown on arrival
+    assert online.beams_pending > 0  # the sweep in progress is not in the committed map yet
+    shown, committed = online.shown_map(), online.map()
+    assert _bytes_of(shown, tmp_path / "shown.bt") != _bytes_of(committed, tmp_path / "committed.bt")
+    online.add_beams(log, first_sweep + 30)
+    online.finish()
+    assert online.beams_unshown == 0 and online.beams_pending == 0
+    expected = _bytes_of(batch, tmp_path / "batch.bt")
+    assert _bytes_of(online.map(), tmp_path / "online.bt") == expected
+    assert _bytes_of(online.shown_map(), tmp_path / "shown_end.bt") == expected
+
+
 def test_online_mapper_with_navigation(tmp_path):
     run = sonarmap.simulate("harbour", turns=2, speed=0.1, heading=45)
     batch = sonarmap.map_sonar_log(run.log, nav=run.nav, resolution=0.05)
@@ -40,13 +58,13 @@ def test_online_mapper_with_navigation(tmp_path):
 
 
 def test_online_mapper_bad_beams():
-    online = sonarmap.OnlineMapper(integration="beam")
+    online = sonarmap.OnlineMapper(show="beam")
     with pytest.raises(sonarmap.ValueError, match="uint8"):
         online.add_beam(0.0, 0.0, 0.01, np.zeros(10, dtype=np.float32))
     with pytest.raises(sonarmap.ValueError):
         online.add_beam(0.0, 0.0, -0.01, np.zeros(10, dtype=np.uint8))
-    with pytest.raises(sonarmap.ValueError, match="integration"):
-        sonarmap.OnlineMapper(integration="sometimes")
+    with pytest.raises(sonarmap.ValueError, match="show"):
+        sonarmap.OnlineMapper(show="sometimes")
 
 
 def test_simulate_then_evaluate_is_sane(simulated_tank):

@@ -16,8 +16,9 @@ namespace {
 
 using testing::leavesOf;
 
-// Fed beam by beam, whole sweeps or each beam integrated as it comes: the batch's trajectory, and
-// its map leaf for leaf, after finish().
+// Fed beam by beam, showing nothing before a sweep is integrated or each beam at once on the
+// provisional layer: the batch's trajectory, exactly when the odometry's period comes from the same
+// fixes, and its map leaf for leaf, after finish().
 TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
   const MsisSimulation run = testing::missionRun("harbour-loop");
   const NavTrack& drift = run.dead_reckoning;
@@ -27,27 +28,35 @@ TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
   const auto expected = leavesOf(batch.mapper.map());
   ASSERT_GT(expected.size(), 1000U);
 
-  for (const OnlineIntegration integration : {OnlineIntegration::kSweep, OnlineIntegration::kBeam}) {
-    OnlineSlam live(options, defaultSonarToBody(), true, SlamOptions{}, integration);
+  for (const OnlineIntegration integration : {OnlineIntegration::kSweep, OnlineIntegration::kProvisionalBeams}) {
+    OnlineSlam live(options, defaultSonarToBody(), true, withNavigationPeriod(SlamOptions{}, drift), integration);
     std::size_t next_fix = 0;
-    std::size_t integrated_while_running = 0;
+    std::size_t integrated_while_running = 0, shown_before_integrated = 0;
     for (const Beam& beam : run.log.beams) {
       while (next_fix < drift.size() && drift[next_fix].time_s <= beam.time_s) live.addNavFix(drift[next_fix++]);
       live.addBeam(beam);
       integrated_while_running = std::max(integrated_while_running, live.sweepsIntegrated());
+      shown_before_integrated += live.beamsUnshown() < live.beamsPending() ? 1 : 0;
     }
     while (next_fix < drift.size()) live.addNavFix(drift[next_fix++]);
     EXPECT_GT(integrated_while_running, 0U);  // the map grows while the vehicle runs
+    if (integration == OnlineIntegration::kProvisionalBeams) {
+      EXPECT_GT(shown_before_integrated, run.log.beams.size() / 2);
+    } else {
+      EXPECT_EQ(shown_before_integrated, 0U);
+    }
     live.finish();
     EXPECT_EQ(live.beamsPending(), 0U);
+    EXPECT_EQ(live.beamsUnshown(), 0U);
     EXPECT_GT(live.rebuilds(), 1U);  // loops closed while running, and the final map
     const NavTrack trajectory = live.trajectory();
     ASSERT_EQ(trajectory.size(), batch.slam.trajectory.size());
     for (std::size_t i = 0; i < trajectory.size(); ++i) {
-      ASSERT_NEAR(trajectory[i].position_ned_m.x(), batch.slam.trajectory[i].position_ned_m.x(), 1e-9);
-      ASSERT_NEAR(trajectory[i].position_ned_m.y(), batch.slam.trajectory[i].position_ned_m.y(), 1e-9);
+      ASSERT_EQ(trajectory[i].position_ned_m, batch.slam.trajectory[i].position_ned_m) << i;
+      ASSERT_EQ(trajectory[i].yaw_rad, batch.slam.trajectory[i].yaw_rad) << i;
     }
     EXPECT_EQ(leavesOf(live.mapSnapshot()), expected) << "integration " << static_cast<int>(integration);
+    EXPECT_EQ(leavesOf(live.shownSnapshot()), expected) << "integration " << static_cast<int>(integration);
   }
 }
 

@@ -154,7 +154,7 @@ SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& optio
 SweepDetection detectSweep(const PolarImage& polar, const DetectorOptions& options, const SweepCalibration& calibration);
 
 /// As detectSweep with a calibration, for a few beams of a sweep in progress (one is enough: live
-/// mapping, OnlineMapper's per-beam integration): `calibration` is one an earlier sweep was detected
+/// mapping's provisional beams): `calibration` is one an earlier sweep was detected
 /// with (SweepDetection::calibration), its background B(c) used as it is where detectSweep would
 /// measure it again over the rows still in water, and min_beams does not apply. On the beams of a
 /// sweep it gives what detectSweep gives when the water background of that sweep is the earlier one's.

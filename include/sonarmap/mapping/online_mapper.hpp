@@ -1,8 +1,8 @@
 #pragma once
 /// @file online_mapper.hpp
-/// Mapping beams as they arrive from a sonar (issue 12): the one mapping path. The batch
-/// mapSonarLog (sonar_mapper.hpp) is a loop over an OnlineMapper fed the log's beams, so a live
-/// run and a log give the same map.
+/// Mapping beams as they arrive from a sonar: the one mapping path. The batch mapSonarLog
+/// (sonar_mapper.hpp) is a loop over an OnlineMapper fed the log's beams, so a live run and a log
+/// give the same map.
 ///
 /// Fed one beam at a time (in recording order) and, for a moving vehicle, navigation fixes as they
 /// arrive, the mapper forms sweeps itself with splitSweeps' rules (SweepSplitter: a full turn, a
@@ -18,8 +18,13 @@
 /// is set (the batch's throughput; a sweep is then integrated when the next one is final);
 /// without it each final sweep is detected and integrated at once (the least latency).
 ///
-/// Another thread may read the map at any time through mapSnapshot() / statsSnapshot(): they copy
-/// under a shared lock that the feeding thread holds exclusively only while it integrates one sweep.
+/// With OnlineIntegration::kProvisionalBeams each beam is also shown at once on a provisional layer
+/// until its sweep is committed (see the enum): the committed map is at every moment mapSonarLog's
+/// map of the sweeps final so far, and the final map is mapSonarLog's.
+///
+/// Another thread may read the map at any time through mapSnapshot() / shownSnapshot() /
+/// statsSnapshot(): they copy under a shared lock that the feeding thread holds exclusively only
+/// while it integrates one sweep or one provisional beam.
 #include <cstddef>
 #include <deque>
 #include <functional>
@@ -32,6 +37,7 @@
 #include <Eigen/Geometry>
 
 #include "sonarmap/mapping/detected_log.hpp"
+#include "sonarmap/mapping/provisional_beams.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -39,21 +45,21 @@
 
 namespace sonarmap {
 
-/// When an OnlineMapper integrates what it receives.
+/// What an OnlineMapper shows before a sweep is final.
 enum class OnlineIntegration {
-  /// Each sweep once it is final (see the file's comment): mapSonarLog's map, byte for byte; a
-  /// beam waits up to a turn of the head.
+  /// Nothing: each sweep is integrated once it is final (see the file's comment), mapSonarLog's
+  /// map byte for byte; a beam waits for the end of its sweep and min_beams beams of the next one
+  /// to be in the map.
   kSweep,
-  /// Each beam as it arrives (and the navigation covers it): detected with the calibration of the
-  /// last whole sweep (SonarMapper::detectRows: its water background, threshold and near field),
-  /// integrated on its own (SonarMapper::integrateBeams: a cell is updated once per beam, so the
-  /// overlap of neighbouring wedges is updated twice, unlike a sweep). The calibration is kept per
-  /// head setting (range scale and gain): the first sweep of a setting not seen before is
-  /// integrated whole once it ends, to calibrate, and a return to an earlier setting is mapped beam
-  /// by beam again at once; a whole sweep shorter than the detector's min_beams joins the next one
-  /// of its setting, or is detected as a short group (above). Detection is never pipelined. Live
-  /// mapping: the latency of a beam, not of a turn.
-  kBeam,
+  /// kSweep's map (the committed map: mapSnapshot), and each beam shown at once on a provisional
+  /// layer (shownSnapshot; ProvisionalBeams) until its sweep is committed: detected with the
+  /// calibration of the last whole sweep of its head setting (SonarMapper::detectRows: its water
+  /// background, threshold and near field) and integrated on its own. A beam waits for a first
+  /// whole sweep of its setting (no calibration before) and, with navigation, for a fix at or after
+  /// its time; beams are shown in recording order. Detection is never pipelined: a sweep is
+  /// committed as soon as it is final, and the provisional beams it held are dropped then. Live
+  /// mapping: a beam's latency on screen, and the batch's map at the end.
+  kProvisionalBeams,
 };
 
 class OnlineMapper {
@@ -85,9 +91,10 @@ class OnlineMapper {
   void addNavFix(const NavSample& fix);
   /// The next beam in recording order (time_s, bearing_rad, bin_length_m > 0, intensities); may
   /// integrate a sweep it completes.
-  /// @throws ValueError for a beam whose bin length is not finite and > 0,
-  ///         after finish(), or what detecting or integrating a sweep threw (a sweep that mixes
-  ///         bin lengths).
+  /// kProvisionalBeams: shows it, or the beams before it, if it can (see the enum).
+  /// @throws ValueError for a beam whose bin length is not finite and > 0, after finish(), on a
+  ///         mapper given beams to show (showBeam), or what detecting or integrating a sweep threw
+  ///         (a sweep that mixes bin lengths).
   void addBeam(Beam beam);
   /// The end of the stream: the last sweep is final, every held sweep is integrated (beams beyond
   /// the last fix counted without navigation). Further beams are refused. Idempotent.
@@ -98,24 +105,46 @@ class OnlineMapper {
   /// recording order) and is not integrated: the detection stage alone (detectSonarLog). The
   /// calibrations, the short groups' handling and MappingStats::beams_uncalibrated are as when
   /// mapping; the map stays empty. Call before the first beam.
-  /// @throws ValueError with OnlineIntegration::kBeam (beams are detected one by one there), after
-  ///         the first beam, or for an empty sink.
+  /// @throws ValueError with OnlineIntegration::kProvisionalBeams (nothing is shown), after the
+  ///         first beam, or for an empty sink.
   void detectOnly(DetectedSweepSink sink);
   /// Integrates a sweep detected by another OnlineMapper with the same options (detectOnly), placed
   /// with the fixes given so far (navigation mode; a beam beyond them is counted without
-  /// navigation): what integrating it there would have done. Its calibration becomes its
-  /// setting's (kBeam: the beams given after it are detected with it).
+  /// navigation): what integrating it there would have done. The beams it holds (sweep.first_beam
+  /// and on) leave the provisional layer.
   /// @throws ValueError when the detections and the polar image differ in length, or in detect-only
   ///         mode.
   void addDetectedSweep(const DetectedSweep& sweep);
 
-  /// Sweeps integrated so far (kBeam: sweeps whose beams are all integrated).
-  std::size_t sweepsIntegrated() const;
-  /// Beams received and not yet integrated (feeding thread only).
-  std::size_t beamsPending() const { return held_.size() + waiting_beams_ + beam_queue_.size() + (live_whole_ ? live_sweep_.size() : 0); }
+  /// For a mapper fed detected sweeps (addDetectedSweep) with kProvisionalBeams: `sweep`'s
+  /// calibration becomes its head setting's, what the beams of that setting given to showBeam are
+  /// detected with (a mapper fed beams by addBeam keeps those of its own sweeps). A copy is kept
+  /// (with the evidence detector's water, about 2 KB a column).
+  void calibrateWith(const DetectedSweep& sweep);
+  /// For a mapper fed detected sweeps (addDetectedSweep) with kProvisionalBeams: beam `index` of the
+  /// stream (DetectedSweep::first_beam counts the same beams), shown on the provisional layer as
+  /// soon as its setting is calibrated (calibrateWith) and the navigation covers it, until the
+  /// detected sweep that holds it is added. Give calibrateWith each sweep as soon as it is
+  /// detected, before the beams after it: a beam still without a calibration when a beam of
+  /// another setting is given is taken for a group too short to calibrate on, and never shown.
+  /// @throws ValueError without kProvisionalBeams, after addBeam was used (a mapper fed beams shows
+  ///         them itself), for an index not after the previous one, a bin length that is not
+  ///         finite and > 0, or after finish().
+  void showBeam(std::size_t index, Beam beam);
 
-  /// A copy of the map as of the last integrated sweep; safe from any thread.
+  /// Sweeps integrated so far.
+  std::size_t sweepsIntegrated() const;
+  /// Beams received and not yet integrated into the committed map (feeding thread only).
+  std::size_t beamsPending() const { return held_.size() + waiting_beams_; }
+  /// Beams received and shown neither on the provisional layer nor in the committed map: the
+  /// newest ones (beams are shown in order). kSweep: beamsPending(). Feeding thread only.
+  std::size_t beamsUnshown() const { return provisional_ ? unshown_.size() : beamsPending(); }
+
+  /// A copy of the committed map (as of the last integrated sweep); safe from any thread.
   OcTree16 mapSnapshot() const;
+  /// A copy of the map as shown: the committed map with the provisional beams' log-odds added
+  /// (ProvisionalBeams::overlay); kSweep: mapSnapshot(). Safe from any thread.
+  OcTree16 shownSnapshot() const;
   /// A copy of the counts as of the last integrated sweep; safe from any thread.
   MappingStats statsSnapshot() const;
   /// The mapper itself: only on the feeding thread (no lock).
@@ -142,21 +171,20 @@ class OnlineMapper {
   /// Integrates a detected sweep (or hands it to the detect-only sink); `calibrates`: its
   /// calibration becomes its setting's.
   void integrate(DetectedSweep sweep, bool calibrates = true);
-  /// Records and integrates `sweep` into the map with its beams' poses, and counts it.
+  /// Records and integrates `sweep` into the map with its beams' poses, and counts it; its beams
+  /// leave the provisional layer.
   void integrateIntoMap(const DetectedSweep& sweep);
+  /// Under map_mutex_: the beams before `end` are in the committed map (or never will be): they
+  /// leave the provisional layer and the beams waiting to be shown.
+  void committedBefore(std::size_t end);
+  /// kProvisionalBeams: shows the waiting beams that can be shown, in order (see the enum).
+  void showWaitingBeams();
   const SweepCalibration* calibrationOf(const HeadSetting& setting) const;
   /// Keeps `calibration`, measured on a sweep of `beams` beams, as its setting's.
   void keepCalibration(const HeadSetting& setting, SweepCalibration calibration, std::size_t beams);
   bool navigationCovers(double time_s) const;
   /// The poses of `times_s` (navigation mode: nullopt outside the fixes).
   std::vector<std::optional<Eigen::Isometry3d>> posesAt(const std::vector<double>& times_s) const;
-  // kBeam
-  void addLiveBeam(Beam beam, bool starts_sweep);
-  /// Ends the sweep being received; `next`: the setting of the beam that starts the next one
-  /// (nullopt at the end of the stream).
-  void closeLiveSweep(const std::optional<HeadSetting>& next);
-  void processBeamQueue();
-  void integrateLiveBeam(const Beam& beam);
 
   SonarMapper mapper_;
   OnlineIntegration integration_;
@@ -180,10 +208,18 @@ class OnlineMapper {
     std::size_t beams = 0;  ///< of the sweep it was measured on
   };
   std::vector<KeptCalibration> calibrations_;
-  // kBeam: the raw sweep being received, the beams waiting for navigation.
-  std::vector<Beam> live_sweep_;
-  bool live_whole_ = false;  ///< the sweep being received is integrated whole when it ends
-  std::deque<Beam> beam_queue_;
+  // kProvisionalBeams
+  struct UnshownBeam {
+    std::size_t index = 0;  ///< in the stream
+    bool starts_sweep = false;
+    Beam beam;
+  };
+  std::unique_ptr<ProvisionalBeams> provisional_;  ///< set: kProvisionalBeams
+  std::deque<UnshownBeam> unshown_;                ///< received, neither shown nor committed
+  std::size_t beams_added_ = 0;                    ///< beams given to addBeam
+  bool shows_given_beams_ = false;                 ///< showBeam was used
+  std::size_t last_shown_index_ = 0;               ///< the last index given to showBeam
+  std::size_t committed_end_ = 0;                  ///< every beam before it is committed
   mutable std::shared_mutex map_mutex_;  ///< exclusive while a sweep is integrated
 };
 

@@ -97,16 +97,10 @@ class SonarMapper {
   /// mapper state.
   SweepDetection detectSweep(PolarImage& polar) const;
 
-  /// detectSweep(polar).calibration, without the search for weak extended returns (which does not
-  /// change it): what live mapping keeps of a whole sweep to detect the beams that follow with.
-  /// Cleans `polar` in place as detectSweep. Thread-safe as detectSweep.
-  /// @throws ValueError  as detectSweep.
-  SweepCalibration sweepCalibration(PolarImage& polar) const;
-
   /// detectSweep(polar).detections.
   std::vector<BeamDetection> detect(PolarImage& polar) const;
-  /// Cleans and searches a few beams of a sweep in progress (live mapping: OnlineMapper's per-beam
-  /// integration) with `calibration`, what an earlier sweep was detected with
+  /// Cleans and searches a few beams of a sweep in progress (live mapping's provisional beams:
+  /// OnlineMapper with OnlineIntegration::kProvisionalBeams) with `calibration`, what an earlier sweep was detected with
   /// (SweepDetection::calibration): self-reflection removal up to the option or its band's end,
   /// smoothing (each call's rows alone), detection by detectRows (detectors.hpp): its background is
   /// not measured again. `rows` must have the calibration's columns. Thread-safe as detectSweep.
@@ -143,8 +137,8 @@ class SonarMapper {
   void integrateSweep(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                       const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row);
 
-  /// As the overload above for a few beams of a sweep in progress (OnlineMapper's per-beam
-  /// integration): the same updates for these rows, but a cell is updated at most once per call,
+  /// As the overload above for a few beams of a sweep in progress (live mapping's provisional
+  /// beams: ProvisionalBeams): the same updates for these rows, but a cell is updated at most once per call,
   /// not once per sweep (neighbouring calls' wedges overlap), and no sweep is counted.
   /// @throws ValueError when `detections` or the poses differ in length from the polar image.
   void integrateBeams(const PolarImage& polar, const std::vector<BeamDetection>& detections,
@@ -163,8 +157,6 @@ class SonarMapper {
   /// MappingStats::resolution_changes). Never finer. mapSonarLog resolves the resolution for the
   /// whole log first (autoResolutionForLog), so this applies to mappers fed beam by beam (live).
   void resolveResolution(const PolarImage& polar);
-  /// detectSweep, with or without the search for weak extended returns (the volume model only).
-  SweepDetection detectSweep(PolarImage& polar, bool extended_returns) const;
   /// MapperOptions::range_tolerance_m, or the sweep's part of its automatic value: a bin plus half a
   /// voxel (each echo's rise is added per beam).
   double rangeTolerance_m(const PolarImage& polar) const;

@@ -4,14 +4,15 @@
 /// one at a time; each sweep is detected once, as the batch detects it (an OnlineMapper in
 /// detect-only mode: detected_log.hpp), and becomes a scan (scan_forming.hpp) for the Localizer
 /// (localizer.hpp). The map (an OnlineMapper given the dead reckoning corrected by the latest
-/// scan's correction) integrates those detected sweeps once the navigation covers them
-/// (OnlineIntegration::kSweep), or each beam as it arrives, detected with its setting's last
-/// calibration (kBeam: a beam's latency, and a second, per-beam detection). When a loop closure
-/// moves the past poses (a scan by more than half a voxel at its reach, since the map was last
-/// built), the map is rebuilt from the detected sweeps so far with the corrected trajectory (no
-/// detection again; kBeam: the beams after the last detected sweep follow as beams), so the map is
-/// always the current best. After finish() the map and trajectory are those of the batch path
-/// (mapSonarLogWithSlam) on the same beams and fixes, in either integration.
+/// scan's correction) integrates those detected sweeps once the navigation covers them (the
+/// committed map); with OnlineIntegration::kProvisionalBeams each beam is also shown at once on
+/// its provisional layer (OnlineMapper::showBeam), detected with its setting's last calibration,
+/// until its sweep is integrated. When a loop closure moves the past poses (a scan by more than
+/// half a voxel at its reach, since the map was last built), the map is rebuilt from the detected
+/// sweeps so far with the corrected trajectory (no detection again; the beams after the last
+/// integrated sweep are shown again), so the map is always the current best. After finish() the
+/// map and trajectory are those of the batch path (mapSonarLogWithSlam) on the same beams and
+/// fixes, in either integration.
 
 #include <cstddef>
 #include <memory>
@@ -32,7 +33,8 @@ class OnlineSlam {
   ///        vehicle is believed still and its motion comes from the scans alone (localize).
   /// @throws ValueError for invalid options or mounting.
   OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, bool navigation,
-             const SlamOptions& slam = {}, OnlineIntegration integration = OnlineIntegration::kBeam);
+             const SlamOptions& slam = {},
+             OnlineIntegration integration = OnlineIntegration::kProvisionalBeams);
 
   /// The next dead-reckoning fix (NED, on the beams' clock), strictly after the previous one.
   /// @throws ValueError for a fix that is not finite or not after the previous one, or without
@@ -46,12 +48,16 @@ class OnlineSlam {
   /// with the final trajectory. Idempotent.
   void finish();
 
-  /// A copy of the current map; safe from any thread.
+  /// A copy of the current committed map; safe from any thread.
   OcTree16 mapSnapshot() const;
+  /// A copy of the current map as shown (OnlineMapper::shownSnapshot); safe from any thread.
+  OcTree16 shownSnapshot() const;
   /// Sweeps integrated into the current map; safe from any thread.
   std::size_t sweepsIntegrated() const;
-  /// Beams received and not yet in the map (feeding thread only).
+  /// Beams received and not yet in the committed map (feeding thread only).
   std::size_t beamsPending() const;
+  /// Beams received and not yet shown (OnlineMapper::beamsUnshown; feeding thread only).
+  std::size_t beamsUnshown() const;
   /// The current mapper (feeding thread only).
   OnlineMapper& mapper() { return *mapper_; }
   const Localizer& localizer() const { return localizer_; }
@@ -63,11 +69,14 @@ class OnlineSlam {
  private:
   /// A sweep the detector finished: its scan to the localizer, the sweep kept; may rebuild the map.
   void addSweep(DetectedSweep&& sweep);
-  /// kSweep: integrates the kept sweeps not yet in `mapper` whose last beam the navigation covers
-  /// (all of them after finish()).
+  /// Integrates the kept sweeps not yet in `mapper` whose last beam the navigation covers (all of
+  /// them after finish()).
   void mapCoveredSweeps(OnlineMapper& mapper);
-  /// Maps the detected sweeps so far (and, kBeam, the beams after them) with the current
-  /// trajectory into a new OnlineMapper and swaps it in.
+  /// kProvisionalBeams, into a rebuilt `mapper`: each head setting's newest calibration, and the
+  /// beams shown so far after the last integrated sweep.
+  void showUnmappedBeams(OnlineMapper& mapper) const;
+  /// Maps the detected sweeps so far with the current trajectory into a new OnlineMapper (and
+  /// shows the beams after them) and swaps it in.
   void rebuild();
   /// Whether a scan's pose moved since the map was last rebuilt by more than half a voxel at its
   /// reach (position, plus reach × heading change): less changes no cell worth a rebuild.
@@ -84,7 +93,8 @@ class OnlineSlam {
   NavTrack dead_reckoning_;
   std::unique_ptr<OnlineMapper> detector_;  ///< detect-only: the batch's sweeps and detections
   std::vector<DetectedSweep> sweeps_;       ///< every sweep detected so far
-  std::size_t sweeps_mapped_ = 0;           ///< kSweep: of sweeps_, those in the current map
+  std::size_t sweeps_mapped_ = 0;           ///< of sweeps_, those in the current map
+  std::size_t beams_shown_ = 0;             ///< kProvisionalBeams: beams given to the mapper to show
   std::size_t accepted_loops_ = 0;
   std::size_t rebuilds_ = 0;
   bool finished_ = false;

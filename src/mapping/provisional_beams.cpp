@@ -1,0 +1,91 @@
+/// @file provisional_beams.cpp
+/// ProvisionalBeams (provisional_beams.hpp).
+
+#include "sonarmap/mapping/provisional_beams.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "sonarmap/core/errors.hpp"
+
+namespace sonarmap {
+
+ProvisionalBeams::ProvisionalBeams(const MapperOptions& options) : options_(options) { options_.validate(); }
+
+void ProvisionalBeams::atResolution(double resolution_m) {
+  if (!(std::isfinite(resolution_m) && resolution_m > 0.0)) {
+    throw ValueError("provisional beams: resolution " + std::to_string(resolution_m) + " m is not > 0");
+  }
+  if (resolution_m_ == resolution_m) return;
+  resolution_m_ = resolution_m;
+  for (Sweep& sweep : sweeps_) sweep = rebuilt(sweep, 0);
+}
+
+ProvisionalBeams::Sweep ProvisionalBeams::emptySweep() const {
+  MapperOptions options = options_;
+  options.resolution_m = resolution_m_;
+  return Sweep{{}, SonarMapper(options)};
+}
+
+void ProvisionalBeams::integrate(Sweep& sweep, const ShownBeam& beam) const {
+  sweep.mapper.integrateBeams(beam.row, {beam.detection}, {beam.pose});
+}
+
+ProvisionalBeams::Sweep ProvisionalBeams::rebuilt(const Sweep& sweep, std::size_t from) const {
+  Sweep out = emptySweep();
+  for (const ShownBeam& beam : sweep.beams) {
+    if (beam.index < from) continue;
+    integrate(out, beam);
+    out.beams.push_back(beam);
+  }
+  return out;
+}
+
+void ProvisionalBeams::add(std::size_t index, bool starts_sweep, PolarImage row, const BeamDetection& detection,
+                           const std::optional<Eigen::Isometry3d>& pose) {
+  if (!resolution_m_) throw ValueError("provisional beams: a beam before the layer's resolution is known");
+  if (row.rows() != 1) throw ValueError("provisional beams: a row of " + std::to_string(row.rows()) + " beams, not 1");
+  if (!sweeps_.empty() && !sweeps_.back().beams.empty() && index <= sweeps_.back().beams.back().index) {
+    throw ValueError("provisional beams: beam " + std::to_string(index) + " is not after the last one shown");
+  }
+  if (starts_sweep || sweeps_.empty()) sweeps_.push_back(emptySweep());
+  ShownBeam beam{index, std::move(row), detection, pose};
+  integrate(sweeps_.back(), beam);
+  sweeps_.back().beams.push_back(std::move(beam));
+}
+
+void ProvisionalBeams::dropBefore(std::size_t index) {
+  while (!sweeps_.empty() && (sweeps_.front().beams.empty() || sweeps_.front().beams.back().index < index)) {
+    sweeps_.pop_front();
+  }
+  if (!sweeps_.empty() && sweeps_.front().beams.front().index < index) {
+    sweeps_.front() = rebuilt(sweeps_.front(), index);
+  }
+}
+
+std::size_t ProvisionalBeams::size() const {
+  std::size_t beams = 0;
+  for (const Sweep& sweep : sweeps_) beams += sweep.beams.size();
+  return beams;
+}
+
+void ProvisionalBeams::overlay(OcTree16& map) const {
+  if (size() == 0) return;
+  if (map.resolution_m() != *resolution_m_) {
+    throw ValueError("provisional beams: a map at " + std::to_string(map.resolution_m()) + " m, the layer at " +
+                     std::to_string(*resolution_m_) + " m");
+  }
+  for (const Sweep& sweep : sweeps_) {
+    sweep.mapper.map().forEachLeaf([&map](const LeafView<16>& leaf) {
+      if (leaf.depth == OcTree16::kDepth) {
+        map.updateNode(leaf.key, leaf.log_odds, true);
+      } else {
+        map.updateCube(leaf.key, leaf.depth, leaf.log_odds);
+      }
+    });
+  }
+  map.updateDirtyInnerOccupancy();
+}
+
+}  // namespace sonarmap
