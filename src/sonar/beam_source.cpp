@@ -19,4 +19,17 @@ std::optional<Beam> LogBeamSource::next() {
   return log_.beams[next_++];
 }
 
+BeamPass passOver(const SonarLog& log) {
+  return [&log](const std::function<void(const Beam&)>& visit) {
+    for (const Beam& beam : log.beams) visit(beam);
+  };
+}
+
+BeamPass passOver(BeamSource& source) {
+  return [&source](const std::function<void(const Beam&)>& visit) {
+    source.rewind();
+    while (const std::optional<Beam> beam = source.next()) visit(*beam);
+  };
+}
+
 }  // namespace sonarmap

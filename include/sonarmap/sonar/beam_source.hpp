@@ -6,6 +6,7 @@
 /// openBeamSource); LogBeamSource serves a log already in memory.
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 
 #include "sonarmap/sonar/beam.hpp"
@@ -43,5 +44,16 @@ class LogBeamSource final : public BeamSource {
   SonarLog header_;  ///< log_ without its beams
   std::size_t next_ = 0;
 };
+
+/// One pass over a log's beams: calls its argument with each beam in recording order. What the
+/// estimates over a whole log (mapper_options.hpp) take, so that one code serves a log in memory
+/// and a source read from its file.
+using BeamPass = std::function<void(const std::function<void(const Beam&)>&)>;
+
+/// A pass over `log`'s beams (no copies). The log must outlive it.
+BeamPass passOver(const SonarLog& log);
+/// A pass over `source`'s beams from its first (rewind()). The source must outlive it.
+/// @throws what the source throws.
+BeamPass passOver(BeamSource& source);
 
 }  // namespace sonarmap
