@@ -151,7 +151,8 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const LogSurvey survey = surveyLog(pass, surveyMinBeams(sonar_options), spanOf(navigation));
   printWarnings(optionWarnings(sonar_options, survey));
   requireNavigation(args, !navigation);
-  const NavTrack nav = navigation ? navigation->source.track : NavTrack{};
+  const NavTrack no_nav;
+  const NavTrack& nav = navigation ? navigation->source.track : no_nav;  // not copied: it grows with the log
   if (navigation) {
     printNavigationSource(*navigation, args.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);

@@ -159,7 +159,9 @@ class RosBagBeamSource final : public BeamSource {
   RosBagBeamSource(const std::string& path, const RosBagOptions& options, bool decide_unit) : path_(path), options_(options) {
     detail::withBagErrors(path_, [&] {
       open();
-      // A first pass up to the first beam that decodes (the log's frame), or to the end.
+      // A first pass up to the first beam that decodes (the log's frame), or, to decide the unit,
+      // up to the first bearing beyond a turn of radians (degrees, then, whatever follows) or to
+      // the end (radians).
       const bool first_beam_enough = !decide_unit || options_.bearing_unit != BearingUnit::kAuto ||
                                      fields_->bearing_in_degrees || fields_->bearing_in_radians;
       double largest = 0.0;
@@ -167,7 +169,7 @@ class RosBagBeamSource final : public BeamSource {
       rewind();
       while (std::optional<RawBeam> raw = nextRaw()) {
         largest = std::max(largest, std::abs(raw->bearing));
-        if (first_beam_enough) {
+        if (first_beam_enough || beyondRadians(largest)) {
           whole_pass = false;
           break;
         }
@@ -219,7 +221,7 @@ class RosBagBeamSource final : public BeamSource {
   void decideUnit(double largest) {
     BearingUnit unit = options_.bearing_unit;
     if (unit == BearingUnit::kAuto) {
-      const bool degrees = fields_->bearing_in_degrees || (!fields_->bearing_in_radians && largest > 2.0 * std::numbers::pi + 1e-6);
+      const bool degrees = fields_->bearing_in_degrees || (!fields_->bearing_in_radians && beyondRadians(largest));
       unit = degrees ? BearingUnit::kDegrees : BearingUnit::kRadians;
     }
     turn_ = unit == BearingUnit::kDegrees ? 360.0 : unit == BearingUnit::kGradians ? 400.0 : 2.0 * std::numbers::pi;
@@ -230,6 +232,9 @@ class RosBagBeamSource final : public BeamSource {
                             (clockwise_ ? ", clockwise seen from above (the Tritech head's count)"
                                         : ", counter-clockwise seen from above (as told)"));
   }
+
+  /// Whether a bearing of magnitude `largest` cannot be radians (beyond a turn of them).
+  static bool beyondRadians(double largest) { return largest > 2.0 * std::numbers::pi + 1e-6; }
 
   /// `bearing` in the topic's unit and direction as beam.hpp's counter-clockwise radians in [0, 2π).
   double bearingOf(double bearing) const {

@@ -68,9 +68,9 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options = {});
 
 /// readRosBag's beams one at a time (beam_source.hpp), the same beams in the same order with the
 /// same header, skips and notes, read from the file as they are asked for: a chunk of the bag at a
-/// time, whatever its length. Opening reads the topics; without a unit given or named by the
-/// bearing's field it also reads the topic once through to decide the unit (and so counts its
-/// skips), otherwise up to its first beam (its frame).
+/// time, whatever its length. Opening reads the topics and the topic up to its first beam (its
+/// frame); without a unit given or named by the bearing's field, on up to the first bearing beyond
+/// 2π (degrees), or through (radians). The skips are counted once a pass has reached the end.
 /// @throws FileError as readRosBag: on opening for the bag, its topic, or a topic of which no
 ///         message decodes; from next() for a container's error met later.
 std::unique_ptr<BeamSource> openRosBag(const std::string& path, const RosBagOptions& options = {});
