@@ -45,7 +45,10 @@ class McapFile {
   const std::map<std::uint16_t, Schema>& schemas() const { return schemas_; }
   const std::map<std::uint16_t, Channel>& channels() const { return channels_; }
 
-  class Records;
+ private:
+  class Records;  ///< the data section's records, one at a time (mcap_file.cpp)
+
+ public:
   /// The messages of some channels in log-time order (stable: file order at equal times), read
   /// from the file as they are asked for. It holds the chunk being read and the messages read
   /// ahead of their turn: those that a later part of the file could still precede (none when the

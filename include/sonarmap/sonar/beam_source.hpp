@@ -20,7 +20,7 @@ class BeamSource {
   /// The next beam in recording order; nullopt at the end of the log (and again after it until
   /// rewind()).
   /// @throws FileError for what the format's whole-log reader rejects (a malformed row, a broken
-  ///         container), when reading reaches it; after such an error the source is spent.
+  ///         container), when reading reaches it; after that, read again only after rewind().
   virtual std::optional<Beam> next() = 0;
   /// Starts again at the first beam. @throws FileError when the file can no longer be read.
   virtual void rewind() = 0;
@@ -30,8 +30,8 @@ class BeamSource {
   virtual const SonarLog& header() const = 0;
 };
 
-/// A log held in memory as a BeamSource (formats read whole, simulated logs, tests). The log must
-/// outlive the source.
+/// A log held in memory as a BeamSource (formats read whole, simulated logs, tests): next() gives a
+/// copy of each beam. The log must outlive the source.
 class LogBeamSource final : public BeamSource {
  public:
   explicit LogBeamSource(const SonarLog& log);
