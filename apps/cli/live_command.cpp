@@ -316,10 +316,11 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
   const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
   const std::optional<AlignedNavigation> navigation = navigationFor(
       args.map.input, format, source->header(), args.map.nav_file, args.map.nav_topic, args.map.nav_time_offset_s);
+  // One pass before anything is mapped or written: the file's errors and skips, as reading it
+  // whole found them, and the clocks' overlap.
+  const LogSurvey survey = surveyLog(passOver(*source), 1, spanOf(navigation));
   if (navigation) {
     printNavigationSource(*navigation, args.map.nav_file);
-    // the clocks' overlap, before anything is mapped: a pass over the log's times
-    const LogSurvey survey = surveyLog(passOver(*source), 1, spanOf(navigation));
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
   }
   const Eigen::Isometry3d mounting =
