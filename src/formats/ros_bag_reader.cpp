@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <array>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string_view>
@@ -149,13 +149,13 @@ BearingDirection parseBearingDirection(std::string_view name) {
 
 namespace {
 
-/// A bag's sonar topic read beam by beam (see ros_bag_reader.hpp): the topic found and, for an
-/// automatic bearing unit, decided on a first pass over its messages when the field's name does not
-/// say it.
+/// A bag's sonar topic read beam by beam (see ros_bag_reader.hpp): the topic found on opening and,
+/// for an automatic bearing unit the field's name does not say, the unit decided on a first pass
+/// over its messages (up to the first bearing beyond 2π, or through).
 class RosBagBeamSource final : public BeamSource {
  public:
-  /// Opens the bag and finds its sonar topic; with `decide_unit`, also the bearings' unit (a first
-  /// pass when it is automatic and the field's name does not say it), else decideUnit() does.
+  /// Opens the bag and finds its sonar topic and its first beam; with `decide_unit`, also the
+  /// bearings' unit (see the class's comment), else the caller's decideUnit() does.
   RosBagBeamSource(const std::string& path, const RosBagOptions& options, bool decide_unit) : path_(path), options_(options) {
     detail::withBagErrors(path_, [&] {
       open();
