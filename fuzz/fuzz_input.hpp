@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
 
 namespace sonarmap::fuzz {
 
@@ -28,6 +29,15 @@ int expectReadOrError(Read&& read) {
   } catch (const Error&) {
   }
   return 0;
+}
+
+/// Reads every beam of `source` in two passes, as `map` reads a log beam by beam.
+inline void readTwice(BeamSource& source) {
+  for (int pass = 0; pass < 2; ++pass) {
+    source.rewind();
+    while (source.next()) {
+    }
+  }
 }
 
 /// The input as a stream of bytes (binary-safe).

@@ -4,10 +4,12 @@
 // hanging, whatever its values.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "fuzz_input.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/sonar/log_survey.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static sonarmap::fuzz::InputFile file(".csv");
@@ -20,5 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)sonarmap::mapSonarLog(log, options);
     sonarmap::selectDetector(options.detector, "evidence");
     (void)sonarmap::mapSonarLog(log, options);
+    // beam by beam from the file, as `map` reads it
+    const std::unique_ptr<sonarmap::BeamSource> source = sonarmap::openBeamCsv(path);
+    const sonarmap::LogSurvey survey = sonarmap::surveyLog(sonarmap::passOver(*source), sonarmap::surveyMinBeams(options));
+    (void)sonarmap::mapSonarLog(*source, survey, options);
   });
 }

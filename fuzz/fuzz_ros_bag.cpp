@@ -13,6 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static sonarmap::fuzz::InputFile file(".bag");
   const std::string& path = file.write(data, size);
   sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBag(path); });
+  sonarmap::fuzz::expectReadOrError([&] { sonarmap::fuzz::readTwice(*sonarmap::openRosBag(path)); });
   sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::listRosBagTopics(path); });
   sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBagMounting(path, "sonar", "base_link"); });
   return sonarmap::fuzz::expectReadOrError([&] { (void)sonarmap::readRosBagNavigation(path); });

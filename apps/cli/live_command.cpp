@@ -28,6 +28,8 @@
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
+#include "sonarmap/sonar/log_survey.hpp"
 #include "sonarmap/slam/online_slam.hpp"
 #include "slam_outputs.hpp"
 
@@ -337,16 +339,20 @@ bool isReplay(const LiveArgs& args) {
 /// own navigation (or --nav's, any file `map --nav` reads, joined by its clock) known from the start.
 void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const LogFormat format = inputFormat(args.map.input, args.map.format);
-  const SonarLog log = readSonarLog(args.map.input, format, args.map.log_read);
+  // Read beam by beam: a replay holds no more of the log than a sonar on the wire would send.
+  const std::unique_ptr<BeamSource> source = openBeamSource(args.map.input, format, args.map.log_read);
   const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
-  const std::optional<AlignedNavigation> navigation =
-      navigationFor(args.map.input, format, log, args.map.nav_file, args.map.nav_topic, args.map.nav_time_offset_s);
+  const std::optional<AlignedNavigation> navigation = navigationFor(
+      args.map.input, format, source->header(), args.map.nav_file, args.map.nav_topic, args.map.nav_time_offset_s);
+  // One pass before anything is mapped or written: the file's errors and skips, as reading it
+  // whole found them, and the clocks' overlap.
+  const LogSurvey survey = surveyLog(passOver(*source), 1, spanOf(navigation));
   if (navigation) {
     printNavigationSource(*navigation, args.map.nav_file);
-    requireClockOverlap(log, *navigation);
+    requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
   }
   const Eigen::Isometry3d mounting =
-      mountingFor(args.map.input, format, log, navigation, !args.map.mounting.empty(), sonar_to_body);
+      mountingFor(args.map.input, format, source->header(), navigation, !args.map.mounting.empty(), sonar_to_body);
   const Clock::time_point start = Clock::now();
   LiveMapping live(args, sonar_options, mounting, start, navigation ? navigation->source.track : NavTrack{},
                    navigation.has_value());
@@ -356,18 +362,20 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
   std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.write_every_s);
   double last_status_s = 0.0;
   std::size_t beams_at_status = 0;
-  for (const Beam& beam : log.beams) {
-    if (g_stop != 0) break;
-    live.addRecorded(beam, secondsSince(start));
+  source->rewind();
+  while (g_stop == 0) {
+    std::optional<Beam> beam = source->next();
+    if (!beam) break;
+    live.addRecorded(std::move(*beam), secondsSince(start));
     if (const double now_s = secondsSince(start); now_s >= last_status_s + 1.0) {
       const double rate_per_s = static_cast<double>(live.beams() - beams_at_status) / (now_s - last_status_s);
-      if (!args.map.quiet) printStatus(live, 0, log.skipped_beams, now_s, rate_per_s);
+      if (!args.map.quiet) printStatus(live, 0, source->header().skipped_beams, now_s, rate_per_s);
       beams_at_status = live.beams();
       last_status_s = now_s;
     }
   }
   writer.reset();
-  finishLive(args, live, start, 0, log.skipped_beams, navigation.has_value());
+  finishLive(args, live, start, 0, source->header().skipped_beams, navigation.has_value());
 }
 
 }  // namespace

@@ -93,34 +93,35 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting) { return so
 
 namespace {
 
-/// Maps the log, static (`nav` empty) or with navigation, drawing a progress bar unless args.quiet;
-/// with args.slam, localized first (slam_mapping.hpp) and `slam` receives the localization.
-MappedLog mapLog(const MapArgs& args, const SonarLog& log, const MapperOptions& options, const NavTrack& nav,
-                 const Eigen::Isometry3d& sonar_to_body, SlamResult& slam) {
+/// Maps the log, static (`nav` empty) or with navigation, drawing a progress bar unless args.quiet:
+/// beam by beam from `source` (surveyed as `survey`); with args.slam, the log held whole in `whole`
+/// localized first (slam_mapping.hpp) and `slam` receives the localization.
+MappedLog mapLog(const MapArgs& args, BeamSource& source, const LogSurvey& survey, const SonarLog* whole,
+                 const MapperOptions& options, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, SlamResult& slam) {
   if (args.slam) {
     return mapWithProgress(
         [&](const ProgressCallback& progress) {
           SlamMapping mapped =
-              mapSonarLogWithSlam(log, nav, sonar_to_body, options, toSlamOptions(args.odometry, nav), progress);
+              mapSonarLogWithSlam(*whole, nav, sonar_to_body, options, toSlamOptions(args.odometry, nav), progress);
           slam = std::move(mapped.slam);
           return std::move(mapped.mapper);
         },
         args.quiet);
   }
   if (nav.empty()) {
-    return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(log, options, progress); },
+    return mapWithProgress([&](const ProgressCallback& progress) { return mapSonarLog(source, survey, options, progress); },
                            args.quiet);
   }
   return mapWithProgress(
-      [&](const ProgressCallback& progress) { return mapSonarLog(log, nav, sonar_to_body, options, progress); },
+      [&](const ProgressCallback& progress) { return mapSonarLog(source, survey, nav, sonar_to_body, options, progress); },
       args.quiet);
 }
 
 }  // namespace
 
-std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
+std::string resolutionNote(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
   if (options.resolution_m) return {};
-  const AutoResolution chosen = autoResolutionForLog(log, options);
+  const AutoResolution chosen = autoResolutionForLog(survey, pass, options);
   if (chosen.scales < 2 && !chosen.coarsened) return {};
   char note[160];
   std::snprintf(note, sizeof note, " (auto: the %.3g m range scale, %zu of %zu beams%s)", chosen.scale.reach_m,
@@ -132,30 +133,43 @@ std::string resolutionNote(const SonarLog& log, const MapperOptions& options) {
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
   const LogFormat format = inputFormat(args.input, args.format);
-  const SonarLog log = readSonarLog(args.input, format, args.log_read);
+  // Read beam by beam, so that a log of hours maps in the memory of its map; --slam localizes on
+  // the whole log (its scans are matched and the map rebuilt), so it holds it.
+  std::optional<SonarLog> whole;
+  std::unique_ptr<BeamSource> source;
+  if (args.slam) {
+    whole = readSonarLog(args.input, format, args.log_read);
+    source = std::make_unique<LogBeamSource>(*whole);
+  } else {
+    source = openBeamSource(args.input, format, args.log_read);
+  }
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
-  printWarnings(optionWarnings(sonar_options, log));
-  const std::optional<AlignedNavigation> navigation =
-      navigationFor(args.input, format, log, args.nav_file, args.nav_topic, args.nav_time_offset_s, args.log_read.msg_path);
+  // The navigation needs only the log's clock; the survey then counts the beams within its span.
+  const std::optional<AlignedNavigation> navigation = navigationFor(args.input, format, source->header(), args.nav_file,
+                                                                    args.nav_topic, args.nav_time_offset_s, args.log_read.msg_path);
+  const BeamPass pass = passOver(*source);
+  const LogSurvey survey = surveyLog(pass, surveyMinBeams(sonar_options), spanOf(navigation));
+  printWarnings(optionWarnings(sonar_options, survey));
   requireNavigation(args, !navigation);
-  const NavTrack nav = navigation ? navigation->source.track : NavTrack{};
+  const NavTrack no_nav;
+  const NavTrack& nav = navigation ? navigation->source.track : no_nav;  // not copied: it grows with the log
   if (navigation) {
     printNavigationSource(*navigation, args.nav_file);
-    requireClockOverlap(log, *navigation);
+    requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
   }
   const Eigen::Isometry3d mounting =
-      mountingFor(args.input, format, log, navigation, !args.mounting.empty(), sonar_to_body);
+      mountingFor(args.input, format, source->header(), navigation, !args.mounting.empty(), sonar_to_body);
   SlamResult slam;
-  MappedLog mapped = mapLog(args, log, sonar_options, nav, mounting, slam);
-  mapped.resolution_note = resolutionNote(log, sonar_options);
+  MappedLog mapped = mapLog(args, *source, survey, whole ? &*whole : nullptr, sonar_options, nav, mounting, slam);
+  mapped.resolution_note = resolutionNote(survey, pass, sonar_options);
   const NavTrack& trajectory = args.slam ? slam.trajectory : nav;
   FileTransaction outputs;  // nothing appears unless every output could be written
   if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, trajectory);
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
-  stageMapOutputs(outputs, shown, log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
+  stageMapOutputs(outputs, shown, *source, survey, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
                   trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
-                                     : sonarTrack(trajectory, mounting, log));
+                                     : sonarTrack(trajectory, mounting, survey));
   outputs.commit();
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());

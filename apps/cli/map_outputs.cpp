@@ -25,22 +25,29 @@ namespace sonarmap::cli {
 namespace {
 
 /// The sweep drawn in the PNGs: the largest (last, on ties) sweep of the range scale most beams
-/// use (the one the automatic resolution follows), and its caption.
-std::pair<PolarImage, std::string> pictureSweep(const SonarLog& log) {
-  const std::vector<RangeScale> scales = rangeScales(log);
-  const RangeScale* scale = mostUsedRangeScale(scales);
+/// use (the one the automatic resolution follows), and its caption. One pass over `source`, holding
+/// the largest sweep so far and the one being read.
+std::pair<PolarImage, std::string> pictureSweep(BeamSource& source, const LogSurvey& survey) {
+  const RangeScale* scale = mostUsedRangeScale(survey.scales);
   if (scale == nullptr) throw ValueError("the log holds no beams to draw");
-  const SweepRange* best = nullptr;
-  const std::vector<SweepRange> sweeps = splitSweeps(log.beams);
-  for (const SweepRange& sweep : sweeps) {
-    if (log.beams[sweep.first].bin_length_m != scale->bin_length_m) continue;
-    if (best == nullptr || sweep.size() >= best->size()) best = &sweep;
-  }
-  PolarImage polar = makePolarImage(log.beams, best->first, best->last_exclusive);
+  std::vector<Beam> best, current;
+  auto close = [&] {
+    if (!current.empty() && current.front().bin_length_m == scale->bin_length_m && current.size() >= best.size()) {
+      best = std::move(current);
+    }
+    current.clear();
+  };
+  SweepSplitter splitter;
+  passOver(source)([&](const Beam& beam) {
+    if (splitter.startsSweep(beam)) close();
+    current.push_back(beam);
+  });
+  close();
+  PolarImage polar = makePolarImage(best, 0, best.size());
   char caption[192];
-  if (scales.size() > 1) {
+  if (survey.scales.size() > 1) {
     std::snprintf(caption, sizeof caption, "%.3g m scale (%zu of %zu beams): last largest sweep, %d x %d bins of %.2g m",
-                  scale->reach_m, scale->beams, log.beams.size(), polar.rows(), polar.cols(), polar.bin_length_m);
+                  scale->reach_m, scale->beams, survey.beams, polar.rows(), polar.cols(), polar.bin_length_m);
   } else {
     std::snprintf(caption, sizeof caption, "largest sweep: %d beams x %d bins of %.3f m", polar.rows(), polar.cols(),
                   polar.bin_length_m);
@@ -76,21 +83,30 @@ MappedLog mapWithProgress(const MapCall& map, bool quiet) {
   return {std::move(mapper), std::chrono::duration<double>(Clock::now() - start).count()};
 }
 
-std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const SonarLog& log) {
+std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const LogSurvey& survey) {
   std::vector<Eigen::Vector3d> track;
-  if (log.beams.empty()) return track;
-  const auto [first, last] = std::minmax_element(log.beams.begin(), log.beams.end(),
-                                                 [](const Beam& a, const Beam& b) { return a.time_s < b.time_s; });
+  if (survey.beams == 0) return track;
   for (const NavSample& fix : nav) {
-    if (fix.time_s >= first->time_s && fix.time_s <= last->time_s) {
+    if (fix.time_s >= survey.earliest_s && fix.time_s <= survey.latest_s) {
       track.push_back(sonarToMap(fix, sonar_to_body).translation());
     }
   }
   return track;
 }
 
+std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const SonarLog& log) {
+  return sonarTrack(nav, sonar_to_body, surveyLog(passOver(log)));
+}
+
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
                      double pixel_m, const std::string& side_png, const std::vector<Eigen::Vector3d>& track_m) {
+  LogBeamSource source(log);
+  stageMapOutputs(outputs, args, source, surveyLog(passOver(log)), map, pixel_m, side_png, track_m);
+}
+
+void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& source, const LogSurvey& survey,
+                     const OcTree16& map, double pixel_m, const std::string& side_png,
+                     const std::vector<Eigen::Vector3d>& track_m) {
   outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
   const double res = map.resolution_m();
   if (!args.map_png.empty()) {
@@ -102,7 +118,7 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarL
     outputs.stageBytes(side_png, encodePng(sideViewFigure(map, figureTitle(args, res, "3D map, side view"), track_m)));
   }
   if (args.polar_png.empty() && args.cartesian_png.empty()) return;
-  const auto [polar, sweep] = pictureSweep(log);
+  const auto [polar, sweep] = pictureSweep(source, survey);
   const std::string input = inputName(args);
   if (!args.polar_png.empty()) {
     outputs.stageBytes(args.polar_png, encodePng(polarFigure(polar, input + "  |  polar image, " + sweep)));

@@ -14,6 +14,8 @@
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
+#include "sonarmap/sonar/log_survey.hpp"
 
 namespace sonarmap::cli {
 
@@ -36,6 +38,8 @@ MappedLog mapWithProgress(const MapCall& map, bool quiet);
 /// The sonar's positions in the map frame (metres) at the navigation fixes within the log's time
 /// span: the track drawn on the map figures.
 std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const SonarLog& log);
+/// The same for a surveyed log (its beams' earliest and latest times).
+std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body, const LogSurvey& survey);
 
 /// Stages args.output_bt (OctoMap binary) and the figures (render/*_figures.hpp: ≥ 800 pixels on
 /// their long side, axes, a title line with the input's name, the resolution and the detector, a
@@ -47,6 +51,11 @@ std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isomet
 ///         without beams.
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
                      double pixel_m, const std::string& side_png = {}, const std::vector<Eigen::Vector3d>& track_m = {});
+/// The same for a log read beam by beam, surveyed as `survey`: the sweep to draw is found in one more
+/// pass over `source`, only when a polar or Cartesian image is asked for.
+void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& source, const LogSurvey& survey,
+                     const OcTree16& map, double pixel_m, const std::string& side_png = {},
+                     const std::vector<Eigen::Vector3d>& track_m = {});
 
 /// Prints each warning as one line on stderr: "sonarmap: warning: ...".
 void printWarnings(const std::vector<std::string>& warnings);

@@ -96,19 +96,14 @@ std::string spanText(double first_s, double last_s, const std::optional<double>&
   return text;
 }
 
-void requireClockOverlap(const SonarLog& log, const AlignedNavigation& nav) {
-  const NavTrack& track = nav.source.track;
-  if (track.empty() || log.beams.empty()) return;
-  const bool any = std::any_of(log.beams.begin(), log.beams.end(), [&](const Beam& b) {
-    return b.time_s >= track.front().time_s && b.time_s <= track.back().time_s;
-  });
-  if (any) return;
-  double first = log.beams.front().time_s, last = first;
-  for (const Beam& b : log.beams) {
-    first = std::min(first, b.time_s);
-    last = std::max(last, b.time_s);
-  }
-  throw FileError("no beam within the navigation's time span: sonar " + spanText(first, last, log.clock_utc_s) +
+std::optional<std::pair<double, double>> spanOf(const std::optional<AlignedNavigation>& nav) {
+  if (!nav || nav->source.track.empty()) return std::nullopt;
+  return std::pair(nav->source.track.front().time_s, nav->source.track.back().time_s);
+}
+
+void requireClockOverlap(const LogSurvey& survey, const std::optional<double>& clock_utc_s, const AlignedNavigation& nav) {
+  if (nav.source.track.empty() || survey.beams == 0 || survey.beams_in_span > 0) return;
+  throw FileError("no beam within the navigation's time span: sonar " + spanText(survey.earliest_s, survey.latest_s, clock_utc_s) +
                   ", navigation " + spanText(nav.first_own_s, nav.last_own_s, nav.own_clock_utc_s) + " (" +
                   nav.clock.how + "); give --nav-time-offset SECONDS or --timezone");
 }

@@ -5,10 +5,12 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "sonarmap/formats/navigation_reader.hpp"
+#include "sonarmap/sonar/log_survey.hpp"
 
 namespace sonarmap::cli {
 
@@ -52,8 +54,13 @@ Eigen::Isometry3d mountingFor(const std::string& input, LogFormat format, const 
 /// reader's notes as warnings on standard error.
 void printNavigationSource(const AlignedNavigation& navigation, const std::string& nav_file);
 
-/// @throws FileError naming both spans (spanText) when no beam of `log` lies within the track's
-/// span: the navigation is on another clock (--nav-time-offset, --timezone).
-void requireClockOverlap(const SonarLog& log, const AlignedNavigation& nav);
+/// [first, last] fix time of `nav`'s track on the log's clock: what a log is surveyed with
+/// (surveyLog's span) for requireClockOverlap; nullopt without fixes.
+std::optional<std::pair<double, double>> spanOf(const std::optional<AlignedNavigation>& nav);
+
+/// @throws FileError naming both spans (spanText) when no beam of the log surveyed as `survey`
+/// (with spanOf(nav)) lies within the track's span: the navigation is on another clock
+/// (--nav-time-offset, --timezone). `clock_utc_s`: the log's (SonarLog::clock_utc_s).
+void requireClockOverlap(const LogSurvey& survey, const std::optional<double>& clock_utc_s, const AlignedNavigation& nav);
 
 }  // namespace sonarmap::cli

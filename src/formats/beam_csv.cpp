@@ -7,9 +7,11 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 #include "../io/csv_fields.hpp"
 #include "../io/message_text.hpp"
@@ -171,25 +173,80 @@ SonarLog readBeamCsv(const std::string& path) {
   return readBeamCsv(*in, path);
 }
 
-SonarLog readBeamCsv(std::istream& in, const std::string& name) {
-  csv::LineReader reader(in, name);
-  const Header header = readHeader(reader);
-  SonarLog log;
-  std::size_t previous_line = 0;
-  while (reader.next()) {
-    Beam beam = readBeam(reader, header);
-    if (!log.beams.empty() && beam.time_s < log.beams.back().time_s) {
-      reader.failField(0, kFixedNames[0], "times go backwards: " + csv::formatNumber(beam.time_s) +
-                                              " s is before the previous beam's " +
-                                              csv::formatNumber(log.beams.back().time_s) + " s (line " +
-                                              std::to_string(previous_line) + ")");
+namespace {
+
+/// The rows of a beam CSV as beams, one at a time, each checked as readBeamCsv checks it.
+class BeamCsvRows {
+ public:
+  /// Reads the header row. @throws FileError as readBeamCsv for an empty file or a bad header.
+  BeamCsvRows(std::istream& in, const std::string& name) : reader_(in, name), header_(readHeader(reader_)) {}
+
+  /// The next row's beam, nullopt after the last.
+  /// @throws FileError as readBeamCsv for a malformed row or a time before the previous row's, and
+  ///         at the end for a file without a beam row.
+  std::optional<Beam> next() {
+    if (!reader_.next()) {
+      if (!previous_time_s_) reader_.failFile("no beams: only the header row");
+      return std::nullopt;
     }
-    previous_line = reader.lineNumber();
-    log.beams.push_back(std::move(beam));
+    Beam beam = readBeam(reader_, header_);
+    if (previous_time_s_ && beam.time_s < *previous_time_s_) {
+      reader_.failField(0, kFixedNames[0], "times go backwards: " + csv::formatNumber(beam.time_s) +
+                                               " s is before the previous beam's " + csv::formatNumber(*previous_time_s_) +
+                                               " s (line " + std::to_string(previous_line_) + ")");
+    }
+    previous_time_s_ = beam.time_s;
+    previous_line_ = reader_.lineNumber();
+    return beam;
   }
-  if (log.beams.empty()) reader.failFile("no beams: only the header row");
+
+ private:
+  csv::LineReader reader_;
+  Header header_;
+  std::optional<double> previous_time_s_;  ///< the last row's
+  std::size_t previous_line_ = 0;
+};
+
+/// A beam CSV file (gzip-compressed or not) read row by row (openBeamCsv), opened again for each pass.
+class BeamCsvSource final : public BeamSource {
+ public:
+  explicit BeamCsvSource(const std::string& path) : path_(path) {
+    rewind();
+    first_ = rows_->next();  // the header and the first row: their errors are the opening's
+  }
+  std::optional<Beam> next() override {
+    if (first_) return std::exchange(first_, std::nullopt);
+    if (!rows_) return std::nullopt;
+    std::optional<Beam> beam = rows_->next();
+    if (!beam) rows_.reset();
+    return beam;
+  }
+  void rewind() override {
+    rows_.reset();
+    first_.reset();
+    in_ = openTextInput(path_);  // gzip-compressed or not
+    rows_.emplace(*in_, path_);
+  }
+  const SonarLog& header() const override { return header_; }
+
+ private:
+  std::string path_;
+  std::unique_ptr<std::istream> in_;
+  std::optional<BeamCsvRows> rows_;  ///< unset at the end of a pass
+  std::optional<Beam> first_;        ///< read ahead by the opening
+  SonarLog header_;                  ///< a beam CSV says nothing besides its beams
+};
+
+}  // namespace
+
+SonarLog readBeamCsv(std::istream& in, const std::string& name) {
+  BeamCsvRows rows(in, name);
+  SonarLog log;
+  while (std::optional<Beam> beam = rows.next()) log.beams.push_back(std::move(*beam));
   return log;
 }
+
+std::unique_ptr<BeamSource> openBeamCsv(const std::string& path) { return std::make_unique<BeamCsvSource>(path); }
 
 void writeBeamCsv(std::ostream& out, const SonarLog& log) {
   checkWritable(log);

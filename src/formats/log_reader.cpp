@@ -33,6 +33,45 @@ constexpr std::array<FormatNames, 8> kFormats{{{LogFormat::kMat, "mat", ".mat"},
                                                {LogFormat::kMcap, "mcap", ".mcap"},
                                                {LogFormat::kRosbag2, "rosbag2", ".db3"}}};
 
+/// A log read whole, served beam by beam.
+class HeldLog final : public BeamSource {
+ public:
+  explicit HeldLog(SonarLog log) : log_(std::move(log)), beams_(log_) {}
+  std::optional<Beam> next() override { return beams_.next(); }
+  void rewind() override { beams_.rewind(); }
+  const SonarLog& header() const override { return beams_.header(); }
+
+ private:
+  SonarLog log_;
+  LogBeamSource beams_;
+};
+
+/// A ROS log's source with its clock: header stamps are seconds since 1970, UTC.
+class RosLogSource final : public BeamSource {
+ public:
+  explicit RosLogSource(std::unique_ptr<BeamSource> source) : source_(std::move(source)) { update(); }
+  std::optional<Beam> next() override {
+    std::optional<Beam> beam = source_->next();
+    if (!beam) update();  // the end of a pass: the skips are counted
+    return beam;
+  }
+  void rewind() override { source_->rewind(); }
+  const SonarLog& header() const override { return header_; }
+
+ private:
+  void update() {
+    header_ = source_->header();
+    header_.clock_utc_s = 0.0;
+  }
+  std::unique_ptr<BeamSource> source_;
+  SonarLog header_;
+};
+
+RosBagOptions rosBagOptionsOf(const LogReadOptions& options) {
+  return RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
+                       parseBearingDirection(options.bearing_direction), options.msg_path};
+}
+
 std::string lowerCase(std::string_view text) {
   std::string lower(text);
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -89,13 +128,18 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
     case LogFormat::kRosBag:
     case LogFormat::kMcap:  // the reader tells them apart by their first bytes
     case LogFormat::kRosbag2: {
-      SonarLog log = readRosBag(path, RosBagOptions{options.sonar_topic, parseBearingUnit(options.bearing_unit),
-                                                    parseBearingDirection(options.bearing_direction), options.msg_path});
+      SonarLog log = readRosBag(path, rosBagOptionsOf(options));
       log.clock_utc_s = 0.0;  // header stamps: seconds since 1970
       return log;
     }
   }
   throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
+}
+
+std::unique_ptr<BeamSource> openBeamSource(const std::string& path, LogFormat format, const LogReadOptions& options) {
+  if (format == LogFormat::kCsv) return openBeamCsv(path);
+  if (isRosLog(format)) return std::make_unique<RosLogSource>(openRosBag(path, rosBagOptionsOf(options)));
+  return std::make_unique<HeldLog>(readSonarLog(path, format, options));
 }
 
 SonarLog readSonarLog(const std::string& path) {

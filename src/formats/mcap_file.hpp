@@ -6,11 +6,14 @@
 /// Schema, Channel and Message records, and Chunks holding them, uncompressed or compressed with
 /// zstd (Debian's libzstd) or lz4 frames (Debian's liblz4). Every length is checked against what
 /// holds it before anything is read or allocated. The summary section after DataEnd repeats what
-/// the data section holds and is not read.
+/// the data section holds and is not read. Messages are read as they are needed (Cursor), one
+/// chunk at a time, so that a log of any length is read in the memory of a chunk.
 
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,24 +45,63 @@ class McapFile {
   const std::map<std::uint16_t, Schema>& schemas() const { return schemas_; }
   const std::map<std::uint16_t, Channel>& channels() const { return channels_; }
 
+ private:
+  class Records;  ///< the data section's records, one at a time (mcap_file.cpp)
+
+ public:
+  /// The messages of some channels in log-time order (stable: file order at equal times), read
+  /// from the file as they are asked for. It holds the chunk being read and the messages read
+  /// ahead of their turn: those that a later part of the file could still precede (none when the
+  /// file is in time order, as writers write it). The McapFile must outlive it.
+  class Cursor {
+   public:
+    Cursor(const McapFile& file, std::vector<std::uint16_t> ids);
+    ~Cursor();
+    Cursor(Cursor&&) noexcept;
+    Cursor& operator=(Cursor&&) noexcept;
+    /// The next message's data and log time (seconds); false after the last.
+    /// @throws FileError as the constructor of McapFile, should the file have changed since.
+    bool next(std::vector<std::uint8_t>& data, double& log_time_s);
+
+   private:
+    struct Pending {
+      std::uint64_t log_time_ns = 0;
+      std::uint64_t order = 0;  ///< file order
+      std::vector<std::uint8_t> data;
+      bool operator>(const Pending& other) const {
+        return log_time_ns != other.log_time_ns ? log_time_ns > other.log_time_ns : order > other.order;
+      }
+    };
+    /// Reads the next top-level record (a chunk's messages, or a message); false at the data's end.
+    bool readMore();
+    void take(std::uint16_t channel, std::uint64_t log_time_ns, std::vector<std::uint8_t> data);
+
+    const McapFile* file_;
+    std::vector<std::uint16_t> ids_;
+    std::unique_ptr<Records> records_;
+    std::vector<Pending> pending_;  ///< a heap, the earliest (time, then file order) at the front
+    std::size_t units_ = 0;        ///< units (McapFile::later_min_ns_) begun so far
+    std::uint64_t bound_ns_ = 0;   ///< no message not yet read is earlier than this
+    std::uint64_t order_ = 0;      ///< messages taken so far
+    bool run_open_ = false;        ///< the last record read was a message outside chunks
+    std::uint64_t run_last_ns_ = 0;  ///< its log time
+    bool ended_ = false;
+  };
+
   /// Calls `use(data, log_time_s)` for every message of the channels in `ids`, in log-time order
   /// (stable: file order at equal times).
   void forEachMessage(const std::vector<std::uint16_t>& ids,
                       const std::function<void(const std::vector<std::uint8_t>&, double)>& use) const;
 
  private:
-  /// What walkRecords hands on: each Schema, Channel and Message record's fields.
-  struct Visitor {
-    std::function<void(std::uint16_t, Schema)> schema;
-    std::function<void(std::uint16_t, Channel)> channel;
-    std::function<void(std::uint16_t, std::uint64_t, std::vector<std::uint8_t>)> message;  ///< channel, log time (ns), data
-  };
-  /// Walks every record of the data section, and those inside each chunk.
-  void walkRecords(const Visitor& visit) const;
-
   std::string path_;
   std::map<std::uint16_t, Schema> schemas_;
   std::map<std::uint16_t, Channel> channels_;
+  /// The data section as units in file order, each a chunk or a run of messages outside chunks in
+  /// time order: the earliest log time (ns) of any message in unit i or after it, at i (the last:
+  /// none, UINT64_MAX). What lets a Cursor hand a message on once nothing later in the file can
+  /// come before it.
+  std::vector<std::uint64_t> later_min_ns_;
 };
 
 }  // namespace sonarmap::detail

@@ -130,41 +130,74 @@ std::string RosBagFile::listing() const {
   return out.empty() ? "none" : out;
 }
 
+struct RosBagFile::MessageCursor::Bag1 {
+  Bag1(rosbag::Bag& bag, const std::string& topic) : view(bag, rosbag::TopicQuery(topic)), at(view.begin()) {}
+  rosbag::View view;
+  rosbag::View::iterator at;
+};
+
+RosBagFile::MessageCursor::MessageCursor(const RosBagFile& file, std::string topic, const RosSchema& schema)
+    : topic_(std::move(topic)), schema_(&schema) {
+  if (file.mcap_) {
+    mcap_.emplace(*file.mcap_, file.channels_[file.indexOf(topic_)]);
+  } else if (file.sqlite_) {
+    sqlite_.emplace(*file.sqlite_, topic_);
+  } else {
+    bag_ = std::make_unique<Bag1>(*file.bag_, topic_);
+  }
+}
+RosBagFile::MessageCursor::MessageCursor(MessageCursor&&) noexcept = default;
+RosBagFile::MessageCursor::~MessageCursor() = default;
+
+void RosBagFile::MessageCursor::count(const std::string& why) {
+  ++skipped_.count;
+  skipped_.reasons.push_back("message " + std::to_string(index_) + " of " + topic_ + ": " + why);
+}
+
+void RosBagFile::MessageCursor::reject(const std::string& why) { count(why); }
+
+bool RosBagFile::MessageCursor::next(RosValue& message, double& record_time_s) {
+  for (;;) {
+    if (mcap_) {
+      if (!mcap_->next(bytes_, record_time_s)) return false;
+    } else if (sqlite_) {
+      if (!sqlite_->next(bytes_, record_time_s)) return false;
+    } else {
+      if (bag_->at == bag_->view.end()) return false;
+      const rosbag::MessageInstance& instance = *bag_->at;  // valid until the iterator moves on
+      bytes_.resize(instance.size());
+      ros::serialization::OStream stream(bytes_.data(), static_cast<std::uint32_t>(bytes_.size()));
+      instance.write(stream);
+      record_time_s = instance.getTime().toSec();
+      ++bag_->at;
+    }
+    ++index_;
+    try {
+      message = decodeRosMessage(*schema_, bytes_);
+      return true;
+    } catch (const Error& error) {
+      count(error.what());
+    }
+  }
+}
+
+RosBagFile::MessageCursor RosBagFile::messages(const std::string& topic, const RosSchema& schema) const {
+  return MessageCursor(*this, topic, schema);
+}
+
 RosSkipped RosBagFile::forEachMessage(const std::string& topic, const RosSchema& schema,
                                       const std::function<void(const RosValue&, double)>& use) {
-  RosSkipped skipped;
-  std::size_t index = 0;
-  if (mcap_ || sqlite_) {
-    auto decode = [&](const std::vector<std::uint8_t>& data, double time_s) {
-      ++index;
-      try {
-        use(decodeRosMessage(schema, data), time_s);
-      } catch (const Error& error) {
-        ++skipped.count;
-        skipped.reasons.push_back("message " + std::to_string(index) + " of " + topic + ": " + error.what());
-      }
-    };
-    if (mcap_) {
-      mcap_->forEachMessage(channels_[indexOf(topic)], decode);
-    } else {
-      sqlite_->forEachMessage(topic, decode);
-    }
-    return skipped;
-  }
-  std::vector<std::uint8_t> bytes;
-  for (const rosbag::MessageInstance& message : rosbag::View(*bag_, rosbag::TopicQuery(topic))) {
-    ++index;
+  MessageCursor cursor = messages(topic, schema);
+  RosValue message;
+  double time_s = 0.0;
+  while (cursor.next(message, time_s)) {
     try {
-      bytes.resize(message.size());
-      ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
-      message.write(stream);
-      use(decodeRosMessage(schema, bytes), message.getTime().toSec());
+      use(message, time_s);
     } catch (const Error& error) {
-      ++skipped.count;
-      skipped.reasons.push_back("message " + std::to_string(index) + " of " + topic + ": " + error.what());
+      cursor.reject(error.what());
     }
   }
-  return skipped;
+  return cursor.skipped();
 }
 
 }  // namespace sonarmap::detail

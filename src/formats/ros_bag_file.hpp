@@ -54,6 +54,40 @@ class RosBagFile {
   /// @throws Error when the definition does not parse.
   RosSchema schema(const RosBagTopic& topic) const;
 
+  /// The messages of one topic in the log's time order, each decoded with its schema, read from
+  /// the file as they are asked for (one chunk, or one SQLite row, at a time). The RosBagFile and
+  /// the schema must outlive it.
+  class MessageCursor {
+   public:
+    MessageCursor(MessageCursor&&) noexcept;
+    ~MessageCursor();
+    /// The next message that decodes and its record time (seconds since the epoch); false after
+    /// the last. A message that does not decode is skipped and its reason kept ("message N of
+    /// TOPIC: ...").
+    /// @throws what the container's reader throws (rosbag_storage's errors; FileError).
+    bool next(RosValue& message, double& record_time_s);
+    /// Skips the message next() gave last, for `why` (a check of the caller's that it failed).
+    void reject(const std::string& why);
+    const RosSkipped& skipped() const { return skipped_; }
+
+   private:
+    friend class RosBagFile;
+    struct Bag1;  ///< a ROS 1 bag's view and where it is
+    MessageCursor(const RosBagFile& file, std::string topic, const RosSchema& schema);
+    void count(const std::string& why);
+
+    std::string topic_;
+    const RosSchema* schema_;
+    std::size_t index_ = 0;  ///< messages read so far
+    RosSkipped skipped_;
+    std::optional<McapFile::Cursor> mcap_;
+    std::optional<Rosbag2Sqlite::Cursor> sqlite_;
+    std::unique_ptr<Bag1> bag_;
+    std::vector<std::uint8_t> bytes_;
+  };
+  /// A cursor over the messages of `topic`, decoded with `schema`.
+  MessageCursor messages(const std::string& topic, const RosSchema& schema) const;
+
   /// Calls `use(message, record_time_s)` for each message of `topic`, in the bag's time order,
   /// each decoded with `schema`. A message that does not decode, or that `use` rejects by throwing
   /// Error, is skipped and its reason ("message N of TOPIC: ...") kept.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string_view>
@@ -14,6 +15,7 @@
 #include "ros_bag_file.hpp"
 #include "ros_frames.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
 
 namespace sonarmap {
 namespace {
@@ -145,14 +147,109 @@ BearingDirection parseBearingDirection(std::string_view name) {
   throw ValueError("unknown bearing direction '" + std::string(name) + "' (cw, ccw)");
 }
 
-SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
-  SonarLog log;
-  std::vector<RawBeam> raw;
-  std::string topic;
-  std::optional<SonarFields> fields;
-  detail::withBagErrors(path, [&] {
-    detail::RosBagFile bag(path, options.msg_path);
-    std::optional<RosSchema> schema;
+namespace {
+
+/// A bag's sonar topic read beam by beam (see ros_bag_reader.hpp): the topic found on opening and,
+/// for an automatic bearing unit the field's name does not say, the unit decided on a first pass
+/// over its messages (up to the first bearing beyond 2π, or through).
+class RosBagBeamSource final : public BeamSource {
+ public:
+  /// Opens the bag and finds its sonar topic and its first beam; with `decide_unit`, also the
+  /// bearings' unit (see the class's comment), else the caller's decideUnit() does.
+  RosBagBeamSource(const std::string& path, const RosBagOptions& options, bool decide_unit) : path_(path), options_(options) {
+    detail::withBagErrors(path_, [&] {
+      open();
+      // A first pass up to the first beam that decodes (the log's frame), or, to decide the unit,
+      // up to the first bearing beyond a turn of radians (degrees, then, whatever follows) or to
+      // the end (radians).
+      const bool first_beam_enough = !decide_unit || options_.bearing_unit != BearingUnit::kAuto ||
+                                     fields_->bearing_in_degrees || fields_->bearing_in_radians;
+      double largest = 0.0;
+      bool whole_pass = true;
+      rewind();
+      while (std::optional<RawBeam> raw = nextRaw()) {
+        largest = std::max(largest, std::abs(raw->bearing));
+        if (first_beam_enough || beyondRadians(largest)) {
+          whole_pass = false;
+          break;
+        }
+      }
+      if (whole_pass) endPass();  // throws when no message gave a beam
+      if (decide_unit) decideUnit(largest);
+      rewind();
+    });
+  }
+
+  std::optional<Beam> next() override {
+    return detail::withBagErrors(path_, [&]() -> std::optional<Beam> {
+      if (!cursor_) return std::nullopt;
+      if (std::optional<RawBeam> raw = nextRaw()) {
+        Beam beam = std::move(raw->beam);
+        beam.bearing_rad = bearingOf(raw->bearing);
+        beam.time_s = raw->time_s;
+        return beam;
+      }
+      endPass();
+      return std::nullopt;
+    });
+  }
+
+  void rewind() override {
+    detail::withBagErrors(path_, [&] {
+      cursor_.reset();
+      cursor_.emplace(bag_->messages(topic_, *schema_));
+      pass_beams_ = 0;
+    });
+  }
+
+  const SonarLog& header() const override { return header_; }
+
+  /// The next message of the topic that gives a beam, its bearing as the message gives it; nullopt
+  /// at the end of the pass (then endPass()).
+  std::optional<RawBeam> nextRawBeam() {
+    return detail::withBagErrors(path_, [&]() -> std::optional<RawBeam> {
+      if (!cursor_) return std::nullopt;
+      std::optional<RawBeam> raw = nextRaw();
+      if (!raw) endPass();
+      return raw;
+    });
+  }
+
+  /// Decides the bearings' unit: degrees unless the field's name says radians or every bearing,
+  /// at most `largest` in magnitude, fits in a turn of radians; clockwise, as the Tritech head
+  /// counts it (ros_bag_reader.hpp); the options override both. Said in the log's notes.
+  void decideUnit(double largest) {
+    BearingUnit unit = options_.bearing_unit;
+    if (unit == BearingUnit::kAuto) {
+      const bool degrees = fields_->bearing_in_degrees || (!fields_->bearing_in_radians && beyondRadians(largest));
+      unit = degrees ? BearingUnit::kDegrees : BearingUnit::kRadians;
+    }
+    turn_ = unit == BearingUnit::kDegrees ? 360.0 : unit == BearingUnit::kGradians ? 400.0 : 2.0 * std::numbers::pi;
+    clockwise_ = options_.bearing_direction == BearingDirection::kClockwise;
+    header_.notes.push_back("bearings of " + topic_ + "'s `" + fields_->bearing + "` read as " +
+                            (unit == BearingUnit::kDegrees ? "degrees" : unit == BearingUnit::kGradians ? "gradians" : "radians") +
+                            (options_.bearing_unit == BearingUnit::kAuto ? "" : " (as told)") +
+                            (clockwise_ ? ", clockwise seen from above (the Tritech head's count)"
+                                        : ", counter-clockwise seen from above (as told)"));
+  }
+
+  /// Whether a bearing of magnitude `largest` cannot be radians (beyond a turn of them).
+  static bool beyondRadians(double largest) { return largest > 2.0 * std::numbers::pi + 1e-6; }
+
+  /// `bearing` in the topic's unit and direction as beam.hpp's counter-clockwise radians in [0, 2π).
+  double bearingOf(double bearing) const {
+    const double turned_rad = bearing * 2.0 * std::numbers::pi / turn_;
+    double bearing_rad = std::fmod(clockwise_ ? -turned_rad : turned_rad, 2.0 * std::numbers::pi);
+    if (bearing_rad < 0.0) bearing_rad += 2.0 * std::numbers::pi;
+    if (!(bearing_rad < 2.0 * std::numbers::pi)) bearing_rad = 0.0;  // −0 and rounding up to a whole turn
+    return bearing_rad + 0.0;
+  }
+
+ private:
+  void open() {
+    const RosBagOptions& options = options_;
+    bag_ = std::make_unique<detail::RosBagFile>(path_, options.msg_path);
+    detail::RosBagFile& bag = *bag_;
     for (const RosBagTopic& candidate : bag.topics()) {
       if (!options.sonar_topic.empty() && candidate.topic != options.sonar_topic) continue;
       const std::string& definition = bag.definition(candidate);
@@ -161,11 +258,11 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
         continue;
       }
       RosSchema parsed = bag.schema(candidate);
-      fields = sonarFields(parsed);
-      if (fields) {
-        schema = std::move(parsed);
-        topic = candidate.topic;
-        log.sonar = "ROS topic " + topic + " (" + candidate.type + ")";
+      fields_ = sonarFields(parsed);
+      if (fields_) {
+        schema_ = std::make_unique<RosSchema>(std::move(parsed));
+        topic_ = candidate.topic;
+        header_.sonar = "ROS topic " + topic_ + " (" + candidate.type + ")";
         break;
       }
       if (candidate.topic == options.sonar_topic) {
@@ -173,40 +270,73 @@ SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
                  "(a bearing, a bin length or range, and intensities: docs/formats.md)");
       }
     }
-    if (!fields) {
+    if (!fields_) {
       if (!options.sonar_topic.empty()) bag.fail("no topic " + options.sonar_topic + " (topics: " + bag.listing() + ")");
       bag.fail("no topic holds sonar beams (a bearing, a bin length or range, and intensities); topics: " + bag.listing());
     }
-    const detail::RosSkipped skipped = bag.forEachMessage(topic, *schema, [&](const RosValue& message, double time_s) {
-      raw.push_back(beamOf(message, *fields, time_s));
-      if (raw.size() == 1 && fields->header) log.frame_id = detail::headerFrame(message);
-    });
-    log.skipped_beams = skipped.count;
-    log.skip_reasons = skipped.reasons;
-    if (raw.empty()) bag.fail("no message of " + topic + " decodes" + (log.skip_reasons.empty() ? "" : ": " + log.skip_reasons.front()));
-  });
-  // Degrees unless the field's name says radians or every bearing fits in a turn of radians;
-  // clockwise, as the Tritech head counts it (ros_bag_reader.hpp); the options override both.
+  }
+
+  /// The next message of the topic that gives a beam (bearing as the message gives it); nullopt at
+  /// the end of the pass. Sets the log's frame at the first beam of a pass.
+  std::optional<RawBeam> nextRaw() {
+    RosValue message;
+    double time_s = 0.0;
+    while (cursor_->next(message, time_s)) {
+      try {
+        RawBeam raw = beamOf(message, *fields_, time_s);
+        if (++pass_beams_ == 1 && fields_->header) header_.frame_id = detail::headerFrame(message);
+        return raw;
+      } catch (const Error& error) {
+        cursor_->reject(error.what());
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// The end of a pass: its skips are the log's; without a beam, the bag is refused.
+  void endPass() {
+    if (!cursor_) return;
+    header_.skipped_beams = cursor_->skipped().count;
+    header_.skip_reasons = cursor_->skipped().reasons;
+    const std::size_t beams = pass_beams_;
+    pass_beams_ = 0;
+    cursor_.reset();
+    if (beams == 0) {
+      bag_->fail("no message of " + topic_ + " decodes" + (header_.skip_reasons.empty() ? "" : ": " + header_.skip_reasons.front()));
+    }
+  }
+
+  std::string path_;
+  RosBagOptions options_;
+  std::unique_ptr<detail::RosBagFile> bag_;
+  std::string topic_;
+  std::unique_ptr<RosSchema> schema_;  ///< the decoded messages point into it: kept in place
+  std::optional<SonarFields> fields_;
+  std::optional<detail::RosBagFile::MessageCursor> cursor_;  ///< unset between passes
+  std::size_t pass_beams_ = 0;  ///< beams given in this pass
+  double turn_ = 360.0;         ///< a turn in the topic's bearing unit
+  bool clockwise_ = true;
+  SonarLog header_;
+};
+
+}  // namespace
+
+std::unique_ptr<BeamSource> openRosBag(const std::string& path, const RosBagOptions& options) {
+  return std::make_unique<RosBagBeamSource>(path, options, true);
+}
+
+SonarLog readRosBag(const std::string& path, const RosBagOptions& options) {
+  // One pass: the beams are held anyway, so the unit is decided on them afterwards.
+  RosBagBeamSource source(path, options, false);
+  std::vector<RawBeam> raw;
+  while (std::optional<RawBeam> beam = source.nextRawBeam()) raw.push_back(std::move(*beam));
   double largest = 0.0;
   for (const RawBeam& beam : raw) largest = std::max(largest, std::abs(beam.bearing));
-  BearingUnit unit = options.bearing_unit;
-  if (unit == BearingUnit::kAuto) {
-    const bool degrees = fields->bearing_in_degrees || (!fields->bearing_in_radians && largest > 2.0 * std::numbers::pi + 1e-6);
-    unit = degrees ? BearingUnit::kDegrees : BearingUnit::kRadians;
-  }
-  const double turn = unit == BearingUnit::kDegrees ? 360.0 : unit == BearingUnit::kGradians ? 400.0 : 2.0 * std::numbers::pi;
-  const bool clockwise = options.bearing_direction == BearingDirection::kClockwise;
-  log.notes.push_back("bearings of " + topic + "'s `" + fields->bearing + "` read as " +
-                      (unit == BearingUnit::kDegrees ? "degrees" : unit == BearingUnit::kGradians ? "gradians" : "radians") +
-                      (options.bearing_unit == BearingUnit::kAuto ? "" : " (as told)") +
-                      (clockwise ? ", clockwise seen from above (the Tritech head's count)" : ", counter-clockwise seen from above (as told)"));
+  source.decideUnit(largest);
+  SonarLog log = source.header();
   log.beams.reserve(raw.size());
   for (RawBeam& beam : raw) {
-    const double turned_rad = beam.bearing * 2.0 * std::numbers::pi / turn;
-    double bearing_rad = std::fmod(clockwise ? -turned_rad : turned_rad, 2.0 * std::numbers::pi);
-    if (bearing_rad < 0.0) bearing_rad += 2.0 * std::numbers::pi;
-    if (!(bearing_rad < 2.0 * std::numbers::pi)) bearing_rad = 0.0;  // −0 and rounding up to a whole turn
-    beam.beam.bearing_rad = bearing_rad + 0.0;
+    beam.beam.bearing_rad = source.bearingOf(beam.bearing);
     beam.beam.time_s = beam.time_s;
     log.beams.push_back(std::move(beam.beam));
   }

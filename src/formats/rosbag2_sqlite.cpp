@@ -35,15 +35,27 @@ class Database {
   /// Runs `sql` with `parameter` bound to its ?1 (when given), calling `row(statement)` for each row.
   template <class Row>
   void query(const std::string& sql, Row&& row, const std::string* parameter = nullptr) const {
+    const auto statement = prepare(sql, parameter);
+    while (step(statement.get())) row(statement.get());
+  }
+  /// `sql` prepared, with `parameter` bound to its ?1 (when given).
+  /// @throws FileError naming the file when it does not prepare.
+  std::unique_ptr<sqlite3_stmt, decltype(&sqlite3_finalize)> prepare(const std::string& sql, const std::string* parameter = nullptr) const {
     sqlite3_stmt* raw = nullptr;
     if (sqlite3_prepare_v2(db_.get(), sql.c_str(), -1, &raw, nullptr) != SQLITE_OK) {
       fail(file_, std::string("not a rosbag2 database (") + sqlite3_errmsg(db_.get()) + ")");
     }
-    const std::unique_ptr<sqlite3_stmt, decltype(&sqlite3_finalize)> statement(raw, sqlite3_finalize);
+    std::unique_ptr<sqlite3_stmt, decltype(&sqlite3_finalize)> statement(raw, sqlite3_finalize);
     if (parameter != nullptr) sqlite3_bind_text(raw, 1, parameter->c_str(), static_cast<int>(parameter->size()), SQLITE_TRANSIENT);
-    int status;
-    while ((status = sqlite3_step(raw)) == SQLITE_ROW) row(raw);
+    return statement;
+  }
+  /// Steps `statement`: true for a row, false at its end.
+  /// @throws FileError naming the file when SQLite cannot read it.
+  bool step(sqlite3_stmt* statement) const {
+    const int status = sqlite3_step(statement);
+    if (status == SQLITE_ROW) return true;
     if (status != SQLITE_DONE) fail(file_, std::string("cannot read the database: ") + sqlite3_errmsg(db_.get()));
+    return false;
   }
   bool hasTable(const std::string& name) const {
     bool found = false;
@@ -136,20 +148,46 @@ Rosbag2Sqlite::Rosbag2Sqlite(const std::string& path, const std::string& msg_pat
   }
 }
 
+struct Rosbag2Sqlite::Cursor::Query {
+  Query(const std::string& file, const std::string& topic)
+      : db(file),
+        statement(db.prepare("SELECT messages.timestamp, messages.data FROM messages JOIN topics ON messages.topic_id = "
+                             "topics.id WHERE topics.name = ?1 ORDER BY messages.timestamp, messages.id",
+                             &topic)) {}
+  Database db;
+  std::unique_ptr<sqlite3_stmt, decltype(&sqlite3_finalize)> statement;
+};
+
+Rosbag2Sqlite::Cursor::Cursor(const Rosbag2Sqlite& log, std::string topic) : log_(&log), topic_(std::move(topic)) {}
+Rosbag2Sqlite::Cursor::~Cursor() = default;
+Rosbag2Sqlite::Cursor::Cursor(Cursor&&) noexcept = default;
+Rosbag2Sqlite::Cursor& Rosbag2Sqlite::Cursor::operator=(Cursor&&) noexcept = default;
+
+bool Rosbag2Sqlite::Cursor::next(std::vector<std::uint8_t>& data, double& time_s) {
+  for (;;) {
+    if (!query_) {
+      if (file_ == log_->files_.size()) return false;
+      query_ = std::make_unique<Query>(log_->files_[file_++], topic_);
+    }
+    sqlite3_stmt* s = query_->statement.get();
+    if (!query_->db.step(s)) {
+      query_.reset();
+      continue;
+    }
+    const auto* bytes = static_cast<const std::uint8_t*>(sqlite3_column_blob(s, 1));
+    const int size = sqlite3_column_bytes(s, 1);
+    data.assign(bytes, bytes + (bytes != nullptr ? size : 0));
+    time_s = 1e-9 * static_cast<double>(sqlite3_column_int64(s, 0));
+    return true;
+  }
+}
+
 void Rosbag2Sqlite::forEachMessage(const std::string& topic,
                                    const std::function<void(const std::vector<std::uint8_t>&, double)>& use) const {
-  for (const std::string& file : files_) {
-    const Database db(file);
-    db.query(
-        "SELECT messages.timestamp, messages.data FROM messages JOIN topics ON messages.topic_id = topics.id "
-        "WHERE topics.name = ?1 ORDER BY messages.timestamp, messages.id",
-        [&](sqlite3_stmt* s) {
-          const auto* data = static_cast<const std::uint8_t*>(sqlite3_column_blob(s, 1));
-          const int size = sqlite3_column_bytes(s, 1);
-          use(std::vector<std::uint8_t>(data, data + (data != nullptr ? size : 0)), 1e-9 * static_cast<double>(sqlite3_column_int64(s, 0)));
-        },
-        &topic);
-  }
+  Cursor cursor(*this, topic);
+  std::vector<std::uint8_t> data;
+  double time_s = 0.0;
+  while (cursor.next(data, time_s)) use(data, time_s);
 }
 
 }  // namespace sonarmap::detail

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,26 @@ class Rosbag2Sqlite {
   explicit Rosbag2Sqlite(const std::string& path, const std::string& msg_path = {});
 
   const std::vector<Topic>& topics() const { return topics_; }
+
+  /// The messages of one topic in time order (over every file, one file after another), stepped
+  /// through by SQLite one row at a time. The Rosbag2Sqlite must outlive it.
+  class Cursor {
+   public:
+    Cursor(const Rosbag2Sqlite& log, std::string topic);
+    ~Cursor();
+    Cursor(Cursor&&) noexcept;
+    Cursor& operator=(Cursor&&) noexcept;
+    /// The next message's CDR data and time (seconds); false after the last.
+    /// @throws FileError naming the file when SQLite cannot read it.
+    bool next(std::vector<std::uint8_t>& data, double& time_s);
+
+   private:
+    struct Query;  ///< one file's open database and its statement
+    const Rosbag2Sqlite* log_;
+    std::string topic_;
+    std::size_t file_ = 0;  ///< the next file to open
+    std::unique_ptr<Query> query_;
+  };
 
   /// Calls `use(data, time_s)` for each message of `topic` in time order (over every file).
   void forEachMessage(const std::string& topic, const std::function<void(const std::vector<std::uint8_t>&, double)>& use) const;

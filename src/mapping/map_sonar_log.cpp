@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -11,6 +12,8 @@
 #include "sonarmap/mapping/detected_log.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
+#include "sonarmap/sonar/log_survey.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
 namespace sonarmap {
@@ -30,36 +33,54 @@ SonarMapper releaseMapped(OnlineMapper& online, std::size_t skipped_beams) {
   return mapper;
 }
 
-/// mapSonarLog's body: every beam of the log through `online` (an OnlineMapper), in order.
-SonarMapper mapThroughOnline(const SonarLog& log, OnlineMapper& online) {
-  for (const Beam& beam : log.beams) online.addBeam(beam);
-  return releaseMapped(online, log.skipped_beams);
+/// mapSonarLog's body: every beam of `source` through `online` (an OnlineMapper), in order.
+SonarMapper mapThroughOnline(BeamSource& source, OnlineMapper& online) {
+  source.rewind();
+  while (std::optional<Beam> beam = source.next()) online.addBeam(std::move(*beam));
+  return releaseMapped(online, source.header().skipped_beams);
 }
 
 /// Reports progress as (sweeps done, sweeps the log holds), when asked.
-OnlineMapper::SweepCallback progressOf(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
+OnlineMapper::SweepCallback progressOf(const LogSurvey& survey, const ProgressCallback& progress) {
   if (!progress) return {};
-  const auto min_beams = static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
-  const std::size_t total = groupSweeps(log.beams, min_beams).size();
-  return [progress, total](std::size_t done) { progress(done, total); };
+  return [progress, total = survey.sweeps](std::size_t done) { progress(done, total); };
 }
 }  // namespace
 
+std::size_t surveyMinBeams(const MapperOptions& options) {
+  return static_cast<std::size_t>(std::max(1, options.detector.background.min_beams));
+}
+
+SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const MapperOptions& options,
+                        const ProgressCallback& progress) {
+  const BeamPass pass = passOver(source);
+  const MapperOptions resolved = resolveForLog(options, survey, pass);
+  checkWorkBudget(survey, pass, resolved);
+  OnlineMapper online(resolved, OnlineIntegration::kSweep, progressOf(survey, progress));
+  return mapThroughOnline(source, online);
+}
+
+SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const NavTrack& nav,
+                        const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
+                        const ProgressCallback& progress) {
+  const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
+  const BeamPass pass = passOver(source);
+  const MapperOptions resolved = resolveForLog(options, survey, pass);
+  checkWorkBudget(survey, pass, resolved);
+  OnlineMapper online(resolved, sonar_to_body, OnlineIntegration::kSweep, progressOf(survey, progress));
+  for (const NavSample& fix : nav) online.addNavFix(fix);
+  return mapThroughOnline(source, online);
+}
+
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options, const ProgressCallback& progress) {
-  const MapperOptions resolved = resolveForLog(options, log);
-  checkWorkBudget(log, resolved);
-  OnlineMapper online(resolved, OnlineIntegration::kSweep, progressOf(log, options, progress));
-  return mapThroughOnline(log, online);
+  LogBeamSource source(log);
+  return mapSonarLog(source, surveyLog(passOver(log), surveyMinBeams(options)), options, progress);
 }
 
 SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
                         const MapperOptions& options, const ProgressCallback& progress) {
-  const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
-  const MapperOptions resolved = resolveForLog(options, log);
-  checkWorkBudget(log, resolved);
-  OnlineMapper online(resolved, sonar_to_body, OnlineIntegration::kSweep, progressOf(log, options, progress));
-  for (const NavSample& fix : nav) online.addNavFix(fix);
-  return mapThroughOnline(log, online);
+  LogBeamSource source(log);
+  return mapSonarLog(source, surveyLog(passOver(log), surveyMinBeams(options)), nav, sonar_to_body, options, progress);
 }
 
 DetectedLog detectSonarLog(const SonarLog& log, const MapperOptions& options) {

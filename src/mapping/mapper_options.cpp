@@ -33,12 +33,33 @@ void checkOptionalLength(const std::optional<double>& value_m, const char* name,
   }
 }
 
-/// Bearing step from beam i to the next beam of the log, wrapped to [0, π]; the previous step for
-/// the last beam, 2π for a log of one beam.
-double stepAfter(const std::vector<Beam>& beams, std::size_t i) {
-  if (beams.size() < 2) return kTwoPi;
-  const std::size_t a = i + 1 < beams.size() ? i : i - 1;
-  return std::abs(std::remainder(beams[a + 1].bearing_rad - beams[a].bearing_rad, kTwoPi));
+/// The voxel updates of one beam reaching `range_m` (> 0) whose wedge spans `width_rad`, at `voxel_m`
+/// (estimateVoxelUpdates' terms).
+double beamUpdates(const MapperOptions& options, double voxel_m, double range_m, double width_rad) {
+  if (options.beam_model == BeamModel::kVolume) {
+    // The free cone (its core) in volume, the shell (whole aperture) in area.
+    const double free_rad = std::max(freeVerticalAperture_rad(options), voxel_m / range_m);
+    const double aperture_rad = std::max(options.vertical_aperture_rad, voxel_m / range_m);
+    return width_rad * free_rad * range_m * range_m * range_m / (3.0 * voxel_m * voxel_m * voxel_m) +
+           aperture_rad * range_m * range_m / (voxel_m * voxel_m);
+  }
+  return width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;
+}
+
+/// Whether mapping at options.resolution_m (set) surely fits options.max_voxel_updates, told from
+/// the survey's reaches alone: each wedge taken as wide as the beam (or a voxel), never narrower
+/// than the bearing step estimateVoxelUpdates limits it to, so the bound is at least the estimate
+/// (with a margin for the sums' rounding). False when the survey could not count the reaches.
+bool surelyFits(const LogSurvey& survey, const MapperOptions& options) {
+  if (!survey.reaches_counted) return false;
+  const double voxel_m = *options.resolution_m;
+  double bound = 0.0;
+  for (const auto& [reach_m, beams] : survey.beams_by_reach) {
+    const double range_m = std::min(reach_m, options.max_range_m);
+    if (!(range_m > 0.0)) continue;
+    bound += static_cast<double>(beams) * beamUpdates(options, voxel_m, range_m, std::max(options.beam_width_rad, voxel_m / range_m));
+  }
+  return bound * (1.0 + 1e-9) <= options.max_voxel_updates;
 }
 
 }  // namespace
@@ -103,21 +124,25 @@ double logReach_m(const SonarLog& log, double max_range_m) {
   return std::min(reach_m, max_range_m);
 }
 
-AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options) {
+double logReach_m(const LogSurvey& survey, double max_range_m) { return std::min(survey.reach_m, max_range_m); }
+
+AutoResolution autoResolutionForLog(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
   options.validate();
-  const std::vector<RangeScale> scales = rangeScales(log);
-  const RangeScale* most_used = mostUsedRangeScale(scales);
+  const RangeScale* most_used = mostUsedRangeScale(survey.scales);
   if (most_used == nullptr || !(most_used->reach_m > 0.0)) {
     throw ValueError("automatic resolution: the log has no beam with bins");
   }
-  AutoResolution chosen{0.0, *most_used, scales.size(), log.beams.size(), false};
+  AutoResolution chosen{0.0, *most_used, survey.scales.size(), survey.beams, false};
   chosen.scale.reach_m = std::min(chosen.scale.reach_m, options.max_range_m);
   chosen.resolution_m = autoResolution_m(chosen.scale.reach_m);
-  const double coarsest_m = autoResolution_m(logReach_m(log, options.max_range_m));
+  const double coarsest_m = autoResolution_m(logReach_m(survey, options.max_range_m));
   MapperOptions trial = options;
   for (;;) {
     trial.resolution_m = chosen.resolution_m;
-    if (chosen.resolution_m >= coarsest_m || estimateVoxelUpdates(log, trial) <= options.max_voxel_updates) break;
+    if (chosen.resolution_m >= coarsest_m || surelyFits(survey, trial) ||
+        estimateVoxelUpdates(survey, pass, trial) <= options.max_voxel_updates) {
+      break;
+    }
     // The next of 1, 2, 5 × 10^k: ×2 from a 1 or a 5, ×2.5 from a 2.
     const double mantissa = chosen.resolution_m / std::pow(10.0, std::floor(std::log10(chosen.resolution_m) + 1e-9));
     chosen.resolution_m *= std::abs(mantissa - 2.0) < 0.01 ? 2.5 : 2.0;
@@ -126,48 +151,71 @@ AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& op
   return chosen;
 }
 
-MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log) {
+AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options) {
+  const BeamPass pass = passOver(log);
+  return autoResolutionForLog(surveyLog(pass), pass, options);
+}
+
+MapperOptions resolveForLog(const MapperOptions& options, const LogSurvey& survey, const BeamPass& pass) {
   options.validate();
   MapperOptions resolved = options;
-  if (!resolved.resolution_m) resolved.resolution_m = autoResolutionForLog(log, options).resolution_m;
+  if (!resolved.resolution_m) resolved.resolution_m = autoResolutionForLog(survey, pass, options).resolution_m;
   return resolved;
+}
+
+MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log) {
+  const BeamPass pass = passOver(log);
+  return resolveForLog(options, surveyLog(pass), pass);
 }
 
 namespace {
 /// The resolution estimates use: the option, else the automatic one (a 1 mm floor for a log
 /// without bins).
-double resolutionOrAuto_m(const SonarLog& log, const MapperOptions& options) {
+double resolutionOrAuto_m(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
   if (options.resolution_m) return *options.resolution_m;
-  const double reach_m = logReach_m(log, options.max_range_m);
-  return reach_m > 0.0 ? autoResolutionForLog(log, options).resolution_m : autoResolution_m(1e-3);
+  const double reach_m = logReach_m(survey, options.max_range_m);
+  return reach_m > 0.0 ? autoResolutionForLog(survey, pass, options).resolution_m : autoResolution_m(1e-3);
 }
 }  // namespace
 
-double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
-  const double voxel_m = resolutionOrAuto_m(log, options);
+double estimateVoxelUpdates(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
+  const double voxel_m = resolutionOrAuto_m(survey, pass, options);
+  // Each beam's wedge spans at most the bearing step to the next beam (the last: from the one
+  // before; a log of one beam: 2π): a beam is counted when the next arrives.
   double updates = 0.0;
-  for (std::size_t i = 0; i < log.beams.size(); ++i) {
-    const Beam& beam = log.beams[i];
-    const double range_m = std::min(static_cast<double>(beam.intensities.size()) * beam.bin_length_m, options.max_range_m);
-    if (!(range_m > 0.0)) continue;
+  std::size_t seen = 0;
+  double held_range_m = 0.0, held_bearing_rad = 0.0, step_rad = kTwoPi;
+  auto count = [&](double range_m, double step) {
+    if (!(range_m > 0.0)) return;
     // The union of overlapping wedges grows by one bearing step per beam; a ray is a line of voxels.
-    const double width_rad = std::min(std::max(options.beam_width_rad, voxel_m / range_m), stepAfter(log.beams, i));
-    if (options.beam_model == BeamModel::kVolume) {
-      // The free cone (its core) in volume, the shell (whole aperture) in area.
-      const double free_rad = std::max(freeVerticalAperture_rad(options), voxel_m / range_m);
-      const double aperture_rad = std::max(options.vertical_aperture_rad, voxel_m / range_m);
-      updates += width_rad * free_rad * range_m * range_m * range_m / (3.0 * voxel_m * voxel_m * voxel_m) +
-                 aperture_rad * range_m * range_m / (voxel_m * voxel_m);
-    } else {
-      updates += width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;
+    updates += beamUpdates(options, voxel_m, range_m, std::min(std::max(options.beam_width_rad, voxel_m / range_m), step));
+  };
+  pass([&](const Beam& beam) {
+    const double range_m = std::min(static_cast<double>(beam.intensities.size()) * beam.bin_length_m, options.max_range_m);
+    if (seen > 0) {
+      step_rad = std::abs(std::remainder(beam.bearing_rad - held_bearing_rad, kTwoPi));
+      count(held_range_m, step_rad);
     }
-  }
+    held_range_m = range_m;
+    held_bearing_rad = beam.bearing_rad;
+    ++seen;
+  });
+  if (seen > 0) count(held_range_m, step_rad);
   return updates;
 }
 
+double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
+  const BeamPass pass = passOver(log);
+  return estimateVoxelUpdates(surveyLog(pass), pass, options);
+}
+
 std::vector<std::string> optionWarnings(const MapperOptions& options, const SonarLog& log) {
+  return optionWarnings(options, surveyLog(passOver(log)));
+}
+
+std::vector<std::string> optionWarnings(const MapperOptions& options, const LogSurvey& survey) {
   std::vector<std::string> lines;
-  const double reach_m = logReach_m(log, std::numeric_limits<double>::infinity());
+  const double reach_m = logReach_m(survey, std::numeric_limits<double>::infinity());
   if (!(reach_m > 0.0)) return lines;
   char text[320];
   auto add = [&](const char* what, double value_m) {
@@ -207,11 +255,13 @@ std::vector<std::string> optionWarnings(const MapperOptions& options, const Sona
   return lines;
 }
 
-void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
-  const double updates = estimateVoxelUpdates(log, options);
+void checkWorkBudget(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
+  const bool resolved = options.resolution_m.has_value();
+  if (resolved && surelyFits(survey, options)) return;
+  const double updates = estimateVoxelUpdates(survey, pass, options);
   if (updates <= options.max_voxel_updates) return;
   // Updates scale with 1 / resolution² (planar) or 1 / resolution³ (volume): the finest that fits.
-  const double voxel_m = resolutionOrAuto_m(log, options);
+  const double voxel_m = resolutionOrAuto_m(survey, pass, options);
   MapperOptions automatic = options;
   automatic.resolution_m.reset();
   const double power = options.beam_model == BeamModel::kVolume ? 1.0 / 3.0 : 0.5;
@@ -222,8 +272,13 @@ void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
                 "(max_voxel_updates, --max-voxel-updates): use a resolution of at least %s (auto: %s), or raise "
                 "the budget",
                 metres(voxel_m).c_str(), updates, options.max_voxel_updates, metres(fits_m).c_str(),
-                metres(resolutionOrAuto_m(log, automatic)).c_str());
+                metres(resolutionOrAuto_m(survey, pass, automatic)).c_str());
   throw ValueError(text);
+}
+
+void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
+  const BeamPass pass = passOver(log);
+  checkWorkBudget(surveyLog(pass), pass, options);
 }
 
 }  // namespace sonarmap

@@ -7,16 +7,17 @@
 
 namespace sonarmap {
 
+void countRangeScale(std::vector<RangeScale>& scales, const Beam& beam, std::size_t index) {
+  auto scale = std::find_if(scales.begin(), scales.end(),
+                            [&](const RangeScale& known) { return known.bin_length_m == beam.bin_length_m; });
+  if (scale == scales.end()) scale = scales.insert(scales.end(), RangeScale{beam.bin_length_m, 0.0, 0, index});
+  ++scale->beams;
+  scale->reach_m = std::max(scale->reach_m, static_cast<double>(beam.intensities.size()) * beam.bin_length_m);
+}
+
 std::vector<RangeScale> rangeScales(const SonarLog& log) {
   std::vector<RangeScale> scales;
-  for (std::size_t i = 0; i < log.beams.size(); ++i) {
-    const Beam& beam = log.beams[i];
-    auto scale = std::find_if(scales.begin(), scales.end(),
-                              [&](const RangeScale& known) { return known.bin_length_m == beam.bin_length_m; });
-    if (scale == scales.end()) scale = scales.insert(scales.end(), RangeScale{beam.bin_length_m, 0.0, 0, i});
-    ++scale->beams;
-    scale->reach_m = std::max(scale->reach_m, static_cast<double>(beam.intensities.size()) * beam.bin_length_m);
-  }
+  for (std::size_t i = 0; i < log.beams.size(); ++i) countRangeScale(scales, log.beams[i], i);
   return scales;
 }
 

@@ -131,6 +131,21 @@ TEST(formatsRosbag2, AHumbleFolderSplitInTwoFilesReadsWithBuiltInDefinitions) {
   EXPECT_NEAR(nav->track[1].yaw_rad, 0.0, 1e-12);  // facing north
   // One file of it reads on its own.
   EXPECT_EQ(readSonarLog((folder / "rosbag2_2024_05_01-10_00_00_1.db3").string()).beams.size(), 2u);
+  // Beam by beam, file after file, the same beams (openBeamSource, pass after pass).
+  const std::unique_ptr<BeamSource> source = openBeamSource(folder.string(), LogFormat::kRosbag2);
+  for (int pass = 0; pass < 2; ++pass) {
+    source->rewind();
+    for (const Beam& expected : log.beams) {
+      const std::optional<Beam> beam = source->next();
+      ASSERT_TRUE(beam.has_value());
+      EXPECT_EQ(beam->time_s, expected.time_s);
+      EXPECT_EQ(beam->bearing_rad, expected.bearing_rad);
+      EXPECT_EQ(beam->intensities, expected.intensities);
+    }
+    EXPECT_FALSE(source->next().has_value());
+    EXPECT_EQ(source->header().notes, log.notes);
+    EXPECT_EQ(source->header().clock_utc_s, log.clock_utc_s);
+  }
 }
 
 TEST(formatsRosbag2, AnIronDatabaseCarriesTheDefinitionOfADriversOwnMessage) {

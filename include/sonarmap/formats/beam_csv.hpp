@@ -28,9 +28,11 @@
 /// accepted. Numbers as std::from_chars reads them (no leading '+').
 
 #include <iosfwd>
+#include <memory>
 #include <string>
 
 #include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
 
 namespace sonarmap {
 
@@ -50,6 +52,13 @@ SonarLog readBeamCsv(const std::string& path);
 /// The same CSV read from a stream; `name` stands for the file in messages.
 /// @throws FileError as readBeamCsv(path) for anything malformed.
 SonarLog readBeamCsv(std::istream& in, const std::string& name);
+
+/// readBeamCsv's beams one row at a time (beam_source.hpp): the same beams and errors, read as
+/// they are asked for, so a CSV of any length (gzip-compressed or not) is read in the memory of one row; each pass reads
+/// the file again. Opening reads the header and the first row.
+/// @throws FileError as readBeamCsv: on opening for the file, its header or first row (or none),
+///         from next() for a later row.
+std::unique_ptr<BeamSource> openBeamCsv(const std::string& path);
 
 /// Writes the beams of `log` as a beam CSV (atomically: temporary file + rename). Beams may have
 /// different bin counts; the header has as many b-columns as the longest beam. Times and bin

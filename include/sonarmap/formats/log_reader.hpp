@@ -3,11 +3,13 @@
 /// Opens a sonar log by its file extension, or in a format named by the caller (for a raw capture
 /// of any file name).
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
 
 namespace sonarmap {
 
@@ -82,5 +84,12 @@ struct LogReadOptions {
 /// options but for `options` (e.g. `readSonarLog("capture.raw", parseLogFormat("seanet"))`).
 /// @throws FileError for a file the format's reader rejects.
 SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOptions& options = {});
+
+/// The beams readSonarLog(path, format, options) reads, one at a time (beam_source.hpp), with the
+/// same header: a beam CSV (openBeamCsv) and the ROS logs (openRosBag) are read from the file as
+/// the beams are asked for, so that a log of hours is read in the memory of a chunk; the other
+/// formats (files of minutes) are read whole on opening.
+/// @throws FileError as readSonarLog, on opening or (CSV, ROS logs) from next().
+std::unique_ptr<BeamSource> openBeamSource(const std::string& path, LogFormat format, const LogReadOptions& options = {});
 
 }  // namespace sonarmap

@@ -22,10 +22,12 @@
 /// RosBagOptions::bearing_unit and bearing_direction override both. What was decided is said in
 /// SonarLog::notes.
 
+#include <memory>
 #include <string>
 #include <string_view>
 
 #include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
 
 namespace sonarmap {
 
@@ -63,5 +65,14 @@ struct RosBagOptions {
 ///         bag or has no sonar fields, when no topic has them (listing the topics and their types),
 ///         or when no message of the topic decodes.
 SonarLog readRosBag(const std::string& path, const RosBagOptions& options = {});
+
+/// readRosBag's beams one at a time (beam_source.hpp), the same beams in the same order with the
+/// same header, skips and notes, read from the file as they are asked for: a chunk of the bag at a
+/// time, whatever its length. Opening reads the topics and the topic up to its first beam (its
+/// frame); without a unit given or named by the bearing's field, on up to the first bearing beyond
+/// 2π (degrees), or through (radians). The skips are counted once a pass has reached the end.
+/// @throws FileError as readRosBag: on opening for the bag, its topic, or a topic of which no
+///         message decodes; from next() for a container's error met later.
+std::unique_ptr<BeamSource> openRosBag(const std::string& path, const RosBagOptions& options = {});
 
 }  // namespace sonarmap

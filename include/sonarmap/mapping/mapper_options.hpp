@@ -16,6 +16,8 @@
 #include "sonarmap/mapping/sweep_fan.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
+#include "sonarmap/sonar/beam_source.hpp"
+#include "sonarmap/sonar/log_survey.hpp"
 #include "sonarmap/sonar/preprocess.hpp"
 #include "sonarmap/sonar/range_scales.hpp"
 
@@ -170,6 +172,8 @@ double autoResolution_m(double reach_m);
 /// The reach of a log: its longest beam (bins × bin length), at most max_range_m, metres;
 /// 0 for a log without beams.
 double logReach_m(const SonarLog& log, double max_range_m);
+/// The same of a surveyed log.
+double logReach_m(const LogSurvey& survey, double max_range_m);
 
 /// The automatic resolution of a log and what it follows.
 struct AutoResolution {
@@ -189,11 +193,16 @@ struct AutoResolution {
 /// then says what fits). A log of one range scale: autoResolution_m(logReach_m).
 /// @throws ValueError when options are invalid or no beam of the log has bins.
 AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options);
+/// The same for the log `pass` goes over, surveyed as `survey` (log_survey.hpp): a further pass only
+/// where the survey cannot tell that a resolution fits the budget.
+AutoResolution autoResolutionForLog(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
 
 /// `options` with every "auto" the mapper needs before the first sweep resolved for `log`:
 /// resolution_m (autoResolutionForLog). Other options are unchanged.
 /// @throws ValueError when options are invalid, or the resolution is auto and the log has no beam.
 MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
+/// The same for a surveyed log (autoResolutionForLog's passes).
+MapperOptions resolveForLog(const MapperOptions& options, const LogSurvey& survey, const BeamPass& pass);
 
 /// Upper estimate of the voxel updates mapping `log` with `options` (resolution resolved) costs:
 /// the area each beam's wedge sweeps in the sonar's plane, max(beam width, bearing step to the
@@ -201,17 +210,23 @@ MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
 /// The volume model: the volume of that wedge's cone, × vertical aperture × range³ / 3, over the
 /// voxel's volume (a 360° sweep of a 35° beam: 2π · 0.61 · R³ / 3 / res³).
 double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options);
+/// The same for the log `pass` goes over (one pass, more when the resolution is automatic).
+double estimateVoxelUpdates(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
 
 /// Lines for the user about options that cannot work with `log` (a minimum range, self-reflection
 /// range or echo length beyond the log's reach, a maximum range that cuts its beams, a resolution
 /// coarser than a quarter of the reach, smoothing longer than half of it); each names the option
 /// (MapperOptions field and command-line flag). Empty when nothing needs saying.
 std::vector<std::string> optionWarnings(const MapperOptions& options, const SonarLog& log);
+/// The same for a surveyed log.
+std::vector<std::string> optionWarnings(const MapperOptions& options, const LogSurvey& survey);
 
 /// Throws when estimateVoxelUpdates() exceeds options.max_voxel_updates.
 /// @throws ValueError naming the estimate, the budget, the option that raises it
 ///         (max_voxel_updates, `--max-voxel-updates` on the command line) and the finest
 ///         resolution that fits the budget.
 void checkWorkBudget(const SonarLog& log, const MapperOptions& options);
+/// The same for the log `pass` goes over: no pass where the survey's reaches show that it fits.
+void checkWorkBudget(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
 
 }  // namespace sonarmap

@@ -222,4 +222,21 @@ SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options = {}, 
 SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body,
                         const MapperOptions& options = {}, const ProgressCallback& progress = {});
 
+/// The detector's smallest sweep for `options` (BackgroundOptions::min_beams, at least 1): the
+/// `min_beams` a log is surveyed with for mapSonarLog's progress (surveyLog).
+std::size_t surveyMinBeams(const MapperOptions& options);
+
+/// mapSonarLog for a log read beam by beam: `source`'s beams from its first (rewind()), surveyed as
+/// `survey` (surveyLog over it with surveyMinBeams(options)), give the map of mapSonarLog on the
+/// log held whole, byte for byte, holding one beam at a time besides the map and the sweeps being
+/// detected. The resolution needs no pass of its own unless the survey cannot tell that it fits the
+/// budget (autoResolutionForLog). `stats().beams_skipped` is the source's count after the pass.
+/// @throws as mapSonarLog(log, ...), and what the source throws.
+SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const MapperOptions& options = {},
+                        const ProgressCallback& progress = {});
+/// The same from a moving vehicle (as mapSonarLog(log, nav, sonar_to_body, ...)).
+SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const NavTrack& nav,
+                        const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options = {},
+                        const ProgressCallback& progress = {});
+
 }  // namespace sonarmap

@@ -24,6 +24,10 @@ struct RangeScale {
 /// bins count for their scale with reach 0.
 std::vector<RangeScale> rangeScales(const SonarLog& log);
 
+/// Counts `beam`, the log's beam of index `index`, in its scale among `scales` (rangeScales one
+/// beam at a time).
+void countRangeScale(std::vector<RangeScale>& scales, const Beam& beam, std::size_t index);
+
 /// The scale most beams use (a tie: the one used last), or nullptr when `scales` is empty. A scale
 /// whose reach is 0 (beams without bins) is chosen only when no other is there.
 const RangeScale* mostUsedRangeScale(const std::vector<RangeScale>& scales);
