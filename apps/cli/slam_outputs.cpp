@@ -1,7 +1,9 @@
 #include "slam_outputs.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <map>
+#include <numbers>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/nav/tum_trajectory.hpp"
@@ -33,11 +35,17 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
       commonest = reason;
     }
   }
-  char scale[96] = "";
+  char scale[224] = "";
   if (with_nav && report.odometry_scale_observed) {
     std::snprintf(scale, sizeof scale, ", odometry scale %.4f ± %.4f", report.odometry_scale, report.odometry_scale_sigma);
   } else if (with_nav && !report.heading_only) {
     std::snprintf(scale, sizeof scale, ", odometry scale kept 1 (the scans do not constrain it)");
+  }
+  if (with_nav && report.heading_deviation_observed) {  // a compass's deviation, in degrees
+    char deviation[112];
+    std::snprintf(deviation, sizeof deviation, ", compass deviation %+.1f cos %+.1f sin of the heading (deg)",
+                  report.heading_deviation_rad.x() * 180.0 / std::numbers::pi, report.heading_deviation_rad.y() * 180.0 / std::numbers::pi);
+    std::strncat(scale, deviation, sizeof scale - std::strlen(scale) - 1);
   }
   char limits[96] = "";
   if (report.matches_beyond_limits > 0) {

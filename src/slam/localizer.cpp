@@ -12,19 +12,10 @@
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/core/statistics.hpp"
 #include "sonarmap/slam/localizer.hpp"
-#include "loop_gates.hpp"
 
 namespace sonarmap {
 
 namespace {
-
-/// Information (in `frame`'s coordinates) of a pose whose information is stated in NED: the
-/// position error rotated into the frame, yaw unchanged.
-Eigen::Matrix3d informationInFrame(const Eigen::Matrix3d& information_ned, const Pose2& frame) {
-  Eigen::Matrix3d a = Eigen::Matrix3d::Identity();
-  a.topLeftCorner<2, 2>() = frame.rotation();
-  return a.transpose() * information_ned * a;
-}
 
 /// Linear interpolation of two planar poses (the yaw along the shorter arc).
 Pose2 interpolate(const Pose2& a, const Pose2& b, double f) {
@@ -52,13 +43,18 @@ std::size_t SlamReport::loopClosuresAccepted() const {
 }
 
 Localizer::Localizer(const SlamOptions& options, bool navigation_known)
-    : options_(options), navigation_known_(navigation_known) {
+    : options_(options),
+      navigation_known_(navigation_known),
+      noise_(options.forming.odometry),
+      deviation_(navigation_known && options.forming.odometry.position_measured ? options.forming.odometry.deviation_sigma_rad
+                                                                               : 0.0) {
   options_.validate();
   report_.heading_only = headingOnly();
   if (navigation_known_ && options_.forming.odometry.position_measured && options_.estimate_odometry_scale &&
       options_.forming.odometry.scale_sigma > 0.0) {
     graph_.estimateOdometryScale(options_.forming.odometry.scale_sigma);
   }
+
 }
 
 std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame) const {
@@ -82,8 +78,11 @@ void Localizer::addScan(SonarScan scan) {
   ++report_.scans;
   if (scan.points.size() >= options_.matching.min_pairs) ++report_.scans_with_points;
   if (k == 0) {
+    chain_ = OdometryChain(scan.dead_reckoning.yaw_rad);
+    for (OdometryChain& chain : term_chains_) chain = OdometryChain(scan.dead_reckoning.yaw_rad);
     graph_.addNode(scan.dead_reckoning);
     odometry_.push_back({});
+    durations_s_.push_back(0.0);
     odometry_cov_.push_back(Eigen::Matrix3d::Zero());
     travelled_m_.push_back(0.0);
     scans_.push_back(std::move(scan));
@@ -92,23 +91,32 @@ void Localizer::addScan(SonarScan scan) {
   const SonarScan& previous = scans_.back();
   const Pose2 motion = previous.dead_reckoning.between(scan.dead_reckoning);
   const double duration_s = scan.time_s - previous.time_s;
-  const Eigen::Matrix3d covariance = options_.forming.odometry.covariance(motion, duration_s, navigation_known_);
-  // The edge: the scale error is the graph's own parameter (estimateOdometryScale), so the edge
-  // keeps only what varies from edge to edge (a fifth of it, and the noise).
-  OdometryNoise varying = options_.forming.odometry;
-  if (graph_.estimatesOdometryScale()) varying.scale_sigma /= 5.0;
-  const Eigen::Matrix3d edge_covariance = varying.covariance(motion, duration_s, navigation_known_);
-  const double scale = graph_.odometryScale();
-  Pose2 predicted{scale * motion.x_m, scale * motion.y_m, motion.yaw_rad};
+  odometry_.push_back(motion);
+  durations_s_.push_back(duration_s);
+  odometry_cov_.push_back(noise_.covariance(motion, duration_s, navigation_known_));
+  chain_.append(motion, odometry_cov_.back());
+  const std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> terms = noise_.covarianceTerms(motion, duration_s);
+  for (std::size_t p = 0; p < terms.size(); ++p) term_chains_[p].append(motion, terms[p]);
+  Pose2 predicted = predictedMotion(motion, previous.dead_reckoning.yaw_rad, scan.dead_reckoning.yaw_rad);
   if (headingOnly()) continueAtLastVelocity(k, duration_s, predicted, scan);
   graph_.addNode(graph_.pose(k - 1) * predicted);
-  graph_.addEdge({k - 1, k, motion, edge_covariance.inverse(), EdgeKind::kOdometry});
-  odometry_.push_back(motion);
-  odometry_cov_.push_back(covariance);
+  graph_.addEdge({k - 1, k, motion, odometryEdgeInformation(k), EdgeKind::kOdometry, previous.dead_reckoning.yaw_rad,
+                  scan.dead_reckoning.yaw_rad});
+  edge_pairs_information_.push_back(std::nullopt);
   travelled_m_.push_back(travelled_m_.back() + motion.translation().norm());
   scans_.push_back(std::move(scan));
+  measureMatches(k);
+  // The prediction again with the deviation measured on this scan too.
+  if (!headingOnly()) graph_.setPose(k, graph_.pose(k - 1) * predictedMotion(motion, scans_[k - 1].dead_reckoning.yaw_rad,
+                                                                             scans_[k].dead_reckoning.yaw_rad));
   matchToSubmap(k);
   closeLoop(k);
+}
+
+Pose2 Localizer::predictedMotion(const Pose2& motion, double from_heading_rad, double to_heading_rad) const {
+  const double scale = graph_.odometryScale();
+  const Eigen::Vector2d g(std::cos(to_heading_rad) - std::cos(from_heading_rad), std::sin(to_heading_rad) - std::sin(from_heading_rad));
+  return {scale * motion.x_m, scale * motion.y_m, wrapAngle_rad(motion.yaw_rad + g.dot(deviationCoefficients()))};
 }
 
 void Localizer::continueAtLastVelocity(std::size_t k, double duration_s, Pose2& predicted, SonarScan& scan) const {
@@ -132,7 +140,11 @@ void Localizer::matchToSubmap(std::size_t k) {
   const Pose2 predicted = graph_.pose(k);
   Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();  // the odometry's covariance rotated into NED
   rotate.topLeftCorner<2, 2>() = graph_.pose(k - 1).rotation();
-  const Eigen::Matrix3d prior_ned = rotate * odometry_cov_[k] * rotate.transpose();
+  Eigen::Matrix3d prior = odometry_cov_[k];  // the odometry's, and its turn's uncertainty from the deviation
+  const double from_rad = scans_[k - 1].dead_reckoning.yaw_rad, to_rad = scans_[k].dead_reckoning.yaw_rad;
+  const Eigen::Vector2d g(std::cos(to_rad) - std::cos(from_rad), std::sin(to_rad) - std::sin(from_rad));
+  prior(2, 2) += g.dot(deviationCovariance() * g);
+  const Eigen::Matrix3d prior_ned = rotate * prior * rotate.transpose();
   const ScanMatch match = matchScans(target, scans_[k].points, predicted, prior_ned, headingOnly(), options_.matching);
   if (!match.accepted) {
     // A match along one wall still fixes the offset across it and the heading: keep that part.
@@ -150,7 +162,9 @@ void Localizer::matchToSubmap(std::size_t k) {
   ++report_.matches_accepted;
   graph_.setPose(k, match.pose);
   const Pose2& anchor = graph_.pose(k - 1);
-  graph_.addEdge({k - 1, k, anchor.between(match.pose), informationInFrame(match.information, anchor), EdgeKind::kScanMatch});
+  const Eigen::Matrix3d pairs_information = informationInFrame(match.information, anchor);
+  graph_.addEdge({k - 1, k, anchor.between(match.pose), matchInformation(pairs_information), EdgeKind::kScanMatch});
+  edge_pairs_information_.push_back(pairs_information);
 }
 
 bool Localizer::beyondLimits(std::size_t from, std::size_t to, const Pose2& motion) const {
@@ -162,100 +176,12 @@ bool Localizer::beyondLimits(std::size_t from, std::size_t to, const Pose2& moti
   return !navigation_known_ && std::abs(motion.yaw_rad) > limits.max_turn_rate_radps * duration_s;
 }
 
-void Localizer::closeLoop(std::size_t k) {
-  std::vector<double> reaches;
-  for (const SonarScan& scan : scans_) reaches.push_back(scan.reach_m);
-  const double reach_m = percentile(reaches, 0.5);
-  const double radius_m = options_.loop_search_radius_m > 0.0 ? options_.loop_search_radius_m : reach_m / 2.0;
-  const double min_travel_m = options_.loop_min_travel_m > 0.0 ? options_.loop_min_travel_m : 2.0 * reach_m;
-  // With the heading alone, the track's position comes from the sequential matches, whose drift
-  // along the path the gates below (dead reckoning's drift model) do not describe: measured, 64 of
-  // the 76 accepted on three seeds of the simulated missions were wrong (docs/localization.md).
-  if (scans_[k].points.size() < options_.matching.min_pairs || headingOnly()) return;
-  // The nearest earlier scan that the vehicle left long enough ago, sought no farther than where
-  // its true neighbour can be (SlamOptions::loop_search_radius_m): half the old scans' spacing
-  // plus 3σ of dead reckoning's drift along the path since. Two views farther apart than that see
-  // small targets from different sides (a pile's echo comes from the side facing the sonar, so
-  // the two disagree by up to its radius); a later scan passes nearer.
-  const std::vector<Eigen::Matrix3d> drift = pathCovariancesTo(k);
-  std::size_t best = k;
-  double best_distance_m = std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j + options_.submap_scans < k; ++j) {
-    // The vehicle left j long ago, or never left its neighbourhood (a hovering or static vehicle
-    // revisits the same place all the time: its drift is bounded by matching the first scans).
-    const double travelled_m = travelled_m_[k] - travelled_m_[j];
-    if (travelled_m < min_travel_m && travelled_m > radius_m) continue;
-    if (scans_[j].points.size() < options_.matching.min_pairs) continue;
-    const double distance_m = (graph_.pose(j).translation() - graph_.pose(k).translation()).norm();
-    const std::size_t before = j > 0 ? j - 1 : j;  // the scans around j (j + 1 < k here)
-    const double spacing_m = (travelled_m_[j + 1] - travelled_m_[before]) / static_cast<double>(j + 1 - before);
-    const double drift_sigma_m = std::sqrt(drift[j].topLeftCorner<2, 2>().eigenvalues().real().maxCoeff());
-    const double reachable_m = options_.loop_search_radius_m > 0.0 ? radius_m : std::min(radius_m, spacing_m / 2.0 + 3.0 * drift_sigma_m);
-    if (distance_m <= reachable_m && distance_m < best_distance_m) {
-      best = j;
-      best_distance_m = distance_m;
-    }
-  }
-  if (best == k) return;
-  const std::size_t j = best;
-  const std::size_t first = j > 0 ? j - 1 : 0;
-  const std::size_t last = std::min(j + 2, k - options_.submap_scans);
-  const std::vector<ScanPoint> target = placedPoints(first, last);
-  // The prior: dead reckoning's drift along the path from j to k, in NED.
-  const Eigen::Matrix3d path = pathCovariance(j, k);
-  Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();
-  rotate.topLeftCorner<2, 2>() = graph_.pose(j).rotation();
-  const Eigen::Matrix3d prior_ned = rotate * path * rotate.transpose();
-  // The source: the new scan with the scans just before it, in its frame (more of the place, so a
-  // match along one wall or one row of piles is told from a true fix more often).
-  const std::size_t source_first = k + 1 > options_.submap_scans ? k + 1 - options_.submap_scans : 0;
-  const std::vector<ScanPoint> source = placedPoints(std::max(source_first, last), k + 1, graph_.pose(k).inverse());
-  const ScanMatch match = matchScans(target, source, graph_.pose(k), prior_ned, true, options_.matching);
-  LoopClosure loop;
-  loop.from = j;
-  loop.to = k;
-  loop.measurement = graph_.pose(j).between(match.pose);
-  loop.pairs = match.pairs;
-  loop.peak_ratio = match.peak_ratio;
-  if (!match.accepted) {
-    loop.reason = match.reason;
-    report_.loop_closures.push_back(loop);
-    return;
-  }
-  proposeLoopClosure(j, k, loop.measurement, informationInFrame(match.information, graph_.pose(j)));
-  report_.loop_closures.back().pairs = match.pairs;  // proposeLoopClosure recorded it, accepted or not
-  report_.loop_closures.back().peak_ratio = match.peak_ratio;
-}
-
-bool Localizer::proposeLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement,
-                                   const Eigen::Matrix3d& information) {
-  if (from >= to || to >= scans_.size()) throw ValueError("slam: a loop closure joins an older scan to a newer one");
-  if (!information.allFinite() || !measurement.vector().allFinite()) throw ValueError("slam: a loop closure must be finite");
-  LoopClosure loop;
-  loop.from = from;
-  loop.to = to;
-  loop.measurement = measurement;
-  const Eigen::Matrix3d match_cov = (information + 1e-9 * Eigen::Matrix3d::Identity()).inverse();
-  const Eigen::Matrix3d path = pathCovariance(from, to);
-  const Pose2 estimated = graph_.pose(from).between(graph_.pose(to));
-  if (beyondLimits(from, to, measurement)) {
-    loop.reason = "faster than the vehicle's limits (its top speed or turn rate)";
-  } else if (loopChi2(measurement, estimated, path + match_cov) > options_.loop_gate_chi2) {
-    loop.reason = "farther from the estimate than dead reckoning can have drifted";
-  } else if (!consistentWithAccepted(loop, match_cov)) {
-    loop.reason = "inconsistent with an earlier loop closure";
-  } else {
-    loop.accepted = true;
-    accepted_loops_.push_back(report_.loop_closures.size());
-    loop_cov_.push_back(match_cov);
-    graph_.addEdge({from, to, measurement, information, EdgeKind::kLoopClosure});
-    graph_.optimize(options_.graph);
-  }
-  report_.loop_closures.push_back(loop);
-  return loop.accepted;
-}
-
 void Localizer::optimize() {
+  redecideLoopClosures();
+  // The odometry's noise measured on the loop closures decides them again.
+  if (options_.calibrate_navigation && calibrateOdometry()) redecideLoopClosures();
+  report_.odometry_noise = noise_;
+  report_.match_noise = match_noise_;
   PoseGraphOptions final_options = options_.graph;
   final_options.scale_covariance = graph_.estimatesOdometryScale();
   graph_.optimize(final_options);
@@ -273,12 +199,14 @@ void Localizer::optimize() {
       graph_.fixOdometryScale();
       const std::vector<PoseGraphEdge>& edges = graph_.edges();
       for (std::size_t e = 0; e < edges.size(); ++e) {
-        if (edges[e].kind == EdgeKind::kOdometry) graph_.setInformation(e, odometry_cov_[edges[e].to].inverse());
+        if (edges[e].kind == EdgeKind::kOdometry) graph_.setInformation(e, odometryEdgeInformation(edges[e].to));
       }
       graph_.optimize(options_.graph);
     }
   }
   report_.odometry_scale = graph_.odometryScale();
+  report_.heading_deviation_observed = graph_.estimatesHeadingDeviation();
+  report_.heading_deviation_rad = graph_.headingDeviation();
 }
 
 NavTrack Localizer::correctedTrack(const NavTrack& dead_reckoning) const {

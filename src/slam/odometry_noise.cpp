@@ -22,22 +22,33 @@ void requirePositive(double value, const char* name) {
 
 }  // namespace
 
+std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> OdometryNoise::covarianceTerms(const Pose2& delta, double duration_s) const {
+  const double t = std::abs(duration_s);
+  const Eigen::Vector2d step = delta.translation();
+  const double distance_m = step.norm();
+  const Eigen::Vector2d along = distance_m > 1e-9 ? Eigen::Vector2d(step / distance_m) : Eigen::Vector2d::UnitX();
+  const Eigen::Vector2d across(-along.y(), along.x());
+  std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> terms;
+  for (Eigen::Matrix3d& term : terms) term.setZero();
+  terms[0].topLeftCorner<2, 2>() = along * along.transpose() * distance_m * distance_m;     // scale: along-track, ∝ d²
+  terms[1].topLeftCorner<2, 2>() = across * across.transpose() * distance_m * distance_m;   // heading: cross-track, ∝ d²
+  terms[2].topLeftCorner<2, 2>() = Eigen::Matrix2d::Identity() * nav_period_s * t;           // white velocity noise integrated
+  terms[3](2, 2) = t;                                                                         // heading random walk
+  terms[4] = Eigen::Vector3d(1e-6, 1e-6, std::pow(0.01 * 3.14159265358979323846 / 180.0, 2)).asDiagonal();  // floor
+  return terms;
+}
+
 Eigen::Matrix3d OdometryNoise::covariance(const Pose2& delta, double duration_s, bool known) const {
   const double t = std::abs(duration_s);
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  if (!known || !position_measured) {
-    const double position_sigma_m = unknown_speed_sigma_mps * t;
-    covariance.topLeftCorner<2, 2>() = Eigen::Matrix2d::Identity() * position_sigma_m * position_sigma_m;
-  } else {
-    const Eigen::Vector2d step = delta.translation();
-    const double distance_m = step.norm();
-    const double noise_m2 = velocity_noise_mps * velocity_noise_mps * nav_period_s * t;
-    const double along_m2 = std::pow(scale_sigma * distance_m, 2) + noise_m2;
-    const double cross_m2 = std::pow(heading_sigma_rad * distance_m, 2) + noise_m2;
-    const Eigen::Vector2d along = distance_m > 1e-9 ? Eigen::Vector2d(step / distance_m) : Eigen::Vector2d::UnitX();
-    const Eigen::Vector2d across(-along.y(), along.x());
-    covariance.topLeftCorner<2, 2>() = along * along.transpose() * along_m2 + across * across.transpose() * cross_m2;
+  if (known && position_measured) {
+    const std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> terms = covarianceTerms(delta, duration_s);
+    Eigen::Matrix3d covariance = terms[kOdometryNoiseTerms];
+    for (std::size_t p = 0; p < kOdometryNoiseTerms; ++p) covariance += std::pow(this->*kOdometryNoiseParameters[p], 2) * terms[p];
+    return covariance;
   }
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  const double position_sigma_m = unknown_speed_sigma_mps * t;
+  covariance.topLeftCorner<2, 2>() = Eigen::Matrix2d::Identity() * position_sigma_m * position_sigma_m;
   covariance(2, 2) = known ? gyro_walk_rad_per_sqrt_s * gyro_walk_rad_per_sqrt_s * t : std::pow(unknown_turn_sigma_radps * t, 2);
   covariance(0, 0) += 1e-6;
   covariance(1, 1) += 1e-6;
@@ -54,12 +65,13 @@ struct NavigationClass {
   double heading_sigma_deg;
   double velocity_noise_mps;
   double gyro_walk_deg_per_sqrt_s;
+  double deviation_sigma_deg;
   bool position_measured = true;
 };
 constexpr const char* kHeadingOnlyClass = "ahrs";
-constexpr NavigationClass kNavigationClasses[] = {{"dvl-ins", 0.003, 0.2, 0.01, 0.01},
-                                                  {"absolute", 0.001, 0.1, 0.005, 0.005},
-                                                  {kHeadingOnlyClass, 0.0, 1.5, 0.0, 0.05, false}};
+constexpr NavigationClass kNavigationClasses[] = {{"dvl-ins", 0.003, 0.2, 0.01, 0.01, 0.0},
+                                                  {"absolute", 0.001, 0.1, 0.005, 0.005, 0.0},
+                                                  {kHeadingOnlyClass, 0.0, 1.5, 0.0, 0.05, 2.0, false}};
 constexpr const char* kDefaultNavigationClass = "dvl-ahrs";  // OdometryNoise{}
 
 }  // namespace
@@ -74,6 +86,7 @@ OdometryNoise odometryNoiseOf(std::string_view navigation_class) {
     noise.heading_sigma_rad = known.heading_sigma_deg * kDegree;
     noise.velocity_noise_mps = known.velocity_noise_mps;
     noise.gyro_walk_rad_per_sqrt_s = known.gyro_walk_deg_per_sqrt_s * kDegree;
+    noise.deviation_sigma_rad = known.deviation_sigma_deg * kDegree;
     noise.position_measured = known.position_measured;
     return noise;
   }
@@ -101,6 +114,7 @@ void OdometryNoise::validate() const {
   requireNonNegative(velocity_noise_mps, "velocity_noise_mps");
   requirePositive(nav_period_s, "nav_period_s");
   requireNonNegative(gyro_walk_rad_per_sqrt_s, "gyro_walk_rad_per_sqrt_s");
+  requireNonNegative(deviation_sigma_rad, "deviation_sigma_rad");
   requirePositive(unknown_speed_sigma_mps, "unknown_speed_sigma_mps");
   requirePositive(unknown_turn_sigma_radps, "unknown_turn_sigma_radps");
   requirePositive(max_speed_mps, "max_speed_mps");

@@ -36,15 +36,24 @@ struct RelativePoseError {
     return evaluate(from, to, T(1.0), residuals);
   }
 
-  /// The odometry's form: the measured translation times the odometry's scale factor.
+  /// The odometry's form: the measured translation times the odometry's scale factor, the measured
+  /// turn plus the change of the heading sensor's deviation δ(ψ) = a cos ψ + b sin ψ between the
+  /// two headings the navigation gave.
   template <class T>
-  bool operator()(const T* from, const T* to, const T* scale, T* residuals) const {
-    return evaluate(from, to, scale[0], residuals);
+  bool operator()(const T* from, const T* to, const T* scale, const T* deviation, T* residuals) const {
+    const T turn_error = deviation[0] * T(std::cos(to_heading_rad_) - std::cos(from_heading_rad_)) +
+                         deviation[1] * T(std::sin(to_heading_rad_) - std::sin(from_heading_rad_));
+    return evaluate(from, to, scale[0], residuals, turn_error);
+  }
+
+  void setHeadings(double from_heading_rad, double to_heading_rad) {
+    from_heading_rad_ = from_heading_rad;
+    to_heading_rad_ = to_heading_rad;
   }
 
  private:
   template <class T>
-  bool evaluate(const T* from, const T* to, const T& scale, T* residuals) const {
+  bool evaluate(const T* from, const T* to, const T& scale, T* residuals, const T& turn_error = T(0.0)) const {
     using std::cos;
     using std::sin;
     const T c = cos(from[2]), s = sin(from[2]);
@@ -52,7 +61,7 @@ struct RelativePoseError {
     const T x = c * dx + s * dy;  // to's position in from's frame: Rᵀ (t_to − t_from)
     const T y = -s * dx + c * dy;
     Eigen::Matrix<T, 3, 1> error(x - scale * T(measurement_.x_m), y - scale * T(measurement_.y_m),
-                                 wrapped(to[2] - from[2] - T(measurement_.yaw_rad)));
+                                 wrapped(to[2] - from[2] - T(measurement_.yaw_rad) - turn_error));
     // The information is stated in from's frame, like the measurement's translation.
     const Eigen::Matrix<T, 3, 1> weighted = sqrt_information_.cast<T>() * error;
     residuals[0] = weighted(0);
@@ -63,6 +72,19 @@ struct RelativePoseError {
 
   Pose2 measurement_;
   Eigen::Matrix3d sqrt_information_;
+  double from_heading_rad_ = 0.0;
+  double to_heading_rad_ = 0.0;
+};
+
+/// The heading deviation's prior: (a, b) / σ.
+struct DeviationPrior {
+  double sigma_rad;
+  template <class T>
+  bool operator()(const T* deviation, T* residual) const {
+    residual[0] = deviation[0] / T(sigma_rad);
+    residual[1] = deviation[1] / T(sigma_rad);
+    return true;
+  }
 };
 
 /// The odometry scale's prior: (scale − 1) / σ.
@@ -107,11 +129,15 @@ bool PoseGraph::optimize(const PoseGraphOptions& options) {
   for (std::size_t i = 0; i < poses_.size(); ++i) state[i] = {poses_[i].x_m, poses_[i].y_m, poses_[i].yaw_rad};
   ceres::Problem problem;
   double scale = odometry_scale_;
+  std::array<double, 2> deviation{heading_deviation_.x(), heading_deviation_.y()};
+  const bool navigation_parameters = scale_sigma_ || deviation_sigma_;
   for (const PoseGraphEdge& edge : edges_) {
     const Eigen::Matrix3d root = informationSqrt(edge.information);
-    if (edge.kind == EdgeKind::kOdometry && scale_sigma_) {
-      auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3, 1>(new RelativePoseError(edge.measurement, root));
-      problem.AddResidualBlock(cost, nullptr, state[edge.from].data(), state[edge.to].data(), &scale);
+    if (edge.kind == EdgeKind::kOdometry && navigation_parameters) {
+      auto* error = new RelativePoseError(edge.measurement, root);
+      error->setHeadings(edge.from_heading_rad, edge.to_heading_rad);
+      auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3, 1, 2>(error);
+      problem.AddResidualBlock(cost, nullptr, state[edge.from].data(), state[edge.to].data(), &scale, deviation.data());
       continue;
     }
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 3, 3, 3>(new RelativePoseError(edge.measurement, root));
@@ -119,9 +145,18 @@ bool PoseGraph::optimize(const PoseGraphOptions& options) {
     if (edge.kind != EdgeKind::kOdometry) loss = new ceres::CauchyLoss(options.robust_scale_sigma);
     problem.AddResidualBlock(cost, loss, state[edge.from].data(), state[edge.to].data());
   }
-  if (scale_sigma_ && problem.HasParameterBlock(&scale)) {  // its prior: 1 ± scale_sigma
-    auto* prior = new ceres::AutoDiffCostFunction<ScalePrior, 1, 1>(new ScalePrior{*scale_sigma_});
-    problem.AddResidualBlock(prior, nullptr, &scale);
+  if (problem.HasParameterBlock(&scale)) {
+    if (scale_sigma_) {  // its prior: 1 ± scale_sigma
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScalePrior, 1, 1>(new ScalePrior{*scale_sigma_}), nullptr, &scale);
+    } else {
+      problem.SetParameterBlockConstant(&scale);
+    }
+    if (deviation_sigma_) {  // its prior: 0 ± deviation_sigma for each coefficient
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DeviationPrior, 2, 2>(new DeviationPrior{*deviation_sigma_}), nullptr,
+                               deviation.data());
+    } else {
+      problem.SetParameterBlockConstant(deviation.data());
+    }
   }
   problem.SetParameterBlockConstant(state.front().data());
   ceres::Solver::Options solver;
@@ -135,6 +170,7 @@ bool PoseGraph::optimize(const PoseGraphOptions& options) {
   if (!summary.IsSolutionUsable()) return false;
   for (std::size_t i = 0; i < poses_.size(); ++i) poses_[i] = {state[i][0], state[i][1], wrapAngle_rad(state[i][2])};
   odometry_scale_ = scale;
+  heading_deviation_ = Eigen::Vector2d(deviation[0], deviation[1]);
   odometry_scale_sigma_ = 0.0;
   if (options.scale_covariance && scale_sigma_ && problem.HasParameterBlock(&scale)) {
     ceres::Covariance::Options covariance_options;
@@ -159,6 +195,11 @@ void PoseGraph::setInformation(std::size_t edge, const Eigen::Matrix3d& informat
   if (edge >= edges_.size()) throw ValueError("pose graph: no such edge");
   if (!information.allFinite()) throw ValueError("pose graph: an edge's information must be finite");
   edges_[edge].information = information;
+}
+
+void PoseGraph::estimateHeadingDeviation(double prior_sigma_rad) {
+  if (!(std::isfinite(prior_sigma_rad) && prior_sigma_rad > 0.0)) throw ValueError("pose graph: the deviation's prior σ must be > 0");
+  deviation_sigma_ = prior_sigma_rad;
 }
 
 void PoseGraph::estimateOdometryScale(double prior_sigma) {

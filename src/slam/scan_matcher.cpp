@@ -202,17 +202,6 @@ void ScanMatchOptions::validate() const {
   if (max_search_steps < 3) throw ValueError("scan matching: max_search_steps must be ≥ 3");
 }
 
-Eigen::Matrix3d composeCovariance(const Pose2& a, const Eigen::Matrix3d& cov_a, const Pose2& b,
-                                  const Eigen::Matrix3d& cov_b) {
-  const double c = std::cos(a.yaw_rad), s = std::sin(a.yaw_rad);
-  Eigen::Matrix3d j_a = Eigen::Matrix3d::Identity();
-  j_a(0, 2) = -s * b.x_m - c * b.y_m;
-  j_a(1, 2) = c * b.x_m - s * b.y_m;
-  Eigen::Matrix3d j_b = Eigen::Matrix3d::Identity();
-  j_b.topLeftCorner<2, 2>() = a.rotation();
-  return j_a * cov_a * j_a.transpose() + j_b * cov_b * j_b.transpose();
-}
-
 ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
                      const ScanMatchOptions& options) {
@@ -253,6 +242,23 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
     match = icp(target, source, tree, shapes, initial, initial, prior_information, options);
     if (match.pairs < options.min_pairs || match.overlap < options.min_overlap) match = searchFirst();
   }
+  judge(match, source.size(), options);
+  return match;
+}
+
+ScanMatch matchScansFrom(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& initial,
+                         const ScanMatchOptions& options) {
+  options.validate();
+  ScanMatch match;
+  match.pose = initial;
+  if (target.size() < options.min_pairs || source.size() < options.min_pairs) {
+    match.reason = "too few points: " + std::to_string(source.size()) + " against " + std::to_string(target.size());
+    return match;
+  }
+  TargetCloud cloud{&target};
+  KdTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  match = icp(target, source, tree, localShapes(target, tree), initial, initial, Eigen::Matrix3d::Zero(), options);
   judge(match, source.size(), options);
   return match;
 }

@@ -2,16 +2,25 @@
 /// @file localizer.hpp
 /// Sonar-aided navigation (the "L" of the paper's SLAM, §9): scans (scan_forming.hpp) matched against the
 /// scans just before them and against scans seen long before near the current estimate (loop
-/// closures), on a pose graph (pose_graph.hpp) with dead reckoning's odometry. A loop closure is
-/// accepted only when the matcher finds it unambiguous, it agrees with dead reckoning within the
-/// drift dead reckoning may have had (a χ² gate), and it agrees with every loop closure accepted
-/// before it (pairwise consistency: Mangelson et al. 2018, "Pairwise consistent measurement set
-/// maximization for robust multi-robot map merging", ICRA; used for sonar by Bruce SLAM, Wang et
-/// al. 2022). The corrected trajectory moves each dead-reckoning fix by the correction of the
-/// scans around it, interpolated in time.
+/// closures), on a pose graph (pose_graph.hpp) with dead reckoning's odometry. Every unambiguous
+/// loop-closure match is a candidate; the accepted ones are the largest set that agree pairwise
+/// (the cycle two of them close with the dead reckoning between their ends: Mangelson et al. 2018,
+/// "Pairwise consistent measurement set maximization for robust multi-robot map merging", ICRA;
+/// used for sonar by Bruce SLAM, Wang et al. 2022; consistency_graph.hpp), a lone one only when the
+/// dead reckoning along its path confirms it. Wrong loop closures rarely agree with each other, so
+/// no bound on the dead reckoning's drift decides. The corrected trajectory moves each
+/// dead-reckoning fix by the correction of the scans around it, interpolated in time.
 ///
 /// A loop closure is sought for every scan among the scans older than its submap
 /// (SlamOptions::loop_search_radius_m, loop_min_travel_m).
+///
+/// With navigation, how far the dead reckoning and the matches can be trusted is measured on the
+/// log as it comes (navigation_calibration.hpp): each scan is also matched alone to the two scans
+/// before it, without the dead reckoning's pull. Their turns against the compass's give a magnetic
+/// compass's deviation (modelled, and estimated in the graph, once the matches show one); triangles
+/// of them give the matches' own noise; at the end the accepted loop closures against the dead
+/// reckoning give the odometry's noise, never below the stated class, and the candidates are
+/// decided again with it (optimize).
 ///
 /// With the heading alone (OdometryNoise::position_measured false: an AHRS or compass without a
 /// DVL), each scan is predicted at the velocity over the ground of the two scans before it, its
@@ -21,7 +30,9 @@
 ///
 /// One path for batch (localize) and live mapping (Localizer fed scan by scan).
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +40,9 @@
 
 #include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/slam/consistency_graph.hpp"
+#include "sonarmap/slam/navigation_calibration.hpp"
+#include "sonarmap/slam/odometry_chain.hpp"
 #include "sonarmap/slam/pose_graph.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
 #include "sonarmap/slam/scan_matcher.hpp"
@@ -50,6 +64,12 @@ struct SlamOptions {
   /// (the observability test; SlamReport::odometry_scale_observed). false: the odometry's scale is
   /// trusted, its error left in each edge's covariance.
   bool estimate_odometry_scale = true;
+  /// Measure on the log how far the navigation and the matches can be trusted
+  /// (navigation_calibration.hpp): the matches' noise from triangles of matches, the odometry's
+  /// from the accepted loop closures (never below the stated class). false: the stated class and
+  /// the matches' pairs' information as they are. A compass's deviation is measured either way
+  /// (OdometryNoise::deviation_sigma_rad 0 turns it off).
+  bool calibrate_navigation = true;
   /// A loop closure is sought among the scans whose estimated reference position lies within this
   /// of the new scan's, metres, ≥ 0; 0: automatic, for each older scan the nearer of half the
   /// scans' median reach and where its true neighbour can be (half the old scans' spacing along
@@ -62,12 +82,13 @@ struct SlamOptions {
   /// unless it has travelled no farther than the search radius since (a hovering or static
   /// vehicle: its scans older than the submap are loop closures too).
   double loop_min_travel_m = 0.0;
-  /// Gate of a loop closure against the current estimate: its squared Mahalanobis distance with the
-  /// covariance dead reckoning accumulates along the path between the two scans plus the match's,
-  /// 3 degrees of freedom; 11.34 is χ²₃'s 99 % quantile. > 0.
+  /// A loop closure no other agrees with stands only when the dead reckoning confirms it: its
+  /// squared Mahalanobis distance from the dead reckoning's relative pose, with the covariance dead
+  /// reckoning accumulates along the path between the two scans plus the match's, 3 degrees of
+  /// freedom; 11.34 is χ²₃'s 99 % quantile. > 0.
   double loop_gate_chi2 = 11.34;
-  /// Gate of the pairwise consistency of two loop closures (the cycle they close with the
-  /// estimate between their ends), χ²₃. > 0.
+  /// Two loop closures agree when the cycle they close with the dead reckoning between their ends
+  /// is within this χ²₃ of the identity. > 0.
   double consistency_chi2 = 11.34;
 
   /// @throws ValueError naming the field when out of range.
@@ -109,6 +130,17 @@ struct SlamReport {
   /// Point scans (localizePointScans): rows left out as lying behind their echo's leading edge
   /// (formPointScans), over every scan; 0 for a sonar log's own detections.
   std::size_t points_behind_echoes = 0;
+  /// The odometry noise the localization used in the end: the stated class's revised on the log
+  /// (calibrateOdometryNoise; the stated one where the log gave too little to measure it).
+  OdometryNoise odometry_noise;
+  /// The scan matches' noise beyond their pairs' information measured on the log
+  /// (calibrateMatchNoise; zero where the log gave too little).
+  MatchNoise match_noise;
+  /// The heading sensor's deviation δ(ψ) = a cos ψ + b sin ψ the localization found, (a, b) in
+  /// radians (PoseGraph::headingDeviation), when the matches showed one (heading_deviation_observed;
+  /// otherwise zero: the heading taken as it is).
+  Eigen::Vector2d heading_deviation_rad = Eigen::Vector2d::Zero();
+  bool heading_deviation_observed = false;
   std::size_t loopClosuresAccepted() const;
 };
 
@@ -147,14 +179,20 @@ class Localizer {
   NavTrack correctedTrack(const NavTrack& dead_reckoning) const;
 
  private:
+  /// A loop closure the matcher found, within the vehicle's limits: a vertex of the consistency
+  /// graph and a graph edge (of zero information unless accepted).
+  struct LoopCandidate {
+    std::size_t report = 0;  ///< its entry in report_.loop_closures
+    std::size_t edge = 0;    ///< its graph edge
+    /// Its measurement's information (the match's pairs' with the match noise, restated at each
+    /// calibration, or as proposed from elsewhere).
+    Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+    std::optional<Eigen::Matrix3d> pairs_information;  ///< set: a match of this localizer's
+  };
+
   /// Points of scans [first, last) placed with their current poses, in NED moved by `ned_to_frame`
   /// (identity: in NED).
   std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame = {}) const;
-  /// Covariance of dead reckoning's relative pose from scan a to scan b (a < b), composed along the
-  /// odometry edges.
-  Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;
-  /// pathCovariance(a, b) for every a ≤ b (index a; zero at b), in one pass.
-  std::vector<Eigen::Matrix3d> pathCovariancesTo(std::size_t b) const;
   /// The navigation measures the heading only (OdometryNoise::position_measured false).
   bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
   /// Whether `motion` (scan `to`'s pose in scan `from`'s frame) needs the vehicle to move or turn
@@ -167,20 +205,89 @@ class Localizer {
   /// the heading alone, are moved by that velocity times their ScanPoint::time_offset_s: the
   /// motion compensation a position would have given. Unchanged for k < 2.
   void continueAtLastVelocity(std::size_t k, double duration_s, Pose2& predicted, SonarScan& scan) const;
+  /// The dead reckoning's motion between two scans as the localizer predicts it: its translation
+  /// times the odometry scale, its turn corrected by the heading deviation measured so far.
+  Pose2 predictedMotion(const Pose2& motion, double from_heading_rad, double to_heading_rad) const;
   void matchToSubmap(std::size_t k);
+
+  // The navigation measured on the log (localizer_calibration.cpp).
+  /// Scan k matched alone to scan k − 1 and to scan k − 2 from the dead reckoning's motion, without
+  /// its prior (matchScansFrom): with the match k − 2 → k − 1 kept from the scan before, a triangle
+  /// of matches (navigation_calibration.hpp). Recalibrates the match noise when the triangles have
+  /// grown by a fifth since the last calibration.
+  void measureMatches(std::size_t k);
+  /// Fits the odometry noise to the accepted loop closures (calibrateOdometryNoise); false when
+  /// nothing changed (no measured position, no accepted loop closure).
+  bool calibrateOdometry();
+  /// Restates every odometry covariance and every odometry, match and loop-closure edge with the
+  /// current noise_ and match_noise_.
+  void restate();
+  /// The information of a match whose pairs give `pairs_information` (in the edge's from-frame),
+  /// with the match noise measured so far.
+  Eigen::Matrix3d matchInformation(const Eigen::Matrix3d& pairs_information) const;
+  /// The odometry edge's information for scan k's motion with the current noise (a fifth of the
+  /// scale error when the graph estimates the scale).
+  Eigen::Matrix3d odometryEdgeInformation(std::size_t k) const;
+
+  // Loop closures (loop_closing.cpp).
+  /// Seeks a loop closure for scan k among the old scans near its estimate and offers it.
   void closeLoop(std::size_t k);
-  /// Whether `loop` is consistent with every accepted loop closure.
-  bool consistentWithAccepted(const LoopClosure& loop, const Eigen::Matrix3d& covariance) const;
+  /// Records a loop closure the matcher found (or one proposed from elsewhere) as a candidate and
+  /// decides on it: refused beyond the vehicle's limits or the gate; accepted when it agrees with
+  /// every accepted loop closure, or when it forms with others a larger agreeing set than the
+  /// accepted one (which it then replaces). Returns whether it is accepted.
+  bool addLoopClosure(std::size_t from, std::size_t to, const Pose2& measurement, const Eigen::Matrix3d& information,
+                      const std::optional<Eigen::Matrix3d>& pairs_information);
+  /// The dead reckoning's relative pose from scan a to scan b (b in a's frame), corrected by the
+  /// heading deviation estimated so far (deviation_, to first order: OdometryChain's sensitivity).
+  Pose2 deadReckoningBetween(std::size_t a, std::size_t b) const;
+  /// Its covariance: the chain's plus what the deviation's uncertainty adds.
+  Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;
+  /// The heading deviation's coefficients and their covariance where the matches show one
+  /// (HeadingDeviationEstimate::observed), zero where they do not.
+  Eigen::Vector2d deviationCoefficients() const;
+  Eigen::Matrix2d deviationCovariance() const;
+  /// Whether the dead reckoning confirms a candidate: its χ² against the dead reckoning's relative
+  /// pose with the covariance along the path plus the match's (SlamOptions::loop_gate_chi2).
+  bool confirmedByDeadReckoning(const LoopCandidate& candidate) const;
+  /// Whether two candidates agree: the cycle they close with the dead reckoning between their ends
+  /// is the identity within its covariance (SlamOptions::consistency_chi2).
+  bool consistent(const LoopCandidate& a, const LoopCandidate& b) const;
+  /// Makes `clique` (gated candidates' indices into candidates_, sorted) the accepted set: their
+  /// edges take their information, the others' none; the report says so. Returns whether it
+  /// changed.
+  bool acceptSet(const std::vector<std::size_t>& clique);
+  /// Decides every candidate anew with the current calibration and estimate: the gate, the
+  /// consistency graph and its largest clique (optimize).
+  void redecideLoopClosures();
 
   SlamOptions options_;
   bool navigation_known_ = true;
   std::vector<SonarScan> scans_;
   PoseGraph graph_;
   std::vector<Pose2> odometry_;                ///< dead-reckoning motion from scan k−1 to k (k ≥ 1)
-  std::vector<Eigen::Matrix3d> odometry_cov_;  ///< its covariance
+  std::vector<double> durations_s_;            ///< time from scan k−1 to k, s
+  std::vector<Eigen::Matrix3d> odometry_cov_;  ///< its covariance with the current noise_
+  OdometryChain chain_;                        ///< the same as a chain, for any path's covariance
   std::vector<double> travelled_m_;            ///< dead-reckoning path length at each scan
-  std::vector<Eigen::Matrix3d> loop_cov_;      ///< covariance of each accepted loop's measurement
-  std::vector<std::size_t> accepted_loops_;    ///< indices into report_.loop_closures
+  OdometryNoise noise_;                        ///< the odometry noise: stated, then revised on the log
+  MatchNoise match_noise_;                     ///< the matches' noise measured on the log
+  /// The pairs' information of each scan-match edge of the graph (in its from-frame), by edge
+  /// index (nullopt for other edges): its information is matchInformation of it.
+  std::vector<std::optional<Eigen::Matrix3d>> edge_pairs_information_;
+  /// The heading sensor's deviation measured on the matches to the scan before (with a measured
+  /// position and a stated deviation; otherwise zero).
+  HeadingDeviationEstimate deviation_;
+  std::vector<MatchTriangle> triangles_;
+  /// Scan k − 1 matched alone to scan k − 2 (a triangle's first side), when it measured.
+  std::optional<ScanMatch> last_pair_;
+  std::size_t calibrated_triangles_ = 0;  ///< triangles_.size() at the last calibration of the matches
+  /// The odometry's covariance term by term along the chain (OdometryNoise::covarianceTerms): any
+  /// path's covariance for any noise parameters, for calibrating them on the loop closures.
+  std::array<OdometryChain, kOdometryNoiseTerms + 1> term_chains_;
+  std::vector<LoopCandidate> candidates_;
+  ConsistencyGraph consistency_;            ///< over candidates_ (vertex c: candidate c)
+  std::vector<std::size_t> accepted_;       ///< the accepted candidates (indices into candidates_), sorted
   SlamReport report_;
 };
 

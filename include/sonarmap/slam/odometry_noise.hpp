@@ -5,6 +5,8 @@
 /// stands for (a DVL's velocity, a compass's or gyro's heading), and the classes of navigation
 /// sensors a user can name.
 
+#include <array>
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +17,9 @@
 #include "sonarmap/slam/pose2.hpp"
 
 namespace sonarmap {
+
+/// The number of noise parameters of a measured position (OdometryNoise::covarianceTerms).
+inline constexpr std::size_t kOdometryNoiseTerms = 4;
 
 /// How far dead reckoning may be trusted: the noise model of odometry between two poses, in the
 /// units of the sensors it stands for (a DVL's velocity, a compass's or gyro's heading). The
@@ -27,6 +32,11 @@ struct OdometryNoise {
   double nav_period_s = 0.1;         ///< time between velocity readings (the navigation's fix period), > 0
   /// Heading random walk, rad/√s, ≥ 0 (a gyro's angle random walk; a compass: its noise).
   double gyro_walk_rad_per_sqrt_s = 0.05 * 3.14159265358979323846 / 180.0;
+  /// 1σ of each coefficient of a magnetic compass's deviation, δ(ψ) = a cos ψ + b sin ψ, radians,
+  /// ≥ 0 (0: no heading-dependent error, a gyrocompass or a fibre-optic INS). Common to the whole
+  /// log, so the Localizer estimates it (PoseGraph::estimateHeadingDeviation): the heading error
+  /// between two poses is δ(ψ₂) − δ(ψ₁), up to twice the amplitude between opposite headings.
+  double deviation_sigma_rad = 2.0 * 3.14159265358979323846 / 180.0;
   /// Without navigation (a log mapped with --slam but no --nav): the vehicle is believed still,
   /// and may have moved at this speed (1σ, m/s, > 0) in any direction and turned at
   /// unknown_turn_sigma_radps.
@@ -56,25 +66,38 @@ struct OdometryNoise {
   /// position_measured false, the position's part is the no-navigation model's. A floor of
   /// (1 mm)² and (0.01°)² keeps it invertible.
   Eigen::Matrix3d covariance(const Pose2& delta, double duration_s, bool known = true) const;
+  /// The measured-position covariance (known, position_measured) term by term: it is
+  /// Σ σ_p² · terms[p] + terms[kOdometryNoiseTerms], σ_p the p-th of kOdometryNoiseParameters and
+  /// the last term the floor. Linear in the variances, so a path's covariance composed from them is too.
+  std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> covarianceTerms(const Pose2& delta, double duration_s) const;
   /// @throws ValueError naming the field when a value is negative, zero where it must be > 0, or
   ///         not finite.
   void validate() const;
 };
 
+/// The noise parameters of a measured position, in the order of OdometryNoise::covarianceTerms:
+/// scale_sigma, heading_sigma_rad, velocity_noise_mps, gyro_walk_rad_per_sqrt_s.
+inline constexpr std::array<double OdometryNoise::*, kOdometryNoiseTerms> kOdometryNoiseParameters{
+    &OdometryNoise::scale_sigma, &OdometryNoise::heading_sigma_rad, &OdometryNoise::velocity_noise_mps,
+    &OdometryNoise::gyro_walk_rad_per_sqrt_s};
+
 /// The odometry noise of a class of navigation sensors (what a user knows of the vehicle), by name:
 /// - "dvl-ahrs" (the default, OdometryNoise{}): a DVL with an AHRS or magnetic compass, drifting a
 ///   few per cent of the distance travelled (scale 3 %, heading 1.5°, velocity noise 0.05 m/s,
-///   gyro walk 0.05°/√s);
+///   gyro walk 0.05°/√s, deviation 2°);
 /// - "dvl-ins": a DVL-aided inertial navigation system with a fibre-optic gyro, whose makers
 ///   state 0.1–0.3 % of the distance travelled (scale 0.3 %, heading 0.2°, velocity noise
-///   0.01 m/s, gyro walk 0.01°/√s);
+///   0.01 m/s, gyro walk 0.01°/√s, no deviation);
 /// - "absolute": navigation aided by absolute fixes (USBL, DGPS at the surface) or
 ///   post-processed, centimetres over the scans' spacing (scale 0.1 %, heading 0.1°, velocity
-///   noise 0.005 m/s, gyro walk 0.005°/√s);
+///   noise 0.005 m/s, gyro walk 0.005°/√s, no deviation);
 /// - "ahrs": the heading only, from an AHRS or a magnetic compass without a DVL (a BlueROV2 without
 ///   one: its flight log's north and east stay 0). OdometryNoise::position_measured is false: the
 ///   position comes from the scans (Localizer), the heading is the AHRS's (heading 1.5°, gyro walk
-///   0.05°/√s, as dvl-ahrs).
+///   0.05°/√s, deviation 2°, as dvl-ahrs).
+/// These are what the localization starts from, the best the navigation is taken to be: with
+/// navigation, the Localizer raises them where the log shows a navigation that drifts more
+/// (navigation_calibration.hpp), and measures a compass's deviation where the matches show one.
 /// The scans move the navigation only as far as their information outweighs this noise, so a
 /// good navigation stated as such is left nearly where it is.
 /// @throws ValueError naming the known classes for any other name.

@@ -34,6 +34,10 @@ struct PoseGraphEdge {
   /// semi-definite: a direction without information (along a wall) adds no constraint.
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
   EdgeKind kind = EdgeKind::kOdometry;
+  /// The navigation's headings at the two ends (odometry edges, NED yaw, radians): the heading
+  /// sensor's deviation changes the measured turn by δ(to) − δ(from) (estimateHeadingDeviation).
+  double from_heading_rad = 0.0;
+  double to_heading_rad = 0.0;
 };
 
 /// Options of PoseGraph::optimize.
@@ -67,6 +71,20 @@ class PoseGraph {
   /// the track measure it.
   /// @throws ValueError unless prior_sigma > 0.
   void estimateOdometryScale(double prior_sigma);
+  /// Estimate the heading sensor's deviation with the poses: a magnetic compass's error depends on
+  /// the heading, δ(ψ) = a cos ψ + b sin ψ (one cycle per turn, the deviation of a magnetised
+  /// vehicle; Bowditch, "The American Practical Navigator", ch. 6), so the turns it measures between
+  /// two headings are off by δ(to) − δ(from): passes in opposite directions disagree by up to twice
+  /// its amplitude, which no constant bias explains. Odometry residuals compare the nodes' turn
+  /// with the measured turn plus that change (PoseGraphEdge's headings); a and b have the prior
+  /// 0 ± prior_sigma_rad each. A constant part of the deviation turns every node alike and is not
+  /// observable.
+  /// @throws ValueError unless prior_sigma_rad > 0.
+  void estimateHeadingDeviation(double prior_sigma_rad);
+  /// Whether the deviation is estimated (estimateHeadingDeviation).
+  bool estimatesHeadingDeviation() const { return deviation_sigma_.has_value(); }
+  /// (a, b) after the last optimize, radians (zero before, or without estimateHeadingDeviation).
+  Eigen::Vector2d headingDeviation() const { return heading_deviation_; }
   /// λ after the last optimize (1 before, or without estimateOdometryScale).
   double odometryScale() const { return odometry_scale_; }
   /// Whether λ is estimated (estimateOdometryScale, and not fixed since).
@@ -92,6 +110,8 @@ class PoseGraph {
   std::vector<Pose2> poses_;
   std::vector<PoseGraphEdge> edges_;
   std::optional<double> scale_sigma_;
+  std::optional<double> deviation_sigma_;
+  Eigen::Vector2d heading_deviation_ = Eigen::Vector2d::Zero();
   double odometry_scale_ = 1.0;
   double odometry_scale_sigma_ = 0.0;
 };

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "sonarmap/slam/pose2.hpp"
+#include "sonarmap/slam/pose2_covariance.hpp"
 #include "sonarmap/slam/scan_forming.hpp"
 
 namespace sonarmap {
@@ -77,6 +78,13 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
                      const ScanMatchOptions& options = {});
 
+/// ICP from `initial` (the source frame in the target frame) with no prior: the pose the pairs alone
+/// give, judged as matchScans judges; no correlative search. What a match measures independently of
+/// the dead reckoning that started it (navigation_calibration.hpp). Deterministic.
+/// @throws ValueError for invalid options.
+ScanMatch matchScansFrom(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& initial,
+                         const ScanMatchOptions& options = {});
+
 /// The best pose of a correlative search (Olson 2009) and how distinct its peak is.
 struct CorrelativeResult {
   Pose2 pose;
@@ -93,10 +101,5 @@ struct CorrelativeResult {
 CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                                     const Pose2& initial, double half_window_m, double half_window_rad,
                                     double sigma_m, int max_steps);
-
-/// Composes the covariance of a chain of relative poses to first order: the covariance of
-/// a ∘ b given cov(a) and cov(b), independent (x, y, yaw; the Jacobians of Pose2 composition).
-Eigen::Matrix3d composeCovariance(const Pose2& a, const Eigen::Matrix3d& cov_a, const Pose2& b,
-                                  const Eigen::Matrix3d& cov_b);
 
 }  // namespace sonarmap
