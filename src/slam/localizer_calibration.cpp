@@ -44,8 +44,14 @@ void Localizer::measureMatches(std::size_t k) {
     const double match_variance = (information + 1e-9 * information.trace() * Eigen::Matrix3d::Identity()).inverse()(2, 2);
     deviation_.add(scans_[k - 1].dead_reckoning.yaw_rad, scans_[k].dead_reckoning.yaw_rad,
                    wrapAngle_rad(pair.pose.yaw_rad - odometry_[k].yaw_rad), match_variance + odometry_cov_[k](2, 2));
-    // Once the matches show a deviation, the graph estimates it with every edge.
-    if (deviation_.observed() && !graph_.estimatesHeadingDeviation()) graph_.estimateHeadingDeviation(noise_.deviation_sigma_rad);
+    // While the matches show a deviation, the graph estimates it with every edge.
+    if (deviationObserved() != graph_.estimatesHeadingDeviation()) {
+      if (deviationObserved()) {
+        graph_.estimateHeadingDeviation(noise_.deviation_sigma_rad);
+      } else {
+        graph_.fixHeadingDeviation();
+      }
+    }
   }
   // Triangles of accepted matches only: along a wall a match slides freely where its information
   // is merely weak, which would read as scatter.

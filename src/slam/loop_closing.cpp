@@ -118,12 +118,14 @@ Eigen::Matrix3d Localizer::pathCovariance(std::size_t a, std::size_t b) const {
   return chain_.covariance(a, b) + g * deviationCovariance() * g.transpose();
 }
 
+bool Localizer::deviationObserved() const { return deviation_.observed(options_.forming.odometry.heading_sigma_rad); }
+
 Eigen::Vector2d Localizer::deviationCoefficients() const {
-  return deviation_.observed() ? deviation_.coefficients() : Eigen::Vector2d::Zero();
+  return deviationObserved() ? deviation_.coefficients() : Eigen::Vector2d::Zero();
 }
 
 Eigen::Matrix2d Localizer::deviationCovariance() const {
-  return deviation_.observed() ? deviation_.covariance() : Eigen::Matrix2d::Zero();
+  return deviationObserved() ? deviation_.covariance() : Eigen::Matrix2d::Zero();
 }
 
 bool Localizer::confirmedByDeadReckoning(const LoopCandidate& candidate) const {

@@ -98,6 +98,8 @@ void HeadingDeviationEstimate::add(double from_heading_rad, double to_heading_ra
   if (std::pow(turn_disagreement_rad - expected, 2) > 9.0 * allowed) return;
   information_ += g * g.transpose() / variance_rad2;
   weighted_sum_ += g * turn_disagreement_rad / variance_rad2;
+  weighted_squares_ += turn_disagreement_rad * turn_disagreement_rad / variance_rad2;
+  ++matches_;
 }
 
 Eigen::Vector2d HeadingDeviationEstimate::coefficients() const {
@@ -108,10 +110,15 @@ Eigen::Matrix2d HeadingDeviationEstimate::covariance() const {
   return deviation_ ? Eigen::Matrix2d(information_.inverse()) : Eigen::Matrix2d::Zero();
 }
 
-bool HeadingDeviationEstimate::observed() const {
+bool HeadingDeviationEstimate::observed(double covered_rad) const {
   if (!deviation_) return false;
   const Eigen::Vector2d c = coefficients();
-  return c.dot(information_ * c) > 9.21;
+  // The residuals' mean square per degree of freedom (Σ w r² − bᵀ c over the matches less the two
+  // coefficients), where it exceeds 1, widens the test: the matches' errors depend on the scene's
+  // geometry, and so on the heading, more than their stated variances say.
+  double scatter = 1.0;
+  if (matches_ > 2) scatter = std::max(1.0, (weighted_squares_ - weighted_sum_.dot(c)) / static_cast<double>(matches_ - 2));
+  return c.norm() > covered_rad && c.dot(information_ * c) / scatter > 9.21;
 }
 
 MatchNoise calibrateMatchNoise(const std::vector<MatchTriangle>& triangles) {
@@ -192,17 +199,25 @@ OdometryNoise calibrateOdometryNoise(const std::vector<LoopEvidence>& loops, con
     const Eigen::Matrix3d information = 0.5 * (loop.measured_information + loop.measured_information.transpose());
     measured_covariances.push_back((information + 1e-9 * Eigen::Matrix3d::Identity()).inverse());
   }
+  const auto covarianceOf = [&](const OdometryNoise& noise, std::size_t l) {
+    Eigen::Matrix3d covariance = loops[l].path_terms[kOdometryNoiseTerms] + measured_covariances[l];
+    for (std::size_t p = 0; p < kOdometryNoiseTerms; ++p) {
+      covariance += std::pow(noise.*kOdometryNoiseParameters[p], 2) * loops[l].path_terms[p];
+    }
+    return covariance;
+  };
+  // The stated noise stands when it explains the loops: their squared Mahalanobis distances sum to
+  // within χ²'s 99 % quantile for their 3 n degrees of freedom (Wilson & Hilferty 1931).
+  double chi2 = 0.0;
+  for (std::size_t l = 0; l < loops.size(); ++l) chi2 += residuals[l].dot(covarianceOf(stated, l).ldlt().solve(residuals[l]));
+  const double dof = 3.0 * static_cast<double>(loops.size());
+  const double quantile = dof * std::pow(1.0 - 2.0 / (9.0 * dof) + 2.326 * std::sqrt(2.0 / (9.0 * dof)), 3);
+  if (chi2 <= quantile) return stated;
   const auto cost = [&](const double* u) {
     const OdometryNoise noise = noiseOf(u);
     double sum = 0.0;
     for (std::size_t i = 0; i < fitted.size(); ++i) sum += 0.5 * u[i] * u[i];  // the stated class, σ 1 in the logarithm
-    for (std::size_t l = 0; l < loops.size(); ++l) {
-      Eigen::Matrix3d covariance = loops[l].path_terms[kOdometryNoiseTerms] + measured_covariances[l];
-      for (std::size_t p = 0; p < kOdometryNoiseTerms; ++p) {
-        covariance += std::pow(noise.*kOdometryNoiseParameters[p], 2) * loops[l].path_terms[p];
-      }
-      sum += studentCost(residuals[l], covariance);
-    }
+    for (std::size_t l = 0; l < loops.size(); ++l) sum += studentCost(residuals[l], covarianceOf(noise, l));
     return sum;
   };
   std::array<double, 8> u{};

@@ -197,6 +197,11 @@ void PoseGraph::setInformation(std::size_t edge, const Eigen::Matrix3d& informat
   edges_[edge].information = information;
 }
 
+void PoseGraph::fixHeadingDeviation() {
+  deviation_sigma_.reset();
+  heading_deviation_ = Eigen::Vector2d::Zero();
+}
+
 void PoseGraph::estimateHeadingDeviation(double prior_sigma_rad) {
   if (!(std::isfinite(prior_sigma_rad) && prior_sigma_rad > 0.0)) throw ValueError("pose graph: the deviation's prior σ must be > 0");
   deviation_sigma_ = prior_sigma_rad;

@@ -47,6 +47,8 @@ TEST(slamNavigationCalibration, DeviationEstimatedFromMatchedTurns) {
   EXPECT_NEAR(estimate.coefficients().x(), deviation.x(), 0.3 * kDegree);
   EXPECT_NEAR(estimate.coefficients().y(), deviation.y(), 0.3 * kDegree);
   EXPECT_LT(std::sqrt(estimate.covariance()(0, 0)), 0.3 * kDegree);
+  EXPECT_TRUE(estimate.observed(1.5 * kDegree));
+  EXPECT_FALSE(estimate.observed(6.0 * kDegree));  // within what the navigation's noise covers
   // Without a deviation stated, nothing is estimated.
   HeadingDeviationEstimate none(0.0);
   none.add(0.0, 1.0, 0.1, 1e-4);
@@ -135,12 +137,9 @@ TEST(slamNavigationCalibration, MatchNoiseFromTheTrianglesScatter) {
   EXPECT_EQ(calibrateMatchNoise({triangles.begin(), triangles.begin() + 3}).translation_sigma_m, 0.0);  // too few
 }
 
-TEST(slamNavigationCalibration, OdometryNoiseFromLoopClosures) {
-  // Loops whose paths drifted as a heading random walk of 0.5°/√s, stated as 0.05°/√s.
+/// 40 loop closures whose paths (10–39 steps of 2 m, 14 s) drifted as `truth` says.
+std::vector<LoopEvidence> loopsDrifting(const OdometryNoise& truth) {
   std::mt19937 random(5);
-  const OdometryNoise stated;
-  OdometryNoise truth = stated;
-  truth.gyro_walk_rad_per_sqrt_s = 0.5 * kDegree;
   std::vector<LoopEvidence> loops;
   for (int i = 0; i < 40; ++i) {
     OdometryChain chain;
@@ -163,10 +162,31 @@ TEST(slamNavigationCalibration, OdometryNoiseFromLoopClosures) {
     loop.measured_information = Eigen::Vector3d(1e4, 1e4, 1e6).asDiagonal();
     loops.push_back(loop);
   }
+  return loops;
+}
+
+TEST(slamNavigationCalibration, OdometryNoiseFromLoopClosures) {
+  // Loops whose paths drifted as a heading random walk of 0.5°/√s, stated as 0.05°/√s.
+  const OdometryNoise stated;
+  OdometryNoise truth = stated;
+  truth.gyro_walk_rad_per_sqrt_s = 0.5 * kDegree;
+  const std::vector<LoopEvidence> loops = loopsDrifting(truth);
   const OdometryNoise fitted = calibrateOdometryNoise(loops, stated);
   EXPECT_GT(fitted.gyro_walk_rad_per_sqrt_s, 0.25 * kDegree);
   EXPECT_LT(fitted.gyro_walk_rad_per_sqrt_s, 1.0 * kDegree);
   EXPECT_EQ(calibrateOdometryNoise({}, stated).gyro_walk_rad_per_sqrt_s, stated.gyro_walk_rad_per_sqrt_s);
+}
+
+TEST(slamNavigationCalibration, ANavigationAsGoodAsStatedKeepsItsNoise) {
+  // Loops that drifted as stated, and as a tenth of it: the stated noise explains both and stands
+  // (the class is the best the navigation is taken to be).
+  const OdometryNoise stated;
+  OdometryNoise better = stated;
+  for (double OdometryNoise::*field : kOdometryNoiseParameters) better.*field = 0.1 * stated.*field;
+  for (const OdometryNoise& truth : {stated, better}) {
+    const OdometryNoise fitted = calibrateOdometryNoise(loopsDrifting(truth), stated);
+    for (double OdometryNoise::*field : kOdometryNoiseParameters) EXPECT_EQ(fitted.*field, stated.*field);
+  }
 }
 
 }  // namespace

@@ -243,8 +243,11 @@ class Localizer {
   Pose2 deadReckoningBetween(std::size_t a, std::size_t b) const;
   /// Its covariance: the chain's plus what the deviation's uncertainty adds.
   Eigen::Matrix3d pathCovariance(std::size_t a, std::size_t b) const;
-  /// The heading deviation's coefficients and their covariance where the matches show one
-  /// (HeadingDeviationEstimate::observed), zero where they do not.
+  /// Whether the matches show a heading deviation beyond the stated heading noise
+  /// (HeadingDeviationEstimate::observed with OdometryNoise::heading_sigma_rad).
+  bool deviationObserved() const;
+  /// The heading deviation's coefficients and their covariance where the matches show one, zero
+  /// where they do not.
   Eigen::Vector2d deviationCoefficients() const;
   Eigen::Matrix2d deviationCovariance() const;
   /// Whether the dead reckoning confirms a candidate: its χ² against the dead reckoning's relative

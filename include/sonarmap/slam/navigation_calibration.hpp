@@ -59,16 +59,22 @@ class HeadingDeviationEstimate {
   void add(double from_heading_rad, double to_heading_rad, double turn_disagreement_rad, double variance_rad2);
   /// (a, b), radians.
   Eigen::Vector2d coefficients() const;
-  /// Their covariance, rad².
+  /// Their covariance from the stated variances, rad² (the scatter beyond them is the matches' and
+  /// the navigation's own noise, which every path's covariance carries already).
   Eigen::Matrix2d covariance() const;
-  /// Whether the matches show a deviation: the coefficients' squared Mahalanobis distance from
-  /// zero beyond χ²₂'s 99 % quantile (9.21), a deviation unlikely to be the matches' noise. A
-  /// heading sensor without one (a gyro, a well-compensated compass) is then not given one.
-  bool observed() const;
+  /// Whether the matches show a deviation beyond `covered_rad`: its amplitude √(a² + b²) larger
+  /// than that (a heading error the navigation's stated noise already covers needs no model, and the
+  /// matches' own errors, which depend on the scene's geometry and so on the heading, show as a
+  /// small one) and the coefficients' squared Mahalanobis distance from zero, divided by the
+  /// residuals' mean square per degree of freedom where that exceeds 1, beyond χ²₂'s 99 % quantile
+  /// (9.21). A heading sensor without one (a gyro, a well-compensated compass) is then not given one.
+  bool observed(double covered_rad) const;
 
  private:
   Eigen::Matrix2d information_ = Eigen::Matrix2d::Zero();  ///< the prior's plus the matches'
   Eigen::Vector2d weighted_sum_ = Eigen::Vector2d::Zero();
+  double weighted_squares_ = 0.0;  ///< Σ r² / variance of the matches kept
+  std::size_t matches_ = 0;        ///< kept
   bool deviation_ = false;
 };
 
@@ -111,8 +117,9 @@ struct LoopEvidence {
 /// centre (σ 1); a zero stays zero. The stated class is the best the navigation is taken to be:
 /// loop closures that agree with the dead reckoning better than it says leave it as stated, since
 /// the matches' own biases (a match that sees a share less of the motion) would otherwise be
-/// taken for a better navigation. `stated` for no evidence or without a measured position.
-/// Deterministic.
+/// taken for a better navigation. The stated noise stands, too, when it explains the loops: their
+/// squared Mahalanobis distances under it sum to within χ²'s 99 % quantile for 3 degrees of freedom
+/// each. `stated` for no evidence or without a measured position. Deterministic.
 /// @throws ValueError for an invalid `stated` (OdometryNoise::validate).
 OdometryNoise calibrateOdometryNoise(const std::vector<LoopEvidence>& loops, const OdometryNoise& stated);
 

@@ -81,7 +81,9 @@ class PoseGraph {
   /// observable.
   /// @throws ValueError unless prior_sigma_rad > 0.
   void estimateHeadingDeviation(double prior_sigma_rad);
-  /// Whether the deviation is estimated (estimateHeadingDeviation).
+  /// Stops estimating the deviation: it is zero from now on.
+  void fixHeadingDeviation();
+  /// Whether the deviation is estimated (estimateHeadingDeviation, and not fixed since).
   bool estimatesHeadingDeviation() const { return deviation_sigma_.has_value(); }
   /// (a, b) after the last optimize, radians (zero before, or without estimateHeadingDeviation).
   Eigen::Vector2d headingDeviation() const { return heading_deviation_; }
