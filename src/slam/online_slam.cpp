@@ -95,14 +95,22 @@ void OnlineSlam::addSweep(DetectedSweep&& sweep) {
     for (std::size_t k = mapped_poses_.size(); k < poses.size(); ++k) mapped_poses_.push_back(poses[k]);
     localizer_.addScan(std::move(scan));
   }
+  rebuild_budget_ += kRebuildSweepsPerSweep;
   if (!localizer_.scans().empty()) {
     const std::size_t last = localizer_.scans().size() - 1;
     correction_ = localizer_.graph().pose(last) * localizer_.scans()[last].dead_reckoning.inverse();
     const std::size_t accepted = localizer_.report().loopClosuresAccepted();
     if (accepted > accepted_loops_) {
       accepted_loops_ = accepted;
-      if (movedSinceRebuild()) rebuild();
+      rebuild_wanted_ = rebuild_wanted_ || movedSinceRebuild();
     }
+  }
+  // A rebuild integrates every sweep so far again: it waits until the sweeps since the last one
+  // have earned it, so that all of them together cost at most kRebuildSweepsPerSweep times the log.
+  if (rebuild_wanted_ && rebuild_budget_ >= sweeps_.size()) {
+    rebuild_budget_ -= sweeps_.size();
+    rebuild_wanted_ = false;
+    rebuild();
   }
   mapCoveredSweeps(*mapper_);
 }
@@ -151,6 +159,7 @@ void OnlineSlam::rebuild() {
   }
   sweeps_mapped_ = 0;
   mapCoveredSweeps(*mapper);
+  sweeps_rebuilt_ += sweeps_mapped_;
   if (integration_ == OnlineIntegration::kProvisionalBeams && !finished_) showUnmappedBeams(*mapper);
   if (finished_) mapper->finish();
   mapped_poses_ = localizer_.graph().poses();

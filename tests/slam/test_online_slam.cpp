@@ -49,6 +49,8 @@ TEST(slamOnline, EndsWithTheBatchTrajectoryAndMap) {
     EXPECT_EQ(live.beamsPending(), 0U);
     EXPECT_EQ(live.beamsUnshown(), 0U);
     EXPECT_GT(live.rebuilds(), 1U);  // loops closed while running, and the final map
+    // Rebuilding costs at most twice the log's integration while running, and once at the end.
+    EXPECT_LE(live.sweepsRebuilt(), 3 * live.sweepsIntegrated());
     const NavTrack trajectory = live.trajectory();
     ASSERT_EQ(trajectory.size(), batch.slam.trajectory.size());
     for (std::size_t i = 0; i < trajectory.size(); ++i) {

@@ -10,7 +10,10 @@
 /// until its sweep is integrated. When a loop closure moves the past poses (a scan by more than
 /// half a voxel at its reach, since the map was last built), the map is rebuilt from the detected
 /// sweeps so far with the corrected trajectory (no detection again; the beams after the last
-/// integrated sweep are shown again), so the map is always the current best. After finish() the
+/// integrated sweep are shown again) as soon as the sweeps since the last rebuild have paid for it
+/// (two sweeps' worth of integration each): early in a log after each loop closure, later each time
+/// the log has grown by half, so that rebuilding costs at most twice the log's own integration and
+/// the time stays linear in the log's length. After finish() the
 /// map and trajectory are those of the batch path (mapSonarLogWithSlam) on the same beams and
 /// fixes, in either integration.
 
@@ -65,6 +68,9 @@ class OnlineSlam {
   /// far, or of none).
   NavTrack trajectory() const;
   std::size_t rebuilds() const { return rebuilds_; }
+  /// Sweeps integrated again by the rebuilds so far: at most twice the sweeps detected before the
+  /// last one, and all of them once more at finish().
+  std::size_t sweepsRebuilt() const { return sweeps_rebuilt_; }
 
  private:
   /// A sweep the detector finished: its scan to the localizer, the sweep kept; may rebuild the map.
@@ -97,6 +103,14 @@ class OnlineSlam {
   std::size_t beams_shown_ = 0;             ///< kProvisionalBeams: beams given to the mapper to show
   std::size_t accepted_loops_ = 0;
   std::size_t rebuilds_ = 0;
+  /// Sweeps' worth of integration the rebuilds may spend: each detected sweep earns
+  /// kRebuildSweepsPerSweep, a rebuild of n sweeps spends n. The rebuilds then cost at most that
+  /// many times the log's own integration, and live --slam stays linear in the log's length (a
+  /// rebuild at each loop closure would be quadratic: every lap after the first closes loops).
+  static constexpr std::size_t kRebuildSweepsPerSweep = 2;
+  std::size_t rebuild_budget_ = 0;
+  std::size_t sweeps_rebuilt_ = 0;
+  bool rebuild_wanted_ = false;  ///< a loop closure moved the past poses since the last rebuild
   bool finished_ = false;
   Pose2 correction_;  ///< the latest scan's: optimised ∘ dead reckoning⁻¹
   /// The scans' poses the current map was built with: each scan's as it was when the next one came,
