@@ -175,6 +175,8 @@ int main(int argc, char** argv) {
       odometry.scale_sigma = std::stod(argv[++i]) / 100.0;
     } else if (arg == "--velocity-noise" && i + 1 < argc) {
       odometry.velocity_noise_mps = std::stod(argv[++i]);
+    } else if (arg == "--loop-gate" && i + 1 < argc) {
+      options.loop_gate_chi2 = std::stod(argv[++i]);
     } else if (arg == "--data" && i + 1 < argc) {
       data = argv[++i];
     } else if (arg == "--png" && i + 1 < argc) {
@@ -241,6 +243,13 @@ int main(int argc, char** argv) {
     std::printf("scan matches: %zu accepted, %zu refused; odometry scale %.4f (sigma %.4f, %s)\n", result.report.matches_accepted,
                 result.report.matches_refused, result.report.odometry_scale, result.report.odometry_scale_sigma,
                 result.report.odometry_scale_observed ? "observed" : "not observed");
+    const OdometryNoise& noise = result.report.odometry_noise;
+    std::printf("navigation measured on the log: scale %.2f %%, heading %.2f deg, velocity noise %.3f m/s, heading walk %.3f "
+                "deg/sqrt(s); compass deviation %.1f cos + %.1f sin of the heading, deg%s; matches' noise %.3f m, %.2f deg\n",
+                100.0 * noise.scale_sigma, noise.heading_sigma_rad / kDegree, noise.velocity_noise_mps,
+                noise.gyro_walk_rad_per_sqrt_s / kDegree, result.report.heading_deviation_rad.x() / kDegree,
+                result.report.heading_deviation_rad.y() / kDegree, result.report.heading_deviation_observed ? "" : " (not shown by the matches)",
+                result.report.match_noise.translation_sigma_m, result.report.match_noise.yaw_sigma_rad / kDegree);
     std::printf("time: read %.2f s, localize %.2f s: %.0f x faster than the survey\n", read_s, localize_s,
                 duration_s / std::max(localize_s, 1e-9));
     if (!png.empty()) {

@@ -19,10 +19,12 @@
 // sizes drawn from the seed), a gyro walk of 0.02°/√s and DVL noise of 0.02 m/s; the simulator's
 // speckle and noise are seeded with n too.
 //
-// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav]
+// Usage: sonarmap_slam_study [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--stated-noise] [--true-nav]
 //        [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S] [--max-speed M/S]
 //        [--max-turn-rate DEG/S]
 // (--fixed-scale: SlamOptions::estimate_odometry_scale false)
+// (--stated-noise: SlamOptions::calibrate_navigation false, the stated class's noise and the matches'
+// pairs' information as they are)
 // (--true-nav: the true navigation is given as the dead reckoning, so --slam should leave it where it
 // is; DR's columns are then 0 and the odometry scale's range is printed on stderr)
 // (--no-nav: no navigation at all, the motion from the scans alone; DR's columns are then the
@@ -194,6 +196,7 @@ int main(int argc, char** argv) {
   bool maps = false;
   bool verbose = false;
   bool fixed_scale = false;
+  bool stated_noise = false;
   bool true_nav = false;
   bool no_nav = false;
   bool leading_edge = false;
@@ -212,6 +215,8 @@ int main(int argc, char** argv) {
       verbose = true;
     } else if (std::strcmp(argv[i], "--fixed-scale") == 0) {
       fixed_scale = true;
+    } else if (std::strcmp(argv[i], "--stated-noise") == 0) {
+      stated_noise = true;
     } else if (std::strcmp(argv[i], "--true-nav") == 0) {
       true_nav = true;
     } else if (std::strcmp(argv[i], "--no-nav") == 0) {
@@ -230,7 +235,7 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[i], "--max-turn-rate") == 0 && i + 1 < argc) {
       max_turn_rate_deg_s = std::stod(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--true-nav] [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S] [--max-speed M/S] [--max-turn-rate DEG/S]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--seeds N] [--only SONAR:MISSION] [--maps] [--verbose] [--fixed-scale] [--stated-noise] [--true-nav] [--no-nav] [--heading-only] [--nav-class NAME] [--leading-edge] [--speed M/S] [--max-speed M/S] [--max-turn-rate DEG/S]\n", argv[0]);
       return 2;
     }
   }
@@ -252,6 +257,7 @@ int main(int argc, char** argv) {
       const Clock::time_point start = Clock::now();
       SlamOptions slam_options;
       slam_options.estimate_odometry_scale = !fixed_scale;
+      slam_options.calibrate_navigation = !stated_noise;
       slam_options.forming.odometry = odometryNoiseOf(nav_class);
       if (max_speed_mps > 0.0) slam_options.forming.odometry.max_speed_mps = max_speed_mps;
       if (max_turn_rate_deg_s > 0.0) slam_options.forming.odometry.max_turn_rate_radps = max_turn_rate_deg_s * std::numbers::pi / 180.0;
