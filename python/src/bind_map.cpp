@@ -3,6 +3,7 @@
 // casting (algorithms/cast_ray.hpp) and batched queries over numpy arrays.
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,11 @@ cannot be written (an existing file is then left untouched).)doc")
             report["odometry_scale_sigma"] = map.slam->odometry_scale_sigma;
             report["odometry_scale_observed"] = map.slam->odometry_scale_observed;
             report["heading_only"] = map.slam->heading_only;
+            report["compass_deviation_deg"] =
+                map.slam->heading_deviation_observed
+                    ? py::object(py::make_tuple(map.slam->heading_deviation_rad.x() * 180.0 / std::numbers::pi,
+                                                map.slam->heading_deviation_rad.y() * 180.0 / std::numbers::pi))
+                    : py::object(py::none());
             py::list loops;
             for (const LoopClosure& loop : map.slam->loop_closures) {
               py::dict entry;
@@ -175,7 +181,9 @@ cannot be written (an existing file is then left untouched).)doc")
           "matches_refused and matches_beyond_limits among them (beyond max_speed or max_turn_rate), odometry_scale and its 1-sigma odometry_scale_sigma (the dead reckoning's distances times "
           "it are the scans'; slam/localizer.hpp), odometry_scale_observed (False: the scans do not constrain it, "
           "so it is 1), heading_only (True: the navigation gave the heading only and the position came from the "
-          "scans), loop_closures: a list of dicts from_scan, to_scan, accepted, reason); None otherwise.")
+          "scans), compass_deviation_deg ((a, b) of the compass's deviation a cos(heading) + b sin(heading) in "
+          "degrees, when the matches showed one; None otherwise), loop_closures: a list of dicts from_scan, to_scan, "
+          "accepted, reason); None otherwise.")
       .def(
           "insert_point_cloud",
           [](OccupancyMap& map, const py::object& points, const py::object& origin, double max_range, bool discretize,

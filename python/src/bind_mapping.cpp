@@ -217,6 +217,11 @@ TypeError for an unknown keyword.)doc";
         out["matches_beyond_limits"] = result.report.matches_beyond_limits;
         out["points_behind_echoes"] = result.report.points_behind_echoes;
         out["loop_closures_accepted"] = result.report.loopClosuresAccepted();
+        out["compass_deviation_deg"] =
+            result.report.heading_deviation_observed
+                ? py::object(py::make_tuple(result.report.heading_deviation_rad.x() * 180.0 / 3.14159265358979323846,
+                                            result.report.heading_deviation_rad.y() * 180.0 / 3.14159265358979323846))
+                : py::object(py::none());
         return out;
       },
       py::arg("scans"), py::arg("nav") = py::none(), py::arg("range_sigma") = 0.05, py::arg("bearing_sigma") = 1.5,
@@ -224,19 +229,20 @@ TypeError for an unknown keyword.)doc";
       R"doc(Localizes point scans detected elsewhere, as `sonarmap localize` (slam/point_scans.hpp): the scan
 matcher, loop closures and pose graph of map_sonar_log(slam=True).
 
-scans: the path of a point-scan CSV (scan,time_s,x_m,y_m) or a float64 (N, 4) array of the same columns:
+scans: the path of a point-scan CSV (scan,time_s,x_m,y_m; gzip-compressed or not) or a float64 (N, 4) array of the same columns:
 each point's scan (an integer; a scan's rows together, in increasing number), time (s, the navigation's
 clock, never decreasing) and place in the body frame then (m, x forward, y to starboard). nav: the dead
 reckoning, an (N, 7) array or a navigation CSV's path; None: the vehicle believed still. range_sigma
 (metres) and bearing_sigma (degrees): 1-sigma of a point's range and bearing. nav_class: how far the
-navigation is trusted, by its sensors (slam/scan_forming.hpp odometryNoiseOf: "dvl-ahrs", "dvl-ins",
+navigation is trusted, by its sensors (slam/odometry_noise.hpp odometryNoiseOf: "dvl-ahrs", "dvl-ins",
 "absolute", "ahrs"; the CLI's --nav-class; "auto": navigationClassOf the nav). max_speed (m/s) and
 max_turn_rate (degrees/s): the vehicle's limits where nav gives no position (the CLI's --max-speed and
 --max-turn-rate; None: 2 m/s and 30 degrees/s). Returns a dict: trajectory
 (the corrected dead reckoning, an (M, 7) float64 array; without nav, three rows per scan), scans,
 matches_accepted, matches_beyond_limits (refused as beyond max_speed or max_turn_rate),
 points_behind_echoes (rows left out behind their echo's leading edge: several points of one beam's
-echo are kept as its nearest), loop_closures_accepted. Raises sonarmap.FileError for a broken CSV (naming the line),
+echo are kept as its nearest), loop_closures_accepted, compass_deviation_deg ((a, b) of the compass's
+deviation a cos(heading) + b sin(heading) in degrees when the matches showed one, else None). Raises sonarmap.FileError for a broken CSV (naming the line),
 sonarmap.ValueError for a bad array, option or track.)doc");
   m.def(
       "read_nav_csv", [](const std::filesystem::path& path) { return navArray(readNavCsv(path.string())); }, py::arg("path"),

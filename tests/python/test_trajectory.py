@@ -160,3 +160,19 @@ def test_localize_point_scans_within_the_vehicle_limits():
     assert np.all(steps <= 0.02 * np.diff(reference[:, 0]) + 1e-6)
     with pytest.raises(sonarmap.ValueError, match="max_turn_rate"):
         sonarmap.localize_point_scans(scans, max_turn_rate=-1.0)
+
+
+def test_localize_the_st_pere_survey(shared_file):
+    # The real marina survey (its point scans gzipped as shared): the dead reckoning's compass drifts
+    # with the heading; localize finds the deviation and comes within 3 m of the DGPS from the start.
+    scans = shared_file("stpere_marina/scans.csv.gz")
+    nav = shared_file("stpere_marina/dr_nav.csv")
+    truth = sonarmap.read_navigation(shared_file("stpere_marina/dgps_truth_nav.csv"))
+    result = sonarmap.localize_point_scans(scans, nav=nav)
+    before = sonarmap.eval_trajectory(sonarmap.read_navigation(nav), truth)
+    after = sonarmap.eval_trajectory(result["trajectory"], truth)
+    assert before["ate_start_rmse_m"] > 11.0
+    assert after["ate_start_rmse_m"] < 3.0 and after["ate_rmse_m"] < 2.0
+    a_deg, b_deg = result["compass_deviation_deg"]
+    assert 3.0 < b_deg < 7.0 and abs(a_deg) < 3.0  # the DGPS's course gives -2.2 cos + 5.2 sin
+    assert result["loop_closures_accepted"] >= 8
