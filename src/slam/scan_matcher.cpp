@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -188,6 +189,28 @@ void judge(ScanMatch& match, std::size_t source_points, const ScanMatchOptions& 
   match.accepted = true;
 }
 
+/// What every ICP on one target needs: its k-d tree and its points' local shapes.
+struct PreparedTarget {
+  explicit PreparedTarget(const std::vector<ScanPoint>& points)
+      : cloud{&points}, tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+    tree.buildIndex();
+    shapes = localShapes(points, tree);
+  }
+  TargetCloud cloud;
+  KdTree tree;
+  std::vector<LocalShape> shapes;
+};
+
+/// A refused match at `initial` when either side has fewer points than a match needs pairs.
+std::optional<ScanMatch> tooFewPoints(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
+                                      const Pose2& initial, const ScanMatchOptions& options) {
+  if (target.size() >= options.min_pairs && source.size() >= options.min_pairs) return std::nullopt;
+  ScanMatch match;
+  match.pose = initial;
+  match.reason = "too few points: " + std::to_string(source.size()) + " against " + std::to_string(target.size());
+  return match;
+}
+
 }  // namespace
 
 void ScanMatchOptions::validate() const {
@@ -207,16 +230,11 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
                      const ScanMatchOptions& options) {
   options.validate();
   if (!prior_covariance.allFinite()) throw ValueError("scan matching: the prior covariance must be finite");
+  if (std::optional<ScanMatch> refused = tooFewPoints(target, source, initial, options)) return *refused;
+  const PreparedTarget prepared(target);
+  const KdTree& tree = prepared.tree;
+  const std::vector<LocalShape>& shapes = prepared.shapes;
   ScanMatch match;
-  match.pose = initial;
-  if (target.size() < options.min_pairs || source.size() < options.min_pairs) {
-    match.reason = "too few points: " + std::to_string(source.size()) + " against " + std::to_string(target.size());
-    return match;
-  }
-  TargetCloud cloud{&target};
-  KdTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  tree.buildIndex();
-  const std::vector<LocalShape> shapes = localShapes(target, tree);
 
   const Eigen::Matrix3d prior_information =
       (prior_covariance + 1e-12 * Eigen::Matrix3d::Identity()).ldlt().solve(Eigen::Matrix3d::Identity());
@@ -249,16 +267,9 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
 ScanMatch matchScansFrom(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& initial,
                          const ScanMatchOptions& options) {
   options.validate();
-  ScanMatch match;
-  match.pose = initial;
-  if (target.size() < options.min_pairs || source.size() < options.min_pairs) {
-    match.reason = "too few points: " + std::to_string(source.size()) + " against " + std::to_string(target.size());
-    return match;
-  }
-  TargetCloud cloud{&target};
-  KdTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  tree.buildIndex();
-  match = icp(target, source, tree, localShapes(target, tree), initial, initial, Eigen::Matrix3d::Zero(), options);
+  if (std::optional<ScanMatch> refused = tooFewPoints(target, source, initial, options)) return *refused;
+  const PreparedTarget prepared(target);
+  ScanMatch match = icp(target, source, prepared.tree, prepared.shapes, initial, initial, Eigen::Matrix3d::Zero(), options);
   judge(match, source.size(), options);
   return match;
 }
