@@ -221,8 +221,13 @@ class CliLive : public CliTest {
     args.insert(args.end(), {"--baud", "115200"});
     Child child(args, root_, -1);
     writeAll(master, capture, 512);
-    for (int unread = 1; unread > 0;) {  // `live` has read every byte: then hang up
+    // `live` has read every byte: then hang up. A written byte passes through the pty's flip buffer
+    // (emptied by a kernel worker) before the line discipline counts it, so an empty input queue
+    // is believed only once it has stayed empty for 250 ms.
+    for (int empty_polls = 0; empty_polls < 125;) {
+      int unread = 0;
       EXPECT_EQ(::ioctl(slave, FIONREAD, &unread), 0);
+      empty_polls = unread > 0 ? 0 : empty_polls + 1;
       std::this_thread::sleep_for(2ms);
     }
     ::close(master);
