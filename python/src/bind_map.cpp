@@ -145,7 +145,15 @@ cannot be written (an existing file is then left untouched).)doc")
           },
           "map_sonar_log(slam=True): the corrected trajectory the map was built with, an (N, 7) float64 array "
           "[time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED metres, radians; one row per dead-reckoning "
-          "fix, or three per scan without nav); None otherwise.")
+          "fix, or three per scan without nav), in nav's own coordinates (the origin added back); None otherwise.")
+      .def_property_readonly(
+          "origin",
+          [](const OccupancyMap& map) -> py::object {
+            if (!map.origin) return py::none();
+            return py::make_tuple(map.origin->x(), map.origin->y(), map.origin->z());
+          },
+          "map_sonar_log: the map's zero in nav's frame, (north_m, east_m, down_m), when nav was mapped about a "
+          "local origin (the keyword origin, or nav's first fix when nav lies far from zero); None otherwise.")
       .def_property_readonly(
           "slam",
           [](const OccupancyMap& map) -> py::object {
