@@ -124,5 +124,28 @@ TEST_F(cliOrigin, ANavigationTheMapCannotHoldNamesTheFixAndTheRemedy) {
   EXPECT_NE(refused.err.find("(--resolution)"), std::string::npos) << refused.err;
 }
 
+TEST_F(cliTrack, LocalizeInUtmFindsTheSameTrajectoryAsNearZero) {
+  const fs::path survey = fs::path(SONARMAP_SHARED_DATA) / "stpere_marina";
+  if (!fs::exists(survey / "dr_nav.csv")) GTEST_SKIP() << "no " << survey;
+  NavTrack utm = readNavCsv((survey / "dr_nav.csv").string());
+  for (NavSample& fix : utm) fix.position_ned_m += Eigen::Vector3d(4'600'000.0, 500'000.0, 0.0);
+  writeNavCsv((root_ / "utm.csv").string(), utm);
+  const std::string scans = (survey / "scans.csv.gz").string();
+  const ProgramRun near = run({"localize", scans, "--nav", (survey / "dr_nav.csv").string(), "--trajectory",
+                               (out_ / "near.csv").string()});
+  ASSERT_EQ(near.exit_code, 0) << near.err;
+  const ProgramRun far = run({"localize", scans, "--nav", (root_ / "utm.csv").string(), "--trajectory",
+                              (out_ / "utm.csv").string()});
+  ASSERT_EQ(far.exit_code, 0) << far.err;
+  EXPECT_EQ(far.out.rfind("origin: 4600000, 500000, 0 m (N, E, D; the first fix", 0), 0U) << far.out;
+  const NavTrack a = readNavCsv((out_ / "near.csv").string()), b = readNavCsv((out_ / "utm.csv").string());
+  ASSERT_EQ(a.size(), b.size());
+  double worst_m = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst_m = std::max(worst_m, (b[i].position_ned_m - Eigen::Vector3d(4'600'000.0, 500'000.0, 0.0) - a[i].position_ned_m).norm());
+  }
+  EXPECT_LT(worst_m, 1e-6);  // the same localization, written in the navigation's own coordinates
+}
+
 }  // namespace
 }  // namespace sonarmap::test
