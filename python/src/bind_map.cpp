@@ -98,7 +98,7 @@ at once, but a map must not be modified while another thread reads or modifies i
                        double clamping_thres_max, double occupancy_thres) {
              return OccupancyMap{OcTree16(resolution, treeOptions(prob_hit, prob_miss, clamping_thres_min,
                                                                   clamping_thres_max, occupancy_thres)),
-                                 std::nullopt, std::nullopt, std::nullopt};
+                                 std::nullopt, std::nullopt, std::nullopt, std::nullopt};
            }),
            py::arg("resolution"), py::arg("prob_hit") = defaults.prob_hit, py::arg("prob_miss") = defaults.prob_miss,
            py::arg("clamping_thres_min") = defaults.clamp_min, py::arg("clamping_thres_max") = defaults.clamp_max,
@@ -115,7 +115,7 @@ Raises sonarmap.ValueError for a resolution that is not finite and > 0, or proba
           "read",
           [](const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt};
+            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt, std::nullopt};
           },
           py::arg("path"), R"doc(Reads a map file: ``.bt`` (OctoMap binary: free leaves get the lower, occupied the
 upper clamping log-odds) or ``.ot`` (OctoMap full tree, exact log-odds), chosen by the extension

@@ -141,7 +141,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
     }
   }
   warn(mappingWarnings(mapper->stats(), mapper->options(), mapper->map().resolution_m()));
-  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt};
+  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt, std::nullopt};
   if (!origin.isZero()) map.origin = origin.ned_m;
   if (localized) {
     moveFromOrigin(localized->trajectory, origin.ned_m);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "cli_fixture.hpp"
 #include "sonarmap/nav/navigation.hpp"
@@ -43,6 +44,29 @@ TEST_F(cliTrack, ThePoolBagsSlamTrackStaysWithinTheVehiclesLimits) {
   const auto [speed_mps, turn_deg_s] = fastestStep(track);
   EXPECT_LE(speed_mps, 1.0);
   EXPECT_LE(turn_deg_s, 20.0);
+}
+
+TEST_F(cliTrack, LiveReplayInUtmMapsAsNearZero) {
+  if (!fs::exists(kPoolBag)) GTEST_SKIP() << "no " << kPoolBag;
+  // The pool bag's vehicle moving 1 cm/s north over its 155 s, near zero and in UTM.
+  for (const auto& [name, north_m] : {std::pair{"zero.csv", 0.0}, std::pair{"utm.csv", 4'600'000.0}}) {
+    NavTrack track;
+    for (int k = 0; k <= 170; ++k) {
+      NavSample fix;
+      fix.time_s = 1405709972.0 + k;
+      fix.position_ned_m = Eigen::Vector3d(north_m + 0.01 * k, north_m > 0.0 ? 500'000.0 : 0.0, 0.0);
+      track.push_back(fix);
+    }
+    writeNavCsv((root_ / name).string(), track);
+  }
+  const ProgramRun near = run({"live", kPoolBag.string(), "--nav", (root_ / "zero.csv").string(), "--show", "sweep",
+                               "-o", (out_ / "zero.bt").string(), "-q"});
+  ASSERT_EQ(near.exit_code, 0) << near.err;
+  const ProgramRun far = run({"live", kPoolBag.string(), "--nav", (root_ / "utm.csv").string(), "--show", "sweep",
+                              "-o", (out_ / "utm.bt").string(), "-q"});
+  ASSERT_EQ(far.exit_code, 0) << far.err;
+  EXPECT_EQ(far.out.rfind("origin: 4600000, 500000, 0 m (N, E, D; the first fix", 0), 0U) << far.out;
+  EXPECT_EQ(readFile(out_ / "utm.bt"), readFile(out_ / "zero.bt"));
 }
 
 /// A simulated harbour loop in `dir` (beams.csv, nav.csv), and its navigation moved by
