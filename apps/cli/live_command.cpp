@@ -20,6 +20,7 @@
 
 #include "live_source.hpp"
 #include "navigation_input.hpp"
+#include "origin_option.hpp"
 #include "map_command.hpp"
 #include "map_outputs.hpp"
 #include "sonarmap/core/statistics.hpp"
@@ -90,9 +91,13 @@ class LiveMapping {
  public:
   /// `known_fixes`: the navigation known at the start (--nav, a replayed log's own); `navigation`:
   /// whether fixes come at all (those, or a --nav-stream's).
+  /// `origin`: the known fixes' (already moved to it); unset: decided at the first streamed fix
+  /// (chooseLocalOrigin at `origin_resolution_m`, --origin's when given).
   LiveMapping(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
-              Clock::time_point start, const NavTrack& known_fixes, bool navigation)
-      : start_(start) {
+              Clock::time_point start, const NavTrack& known_fixes, bool navigation, std::optional<LocalOrigin> origin,
+              double origin_resolution_m)
+      : start_(start), origin_(std::move(origin)), given_origin_(givenOrigin(args.map.origin)),
+        origin_resolution_m_(origin_resolution_m) {
     const OnlineIntegration integration = args.show == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kProvisionalBeams;
     if (args.map.slam) {
       // The odometry's reading period from the fixes known at the start, as `map --slam` takes it
@@ -146,6 +151,8 @@ class LiveMapping {
     for (NavSample& fix : fixes) {
       if (!nav_offset_s_) nav_offset_s_ = arrival_s - fix.time_s;
       fix.time_s += *nav_offset_s_;
+      if (!origin_) origin_ = chooseLocalOrigin({fix}, given_origin_, origin_resolution_m_, 0.0);
+      fix.position_ned_m -= origin_->ned_m;
       if (slam_) {
         slam_->addNavFix(fix);
       } else {
@@ -162,6 +169,8 @@ class LiveMapping {
   OcTree16 shownSnapshot() const { return slam_ ? slam_->shownSnapshot() : mapper_->shownSnapshot(); }
   std::size_t sweepsIntegrated() const { return slam_ ? slam_->sweepsIntegrated() : mapper_->sweepsIntegrated(); }
   const OnlineSlam* slam() const { return slam_.get(); }
+  /// The map's zero in the navigation's frame (zero before any fix).
+  LocalOrigin origin() const { return origin_.value_or(LocalOrigin{}); }
   std::size_t beams() const { return beams_; }
   /// From a beam's arrival to the map as shown, and to the committed map.
   StageLatencies& shown() { return shown_; }
@@ -181,6 +190,9 @@ class LiveMapping {
   StageLatencies committed_;
   std::size_t beams_ = 0;
   std::optional<double> nav_offset_s_;  ///< arrival clock − the navigation stream's clock
+  std::optional<LocalOrigin> origin_;
+  std::optional<Eigen::Vector3d> given_origin_;  ///< --origin's
+  double origin_resolution_m_;
 };
 
 /// One status line: the latencies from a beam's read to the map as shown and to the committed map,
@@ -251,12 +263,13 @@ void finishLive(const LiveArgs& args, LiveMapping& live, Clock::time_point start
   writeMapFile(run.mapper.map(), args.map.output_bt);
   if (!args.map.trajectory_out.empty()) {
     FileTransaction outputs;
-    stageTrajectory(outputs, args.map.trajectory_out, trajectory);
+    stageTrajectory(outputs, args.map.trajectory_out, inNavigationFrame(trajectory, live.origin()));
     outputs.commit();
   }
   const std::vector<std::string> warnings =
       mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
+  printOrigin(live.origin());
   printMapSummary(run, args.map.output_bt, with_nav || args.map.slam, warnings.size());
   if (slam_report) printSlamSummary(*slam_report, with_nav);
 }
@@ -265,9 +278,15 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   const LogFormat format = parseLogFormat(args.map.format);
   const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
   const Clock::time_point start = Clock::now();
-  const NavTrack known_fixes = args.map.nav_file.empty() ? NavTrack{} : readNavCsv(args.map.nav_file);
+  NavTrack known_fixes = args.map.nav_file.empty() ? NavTrack{} : readNavCsv(args.map.nav_file);
+  // The resolution is chosen as the beams come: whether the navigation is far from zero is judged
+  // at --resolution, else at the auto resolution of --max-range.
+  const double origin_resolution_m =
+      sonar_options.resolution_m.value_or(autoResolution_m(sonar_options.max_range_m));
+  std::optional<LocalOrigin> origin;
+  if (!known_fixes.empty()) origin = moveTrackToOrigin(known_fixes, args.map.origin, origin_resolution_m, 0.0);
   LiveMapping live(args, sonar_options, sonar_to_body, start, known_fixes,
-                   !args.map.nav_file.empty() || !args.nav_stream.empty());
+                   !args.map.nav_file.empty() || !args.nav_stream.empty(), origin, origin_resolution_m);
   g_stop = 0;
   catchStopSignals();
   LiveSource source(args.map.input, args.baud);
@@ -342,20 +361,26 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
   // Read beam by beam: a replay holds no more of the log than a sonar on the wire would send.
   const std::unique_ptr<BeamSource> source = openBeamSource(args.map.input, format, args.map.log_read);
   const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
-  const std::optional<AlignedNavigation> navigation = navigationFor(
+  std::optional<AlignedNavigation> navigation = navigationFor(
       args.map.input, format, source->header(), args.map.nav_file, args.map.nav_topic, args.map.nav_time_offset_s);
   // One pass before anything is mapped or written: the file's errors and skips, as reading it
   // whole found them, and the clocks' overlap.
-  const LogSurvey survey = surveyLog(passOver(*source), 1, spanOf(navigation));
+  const BeamPass pass = passOver(*source);
+  const LogSurvey survey = surveyLog(pass, 1, spanOf(navigation));
+  std::optional<LocalOrigin> origin;
+  const double origin_resolution_m = sonar_options.resolution_m.value_or(
+      survey.beams > 0 ? autoResolutionForLog(survey, pass, sonar_options).resolution_m : autoResolution_m(sonar_options.max_range_m));
   if (navigation) {
     printNavigationSource(*navigation, args.map.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
+    origin = moveTrackToOrigin(navigation->source.track, args.map.origin, origin_resolution_m,
+                               std::min(survey.reach_m, sonar_options.max_range_m));
   }
   const Eigen::Isometry3d mounting =
       mountingFor(args.map.input, format, source->header(), navigation, !args.map.mounting.empty(), sonar_to_body);
   const Clock::time_point start = Clock::now();
   LiveMapping live(args, sonar_options, mounting, start, navigation ? navigation->source.track : NavTrack{},
-                   navigation.has_value());
+                   navigation.has_value(), origin, origin_resolution_m);
   g_stop = 0;
   catchStopSignals();
   if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: replaying %s\n", args.map.input.c_str());
@@ -422,8 +447,10 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
                 "Correct the navigation by scan matching as sweeps complete (as `map --slam`); when a loop closes the "
                 "map is rebuilt with the corrected trajectory, so each written map is the current best");
   addOdometryOptions(*cmd, args.map.odometry);
+  addOriginOption(*cmd, args.map.origin);
   cmd->add_option("--trajectory", args.map.trajectory_out,
-                  "With --slam: write the corrected trajectory at the end (navigation CSV, or TUM for .tum/.txt)");
+                  "With --slam: write the corrected trajectory at the end (navigation CSV, or TUM for .tum/.txt), in "
+                  "the navigation's own coordinates (--origin added back)");
   struct Checked {
     MapperOptions options;
     Eigen::Isometry3d sonar_to_body;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "origin_option.hpp"
 #include "slam_outputs.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/navigation_reader.hpp"
@@ -40,6 +41,7 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
                   "1-sigma of a point's bearing, DEGREES > 0 (half the horizontal beam width)")
       ->capture_default_str();
   addOdometryOptions(*cmd, args.odometry);
+  addOriginOption(*cmd, args.origin);
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
   auto check = [&args] {
     checkOdometryArgs(args.odometry, true);
@@ -57,14 +59,21 @@ void runLocalize(const LocalizeArgs& args) {
   const std::vector<BodyPoint> points = readPointScansCsv(args.scans);
   NavTrack dead_reckoning;
   if (args.nav != "none") dead_reckoning = readNavigation(args.nav, args.nav_topic).track;
+  // Positions far from zero (UTM) are localized about a local origin (map's rule at a resolution
+  // of the points' range σ: beyond 32,767 σ), and written back in the navigation's coordinates;
+  // with no octree to hold, any extent is localized.
+  const LocalOrigin origin = chooseLocalOrigin(dead_reckoning, givenOrigin(args.origin), args.range_sigma_m, 0.0);
+  moveToOrigin(dead_reckoning, origin.ned_m);
   PointScanOptions options;
   options.range_sigma_m = args.range_sigma_m;
   options.bearing_sigma_rad = args.bearing_sigma_deg * std::numbers::pi / 180.0;
   const SlamResult result = localizePointScans(points, dead_reckoning, options, toSlamOptions(args.odometry, dead_reckoning));
   FileTransaction outputs;
-  stageTrajectory(outputs, args.trajectory, result.trajectory);
+  stageTrajectory(outputs, args.trajectory, inNavigationFrame(result.trajectory, origin));
   outputs.commit();
-  if (!args.quiet) printSlamSummary(result.report, !dead_reckoning.empty());
+  if (args.quiet) return;
+  printOrigin(origin);
+  printSlamSummary(result.report, !dead_reckoning.empty());
 }
 
 }  // namespace sonarmap::cli

@@ -3,6 +3,7 @@
 // with the scan matcher, gates and pose graph of `map --slam`.
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +22,7 @@ struct LocalizeArgs {
   double bearing_sigma_deg = 1.5;  ///< --bearing-sigma, degrees, > 0
   OdometryArgs odometry;           ///< --nav-class and its values: how far the navigation is trusted
   bool quiet = false;
+  std::vector<double> origin;      ///< --origin N,E[,D]: the dead reckoning's zero for the localization; empty: automatic
 };
 
 /// Adds the `localize` subcommand to `app`; its options fill `args`.

@@ -13,6 +13,7 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_input.hpp"
+#include "origin_option.hpp"
 #include "slam_outputs.hpp"
 
 namespace sonarmap::cli {
@@ -70,9 +71,11 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                 "probabilistic ICP, loop closures, a pose graph) and map with the corrected trajectory. Without "
                 "--nav the vehicle is believed still and its motion comes from the scans alone");
   addOdometryOptions(*cmd, args.odometry);
+  addOriginOption(*cmd, args.origin);
   cmd->add_option("--trajectory", args.trajectory_out,
-                  "Write the trajectory the map was built with (the corrected one with --slam, else --nav's): "
-                  "a navigation CSV, or TUM format (time x y z qx qy qz qw, NED) when the name ends in .tum or .txt");
+                  "Write the trajectory the map was built with (the corrected one with --slam, else --nav's), in the "
+                  "navigation's own coordinates (--origin added back): a navigation CSV, or TUM format (time x y z "
+                  "qx qy qz qw, NED) when the name ends in .tum or .txt");
   auto check = [&args, checked] {
     // A bag may hold its own navigation: known once it is read (requireNavigation).
     const std::optional<LogFormat> format = args.format == "auto" ? logFormatOfPath(args.input) : parseLogFormat(args.format);
@@ -145,7 +148,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   }
   const MapperOptions sonar_options = withSonarBeam(options, args, format);
   // The navigation needs only the log's clock; the survey then counts the beams within its span.
-  const std::optional<AlignedNavigation> navigation = navigationFor(args.input, format, source->header(), args.nav_file,
+  std::optional<AlignedNavigation> navigation = navigationFor(args.input, format, source->header(), args.nav_file,
                                                                     args.nav_topic, args.nav_time_offset_s, args.log_read.msg_path);
   const BeamPass pass = passOver(*source);
   const LogSurvey survey = surveyLog(pass, surveyMinBeams(sonar_options), spanOf(navigation));
@@ -153,9 +156,17 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   requireNavigation(args, !navigation);
   const NavTrack no_nav;
   const NavTrack& nav = navigation ? navigation->source.track : no_nav;  // not copied: it grows with the log
+  LocalOrigin origin;
   if (navigation) {
     printNavigationSource(*navigation, args.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
+    const double resolution_m = sonar_options.resolution_m ? *sonar_options.resolution_m
+                                                           : autoResolutionForLog(survey, pass, sonar_options).resolution_m;
+    origin = moveTrackToOrigin(navigation->source.track, args.origin, resolution_m,
+                               std::min(survey.reach_m, sonar_options.max_range_m));
+    printOrigin(origin);
+  } else if (!args.origin.empty()) {
+    throw ValueError("--origin needs navigation (--nav): without it the map's zero is the sonar's");
   }
   const Eigen::Isometry3d mounting =
       mountingFor(args.input, format, source->header(), navigation, !args.mounting.empty(), sonar_to_body);
@@ -164,7 +175,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   mapped.resolution_note = resolutionNote(survey, pass, sonar_options);
   const NavTrack& trajectory = args.slam ? slam.trajectory : nav;
   FileTransaction outputs;  // nothing appears unless every output could be written
-  if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, trajectory);
+  if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, inNavigationFrame(trajectory, origin));
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
   stageMapOutputs(outputs, shown, *source, survey, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,

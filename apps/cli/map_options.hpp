@@ -32,6 +32,7 @@ struct MapArgs : MappingArguments {
   bool slam = false;             ///< --slam: correct the navigation by scan matching (slam/localizer.hpp)
   OdometryArgs odometry;         ///< --nav-class and its values: how far --slam trusts the navigation
   std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)
+  std::vector<double> origin;    ///< --origin N,E[,D]: the map's zero in the navigation's frame; empty: automatic
 };
 
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.

@@ -98,7 +98,7 @@ at once, but a map must not be modified while another thread reads or modifies i
                        double clamping_thres_max, double occupancy_thres) {
              return OccupancyMap{OcTree16(resolution, treeOptions(prob_hit, prob_miss, clamping_thres_min,
                                                                   clamping_thres_max, occupancy_thres)),
-                                 std::nullopt, std::nullopt, std::nullopt};
+                                 std::nullopt, std::nullopt, std::nullopt, std::nullopt};
            }),
            py::arg("resolution"), py::arg("prob_hit") = defaults.prob_hit, py::arg("prob_miss") = defaults.prob_miss,
            py::arg("clamping_thres_min") = defaults.clamp_min, py::arg("clamping_thres_max") = defaults.clamp_max,
@@ -115,7 +115,7 @@ Raises sonarmap.ValueError for a resolution that is not finite and > 0, or proba
           "read",
           [](const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt};
+            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt, std::nullopt};
           },
           py::arg("path"), R"doc(Reads a map file: ``.bt`` (OctoMap binary: free leaves get the lower, occupied the
 upper clamping log-odds) or ``.ot`` (OctoMap full tree, exact log-odds), chosen by the extension
@@ -145,7 +145,15 @@ cannot be written (an existing file is then left untouched).)doc")
           },
           "map_sonar_log(slam=True): the corrected trajectory the map was built with, an (N, 7) float64 array "
           "[time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED metres, radians; one row per dead-reckoning "
-          "fix, or three per scan without nav); None otherwise.")
+          "fix, or three per scan without nav), in nav's own coordinates (the origin added back); None otherwise.")
+      .def_property_readonly(
+          "origin",
+          [](const OccupancyMap& map) -> py::object {
+            if (!map.origin) return py::none();
+            return py::make_tuple(map.origin->x(), map.origin->y(), map.origin->z());
+          },
+          "map_sonar_log: the map's zero in nav's frame, (north_m, east_m, down_m), when nav was mapped about a "
+          "local origin (the keyword origin, or nav's first fix when nav lies far from zero); None otherwise.")
       .def_property_readonly(
           "slam",
           [](const OccupancyMap& map) -> py::object {

@@ -17,6 +17,7 @@
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "numpy_checks.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/mapping/local_origin.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 
 namespace sonarmap::python {
@@ -68,12 +69,34 @@ void warn(const std::vector<std::string>& lines) {
   for (const std::string& line : lines) warn(line, py::handle(PyExc_RuntimeWarning), 2);
 }
 
+/// The origin `track` is mapped about (chooseLocalOrigin with the keyword origin's (north_m,
+/// east_m[, down_m]), at the map's resolution and the log's reach), `track` moved to it and checked.
+LocalOrigin moveToLocalOrigin(std::optional<NavTrack>& track, const py::object& given, const SonarLog& log,
+                              const MapperOptions& options) {
+  std::optional<Eigen::Vector3d> point;
+  if (!given.is_none()) {
+    const std::vector<double> values = given.cast<std::vector<double>>();
+    if (values.size() != 2 && values.size() != 3) throwValueError("origin: expected (north_m, east_m) or (north_m, east_m, down_m)");
+    point = Eigen::Vector3d(values[0], values[1], values.size() == 3 ? values[2] : 0.0);
+  }
+  if (!track) {
+    if (point) throwValueError("origin needs nav: without it the map's zero is the sonar's");
+    return {};
+  }
+  const double resolution_m = options.resolution_m.value_or(autoResolutionForLog(log, options).resolution_m);
+  const double reach_m = logReach_m(log, options.max_range_m);
+  const LocalOrigin origin = chooseLocalOrigin(*track, point, resolution_m, reach_m);
+  moveToOrigin(*track, origin.ned_m);
+  requireTrackFits(*track, origin, resolution_m, reach_m, "origin=(north_m, east_m[, down_m])", "resolution=");
+  return origin;
+}
+
 }  // namespace
 
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
   const MappingArguments args =
-      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate"});
+      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate", "origin"});
   const std::string nav_class = kwargs.contains("nav_class") ? textArgument(kwargs["nav_class"], "nav_class") : "auto";
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
@@ -91,6 +114,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   std::optional<Eigen::Isometry3d> from_log;  // a ROS log's /tf_static, when mounting is not given
   std::optional<NavTrack> track;
   if (!nav.is_none()) track = navTrackForLog(nav, log.log, nav_time_offset_s, mounting.is_none() ? &from_log : nullptr);
+  const LocalOrigin origin = moveToLocalOrigin(track, kwarg(kwargs, "origin"), log.log, options);
   SlamOptions slam_options;
   slam_options.forming.odometry =
       odometryOf(nav_class, kwarg(kwargs, "max_speed"), kwarg(kwargs, "max_turn_rate"), track ? *track : NavTrack{});
@@ -117,8 +141,10 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
     }
   }
   warn(mappingWarnings(mapper->stats(), mapper->options(), mapper->map().resolution_m()));
-  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt};
+  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt, std::nullopt};
+  if (!origin.isZero()) map.origin = origin.ned_m;
   if (localized) {
+    moveFromOrigin(localized->trajectory, origin.ned_m);
     map.trajectory = std::move(localized->trajectory);
     map.slam = std::move(localized->report);
   }
@@ -164,7 +190,10 @@ nav the vehicle is believed still and its motion comes from the scans); the map'
 scans) or "auto", the default: "ahrs" when nav's north and east never change, else "dvl-ahrs") says how
 far it trusts the navigation; keywords max_speed (m/s, default 2) and max_turn_rate (degrees/s, default
 30, without nav only; the CLI's --max-speed and --max-turn-rate) are the vehicle's limits where nav gives
-no position (no nav, or the heading only): no scan match needing more is accepted.
+no position (no nav, or the heading only): no scan match needing more is accepted. Keyword origin:
+(north_m, east_m[, down_m]), the map's zero in nav's frame (the CLI's --origin): nav far from zero (UTM)
+is mapped relative to it, and the map's ``origin`` and ``trajectory`` say so; default: nav's first fix
+when some fix lies farther from zero than the map holds (32,767 voxels less the log's reach), else zero.
 Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "auto" where the CLI
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
@@ -173,7 +202,8 @@ Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itsel
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.
 Raises sonarmap.ValueError for an invalid option (named as the CLI's flag), a log whose work
-exceeds max_voxel_updates, or a bad navigation track; sonarmap.FileError for an unreadable nav CSV;
+exceeds max_voxel_updates, a bad navigation track, or one the map cannot hold about any origin (naming
+the fix and what fits); sonarmap.FileError for an unreadable nav CSV;
 TypeError for an unknown keyword.)doc";
   m.def("map_sonar_log", &mapLog, py::arg("log"), py::arg("nav") = py::none(), py::arg("mounting") = py::none(),
         py::arg("progress") = py::none(), py::arg("slam") = false, map_doc.c_str());

@@ -125,14 +125,14 @@ Raises sonarmap.ValueError for a non-finite fix, one not after the previous, or 
           "map",
           [](const OnlineMapper& mapper) {
             py::gil_scoped_release release;
-            return OccupancyMap{mapper.mapSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt};
+            return OccupancyMap{mapper.mapSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt, std::nullopt};
           },
           "A copy of the map as of the last integrated sweep, with its stats (sonarmap.OccupancyMap).")
       .def(
           "shown_map",
           [](const OnlineMapper& mapper) {
             py::gil_scoped_release release;
-            return OccupancyMap{mapper.shownSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt};
+            return OccupancyMap{mapper.shownSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt, std::nullopt};
           },
           "map() with the provisional beams' log-odds added (show=\"beam\"; else map()).")
       .def(

@@ -20,6 +20,7 @@ struct OccupancyMap {
   std::optional<MappingStats> stats;
   std::optional<NavTrack> trajectory;  ///< map_sonar_log(slam=True): the corrected trajectory
   std::optional<SlamReport> slam;      ///< ... and what the localization did
+  std::optional<Eigen::Vector3d> origin;  ///< the map's zero in the navigation's frame (NED m), when not zero
 };
 
 void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses

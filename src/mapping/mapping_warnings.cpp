@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sonarmap/core/key.hpp"
+#include "sonarmap/mapping/local_origin.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 
 namespace sonarmap {
@@ -52,12 +53,11 @@ std::vector<std::string> mappingWarnings(const MappingStats& stats, const Mapper
   std::vector<std::string> lines;
   const std::size_t tried = stats.beams_used + stats.out_of_map;
   if (stats.out_of_map > 0 && 2 * stats.out_of_map >= tried) {
-    constexpr double kHalfSpanVoxels = 32767.0;  // depth 16: keys 0 … 65535 around the origin
-    const double needed_m = stats.farthest_m / kHalfSpanVoxels;
+    const double needed_m = resolution_m * stats.farthest_m / mapHalfExtent_m(resolution_m);
     lines.push_back(format("%zu of %zu beams reach outside the map: at %g m voxels it spans ±%.3g m, the beams reach "
                            "%.3g m; a resolution of at least %.3g m fits them (--resolution; auto chooses one from the "
                            "log's reach)",
-                           stats.out_of_map, tried, resolution_m, kHalfSpanVoxels * resolution_m, stats.farthest_m,
+                           stats.out_of_map, tried, resolution_m, mapHalfExtent_m(resolution_m), stats.farthest_m,
                            needed_m));
   }
   const DetectionDiagnostics& d = stats.detection;

@@ -213,10 +213,22 @@ NavTrack Localizer::correctedTrack(const NavTrack& dead_reckoning) const {
   NavTrack track;
   if (scans_.empty()) return track;
   if (dead_reckoning.empty()) {
+    // The scans' poses at their reference times, the motion between two of them spread evenly over
+    // the time between (constant velocity and turn rate, the yaw along the shorter arc): a row's
+    // step never implies more speed or turn rate than the two scans' poses do in their time.
+    // Held before the first scan's reference time and after the last's.
+    const auto poseAt = [this](std::size_t next, double time_s) {
+      if (next == 0) return graph_.pose(0);
+      if (next == scans_.size()) return graph_.pose(next - 1);
+      const double t0 = scans_[next - 1].time_s, t1 = scans_[next].time_s;
+      return interpolate(graph_.pose(next - 1), graph_.pose(next), t1 > t0 ? (time_s - t0) / (t1 - t0) : 1.0);
+    };
+    std::size_t next = 0;  // the first scan whose reference time is after the row's
     for (std::size_t k = 0; k < scans_.size(); ++k) {
-      const Pose2& pose = graph_.pose(k);
       for (const double time_s : {scans_[k].start_time_s, scans_[k].time_s, scans_[k].end_time_s}) {
         if (!track.empty() && !(time_s > track.back().time_s)) continue;
+        while (next < scans_.size() && scans_[next].time_s <= time_s) ++next;
+        const Pose2 pose = poseAt(next, time_s);
         NavSample fix;
         fix.time_s = time_s;
         fix.position_ned_m = Eigen::Vector3d(pose.x_m, pose.y_m, 0.0);

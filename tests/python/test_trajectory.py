@@ -176,3 +176,27 @@ def test_localize_the_st_pere_survey(shared_file):
     a_deg, b_deg = result["compass_deviation_deg"]
     assert 3.0 < b_deg < 7.0 and abs(a_deg) < 3.0  # the DGPS's course gives -2.2 cos + 5.2 sin
     assert result["loop_closures_accepted"] >= 8
+
+
+def test_map_sonar_log_about_a_local_origin(tmp_path):
+    """A navigation in UTM maps about a local origin as the same navigation does near zero."""
+    run = sonarmap.simulate("harbour", mission="harbour-loop")
+    utm = run.nav.copy()
+    utm[:, 1] += 4_600_000.0
+    utm[:, 2] += 500_000.0
+    near = sonarmap.map_sonar_log(run.log, run.nav, resolution=0.1)
+    given = sonarmap.map_sonar_log(run.log, utm, resolution=0.1, origin=(4_600_000.0, 500_000.0))
+    assert near.origin is None
+    assert given.origin == (4_600_000.0, 500_000.0, 0.0)
+    near.write(tmp_path / "near.bt")
+    given.write(tmp_path / "given.bt")
+    assert (tmp_path / "near.bt").read_bytes() == (tmp_path / "given.bt").read_bytes()
+    # By default the first fix; the trajectory is given back in the navigation's own coordinates.
+    automatic = sonarmap.map_sonar_log(run.log, utm, resolution=0.1, slam=True, nav_class="absolute")
+    assert automatic.origin == (utm[0, 1], utm[0, 2], 0.0)
+    assert np.abs(automatic.trajectory[:, 1:3] - utm[:, 1:3]).max() < 0.05
+    # 10 km north: no origin fits it at 5 cm; the error names the fix and the resolution that does.
+    spread = utm.copy()
+    spread[:, 1] += np.linspace(0.0, 10_000.0, len(spread))
+    with pytest.raises(sonarmap.ValueError, match=r"navigation fix at .*no origin=\(north_m, east_m\[, down_m\]\) fits it.*resolution="):
+        sonarmap.map_sonar_log(run.log, spread, resolution=0.05)

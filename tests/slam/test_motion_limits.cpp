@@ -4,9 +4,11 @@
 // a measured heading's turn is never refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
@@ -115,6 +117,45 @@ TEST(slamMotionLimits, ALoopClosureBeyondTheTopSpeedIsRefused) {
   EXPECT_FALSE(localizer.proposeLoopClosure(0, 2, {3.0, 0.0, 0.0}, information));
   EXPECT_NE(localizer.report().loop_closures.back().reason.find("faster than the vehicle's limits"), std::string::npos);
   EXPECT_TRUE(localizer.proposeLoopClosure(0, 2, {0.01, 0.0, 0.0}, information));
+}
+
+/// The largest speed (m/s) and turn rate (rad/s) any two consecutive rows of `track` imply.
+std::pair<double, double> fastestStep(const NavTrack& track) {
+  double speed_mps = 0.0, turn_radps = 0.0;
+  for (std::size_t i = 1; i < track.size(); ++i) {
+    const double dt_s = track[i].time_s - track[i - 1].time_s;
+    speed_mps = std::max(speed_mps, (track[i].position_ned_m - track[i - 1].position_ned_m).head<2>().norm() / dt_s);
+    turn_radps = std::max(turn_radps, std::abs(wrapAngle_rad(track[i].yaw_rad - track[i - 1].yaw_rad)) / dt_s);
+  }
+  return {speed_mps, turn_radps};
+}
+
+TEST(slamMotionLimits, WithoutNavigationTheWrittenTrackStaysWithinTheLimitsBetweenScans) {
+  // Three turns of 7.8 s, 8 s apart, each seen from 0.5 m further north and turned 5° more: within
+  // the limits (0.06 m/s, 0.6°/s). A scan's points are spread over its turn, so the last row of one
+  // scan and the first of the next are 0.2 s apart: a pose held over each scan would jump 0.5 m
+  // (2.5 m/s) and 5° (25°/s) there.
+  std::vector<BodyPoint> points;
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::vector<BodyPoint> scan;
+    const double reference_s = 4.0 + 8.0 * static_cast<double>(k);
+    appendTankScan(scan, k, reference_s, {4.0 + 0.5 * static_cast<double>(k), 3.0, 5.0 * kDeg * static_cast<double>(k)});
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      scan[i].time_s = reference_s - 3.9 + 7.8 * static_cast<double>(i) / static_cast<double>(scan.size() - 1);
+    }
+    points.insert(points.end(), scan.begin(), scan.end());
+  }
+  const SlamResult result = localizePointScans(points, NavTrack{}, {}, SlamOptions{});
+  ASSERT_EQ(result.report.matches_accepted, 2U);
+  ASSERT_GT(result.trajectory.size(), 3U);
+  EXPECT_NEAR(result.trajectory.back().position_ned_m.x(), 1.0, 0.05);
+  const auto [speed_mps, turn_radps] = fastestStep(result.trajectory);
+  const OdometryNoise limits;
+  EXPECT_LE(speed_mps, limits.max_speed_mps);
+  EXPECT_LE(turn_radps, limits.max_turn_rate_radps);
+  // Spread evenly between the scans' reference times: 0.5 m and 5° in 8 s.
+  EXPECT_NEAR(speed_mps, 0.5 / 8.0, 0.01);
+  EXPECT_NEAR(turn_radps, 5.0 * kDeg / 8.0, 0.2 * kDeg);
 }
 
 TEST(slamMotionLimits, LimitsMustBePositive) {

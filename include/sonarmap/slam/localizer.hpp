@@ -175,7 +175,10 @@ class Localizer {
   /// dead-reckoning pose⁻¹ of the scans, NED's plane) interpolated between the two scans around its
   /// time (the first's before the first scan, the last's after the last); depth, roll and pitch
   /// kept. With an empty `dead_reckoning`: one fix per scan at its start, reference and end times,
-  /// poses from the graph (depth, roll and pitch 0). Empty when there is no scan.
+  /// the graph's poses at the reference times and linearly interpolated between them (the yaw
+  /// along the shorter arc; held before the first and after the last), so no step between two
+  /// rows implies more speed or turn rate than the two scans' poses around it do in their time
+  /// (depth, roll and pitch 0). Empty when there is no scan.
   NavTrack correctedTrack(const NavTrack& dead_reckoning) const;
 
  private:

@@ -1,0 +1,41 @@
+// --origin (see origin_option.hpp).
+
+#include "origin_option.hpp"
+
+#include <cstdio>
+
+namespace sonarmap::cli {
+
+void addOriginOption(CLI::App& cmd, std::vector<double>& origin) {
+  cmd.add_option("--origin", origin,
+                 "The map's zero in the navigation's frame, N,E[,D]: METRES north, east (and down), e.g. UTM northing "
+                 "and easting. Positions are mapped relative to it and written back (--trajectory) in the "
+                 "navigation's own coordinates. Default: the first fix when some fix lies farther from zero than the "
+                 "map holds (32,767 voxels: 1,638 m at 5 cm, less the beams' reach), else zero")
+      ->delimiter(',')
+      ->expected(2, 3)
+      ->type_name("N,E[,D]");
+}
+
+std::optional<Eigen::Vector3d> givenOrigin(const std::vector<double>& origin) {
+  if (origin.empty()) return std::nullopt;
+  return Eigen::Vector3d(origin[0], origin[1], origin.size() > 2 ? origin[2] : 0.0);
+}
+
+LocalOrigin moveTrackToOrigin(NavTrack& track, const std::vector<double>& origin, double resolution_m, double reach_m) {
+  const LocalOrigin chosen = chooseLocalOrigin(track, givenOrigin(origin), resolution_m, reach_m);
+  moveToOrigin(track, chosen.ned_m);
+  requireTrackFits(track, chosen, resolution_m, reach_m, "--origin", "--resolution");
+  return chosen;
+}
+
+void printOrigin(const LocalOrigin& origin) {
+  if (!origin.isZero()) std::printf("origin: %s; the map's zero is there\n", origin.describe().c_str());
+}
+
+NavTrack inNavigationFrame(NavTrack track, const LocalOrigin& origin) {
+  moveFromOrigin(track, origin.ned_m);
+  return track;
+}
+
+}  // namespace sonarmap::cli
