@@ -13,6 +13,8 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_input.hpp"
+#include "output_checks.hpp"
+#include "reader_skips.hpp"
 #include "slam_outputs.hpp"
 
 namespace sonarmap::cli {
@@ -171,8 +173,13 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
                   trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
                                      : sonarTrack(trajectory, mounting, survey));
   outputs.commit();
-  const std::vector<std::string> warnings =
-      mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
+  std::vector<SkipReasonGroup> skip_reasons;
+  addSkipReasons(skip_reasons, source->header().skip_reasons);
+  std::vector<std::string> warnings = skipWarnings(source->header().skipped_beams, skip_reasons);
+  for (std::string& warning :
+       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m())) {
+    warnings.push_back(std::move(warning));
+  }
   printWarnings(warnings);
   printMapSummary(mapped, args.output_bt, /*with_nav=*/!trajectory.empty(), warnings.size());
   if (args.slam) printSlamSummary(slam.report, !nav.empty());
