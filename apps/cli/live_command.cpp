@@ -409,7 +409,8 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
                   "(.bag, .mcap, .db3, a rosbag2 folder) or a Ping Viewer log (.bin, known by its header)")
       ->required();
   cmd->add_option("-o,--output", args.map.output_bt,
-                  "Output map, OctoMap binary tree (.bt): rewritten atomically every --write-every seconds and at the end")
+                  "Output map, OctoMap binary tree (.bt) or full tree (.ot): rewritten atomically every --write-every "
+                  "seconds and at the end")
       ->required();
   addMappingOptions(*cmd, args.map);
   cmd->add_option("--baud", args.baud, "Serial devices: bits per second (8N1, raw)")->capture_default_str();

@@ -65,7 +65,7 @@ py::object kwarg(const py::kwargs& kwargs, const char* name) {
 void warn(const std::vector<std::string>& lines) {
   if (lines.empty()) return;
   const py::object warn = py::module_::import("warnings").attr("warn");
-  for (const std::string& line : lines) warn(line, py::handle(PyExc_RuntimeWarning), 2);
+  for (const std::string& line : lines) warn(inPythonWords(line), py::handle(PyExc_RuntimeWarning), 2);
 }
 
 }  // namespace
