@@ -257,10 +257,9 @@ void finishLive(const LiveArgs& args, LiveMapping& live, Clock::time_point start
     stageTrajectory(outputs, args.map.trajectory_out, trajectory);
     outputs.commit();
   }
-  std::vector<std::string> warnings = skipWarnings(skipped, skip_reasons);
-  for (std::string& warning : mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m())) {
-    warnings.push_back(std::move(warning));
-  }
+  run.skip_note = skipNote(skipped, skip_reasons, run.mapper.stats().out_of_map, args.map.input);
+  const std::vector<std::string> warnings =
+      mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
   printMapSummary(run, args.map.output_bt, with_nav || args.map.slam, warnings.size());
   if (slam_report) printSlamSummary(*slam_report, with_nav);

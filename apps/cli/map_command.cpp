@@ -181,11 +181,10 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   outputs.commit();
   std::vector<SkipReasonGroup> skip_reasons;
   addSkipReasons(skip_reasons, source->header().skip_reasons);
-  std::vector<std::string> warnings = skipWarnings(source->header().skipped_beams, skip_reasons);
-  for (std::string& warning :
-       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m())) {
-    warnings.push_back(std::move(warning));
-  }
+  mapped.skip_note =
+      skipNote(mapped.mapper.stats().beams_skipped, skip_reasons, mapped.mapper.stats().out_of_map, args.input);
+  const std::vector<std::string> warnings =
+      mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
   printWarnings(warnings);
   printMapSummary(mapped, args.output_bt, /*with_nav=*/!trajectory.empty(), warnings.size());
   if (args.slam) printSlamSummary(slam.report, !nav.empty());

@@ -165,6 +165,7 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
               "%.3f s",
               map.resolution_m(), run.resolution_note.c_str(), calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes,
               counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
+  if (!run.skip_note.empty()) std::printf(", %s", run.skip_note.c_str());
   if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");
   std::printf(" -> %s\n", output_bt.c_str());
 }

@@ -1,6 +1,6 @@
 #pragma once
-// What a reader skipped, said to the user: `map` and `live` never drop data without a line on
-// why (the first reason of the most common kind; `sonarmap info` lists every kind).
+// What a reader skipped, said to the user: `map` and `live` never drop data without saying why, in
+// their summary line (the first reason of the most common kind; `sonarmap info` lists every kind).
 
 #include <cstddef>
 #include <string>
@@ -10,9 +10,11 @@
 
 namespace sonarmap::cli {
 
-/// The warning a run prints when its reader skipped `skipped` items (malformed beams, noise,
-/// other messages) described by `reasons` (grouped skip lines, addSkipReasons): how many, the
-/// first line of the most common kind, and how many other kinds. Empty when nothing was skipped.
-std::vector<std::string> skipWarnings(std::size_t skipped, const std::vector<SkipReasonGroup>& reasons);
+/// What the summary says of the skipped beams, near its end: "skipped R by the reader, K like this:
+/// REASON; and J other kinds, `sonarmap info` lists them; O outside the map", each part only when
+/// it applies; empty when nothing was skipped. `reasons`: the reader's skip lines grouped (addSkipReasons), each
+/// shown without its leading "`input`: ".
+std::string skipNote(std::size_t reader_skipped, const std::vector<SkipReasonGroup>& reasons, std::size_t out_of_map,
+                     const std::string& input);
 
 }  // namespace sonarmap::cli

@@ -114,7 +114,8 @@ std::string optionKeyword(const MappingOption& option) {
 
 const MappingOption* findMappingOption(std::string_view keyword) {
   for (const MappingOption& option : mappingOptionTable()) {
-    if (optionKeyword(option) == keyword || option.name == keyword) return &option;
+    // An option whose keyword is not its name ("volume" for "3d") is also found by that name.
+    if (optionKeyword(option) == keyword || (!option.keyword.empty() && option.name == keyword)) return &option;
   }
   return nullptr;
 }

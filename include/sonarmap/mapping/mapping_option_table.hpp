@@ -159,7 +159,8 @@ std::string optionFlag(const MappingOption& option);
 /// option in degrees "_deg" after it ("beam_width_deg": the module's other angles are radians).
 std::string optionKeyword(const MappingOption& option);
 
-/// The option whose Python keyword is `keyword`, or whose command-line name is it ("3d"); nullptr when
+/// The option whose Python keyword is `keyword`, or whose MappingOption::keyword was given and whose
+/// command-line name is `keyword` ("3d"); nullptr when
 /// there is none.
 const MappingOption* findMappingOption(std::string_view keyword);
 
