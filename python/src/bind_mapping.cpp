@@ -165,14 +165,15 @@ scans) or "auto", the default: "ahrs" when nav's north and east never change, el
 far it trusts the navigation; keywords max_speed (m/s, default 2) and max_turn_rate (degrees/s, default
 30, without nav only; the CLI's --max-speed and --max-turn-rate) are the vehicle's limits where nav gives
 no position (no nav, or the heading only): no scan match needing more is accepted.
-Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "auto" where the CLI
+Keyword options: the CLI's flags with '-' as '_', in the CLI's units, an angle's keyword ending in
+_deg (beam_width_deg: the navigation's angles above are radians), None or "auto" where the CLI
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
 assume; default the log's).
 Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.
-Raises sonarmap.ValueError for an invalid option (named as the CLI's flag), a log whose work
+Raises sonarmap.ValueError for an invalid option (named by its keyword), a log whose work
 exceeds max_voxel_updates, or a bad navigation track; sonarmap.FileError for an unreadable nav CSV;
 TypeError for an unknown keyword.)doc";
   m.def("map_sonar_log", &mapLog, py::arg("log"), py::arg("nav") = py::none(), py::arg("mounting") = py::none(),
