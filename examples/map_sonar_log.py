@@ -38,19 +38,23 @@ def load_log(path):
 
 
 def plot_sonar_images(log, name, out):
-    """The last whole sweep as a polar image (bearing x range) and as a Cartesian image."""
-    polar = sonarmap.polar_image(log, sweep=-1)
+    """The last whole sweep (a full turn or a sector pass, not the few beams a log may end on) as a
+    polar image (bearing x range) and as a Cartesian image; returns the polar image drawn."""
+    whole = log.whole_sweeps()
+    polar = sonarmap.polar_image(log, sweep=-1) if len(whole) else sonarmap.polar_image(log)  # else the largest
     cartesian = sonarmap.cartesian_image(polar)
     fig, (left, right) = plt.subplots(1, 2, figsize=(12, 5.5))
     bearings_deg = np.degrees(polar.bearing_rad)
     left.imshow(polar.intensities, aspect="auto", cmap="gray", origin="lower",
                 extent=[0.0, polar.range_m[-1], 0, len(bearings_deg)])
-    left.set(xlabel="range (m)", ylabel="beam of the sweep", title=f"polar image: {name}")
+    left.set(xlabel="range (m)", ylabel="beam of the sweep",
+             title=f"polar image: {name}, {len(bearings_deg)} beams")
     right.imshow(cartesian, cmap="gray", extent=sonarmap.cartesian_extent(cartesian, polar.bin_length_m))
     right.set(xlabel="x, sonar frame (m)", ylabel="y, sonar frame (m)", title="Cartesian image")
     fig.tight_layout()
     fig.savefig(out / "sonar_images.png", dpi=100)
     plt.close(fig)
+    return polar
 
 
 def plot_map(occupancy_map, name, out):
@@ -78,7 +82,8 @@ def main():
 
     log, name = load_log(args.log)
     print(f"{name}: {len(log)} beams, {log.intensities.shape[1]} bins of {log.bin_length_m[0]:.4f} m")
-    plot_sonar_images(log, name, out)
+    polar = plot_sonar_images(log, name, out)
+    print(f"sonar images: the last whole sweep, {len(polar.bearing_rad)} beams")
 
     occupancy_map = sonarmap.map_sonar_log(log)  # the CLI's defaults: resolution, detector... from the log
     print(f"map: {occupancy_map.stats.obstacles} obstacles, {occupancy_map.num_leaf_nodes()} leaves, "

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "map_options.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/log_reader.hpp"
@@ -59,13 +60,12 @@ void run(const ConvertArgs& args) {
 Command addConvertCommand(CLI::App& app, ConvertArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "convert", "Write a sonar log as beam CSV, or as the bytes a sonar sends (a SeaNet or Ping360 capture to replay)");
-  cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag, .mcap (or any name with --format)")->required();
+  cmd->add_option("input", args.input, logInputHelp())->required();
   cmd->add_option("-o,--output", args.output,
                   "Output by extension: .csv beam CSV (time_s,bearing_deg,bin_length_m,b0,...), .seanet SeaNet "
                   "mtHeadData packets, .bin Ping360 device_data messages (no clock: times are lost)")
       ->required();
-  cmd->add_option("--format", args.format, "Input format: auto (by extension) | mat | csv | v4log | seanet | ping360 | rosbag | mcap | rosbag2")
-      ->capture_default_str();
+  addLogFormatOption(*cmd, args.format);
   cmd->add_option("--sound-speed", args.sound_speed_m_s,
                   "Speed of sound in M/S turning bin lengths into the sample intervals of a .seanet or .bin output")
       ->capture_default_str()

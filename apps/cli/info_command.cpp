@@ -283,8 +283,7 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
 Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "info", "What a sonar log holds, before mapping it: beams, sweeps, range scales and gains, skipped data");
-  cmd->add_option("input", args.input, "Sonar log: .mat, .V4LOG, .csv, .seanet, .bin, .bag, .mcap (or any name with --format)")
-      ->required();
+  cmd->add_option("input", args.input, logInputHelp())->required();
   addLogFormatOption(*cmd, args.format);
   addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
                      "The vehicle's navigation: how many fixes, the distance travelled, and which beams fall "

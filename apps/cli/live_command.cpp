@@ -19,12 +19,15 @@
 #include <vector>
 
 #include "live_source.hpp"
+#include "output_checks.hpp"
+#include "reader_skips.hpp"
 #include "navigation_input.hpp"
 #include "origin_option.hpp"
 #include "map_command.hpp"
 #include "map_outputs.hpp"
 #include "sonarmap/core/statistics.hpp"
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/ping360_reader.hpp"
 #include "sonarmap/formats/wire_stream.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
@@ -247,7 +250,7 @@ class PeriodicWriter {
 /// The end of a live run: the last sweep integrated, the map (and with --slam the trajectory)
 /// written, the summary printed.
 void finishLive(const LiveArgs& args, LiveMapping& live, Clock::time_point start, std::size_t bytes, std::size_t skipped,
-                bool with_nav) {
+                const std::vector<SkipReasonGroup>& skip_reasons, bool with_nav) {
   live.finish();
   const double seconds = secondsSince(start);
   if (!args.map.quiet) printStatus(live, bytes, skipped, seconds, static_cast<double>(live.beams()) / std::max(seconds, 1e-9), true);
@@ -266,6 +269,7 @@ void finishLive(const LiveArgs& args, LiveMapping& live, Clock::time_point start
     stageTrajectory(outputs, args.map.trajectory_out, inNavigationFrame(trajectory, live.origin()));
     outputs.commit();
   }
+  run.skip_note = skipNote(skipped, skip_reasons, run.mapper.stats().out_of_map, args.map.input);
   const std::vector<std::string> warnings =
       mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
@@ -294,6 +298,7 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   WireStreamDecoder decoder(format, {}, args.map.input);
 
   std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.write_every_s);
+  std::vector<SkipReasonGroup> skip_reasons;  // grouped as they come: a stream may run for days
   std::array<std::uint8_t, 65536> buffer{};
   double last_status_s = 0.0;
   double last_byte_s = 0.0;
@@ -321,8 +326,13 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
       const long got = source.read(buffer);
       if (got == 0) break;  // end of the stream
       if (got > 0) {
+        if (decoder.bytesFed() == 0 && isPingViewerLog(std::span(buffer.data(), static_cast<std::size_t>(got)))) {
+          throw ValueError(source.description() + " sends a Ping Viewer log, not the sonar's wire bytes: give the "
+                           "log's file path to replay it as `map` reads it");
+        }
         last_byte_s = secondsSince(start);
         live.add(decoder.feed(std::span(buffer.data(), static_cast<std::size_t>(got))), last_byte_s);
+        addSkipReasons(skip_reasons, decoder.takeSkipReasons());
       }
     }
     if (args.idle_timeout_s > 0.0 && now_s - last_byte_s >= args.idle_timeout_s) break;
@@ -334,28 +344,34 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
     }
   }
   live.add(decoder.finish(), secondsSince(start));
+  addSkipReasons(skip_reasons, decoder.takeSkipReasons());
   if (live.beams() == 0) {
     throw FileError(args.map.input + ": no beam received in " + std::to_string(decoder.bytesFed()) + " bytes" +
-                    (decoder.skippedItems() > 0 ? " (" + decoder.takeSkipReasons().front() + ")" : ""));
+                    (skip_reasons.empty() ? "" : " (" + skip_reasons.front().first_reason + ")"));
   }
   if (nav_rows && nav_rows->skippedRows() > 0) {
     std::fprintf(stderr, "sonarmap: warning: %zu navigation rows skipped, the last: %s\n", nav_rows->skippedRows(),
                  nav_rows->lastSkipReason().c_str());
   }
   writer.reset();  // no periodic write races the final one
-  finishLive(args, live, start, decoder.bytesFed(), decoder.skippedItems(), !args.map.nav_file.empty() || !args.nav_stream.empty());
+  finishLive(args, live, start, decoder.bytesFed(), decoder.skippedItems(), skip_reasons,
+             !args.map.nav_file.empty() || !args.nav_stream.empty());
 }
 
-/// Whether `live` replays a recorded ROS log (by --format, or the source's name) rather than reading
-/// a wire stream.
+/// Whether `live` replays a recorded log beam by beam with its own clock, read as `map` reads it,
+/// rather than decoding a wire stream: a ROS log (by --format, or the source's name) or a Ping
+/// Viewer log file (by its header: its records wrap the sonar's bytes in time stamps and lengths,
+/// which no wire decoder may read as the sonar's).
 bool isReplay(const LiveArgs& args) {
-  if (args.map.format != "auto") return isRosLog(parseLogFormat(args.map.format));
-  const std::optional<LogFormat> format = logFormatOfPath(args.map.input);
-  return format && isRosLog(*format);
+  const std::optional<LogFormat> format =
+      args.map.format != "auto" ? std::optional(parseLogFormat(args.map.format)) : logFormatOfPath(args.map.input);
+  if (!format) return false;
+  return isRosLog(*format) || (*format == LogFormat::kPing360 && isPingViewerLogFile(args.map.input));
 }
 
-/// `live` on a recorded ROS log (a replay): its beams fed in order with their recorded times, its
-/// own navigation (or --nav's, any file `map --nav` reads, joined by its clock) known from the start.
+/// `live` on a recorded log (a replay: a ROS log, a Ping Viewer log): its beams, as `map` reads
+/// them, fed in order with their recorded times, its own navigation (or --nav's, any file `map
+/// --nav` reads, joined by its clock) known from the start.
 void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const LogFormat format = inputFormat(args.map.input, args.map.format);
   // Read beam by beam: a replay holds no more of the log than a sonar on the wire would send.
@@ -400,7 +416,9 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
     }
   }
   writer.reset();
-  finishLive(args, live, start, 0, source->header().skipped_beams, navigation.has_value());
+  std::vector<SkipReasonGroup> skip_reasons;
+  addSkipReasons(skip_reasons, source->header().skip_reasons);
+  finishLive(args, live, start, 0, source->header().skipped_beams, skip_reasons, navigation.has_value());
 }
 
 }  // namespace
@@ -411,11 +429,12 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   cmd->add_option("source", args.map.input,
                   "Where the bytes come from: a serial device (/dev/ttyUSB0), udp://HOST:PORT (bound; port 0 picks "
                   "one, printed), tcp://HOST:PORT (connected), - for standard input, or a capture file (a replay); or a "
-                  "recorded ROS log (.bag, .mcap, .db3, a rosbag2 folder), replayed beam by beam with its own times "
-                  "and navigation")
+                  "recorded log, replayed beam by beam with its own times and navigation as `map` reads it: a ROS log "
+                  "(.bag, .mcap, .db3, a rosbag2 folder) or a Ping Viewer log (.bin, known by its header)")
       ->required();
   cmd->add_option("-o,--output", args.map.output_bt,
-                  "Output map, OctoMap binary tree (.bt): rewritten atomically every --write-every seconds and at the end")
+                  "Output map, OctoMap binary tree (.bt) or full tree (.ot): rewritten atomically every --write-every "
+                  "seconds and at the end")
       ->required();
   addMappingOptions(*cmd, args.map);
   cmd->add_option("--baud", args.baud, "Serial devices: bits per second (8N1, raw)")->capture_default_str();
@@ -432,7 +451,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       ->capture_default_str();
   cmd->add_option("--nav", args.map.nav_file,
                   "Navigation CSV loaded at the start (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad): its times are "
-                  "seconds since `live` started, the clock beams are stamped with on arrival. Replaying a ROS log: any "
+                  "seconds since `live` started, the clock beams are stamped with on arrival. Replaying a recorded log: any "
                   "navigation `map --nav` takes, on the log's clock (default: the log's own navigation topic)");
   cmd->add_option("--nav-stream", args.nav_stream,
                   "A second SOURCE (serial, udp://, tcp://, a file) of navigation CSV rows as they are sent: each fix "
@@ -459,9 +478,9 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   auto check = [&args, checked] {
     if (!isReplay(args) && args.map.format != "seanet" && args.map.format != "ping360") {
       throw ValueError("live needs --format seanet or --format ping360 (a raw wire stream), or a recorded ROS log "
-                       "(.bag, .mcap, .db3, a rosbag2 folder), got '" + args.map.format + "'");
+                       "(.bag, .mcap, .db3, a rosbag2 folder) or Ping Viewer log (.bin), got '" + args.map.format + "'");
     }
-    if (isReplay(args) && !args.nav_stream.empty()) throw ValueError("a replayed ROS log takes --nav, not --nav-stream");
+    if (isReplay(args) && !args.nav_stream.empty()) throw ValueError("a replayed log takes --nav, not --nav-stream");
     if (!(args.write_every_s > 0.0)) throw ValueError("--write-every must be > 0 seconds");
     checkOdometryArgs(args.map.odometry, args.map.slam);
     if (!(args.idle_timeout_s >= 0.0)) throw ValueError("--idle-timeout must be >= 0 seconds");
@@ -469,6 +488,8 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       throw ValueError("--mounting needs --nav, --nav-stream or --slam");
     }
     if (!args.map.trajectory_out.empty() && !args.map.slam) throw ValueError("live --trajectory needs --slam");
+    requireMapOutput(args.map.output_bt);
+    requireTrajectoryOutput(args.map.trajectory_out);
     checked->options = toMapperOptions(args.map);
     checked->sonar_to_body = toSonarToBody(args.map.mounting);
   };

@@ -14,6 +14,8 @@
 #include "sonarmap/slam/slam_mapping.hpp"
 #include "navigation_input.hpp"
 #include "origin_option.hpp"
+#include "output_checks.hpp"
+#include "reader_skips.hpp"
 #include "slam_outputs.hpp"
 
 namespace sonarmap::cli {
@@ -30,11 +32,11 @@ void requireNavigation(const MapArgs& args, bool without_navigation) {
 }  // namespace
 
 Command addMapCommand(CLI::App& app, MapArgs& args) {
-  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log (.mat, .V4LOG, .seanet, .bin, .bag, .mcap, beam .csv) into an occupancy octree (.bt)");
-  cmd->add_option("input", args.input,
-                  "Sonar log: CRAS Micron .mat, Tritech SeaNet .V4LOG, SeaNet .seanet, Ping360 .bin, ROS 1 .bag, ROS 2 .mcap or beam .csv")
+  CLI::App* cmd = app.add_subcommand("map", "Map a sonar log into an occupancy octree (.bt)");
+  cmd->add_option("input", args.input, logInputHelp())->required();
+  cmd->add_option("-o,--output", args.output_bt,
+                  "Output map: OctoMap binary tree (.bt, maximum likelihood) or full tree (.ot, log-odds)")
       ->required();
-  cmd->add_option("-o,--output", args.output_bt, "Output map, OctoMap binary tree (.bt)")->required();
   // MapArgs (map_options.hpp) has no field for the side view: it lives beside the checked options.
   struct Checked {
     MapperOptions options;
@@ -85,6 +87,12 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
       throw ValueError("--side-png draws a 3D map: give --3d (the planar map is one slice, see --png)");
     }
     checkOdometryArgs(args.odometry, args.slam);
+    requireMapOutput(args.output_bt);
+    requirePngOutput(args.map_png, "--png");
+    requirePngOutput(checked->side_png, "--side-png");
+    requirePngOutput(args.polar_png, "--polar-png");
+    requirePngOutput(args.cartesian_png, "--cartesian-png");
+    requireTrajectoryOutput(args.trajectory_out);
     checked->options = toMapperOptions(args);
     checked->sonar_to_body = toSonarToBody(args.mounting);
   };
@@ -182,6 +190,10 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
                   trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
                                      : sonarTrack(trajectory, mounting, survey));
   outputs.commit();
+  std::vector<SkipReasonGroup> skip_reasons;
+  addSkipReasons(skip_reasons, source->header().skip_reasons);
+  mapped.skip_note =
+      skipNote(mapped.mapper.stats().beams_skipped, skip_reasons, mapped.mapper.stats().out_of_map, args.input);
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
   printWarnings(warnings);

@@ -3,13 +3,19 @@
 #include <string>
 #include <variant>
 
+#include "sonarmap/formats/log_reader.hpp"
+
 namespace sonarmap::cli {
 
 void addLogFormatOption(CLI::App& cmd, std::string& format) {
   cmd.add_option("--format", format,
-                 "Log format: auto (by extension: .mat, .csv, .V4LOG, .seanet, .bin, .bag, .mcap, .db3, a rosbag2 folder) | mat | csv | v4log | seanet | "
-                 "ping360 (a raw capture of any name) | rosbag (ROS 1) | mcap | rosbag2 (ROS 2: MCAP, rosbag2 SQLite)")
+                 "Log format: auto (by the input's extension) | " + logFormatNamesText(" | ") +
+                     " (a file of any name, e.g. ping360 for a raw capture)")
       ->capture_default_str();
+}
+
+std::string logInputHelp() {
+  return "Sonar log: " + logFormatExtensionsText() + " (or any name with --format)";
 }
 
 void addMappingOptions(CLI::App& cmd, MapArgs& args) {

@@ -38,6 +38,10 @@ struct MapArgs : MappingArguments {
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.
 void addLogFormatOption(CLI::App& cmd, std::string& format);
 
+/// The help of a command's input log: every extension the readers know, from their registry
+/// (logFormatExtensionsText).
+std::string logInputHelp();
+
 /// Adds --format, every option of mappingOptionTable() (its flag, its help with unit and range, its
 /// default shown) and --quiet and --tank-report to `cmd`: everything but the input, outputs, --nav
 /// and --mounting.

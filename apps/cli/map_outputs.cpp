@@ -11,7 +11,9 @@
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
+#include "sonarmap/io/map_file.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/render/map_figures.hpp"
 #include "sonarmap/render/sonar_figures.hpp"
@@ -107,7 +109,13 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarL
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& source, const LogSurvey& survey,
                      const OcTree16& map, double pixel_m, const std::string& side_png,
                      const std::vector<Eigen::Vector3d>& track_m) {
-  outputs.stage(args.output_bt, [&](std::ostream& out) { writeBinary(map, out); });
+  outputs.stage(args.output_bt, [&](std::ostream& out) {
+    if (mapFormatOf(args.output_bt) == MapFormat::kFull) {
+      writeFull(map, out);
+    } else {
+      writeBinary(map, out);
+    }
+  });
   const double res = map.resolution_m();
   if (!args.map_png.empty()) {
     const cv::Mat top = args.volume ? topViewFigure(map, figureTitle(args, res, "3D map, top view"), track_m)
@@ -157,6 +165,7 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
               "%.3f s",
               map.resolution_m(), run.resolution_note.c_str(), calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes,
               counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
+  if (!run.skip_note.empty()) std::printf(", %s", run.skip_note.c_str());
   if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");
   std::printf(" -> %s\n", output_bt.c_str());
 }

@@ -26,6 +26,9 @@ struct MappedLog {
   /// Said after the resolution in the summary, e.g. " (auto: the 10 m range scale, 2137 of 3035
   /// beams)" for an automatic resolution in a log of several range scales; empty otherwise.
   std::string resolution_note = {};
+  /// Said near the end of the summary: why beams were skipped (skipNote, reader_skips.hpp);
+  /// empty when none was.
+  std::string skip_note = {};
 };
 
 /// One mapping call (a mapSonarLog overload) given the progress callback to report to.
@@ -63,7 +66,8 @@ void printWarnings(const std::vector<std::string>& warnings);
 /// Prints the one-line summary of a mapping run on stdout: beams used and skipped (with
 /// `with_nav`, also those without navigation), sweeps, obstacles (EMPTY MAP when none), the
 /// resolution, the detector's minimum range and threshold (the calibration of the last sweep), map
-/// nodes and leaves, memory, time, how many warnings were printed, and the .bt written. After the
+/// nodes and leaves, memory, time, why beams were skipped (MappedLog::skip_note), how many warnings
+/// were printed, and the .bt written. After the
 /// obstacles comes the map's height extent, "occupied z LO .. HI m": the lowest and highest
 /// occupied voxel centres (occupiedHeightExtent), left out when nothing is occupied.
 void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav = false, std::size_t warnings = 0);

@@ -28,18 +28,18 @@ class _MappingOptions(TypedDict, total=False):
     intensity_span: _NumberOrAuto
     smoothing: str
     smoothing_range: float
-    smoothing_bearing: float
+    smoothing_bearing_deg: float
     cfar_training: float
     cfar_guard: float
     ray: str
     aggregation: str
     max_range: float
-    beam_width: Optional[float]
+    beam_width_deg: Optional[float]
     range_tolerance: _NumberOrAuto
     max_voxel_updates: float
     hit_probability: float
     volume: bool
-    vertical_aperture: Optional[float]
+    vertical_aperture_deg: Optional[float]
     water_surface_depth: Optional[float]
     threads: int
 # END mapping options
@@ -187,6 +187,7 @@ class SonarLog:
     @property
     def nominal_beam_deg(self) -> Tuple[float, float]: ...
     def sweeps(self) -> npt.NDArray[np.int64]: ...
+    def whole_sweeps(self) -> npt.NDArray[np.int64]: ...
     def write_csv(self, path: PathLike) -> None: ...
     def __len__(self) -> int: ...
 
@@ -324,9 +325,9 @@ class Mission:
     @property
     def mounting(self) -> list[float]: ...
     @property
-    def beam_width(self) -> float: ...
+    def beam_width_deg(self) -> float: ...
     @property
-    def vertical_aperture(self) -> float: ...
+    def vertical_aperture_deg(self) -> float: ...
     @property
     def range(self) -> float: ...
     def evaluate(self, map: OccupancyMap, tolerance: float = 0.1) -> dict[str, Any]: ...

@@ -4,7 +4,8 @@
 //   sonarmap.ValueError(sonarmap.Error, ValueError)  ← sonarmap::ValueError, std::invalid_argument,
 //                                                      std::domain_error, std::out_of_range
 //   sonarmap.OutOfMapError(sonarmap.Error, ValueError) ← sonarmap::OutOfMapError
-// so `except ValueError` and `except OSError` catch what a Python user expects as well.
+// so `except ValueError` and `except OSError` catch what a Python user expects as well. Messages
+// name the keywords a Python user gives, not the command line's flags (inPythonWords).
 #include <stdexcept>
 
 #include "bindings.hpp"
@@ -51,19 +52,19 @@ void bindErrors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const sonarmap::FileError& e) {
-      PyErr_SetString(g_file_error, e.what());
+      PyErr_SetString(g_file_error, inPythonWords(e.what()).c_str());
     } catch (const sonarmap::ValueError& e) {
-      PyErr_SetString(g_value_error, e.what());
+      PyErr_SetString(g_value_error, inPythonWords(e.what()).c_str());
     } catch (const sonarmap::OutOfMapError& e) {
-      PyErr_SetString(g_out_of_map_error, e.what());
+      PyErr_SetString(g_out_of_map_error, inPythonWords(e.what()).c_str());
     } catch (const sonarmap::Error& e) {
-      PyErr_SetString(g_error, e.what());
+      PyErr_SetString(g_error, inPythonWords(e.what()).c_str());
     } catch (const std::invalid_argument& e) {
-      PyErr_SetString(g_value_error, e.what());
+      PyErr_SetString(g_value_error, inPythonWords(e.what()).c_str());
     } catch (const std::domain_error& e) {
-      PyErr_SetString(g_value_error, e.what());
+      PyErr_SetString(g_value_error, inPythonWords(e.what()).c_str());
     } catch (const std::out_of_range& e) {
-      PyErr_SetString(g_value_error, e.what());
+      PyErr_SetString(g_value_error, inPythonWords(e.what()).c_str());
     }
   });
 }

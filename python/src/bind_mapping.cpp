@@ -66,7 +66,7 @@ py::object kwarg(const py::kwargs& kwargs, const char* name) {
 void warn(const std::vector<std::string>& lines) {
   if (lines.empty()) return;
   const py::object warn = py::module_::import("warnings").attr("warn");
-  for (const std::string& line : lines) warn(line, py::handle(PyExc_RuntimeWarning), 2);
+  for (const std::string& line : lines) warn(inPythonWords(line), py::handle(PyExc_RuntimeWarning), 2);
 }
 
 /// The origin `track` is mapped about (chooseLocalOrigin with the keyword origin's (north_m,
@@ -194,14 +194,15 @@ no position (no nav, or the heading only): no scan match needing more is accepte
 (north_m, east_m[, down_m]), the map's zero in nav's frame (the CLI's --origin): nav far from zero (UTM)
 is mapped relative to it, and the map's ``origin`` and ``trajectory`` say so; default: nav's first fix
 when some fix lies farther from zero than the map holds (32,767 voxels less the log's reach), else zero.
-Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "auto" where the CLI
+Keyword options: the CLI's flags with '-' as '_', in the CLI's units, an angle's keyword ending in
+_deg (beam_width_deg: the navigation's angles above are radians), None or "auto" where the CLI
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
 assume; default the log's).
 Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.
-Raises sonarmap.ValueError for an invalid option (named as the CLI's flag), a log whose work
+Raises sonarmap.ValueError for an invalid option (named by its keyword), a log whose work
 exceeds max_voxel_updates, a bad navigation track, or one the map cannot hold about any origin (naming
 the fix and what fits); sonarmap.FileError for an unreadable nav CSV;
 TypeError for an unknown keyword.)doc";

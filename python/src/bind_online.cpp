@@ -65,7 +65,7 @@ before.
 nav: False: the sonar static at the map origin; True: beams placed by the fixes given to
 add_nav_fix (NED, body FRD), mounted by ``mounting`` (x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg;
 default upright and aligned). show: "sweep" or "beam". format: whose nominal beam widths
-apply when beam_width / vertical_aperture are not given ("csv": Tritech 3° × 35°).
+apply when beam_width_deg / vertical_aperture_deg are not given ("csv": Tritech 3° × 35°).
 Raises sonarmap.ValueError for invalid options; TypeError for an unknown keyword.)doc")
       .def(
           "add_beam",

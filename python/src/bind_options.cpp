@@ -4,6 +4,7 @@
 // sonarmap.mapping_options(), the table itself (tests/python/test_mapping_options.py renders the
 // stub's keyword block from it and compares them with python/sonarmap/__init__.pyi).
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -37,7 +38,7 @@ bool flag(const py::handle& value, const std::string& name) {
 
 /// Stores the Python value of one option's keyword `name` in `args`, as the command line would
 /// have read it. None is the option's unset word, or for a number the user may leave to the sonar
-/// (beam_width), not given; True and False are yes and no.
+/// (beam_width_deg), not given; True and False are yes and no.
 void readKeyword(const MappingOption& option, const std::string& name, const py::handle& value,
                  MappingArguments& args) {
   std::visit(LinkVisitor{
@@ -125,6 +126,34 @@ py::list optionList() {
 
 }  // namespace
 
+std::string inPythonWords(const std::string& message) {
+  // The flags of map_sonar_log's other keywords, then the table's; a flag is replaced only where
+  // it ends ("--smoothing" not inside "--smoothing-range").
+  std::vector<std::pair<std::string, std::string>> words = {
+      {"--nav-time-offset", "nav_time_offset_s"}, {"--nav-class", "nav_class"}, {"--max-speed", "max_speed"},
+      {"--max-turn-rate", "max_turn_rate"},       {"--mounting", "mounting"},   {"--format", "format"},
+      {"--nav", "nav"},                           {"--slam", "slam"}};
+  for (const MappingOption& option : mappingOptionTable()) words.emplace_back(optionFlag(option), optionKeyword(option));
+  const auto flagChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_'; };
+  std::string out;
+  for (std::size_t at = 0; at < message.size();) {
+    bool replaced = false;
+    if (message.compare(at, 2, "--") == 0 && (at == 0 || !flagChar(message[at - 1]))) {
+      for (const auto& [flag, keyword] : words) {
+        const std::size_t end = at + flag.size();
+        if (message.compare(at, flag.size(), flag) == 0 && (end == message.size() || !flagChar(message[end]))) {
+          out += keyword;
+          at = end;
+          replaced = true;
+          break;
+        }
+      }
+    }
+    if (!replaced) out += message[at++];
+  }
+  return out;
+}
+
 std::string textArgument(const py::handle& value, const std::string& name) {
   if (!py::isinstance<py::str>(value)) throwValueError(name + " expects a string");
   return value.cast<std::string>();
@@ -137,6 +166,10 @@ MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<st
     if (const MappingOption* option = findMappingOption(name)) {
       readKeyword(*option, name, value, args);
     } else if (std::find(allowed_extra.begin(), allowed_extra.end(), name) == allowed_extra.end()) {
+      if (const MappingOption* renamed = findMappingOption(name + "_deg")) {
+        throw py::type_error("unexpected keyword argument '" + name + "': the angle is '" + optionKeyword(*renamed) +
+                             "', in degrees (the keywords of angles name their unit)");
+      }
       std::string names;
       for (const MappingOption& known : mappingOptionTable()) {
         if (!names.empty()) names += ", ";
@@ -158,7 +191,9 @@ std::string mappingKeywordsDoc(bool detection_only) {
                                                                         : "";
     if (option.unit != OptionUnit::kProbability && option.unit != OptionUnit::kCount)
       notes += optionUnitName(option.unit);
-    if (!option.keyword.empty()) notes += std::string(notes.empty() ? "" : ", ") + "the CLI's " + optionFlag(option);
+    std::string name(option.name);
+    std::replace(name.begin(), name.end(), '-', '_');
+    if (optionKeyword(option) != name) notes += std::string(notes.empty() ? "" : ", ") + "the CLI's " + optionFlag(option);
     doc += (doc.empty() ? "" : ", ") + optionKeyword(option) + (notes.empty() ? "" : " (" + notes + ")");
   }
   return doc;
@@ -167,8 +202,9 @@ std::string mappingKeywordsDoc(bool detection_only) {
 void bindOptions(py::module_& m) {
   m.def("mapping_options", &optionList,
         R"doc(The mapping options map_sonar_log, OnlineMapper and detect_obstacles take as
-keywords (the CLI's flags of `sonarmap map`), from the library's table: a list of dicts, one per
-option, with keyword, flag ("--false-alarm"), stage ("detection": detect_obstacles uses it, or
+keywords (the CLI's flags of `sonarmap map` with '-' as '_'; an angle's keyword ends in _deg:
+beam_width_deg), from the library's table: a list of dicts, one per option, with keyword, flag
+("--false-alarm"), stage ("detection": detect_obstacles uses it, or
 "mapping"), unit ("metres", "degrees", "dB", "probability", "count" or ""), accepts (its range or
 words, as errors say it), default (the library's, as the keyword takes it; None: auto), words
 (the accepted words of a word option), help (the CLI's) and type (the stub's annotation).)doc");

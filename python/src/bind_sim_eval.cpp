@@ -270,11 +270,11 @@ scene or preset; sonarmap.FileError for a bad scene file.)doc");
           "The sonar in the body frame as map_sonar_log's mounting= takes it: [x_m, y_m, z_m, roll_deg, pitch_deg, "
           "yaw_deg] (the CLI's --mounting).")
       .def_property_readonly(
-          "beam_width", [](const PyMission& s) { return s.run.options.head.horizontal_beam_width_rad * 180.0 / std::numbers::pi; },
-          "The head's horizontal beam width, degrees (map_sonar_log's beam_width=).")
+          "beam_width_deg", [](const PyMission& s) { return s.run.options.head.horizontal_beam_width_rad * 180.0 / std::numbers::pi; },
+          "The head's horizontal beam width, degrees (map_sonar_log's beam_width_deg=).")
       .def_property_readonly(
-          "vertical_aperture", [](const PyMission& s) { return s.run.options.head.vertical_beam_width_rad * 180.0 / std::numbers::pi; },
-          "The head's vertical beam width, degrees (map_sonar_log's vertical_aperture=).")
+          "vertical_aperture_deg", [](const PyMission& s) { return s.run.options.head.vertical_beam_width_rad * 180.0 / std::numbers::pi; },
+          "The head's vertical beam width, degrees (map_sonar_log's vertical_aperture_deg=).")
       .def_property_readonly("range", [](const PyMission& s) { return s.run.options.head.range_m; },
                              "The head's range, metres.")
       .def(
@@ -326,7 +326,7 @@ mission: mission_names() ("tilted-loop": a rectangle with the sonar tilted 25 de
 "lawnmower": legs at two depths, the sonar upright). sonar: sonar_preset_names(). scene: a
 built-in scene ("quay3d"), built for the head's range. seed: of the speckle and noise.
 Map it with ``map_sonar_log(m.log, nav=m.nav, mounting=m.mounting, volume=True,
-beam_width=m.beam_width, vertical_aperture=m.vertical_aperture, resolution=...)`` and score the map
+beam_width_deg=m.beam_width_deg, vertical_aperture_deg=m.vertical_aperture_deg, resolution=...)`` and score the map
 with ``m.evaluate(map)``. Returns sonarmap.Mission. Raises sonarmap.ValueError for an unknown
 mission, preset or scene.)doc");
 

@@ -156,8 +156,9 @@ PySonarLog logFromArrays(const py::object& intensities, const py::object& time_s
   return out;
 }
 
-/// The beams [first, last) of `log` as a polar image; by default the largest sweep (the last on
-/// ties), the one `sonarmap map --polar-png` draws.
+/// The beams [first, last) of `log` as a polar image: whole sweep `sweep` (an index into
+/// wholeSweeps, negative from the end), or beams [first, last), or by default the largest sweep
+/// (the last on ties), the one `sonarmap map --polar-png` draws.
 PolarImage polarOf(const PySonarLog& log, const std::optional<std::int64_t>& sweep,
                    const std::optional<std::int64_t>& first, const std::optional<std::int64_t>& last) {
   const std::size_t beams = log.log.beams.size();
@@ -165,11 +166,11 @@ PolarImage polarOf(const PySonarLog& log, const std::optional<std::int64_t>& swe
   std::size_t from = 0, to = beams;
   if (sweep) {
     if (first || last) throwValueError("give either sweep or first/last, not both");
-    const std::vector<SweepRange> sweeps = splitSweeps(log.log.beams);
+    const std::vector<SweepRange> sweeps = wholeSweeps(log.log.beams);
     std::int64_t index = *sweep < 0 ? *sweep + static_cast<std::int64_t>(sweeps.size()) : *sweep;
     if (index < 0 || index >= static_cast<std::int64_t>(sweeps.size())) {
       throwValueError("sweep " + std::to_string(*sweep) + " out of range: the log has " + std::to_string(sweeps.size()) +
-                      " sweeps");
+                      " whole sweeps (log.whole_sweeps(); log.sweeps() and first/last give the partial ones)");
     }
     from = sweeps[index].first;
     to = sweeps[index].last_exclusive;
@@ -339,7 +340,13 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
           "(horizontal width, vertical aperture) in degrees of the sonar that recorded the log: map_sonar_log's defaults.")
       .def(
           "sweeps", [](const PySonarLog& log) { return sweepArray(splitSweeps(log.log.beams)); },
-          "The sweeps (a full turn, a sector pass, a range change) as int64 (S, 2) [first, last_exclusive) beam indices.")
+          "Every sweep (a full turn, a sector pass, the beams between range or gain changes, the log's partial first "
+          "and last sweeps) as int64 (S, 2) [first, last_exclusive) beam indices, covering all beams in order.")
+      .def(
+          "whole_sweeps", [](const PySonarLog& log) { return sweepArray(wholeSweeps(log.log.beams)); },
+          "The whole sweeps among sweeps(): full turns, and sector passes from one turning point to the other (not "
+          "the log's partial first or last sweep, nor one cut by a range or gain change), as int64 (W, 2) "
+          "[first, last_exclusive) beam indices. polar_image(log, sweep=k) draws whole sweep k.")
       .def(
           "write_csv",
           [](const PySonarLog& log, const std::filesystem::path& path) {
@@ -405,9 +412,10 @@ intensity_span_db: dB span of 0…255 (default: 45 dB where needed). Raises sona
 
   m.def("polar_image", &polarOf, py::arg("log"), py::arg("sweep") = py::none(), py::arg("first") = py::none(),
         py::arg("last") = py::none(),
-        R"doc(The polar image of beams of ``log``: sweep ``sweep`` (an index into log.sweeps(), negative from the
-end), or beams [first, last), or by default the largest sweep (the last on ties), the one
-``sonarmap map --polar-png`` draws. Returns sonarmap.PolarImage (rows = beams, cols = the largest
+        R"doc(The polar image of beams of ``log``: whole sweep ``sweep`` (an index into log.whole_sweeps(),
+negative from the end: ``sweep=-1`` is the last whole sweep, never the few beams a log ends
+on), or beams [first, last) (any part of the log, e.g. a row of log.sweeps()), or by default the
+largest sweep (the last on ties), the one ``sonarmap map --polar-png`` draws. Returns sonarmap.PolarImage (rows = beams, cols = the largest
 bin count). Raises sonarmap.ValueError for an empty or out-of-range selection, a beam without
 bins, or beams of different bin lengths.)doc");
 

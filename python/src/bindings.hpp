@@ -61,14 +61,20 @@ struct PySonarLog {
 };
 
 /// The mapping keyword arguments (the keywords of mappingOptionTable(): the command line's option
-/// names with '-' as '_') as MappingArguments. `allowed_extra` names further keywords the caller
-/// handles itself (skipped here).
-/// @throws TypeError for an unknown keyword; sonarmap.ValueError for a value of the wrong kind.
+/// names with '-' as '_', angles with _deg) as MappingArguments. `allowed_extra` names further
+/// keywords the caller handles itself (skipped here).
+/// @throws TypeError for an unknown keyword (an angle without its unit: saying its name with
+///         _deg); sonarmap.ValueError for a value of the wrong kind.
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra = {});
 
 /// The mapping keywords for a docstring, "resolution (metres), detector, ...": every one, or with
 /// `detection_only` those detect_obstacles uses (OptionStage::kDetection).
 std::string mappingKeywordsDoc(bool detection_only);
+
+/// `message` (an error or warning of the library, written for the command line) in the Python
+/// module's words: each command-line flag of map_sonar_log's options ("--beam-width",
+/// "--nav-class") replaced by its keyword ("beam_width_deg", "nav_class").
+std::string inPythonWords(const std::string& message);
 
 /// A keyword's value as a string. @throws sonarmap.ValueError naming `name` when it is not a str.
 std::string textArgument(const py::handle& value, const std::string& name);

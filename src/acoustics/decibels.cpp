@@ -9,10 +9,10 @@
 
 namespace sonarmap::detail {
 
-void throwInvalidLevel(double) { throw ValueError("powerOfLevel: level_db is NaN"); }
+void throwInvalidLevel(double) { throw ValueError("a level in dB is NaN"); }
 
 void throwInvalidPower(double power) {
-  throw ValueError("levelOfPower: power must be >= 0, got " + std::to_string(power));
+  throw ValueError("a power must be >= 0, got " + std::to_string(power));
 }
 
 }  // namespace sonarmap::detail

@@ -32,7 +32,7 @@ Key16 unpacked(std::uint64_t code) {
 
 OcTree16 resampledMap(const OcTree16& map, double resolution_m) {
   if (!(std::isfinite(resolution_m) && resolution_m >= map.resolution_m())) {
-    throw ValueError("resampledMap: the new resolution " + std::to_string(resolution_m) +
+    throw ValueError("resampling: the new resolution " + std::to_string(resolution_m) +
                      " m must be finite and at least the map's " + std::to_string(map.resolution_m()) + " m");
   }
   OcTree16 coarse(resolution_m, map.options());

@@ -123,8 +123,8 @@ std::vector<float> cfarThresholds(std::span<const std::uint8_t> beam, const Cfar
 int firstCfarBin(std::span<const std::uint8_t> beam, int min_bin, const CfarCells& options,
                  std::span<const float> floor) {
   options.validate();
-  if (min_bin < 0) throw ValueError("firstCfarBin: min_bin must be >= 0, got " + std::to_string(min_bin));
-  if (!floor.empty() && floor.size() < beam.size()) throw ValueError("firstCfarBin: the floor is shorter than the beam");
+  if (min_bin < 0) throw ValueError("CFAR detection: min_bin must be >= 0, got " + std::to_string(min_bin));
+  if (!floor.empty() && floor.size() < beam.size()) throw ValueError("CFAR detection: the floor is shorter than the beam");
   NoiseEstimator noise(beam, options);
   int run = 0;
   for (int c = min_bin; c < static_cast<int>(beam.size()); ++c) {

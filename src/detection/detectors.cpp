@@ -19,13 +19,13 @@ namespace {
 [[noreturn]] void throwOption(const std::string& what) { throw ValueError("detector options: " + what); }
 
 void checkImage(const PolarImage& polar) {
-  if (polar.intensities.type() != CV_8UC1) throw ValueError("detectObstacles: the polar image must be CV_8UC1");
+  if (polar.intensities.type() != CV_8UC1) throw ValueError("detection: the polar image must be CV_8UC1");
   if (static_cast<int>(polar.valid_bins.size()) != polar.rows()) {
-    throw ValueError("detectObstacles: valid_bins has " + std::to_string(polar.valid_bins.size()) + " entries for " +
+    throw ValueError("detection: valid_bins has " + std::to_string(polar.valid_bins.size()) + " entries for " +
                      std::to_string(polar.rows()) + " rows");
   }
   if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) {
-    throw ValueError("detectObstacles: bin_length_m must be > 0 m");
+    throw ValueError("detection: bin_length_m must be > 0 m");
   }
 }
 
@@ -296,7 +296,7 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   const DetectorOptions options = capEchoLengthsAtPulse(requested, polar);
   const auto cols = static_cast<std::size_t>(polar.cols());
   if (calibration.background.size() != cols || calibration.threshold.size() != cols) {
-    throw ValueError("detectSweep: the calibration has " + std::to_string(calibration.background.size()) +
+    throw ValueError("detection: the calibration has " + std::to_string(calibration.background.size()) +
                      " columns for an image of " + std::to_string(cols));
   }
   SweepDetection result;

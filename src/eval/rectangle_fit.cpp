@@ -76,13 +76,13 @@ NearestSide nearestSide(double pu, double pv, double ulo, double uhi, double vlo
 
 void validate(const std::vector<Eigen::Vector2d>& points_m, const WallFitOptions& o) {
   if (points_m.size() < kMinPoints) {
-    throw ValueError("fitRectangle: need at least " + std::to_string(kMinPoints) + " points, got " +
+    throw ValueError("rectangle fit: need at least " + std::to_string(kMinPoints) + " points, got " +
                      std::to_string(points_m.size()));
   }
   for (std::size_t i = 0; i < points_m.size(); ++i) {
     if (!points_m[i].allFinite()) {
       std::ostringstream msg;
-      msg << "fitRectangle: point " << i << " is not finite (" << points_m[i].x() << ", " << points_m[i].y()
+      msg << "rectangle fit: point " << i << " is not finite (" << points_m[i].x() << ", " << points_m[i].y()
           << ")";
       throw ValueError(msg.str());
     }
@@ -113,7 +113,7 @@ class WindowHistogram {
     const double bins = std::ceil(2.0 * (extent_m + window_m) / fine_m_) + 1.0;
     if (!(bins <= static_cast<double>(kMaxHistogramBins))) {
       std::ostringstream msg;
-      msg << "fitRectangle: points span " << 2.0 * extent_m << " m, which needs " << bins
+      msg << "rectangle fit: points span " << 2.0 * extent_m << " m, which needs " << bins
           << " histogram bins of " << fine_m_ << " m (limit " << kMaxHistogramBins
           << "); remove far-away points or raise WallFitOptions.histogram_bin_m";
       throw ValueError(msg.str());

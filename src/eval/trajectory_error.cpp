@@ -21,15 +21,15 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void checkEstimate(const NavTrack& track) {
-  if (track.empty()) throw ValueError("evaluateTrajectory: the estimated track is empty");
+  if (track.empty()) throw ValueError("trajectory evaluation: the estimated track is empty");
   for (std::size_t i = 0; i < track.size(); ++i) {
     const NavSample& fix = track[i];
     if (!(std::isfinite(fix.time_s) && fix.position_ned_m.allFinite() && std::isfinite(fix.roll_rad) &&
           std::isfinite(fix.pitch_rad) && std::isfinite(fix.yaw_rad))) {
-      throw ValueError("evaluateTrajectory: estimate fix " + std::to_string(i) + " holds a non-finite value");
+      throw ValueError("trajectory evaluation: estimate fix " + std::to_string(i) + " holds a non-finite value");
     }
     if (i > 0 && !(fix.time_s > track[i - 1].time_s)) {
-      throw ValueError("evaluateTrajectory: estimate fix " + std::to_string(i) +
+      throw ValueError("trajectory evaluation: estimate fix " + std::to_string(i) +
                        "'s time is not after the previous fix's; times must increase strictly");
     }
   }
@@ -66,7 +66,7 @@ double yawOf(const Eigen::Matrix3d& rotation) { return std::atan2(rotation(1, 0)
 TrajectoryError evaluateTrajectory(const NavTrack& estimate, const NavTrack& truth,
                                    const TrajectoryErrorOptions& options) {
   if (!(std::isfinite(options.segment_m) && options.segment_m > 0.0)) {
-    throw ValueError("evaluateTrajectory: segment_m must be a finite number > 0, got " +
+    throw ValueError("trajectory evaluation: segment_m must be a finite number > 0, got " +
                      std::to_string(options.segment_m));
   }
   checkEstimate(estimate);
@@ -85,7 +85,7 @@ TrajectoryError evaluateTrajectory(const NavTrack& estimate, const NavTrack& tru
   }
   const std::size_t n = est.size();
   if (n < 3) {
-    throw ValueError("evaluateTrajectory: " + std::to_string(n) +
+    throw ValueError("trajectory evaluation: " + std::to_string(n) +
                      " estimate fix(es) within the truth's time span, need at least 3");
   }
   TrajectoryError result;

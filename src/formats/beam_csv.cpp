@@ -142,10 +142,10 @@ Beam readBeam(const csv::LineReader& reader, const Header& header) {
 
 /// @throws ValueError when writing `log` would give a file readBeamCsv rejects.
 void checkWritable(const SonarLog& log) {
-  if (log.beams.empty()) throw ValueError("writeBeamCsv: the log has no beam");
+  if (log.beams.empty()) throw ValueError("a beam CSV cannot be written: the log has no beam");
   for (std::size_t i = 0; i < log.beams.size(); ++i) {
     const Beam& beam = log.beams[i];
-    const std::string where = "writeBeamCsv: beam " + std::to_string(i) + ": ";
+    const std::string where = "a beam CSV cannot be written: beam " + std::to_string(i) + ": ";
     if (!std::isfinite(beam.time_s) || !std::isfinite(beam.bearing_rad)) {
       throw ValueError(where + "time or bearing is not finite");
     }

@@ -18,20 +18,15 @@
 namespace sonarmap {
 namespace {
 
-struct FormatNames {
-  LogFormat format;
-  std::string_view name;
-  std::string_view extension;  ///< lower case, with the dot
-};
-
-constexpr std::array<FormatNames, 8> kFormats{{{LogFormat::kMat, "mat", ".mat"},
-                                               {LogFormat::kCsv, "csv", ".csv"},
-                                               {LogFormat::kV4Log, "v4log", ".v4log"},
-                                               {LogFormat::kSeaNet, "seanet", ".seanet"},
-                                               {LogFormat::kPing360, "ping360", ".bin"},
-                                               {LogFormat::kRosBag, "rosbag", ".bag"},
-                                               {LogFormat::kMcap, "mcap", ".mcap"},
-                                               {LogFormat::kRosbag2, "rosbag2", ".db3"}}};
+constexpr std::array<LogFormatEntry, 8> kFormats{{
+    {LogFormat::kMat, "mat", ".mat", "CRAS Micron MATLAB struct array"},
+    {LogFormat::kCsv, "csv", ".csv", "beam CSV, also .csv.gz"},
+    {LogFormat::kV4Log, "v4log", ".V4LOG", "Tritech SeaNet V4 log"},
+    {LogFormat::kSeaNet, "seanet", ".seanet", "SeaNet wire capture"},
+    {LogFormat::kPing360, "ping360", ".bin", "Ping360: Ping Viewer log or raw stream"},
+    {LogFormat::kRosBag, "rosbag", ".bag", "ROS 1 bag"},
+    {LogFormat::kMcap, "mcap", ".mcap", "ROS 2 MCAP"},
+    {LogFormat::kRosbag2, "rosbag2", ".db3", "ROS 2 rosbag2 SQLite, or its folder"}}};
 
 /// A log read whole, served beam by beam.
 class HeldLog final : public BeamSource {
@@ -82,10 +77,26 @@ std::string lowerCase(std::string_view text) {
 
 LogFormat parseLogFormat(std::string_view name) {
   const std::string lower = lowerCase(name);
-  for (const FormatNames& entry : kFormats) {
+  for (const LogFormatEntry& entry : kFormats) {
     if (entry.name == lower) return entry.format;
   }
-  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected mat, csv, v4log, seanet, ping360, rosbag, mcap or rosbag2");
+  throw ValueError("unknown sonar log format '" + std::string(name) + "', expected " + logFormatNamesText(", "));
+}
+
+std::span<const LogFormatEntry> logFormats() { return kFormats; }
+
+std::string logFormatNamesText(std::string_view separator) {
+  std::string text;
+  for (const LogFormatEntry& entry : kFormats) text += (text.empty() ? "" : std::string(separator)) + std::string(entry.name);
+  return text;
+}
+
+std::string logFormatExtensionsText() {
+  std::string text;
+  for (const LogFormatEntry& entry : kFormats) {
+    text += (text.empty() ? "" : ", ") + std::string(entry.extension) + " (" + std::string(entry.description) + ")";
+  }
+  return text;
 }
 
 NominalBeam nominalBeam(LogFormat format) {
@@ -95,10 +106,15 @@ NominalBeam nominalBeam(LogFormat format) {
 }
 
 std::string_view logFormatName(LogFormat format) {
-  for (const FormatNames& entry : kFormats) {
+  for (const LogFormatEntry& entry : kFormats) {
     if (entry.format == format) return entry.name;
   }
   return "unknown";
+}
+
+std::string unknownLogTypeMessage(const std::string& path) {
+  return "'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() + "', expected " +
+         logFormatExtensionsText() + ", or a format named (" + logFormatNamesText(", ") + ")";
 }
 
 std::optional<LogFormat> logFormatOfPath(const std::string& path) {
@@ -108,8 +124,8 @@ std::optional<LogFormat> logFormatOfPath(const std::string& path) {
   std::string extension = lowerCase(name.extension().string());
   // A gzip-compressed beam CSV (io/text_input.hpp reads it): the extension before ".gz".
   if (extension == ".gz" && lowerCase(name.stem().extension().string()) == ".csv") extension = ".csv";
-  for (const FormatNames& entry : kFormats) {
-    if (entry.extension == extension) return entry.format;
+  for (const LogFormatEntry& entry : kFormats) {
+    if (lowerCase(entry.extension) == extension) return entry.format;
   }
   return std::nullopt;
 }
@@ -133,7 +149,7 @@ SonarLog readSonarLog(const std::string& path, LogFormat format, const LogReadOp
       return log;
     }
   }
-  throw ValueError("readSonarLog: unknown LogFormat " + std::to_string(static_cast<int>(format)));
+  throw ValueError("unknown log format number " + std::to_string(static_cast<int>(format)));
 }
 
 std::unique_ptr<BeamSource> openBeamSource(const std::string& path, LogFormat format, const LogReadOptions& options) {
@@ -144,10 +160,7 @@ std::unique_ptr<BeamSource> openBeamSource(const std::string& path, LogFormat fo
 
 SonarLog readSonarLog(const std::string& path) {
   const std::optional<LogFormat> format = logFormatOfPath(path);
-  if (!format) {
-    throw FileError("'" + path + "': unknown sonar log type '" + std::filesystem::path(path).extension().string() +
-                    "', expected .mat, .csv (or .csv.gz), .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) .bag (ROS 1), .mcap or .db3 (ROS 2) or a rosbag2 folder");
-  }
+  if (!format) throw FileError(unknownLogTypeMessage(path));
   return readSonarLog(path, *format);
 }
 

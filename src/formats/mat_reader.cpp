@@ -58,7 +58,7 @@ void installQuietMatioLog() {
 }
 
 [[noreturn]] void throwFileError(const std::string& path, const std::string& what) {
-  std::string message = "readCrasMat: '" + path + "': " + what;
+  std::string message = "'" + path + "' (a CRAS .mat log): " + what;
   if (!g_last_matio_message.empty()) message += " (libmatio: " + g_last_matio_message + ")";
   throw FileError(message);
 }

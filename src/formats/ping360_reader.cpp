@@ -4,6 +4,10 @@
 
 #include "sonarmap/formats/ping360_reader.hpp"
 
+#include <array>
+#include <filesystem>
+#include <fstream>
+
 #include "sonarmap/formats/log_clock.hpp"
 #include "sonarmap/formats/wire_stream.hpp"
 #include "reader_support.hpp"
@@ -12,8 +16,8 @@ namespace sonarmap {
 
 SonarLog parsePing360Stream(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "parsePing360Stream");
-  detail::checkBeamInterval(options.beam_interval_s, "parsePing360Stream");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
+  detail::checkBeamInterval(options.beam_interval_s);
   SonarLog log = WireStreamDecoder(LogFormat::kPing360, options, source).decodeAll(bytes);
   detail::finishClocklessCapture(log, bytes.size(), source, "Ping360 device_data messages ('B' 'R' ... checksum)",
                                  options.beam_interval_s);
@@ -22,6 +26,16 @@ SonarLog parsePing360Stream(std::span<const unsigned char> bytes, const std::str
 
 SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& source, const CaptureOptions& options) {
   return isPingViewerLog(bytes) ? parsePingViewerLog(bytes, source, options) : parsePing360Stream(bytes, source, options);
+}
+
+bool isPingViewerLogFile(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  std::ifstream file(path, std::ios::binary);
+  std::array<char, 64> start{};  // the header string: 4 + 2 × 26 bytes in UTF-16BE
+  file.read(start.data(), start.size());
+  const auto got = static_cast<std::size_t>(file.gcount());
+  return isPingViewerLog(std::span(reinterpret_cast<const unsigned char*>(start.data()), got));
 }
 
 SonarLog readPing360(const std::string& path, const CaptureOptions& options) {

@@ -182,7 +182,7 @@ bool isPingViewerLog(std::span<const unsigned char> bytes) {
 
 SonarLog parsePingViewerLog(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "parsePingViewerLog");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
   const Header header = readHeader(bytes, source);
   SonarLog log;
   const RecordStream records = readRecords(bytes, header.first_record, header.utf16, source, log);

@@ -23,15 +23,15 @@ std::vector<unsigned char> readFileBytes(const std::string& path) {
   return bytes;
 }
 
-void checkSoundSpeed(double sound_speed_m_s, std::string_view function) {
+void checkSoundSpeed(double sound_speed_m_s) {
   if (std::isfinite(sound_speed_m_s) && sound_speed_m_s > 0.0) return;
-  throw ValueError(std::string(function) + ": sound speed is " + std::to_string(sound_speed_m_s) +
+  throw ValueError("the sound speed is " + std::to_string(sound_speed_m_s) +
                    " m/s, expected a positive finite number");
 }
 
-void checkBeamInterval(double beam_interval_s, std::string_view function) {
+void checkBeamInterval(double beam_interval_s) {
   if (std::isfinite(beam_interval_s) && beam_interval_s >= 0.0) return;
-  throw ValueError(std::string(function) + ": beam interval is " + std::to_string(beam_interval_s) +
+  throw ValueError("the beam interval is " + std::to_string(beam_interval_s) +
                    " s, expected a finite number >= 0");
 }
 

@@ -15,12 +15,12 @@ namespace sonarmap::detail {
 /// @throws FileError "cannot open 'PATH' for reading" or "PATH: reading failed".
 std::vector<unsigned char> readFileBytes(const std::string& path);
 
-/// @throws ValueError naming `function` unless `sound_speed_m_s` is a positive finite number
-///   ("FUNCTION: sound speed is X m/s, expected a positive finite number").
-void checkSoundSpeed(double sound_speed_m_s, std::string_view function);
+/// @throws ValueError unless `sound_speed_m_s` is a positive finite number ("the sound speed is X
+///   m/s, expected a positive finite number").
+void checkSoundSpeed(double sound_speed_m_s);
 
-/// @throws ValueError naming `function` unless `beam_interval_s` is finite and ≥ 0.
-void checkBeamInterval(double beam_interval_s, std::string_view function);
+/// @throws ValueError unless `beam_interval_s` is finite and ≥ 0.
+void checkBeamInterval(double beam_interval_s);
 
 /// Ends the reading of a capture without a clock: beam i gets time i × beam_interval_s.
 /// @throws FileError "SOURCE: no beam in N bytes, expected EXPECTED (FIRST SKIP REASON)" when

@@ -109,8 +109,8 @@ FrameScan seaNetFrameScan(const std::string& source, double sound_speed_m_s, Son
 
 SonarLog parseSeaNetCapture(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "parseSeaNetCapture");
-  detail::checkBeamInterval(options.beam_interval_s, "parseSeaNetCapture");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
+  detail::checkBeamInterval(options.beam_interval_s);
   SonarLog log = WireStreamDecoder(LogFormat::kSeaNet, options, source).decodeAll(bytes);
   detail::finishClocklessCapture(log, bytes.size(), source, "SeaNet mtHeadData packets ('@', hex length, ..., LF)",
                                  options.beam_interval_s);

@@ -145,7 +145,7 @@ void checkTimeOrder(double time_s, double previous_s, std::size_t at, std::uint3
 }  // namespace
 
 SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::string& source, const V4LogOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "parseSeaNetV4Log");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
   const FileHeader header = readFileHeader(bytes, source);
   SonarLog log;
   log.beams.reserve(header.record_count);

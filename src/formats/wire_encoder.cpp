@@ -63,7 +63,7 @@ std::uint8_t gainByte(const Beam& beam) { return static_cast<std::uint8_t>(std::
 }  // namespace
 
 std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "encodeSeaNetCapture");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
   std::vector<std::uint8_t> out;
   for (const Beam& beam : beams) {
     checkBins(beam, "encodeSeaNetCapture");
@@ -102,7 +102,7 @@ std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, co
 }
 
 std::vector<std::uint8_t> encodePing360Stream(const std::vector<Beam>& beams, const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "encodePing360Stream");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
   std::vector<std::uint8_t> out;
   for (const Beam& beam : beams) {
     checkBins(beam, "encodePing360Stream");

@@ -33,8 +33,8 @@ struct WireStreamDecoder::State {
 
 WireStreamDecoder::WireStreamDecoder(LogFormat format, const CaptureOptions& options, std::string source)
     : state_(std::make_unique<State>()) {
-  detail::checkSoundSpeed(options.sound_speed_m_s, "WireStreamDecoder");
-  detail::checkBeamInterval(options.beam_interval_s, "WireStreamDecoder");
+  detail::checkSoundSpeed(options.sound_speed_m_s);
+  detail::checkBeamInterval(options.beam_interval_s);
   state_->beam_interval_s = options.beam_interval_s;
   SonarLog& log = state_->sink.log;
   switch (format) {

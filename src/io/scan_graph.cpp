@@ -128,7 +128,7 @@ std::vector<Scan> parseScanGraph(std::span<const unsigned char> data, const std:
 }
 
 void checkFinite(const Eigen::Vector3d& v, const std::string& what) {
-  if (!v.allFinite()) throw ValueError("writeScanGraph: " + what + " is not finite");
+  if (!v.allFinite()) throw ValueError("scan graph not written: " + what + " is not finite");
 }
 
 }  // namespace
@@ -154,15 +154,15 @@ std::vector<Scan> readScanGraph(const std::string& path) {
 
 void writeScanGraph(std::ostream& out, const std::vector<Scan>& scans) {
   constexpr std::size_t kMaxCount = std::numeric_limits<std::uint32_t>::max();
-  if (scans.size() > kMaxCount) throw ValueError("writeScanGraph: more than 2^32 - 1 scans");
+  if (scans.size() > kMaxCount) throw ValueError("scan graph not written: more than 2^32 - 1 scans");
   // Validate everything first: nothing is written for an invalid input.
   for (std::size_t n = 0; n < scans.size(); ++n) {
     const Scan& scan = scans[n];
     const std::string node = "scan " + std::to_string(n);
-    if (scan.points_m.size() > kMaxCount) throw ValueError("writeScanGraph: " + node + " has more than 2^32 - 1 points");
+    if (scan.points_m.size() > kMaxCount) throw ValueError("scan graph not written: " + node + " has more than 2^32 - 1 points");
     for (std::size_t p = 0; p < scan.points_m.size(); ++p) checkFinite(scan.points_m[p], "point " + std::to_string(p) + " of " + node);
     checkFinite(scan.sensor_to_world.translation(), "translation of " + node);
-    if (!scan.sensor_to_world.linear().allFinite()) throw ValueError("writeScanGraph: rotation of " + node + " is not finite");
+    if (!scan.sensor_to_world.linear().allFinite()) throw ValueError("scan graph not written: rotation of " + node + " is not finite");
   }
   auto putVector = [](std::string& bytes, const Eigen::Vector3d& v) {
     detail::putI32(bytes, kVectorMarker);

@@ -32,9 +32,7 @@ double parseOptionNumber(const std::string& text, const char* option, const char
 LogFormat inputFormat(const std::string& input, const std::string& format) {
   if (format != "auto") return parseLogFormat(format);
   if (const std::optional<LogFormat> by_extension = logFormatOfPath(input)) return *by_extension;
-  throw FileError("'" + input + "': unknown sonar log type '" + std::filesystem::path(input).extension().string() +
-                  "', expected .mat, .csv, .V4LOG, .seanet (SeaNet wire capture), .bin (Ping360) or .bag (ROS 1), or "
-                  "name it with --format");
+  throw FileError(unknownLogTypeMessage(input) + " with --format");
 }
 
 MapperOptions withSonarBeam(MapperOptions options, const MappingArguments& args, LogFormat format) {

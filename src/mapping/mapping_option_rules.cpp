@@ -108,14 +108,14 @@ std::string optionKeyword(const MappingOption& option) {
   if (!option.keyword.empty()) return std::string(option.keyword);
   std::string keyword(option.name);
   std::replace(keyword.begin(), keyword.end(), '-', '_');
-  return keyword;
+  // Python's other angles (a navigation's attitude, bearings) are radians: an angle in degrees says so.
+  return option.unit == OptionUnit::kDegrees ? keyword + "_deg" : keyword;
 }
 
 const MappingOption* findMappingOption(std::string_view keyword) {
   for (const MappingOption& option : mappingOptionTable()) {
-    std::string name(option.name);
-    std::replace(name.begin(), name.end(), '-', '_');
-    if (optionKeyword(option) == keyword || name == keyword) return &option;
+    // An option whose keyword is not its name ("volume" for "3d") is also found by that name.
+    if (optionKeyword(option) == keyword || (!option.keyword.empty() && option.name == keyword)) return &option;
   }
   return nullptr;
 }

@@ -201,7 +201,7 @@ std::vector<double> niceTicks(double lo, double hi, int wanted) {
 }
 
 FigureLayout figureLayout(int rows, int cols, bool equal_aspect) {
-  if (rows <= 0 || cols <= 0) throw ValueError("figureLayout: the raster is empty");
+  if (rows <= 0 || cols <= 0) throw ValueError("figure: the raster is empty");
   auto factor = [](int size, int wanted) { return std::max(1, (wanted + size - 1) / size); };
   FigureLayout layout;
   if (equal_aspect) {
@@ -217,12 +217,12 @@ FigureLayout figureLayout(int rows, int cols, bool equal_aspect) {
 
 cv::Mat composeFigure(const FigureSpec& spec) {
   if (spec.raster.empty() || (spec.raster.type() != CV_8UC1 && spec.raster.type() != CV_8UC3)) {
-    throw ValueError("composeFigure: the raster must be a non-empty CV_8UC1 or CV_8UC3 image");
+    throw ValueError("figure: the raster must be a non-empty CV_8UC1 or CV_8UC3 image");
   }
   const PlotExtent& e = spec.extent;
   if (!(std::isfinite(e.left) && std::isfinite(e.right) && std::isfinite(e.bottom) && std::isfinite(e.top) &&
         e.left < e.right && e.bottom < e.top)) {
-    throw ValueError("composeFigure: the extent must be finite with left < right and bottom < top");
+    throw ValueError("figure: the extent must be finite with left < right and bottom < top");
   }
   const FigureLayout layout = figureLayout(spec.raster.rows, spec.raster.cols, spec.equal_aspect);
   const cv::Rect& plot = layout.plot;

@@ -45,11 +45,11 @@ std::vector<double> unwrappedBearings_deg(const std::vector<double>& bearing_rad
 
 cv::Mat polarFigure(const PolarImage& polar, const std::string& title) {
   if (polar.intensities.empty() || !(polar.bin_length_m > 0.0)) {
-    throw ValueError("polarFigure: the polar image is empty or its bin length is not > 0");
+    throw ValueError("polar figure: the polar image is empty or its bin length is not > 0");
   }
   const auto rows = static_cast<std::size_t>(polar.rows());
   if (polar.bearing_rad.size() != rows) {
-    throw ValueError("polarFigure: " + std::to_string(polar.bearing_rad.size()) + " bearings for " +
+    throw ValueError("polar figure: " + std::to_string(polar.bearing_rad.size()) + " bearings for " +
                      std::to_string(rows) + " rows");
   }
   const std::vector<double> bearing_deg = unwrappedBearings_deg(polar.bearing_rad);

@@ -41,10 +41,10 @@ void requireValidTrack(const NavTrack& track) {
     const NavSample& fix = track[k];
     if (!(std::isfinite(fix.time_s) && fix.position_ned_m.allFinite() && std::isfinite(fix.roll_rad) &&
           std::isfinite(fix.pitch_rad) && std::isfinite(fix.yaw_rad))) {
-      throw ValueError("deadReckon: fix " + std::to_string(k) + " of the true track holds a non-finite value");
+      throw ValueError("dead reckoning: fix " + std::to_string(k) + " of the true track holds a non-finite value");
     }
     if (k > 0 && !(fix.time_s > track[k - 1].time_s)) {
-      throw ValueError("deadReckon: fix " + std::to_string(k) + "'s time is not after the previous fix's");
+      throw ValueError("dead reckoning: fix " + std::to_string(k) + "'s time is not after the previous fix's");
     }
   }
 }

@@ -156,7 +156,7 @@ Scene readScene(const std::string& path) {
 }
 
 void writeScene(std::ostream& out, const Scene& scene) {
-  if (scene.primitives.empty()) throw ValueError("writeScene: the scene has no primitive (readScene would reject it)");
+  if (scene.primitives.empty()) throw ValueError("scene not written: the scene has no primitive (reading it back would fail)");
   validateScene(scene);
   out << "# sonarmap scene: map frame (x north, y west, z up), metres, radians; reflectivity in [0, 1]\n"
       << "# plane    " << kPlaneFields << "\n"

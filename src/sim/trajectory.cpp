@@ -121,7 +121,7 @@ Trajectory constantVelocityTrajectory(const NavSample& start, const Eigen::Vecto
   const bool finite = std::isfinite(start.time_s) && start.position_ned_m.allFinite() &&
                       std::isfinite(start.roll_rad) && std::isfinite(start.pitch_rad) && std::isfinite(start.yaw_rad) &&
                       velocity_ned_mps.allFinite() && std::isfinite(yaw_rate_radps);
-  if (!finite) throw ValueError("constantVelocityTrajectory: the start pose, velocity and yaw rate must be finite");
+  if (!finite) throw ValueError("constant-velocity trajectory: the start pose, velocity and yaw rate must be finite");
   return [start, velocity_ned_mps, yaw_rate_radps](double time_s) {
     const double elapsed_s = time_s - start.time_s;
     NavSample sample = start;
@@ -133,13 +133,13 @@ Trajectory constantVelocityTrajectory(const NavSample& start, const Eigen::Vecto
 }
 
 Trajectory waypointTrajectory(std::vector<NavSample> waypoints) {
-  if (waypoints.empty()) throw ValueError("waypointTrajectory: no waypoint");
+  if (waypoints.empty()) throw ValueError("waypoint trajectory: no waypoint");
   for (std::size_t i = 0; i < waypoints.size(); ++i) {
     if (!finiteSample(waypoints[i])) {
-      throw ValueError("waypointTrajectory: waypoint " + std::to_string(i) + " holds a non-finite value");
+      throw ValueError("waypoint trajectory: waypoint " + std::to_string(i) + " holds a non-finite value");
     }
     if (i > 0 && !(waypoints[i].time_s > waypoints[i - 1].time_s)) {
-      throw ValueError("waypointTrajectory: waypoint " + std::to_string(i) + "'s time " +
+      throw ValueError("waypoint trajectory: waypoint " + std::to_string(i) + "'s time " +
                        std::to_string(waypoints[i].time_s) + " s is not after the previous one's " +
                        std::to_string(waypoints[i - 1].time_s) + " s");
     }
@@ -172,10 +172,10 @@ std::vector<NavSample> lawnmowerWaypoints(const LawnmowerPattern& pattern) {
   constexpr const char* kWhere = "lawnmowerWaypoints";
   if (!pattern.center_ne_m.allFinite()) throw ValueError(std::string(kWhere) + ": center_ne_m is not finite");
   requireFinite(kWhere, "heading_rad", pattern.heading_rad);
-  if (pattern.legs == 0) throw ValueError("lawnmowerWaypoints: legs must be at least 1");
+  if (pattern.legs == 0) throw ValueError("lawnmower pattern: legs must be at least 1");
   requirePositive(kWhere, "leg_length_m", pattern.leg_length_m);
   requireFinite(kWhere, "leg_spacing_m", pattern.leg_spacing_m);
-  if (pattern.leg_spacing_m == 0.0) throw ValueError("lawnmowerWaypoints: leg_spacing_m must not be 0");
+  if (pattern.leg_spacing_m == 0.0) throw ValueError("lawnmower pattern: leg_spacing_m must not be 0");
   requirePositive(kWhere, "speed_mps", pattern.speed_mps);
   requirePositive(kWhere, "turn_rate_radps", pattern.turn_rate_radps);
   requireDepths(kWhere, pattern.depths_m);
@@ -214,7 +214,7 @@ std::vector<NavSample> loopWaypoints(const LoopPattern& pattern) {
   } else {
     requirePositive(kWhere, "radius_m", pattern.radius_m);
     if (pattern.circle_vertices < 3) {
-      throw ValueError("loopWaypoints: circle_vertices must be at least 3, got " +
+      throw ValueError("loop pattern: circle_vertices must be at least 3, got " +
                        std::to_string(pattern.circle_vertices));
     }
   }

@@ -196,16 +196,6 @@ std::string digitPattern(const std::string& reason) {
   return pattern;
 }
 
-std::vector<SkipReasonGroup> groupReasons(const std::vector<std::string>& reasons) {
-  std::vector<SkipReasonGroup> groups;
-  for (const std::string& reason : reasons) {
-    std::string pattern = digitPattern(reason);
-    auto group = std::find_if(groups.begin(), groups.end(), [&](const SkipReasonGroup& g) { return g.pattern == pattern; });
-    if (group == groups.end()) group = groups.insert(groups.end(), SkipReasonGroup{std::move(pattern), reason, 0});
-    ++group->count;
-  }
-  return groups;
-}
 
 NavCoverage navCoverage(const NavTrack& nav, const std::vector<Beam>& beams) {
   NavCoverage coverage;
@@ -244,7 +234,7 @@ LogSummary summarizeLog(const SonarLog& log, const NavTrack& nav) {
   summary.sonar = log.sonar;
   summary.beams = beams.size();
   summary.skipped_beams = log.skipped_beams;
-  summary.skip_reasons = groupReasons(log.skip_reasons);
+  addSkipReasons(summary.skip_reasons, log.skip_reasons);
   summary.notes = log.notes;
   if (!nav.empty()) summary.nav = navCoverage(nav, beams);
   if (beams.empty()) return summary;
@@ -277,6 +267,15 @@ LogSummary summarizeLog(const SonarLog& log, const NavTrack& nav) {
   summary.range_scales = rangeScales(log);
   if (const RangeScale* followed = mostUsedRangeScale(summary.range_scales)) summary.followed_scale = *followed;
   return summary;
+}
+
+void addSkipReasons(std::vector<SkipReasonGroup>& groups, const std::vector<std::string>& reasons) {
+  for (const std::string& reason : reasons) {
+    std::string pattern = digitPattern(reason);
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const SkipReasonGroup& g) { return g.pattern == pattern; });
+    if (group == groups.end()) group = groups.insert(groups.end(), SkipReasonGroup{std::move(pattern), reason, 0});
+    ++group->count;
+  }
 }
 
 }  // namespace sonarmap

@@ -20,13 +20,13 @@ bool isPngStorable(const cv::Mat& image) {
 }  // namespace
 
 std::vector<unsigned char> encodePng(const cv::Mat& image) {
-  if (image.empty()) throw FileError("encodePng: the image is empty");
-  if (!isPngStorable(image)) throw FileError("encodePng: PNG stores CV_8U/CV_16U with 1, 3 or 4 channels");
+  if (image.empty()) throw FileError("PNG encoding: the image is empty");
+  if (!isPngStorable(image)) throw FileError("PNG encoding: PNG stores CV_8U/CV_16U with 1, 3 or 4 channels");
   std::vector<unsigned char> bytes;
   try {
-    if (!cv::imencode(".png", image, bytes)) throw FileError("encodePng: cv::imencode failed");
+    if (!cv::imencode(".png", image, bytes)) throw FileError("PNG encoding: cv::imencode failed");
   } catch (const cv::Exception& e) {
-    throw FileError(std::string("encodePng: cv::imencode failed: ") + e.what());
+    throw FileError(std::string("PNG encoding: cv::imencode failed: ") + e.what());
   }
   return bytes;
 }

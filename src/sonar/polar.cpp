@@ -26,22 +26,22 @@ double wrapPositive(double angle_rad) {
 
 void checkPolarRange(const std::vector<Beam>& beams, std::size_t first, std::size_t last_exclusive) {
   if (first >= last_exclusive || last_exclusive > beams.size()) {
-    throw ValueError("makePolarImage: beam range [" + std::to_string(first) + ", " +
+    throw ValueError("polar image: beam range [" + std::to_string(first) + ", " +
                      std::to_string(last_exclusive) + ") is empty or beyond the " +
                      std::to_string(beams.size()) + " beams");
   }
   const double bin_length_m = beams[first].bin_length_m;
   for (std::size_t i = first; i < last_exclusive; ++i) {
     if (beams[i].intensities.empty()) {
-      throw ValueError("makePolarImage: beam " + std::to_string(i) + " has no bins");
+      throw ValueError("polar image: beam " + std::to_string(i) + " has no bins");
     }
     if (beams[i].bin_length_m != bin_length_m) {
-      throw ValueError("makePolarImage: beam " + std::to_string(i) + " has bin length " +
+      throw ValueError("polar image: beam " + std::to_string(i) + " has bin length " +
                        std::to_string(beams[i].bin_length_m) + " m, beam " + std::to_string(first) +
                        " has " + std::to_string(bin_length_m) + " m (one image needs one bin length)");
     }
   }
-  if (!(bin_length_m > 0.0)) throw ValueError("makePolarImage: bin length must be > 0 m");
+  if (!(bin_length_m > 0.0)) throw ValueError("polar image: bin length must be > 0 m");
 }
 
 /// Rows of a polar image ordered by bearing in [0, 2π), for the angular lookup.
@@ -87,16 +87,16 @@ double interpolateInAngle(const PolarImage& polar, const BearingIndex& index, do
 void checkCartesianArguments(const PolarImage& polar, double pixel_size_m, double beam_width_rad) {
   if (polar.intensities.empty() || polar.intensities.type() != CV_8UC1 ||
       static_cast<int>(polar.bearing_rad.size()) != polar.rows()) {
-    throw ValueError("makeCartesianImage: the polar image is empty, not CV_8UC1, or lacks bearings");
+    throw ValueError("Cartesian image: the polar image is empty, not CV_8UC1, or lacks bearings");
   }
   if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) {
-    throw ValueError("makeCartesianImage: bin_length_m must be > 0 m");
+    throw ValueError("Cartesian image: bin_length_m must be > 0 m");
   }
   if (!(pixel_size_m > 0.0) || !std::isfinite(pixel_size_m)) {
-    throw ValueError("makeCartesianImage: pixel_size_m must be > 0 m, got " + std::to_string(pixel_size_m));
+    throw ValueError("Cartesian image: pixel_size_m must be > 0 m, got " + std::to_string(pixel_size_m));
   }
   if (!(beam_width_rad > 0.0) || beam_width_rad > kTwoPi) {
-    throw ValueError("makeCartesianImage: beam_width_rad must be in (0, 2π], got " +
+    throw ValueError("Cartesian image: beam_width_rad must be in (0, 2π], got " +
                      std::to_string(beam_width_rad));
   }
 }
@@ -131,7 +131,7 @@ cv::Mat makeCartesianImage(const PolarImage& polar, double pixel_size_m, double 
   const double max_range_m = polar.cols() * polar.bin_length_m;
   const double half_side = std::ceil(max_range_m / pixel_size_m);
   if (2.0 * half_side + 1.0 > kMaxCartesianSide_px) {
-    throw ValueError("makeCartesianImage: the image would exceed " + std::to_string(kMaxCartesianSide_px) +
+    throw ValueError("Cartesian image: the image would exceed " + std::to_string(kMaxCartesianSide_px) +
                      " pixels a side; use a larger pixel_size_m");
   }
   const int centre = static_cast<int>(half_side);

@@ -32,14 +32,14 @@ int roundClamped(double value, int lo, int hi) {
 
 int binsForLength(double length_m, double bin_length_m, int min_bins, int max_bins) {
   checkBinLength(bin_length_m, "binsForLength");
-  if (!(length_m >= 0.0)) throw ValueError("binsForLength: the length must be >= 0 m, got " + std::to_string(length_m));
-  if (min_bins > max_bins) throw ValueError("binsForLength: min_bins exceeds max_bins");
+  if (!(length_m >= 0.0)) throw ValueError("the length must be >= 0 m, got " + std::to_string(length_m));
+  if (min_bins > max_bins) throw ValueError("min_bins exceeds max_bins");
   return roundClamped(length_m / bin_length_m, min_bins, max_bins);
 }
 
 int firstBinAtOrBeyond(double range_m, double bin_length_m, int max_bin) {
   checkBinLength(bin_length_m, "firstBinAtOrBeyond");
-  if (!(range_m >= 0.0)) throw ValueError("firstBinAtOrBeyond: the range must be >= 0 m, got " + std::to_string(range_m));
+  if (!(range_m >= 0.0)) throw ValueError("the range must be >= 0 m, got " + std::to_string(range_m));
   const double limit = std::ceil(range_m / bin_length_m - 0.5);  // centres (i + 0.5) L >= range
   if (limit >= max_bin) return std::max(0, max_bin);
   return std::clamp(static_cast<int>(limit), 0, std::max(0, max_bin));
@@ -58,8 +58,8 @@ double beamSpacing_rad(const PolarImage& polar) {
 }
 
 int rowsForAngle(double angle_rad, double spacing_rad, int min_rows, int max_rows) {
-  if (!(angle_rad >= 0.0)) throw ValueError("rowsForAngle: the angle must be >= 0, got " + std::to_string(angle_rad));
-  if (min_rows > max_rows) throw ValueError("rowsForAngle: min_rows exceeds max_rows");
+  if (!(angle_rad >= 0.0)) throw ValueError("the angle must be >= 0, got " + std::to_string(angle_rad));
+  if (min_rows > max_rows) throw ValueError("min_rows exceeds max_rows");
   if (!(spacing_rad > 0.0)) return min_rows;
   return roundClamped(angle_rad / spacing_rad, min_rows, max_rows);
 }
@@ -69,9 +69,9 @@ double intensitySpan_db(const PolarImage& polar) {
 }
 
 double countsForDb(double level_db, double span_db) {
-  if (!(level_db >= 0.0)) throw ValueError("countsForDb: the level must be >= 0 dB, got " + std::to_string(level_db));
+  if (!(level_db >= 0.0)) throw ValueError("the level must be >= 0 dB, got " + std::to_string(level_db));
   if (!(std::isfinite(span_db) && span_db > 0.0)) {
-    throw ValueError("countsForDb: the intensity span must be a finite number of dB > 0, got " + std::to_string(span_db));
+    throw ValueError("the intensity span must be a finite number of dB > 0, got " + std::to_string(span_db));
   }
   return level_db * 255.0 / span_db;
 }

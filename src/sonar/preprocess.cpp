@@ -51,10 +51,10 @@ int gaussianKernel(double sigma_px) { return sigma_px < 0.5 ? 1 : oddKernel(2.0 
 void removeSelfReflection(PolarImage& polar, double min_range_m) {
   checkImage(polar, "removeSelfReflection");
   if (!(min_range_m >= 0.0) || !std::isfinite(min_range_m)) {
-    throw ValueError("removeSelfReflection: min_range_m must be finite and >= 0, got " +
+    throw ValueError("self-reflection removal: min_range_m must be finite and >= 0, got " +
                      std::to_string(min_range_m));
   }
-  if (!(polar.bin_length_m > 0.0)) throw ValueError("removeSelfReflection: bin_length_m must be > 0 m");
+  if (!(polar.bin_length_m > 0.0)) throw ValueError("self-reflection removal: bin_length_m must be > 0 m");
   // Bins with (i + 0.5)·L < min_range_m; saturates at the image's width (never overflows).
   const int count = firstBinAtOrBeyond(min_range_m, polar.bin_length_m, polar.cols());
   if (count > 0 && polar.rows() > 0) polar.intensities.colRange(0, count).setTo(0);

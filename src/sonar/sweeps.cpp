@@ -54,6 +54,60 @@ std::vector<SweepRange> splitSweeps(const std::vector<Beam>& beams) {
   return sweeps;
 }
 
+namespace {
+
+int signOf(double step) { return step > 0.0 ? 1 : (step < 0.0 ? -1 : 0); }
+
+/// The direction the head turned in `sweep`: the sign of its first non-zero step, else (one beam,
+/// or repeated bearings) of the step into it; 0 when neither says.
+int directionOf(const std::vector<Beam>& beams, const SweepRange& sweep) {
+  for (std::size_t i = sweep.first + 1; i < sweep.last_exclusive; ++i) {
+    if (const int sign = signOf(bearingStep_rad(beams[i - 1].bearing_rad, beams[i].bearing_rad)); sign != 0) return sign;
+  }
+  if (sweep.first == 0) return 0;
+  return signOf(bearingStep_rad(beams[sweep.first - 1].bearing_rad, beams[sweep.first].bearing_rad));
+}
+
+/// Whether the head reversed between the beam before `first` and beam `first` (same head setting):
+/// the step into it turns against `before_direction`, the direction of the sweep before.
+bool reversesAt(const std::vector<Beam>& beams, std::size_t first, int before_direction) {
+  if (first == 0 || first >= beams.size() || before_direction == 0) return false;
+  if (headSettingOf(beams[first - 1]) != headSettingOf(beams[first])) return false;
+  return signOf(bearingStep_rad(beams[first - 1].bearing_rad, beams[first].bearing_rad)) == -before_direction;
+}
+
+}  // namespace
+
+std::vector<bool> wholeSweepFlags(const std::vector<Beam>& beams, const std::vector<SweepRange>& sweeps) {
+  std::vector<bool> whole(sweeps.size(), false);
+  std::vector<int> directions(sweeps.size());
+  for (std::size_t k = 0; k < sweeps.size(); ++k) directions[k] = directionOf(beams, sweeps[k]);
+  for (std::size_t k = 0; k < sweeps.size(); ++k) {
+    const SweepRange& sweep = sweeps[k];
+    double turned_rad = 0.0;
+    double last_step_rad = 0.0;
+    for (std::size_t i = sweep.first + 1; i < sweep.last_exclusive; ++i) {
+      last_step_rad = std::abs(bearingStep_rad(beams[i - 1].bearing_rad, beams[i].bearing_rad));
+      turned_rad += last_step_rad;
+    }
+    const bool full_turn = turned_rad + last_step_rad >= kTwoPi - kFullTurnSlack_rad;
+    const bool begins_reversed = k > 0 && reversesAt(beams, sweep.first, directions[k - 1]);
+    const bool ends_reversed = k + 1 < sweeps.size() && reversesAt(beams, sweep.last_exclusive, directions[k]);
+    whole[k] = full_turn || (begins_reversed && ends_reversed);
+  }
+  return whole;
+}
+
+std::vector<SweepRange> wholeSweeps(const std::vector<Beam>& beams) {
+  const std::vector<SweepRange> sweeps = splitSweeps(beams);
+  const std::vector<bool> whole = wholeSweepFlags(beams, sweeps);
+  std::vector<SweepRange> out;
+  for (std::size_t k = 0; k < sweeps.size(); ++k) {
+    if (whole[k]) out.push_back(sweeps[k]);
+  }
+  return out;
+}
+
 SweepGrouper::SweepGrouper(std::size_t min_beams) : min_beams_(min_beams) {}
 
 std::size_t SweepGrouper::add(bool starts_sweep, const HeadSetting& setting) {

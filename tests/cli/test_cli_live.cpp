@@ -338,6 +338,57 @@ TEST_F(CliLive, SharedLogsEndOnTheBatchMapByteForByte) {
   EXPECT_TRUE(readFile(out_ / "pool.bt") == readFile(root_ / "pool.bt")) << "replayed map differs from `sonarmap map`";
 }
 
+/// "N beams used, M skipped" of a summary line: {N, M}; {-1, -1} when there is none.
+std::pair<long, long> beamCounts(const std::string& summary) {
+  std::smatch counts;
+  if (!std::regex_search(summary, counts, std::regex("([0-9]+) beams used, ([0-9]+) skipped"))) return {-1, -1};
+  return {std::stol(counts[1].str()), std::stol(counts[2].str())};
+}
+
+// The shared Ping Viewer log given as it is (not converted to a raw capture): `live` reads it as
+// `map` does (its records' time stamps and lengths are not the sonar's bytes), with --format
+// ping360 or by its name, uses and skips the same beams, says why it skipped what it skipped, and
+// ends on `map`'s map at a given resolution.
+TEST_F(CliLive, APingViewerLogIsReadAsMapReadsIt) {
+  const fs::path basin = fs::path(SONARMAP_SHARED_DATA) / "ping360_basin.bin";
+  if (!fs::exists(basin)) GTEST_SKIP() << "shared data absent: " << basin;
+  const ProgramRun batch = run({"map", basin.string(), "--resolution", "0.1", "-q", "-o", (root_ / "map.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  const auto [used, skipped] = beamCounts(batch.out);
+  ASSERT_GT(used, 0) << batch.out;
+  for (const Names& format : {Names{"--format", "ping360"}, Names{}}) {
+    Names args{"live", basin.string(), "--resolution", "0.1", "-q", "-o", (out_ / "live.bt").string()};
+    args.insert(args.end(), format.begin(), format.end());
+    const ProgramRun live = run(args);
+    ASSERT_EQ(live.exit_code, 0) << live.err;
+    EXPECT_EQ(beamCounts(live.out), std::make_pair(used, skipped)) << "live: " << live.out << "map: " << batch.out;
+    EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "map.bt")) << "live map differs from `sonarmap map`";
+    // What was skipped is said in the summary, with why (the reader's line: its byte offset).
+    for (const ProgramRun* said : {&batch, &live}) {
+      if (skipped == 0) continue;
+      const std::string note = "skipped " + std::to_string(skipped) + " by the reader";
+      const std::size_t at = said->out.find(note);
+      ASSERT_NE(at, std::string::npos) << said->out;
+      EXPECT_NE(said->out.find("byte", at), std::string::npos) << said->out;
+    }
+  }
+}
+
+// A Ping Viewer log is a file, not the bytes a sonar sends: on a stream it is refused with advice,
+// not decoded into a fraction of its beams.
+TEST_F(CliLive, APingViewerLogOnAStreamIsRefused) {
+  const fs::path basin = fs::path(SONARMAP_SHARED_DATA) / "ping360_basin.bin";
+  if (!fs::exists(basin)) GTEST_SKIP() << "shared data absent: " << basin;
+  const int log = ::open(basin.c_str(), O_RDONLY | O_CLOEXEC);
+  ASSERT_GE(log, 0);
+  Child child({"live", "-", "--format", "ping360", "-q", "-o", (out_ / "live.bt").string()}, root_, log);
+  ::close(log);
+  const ProgramRun refused = child.wait();
+  expectError(refused, 1);
+  EXPECT_NE(refused.err.find("Ping Viewer log"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out_ / "live.bt"));
+}
+
 TEST_F(CliLive, LoopbackUdpDatagramsGiveTheBatchMap) {
   const std::string batch = batchMap();
   const ProgramRun run = replayOverUdp(tankCapture(), "seanet");

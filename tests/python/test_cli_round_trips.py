@@ -33,8 +33,8 @@ def test_cli_simulation_reads_as_python_simulation(cli, tmp_path):
     "options, flags",
     [
         ({}, []),
-        ({"resolution": 0.05, "detector": "cfar-ca", "beam_width": 0}, ["--resolution", "0.05", "--detector", "cfar-ca", "--beam-width", "0"]),
-        ({"volume": True, "resolution": 0.1, "vertical_aperture": 30, "smoothing": "gaussian"},
+        ({"resolution": 0.05, "detector": "cfar-ca", "beam_width_deg": 0}, ["--resolution", "0.05", "--detector", "cfar-ca", "--beam-width", "0"]),
+        ({"volume": True, "resolution": 0.1, "vertical_aperture_deg": 30, "smoothing": "gaussian"},
          ["--3d", "--resolution", "0.1", "--vertical-aperture", "30", "--smoothing", "gaussian"]),
     ],
 )
@@ -89,8 +89,8 @@ def test_demo_3d_mission_same_bt_from_python(cli, tmp_path):
     written = sonarmap.read_sonar_log(str(tmp_path / "demo" / "3d-mission" / "beams.csv"))
     assert len(written) == len(mission.log)
     m = sonarmap.map_sonar_log(written, nav=mission.nav, mounting=mission.mounting, volume=True,
-                               resolution=0.05, beam_width=mission.beam_width,
-                               vertical_aperture=mission.vertical_aperture)
+                               resolution=0.05, beam_width_deg=mission.beam_width_deg,
+                               vertical_aperture_deg=mission.vertical_aperture_deg)
     m.write(tmp_path / "map.bt")
     assert (tmp_path / "map.bt").read_bytes() == (tmp_path / "demo" / "3d-mission" / "map.bt").read_bytes()
 

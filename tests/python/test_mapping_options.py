@@ -56,14 +56,14 @@ def test_every_keyword_is_accepted_with_the_librarys_default(simulated_tank, tmp
         sonarmap.detect_obstacles(polar)["obstacle_bin"].tolist()
 
 
-def test_every_word_is_accepted_and_a_bad_one_names_the_flag(simulated_tank):
+def test_every_word_is_accepted_and_a_bad_one_names_the_keyword(simulated_tank):
     polar = sonarmap.polar_image(simulated_tank.log)
     for option in sonarmap.mapping_options():
         if not option["words"] or option["stage"] != "detection":
             continue
         for word in option["words"]:
             sonarmap.detect_obstacles(polar, **{option["keyword"]: word})
-        with pytest.raises(sonarmap.ValueError, match=option["flag"]):
+        with pytest.raises(sonarmap.ValueError, match=f"^{option['keyword']} expects"):
             sonarmap.detect_obstacles(polar, **{option["keyword"]: "bogus"})
 
 

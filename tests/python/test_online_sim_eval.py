@@ -118,7 +118,7 @@ def test_progress_and_warnings(simulated_tank):
 def test_map_options_errors(simulated_tank):
     with pytest.raises(sonarmap.ValueError, match="resolution"):
         sonarmap.map_sonar_log(simulated_tank.log, resolution=-1)
-    with pytest.raises(sonarmap.ValueError, match="hit-probability"):
+    with pytest.raises(sonarmap.ValueError, match="^hit_probability"):
         sonarmap.map_sonar_log(simulated_tank.log, hit_probability=0.2)
     with pytest.raises(sonarmap.ValueError, match="nav"):
         sonarmap.map_sonar_log(simulated_tank.log, nav=np.zeros((3, 6)))
@@ -152,10 +152,10 @@ def test_simulated_mission_reproduces_the_accuracy_table():
     assert sonarmap.mission_names() == ["lawnmower", "tilted-loop"]
     mission = sonarmap.simulate_mission("tilted-loop", sonar="micron")
     assert len(mission.log) > 0 and mission.nav.shape[1] == 7 and mission.range == pytest.approx(5.0)
-    assert mission.beam_width == pytest.approx(mission.log.nominal_beam_deg[0])
+    assert mission.beam_width_deg == pytest.approx(mission.log.nominal_beam_deg[0])
     m = sonarmap.map_sonar_log(mission.log, nav=mission.nav, mounting=mission.mounting, volume=True,
-                               resolution=0.05, beam_width=mission.beam_width,
-                               vertical_aperture=mission.vertical_aperture)
+                               resolution=0.05, beam_width_deg=mission.beam_width_deg,
+                               vertical_aperture_deg=mission.vertical_aperture_deg)
     score = mission.evaluate(m)
     assert score["precision"] == pytest.approx(0.6939, abs=5e-4)
     assert score["recall"] == pytest.approx(0.5701, abs=5e-4)
@@ -163,10 +163,10 @@ def test_simulated_mission_reproduces_the_accuracy_table():
     assert score["free_accuracy"] == pytest.approx(1.0, abs=5e-4)
     assert m.stats.extended_returns > 0  # the seabed, from the whole echo
     unknown = mission.evaluate(sonarmap.map_sonar_log(mission.log, nav=mission.nav, mounting=mission.mounting, volume=True,
-                                                      resolution=0.05, beam_width=mission.beam_width,
-                                                      vertical_aperture=mission.vertical_aperture, water_surface_depth=None))
+                                                      resolution=0.05, beam_width_deg=mission.beam_width_deg,
+                                                      vertical_aperture_deg=mission.vertical_aperture_deg, water_surface_depth=None))
     assert unknown["precision"] == pytest.approx(0.7042, abs=5e-4) and unknown["recall"] == pytest.approx(0.5492, abs=5e-4)
-    with pytest.raises(sonarmap.ValueError, match="water-surface-depth"):
+    with pytest.raises(sonarmap.ValueError, match="^water_surface_depth"):
         sonarmap.map_sonar_log(mission.log, nav=mission.nav, volume=True, water_surface_depth=float("inf"))
     with pytest.raises(sonarmap.ValueError):
         sonarmap.simulate_mission("spiral")

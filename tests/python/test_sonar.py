@@ -103,7 +103,7 @@ def test_detectors(simulated_tank):
         assert other["obstacle_bin"].shape == (200,)
     with pytest.raises(sonarmap.ValueError, match="detector"):
         sonarmap.detect_obstacles(polar, detector="magic")
-    with pytest.raises(sonarmap.ValueError, match="false-alarm"):
+    with pytest.raises(sonarmap.ValueError, match="^false_alarm expects"):
         sonarmap.detect_obstacles(polar, false_alarm=0.9)
 
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -75,6 +76,35 @@ TEST(sonarSweeps, BinLengthChangeStartsASweep) {
   EXPECT_EQ(splitSweeps(beams), (std::vector<SweepRange>{{0, 10}, {10, 20}}));
 }
 
+TEST(sonarSweeps, WholeSweepsAreFullTurnsWhereverTheyBegin) {
+  // From 100°: two full turns (each wraps through 0) and 50 beams cut by the end of the log.
+  const auto beams = beamsAt(steps(100.0, 1.8, 450));
+  EXPECT_EQ(wholeSweepFlags(beams, splitSweeps(beams)), (std::vector<bool>{true, true, false}));
+  EXPECT_EQ(wholeSweeps(beams), (std::vector<SweepRange>{{0, 200}, {200, 400}}));
+  const auto clockwise = beamsAt(steps(0.0, -3.6, 250));
+  EXPECT_EQ(wholeSweeps(clockwise), (std::vector<SweepRange>{{0, 100}, {100, 200}}));
+}
+
+TEST(sonarSweeps, WholeSectorPassesRunFromTurnToTurn) {
+  // Begun mid-sector (0° → 45°), then 45° → −45° and back to 45°, then cut at 0°: only the two
+  // passes between turning points are whole.
+  std::vector<double> bearings = steps(0.0, 0.9, 51);                    // 0 … 45
+  for (double b : steps(45.0 - 0.9, -0.9, 100)) bearings.push_back(b);   // 44.1 … −45
+  for (double b : steps(-45.0 + 0.9, 0.9, 100)) bearings.push_back(b);   // −44.1 … 45
+  for (double b : steps(45.0 - 0.9, -0.9, 50)) bearings.push_back(b);    // 44.1 … 0
+  const auto beams = beamsAt(bearings);
+  const auto sweeps = splitSweeps(beams);
+  ASSERT_EQ(sweeps.size(), 4u);
+  EXPECT_EQ(wholeSweepFlags(beams, sweeps), (std::vector<bool>{false, true, true, false}));
+}
+
+TEST(sonarSweeps, ASweepCutByARangeChangeIsNotWhole) {
+  auto beams = beamsAt(steps(0.0, 1.8, 300));
+  for (std::size_t i = 100; i < beams.size(); ++i) beams[i].bin_length_m = 0.02;
+  // 100 beams at 1 cm, then a full turn and 0 more at 2 cm.
+  EXPECT_EQ(wholeSweeps(beams), (std::vector<SweepRange>{{100, 300}}));
+}
+
 TEST(sonarSweeps, RealCrasLogHas28FullSweepsAndAPartialOne) {
   const std::string path = std::string(SONARMAP_SHARED_DATA) + "/cras_micron_tank_static.mat";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared data at " << path;
@@ -87,6 +117,9 @@ TEST(sonarSweeps, RealCrasLogHas28FullSweepsAndAPartialOne) {
   }
   EXPECT_EQ(sweeps[28].size(), 3u);  // 5,603 = 28 × 200 + 3
   EXPECT_EQ(sweeps.back().last_exclusive, log.beams.size());
+  const auto whole = wholeSweepFlags(log.beams, sweeps);
+  EXPECT_EQ(std::count(whole.begin(), whole.end(), true), 28);
+  EXPECT_FALSE(whole.back());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -35,6 +36,29 @@ constexpr bool isRosLog(LogFormat format) {
 /// "rosbag2" (case-insensitive).
 /// @throws ValueError for any other name, listing the names.
 LogFormat parseLogFormat(std::string_view name);
+
+/// One format of the registry every list of formats is made from (errors, `map`'s and `info`'s help).
+struct LogFormatEntry {
+  LogFormat format;
+  std::string_view name;         ///< parseLogFormat's name: "mat"
+  std::string_view extension;    ///< the extension, as files usually spell it (".V4LOG"); matched in any case
+  std::string_view description;  ///< what the files are: "Tritech SeaNet V4 log"
+};
+
+/// Every format the library reads, in one list: parseLogFormat, logFormatName and logFormatOfPath
+/// read it, and so do the texts below.
+std::span<const LogFormatEntry> logFormats();
+
+/// The formats' names joined by `separator`: "mat, csv, v4log, …" or "mat | csv | …".
+std::string logFormatNamesText(std::string_view separator);
+
+/// The formats' extensions with their descriptions: ".mat (CRAS Micron MATLAB struct array), .csv
+/// (beam CSV, also .csv.gz), …".
+std::string logFormatExtensionsText();
+
+/// The error for a log `path` whose extension names no format: the extension found, every
+/// extension known (logFormatExtensionsText) and the format names.
+std::string unknownLogTypeMessage(const std::string& path);
 
 /// The name parseLogFormat takes for `format` ("mat", "csv", "v4log", "seanet", "ping360", "rosbag",
 /// "mcap", "rosbag2").

@@ -72,6 +72,11 @@ SonarLog parsePing360Stream(std::span<const unsigned char> bytes, const std::str
 /// True when `bytes` begins with a Ping Viewer log header string (UTF-8 or UTF-16BE).
 bool isPingViewerLog(std::span<const unsigned char> bytes);
 
+/// True when `path` is a regular file that begins with a Ping Viewer log header (isPingViewerLog
+/// on its first bytes); false for anything else (a device, a FIFO, a raw stream, a missing file).
+/// Never throws.
+bool isPingViewerLogFile(const std::string& path);
+
 /// Parses a Ping Viewer sensor log (layout in the file comment). The data of every record, in
 /// order, form one ping-protocol stream read as parsePing360Stream reads it; a beam's `time_s` is
 /// the time of the record holding its message's last byte (seconds since logging began).

@@ -155,10 +155,12 @@ std::string optionUnitName(OptionUnit unit);
 /// The option's command-line flag: "--false-alarm".
 std::string optionFlag(const MappingOption& option);
 
-/// The option's Python keyword: MappingOption::keyword, else the name with '-' as '_'.
+/// The option's Python keyword: MappingOption::keyword, else the name with '-' as '_', and for an
+/// option in degrees "_deg" after it ("beam_width_deg": the module's other angles are radians).
 std::string optionKeyword(const MappingOption& option);
 
-/// The option whose Python keyword is `keyword`, or whose name is it with '_' as '-'; nullptr when
+/// The option whose Python keyword is `keyword`, or whose MappingOption::keyword was given and whose
+/// command-line name is `keyword` ("3d"); nullptr when
 /// there is none.
 const MappingOption* findMappingOption(std::string_view keyword);
 

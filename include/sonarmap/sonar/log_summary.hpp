@@ -74,6 +74,11 @@ struct SkipReasonGroup {
   std::size_t count = 0;     ///< reasons in the group
 };
 
+/// Adds skip lines (SonarLog::skip_reasons) to `groups`: each joins the group of its pattern (its
+/// digits written as 'N'), or starts one at the end. Groups are kept in order of first appearance,
+/// so reasons handed over in batches (WireStreamDecoder::takeSkipReasons) group as if read at once.
+void addSkipReasons(std::vector<SkipReasonGroup>& groups, const std::vector<std::string>& reasons);
+
 /// How a navigation track covers the beams' times.
 struct NavCoverage {
   std::size_t fixes = 0;

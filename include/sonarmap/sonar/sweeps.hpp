@@ -56,6 +56,22 @@ struct SweepRange {
 /// @return       sweeps covering all beams in order, without gaps; empty when `beams` is empty.
 std::vector<SweepRange> splitSweeps(const std::vector<Beam>& beams);
 
+/// Whether each sweep of splitSweeps(beams) is whole: the head swept every bearing of its scan.
+/// A sweep is whole when
+///   - it covers a full turn: its accumulated |step| plus one more of its last step reaches 2π
+///     (a continuous scan's turn, wherever it began), or
+///   - it is a sector pass from one turning point to the other: it began where the head reversed
+///     and the head reversed after it (same head setting on both sides).
+/// Not whole: a log's first sector pass (begun mid-pass) and its last sweep cut by the end of the
+/// recording (the CRAS log's 3 last beams), or a sweep cut by a range or gain change.
+/// @param beams   beams in recording order.
+/// @param sweeps  splitSweeps(beams).
+/// @return        one flag per sweep.
+std::vector<bool> wholeSweepFlags(const std::vector<Beam>& beams, const std::vector<SweepRange>& sweeps);
+
+/// The whole sweeps of `beams` (wholeSweepFlags), in order: what a picture of "a sweep" shows.
+std::vector<SweepRange> wholeSweeps(const std::vector<Beam>& beams);
+
 /// splitSweeps one beam at a time, for beams arriving from a sonar (OnlineMapper): the same rules,
 /// the same sweeps.
 class SweepSplitter {
