@@ -47,10 +47,13 @@
 ///    The near-field clutter then extends, contiguous with the band or the housing (gaps shorter
 ///    than max_gap_m bridged), over the ranges where at least `clutter_share` of the bearings rise
 ///    clutterLevelDb() above the background (the (1 − clutter_share) quantile of the column minus
-///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. Measured: on
-///    the CRAS log the band ends at 0.26 m and no clutter extends it (the vehicle's returns beyond
-///    it reach the clutter level in fewer than 10 % of the bearings); on the SeaNet sector log the
-///    band ends at 0.55–0.59 m and nothing follows it (its near-field reverberation is background).
+///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. Measured per
+///    sweep (lowest–highest minimum range over a log): the CRAS log's band ends at 0.26 m, its
+///    housing at 0.30 m, and the vehicle's returns behind it take the near field to 0.58–0.61 m;
+///    the pool bag's band rule finds nothing and its housing ends at 0.60–0.80 m; the SeaNet sector
+///    log's ring-down, in every beam of the sector, at 0.70–1.41 m; the Ping360 logs' near fields
+///    run from 0.27 m (a harbour log's 60 m scale) to the 2 m bound (the basin's 10 and 20 m
+///    sweeps, saturated to about 2 m in every beam; their median band rule reaches 4.3 m).
 
 #include <vector>
 
