@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
@@ -161,9 +162,12 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
   if (const std::optional<HeightExtent> extent = occupiedHeightExtent(map)) {
     std::printf("occupied z %.2f .. %.2f m, ", extent->min_m, extent->max_m);
   }
-  std::printf("%g m voxels%s, min range %.2f m, threshold %.1f dB on %.0f dB, %zu map nodes (%zu leaves), %.1f KiB, "
-              "%.3f s",
-              map.resolution_m(), run.resolution_note.c_str(), calibration.min_range_m, calibration.threshold_db, calibration.span_db, counts.nodes,
+  // Each sweep calibrates its own minimum range: the summary gives the span over the log.
+  std::printf("%g m voxels%s, min range %.2f", map.resolution_m(), run.resolution_note.c_str(), calibration.min_range_lowest_m);
+  if (std::lround(calibration.min_range_highest_m * 100.0) != std::lround(calibration.min_range_lowest_m * 100.0)) {
+    std::printf(" .. %.2f", calibration.min_range_highest_m);
+  }
+  std::printf(" m, threshold %.1f dB on %.0f dB, %zu map nodes (%zu leaves), %.1f KiB, %.3f s", calibration.threshold_db, calibration.span_db, counts.nodes,
               counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
   if (!run.skip_note.empty()) std::printf(", %s", run.skip_note.c_str());
   if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "column_histogram.hpp"
 #include "sonarmap/acoustics/decibels.hpp"
@@ -83,6 +84,77 @@ int nearFieldEnd(const ColumnProfile& profile, float level, int band_end, int ga
   return last;
 }
 
+/// The water's level, intensity counts: the median of the bins of the quietest quarter of the
+/// columns (lowest medians), raised by the ratio of one-look speckle's (1 − clutter_share) quantile
+/// to its median (5.2 dB at 10 %): the level water alone exceeds in about clutter_share of its bins.
+/// A median of the quietest ranges is water's even where the scene's echoes fill more than
+/// clutter_share of the bearings at every range (a basin on a 2 m scale).
+float waterLevel(const PolarImage& polar, const ColumnProfile& profile, double clutter_share, double span_db) {
+  const auto cols = static_cast<int>(profile.median.size());
+  std::vector<int> order(static_cast<std::size_t>(cols));
+  for (int c = 0; c < cols; ++c) order[static_cast<std::size_t>(c)] = c;
+  const auto quiet = static_cast<std::ptrdiff_t>(std::max(1, cols / 4));
+  std::nth_element(order.begin(), order.begin() + (quiet - 1), order.end(), [&](int a, int b) {
+    return profile.median[static_cast<std::size_t>(a)] < profile.median[static_cast<std::size_t>(b)];
+  });
+  detail::IntensityHistogram histogram;
+  for (std::ptrdiff_t k = 0; k < quiet; ++k) {
+    const int c = order[static_cast<std::size_t>(k)];
+    for (int r = 0; r < polar.rows(); ++r) {
+      if (c < polar.valid_bins[static_cast<std::size_t>(r)]) histogram.add(polar.intensities.at<std::uint8_t>(r, c));
+    }
+  }
+  const double median = histogram.total() == 0 ? 0.0 : histogram.percentile(50.0);
+  const double spread_db = levelOfPower(speckleQuantile(1.0 - clutter_share, 1.0) / speckleQuantile(0.5, 1.0));
+  return static_cast<float>(median + countsForDb(spread_db, span_db));
+}
+
+/// Per column: the share of the rows covering it whose level is above `level` counts (0 where no
+/// row covers it).
+std::vector<double> echoPersistence(const PolarImage& polar, float level) {
+  const auto cols = static_cast<std::size_t>(polar.cols());
+  std::vector<double> persistence(cols, 0.0);
+  std::vector<int> rows_covering(cols, 0);
+  for (int r = 0; r < polar.rows(); ++r) {
+    const auto* row = polar.intensities.ptr<std::uint8_t>(r);
+    const int valid = std::min(polar.cols(), polar.valid_bins[static_cast<std::size_t>(r)]);
+    for (int c = 0; c < valid; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      ++rows_covering[i];
+      if (static_cast<float>(row[c]) > level) persistence[i] += 1.0;
+    }
+  }
+  for (std::size_t c = 0; c < cols; ++c) {
+    if (rows_covering[c] > 0) persistence[c] /= rows_covering[c];
+  }
+  return persistence;
+}
+
+/// The housing's outer edge, in bins: the first column after the persistence's peak within
+/// [0, near_bins) where it falls under 1 − clutter_share (no longer nearly every beam) or under
+/// half-way from the peak to the scene's (its median over the columns from near_bins on); 0 when
+/// the peak is under 1 − clutter_share or not clutter_share above the scene's.
+int housingEnd(const std::vector<double>& persistence, int near_bins, double clutter_share) {
+  const auto cols = static_cast<int>(persistence.size());
+  near_bins = std::clamp(near_bins, 0, cols);
+  if (near_bins == 0) return 0;
+  const auto first = persistence.begin();
+  const auto peak = std::max_element(first, first + near_bins);
+  std::vector<double> scene(first + near_bins, persistence.end());
+  double scene_share = 0.0;
+  if (!scene.empty()) {
+    const auto middle = scene.begin() + static_cast<std::ptrdiff_t>(scene.size() / 2);
+    std::nth_element(scene.begin(), middle, scene.end());
+    scene_share = *middle;
+  }
+  // A housing is in nearly every beam, and in more of them than the scene's echoes are.
+  if (*peak < 1.0 - clutter_share || *peak - scene_share <= clutter_share) return 0;
+  const double edge = std::max(1.0 - clutter_share, 0.5 * (*peak + scene_share));
+  int c = static_cast<int>(peak - first);
+  while (c < near_bins && persistence[static_cast<std::size_t>(c)] >= edge) ++c;
+  return c;
+}
+
 }  // namespace
 
 void CalibrationOptions::validate() const {
@@ -139,10 +211,15 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
   const auto clutter_level = static_cast<float>(countsForDb(clutterLevelDb(options), span_db));
   // The vehicle's own body lies within max_near_field_m of the head: what returns in many bearings
   // farther out (a basin's floor seen down a slope) is the scene, and is left to the detector.
-  const int max_near_field =
-      std::max(band, binsForLength(options.max_near_field_m, polar.bin_length_m, 0, std::max(0, polar.cols())));
-  const int near_field = std::min(nearFieldEnd(profile, clutter_level, band, gap), max_near_field);
+  const int near_limit = binsForLength(options.max_near_field_m, polar.bin_length_m, 0, std::max(0, polar.cols()));
+  const int max_near_field = std::max(band, near_limit);
+  const float water = waterLevel(polar, profile, options.clutter_share, span_db);
+  const int housing =
+      housingEnd(echoPersistence(polar, water), std::min(near_limit, polar.cols() / 4), options.clutter_share);
+  const int near_start = std::max(band, housing);
+  const int near_field = std::min(nearFieldEnd(profile, clutter_level, near_start, gap), max_near_field);
   calibration.band_end_m = band * polar.bin_length_m;
+  calibration.housing_end_m = housing * polar.bin_length_m;
   calibration.near_field_end_m = near_field * polar.bin_length_m;
   return calibration;
 }

@@ -165,8 +165,17 @@ std::vector<BeamDetection> SonarMapper::mapSweep(PolarImage& polar, const Eigen:
 
 void SonarMapper::recordDetection(const SweepDetection& detection) {
   stats_.detection += detection.diagnostics;
-  stats_.calibration = {detection.calibration.band_end_m, detection.calibration.near_field_end_m, detection.min_range_m,
-                        detection.calibration.threshold_db, detection.calibration.span_db};
+  MappingStats::Calibration& c = stats_.calibration;
+  const double used_m = detection.min_range_m;
+  const bool first = c.sweeps_detected == 0;
+  c.band_end_m = detection.calibration.band_end_m;
+  c.near_field_end_m = detection.calibration.near_field_end_m;
+  c.min_range_m = used_m;
+  c.threshold_db = detection.calibration.threshold_db;
+  c.span_db = detection.calibration.span_db;
+  c.min_range_lowest_m = first ? used_m : std::min(c.min_range_lowest_m, used_m);
+  c.min_range_highest_m = first ? used_m : std::max(c.min_range_highest_m, used_m);
+  ++c.sweeps_detected;
 }
 
 void SonarMapper::integrateFreeCells() {

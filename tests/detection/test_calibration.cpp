@@ -181,6 +181,41 @@ TEST(detectionCalibration, FarWallBehindNearerWallsClutterIsFound) {
   EXPECT_GT(all.background[239] + all.threshold[239], 200.0f);  // it would have hidden the wall
 }
 
+// A housing (or the transducer's ring-down) returns at the same ranges, at nearly the same level,
+// in every beam whatever the bearing (a fixed reflector, not speckle), while the scene's echoes
+// move with bearing: the near field ends at the band's outer edge, found by how many beams hold
+// echo at each range, even when the band is too faint for the median's band rule (the shared pool
+// bag's Micron: 40–90 counts over black water). Without a band the cut stays at the head.
+TEST(detectionCalibration, HousingBandIsFoundByItsPersistenceOverTheBeams) {
+  constexpr double kBin_m = 0.025;
+  // Walls whose range moves with bearing (a rectangular tank seen from off its centre), 0.9–4.5 m.
+  const auto wallBin = [](int r) { return 36 + (r * 7) % 144; };
+  // Clipped dark water, and the noise of a high gain; the band 14 dB over the water's mean level,
+  // under the threshold (16.9 dB over the 25th percentile) the median's band rule needs.
+  for (const double water_db : {-25.0, 0.0}) {
+    const double band_counts = std::max(0.0, 255.0 * (water_db + 14.0 + 20.0) / kSpan_db);
+    for (const int edge_bins : {12, 20, 31}) {  // housing bands 0.30, 0.50, 0.775 m
+      PolarImage polar = noiseSweep(200, 240, kBin_m, water_db, 21);
+      for (int r = 0; r < 200; ++r) {
+        for (int c = 2; c < edge_bins; ++c) {
+          polar.intensities.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(band_counts - 8.0 + (r * 5 + c * 3) % 17);
+        }
+        polar.intensities.row(r).colRange(wallBin(r), wallBin(r) + 4).setTo(220);
+      }
+      const SweepCalibration calibration = calibrateSweep(polar, CalibrationOptions{}, kSpan_db);
+      const double edge_m = edge_bins * kBin_m;
+      EXPECT_NEAR(calibration.near_field_end_m, edge_m, 2.0 * kBin_m) << water_db << " dB, edge " << edge_m << " m";
+      EXPECT_NEAR(calibration.housing_end_m, edge_m, 2.0 * kBin_m) << water_db << " dB, edge " << edge_m << " m";
+      // The same sweep without the band: nothing at the head is the housing.
+      PolarImage bare = noiseSweep(200, 240, kBin_m, water_db, 21);
+      for (int r = 0; r < 200; ++r) bare.intensities.row(r).colRange(wallBin(r), wallBin(r) + 4).setTo(220);
+      const SweepCalibration none = calibrateSweep(bare, CalibrationOptions{}, kSpan_db);
+      EXPECT_LE(none.housing_end_m, kBin_m) << water_db << " dB";
+      EXPECT_LE(none.near_field_end_m, kBin_m) << water_db << " dB";
+    }
+  }
+}
+
 TEST(detectionCalibration, InvalidInputThrows) {
   PolarImage polar = noiseSweep(10, 20, 0.01, 0.0);
   EXPECT_THROW(calibrateSweep(polar, CalibrationOptions{}, 0.0), ValueError);

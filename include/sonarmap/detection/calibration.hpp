@@ -31,13 +31,29 @@
 ///    and it fired up to 275 times a sweep in open water; docs/accuracy.md.)
 ///  - Near field: the self-reflection band ends where the median profile (median of each column)
 ///    falls below half-way between its peak within the first quarter of the range and the median
-///    of the far half (no band when that peak is not T above the quietest range after it). The near-field clutter then extends, contiguous with the band (gaps shorter
+///    of the far half (no band when that peak is not T above the quietest range after it).
+///  - Housing: the head's housing and the transducer's ring-down return at the same ranges in
+///    nearly every beam whatever the bearing, while the scene's echoes move with bearing. The
+///    persistence P(c) is the share of the rows (beams) whose level at column c stands above the
+///    water's level W: the median of the bins of the quietest quarter of the columns (lowest
+///    medians) raised by the ratio of one-look speckle's (1 − clutter_share) quantile to its median
+///    (5.2 dB at 10 %), the level water alone exceeds in about clutter_share of its bins. The
+///    housing's band is present when P peaks, within max_near_field_m and the first quarter of the
+///    range, at ≥ 1 − clutter_share (nearly every beam) and more than clutter_share above the
+///    scene's persistence (the median of P over the columns beyond); it ends where P falls under
+///    1 − clutter_share or under half-way from that peak to the scene's (for a sharp band, its
+///    outer edge). A faint housing (the shared pool bag's Micron: 40–90 counts over black water) is
+///    found though the median rule, which needs T, misses it.
+///    The near-field clutter then extends, contiguous with the band or the housing (gaps shorter
 ///    than max_gap_m bridged), over the ranges where at least `clutter_share` of the bearings rise
 ///    clutterLevelDb() above the background (the (1 − clutter_share) quantile of the column minus
-///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. Measured: on
-///    the CRAS log the band ends at 0.26 m and no clutter extends it (the vehicle's returns beyond
-///    it reach the clutter level in fewer than 10 % of the bearings); on the SeaNet sector log the
-///    band ends at 0.55–0.59 m and nothing follows it (its near-field reverberation is background).
+///    B(c)): the vehicle's own body and fixtures seen in many bearings at short range. Measured per
+///    sweep (lowest–highest minimum range over a log): the CRAS log's band ends at 0.26 m, its
+///    housing at 0.30 m, and the vehicle's returns behind it take the near field to 0.58–0.61 m;
+///    the pool bag's band rule finds nothing and its housing ends at 0.60–0.80 m; the SeaNet sector
+///    log's ring-down, in every beam of the sector, at 0.70–1.41 m; the Ping360 logs' near fields
+///    run from 0.27 m (a harbour log's 60 m scale) to the 2 m bound (the basin's 10 and 20 m
+///    sweeps, saturated to about 2 m in every beam; their median band rule reaches 4.3 m).
 
 #include <vector>
 
@@ -75,7 +91,8 @@ struct SweepCalibration {
   double span_db = 0.0;           ///< dB span of the intensity scale used
   double threshold_db = 0.0;      ///< T in dB
   double band_end_m = 0.0;        ///< end of the self-reflection band, metres
-  double near_field_end_m = 0.0;  ///< end of the near-field clutter (≥ band_end_m), metres
+  double housing_end_m = 0.0;     ///< outer edge of the housing's band (0: none found), metres
+  double near_field_end_m = 0.0;  ///< end of the near-field clutter (≥ band_end_m, housing_end_m), metres
   /// The evidence detector's water at each column, measured over a whole sweep (water_evidence.hpp:
   /// the band of water ending at that range); empty when not measured (other detectors). Rows of a
   /// sweep in progress (detectRows) are judged against it: one beam holds too little water to

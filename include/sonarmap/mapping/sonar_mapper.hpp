@@ -61,13 +61,19 @@ struct MappingStats {
   std::size_t extended_returns = 0;
   /// Why beams found no obstacle, summed over the sweeps detected by this mapper (detectors.hpp).
   DetectionDiagnostics detection;
-  /// The last detected sweep's calibration (calibration.hpp): what the mapper derived from the log.
+  /// The last detected sweep's calibration (calibration.hpp): what the mapper derived from the log,
+  /// and the range of minimum ranges the sweeps used. Metres, dB.
   struct Calibration {
     double band_end_m = 0.0;        ///< end of the self-reflection band
     double near_field_end_m = 0.0;  ///< end of the near-field clutter
     double min_range_m = 0.0;       ///< the detector's minimum range (the option, or the near field's end)
     double threshold_db = 0.0;      ///< the echo threshold above the background
     double span_db = 0.0;           ///< the intensity scale's dB span used
+    /// The lowest and highest minimum range over every detected sweep (each sweep calibrates its
+    /// own); both 0 before the first sweep.
+    double min_range_lowest_m = 0.0;
+    double min_range_highest_m = 0.0;
+    std::size_t sweeps_detected = 0;  ///< sweeps whose calibration this holds
   } calibration;
   /// The largest |x|, |y| or |z| of a point a beam reached (sonar or wedge end), map frame, metres:
   /// what the map must span (mappingWarnings suggests a resolution from it).
