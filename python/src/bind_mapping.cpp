@@ -73,7 +73,9 @@ void warn(const std::vector<std::string>& lines) {
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
   const MappingArguments args =
-      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate"});
+      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate", "map_frame"});
+  const MapFrame frame = kwargs.contains("map_frame") ? parseMapFrame(textArgument(kwargs["map_frame"], "map_frame"))
+                                                      : kDefaultMapFrame;
   const std::string nav_class = kwargs.contains("nav_class") ? textArgument(kwargs["nav_class"], "nav_class") : "auto";
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
@@ -117,7 +119,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
     }
   }
   warn(mappingWarnings(mapper->stats(), mapper->options(), mapper->map().resolution_m()));
-  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt};
+  OccupancyMap map{mapInFrame(mapper->map(), frame), mapper->stats(), std::nullopt, std::nullopt, frame};
   if (localized) {
     map.trajectory = std::move(localized->trajectory);
     map.slam = std::move(localized->report);
@@ -169,7 +171,9 @@ Keyword options: the CLI's flags with '-' as '_', in the CLI's units, None or "a
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
 assume; default the log's).
-Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
+Keyword map_frame: the frame of the returned map, "enu" (default: x east, y north, z up, ROS REP
+103/105) or "ned" (x north, y east, z down); the map's ``frame`` says it and ``write`` names it in
+the file's header. Without nav the vehicle is taken at the NED origin heading north.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.
 Raises sonarmap.ValueError for an invalid option (named as the CLI's flag), a log whose work

@@ -7,6 +7,7 @@
 #include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike (pathlib.Path)
 
 #include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
@@ -20,6 +21,9 @@ struct OccupancyMap {
   std::optional<MappingStats> stats;
   std::optional<NavTrack> trajectory;  ///< map_sonar_log(slam=True): the corrected trajectory
   std::optional<SlamReport> slam;      ///< ... and what the localization did
+  /// The frame of the tree's coordinates: map_sonar_log's map_frame, a read file's header; nullopt
+  /// for a map built point by point (its points' frame).
+  std::optional<MapFrame> frame = std::nullopt;
 };
 
 void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses
