@@ -26,6 +26,12 @@ struct OccupancyMap {
   std::optional<MapFrame> frame = std::nullopt;
 };
 
+/// The tree of `map` in the frame scenes are given in (the mapper's internal NWU): converted back
+/// when the map carries a frame, as it is otherwise.
+inline OcTree16 treeInSceneFrame(const OccupancyMap& map) {
+  return map.frame && *map.frame != MapFrame::kNwu ? mapFromFrame(map.tree, *map.frame) : map.tree;
+}
+
 void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses
 void bindMap(py::module_& m);       // bind_map.cpp: OccupancyMap (octree, queries, files)
 void bindSonar(py::module_& m);     // bind_sonar.cpp: SonarLog, polar and Cartesian images, detectors
