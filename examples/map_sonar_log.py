@@ -64,8 +64,8 @@ def plot_map(occupancy_map, name, out):
     fig, ax = plt.subplots(figsize=(7, 7))
     ax.scatter(free[:, 0], free[:, 1], s=1, c="0.85", label="free")
     points = ax.scatter(occupied[:, 0], occupied[:, 1], s=4, c=occupied[:, 2], cmap="viridis", label="occupied")
-    fig.colorbar(points, ax=ax, label="z (m)")
-    ax.set(aspect="equal", xlabel="x (m)", ylabel="y (m)",
+    fig.colorbar(points, ax=ax, label="up z (m)")
+    ax.set(aspect="equal", xlabel="east (m)", ylabel="north (m)",
            title=f"{name}: {len(occupied)} occupied voxels of {occupancy_map.resolution:g} m")
     ax.legend(loc="upper right")
     fig.savefig(out / "map.png", dpi=100)

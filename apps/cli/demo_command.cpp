@@ -127,11 +127,11 @@ void print3dCommands(const MapArgs& map_args, const std::string& side_png, const
               map_args.output_bt.c_str(), map_args.map_png.c_str(), side_png.c_str());
 }
 
-void printRun(const MappedLog& mapped, const std::string& output_bt, bool with_nav) {
+void printRun(const MappedLog& mapped, const MapArgs& args, bool with_nav) {
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
   printWarnings(warnings);
-  printMapSummary(mapped, output_bt, with_nav, warnings.size());
+  printMapSummary(mapped, args, with_nav, warnings.size());
 }
 
 void run(const DemoArgs& args) {
@@ -177,22 +177,22 @@ void run(const DemoArgs& args) {
   if (viewerAvailable()) {
     HtmlViewOptions tank_view;
     tank_view.title = "tank.bt";
-    stageView(outputs, dir.file("tank.html"), mapped.mapper.map(), tank_view);
+    stageView(outputs, dir.file("tank.html"), mapInFrame(mapped.mapper.map(), MapFrame::kEnu), tank_view);
     HtmlViewOptions mission_view;
     mission_view.title = std::string(k3dFolder) + "/map.bt";
     mission_view.trajectory_m = trajectoryInMap(simulation_3d.nav);
     mission_view.trajectory_source = "nav.csv";
-    stageView(outputs, dir_3d.file("map.html"), mapped_3d.mapper.map(), mission_view);
+    stageView(outputs, dir_3d.file("map.html"), mapInFrame(mapped_3d.mapper.map(), MapFrame::kEnu), mission_view);
   } else {
     printWarnings({"this sonarmap was built without three.js: no tank.html, no 3d-mission/map.html"});
   }
   outputs.commit();
   dir.keep();
   dir_3d.keep();
-  printRun(mapped, map_args.output_bt, false);
+  printRun(mapped, map_args, false);
   printTankReport(mapped.mapper.map());
   print3dHeader(mission, folder_3d);
-  printRun(mapped_3d, map_args_3d.output_bt, true);
+  printRun(mapped_3d, map_args_3d, true);
   print3dCommands(map_args_3d, side_png, dir_3d.file("scene.txt"), dir_3d.file("truth_nav.csv"), mission);
 }
 

@@ -16,6 +16,7 @@
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/render/map_figures.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -151,7 +152,8 @@ Scene loadTruth(const std::string& truth) {
 }  // namespace
 
 void runEval(const EvalArgs& args, const GroundTruthOptions& options, const std::optional<HeardRequest>& heard) {
-  const OcTree16 map = readMapFile(args.map);
+  // Scenes are in the internal NWU frame: the map is turned back from the frame its header names.
+  const OcTree16 map = readMapFileToNwu(args.map).map;
   const Scene scene = loadTruth(args.truth);
   const auto start = std::chrono::steady_clock::now();
   const GroundTruthReport r = [&] {

@@ -14,6 +14,7 @@
 #include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "navigation_input.hpp"
 #include "sonarmap/sonar/log_summary.hpp"
 
@@ -190,6 +191,8 @@ void printText(const LogSummary& s, const InfoArgs& args, LogFormat format, cons
   printSkipsAndNotes(s, args.input);
   printTopics(bag);
   printNav(s, nav_info);
+  std::printf("map frame   %s by default (map --map-frame enu|ned); pictures east right, north up\n",
+              mapFrameDescription(kDefaultMapFrame).c_str());
 }
 
 /// null for an unset optional.
@@ -275,7 +278,10 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
           {"range_scales", scales},
           {"auto_resolution_scale", s.followed_scale ? scaleJson(*s.followed_scale) : nlohmann::json(nullptr)},
           {"topics", topics},
-          {"navigation", nav}};
+          {"navigation", nav},
+          {"map_frame", {{"default", mapFrameName(kDefaultMapFrame)},
+                         {"description", mapFrameDescription(kDefaultMapFrame)},
+                         {"choices", {"ENU", "NED"}}}}};
 }
 
 }  // namespace

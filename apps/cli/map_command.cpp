@@ -197,7 +197,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
   printWarnings(warnings);
-  printMapSummary(mapped, args.output_bt, /*with_nav=*/!trajectory.empty(), warnings.size());
+  printMapSummary(mapped, args, /*with_nav=*/!trajectory.empty(), warnings.size());
   if (args.slam) printSlamSummary(slam.report, !nav.empty());
   if (args.tank_report) printTankReport(mapped.mapper.map());
 }

@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/core/errors.hpp"
 
 namespace sonarmap::cli {
 
@@ -40,9 +41,24 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                     [&](const auto& link) { cmd.add_option(flag, args.*link.arg, help)->capture_default_str(); }},
         option.link);
   }
+  cmd.add_option_function<std::string>(
+         "--map-frame", [&args](const std::string& text) { args.map_frame = parseMapFrame(text); },
+         "Frame the map file is written in: enu (x east, y north, z up: ROS REP 103/105, overlays a bag's "
+         "odom frame, upright in octovis) or ned (x north, y east, z down, as the navigation). The file's "
+         "header names it; the PNGs are drawn east right, north up either way")
+      ->default_str("enu")
+      ->check([](const std::string& text) {
+        try {
+          parseMapFrame(text);
+          return std::string();
+        } catch (const ValueError& error) {
+          return std::string(error.what());
+        }
+      });
   cmd.add_flag("-q,--quiet", args.quiet, "No progress bar");
   cmd.add_flag("--tank-report", args.tank_report,
-               "Also print how well the occupied cells at z = 0 trace a rectangular tank's walls");
+               "Also print how well the occupied cells trace a rectangular tank's walls, in the slice holding "
+               "the most occupied cells (the sonar's plane, at the vehicle's depth)");
 }
 
 }  // namespace sonarmap::cli

@@ -10,6 +10,7 @@
 
 #include "odometry_options.hpp"
 #include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/mapping_arguments.hpp"
 
 namespace sonarmap::cli {
@@ -33,6 +34,7 @@ struct MapArgs : MappingArguments {
   OdometryArgs odometry;         ///< --nav-class and its values: how far --slam trusts the navigation
   std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)
   std::vector<double> origin;    ///< --origin N,E[,D]: the map's zero in the navigation's frame; empty: automatic
+  MapFrame map_frame = kDefaultMapFrame;  ///< --map-frame: the frame the map file is written in
 };
 
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.
@@ -43,8 +45,8 @@ void addLogFormatOption(CLI::App& cmd, std::string& format);
 std::string logInputHelp();
 
 /// Adds --format, every option of mappingOptionTable() (its flag, its help with unit and range, its
-/// default shown) and --quiet and --tank-report to `cmd`: everything but the input, outputs, --nav
-/// and --mounting.
+/// default shown), --map-frame, --quiet and --tank-report to `cmd`: everything but the input,
+/// outputs, --nav and --mounting.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
 
 // inputFormat, withSonarBeam and toMapperOptions live in the library

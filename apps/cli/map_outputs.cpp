@@ -15,6 +15,7 @@
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/io/octomap_full.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/render/map_figures.hpp"
 #include "sonarmap/render/sonar_figures.hpp"
@@ -72,6 +73,47 @@ std::string figureTitle(const MapArgs& args, double resolution_m, const std::str
   return text;
 }
 
+/// The heights the 2D picture shows: the band of the occupied voxels, or z = 0 in an empty map.
+struct PictureBand {
+  double z_min_m = 0.0;  ///< height (z up: internal NWU and ENU alike), metres
+  double z_max_m = 0.0;
+  bool occupied = false;  ///< false: nothing is occupied, the band is the slice z = 0
+};
+
+PictureBand pictureBand(const OcTree16& map) {
+  const std::optional<HeightExtent> extent = occupiedHeightExtent(map);
+  if (!extent) return {};
+  return {extent->min_m, extent->max_m, true};
+}
+
+/// What the 2D picture shows, said in its title and the summary.
+std::string pictureBandText(const PictureBand& band) {
+  char text[128];
+  if (!band.occupied) {
+    std::snprintf(text, sizeof text, "slice z = 0 m (nothing occupied)");
+  } else if (band.z_min_m == band.z_max_m) {
+    std::snprintf(text, sizeof text, "slice z = %.2f m up (the occupied layer)", band.z_min_m);
+  } else {
+    std::snprintf(text, sizeof text, "occupied band z %.2f .. %.2f m up, seen from above", band.z_min_m, band.z_max_m);
+  }
+  return text;
+}
+
+/// The height (z up, metres) of the layer of voxels holding the most occupied voxels; 0 when none is.
+double busiestOccupiedHeight(const OcTree16& map) {
+  std::vector<std::size_t> per_layer(std::size_t{1} << 16, 0);
+  bool any = false;
+  map.forEachLeaf([&](const LeafView<16>& leaf) {
+    if (map.model().classify(leaf.log_odds) != Occupancy::kOccupied) return;
+    const auto edge = static_cast<std::size_t>(leaf.edgeVoxels());
+    for (std::size_t z = 0; z < edge; ++z) per_layer[leaf.key[2] + z] += edge * edge;
+    any = true;
+  });
+  if (!any) return 0.0;
+  const auto busiest = std::max_element(per_layer.begin(), per_layer.end()) - per_layer.begin();
+  return map.coder().centerOf(static_cast<Key16::Index>(busiest));
+}
+
 }  // namespace
 
 MappedLog mapWithProgress(const MapCall& map, bool quiet) {
@@ -111,20 +153,30 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& 
                      const OcTree16& map, double pixel_m, const std::string& side_png,
                      const std::vector<Eigen::Vector3d>& track_m) {
   outputs.stage(args.output_bt, [&](std::ostream& out) {
+    const OcTree16& framed = args.map_frame == MapFrame::kNwu ? map : mapInFrame(map, args.map_frame);
     if (mapFormatOf(args.output_bt) == MapFormat::kFull) {
-      writeFull(map, out);
+      writeFull(framed, out, {mapFrameComment(args.map_frame)});
     } else {
-      writeBinary(map, out);
+      writeBinary(framed, out, {mapFrameComment(args.map_frame)});
     }
   });
   const double res = map.resolution_m();
-  if (!args.map_png.empty()) {
-    const cv::Mat top = args.volume ? topViewFigure(map, figureTitle(args, res, "3D map, top view"), track_m)
-                                    : sliceFigure(map, 0.0, figureTitle(args, res, "2D map, slice z = 0"), track_m);
-    outputs.stageBytes(args.map_png, encodePng(top));
-  }
-  if (!side_png.empty()) {
-    outputs.stageBytes(side_png, encodePng(sideViewFigure(map, figureTitle(args, res, "3D map, side view"), track_m)));
+  if (!args.map_png.empty() || !side_png.empty()) {
+    // The pictures are charts whatever the file's frame: east to the right, north up.
+    const OcTree16 enu = mapInFrame(map, MapFrame::kEnu);
+    const std::vector<Eigen::Vector3d> track_enu = pointsInMapFrame(track_m, MapFrame::kEnu);
+    if (!args.map_png.empty()) {
+      const PictureBand band = pictureBand(map);
+      const cv::Mat top =
+          args.volume ? topViewFigure(enu, figureTitle(args, res, "3D map, top view"), track_enu)
+                      : bandFigure(enu, band.z_min_m, band.z_max_m,
+                                   figureTitle(args, res, "2D map, " + pictureBandText(band)), track_enu);
+      outputs.stageBytes(args.map_png, encodePng(top));
+    }
+    if (!side_png.empty()) {
+      outputs.stageBytes(side_png,
+                         encodePng(sideViewFigure(enu, figureTitle(args, res, "3D map, side view"), track_enu)));
+    }
   }
   if (args.polar_png.empty() && args.cartesian_png.empty()) return;
   const auto [polar, sweep] = pictureSweep(source, survey);
@@ -147,7 +199,7 @@ void printWarnings(const std::vector<std::string>& warnings) {
   for (const std::string& warning : warnings) std::fprintf(stderr, "sonarmap: warning: %s\n", warning.c_str());
 }
 
-void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav, std::size_t warnings) {
+void printMapSummary(const MappedLog& run, const MapArgs& args, bool with_nav, std::size_t warnings) {
   const MappingStats& stats = run.mapper.stats();
   const MappingStats::Calibration& calibration = stats.calibration;
   const OcTree16& map = run.mapper.map();
@@ -160,8 +212,13 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
   std::printf("%zu sweeps, %zu obstacles%s, ", stats.sweeps, stats.obstacles,
               stats.obstacles == 0 ? " (EMPTY MAP)" : "");
   if (const std::optional<HeightExtent> extent = occupiedHeightExtent(map)) {
-    std::printf("occupied z %.2f .. %.2f m, ", extent->min_m, extent->max_m);
+    if (args.map_frame == MapFrame::kNed) {
+      std::printf("occupied z %.2f .. %.2f m (down), ", -extent->max_m, -extent->min_m);
+    } else {
+      std::printf("occupied z %.2f .. %.2f m (up), ", extent->min_m, extent->max_m);
+    }
   }
+  if (!args.map_png.empty() && !args.volume) std::printf("picture: %s, ", pictureBandText(pictureBand(map)).c_str());
   // Each sweep calibrates its own minimum range: the summary gives the span over the log.
   std::printf("%g m voxels%s, min range %.2f", map.resolution_m(), run.resolution_note.c_str(), calibration.min_range_lowest_m);
   if (std::lround(calibration.min_range_highest_m * 100.0) != std::lround(calibration.min_range_lowest_m * 100.0)) {
@@ -171,20 +228,22 @@ void printMapSummary(const MappedLog& run, const std::string& output_bt, bool wi
               counts.leaves, static_cast<double>(map.memoryBytes()) / 1024.0, run.seconds);
   if (!run.skip_note.empty()) std::printf(", %s", run.skip_note.c_str());
   if (warnings > 0) std::printf(", %zu warning%s (see stderr)", warnings, warnings == 1 ? "" : "s");
-  std::printf(" -> %s\n", output_bt.c_str());
+  std::printf(" -> %s in %s\n", args.output_bt.c_str(), mapFrameDescription(args.map_frame).c_str());
 }
 
 void printTankReport(const OcTree16& map) {
-  const std::size_t occupied = cellsInSlice(map, 0.0, Occupancy::kOccupied).size();
+  const double z_m = busiestOccupiedHeight(map);
+  const std::size_t occupied = cellsInSlice(map, z_m, Occupancy::kOccupied).size();
   if (occupied < 8) {
-    std::printf("tank: %zu occupied cells at z = 0, too few to fit walls\n", occupied);
+    std::printf("tank: %zu occupied cells in the slice z = %.2f m up, too few to fit walls\n", occupied, z_m);
     return;
   }
-  const TankMapQuality quality = evaluateTankMap(map, 0.0);
+  const TankMapQuality quality = evaluateTankMap(map, z_m);
   const WallFitReport& walls = quality.walls;
-  std::printf("tank: %.2f x %.2f m at %.1f deg, %zu occupied cells, %.3f on walls, %.3f of walls covered, "
+  std::printf("tank: slice z = %.2f m up (the layer with the most occupied cells), %.2f x %.2f m at %.1f deg, "
+              "%zu occupied cells, %.3f on walls, %.3f of walls covered, "
               "rms %.3f m, inside %.3f free %.4f occupied\n",
-              walls.rect.width_m, walls.rect.height_m, walls.rect.angle_rad * 180.0 / std::numbers::pi,
+              z_m, walls.rect.width_m, walls.rect.height_m, walls.rect.angle_rad * 180.0 / std::numbers::pi,
               quality.occupied_cells, walls.share_on_walls, walls.wall_coverage, walls.rms_wall_distance_m,
               quality.interior_free_share, quality.interior_occupied_share);
 }

@@ -46,9 +46,13 @@ std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isomet
 
 /// Stages args.output_bt (OctoMap binary) and the figures (render/*_figures.hpp: ≥ 800 pixels on
 /// their long side, axes, a title line with the input's name, the resolution and the detector, a
-/// legend) whose paths are not empty: args.map_png (the planar model: the slice at z = 0; with
-/// args.volume: the top view coloured by height), `side_png` (the side view), each with `track_m`
-/// (map frame, metres; empty: none), args.polar_png and args.cartesian_png (the largest sweep;
+/// legend) whose paths are not empty. The .bt is `map` (the mapper's internal NWU frame) converted
+/// to args.map_frame, its header naming the frame (map_frame.hpp). The map pictures are charts in
+/// ENU whatever args.map_frame: east right, north up. args.map_png (the planar model: the band of
+/// heights of the occupied voxels seen from above, the slice z = 0 when nothing is occupied, the
+/// title saying which; with args.volume: the top view coloured by height), `side_png` (the side
+/// view), each with `track_m` (internal NWU frame, metres; empty: none), args.polar_png and
+/// args.cartesian_png (the largest sweep;
 /// Cartesian pixels of `pixel_m` metres, each beam spread over args.beam_width_deg, or 3° when 0).
 /// @throws FileError when a file cannot be staged; ValueError when images are wanted from a log
 ///         without beams.
@@ -69,11 +73,15 @@ void printWarnings(const std::vector<std::string>& warnings);
 /// nodes and leaves, memory, time, why beams were skipped (MappedLog::skip_note), how many warnings
 /// were printed, and the .bt written. After the
 /// obstacles comes the map's height extent, "occupied z LO .. HI m": the lowest and highest
-/// occupied voxel centres (occupiedHeightExtent), left out when nothing is occupied.
-void printMapSummary(const MappedLog& run, const std::string& output_bt, bool with_nav = false, std::size_t warnings = 0);
+/// occupied voxel centres (occupiedHeightExtent) in args.map_frame's z ("(up)", or "(down)" in
+/// NED), left out when nothing is occupied; with args.map_png (2D), the heights the picture shows
+/// ("picture: occupied band z LO .. HI m up, seen from above"). It ends with args.output_bt and
+/// its frame ("-> map.bt in ENU (x east, y north, z up)").
+void printMapSummary(const MappedLog& run, const MapArgs& args, bool with_nav = false, std::size_t warnings = 0);
 
-/// Prints one line on stdout: the rectangle fitted to the occupied cells at z = 0 and the map's
-/// quality (eval/tank_quality.hpp), or why there are too few cells to fit it.
+/// Prints one line on stdout: the rectangle fitted to the occupied cells of the slice holding the
+/// most occupied voxels (the sonar's plane of a 2D map, at the vehicle's depth; its height said)
+/// and the map's quality (eval/tank_quality.hpp), or why there are too few cells to fit it.
 void printTankReport(const OcTree16& map);
 
 }  // namespace sonarmap::cli

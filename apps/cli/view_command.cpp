@@ -7,6 +7,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 
 namespace sonarmap::embedded {
 // three.js and its OrbitControls as found at configure time (SONARMAP_THREE_JS,
@@ -50,7 +51,12 @@ void run(const ViewArgs& args) {
     options.trajectory_m = trajectoryInMap(readNavCsv(args.trajectory_csv));
     options.trajectory_source = std::filesystem::path(args.trajectory_csv).filename().string();
   }
-  const OcTree16 map = readMapFile(args.input);
+  const FramedMap file = readMapFileToNwu(args.input);
+  const OcTree16 map = mapInFrame(file.map, MapFrame::kEnu);
+  if (file.frame != MapFrame::kEnu) {
+    options.frame += "; the file is " + mapFrameDescription(file.frame) +
+                     (mapFrameOfComments(readMapFileHeader(args.input).comments) ? "" : " (its header names no frame)");
+  }
   FileTransaction output;
   const HtmlView view = stageView(output, args.output, map, options);
   output.commit();
@@ -66,7 +72,7 @@ std::vector<Eigen::Vector3d> trajectoryInMap(const NavTrack& track) {
   std::vector<Eigen::Vector3d> points_m;
   points_m.reserve(track.size());
   for (const NavSample& fix : track) points_m.push_back(nedToMap() * fix.position_ned_m);
-  return points_m;
+  return pointsInMapFrame(points_m, MapFrame::kEnu);
 }
 
 bool viewerAvailable() { return !embedded::kThreeJs.empty() && !embedded::kOrbitControlsJs.empty(); }

@@ -30,7 +30,7 @@ Command addViewCommand(CLI::App& app, ViewArgs& args);
 /// True when three.js was compiled into the tool, so stageView can write a page.
 bool viewerAvailable();
 
-/// The vehicle positions of `track` in the map frame (NED → NWU, navigation.hpp's nedToMap()), metres.
+/// The vehicle positions of `track` (NED) in ENU, the viewer's frame (map_frame.hpp), metres.
 std::vector<Eigen::Vector3d> trajectoryInMap(const NavTrack& track);
 
 /// Renders the page of `map` with the three.js compiled into the tool, stages it for `path` in

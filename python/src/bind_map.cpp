@@ -82,7 +82,7 @@ void bindMap(py::module_& m) {
 Probabilistic occupancy octree of depth 16 (OctoMap's OcTree layout; Hornung et al. 2013).
 
 Voxels are cubes of edge ``resolution`` metres in the map frame (x, y, z in metres; for sonar
-maps: NWU, z up, see sonarmap.map_sonar_log). Leaves hold clamped log-odds; a voxel is occupied
+maps: ENU or NED as map_sonar_log's map_frame chose, see ``frame``). Leaves hold clamped log-odds; a voxel is occupied
 when its probability is above ``occupancy_thres``, free at or below it, unknown when never
 observed. ``.bt``/``.ot`` files interoperate with OctoMap 1.9 (octovis, octomap-python).
 
@@ -115,25 +115,36 @@ Raises sonarmap.ValueError for a resolution that is not finite and > 0, or proba
           "read",
           [](const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt, std::nullopt};
+            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt, std::nullopt,
+                                mapFrameOfComments(readMapFileHeader(path.string()).comments)};
           },
           py::arg("path"), R"doc(Reads a map file: ``.bt`` (OctoMap binary: free leaves get the lower, occupied the
 upper clamping log-odds) or ``.ot`` (OctoMap full tree, exact log-odds), chosen by the extension
-(any case); OctoMap's default sensor model. Raises sonarmap.FileError for an unknown extension,
+(any case); OctoMap's default sensor model. The coordinates are the file's; ``frame`` is the frame its
+header names (None when it names none). Raises sonarmap.FileError for an unknown extension,
 a file that cannot be opened, or a malformed/truncated file (naming the field or offset);
 sonarmap.ValueError for a resolution that is not finite and > 0.)doc")
       .def(
           "write",
           [](const OccupancyMap& map, const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            writeMapFile(map.tree, path.string());
+            writeMapFile(map.tree, path.string(),
+                         map.frame ? std::vector<std::string>{mapFrameComment(*map.frame)} : std::vector<std::string>{});
           },
           py::arg("path"), R"doc(Writes the map to ``path`` atomically in the format its extension names: ``.bt``
 (maximum likelihood, as OctoMap's writeBinary) or ``.ot`` (full log-odds). The map is not modified
-(no pruning or thresholding). Raises sonarmap.FileError for an unknown extension or a file that
+(no pruning or thresholding); a map with a ``frame`` names it in the header (a ``#`` comment line
+OctoMap skips). Raises sonarmap.FileError for an unknown extension or a file that
 cannot be written (an existing file is then left untouched).)doc")
       .def_property_readonly("resolution", [](const OccupancyMap& map) { return map.tree.resolution_m(); },
                              "Voxel edge in metres.")
+      .def_property_readonly(
+          "frame",
+          [](const OccupancyMap& map) -> py::object {
+            return map.frame ? py::str(std::string(mapFrameName(*map.frame))) : py::object(py::none());
+          },
+          "The frame of the map's coordinates: \"ENU\" (x east, y north, z up), \"NED\" (x north, y east, z down), "
+          "\"NWU\" (a file written before frames were named); None for a map built point by point.")
       .def_property_readonly(
           "stats", [](const OccupancyMap& map) { return map.stats; },
           "The mapper's counts (sonarmap.MappingStats) for a map made by map_sonar_log or OnlineMapper; None otherwise.")

@@ -96,7 +96,9 @@ LocalOrigin moveToLocalOrigin(std::optional<NavTrack>& track, const py::object& 
 OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::object& mounting,
                     const py::object& progress, bool slam, const py::kwargs& kwargs) {
   const MappingArguments args =
-      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate", "origin"});
+      mappingArguments(kwargs, {"format", "nav_time_offset_s", "nav_class", "max_speed", "max_turn_rate", "origin", "map_frame"});
+  const MapFrame frame = kwargs.contains("map_frame") ? parseMapFrame(textArgument(kwargs["map_frame"], "map_frame"))
+                                                      : kDefaultMapFrame;
   const std::string nav_class = kwargs.contains("nav_class") ? textArgument(kwargs["nav_class"], "nav_class") : "auto";
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
@@ -141,7 +143,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
     }
   }
   warn(mappingWarnings(mapper->stats(), mapper->options(), mapper->map().resolution_m()));
-  OccupancyMap map{std::move(mapper->map()), mapper->stats(), std::nullopt, std::nullopt, std::nullopt};
+  OccupancyMap map{mapInFrame(mapper->map(), frame), mapper->stats(), std::nullopt, std::nullopt, std::nullopt, frame};
   if (!origin.isZero()) map.origin = origin.ned_m;
   if (localized) {
     moveFromOrigin(localized->trajectory, origin.ned_m);
@@ -199,7 +201,9 @@ _deg (beam_width_deg: the navigation's angles above are radians), None or "auto"
 takes auto (sonarmap.mapping_options() gives each one's unit, range, default and help): )doc" +
                               mappingKeywordsDoc(false) + R"doc(; and format (whose nominal beam to
 assume; default the log's).
-Map frame: NWU metres (x north, y west, z up); without nav the sonar frame itself.
+Keyword map_frame: the frame of the returned map, "enu" (default: x east, y north, z up, ROS REP
+103/105) or "ned" (x north, y east, z down); the map's ``frame`` says it and ``write`` names it in
+the file's header. Without nav the vehicle is taken at the NED origin heading north.
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.
 Raises sonarmap.ValueError for an invalid option (named by its keyword), a log whose work

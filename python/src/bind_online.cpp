@@ -125,14 +125,17 @@ Raises sonarmap.ValueError for a non-finite fix, one not after the previous, or 
           "map",
           [](const OnlineMapper& mapper) {
             py::gil_scoped_release release;
-            return OccupancyMap{mapper.mapSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt, std::nullopt};
+            return OccupancyMap{mapInFrame(mapper.mapSnapshot(), kDefaultMapFrame), mapper.statsSnapshot(),
+                                std::nullopt, std::nullopt, std::nullopt, kDefaultMapFrame};
           },
-          "A copy of the map as of the last integrated sweep, with its stats (sonarmap.OccupancyMap).")
+          "A copy of the map as of the last integrated sweep, with its stats (sonarmap.OccupancyMap), in ENU (x east, "
+          "y north, z up) as map_sonar_log's default.")
       .def(
           "shown_map",
           [](const OnlineMapper& mapper) {
             py::gil_scoped_release release;
-            return OccupancyMap{mapper.shownSnapshot(), mapper.statsSnapshot(), std::nullopt, std::nullopt, std::nullopt};
+            return OccupancyMap{mapInFrame(mapper.shownSnapshot(), kDefaultMapFrame), mapper.statsSnapshot(),
+                                std::nullopt, std::nullopt, std::nullopt, kDefaultMapFrame};
           },
           "map() with the provisional beams' log-odds added (show=\"beam\"; else map()).")
       .def(

@@ -284,7 +284,7 @@ scene or preset; sonarmap.FileError for a bad scene file.)doc");
             GroundTruthReport report;
             {
               py::gil_scoped_release release;
-              report = evaluateAgainstScene(map.tree, s.run.simulation.scene, options);
+              report = evaluateAgainstScene(treeInSceneFrame(map), s.run.simulation.scene, options);
             }
             return reportDict(report);
           },
@@ -391,13 +391,15 @@ bad file.)doc");
         GroundTruthReport report;
         {
           py::gil_scoped_release release;
-          report = evaluateAgainstScene(map.tree, truth, options);
+          report = evaluateAgainstScene(treeInSceneFrame(map), truth, options);
         }
         return reportDict(report);
       },
       py::arg("map"), py::arg("scene"), py::arg("tolerance") = 0.1, py::arg("z_min") = py::none(),
       py::arg("z_max") = py::none(), py::arg("max_range") = py::none(), py::arg("sensor") = py::none(),
       R"doc(Scores a map against a ground-truth scene, as ``sonarmap eval`` (eval/ground_truth.hpp).
+A map with a ``frame`` (ENU, NED) is turned back into the scenes' frame (NWU: x north, y west, z up)
+first; ``sensor`` positions, z_min and z_max are in the scenes' frame.
 
 map: sonarmap.OccupancyMap. scene: sonarmap.Scene, a scene file, or a built-in name (Micron-sized;
 an existing file of that name wins, as in the CLI).

@@ -7,6 +7,7 @@
 #include <pybind11/stl/filesystem.h>  // paths as str or os.PathLike (pathlib.Path)
 
 #include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
@@ -21,7 +22,16 @@ struct OccupancyMap {
   std::optional<NavTrack> trajectory;  ///< map_sonar_log(slam=True): the corrected trajectory
   std::optional<SlamReport> slam;      ///< ... and what the localization did
   std::optional<Eigen::Vector3d> origin;  ///< the map's zero in the navigation's frame (NED m), when not zero
+  /// The frame of the tree's coordinates: map_sonar_log's map_frame, a read file's header; nullopt
+  /// for a map built point by point (its points' frame).
+  std::optional<MapFrame> frame = std::nullopt;
 };
+
+/// The tree of `map` in the frame scenes are given in (the mapper's internal NWU): converted back
+/// when the map carries a frame, as it is otherwise.
+inline OcTree16 treeInSceneFrame(const OccupancyMap& map) {
+  return map.frame && *map.frame != MapFrame::kNwu ? mapFromFrame(map.tree, *map.frame) : map.tree;
+}
 
 void bindErrors(py::module_& m);    // bind_errors.cpp: sonarmap.Error and its subclasses
 void bindMap(py::module_& m);       // bind_map.cpp: OccupancyMap (octree, queries, files)

@@ -197,6 +197,7 @@ HtmlView renderHtmlView(const OcTree16& tree, const HtmlViewOptions& options, co
   payload += ",\"map_bounds_m\":" + boundsJson(all) + ",\"occupied_bounds_m\":" + boundsJson(occupied);
   payload += ",\"max_boxes\":" + std::to_string(options.max_boxes) +
              ",\"max_free_boxes\":" + std::to_string(options.max_free_boxes);
+  payload += ",\"frame\":" + jsonString(options.frame);
   payload += ",\"trajectory_m\":" + trajectory + ",\"trajectory_source\":" + jsonString(options.trajectory_source);
   payload += ",\"occupied\":" + boxesJson(view.occupied) + ",\"free\":" + boxesJson(view.free) + "}";
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
@@ -19,12 +20,19 @@ MapFormat mapFormatOf(const std::string& path) {
   throw FileError("'" + path + "': unknown map file extension '" + extension + "', expected .bt or .ot");
 }
 
-void writeMapFile(const OcTree16& tree, const std::string& path) {
+void writeMapFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments) {
   if (mapFormatOf(path) == MapFormat::kBinary) {
-    writeBinaryFile(tree, path);
+    writeBinaryFile(tree, path, comments);
   } else {
-    writeFullFile(tree, path);
+    writeFullFile(tree, path, comments);
   }
+}
+
+OctomapHeader readMapFileHeader(const std::string& path) {
+  const char* first_line = mapFormatOf(path) == MapFormat::kBinary ? kBinaryFileFirstLine : kFullFileFirstLine;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError("cannot open '" + path + "' for reading");
+  return readOctomapHeader(in, first_line, path);
 }
 
 OcTree16 readMapFile(const std::string& path, const OctreeOptions& options) {

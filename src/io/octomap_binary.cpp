@@ -83,9 +83,9 @@ class BinaryReader {
 
 }  // namespace
 
-void writeBinary(const OcTree16& tree, std::ostream& out) {
+void writeBinary(const OcTree16& tree, std::ostream& out, const std::vector<std::string>& comments) {
   const NodeCounts counts = tree.counts();
-  writeOctomapHeader(out, kBinaryFileFirstLine, {"OcTree", counts.nodes, tree.resolution_m()});
+  writeOctomapHeader(out, kBinaryFileFirstLine, {"OcTree", counts.nodes, tree.resolution_m(), comments});
   std::string data;
   data.reserve(2 * counts.inner);
   const OcTreeNode& root = tree.node(kRootRef);
@@ -94,8 +94,8 @@ void writeBinary(const OcTree16& tree, std::ostream& out) {
   if (!out) throw FileError("writing the .bt stream failed");
 }
 
-void writeBinaryFile(const OcTree16& tree, const std::string& path) {
-  writeFileAtomically(path, [&](std::ostream& out) { writeBinary(tree, out); });
+void writeBinaryFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments) {
+  writeFileAtomically(path, [&](std::ostream& out) { writeBinary(tree, out, comments); });
 }
 
 OcTree16 readBinary(std::istream& in, const OctreeOptions& options, const std::string& source) {

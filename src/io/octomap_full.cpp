@@ -98,14 +98,14 @@ class FullReader {
 
 }  // namespace
 
-void writeFull(const OcTree16& tree, std::ostream& out) {
-  writeOctomapHeader(out, kFullFileFirstLine, {"OcTree", tree.counts().nodes, tree.resolution_m()});
+void writeFull(const OcTree16& tree, std::ostream& out, const std::vector<std::string>& comments) {
+  writeOctomapHeader(out, kFullFileFirstLine, {"OcTree", tree.counts().nodes, tree.resolution_m(), comments});
   if (!tree.empty()) FullWriter(tree, out).write();
   if (!out) throw FileError("writing the .ot stream failed");
 }
 
-void writeFullFile(const OcTree16& tree, const std::string& path) {
-  writeFileAtomically(path, [&](std::ostream& out) { writeFull(tree, out); });
+void writeFullFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments) {
+  writeFileAtomically(path, [&](std::ostream& out) { writeFull(tree, out, comments); });
 }
 
 OcTree16 readFull(std::istream& in, const OctreeOptions& options, const std::string& source) {

@@ -21,7 +21,14 @@ bool readWholeValue(std::istringstream& tokens, T& value) {
 void writeOctomapHeader(std::ostream& out, const std::string& first_line, const OctomapHeader& header) {
   char res[64];
   const auto result = std::to_chars(res, res + sizeof(res), header.resolution_m);  // shortest round-trip
-  out << first_line << "\n# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
+  out << first_line << "\n# (feel free to add / change comments, but leave the first line as it is!)\n";
+  for (const std::string& comment : header.comments) {
+    if (comment.find_first_of("\r\n") != std::string::npos) {
+      throw ValueError("a map file's header comment must be one line, got " + detail::quotedForMessage(comment));
+    }
+    out << "# " << comment << "\n";
+  }
+  out << "#\n"
       << "id " << header.id << "\n"
       << "size " << header.size << "\n"
       << "res " << std::string(res, result.ptr) << "\n"
@@ -38,7 +45,12 @@ OctomapHeader readOctomapHeader(std::istream& in, const std::string& first_line,
   std::string res_line;
   while (std::getline(in, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      const std::size_t text = line.find_first_not_of(' ', 1);
+      if (text != std::string::npos) header.comments.push_back(line.substr(text));
+      continue;
+    }
     std::istringstream tokens(line);
     std::string token;
     tokens >> token;

@@ -56,7 +56,7 @@ cv::Mat viewFigure(const MapView& view, const std::string& title, const char* v_
   spec.raster = viewRaster(view);
   spec.extent = extentOf(view);
   spec.title = title;
-  spec.x_label = "x (m)";
+  spec.x_label = "east (m)";
   spec.y_label = v_label;
   spec.swatches = occupancySwatches(false);
   if (view.occupied_pixels > 0) {
@@ -110,7 +110,12 @@ cv::Mat errorFigure(const MapView& view, const GroundTruthReport& report, int v,
 
 cv::Mat sliceFigure(const OcTree16& map, double z_m, const std::string& title,
                     const std::vector<Eigen::Vector3d>& track_m) {
-  const SliceView slice = renderSliceView(map, z_m);
+  return bandFigure(map, z_m, z_m, title, track_m);
+}
+
+cv::Mat bandFigure(const OcTree16& map, double z_min_m, double z_max_m, const std::string& title,
+                   const std::vector<Eigen::Vector3d>& track_m) {
+  const SliceView slice = renderBandView(map, z_min_m, z_max_m);
   FigureSpec spec;
   spec.raster = cv::Mat(slice.image.size(), CV_8UC3);
   for (int row = 0; row < slice.image.rows; ++row) {
@@ -122,19 +127,19 @@ cv::Mat sliceFigure(const OcTree16& map, double z_m, const std::string& title,
   spec.extent = {slice.left_m, slice.left_m + slice.image.cols * slice.pixel_m, slice.bottom_m,
                  slice.bottom_m + slice.image.rows * slice.pixel_m};
   spec.title = title;
-  spec.x_label = "x (m)";
-  spec.y_label = "y (m)";
+  spec.x_label = "east (m)";
+  spec.y_label = "north (m)";
   spec.swatches = occupancySwatches(true);
   spec.lines = trackLines(track_m, 0, 1, "sonar track");
   return composeFigure(spec);
 }
 
 cv::Mat topViewFigure(const OcTree16& map, const std::string& title, const std::vector<Eigen::Vector3d>& track_m) {
-  return viewFigure(renderTopView(map), title, "y (m)", "z (m)", trackLines(track_m, 0, 1, "sonar track"));
+  return viewFigure(renderTopView(map), title, "north (m)", "up z (m)", trackLines(track_m, 0, 1, "sonar track"));
 }
 
 cv::Mat sideViewFigure(const OcTree16& map, const std::string& title, const std::vector<Eigen::Vector3d>& track_m) {
-  return viewFigure(renderSideView(map), title, "z (m)", "y (m)", trackLines(track_m, 0, 2, "sonar track"));
+  return viewFigure(renderSideView(map), title, "up z (m)", "north (m)", trackLines(track_m, 0, 2, "sonar track"));
 }
 
 cv::Mat surfaceErrorFigure(const OcTree16& map, const GroundTruthReport& report, const std::string& title,

@@ -145,11 +145,13 @@ TEST_F(cli3d, WaterSurfaceDepthLetsALevelHeadMapTheSeabed) {
     EXPECT_TRUE(tree.readBinary(bt.string()));
     std::size_t count = 0;
     for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+      // The map is ENU, the scene NWU: the scene's (x north, y west) is (map y, −map x).
+      const double north = it.getY(), west = -it.getX();
       bool near_pile = false;
       for (const auto& [x, y] : {std::pair{2.0, -2.5}, std::pair{2.0, 2.5}, std::pair{-3.0, -2.5}}) {
-        near_pile = near_pile || std::hypot(it.getX() - x, it.getY() - y) < 0.6;
+        near_pile = near_pile || std::hypot(north - x, west - y) < 0.6;
       }
-      if (tree.isNodeOccupied(*it) && it.getZ() < -4.6 && it.getX() < 3.0 && !near_pile) ++count;
+      if (tree.isNodeOccupied(*it) && it.getZ() < -4.6 && north < 3.0 && !near_pile) ++count;
     }
     return count;
   };

@@ -9,6 +9,7 @@
 #include "cli_fixture.hpp"
 #include "figure_checks.hpp"
 #include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
@@ -52,10 +53,12 @@ class cliNav : public CliTest {
     writeNavCsv(nav_.string(), run_.nav);
   }
 
-  /// The .bt the library writes for the beam CSV (as the CLI reads it) with `nav` and `sonar_to_body`.
+  /// The .bt the library writes for the beam CSV (as the CLI reads it) with `nav` and `sonar_to_body`,
+  /// in the default map frame.
   std::string libraryMap(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body) const {
     const fs::path bt = root_ / "library.bt";
-    writeBinaryFile(mapSonarLog(readBeamCsv(beams_.string()), nav, sonar_to_body).map(), bt.string());
+    writeMapFileInFrame(mapSonarLog(readBeamCsv(beams_.string()), nav, sonar_to_body).map(), bt.string(),
+                        kDefaultMapFrame);
     return readFile(bt);
   }
 

@@ -187,16 +187,17 @@ TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
   EXPECT_EQ(sweeps, 28U);
   EXPECT_NE(lines[0].find("-> " + (dir / "tank.bt").string()), std::string::npos) << lines[0];
 
-  double width_m = 0, height_m = 0, angle_deg = 0, on_walls = 0, covered = 0, rms_m = 0, free_inside = 0,
-         occupied_inside = 0;
+  double slice_z_m = 1, width_m = 0, height_m = 0, angle_deg = 0, on_walls = 0, covered = 0, rms_m = 0,
+         free_inside = 0, occupied_inside = 0;
   std::size_t cells = 0;
   ASSERT_EQ(std::sscanf(lines[1].c_str(),
-                        "tank: %lf x %lf m at %lf deg, %zu occupied cells, %lf on walls, %lf of walls covered, rms %lf m, "
-                        "inside %lf free %lf occupied",
-                        &width_m, &height_m, &angle_deg, &cells, &on_walls, &covered, &rms_m, &free_inside,
+                        "tank: slice z = %lf m up (the layer with the most occupied cells), %lf x %lf m at %lf deg, "
+                        "%zu occupied cells, %lf on walls, %lf of walls covered, rms %lf m, inside %lf free %lf occupied",
+                        &slice_z_m, &width_m, &height_m, &angle_deg, &cells, &on_walls, &covered, &rms_m, &free_inside,
                         &occupied_inside),
-            9)
+            10)
       << lines[1];
+  EXPECT_NEAR(slice_z_m, 0.0, 0.05) << lines[1];  // the sonar's plane
   // The built-in tank's inner faces are 4.2 m × 4.4 m apart (sim/builtin_scenes.hpp).
   EXPECT_NEAR(std::min(width_m, height_m), 4.2, 0.15) << lines[1];
   EXPECT_NEAR(std::max(width_m, height_m), 4.4, 0.15) << lines[1];

@@ -74,14 +74,14 @@ TEST_F(cliView, WritesOnePageAndSaysWhatItDraws) {
   EXPECT_EQ(readFile(root_ / "again.html"), html);
 }
 
-// The navigation CSV's fixes (NED) become the page's trajectory in the map frame (x north, y west,
-// z up): (n, e, d) -> (n, -e, -d).
+// The navigation CSV's fixes (NED) become the page's trajectory in the viewer's frame, ENU
+// (x east, y north, z up): (n, e, d) -> (e, n, -d).
 TEST_F(cliView, TrajectoryIsTheNavigationInTheMapFrame) {
   const fs::path map = smallMap(), page = out_ / "small.html", nav = root_ / "nav.csv";
   writeFile(nav, "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,1,2,3,0,0,0\n1,1.5,-2,0.25,0,0,1\n");
   const ProgramRun result = run({"view", map.string(), "-o", page.string(), "--trajectory", nav.string()});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_NE(readFile(page).find("\"trajectory_m\":[1,-2,-3,1.5,2,-0.25],\"trajectory_source\":\"nav.csv\""),
+  EXPECT_NE(readFile(page).find("\"trajectory_m\":[2,1,-3,-2,1.5,-0.25],\"trajectory_source\":\"nav.csv\""),
             std::string::npos);
 }
 

@@ -178,3 +178,29 @@ def test_a_telemetry_log_joined_by_its_offset_maps_as_the_csv_does(cli, tmp_path
         "-o", tmp_path / "cli.bt", "-q")
     joined.write(str(tmp_path / "py.bt"))
     assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
+
+
+def test_map_frame_enu_by_default_ned_on_request(cli, tmp_path):
+    """map_sonar_log's map is ENU unless map_frame="ned": the same voxels with (x, y, z) of ENU
+    being (y, x, -z) of NED, the frame named by ``frame`` and in the written file's header, as the
+    CLI's --map-frame writes it."""
+    cli("simulate", "harbour", "-o", tmp_path / "sim", "--turns", "1", "--speed", "0.1", "--heading", "30")
+    beams, nav = tmp_path / "sim" / "beams.csv", tmp_path / "sim" / "nav.csv"
+    log = sonarmap.read_sonar_log(str(beams))
+    enu = sonarmap.map_sonar_log(log, nav=str(nav), resolution=0.1)
+    ned = sonarmap.map_sonar_log(log, nav=str(nav), resolution=0.1, map_frame="ned")
+    assert enu.frame == "ENU" and ned.frame == "NED"
+    e, _ = enu.occupied_voxels()
+    n, _ = ned.occupied_voxels()
+    assert len(e) > 10 and len(e) == len(n)
+    swapped = np.column_stack([n[:, 1], n[:, 0], -n[:, 2]])
+    def as_set(points):
+        return {tuple(np.round(row, 6)) for row in points}
+    assert as_set(e) == as_set(swapped)
+    ned.write(tmp_path / "py.bt")
+    cli("map", beams, "-o", tmp_path / "cli.bt", "-q", "--nav", nav, "--resolution", "0.1", "--map-frame", "ned")
+    assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
+    assert b"# sonarmap map frame: NED (x north, y east, z down)\n" in (tmp_path / "cli.bt").read_bytes()[:200]
+    assert sonarmap.OccupancyMap.read(tmp_path / "cli.bt").frame == "NED"
+    with pytest.raises(sonarmap.ValueError, match="map frame"):
+        sonarmap.map_sonar_log(log, map_frame="nwu")

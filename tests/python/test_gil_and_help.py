@@ -55,5 +55,5 @@ def test_help_shows_shapes_dtypes_units_and_frames():
         assert word in text
     assert "(beams, bins)" in sonarmap.SonarLog.intensities.__doc__ and "uint8" in sonarmap.SonarLog.intensities.__doc__
     assert "radians" in sonarmap.SonarLog.bearing_rad.__doc__
-    assert "NWU" in sonarmap.map_sonar_log.__doc__
+    assert "map_frame" in sonarmap.map_sonar_log.__doc__ and "x east, y north, z up" in sonarmap.map_sonar_log.__doc__
     assert sonarmap.OccupancyMap.__module__ == "sonarmap"

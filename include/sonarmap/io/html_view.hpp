@@ -5,7 +5,8 @@
 /// octree's boxes (view_boxes.hpp) and its statistics. Occupied leaves are boxes of their real size
 /// coloured by the height of their centre (10 bands, legend in metres); free leaves are shown on a
 /// toggle; a grid at the map's floor with cells of a round number of metres, axes from the map's
-/// origin, the sonar's trajectory as a line. Map frame: x north, y west, z up, metres.
+/// origin, the sonar's trajectory as a line. The tree is drawn in ENU (x east, y north, z up,
+/// metres: map_frame.hpp's mapInFrame(map, MapFrame::kEnu)); the page states HtmlViewOptions::frame.
 ///
 /// Opened as `MAP.html#selfcheck`, the page checks itself once its first frame is drawn (it draws
 /// the map thirteen times, so a plain opening skips it and reads `boxes=B stated=S leaves=L (open
@@ -45,7 +46,9 @@ struct HtmlViewOptions {
   std::size_t max_boxes = 200000;       ///< cap on the occupied boxes; beyond it the map is downsampled
   std::size_t max_free_boxes = 100000;  ///< the same cap for the free boxes
   std::string title;                    ///< shown as the page's title and heading (e.g. the file name)
-  std::vector<Eigen::Vector3d> trajectory_m;  ///< sonar or vehicle positions, map frame, metres
+  std::vector<Eigen::Vector3d> trajectory_m;  ///< sonar or vehicle positions, ENU, metres
+  /// The frame, as the page's statistics state it (e.g. where the map file's own frame differs).
+  std::string frame = "ENU (x east, y north, z up), metres";
   std::string trajectory_source;        ///< where the trajectory came from (a file name), shown beside it
 };
 

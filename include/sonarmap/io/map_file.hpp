@@ -5,6 +5,9 @@
 /// The extension is compared without regard to case.
 
 #include <string>
+#include <vector>
+
+#include "sonarmap/io/octomap_header.hpp"
 
 #include "sonarmap/octree/occupancy_octree.hpp"
 
@@ -19,10 +22,15 @@ enum class MapFormat {
 /// @throws FileError when the extension is neither `.bt` nor `.ot`.
 MapFormat mapFormatOf(const std::string& path);
 
-/// Writes `tree` to `path` atomically in the format its extension names. The tree is not modified.
+/// Writes `tree` to `path` atomically in the format its extension names, `comments` as header
+/// comment lines (octomap_header.hpp; e.g. mapping/map_frame.hpp's frame line). The tree is not modified.
 /// @throws FileError on an unknown extension or when the file cannot be written (an existing
-///         file is then left untouched).
-void writeMapFile(const OcTree16& tree, const std::string& path);
+///         file is then left untouched); ValueError for a comment holding a line break.
+void writeMapFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments = {});
+
+/// The header of the map file `path` (its comments, resolution, node count), the data not read.
+/// @throws FileError on an unknown extension, a file that cannot be opened, and as readOctomapHeader.
+OctomapHeader readMapFileHeader(const std::string& path);
 
 /// Reads the map file `path` in the format its extension names, with `options`.
 /// @throws FileError on an unknown extension, and as readBinaryFile / readFullFile.

@@ -11,18 +11,20 @@
 #include <istream>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
 
-/// Writes `tree` in `.bt` layout. The tree is not modified (no thresholding, no pruning).
-/// @throws FileError when the stream fails.
-void writeBinary(const OcTree16& tree, std::ostream& out);
+/// Writes `tree` in `.bt` layout, `comments` as header comment lines (octomap_header.hpp). The
+/// tree is not modified (no thresholding, no pruning).
+/// @throws FileError when the stream fails; ValueError for a comment holding a line break.
+void writeBinary(const OcTree16& tree, std::ostream& out, const std::vector<std::string>& comments = {});
 
 /// Writes `tree` to `path` atomically (temporary file + rename).
 /// @throws FileError when the file cannot be written; an existing file is then left untouched.
-void writeBinaryFile(const OcTree16& tree, const std::string& path);
+void writeBinaryFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments = {});
 
 /// Reads a `.bt` stream into a new tree with the given options (sensor model, aggregation).
 /// @param source name used in error messages (the file name).

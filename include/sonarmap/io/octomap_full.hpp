@@ -12,6 +12,7 @@
 #include <istream>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "sonarmap/octree/occupancy_octree.hpp"
 
@@ -19,11 +20,11 @@ namespace sonarmap {
 
 /// Writes `tree` in `.ot` layout with every node's log-odds as stored. The tree is not modified
 /// (no thresholding, no pruning). @throws FileError when the stream fails.
-void writeFull(const OcTree16& tree, std::ostream& out);
+void writeFull(const OcTree16& tree, std::ostream& out, const std::vector<std::string>& comments = {});
 
 /// Writes `tree` to `path` atomically (temporary file + rename).
 /// @throws FileError when the file cannot be written; an existing file is then left untouched.
-void writeFullFile(const OcTree16& tree, const std::string& path);
+void writeFullFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments = {});
 
 /// Reads a `.ot` tree from `in` into a new tree with `options`. Leaves keep the file's log-odds
 /// exactly and the structure is kept as stored (nothing is pruned); inner nodes get the aggregate

@@ -7,6 +7,7 @@
 #include <istream>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace sonarmap {
 
@@ -19,9 +20,13 @@ struct OctomapHeader {
   std::string id;          ///< tree type, `OcTree` for occupancy trees
   std::size_t size = 0;    ///< number of nodes in the tree
   double resolution_m = 0; ///< finest voxel edge in metres
+  /// Comment lines after the first line, without their leading "# " (written after OctoMap's
+  /// fixed comment; read: every `#` line but the first, in order). OctoMap's reader skips them.
+  std::vector<std::string> comments;
 };
 
-/// Writes the header lines up to and including `data`.
+/// Writes the header lines up to and including `data`, `header.comments` each as a "# " line.
+/// @throws ValueError when a comment holds a line break (it would end the comment).
 void writeOctomapHeader(std::ostream& out, const std::string& first_line, const OctomapHeader& header);
 
 /// Reads the header up to and including the `data` line; the stream is left at the first data byte.

@@ -1,6 +1,7 @@
 #pragma once
 /// @file map_slice.hpp
-/// Horizontal slices of a map: the 2D map of paper §6 lies in the sonar's plane (z = 0).
+/// Horizontal slices of a map (the 2D map of paper §6 lies in the sonar's plane) and projections
+/// of a band of heights (a 3D map's occupied band, seen from above).
 
 #include <vector>
 
@@ -27,6 +28,13 @@ struct SliceView {
 /// renderSlice's image with its position in the map frame (for axes in metres, figure.hpp).
 /// @throws OutOfMapError when z_m is outside the map.
 SliceView renderSliceView(const OcTree16& map, double z_m);
+
+/// The band of heights from the voxel holding `z_min_m` to the one holding `z_max_m` projected
+/// along z: a pixel is occupied (0) when any voxel of its column in the band is, else free (255)
+/// when any is, else unknown (128). Same layout as renderSliceView, which is the band of one
+/// voxel (z_min_m = z_max_m).
+/// @throws OutOfMapError when z_min_m or z_max_m is outside the map; ValueError when z_min_m > z_max_m.
+SliceView renderBandView(const OcTree16& map, double z_min_m, double z_max_m);
 
 /// Top view of the slice at `z_m`, one pixel per voxel: occupied 0 (black), free 255 (white),
 /// unknown 128 (grey). +x to the right, +y up. The image spans the known voxels of the slice

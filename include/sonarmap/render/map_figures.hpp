@@ -2,9 +2,12 @@
 /// @file map_figures.hpp
 /// Readable figures of an occupancy map (figure.hpp): the 2D slice, the 3D top and side views, and
 /// the distance of the occupied voxels to the ground truth. Each is composeFigure()'s BGR image,
-/// CV_8UC3, at least kMinFigureLongSide_px on its long side, with axes in metres of the map frame
-/// (x to the right; y up in the top views, z up in the side view), the title line given, and a
-/// legend. Tracks are map-frame positions in metres (e.g. the sonar's positions along a run:
+/// CV_8UC3, at least kMinFigureLongSide_px on its long side, with the title line given and a legend.
+/// The map figures (slice, band, top and side views) take the map in ENU (map_frame.hpp's
+/// mapInFrame(map, MapFrame::kEnu)) and draw it as a chart: east to the right, north up (z up in
+/// the side view), axes labelled "east (m)", "north (m)", "up z (m)"; their tracks are ENU too.
+/// surfaceErrorFigure draws the frame of its map and report (x right; y or z up), axes "x (m)".
+/// Tracks are positions in metres (e.g. the sonar's positions along a run:
 /// sonarToMap(fix, mounting).translation() of each navigation fix) drawn as a red line
 /// (kTrackBgr) with a circle at their start; a single position (a static sonar) is a red dot
 /// labelled "sonar"; an empty track draws nothing.
@@ -20,18 +23,27 @@
 
 namespace sonarmap {
 
-/// The slice at height `z_m` (renderSliceView): occupied voxels near-black (kOccupiedBgr), free
-/// light grey (kFreeBgr), unknown white, axes x (m) and y (m); the track's (x, y).
+/// The slice at height `z_m` (renderSliceView) of an ENU map: occupied voxels near-black
+/// (kOccupiedBgr), free light grey (kFreeBgr), unknown white, axes east (m) and north (m); the
+/// track's (east, north).
 /// @throws OutOfMapError when z_m is outside the map.
 cv::Mat sliceFigure(const OcTree16& map, double z_m, const std::string& title,
                     const std::vector<Eigen::Vector3d>& track_m = {});
 
-/// The top view (renderTopView): each column's highest occupied voxel coloured by its height
-/// (viridis, colour bar "z (m)"), free columns light grey, unknown white; the track's (x, y).
+/// As sliceFigure for the band of heights z_min_m … z_max_m projected from above (renderBandView:
+/// a column is occupied when any voxel of it in the band is).
+/// @throws OutOfMapError when a bound is outside the map; ValueError when z_min_m > z_max_m.
+cv::Mat bandFigure(const OcTree16& map, double z_min_m, double z_max_m, const std::string& title,
+                   const std::vector<Eigen::Vector3d>& track_m = {});
+
+/// The top view (renderTopView) of an ENU map: each column's highest occupied voxel coloured by its
+/// height (viridis, colour bar "up z (m)"), free columns light grey, unknown white; the track's
+/// (east, north).
 cv::Mat topViewFigure(const OcTree16& map, const std::string& title, const std::vector<Eigen::Vector3d>& track_m = {});
 
-/// The side view (renderSideView), looking along +y: the occupied voxel nearest the viewer
-/// coloured by its y (colour bar "y (m)"); axes x (m) and z (m); the track's (x, z).
+/// The side view (renderSideView) of an ENU map, looking north (along +y): the occupied voxel
+/// nearest the viewer coloured by its north (colour bar "north (m)"); axes east (m) and up z (m);
+/// the track's (east, z).
 cv::Mat sideViewFigure(const OcTree16& map, const std::string& title, const std::vector<Eigen::Vector3d>& track_m = {});
 
 /// Where the map is wrong: the top view, each (x, y) column holding an occupied voxel of the

@@ -1,0 +1,79 @@
+#pragma once
+/// @file map_frame.hpp
+/// The frame a map is written and drawn in, chosen by the user: ENU (ROS REP 103/105: x east,
+/// y north, z up; the default, so octovis shows it upright and it overlays a ROS `odom` frame) or
+/// NED (x north, y east, z down; the navigation's frame).
+///
+/// The mapper builds its octree in one internal frame, NWU (x north, y west, z up:
+/// navigation.hpp's nedToMap), and every public output is converted from it on the way out. Each
+/// conversion is a signed permutation of the axes: NWU → ENU is (x, y, z) ↦ (−y, x, z), NWU → NED
+/// is (x, y, z) ↦ (x, −y, −z). On a depth-16 key, negating a coordinate is k ↦ 2^16 − 1 − k
+/// (the voxel [k, k + 1) · res about the key origin goes to [−k − 1, −k) · res), so the converted
+/// tree holds exactly the same voxels and log-odds, pruned leaves included.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sonarmap/octree/occupancy_octree.hpp"
+
+namespace sonarmap {
+
+/// A frame maps are written in. kNwu is the mapper's internal frame (and that of map files
+/// written without a frame line); users choose kEnu or kNed.
+enum class MapFrame { kEnu, kNed, kNwu };
+
+/// The frame maps are written in unless the user chooses another.
+inline constexpr MapFrame kDefaultMapFrame = MapFrame::kEnu;
+
+/// "ENU", "NED" or "NWU".
+std::string_view mapFrameName(MapFrame frame);
+
+/// The frame and its axes, e.g. "ENU (x east, y north, z up)".
+std::string mapFrameDescription(MapFrame frame);
+
+/// The frame a user names: "enu" or "ned", any case.
+/// @throws ValueError for any other text; the message lists the choices.
+MapFrame parseMapFrame(std::string_view text);
+
+/// Rotation taking internal (NWU) coordinates to `frame`'s: a signed permutation matrix.
+Eigen::Matrix3d nwuToMapFrame(MapFrame frame);
+
+/// `points_m` (NWU, metres) in `frame`, each multiplied by nwuToMapFrame(frame).
+std::vector<Eigen::Vector3d> pointsInMapFrame(const std::vector<Eigen::Vector3d>& points_m, MapFrame frame);
+
+/// The internal (NWU) map `map` with its voxels in `frame`: every leaf moved exactly (see the file
+/// comment), same resolution, options and log-odds; inner nodes recomputed. A leaf of log-odds
+/// exactly 0 (present but unknown) is left out: it carries no evidence.
+OcTree16 mapInFrame(const OcTree16& map, MapFrame frame);
+
+/// The inverse of mapInFrame: a map in `frame` back in the internal NWU frame.
+OcTree16 mapFromFrame(const OcTree16& map, MapFrame frame);
+
+/// The header comment line naming `frame` in map files ("sonarmap map frame: ENU (x east, ...)").
+std::string mapFrameComment(MapFrame frame);
+
+/// The frame named by a mapFrameComment line among a file's header `comments`; nullopt when none
+/// is (files written before frames were named, or by another tool).
+std::optional<MapFrame> mapFrameOfComments(const std::vector<std::string>& comments);
+
+/// Writes the internal (NWU) map `map` to `path` (map_file.hpp: .bt or .ot by extension) in
+/// `frame`, its header naming the frame (mapFrameComment).
+/// @throws FileError as writeMapFile.
+void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame);
+
+/// A map file read back into the internal NWU frame, converted from the frame its header names
+/// (NWU when it names none: files written before the frame was named, or by another tool).
+struct FramedMap {
+  OcTree16 map;     ///< internal NWU frame
+  MapFrame frame;   ///< the frame the file was written in
+};
+
+/// Reads the map file `path` (map_file.hpp) and converts it to the internal NWU frame.
+/// @throws FileError, ValueError as readMapFile.
+FramedMap readMapFileToNwu(const std::string& path, const OctreeOptions& options = {});
+
+}  // namespace sonarmap

@@ -1,0 +1,123 @@
+#include "sonarmap/mapping/map_frame.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/io/map_file.hpp"
+
+namespace sonarmap {
+namespace {
+
+constexpr std::string_view kCommentPrefix = "sonarmap map frame: ";
+
+/// Moves every leaf of `map` by the signed permutation `rotation` (entries 0, ±1).
+OcTree16 permuted(const OcTree16& map, const Eigen::Matrix3d& rotation) {
+  std::array<int, 3> source{};
+  std::array<bool, 3> negate{};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int from = 0; from < 3; ++from) {
+      if (rotation(axis, from) != 0.0) {
+        source[axis] = from;
+        negate[axis] = rotation(axis, from) < 0.0;
+      }
+    }
+  }
+  OcTree16 out(map.resolution_m(), map.options());
+  constexpr long kKeys = 1L << 16;
+  map.forEachLeaf([&](const LeafView<16>& leaf) {
+    const long edge = static_cast<long>(leaf.edgeVoxels());
+    Key16 key;
+    for (int axis = 0; axis < 3; ++axis) {
+      const long k = leaf.key[static_cast<std::size_t>(source[axis])];
+      // The lowest corner of the negated cube [k, k + edge) is 2^16 − (k + edge).
+      key[static_cast<std::size_t>(axis)] = static_cast<Key16::Index>(negate[axis] ? kKeys - k - edge : k);
+    }
+    out.updateCube(key, leaf.depth, leaf.log_odds);
+  });
+  out.updateInnerOccupancy();
+  return out;
+}
+
+}  // namespace
+
+std::string_view mapFrameName(MapFrame frame) {
+  switch (frame) {
+    case MapFrame::kEnu: return "ENU";
+    case MapFrame::kNed: return "NED";
+    case MapFrame::kNwu: return "NWU";
+  }
+  return "NWU";
+}
+
+std::string mapFrameDescription(MapFrame frame) {
+  switch (frame) {
+    case MapFrame::kEnu: return "ENU (x east, y north, z up)";
+    case MapFrame::kNed: return "NED (x north, y east, z down)";
+    case MapFrame::kNwu: return "NWU (x north, y west, z up)";
+  }
+  return "NWU (x north, y west, z up)";
+}
+
+MapFrame parseMapFrame(std::string_view text) {
+  std::string lower(text);
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (lower == "enu") return MapFrame::kEnu;
+  if (lower == "ned") return MapFrame::kNed;
+  throw ValueError("map frame must be enu (x east, y north, z up) or ned (x north, y east, z down), got '" +
+                   std::string(text) + "'");
+}
+
+Eigen::Matrix3d nwuToMapFrame(MapFrame frame) {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  if (frame == MapFrame::kEnu) {
+    rotation << 0, -1, 0,  //
+        1, 0, 0,           //
+        0, 0, 1;
+  } else if (frame == MapFrame::kNed) {
+    rotation = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  }
+  return rotation;
+}
+
+std::vector<Eigen::Vector3d> pointsInMapFrame(const std::vector<Eigen::Vector3d>& points_m, MapFrame frame) {
+  const Eigen::Matrix3d rotation = nwuToMapFrame(frame);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points_m.size());
+  for (const Eigen::Vector3d& p : points_m) out.push_back(rotation * p);
+  return out;
+}
+
+OcTree16 mapInFrame(const OcTree16& map, MapFrame frame) { return permuted(map, nwuToMapFrame(frame)); }
+
+OcTree16 mapFromFrame(const OcTree16& map, MapFrame frame) {
+  return permuted(map, nwuToMapFrame(frame).transpose());
+}
+
+std::string mapFrameComment(MapFrame frame) { return std::string(kCommentPrefix) + mapFrameDescription(frame); }
+
+std::optional<MapFrame> mapFrameOfComments(const std::vector<std::string>& comments) {
+  for (const std::string& comment : comments) {
+    if (!comment.starts_with(kCommentPrefix)) continue;
+    const std::string_view name = std::string_view(comment).substr(kCommentPrefix.size(), 3);
+    for (MapFrame frame : {MapFrame::kEnu, MapFrame::kNed, MapFrame::kNwu}) {
+      if (name == mapFrameName(frame)) return frame;
+    }
+  }
+  return std::nullopt;
+}
+
+void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame) {
+  writeMapFile(frame == MapFrame::kNwu ? map : mapInFrame(map, frame), path, {mapFrameComment(frame)});
+}
+
+FramedMap readMapFileToNwu(const std::string& path, const OctreeOptions& options) {
+  const MapFrame frame = mapFrameOfComments(readMapFileHeader(path).comments).value_or(MapFrame::kNwu);
+  OcTree16 map = readMapFile(path, options);
+  if (frame == MapFrame::kNwu) return {std::move(map), frame};
+  return {mapFromFrame(map, frame), frame};
+}
+
+}  // namespace sonarmap
