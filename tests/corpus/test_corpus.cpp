@@ -332,8 +332,8 @@ TEST(corpusRealViewer, messagesSplitOverRecordsOrSharingOneAreReassembled) {
   const SonarLog log = readSonarLog(valid("viewer_chunked.bin"));
   ASSERT_EQ(log.beams.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
-    // angles 0, 1, 2, 3 gradians clockwise: bearings 0, then counter-clockwise from a full turn
-    EXPECT_NEAR(log.beams[i].bearing_rad, static_cast<double>((400 - i) % 400) * 2.0 * 3.141592653589793 / 400.0, 1e-12)
+    // angles 0, 1, 2, 3 gradians clockwise from ahead: bearings clockwise from ahead (beam.hpp)
+    EXPECT_NEAR(log.beams[i].bearing_rad, static_cast<double>(i) * 2.0 * 3.141592653589793 / 400.0, 1e-12)
         << i;
     EXPECT_EQ(log.beams[i].intensities.size(), 3u) << i;
   }
