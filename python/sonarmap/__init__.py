@@ -4,8 +4,9 @@ Python bindings of the sonarmap C++ library (the same code as the ``sonarmap`` c
 not a second implementation). Maps are OctoMap-compatible octrees (``.bt``/``.ot``).
 
 Frames and units: metres, radians (degrees only where the CLI takes degrees: beam widths,
-apertures, sector and heading, as its option names say). The sonar frame has x along bearing 0,
-y left, z up; the map frame of a sonar map is NWU (x north, y west, z up); navigation is NED with
+apertures, sector and heading, as its option names say). The sonar frame has x along bearing 0
+(the head's ahead), y starboard, z down, bearings clockwise (as the body frame: a mounting of
+zeros is upright and aligned); the map frame of a sonar map is NWU (x north, y west, z up); navigation is NED with
 body FRD attitudes (roll, pitch, yaw, Z-Y-X).
 
 Quick start::

@@ -385,15 +385,16 @@ TEST(simMsis, HeadingTurnsTheBeamsInTheMap) {
 
 TEST(simMsis, DefaultMountingMapsTheSonarOntoTheVehicle) {
   const Eigen::Isometry3d at_origin = sonarToMap(NavSample{}, defaultSonarToBody());
-  EXPECT_TRUE(at_origin.isApprox(Eigen::Isometry3d::Identity(), 1e-12));
+  EXPECT_TRUE(at_origin.isApprox(staticSonarToMap(), 1e-12));  // a log without navigation
+  EXPECT_TRUE((at_origin.linear() * Eigen::Vector3d::UnitY()).isApprox(-Eigen::Vector3d::UnitY(), 1e-12));  // starboard: east
   NavSample moved;
   moved.position_ned_m = Eigen::Vector3d(1.0, 2.0, 3.0);  // north, east, down
   moved.yaw_rad = 90.0 * kDegree;
   const Eigen::Isometry3d pose = sonarToMap(moved, defaultSonarToBody());
   EXPECT_TRUE(pose.translation().isApprox(Eigen::Vector3d(1.0, -2.0, -3.0), 1e-12));  // NWU
-  // Heading east: the sonar's +x (forward) is the map's −y (east), its +z still up.
+  // Heading east: the sonar's +x (forward) is the map's −y (east), its +z (down) the map's −z.
   EXPECT_TRUE((pose.linear() * Eigen::Vector3d::UnitX()).isApprox(-Eigen::Vector3d::UnitY(), 1e-12));
-  EXPECT_TRUE((pose.linear() * Eigen::Vector3d::UnitZ()).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+  EXPECT_TRUE((pose.linear() * Eigen::Vector3d::UnitZ()).isApprox(-Eigen::Vector3d::UnitZ(), 1e-12));
 }
 
 TEST(simMsis, InvalidOptionsAndScenesAreRejected) {

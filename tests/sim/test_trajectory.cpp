@@ -318,8 +318,8 @@ TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
   options.echo.speckle_looks = 0;
   options.echo.noise_level_db = -300.0;
   options.trajectory = waypointTrajectory(points);
-  const double tilt_rad = 25.0 * kDegree;  // positive about the sonar's y (left) axis: +x down
-  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(tilt_rad, Eigen::Vector3d::UnitY());
+  const double tilt_rad = 25.0 * kDegree;  // pitched down: negative about the sonar's y (starboard) axis
+  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(-tilt_rad, Eigen::Vector3d::UnitY());
   const MsisSimulation run = simulateMsis(builtinScene("quay3d"), options);
   ASSERT_FALSE(run.nav.empty());
   const Trajectory expected = waypointTrajectory(points);
