@@ -105,7 +105,8 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
     EXPECT_NEAR(beam.time_s, 0.043 * static_cast<double>(i), 1e-9);
     EXPECT_GE(beam.bearing_rad, 0.0);
     EXPECT_LT(beam.bearing_rad, 2.0 * std::numbers::pi);
-    EXPECT_NEAR(std::remainder(beam.bearing_rad - 1.8 * kDegree * static_cast<double>(i), 2.0 * std::numbers::pi), 0.0,
+    // The head turns counter-clockwise seen from above: bearings (clockwise, beam.hpp) decrease.
+    EXPECT_NEAR(std::remainder(beam.bearing_rad + 1.8 * kDegree * static_cast<double>(i), 2.0 * std::numbers::pi), 0.0,
                 1e-9);
   }
   // The ground truth travels with the log.
