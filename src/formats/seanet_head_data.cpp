@@ -50,7 +50,9 @@ std::vector<std::uint8_t> unpackBins(std::span<const unsigned char> data, bool e
 double bearingRad(std::uint16_t bearing, bool inverted) {
   const std::uint32_t from_ahead = inverted ? (kAheadBearing + kBearingUnitsPerTurn - bearing) % kBearingUnitsPerTurn
                                             : (bearing + kBearingUnitsPerTurn - kAheadBearing) % kBearingUnitsPerTurn;
-  return 2.0 * std::numbers::pi * static_cast<double>(from_ahead) / kBearingUnitsPerTurn;
+  // Through degrees, as the beam CSV reads them back (beam_csv.cpp): a converted log maps alike.
+  const double degrees = static_cast<double>(from_ahead) * 360.0 / kBearingUnitsPerTurn;
+  return degrees * std::numbers::pi / 180.0;
 }
 
 SeaNetHeadData defectAt(std::size_t at, std::string message) {

@@ -312,7 +312,7 @@ TEST(corpusRosBag, aMiniKingTopicReadsByItsFields) {
   EXPECT_EQ(log.sonar, "ROS topic /miniking_node/sonar (miniking_ros/AcousticBeam)");
   EXPECT_DOUBLE_EQ(log.beams[0].bin_length_m, 10.0 / 8.0);  // range_max over the bins
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{0, 1, 5, 200, 80, 9, 4, 2}));
-  EXPECT_NEAR(log.beams[1].bearing_rad, 2.0 * 3.14159265358979 - (90.9 * 3.14159265358979 / 180.0), 1e-6);
+  EXPECT_NEAR(log.beams[1].bearing_rad, 90.9 * 3.14159265358979 / 180.0, 1e-6);  // clockwise, as beam.hpp counts
   EXPECT_DOUBLE_EQ(log.beams[2].time_s, 1002.0);
 }
 

@@ -126,13 +126,13 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
 
 TEST(simMsis, DefaultTankAndHarbourLogsAreUnchanged) {
   // Checksums of what the defaults (the Micron, 360° turns, the 5 m scenes) write: they change
-  // only on purpose. Last changed in issue 21: the Micron's noise taken from the CRAS log's quiet
-  // bins (−41.5 dB) and the tank's reverberation moved from the noise into the scene.
-  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0x8f37471839190d6fULL);
+  // only on purpose. Last changed in issue 54: bearings count clockwise (beam.hpp) while the head
+  // still turns counter-clockwise, so they are negated; the echoes are those of issue 21.
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0xd01dab525ddf3aaULL);
   MsisSimulationOptions moving = turns(1);
   moving.seed = 3;
   moving.trajectory = constantVelocityTrajectory(NavSample{}, Eigen::Vector3d(0.0, 0.3, 0.0));
-  EXPECT_EQ(checksum(simulateMsis(builtinScene("harbour"), moving).log), 0xa1bebf42c02a9f5dULL);
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("harbour"), moving).log), 0xa4b8d6fe5e36c8cbULL);
 }
 
 TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
@@ -145,8 +145,8 @@ TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
   const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
   ASSERT_EQ(run.log.beams.size(), 100U);
   EXPECT_DOUBLE_EQ(run.log.beams[0].bearing_rad, 0.5);
-  EXPECT_NEAR(run.log.beams[1].bearing_rad, 0.5 - 3.6 * kDegree, 1e-12);
-  EXPECT_NEAR(run.log.beams[20].bearing_rad, 0.5 - 72.0 * kDegree + 2.0 * std::numbers::pi, 1e-9);  // wrapped
+  EXPECT_NEAR(run.log.beams[1].bearing_rad, 0.5 + 3.6 * kDegree, 1e-12);  // clockwise: bearings increase
+  EXPECT_NEAR(run.log.beams[20].bearing_rad, 0.5 + 72.0 * kDegree, 1e-9);
   EXPECT_EQ(run.log.beams[0].intensities.size(), 200U);
   EXPECT_DOUBLE_EQ(run.log.beams[0].bin_length_m, 0.05);
   EXPECT_EQ(splitSweeps(run.log.beams).size(), 1U);

@@ -342,7 +342,8 @@ TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
   EXPECT_NEAR(truth->surface.range_m, (2.0 + 1.5 / 8.0) / (std::sin(tilt_rad) + std::cos(tilt_rad) / 8.0), 1e-9);
   // The beam is 35° tall: its lower edge, 42.5° down, meets the seabed first (2.85 m); the echo
   // peaks between that range and the axis's.
-  const Eigen::Vector3d lower_edge = pose.linear() * Eigen::Vector3d(std::cos(17.5 * kDegree), 0.0, -std::sin(17.5 * kDegree));
+  // (the sonar frame's z is down: FRD)
+  const Eigen::Vector3d lower_edge = pose.linear() * Eigen::Vector3d(std::cos(17.5 * kDegree), 0.0, std::sin(17.5 * kDegree));
   const auto nearest = firstHit(run.scene, pose.translation(), lower_edge, 5.0);
   ASSERT_TRUE(nearest);
   EXPECT_EQ(nearest->primitive, 1U);
