@@ -84,8 +84,9 @@ std::uint64_t checksum(const SonarLog& log) {
 
 /// Range of the first surface along the horizontal ray at `bearing_rad` from the map origin.
 SceneHit horizontalHit(const Scene& scene, double bearing_rad) {
-  const auto hit = firstHit(scene, Eigen::Vector3d::Zero(),
-                            Eigen::Vector3d(std::cos(bearing_rad), std::sin(bearing_rad), 0.0), 100.0);
+  // A static head: the sonar frame placed by staticSonarToMap (bearing b at map angle −b).
+  const Eigen::Vector3d along = staticSonarToMap().linear() * Eigen::Vector3d(std::cos(bearing_rad), std::sin(bearing_rad), 0.0);
+  const auto hit = firstHit(scene, Eigen::Vector3d::Zero(), along, 100.0);
   EXPECT_TRUE(hit);
   return hit.value_or(SceneHit{});
 }
@@ -170,7 +171,7 @@ TEST(simMsis, SectorHeadSweepsBackAndForthBetweenItsLimits) {
     const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
     const std::vector<Beam>& beams = run.log.beams;
     ASSERT_EQ(beams.size(), 4U * 51U);  // `turns` counts passes across the sector
-    const double first_sign = counter_clockwise ? 1.0 : -1.0;
+    const double first_sign = counter_clockwise ? -1.0 : 1.0;  // counter-clockwise: bearings decrease
     EXPECT_NEAR(wrappedDifference(350.0 * kDegree, beams[0].bearing_rad), -first_sign * 45.0 * kDegree, 1e-9);
     for (std::size_t i = 0; i < beams.size(); ++i) {
       EXPECT_GE(beams[i].bearing_rad, 0.0);
@@ -257,7 +258,7 @@ TEST(simMsis, WallEchoesAtTheRangesOfTheGeometry) {
   std::size_t walls = 0, found = 0;
   for (const Beam& beam : run.log.beams) {
     const SceneHit wall = horizontalHit(tank, beam.bearing_rad);
-    if (std::abs(beam.bearing_rad - 95.0 * kDegree) < 20.0 * kDegree) continue;  // the floater is in front
+    if (std::abs(beam.bearing_rad - 265.0 * kDegree) < 20.0 * kDegree) continue;  // the floater (map 95°) is in front
     ++walls;
     // A strong echo starts within a few centimetres of the wall's range (the leading edge).
     const auto [intensity, range_m] = peak(beam, wall.surface.range_m - 0.03, wall.surface.range_m + 0.1);
@@ -311,7 +312,7 @@ TEST(simMsis, MultipathLandsBehindTheWallsStrongestNearCorners) {
     const double wall_m = horizontalHit(tank, beam.bearing_rad).surface.range_m;
     // In front of the walls a double bounce never arrives (its path is longer than the way to the
     // wall and back), except around the floater (floater–surface–wall paths).
-    if (std::abs(beam.bearing_rad - 95.0 * kDegree) > 20.0 * kDegree) {
+    if (std::abs(beam.bearing_rad - 265.0 * kDegree) > 20.0 * kDegree) {  // away from the floater (map 95°)
       EXPECT_LT(std::abs(meanIntensity(beam, 1.0, wall_m - 0.05) - meanIntensity(direct_beam, 1.0, wall_m - 0.05)), 0.5)
           << "bearing " << beam.bearing_rad / kDegree;
     }
@@ -354,7 +355,7 @@ TEST(simMsis, MovingVehicleCarriesItsPoseAndTime) {
     EXPECT_GT(run.log.beams[i].time_s, run.log.beams[i - 1].time_s);
   for (const std::size_t i : {std::size_t{0}, std::size_t{200}}) {
     const Beam& beam = run.log.beams[i];
-    ASSERT_NEAR(beam.bearing_rad, 0.0, 1e-9);
+    ASSERT_NEAR(std::remainder(beam.bearing_rad, 2.0 * std::numbers::pi), 0.0, 1e-9);  // ahead, a turn apart
     const double expected_m = 1.8 - 0.05 * beam.time_s;
     EXPECT_NEAR(firstAbove(beam, 100, 1.0), expected_m, 0.05) << "at " << beam.time_s << " s";
   }
@@ -370,16 +371,17 @@ TEST(simMsis, MovingVehicleCarriesItsPoseAndTime) {
 }
 
 TEST(simMsis, HeadingTurnsTheBeamsInTheMap) {
-  // Heading east (yaw 90°): the sonar's +x looks east (map −y, open water) and its +y (bearing
-  // 90°) looks north, at the pile 1.8 m away.
+  // Heading east (yaw 90°): the sonar's +x looks east (map −y, open water) and its port side
+  // (bearing 270°, where the counter-clockwise head is 50 beams later) looks north, at the pile
+  // 1.8 m away.
   NavSample east;
   east.yaw_rad = 90.0 * kDegree;
   MsisSimulationOptions options = noiseless(1);
   options.trajectory = staticTrajectory(east);
   const MsisSimulation run = simulateMsis(builtinScene("harbour"), options);
   const Beam& ahead = run.log.beams[0];  // bearing 0°
-  const Beam& left = run.log.beams[50];  // bearing 90°
-  ASSERT_NEAR(left.bearing_rad, 90.0 * kDegree, 1e-9);
+  const Beam& left = run.log.beams[50];  // bearing 270°: port
+  ASSERT_NEAR(left.bearing_rad, 270.0 * kDegree, 1e-9);
   EXPECT_LT(peak(ahead, 1.0, 5.0).first, 10);
   EXPECT_NEAR(firstAbove(left, 100, 1.0), 1.8, 0.05);
 }
