@@ -90,7 +90,9 @@ std::string fieldOfViewOptions(const MissionRun& mission) {
                 truth.vertical_aperture_rad.value_or(0.0) * kDegPerRad, truth.max_range_m.value_or(0.0));
   std::string options = aperture;
   for (std::size_t i = 0; i < truth.sensor_positions_m.size(); ++i) {
-    options += " --sensor-pose " + poseText(truth.sensor_orientations[i], truth.sensor_positions_m[i]);
+    // --sensor-pose is a navigation fix (NED) of the sonar, as eval reads it.
+    const Eigen::Matrix3d map_to_ned = nedToMap().linear().transpose();
+    options += " --sensor-pose " + poseText(map_to_ned * truth.sensor_orientations[i], map_to_ned * truth.sensor_positions_m[i]);
   }
   return options;
 }

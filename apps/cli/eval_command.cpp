@@ -17,6 +17,7 @@
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/render/map_figures.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
@@ -37,11 +38,16 @@ std::string builtinNames(const char* separator) {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-/// Sonar → map rotation of roll, pitch, yaw (radians) about the map's x, y, z axes: Rz·Ry·Rx.
-Eigen::Matrix3d sonarToMapRotation(double roll_rad, double pitch_rad, double yaw_rad) {
-  return (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
+/// Sonar → map pose of one --sensor-pose: the sonar placed as a vehicle with the identity mounting
+/// is at a navigation fix (NED metres, Z-Y-X angles in degrees: navigation.hpp), so a sonar at
+/// rest at the origin is 0,0,0,0,0,0 and one tilted 25° down is pitch −25, as --mounting writes it.
+Eigen::Isometry3d sonarToMapOfSensorPose(const double* pose) {
+  NavSample fix;
+  fix.position_ned_m = Eigen::Vector3d(pose[0], pose[1], pose[2]);
+  fix.roll_rad = pose[3] * kDegree;
+  fix.pitch_rad = pose[4] * kDegree;
+  fix.yaw_rad = pose[5] * kDegree;
+  return sonarToMap(fix, defaultSonarToBody());
 }
 
 }  // namespace
@@ -61,9 +67,10 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
       ->delimiter(',')
       ->allow_extra_args(false);
   cmd->add_option("--sensor-pose", args.sensor_pose,
-                  "Sonar pose x,y,z,roll,pitch,yaw in the map frame (NWU, z up): position in m, angles in deg "
-                  "about the map's x, y, z axes (R = Rz(yaw) Ry(pitch) Rx(roll); positive pitch tilts the "
-                  "sonar's bearing 0 down); repeatable; instead of --sensor")
+                  "Sonar pose x,y,z,roll,pitch,yaw as a navigation fix with map --mounting's angles: x north, "
+                  "y east, z down in m (NED), then roll, pitch, yaw in deg (Z-Y-X; yaw clockwise from north, "
+                  "pitch -25 = bearing 0 tilted 25 deg down); 0,0,0,0,0,0 is a log mapped without --nav; "
+                  "repeatable; instead of --sensor")
       ->delimiter(',')
       ->allow_extra_args(false);
   cmd->add_option("--vertical-aperture", args.vertical_aperture_deg,
@@ -114,9 +121,9 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
     }
     options.sensor_positions_m.clear();
     for (std::size_t i = 0; i < args.sensor_pose.size(); i += 6) {
-      const double* pose = args.sensor_pose.data() + i;
-      options.sensor_positions_m.emplace_back(pose[0], pose[1], pose[2]);
-      orientations.push_back(sonarToMapRotation(pose[3] * kDegree, pose[4] * kDegree, pose[5] * kDegree));
+      const Eigen::Isometry3d sonar_to_map = sonarToMapOfSensorPose(args.sensor_pose.data() + i);
+      options.sensor_positions_m.push_back(sonar_to_map.translation());
+      orientations.push_back(sonar_to_map.linear());
     }
   }
   if (cmd.count("--vertical-aperture") > 0) {

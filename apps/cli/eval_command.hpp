@@ -24,8 +24,9 @@ struct EvalArgs {
   double tolerance_m = 0.1;
   double max_range_m = 0.0;    ///< 0: the map's reach
   std::vector<double> sensor;  ///< x,y,z triples, map frame; empty: the origin
-  /// x,y,z,roll,pitch,yaw sextuples: the sonars' poses in the map frame (metres, degrees about the
-  /// map's x, y, z axes, R = Rz(yaw)·Ry(pitch)·Rx(roll)); empty: --sensor's positions
+  /// x,y,z,roll,pitch,yaw sextuples: the sonars' poses as navigation fixes of a sonar mounted with
+  /// the identity (NED metres, Z-Y-X degrees as --mounting: pitch −25 is tilted 25° down);
+  /// empty: --sensor's positions
   std::vector<double> sensor_pose;
   double vertical_aperture_deg = 0.0;  ///< --vertical-aperture, degrees (set: field-of-view check)
   std::string png;             ///< --png: the occupied voxels coloured by their distance to the truth

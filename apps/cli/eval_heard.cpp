@@ -27,9 +27,9 @@ void addHeardOptions(CLI::App& cmd, HeardArgs& args) {
                  "NED metres, radians, the log's clock; e.g. sonarmap simulate's truth_nav.csv); beams outside its "
                  "time span are skipped and counted. Default: the sonar static at the map origin");
   cmd.add_option("--mounting", args.mounting,
-                 "With --nav: the sonar's frame (x along bearing 0, y left, z up) in the vehicle's body frame "
+                 "With --nav: the sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's body frame "
                  "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
-                 "DEGREES, as sonarmap map --mounting. Default: 0,0,0,180,0,0")
+                 "DEGREES, as sonarmap map --mounting. Default: 0,0,0,0,0,0 (upright and aligned)")
       ->delimiter(',')
       ->expected(6);
   cmd.add_option("--heard-level", args.level_db,

@@ -51,7 +51,7 @@ std::string withoutSource(const std::string& text, const std::string& path) {
 
 std::string arcText(const BearingArc& arc) {
   if (arc.full_circle) return "full circle (360°)";
-  return formatted("%.1f° to %.1f° counter-clockwise (%.1f°)", arc.from_deg, arc.to_deg, arc.span_deg);
+  return formatted("%.1f° to %.1f° clockwise (%.1f°)", arc.from_deg, arc.to_deg, arc.span_deg);
 }
 
 std::string gainText(const HeadSetting& setting) {

@@ -63,9 +63,9 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
                      "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
                      "outside its time span are skipped");
   cmd->add_option("--mounting", args.mounting,
-                  "With --nav: the sonar's frame (x along bearing 0, y left, z up) in the vehicle's body frame "
+                  "With --nav: the sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's body frame "
                   "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
-                  "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,180,0,0")
+                  "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,0,0,0; a head tilted 25 deg down is PITCH -25")
       ->delimiter(',')
       ->expected(6);
   cmd->add_flag("--slam", args.slam,

@@ -19,7 +19,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args);
 
 /// The sonar's mounting from --mounting: sonar frame (beam.hpp) → body frame (FRD), translation
 /// X,Y,Z in metres and rotation Rz(YAW)·Ry(PITCH)·Rx(ROLL) in degrees (navigation.hpp's Z-Y-X
-/// convention). Empty: defaultSonarToBody(), upright and aligned (the same as 0,0,0,180,0,0).
+/// convention). Empty: defaultSonarToBody(), upright and aligned (the same as 0,0,0,0,0,0).
 /// @throws ValueError (usage) unless there are exactly six finite values.
 Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting);
 

@@ -132,7 +132,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "across it")
       ->capture_default_str();
   cmd->add_option("--sector-center", args.sector_center_deg,
-                  "Bearing of the sector's centre in degrees, counter-clockwise from the sonar's forward axis")
+                  "Bearing of the sector's centre in degrees, clockwise from the sonar's ahead (bearing 0)")
       ->capture_default_str();
   cmd->add_option("--bag", args.bag,
                   "Also write the log as a ROS 1 bag: the beams as micron_driver_ros/ScanLine on /sonar/scan_line, "

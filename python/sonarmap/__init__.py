@@ -4,8 +4,9 @@ Python bindings of the sonarmap C++ library (the same code as the ``sonarmap`` c
 not a second implementation). Maps are OctoMap-compatible octrees (``.bt``/``.ot``).
 
 Frames and units: metres, radians (degrees only where the CLI takes degrees: beam widths,
-apertures, sector and heading, as its option names say). The sonar frame has x along bearing 0,
-y left, z up; a sonar map is in ENU (x east, y north, z up: ROS REP 103/105) unless
+apertures, sector and heading, as its option names say). The sonar frame has x along bearing 0
+(the head's ahead), y starboard, z down, bearings clockwise (as the body frame: a mounting of
+zeros is upright and aligned); a sonar map is in ENU (x east, y north, z up: ROS REP 103/105) unless
 ``map_sonar_log(..., map_frame="ned")`` asks for NED, and says so in ``OccupancyMap.frame``;
 navigation is NED with body FRD attitudes (roll, pitch, yaw, Z-Y-X).
 

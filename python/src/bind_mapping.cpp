@@ -184,7 +184,8 @@ clock joined to the log's as the CLI does, moved by the keyword nav_time_offset_
 float64 array of fixes [time_s, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad] (NED metres, body FRD
 Z-Y-X radians, on the beams' clock; the CLI's --nav). mounting: with nav, (x_m, y_m, z_m, roll_deg,
 pitch_deg, yaw_deg) of the sonar in the body (the CLI's --mounting); default: a ROS log nav's
-/tf_static mounting of the log's sonar frame when it has one, else upright and aligned. progress: callable(sweeps_done, sweeps_total) or None. slam: correct
+/tf_static mounting of the log's sonar frame when it has one, else upright and aligned (all zeros;
+pitch_deg -25 is a head tilted 25 degrees down). progress: callable(sweeps_done, sweeps_total) or None. slam: correct
 the navigation by scan matching first and map with the corrected trajectory (the CLI's --slam; without
 nav the vehicle is believed still and its motion comes from the scans); the map's ``trajectory`` and
 ``slam`` then hold the corrected trajectory and what the localization did; keyword nav_class (the CLI's

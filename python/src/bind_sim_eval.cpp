@@ -243,7 +243,7 @@ the names for an unknown one.)doc");
 scene: a built-in scene name (built for the preset's range), a scene file path, or a sonarmap.Scene.
 sonar: head preset (sonar_preset_names()). turns: full turns (or sector passes), >= 1. seed: of the
 speckle and noise (a seed always gives the same beams). sector: scanned width in degrees, (0, 360].
-sector_center: degrees, counter-clockwise from the sonar's x. speed: m/s along heading (degrees
+sector_center: degrees, clockwise from the sonar's ahead (bearing 0). speed: m/s along heading (degrees
 clockwise from north). nav_rate: fixes per second (0: none). depth: metres, NED down from the origin,
 without a mission; None: the built-in scene's (3 m in quay3d at 5 m range, under its water surface at
 depth 0, scaled with the range; 0 elsewhere).

@@ -258,7 +258,7 @@ void bindSonar(py::module_& m) {
   py::class_<PySonarLog>(m, "SonarLog", R"doc(
 Beams of an MSIS log in recording order (C++ sonarmap::SonarLog; paper §2.1).
 
-Sonar frame: x along bearing 0, y left, z up; bearings counter-clockwise from +x seen from above,
+Sonar frame: x along bearing 0 (ahead), y starboard, z down; bearings clockwise from +x seen from above,
 radians in [0, 2π). Bin i of a beam covers ranges [i, i+1) × bin_length_m from the transducer.
 The arrays are read-only numpy views onto one contiguous copy of the beams, made once on the first
 access (the library keeps each beam's bins in its own vector, so a copy is unavoidable once);
@@ -304,7 +304,7 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
             log.cache();
             return readOnlyView(log.bearing_rad, {static_cast<py::ssize_t>(log.bearing_rad.size())}, self);
           },
-          "float64 (beams,): bearing of each beam, radians in [0, 2π), sonar frame, counter-clockwise from +x.")
+          "float64 (beams,): bearing of each beam, radians in [0, 2π), sonar frame, clockwise from +x (ahead).")
       .def_property_readonly(
           "bin_length_m",
           [](py::object self) {
@@ -432,8 +432,8 @@ bins, or beams of different bin lengths.)doc");
       },
       py::arg("polar"), py::arg("pixel_size_m") = py::none(), py::arg("beam_width_deg") = 3.0,
       R"doc(Top view of a polar image (paper §2.1, Fig. 4): uint8 (S, S), S = 2·ceil(R / pixel_size_m) + 1,
-R = bins × bin_length_m. The sonar is the centre pixel, +x (bearing 0) to the right, +y (bearing
-90°, counter-clockwise) UP: row 0 is the top, so show it with
+R = bins × bin_length_m. Seen from above: the sonar is the centre pixel, +x (bearing 0, ahead) UP,
++y (bearing 90°, starboard; bearings turn clockwise) to the right: row 0 is the top, so show it with
 ``plt.imshow(img, extent=[-h, h, -h, h])``, h = (S / 2) · pixel_size_m. Angles between beams at
 most ``beam_width_deg`` apart are interpolated; pixels no beam covers are 0.
 pixel_size_m: metres per pixel (default: the bin length). The array owns the image (no copy).

@@ -1,6 +1,7 @@
 /// @file echo_agreement.cpp
 /// echoAgreement (see echo_agreement.hpp).
 
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/eval/echo_agreement.hpp"
 
 #include <algorithm>
@@ -102,7 +103,7 @@ EchoAgreement echoAgreement(const OcTree16& map, const SonarLog& log,
   for (std::size_t i = 0; i < log.beams.size(); ++i) {
     const Beam& beam = log.beams[i];
     if (!sonar_to_map.empty() && !sonar_to_map[i]) continue;
-    const Eigen::Isometry3d pose = sonar_to_map.empty() ? Eigen::Isometry3d::Identity() : *sonar_to_map[i];
+    const Eigen::Isometry3d pose = sonar_to_map.empty() ? staticSonarToMap() : *sonar_to_map[i];
     const Eigen::Vector3d axis(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
     bool first = true;
     for (std::size_t c = 0; c < beam.intensities.size(); ++c) {

@@ -1,6 +1,7 @@
 /// @file first_returns.cpp
 /// A log's first returns and how many a map holds (see first_returns.hpp).
 
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/eval/first_returns.hpp"
 
 #include <algorithm>
@@ -103,7 +104,7 @@ FirstReturnScore firstReturns(const OcTree16& map, const SonarLog& log,
   }
   for (FirstReturn& first : found.returns) {
     if (!sonar_to_map.empty() && !sonar_to_map[first.beam]) continue;
-    const Eigen::Isometry3d pose = sonar_to_map.empty() ? Eigen::Isometry3d::Identity() : *sonar_to_map[first.beam];
+    const Eigen::Isometry3d pose = sonar_to_map.empty() ? staticSonarToMap() : *sonar_to_map[first.beam];
     first.mapped = wedgeHoldsOccupied(map, pose, log.beams[first.beam].bearing_rad, first.range_m, options.beam_width_rad,
                                       tolerance_m);
     score.mapped += first.mapped ? 1 : 0;

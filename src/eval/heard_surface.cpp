@@ -80,7 +80,7 @@ OcTree16 heardSurfaceMap(const SonarLog& log, const NavTrack& true_nav, const Ei
                     i, beam.bin_length_m, bin_m, head.range_m, head.bins);
       throw ValueError(message);
     }
-    Eigen::Isometry3d sonar_to_map = Eigen::Isometry3d::Identity();  // static: at the map origin
+    Eigen::Isometry3d sonar_to_map = staticSonarToMap();  // static: at the map origin (navigation.hpp)
     if (nav) {
       const std::optional<Eigen::Isometry3d> body_to_ned = nav->bodyToNedAt(beam.time_s);
       if (!body_to_ned) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/polar.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 
@@ -17,11 +18,13 @@ std::vector<LastSweepEcho> lastSweepEchoes(const SonarLog& log, const SonarMappe
   if (sweeps.empty()) return echoes;
   PolarImage last = makePolarImage(log.beams, sweeps.back().first, sweeps.back().last_exclusive);
   const std::vector<BeamDetection> detections = mapper.detect(last);
+  const Eigen::Isometry3d static_to_map = staticSonarToMap();  // a log without navigation
   for (int r = 0; r < last.rows(); ++r) {
     const BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     if (!detection.hasObstacle()) continue;
     LastSweepEcho echo{last.bearing_rad[static_cast<std::size_t>(r)], detection.range_m, false};
-    const Eigen::Vector3d point(echo.range_m * std::cos(echo.bearing_rad), echo.range_m * std::sin(echo.bearing_rad), 0.0);
+    const Eigen::Vector3d point =
+        static_to_map * Eigen::Vector3d(echo.range_m * std::cos(echo.bearing_rad), echo.range_m * std::sin(echo.bearing_rad), 0.0);
     echo.occupied = mapper.map().occupancyAt(point) == Occupancy::kOccupied;
     echoes.push_back(echo);
   }

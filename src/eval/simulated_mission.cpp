@@ -67,8 +67,8 @@ MissionRun simulateMission(const SimulatedMission& mission) {
   double tilt_deg = 0.0;
   const std::vector<NavSample> waypoints = missionWaypoints(mission.mission, s, tilt_deg);
   options.trajectory = waypointTrajectory(waypoints);
-  // Tilted down: upside down in the body frame (the default mounting, roll 180°), pitched down.
-  run.mounting = {0.0, 0.0, 0.0, 180.0, -tilt_deg, 0.0};
+  // Tilted down: upright and aligned (the identity), pitched down (negative pitch, FRD).
+  run.mounting = {0.0, 0.0, 0.0, 0.0, -tilt_deg, 0.0};
   options.sonar_to_body = sonarToBodyOfMounting(std::vector<double>(run.mounting.begin(), run.mounting.end()));
   const double turn_s = options.head.beam_period_s * static_cast<double>(options.head.beamsPerTurn());
   options.turns = static_cast<std::size_t>(std::ceil(waypoints.back().time_s / turn_s));

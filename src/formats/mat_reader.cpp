@@ -183,8 +183,8 @@ std::optional<std::vector<std::uint8_t>> readIntensities(const matvar_t* var, st
   return bytes;
 }
 
-/// Bearing in [0, 2π) from the CRAS head angle in degrees: radians(angle + 180), the authors'
-/// plane convention.
+/// Bearing in [0, 2π), clockwise from ahead, from the CRAS head angle in degrees (the Micron's
+/// SeaNet bearing, clockwise, ahead at 180°): radians(angle − 180) = radians(angle + 180) mod 2π.
 double bearingFromCrasAngle(double angle_deg) {
   double deg = std::fmod(angle_deg + 180.0, 360.0);
   if (deg < 0.0) deg += 360.0;

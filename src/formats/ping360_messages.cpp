@@ -85,8 +85,7 @@ std::optional<Beam> decodeDeviceData(std::span<const unsigned char> payload, std
     why = "no samples";
   } else {
     Beam beam;
-    const std::uint32_t ccw = (kGradiansPerTurn - angle) % kGradiansPerTurn;
-    beam.bearing_rad = 2.0 * std::numbers::pi * static_cast<double>(ccw) / kGradiansPerTurn;
+    beam.bearing_rad = 2.0 * std::numbers::pi * static_cast<double>(angle) / kGradiansPerTurn;  // clockwise, 0 ahead
     beam.bin_length_m = sample_period * kSamplePeriodUnit_s * sound_speed_m_s / 2.0;
     beam.intensities.assign(payload.begin() + static_cast<std::ptrdiff_t>(data_at), payload.end());
     beam.gain_setting = payload[kGainSettingAt];

@@ -37,8 +37,8 @@ struct Ping360Messages {
 /// Frames the ping-protocol messages of `stream` (frame_scanner.hpp: garbage runs, a message cut
 /// by the end, bad checksums, messages of 10,240 bytes or more (beyond Ping Viewer's parser) are
 /// skipped and counted) and decodes device_data and
-/// auto_device_data into beams: `bearing_rad` = 2π · ((400 − angle) mod 400) / 400 (the Ping360
-/// counts gradians clockwise seen from above, beam.hpp counter-clockwise; head zero at +x),
+/// auto_device_data into beams: `bearing_rad` = 2π · angle / 400 (the Ping360 counts gradians
+/// clockwise seen from above from its zero, ahead; beam.hpp the same),
 /// `bin_length_m` = sample_period × 25 ns × sound_speed_m_s / 2, `intensities` = the data array
 /// (bin 0 nearest), `gain_setting` = gain_setting (0 low, 1 normal, 2 high), no
 /// `intensity_span_db` (the protocol gives none). device_information (common message 4) names the

@@ -112,7 +112,9 @@ std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const 
     RosBagMounting mounting;
     Eigen::Isometry3d to_frd = Eigen::Isometry3d::Identity();
     if (!namesFrd(detail::tfFrame(body_frame))) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
-    mounting.sonar_to_body = to_frd * found->pose;
+    Eigen::Isometry3d sonar_from_frd = Eigen::Isometry3d::Identity();  // our sonar frame (FRD) in the tf frame
+    if (!namesFrd(detail::tfFrame(sonar_frame))) sonar_from_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+    mounting.sonar_to_body = to_frd * found->pose * sonar_from_frd;
     mounting.chain = found->chain;
     return mounting;
   });

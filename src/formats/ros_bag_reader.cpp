@@ -236,10 +236,10 @@ class RosBagBeamSource final : public BeamSource {
   /// Whether a bearing of magnitude `largest` cannot be radians (beyond a turn of them).
   static bool beyondRadians(double largest) { return largest > 2.0 * std::numbers::pi + 1e-6; }
 
-  /// `bearing` in the topic's unit and direction as beam.hpp's counter-clockwise radians in [0, 2π).
+  /// `bearing` in the topic's unit and direction as beam.hpp's clockwise radians in [0, 2π).
   double bearingOf(double bearing) const {
     const double turned_rad = bearing * 2.0 * std::numbers::pi / turn_;
-    double bearing_rad = std::fmod(clockwise_ ? -turned_rad : turned_rad, 2.0 * std::numbers::pi);
+    double bearing_rad = std::fmod(clockwise_ ? turned_rad : -turned_rad, 2.0 * std::numbers::pi);
     if (bearing_rad < 0.0) bearing_rad += 2.0 * std::numbers::pi;
     if (!(bearing_rad < 2.0 * std::numbers::pi)) bearing_rad = 0.0;  // −0 and rounding up to a whole turn
     return bearing_rad + 0.0;

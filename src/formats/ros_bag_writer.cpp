@@ -191,12 +191,11 @@ struct StaticTransform {
 SerializedMessage<TfMessageType> tfStatic(const RosBagWriteOptions& options, const ros::Time& stamp) {
   std::vector<StaticTransform> transforms;
   if (options.sonar_to_body) {
-    Eigen::Isometry3d pose = *options.sonar_to_body;
-    if (!detail::namesNedFrame(options.nav_frame)) {
-      Eigen::Isometry3d frd_to_flu = Eigen::Isometry3d::Identity();
-      frd_to_flu.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-      pose = frd_to_flu * pose;
-    }
+    Eigen::Isometry3d frd_to_flu = Eigen::Isometry3d::Identity();
+    frd_to_flu.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+    // The "sonar" tf frame is FLU (REP 103): our sonar frame (FRD, navigation.hpp) is turned into it.
+    Eigen::Isometry3d pose = *options.sonar_to_body * frd_to_flu;
+    if (!detail::namesNedFrame(options.nav_frame)) pose = frd_to_flu * pose;
     transforms.push_back({bodyFrame(options.nav_frame), kSonarFrame, pose});
   }
   if (options.raw_sensors && options.dvl_rotation_flu) {

@@ -72,7 +72,7 @@ NavSample rosPoseToNed(double time_s, const Eigen::Vector3d& position_m, const E
 }
 
 double clockwiseDegrees(double bearing_rad) {
-  double degrees = std::fmod(360.0 - bearing_rad * 180.0 / std::numbers::pi, 360.0);
+  double degrees = std::fmod(bearing_rad * 180.0 / std::numbers::pi, 360.0);
   if (degrees < 0.0) degrees += 360.0;
   return degrees >= 360.0 ? degrees - 360.0 : degrees;
 }

@@ -36,7 +36,7 @@ bool headerNamesNed(const RosValue& message);
 NavSample rosPoseToNed(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& body_to_world, bool ned);
 
 /// A beam's bearing as the Tritech drivers publish it: degrees in [0, 360), clockwise seen from
-/// above (beam.hpp's bearing_rad is counter-clockwise).
+/// above (beam.hpp's bearing_rad counts the same way, from the same zero).
 double clockwiseDegrees(double bearing_rad);
 
 /// Checks what a ROS log writer writes: every beam's time finite and >= 0 s (a stamp) and bin length

@@ -16,6 +16,9 @@ constexpr std::uint32_t kBearingUnitsPerTurn = 6400;  // 1/16 gradian
 constexpr double kAdIntervalUnit_s = 640e-9;
 // HdCtrl bits (Tritech mtHeadCommand/mtHeadData).
 constexpr std::uint16_t kHdCtrlAdc8On = 1U << 0;
+constexpr std::uint16_t kHdCtrlInvert = 1U << 3;  // the head mounted upside down: its count runs the other way
+/// SeaNet's "ahead": the centre of the head's default sector (left limit 2400, right limit 4000).
+constexpr std::uint32_t kAheadBearing = 3200;
 
 // Field offsets in the body (from the byte after the message type).
 constexpr std::size_t kHeadControlAt = 7;
@@ -42,10 +45,14 @@ std::vector<std::uint8_t> unpackBins(std::span<const unsigned char> data, bool e
   return bins;
 }
 
-/// SeaNet bearing (1/16 gradian, clockwise) → beam.hpp's radians in [0, 2π), counter-clockwise.
-double bearingRad(std::uint16_t bearing) {
-  const std::uint32_t ccw = (kBearingUnitsPerTurn - bearing) % kBearingUnitsPerTurn;
-  return 2.0 * std::numbers::pi * static_cast<double>(ccw) / kBearingUnitsPerTurn;
+/// SeaNet bearing (1/16 gradian, clockwise seen from above for an upright head, ahead at 3200) →
+/// beam.hpp's radians in [0, 2π): ahead at 0, clockwise; an inverted head counts the other way.
+double bearingRad(std::uint16_t bearing, bool inverted) {
+  const std::uint32_t from_ahead = inverted ? (kAheadBearing + kBearingUnitsPerTurn - bearing) % kBearingUnitsPerTurn
+                                            : (bearing + kBearingUnitsPerTurn - kAheadBearing) % kBearingUnitsPerTurn;
+  // Through degrees, as the beam CSV reads them back (beam_csv.cpp): a converted log maps alike.
+  const double degrees = static_cast<double>(from_ahead) * 360.0 / kBearingUnitsPerTurn;
+  return degrees * std::numbers::pi / 180.0;
 }
 
 SeaNetHeadData defectAt(std::size_t at, std::string message) {
@@ -90,7 +97,7 @@ SeaNetHeadData decodeSeaNetHeadData(std::span<const unsigned char> body, std::si
     return result;
   }
   Beam beam;
-  beam.bearing_rad = bearingRad(bearing);
+  beam.bearing_rad = bearingRad(bearing, (head_control & kHdCtrlInvert) != 0);
   beam.bin_length_m = ad_interval * kAdIntervalUnit_s * sound_speed_m_s / 2.0;
   beam.intensities = unpackBins(body.subspan(kSeaNetHeadDataFieldBytes, data_bytes), (head_control & kHdCtrlAdc8On) != 0);
   beam.gain_setting = body[kGainAt];

@@ -50,10 +50,11 @@ struct SeaNetHeadData {
 };
 
 /// Decodes one mtHeadData body (layout in the file comment) into a beam:
-///   - `bearing_rad` = 2π · ((6400 − bearing) mod 6400) / 6400: SeaNet counts 1/16 gradian
-///     clockwise seen from above, beam.hpp counter-clockwise; the head's zero stays at +x (see
-///     v4log_reader.hpp for the evidence of the direction). HdCtrl `invert` and the heading offset
-///     are not applied.
+///   - `bearing_rad` = 2π · ((bearing − 3200) mod 6400) / 6400: SeaNet counts 1/16 gradian
+///     clockwise seen from above with "ahead" at 3200, beam.hpp clockwise from ahead (see
+///     v4log_reader.hpp for the evidence). HdCtrl bit 3 `invert` (head mounted upside down) set:
+///     2π · ((3200 − bearing) mod 6400) / 6400, the count reversed about ahead. The heading offset
+///     is not applied.
 ///   - `bin_length_m` = ADInterval × 640 ns × sound_speed_m_s / 2.
 ///   - `intensities`: 8-bit bins (HdCtrl bit 0 `adc8on`) copied; else two 4-bit bins per byte,
 ///     high nibble first, ×17 onto 0…255.

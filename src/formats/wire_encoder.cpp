@@ -44,10 +44,11 @@ void checkBins(const Beam& beam, const char* function) {
   }
 }
 
-/// `bearing_rad` (counter-clockwise, beam.hpp) as `steps` per turn clockwise seen from above.
-unsigned clockwiseSteps(double bearing_rad, unsigned steps) {
-  const long step = std::lround(bearing_rad * steps / (2.0 * std::numbers::pi));
-  return static_cast<unsigned>(((static_cast<long>(steps) - step) % steps + steps) % steps);
+/// `bearing_rad` (clockwise from ahead, beam.hpp) as `steps` per turn clockwise seen from above,
+/// with ahead at `ahead_step` (the head's own count: SeaNet 3200 of 6400, Ping360 0 of 400).
+unsigned clockwiseSteps(double bearing_rad, unsigned steps, unsigned ahead_step) {
+  const long step = std::lround(bearing_rad * steps / (2.0 * std::numbers::pi)) + ahead_step;
+  return static_cast<unsigned>((step % steps + steps) % steps);
 }
 
 /// The beam's gain setting as the wire's byte (0 when unknown).
@@ -86,7 +87,7 @@ std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, co
     putU16(message, 0);                            // left limit
     putU16(message, 6399);                         // right limit
     message.push_back(32);                         // step: 1.8°
-    putU16(message, clockwiseSteps(beam.bearing_rad, 6400));
+    putU16(message, clockwiseSteps(beam.bearing_rad, 6400, 3200));
     putU16(message, bins);
     message.insert(message.end(), beam.intensities.begin(), beam.intensities.end());
     const std::size_t length = message.size() + 2;  // from its binary copy to the byte before the LF
@@ -114,7 +115,7 @@ std::vector<std::uint8_t> encodePing360Stream(const std::vector<Beam>& beams, co
     putU16(out, 2300);       // device_data
     out.insert(out.end(), {0x02, 0x00});  // source device, destination
     out.insert(out.end(), {0x01, gainByte(beam)});  // mode 1, gain setting
-    putU16(out, clockwiseSteps(beam.bearing_rad, 400));
+    putU16(out, clockwiseSteps(beam.bearing_rad, 400, 0));
     putU16(out, transmitDurationUs(beam, options.sound_speed_m_s));
     putU16(out, sample_period);
     putU16(out, 750);  // transmit frequency, kHz

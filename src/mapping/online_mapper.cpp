@@ -241,7 +241,7 @@ void OnlineMapper::integrateIntoMap(const DetectedSweep& sweep) {
   const std::unique_lock lock(map_mutex_);
   mapper_.recordDetection(sweep.detection);
   if (!sonar_to_body_) {
-    mapper_.integrateSweep(sweep.polar, sweep.detection.detections);
+    mapper_.integrateSweep(sweep.polar, sweep.detection.detections, staticSonarToMap());  // no navigation
   } else {
     mapper_.integrateSweep(sweep.polar, sweep.detection.detections, posesAt(sweep.polar.time_s));
   }
@@ -305,7 +305,7 @@ std::vector<std::optional<Eigen::Isometry3d>> OnlineMapper::posesAt(const std::v
   std::vector<std::optional<Eigen::Isometry3d>> poses;
   poses.reserve(times_s.size());
   if (!sonar_to_body_) {
-    poses.assign(times_s.size(), Eigen::Isometry3d::Identity());
+    poses.assign(times_s.size(), staticSonarToMap());
     return poses;
   }
   if (fixes_.empty()) {

@@ -150,11 +150,9 @@ void writeNavCsv(const std::string& path, const NavTrack& track) {
   writeFileAtomically(path, [&](std::ostream& out) { writeNavCsv(out, track); });
 }
 
-Eigen::Isometry3d defaultSonarToBody() {
-  Eigen::Isometry3d sonar_to_body = Eigen::Isometry3d::Identity();
-  sonar_to_body.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  return sonar_to_body;
-}
+Eigen::Isometry3d defaultSonarToBody() { return Eigen::Isometry3d::Identity(); }
+
+Eigen::Isometry3d staticSonarToMap() { return sonarToMap(NavSample{}, defaultSonarToBody()); }
 
 Eigen::Isometry3d sonarToMap(const NavSample& fix, const Eigen::Isometry3d& sonar_to_body) {
   return nedToMap() * bodyToNed(fix) * sonar_to_body;

@@ -83,8 +83,8 @@ cv::Mat cartesianFigure(const PolarImage& polar, double pixel_size_m, double bea
   spec.raster = coloured(image);
   spec.extent = {-half_m, half_m, -half_m, half_m};
   spec.title = title;
-  spec.x_label = "x (m), bearing 0";
-  spec.y_label = "y (m), bearing 90 deg";
+  spec.x_label = "starboard (m), bearing 90 deg";
+  spec.y_label = "ahead (m), bearing 0";
   spec.colour_bar = echoBar();
   spec.lines = {FigureLine{{Eigen::Vector2d::Zero()}, kTrackBgr, "sonar"}};
   return composeFigure(spec);

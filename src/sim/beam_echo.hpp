@@ -20,7 +20,7 @@ namespace sonarmap::sim {
 
 /// One direction of the aperture grid, relative to the beam's axis (sonar frame).
 struct ApertureRay {
-  double horizontal_rad = 0.0;  ///< added to the bearing (counter-clockwise)
+  double horizontal_rad = 0.0;  ///< added to the bearing (clockwise, beam.hpp)
   double elevation_rad = 0.0;   ///< above the horizontal plane of the sonar
   double sin_elevation = 0.0;
   double cos_elevation = 1.0;

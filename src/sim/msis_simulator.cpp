@@ -62,7 +62,7 @@ std::size_t MsisHeadOptions::beamsPerTurn() const {
 }
 
 double MsisHeadOptions::bearingOf(std::size_t index) const {
-  const double signed_step_rad = counter_clockwise ? step_rad : -step_rad;
+  const double signed_step_rad = counter_clockwise ? -step_rad : step_rad;  // bearings count clockwise (beam.hpp)
   if (!isSector()) return wrapBearing(start_bearing_rad + static_cast<double>(index) * signed_step_rad);
   const std::size_t steps = sectorSteps();
   const std::size_t pass = index / (steps + 1);

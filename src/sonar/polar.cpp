@@ -140,9 +140,9 @@ cv::Mat makeCartesianImage(const PolarImage& polar, double pixel_size_m, double 
   cv::Mat image = cv::Mat::zeros(side, side, CV_8UC1);
   for (int v = 0; v < side; ++v) {
     auto* out = image.ptr<std::uint8_t>(v);
-    const double y = (centre - v) * pixel_size_m;  // +y up
+    const double x = (centre - v) * pixel_size_m;  // sonar +x (ahead) up
     for (int u = 0; u < side; ++u) {
-      const double x = (u - centre) * pixel_size_m;  // +x right
+      const double y = (u - centre) * pixel_size_m;  // sonar +y (starboard) right: seen from above
       const int bin = static_cast<int>(std::floor(std::hypot(x, y) / polar.bin_length_m));
       if (bin >= polar.cols()) continue;
       const double theta = wrapPositive(std::atan2(y, x));

@@ -229,6 +229,15 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
             (Names{"eval", (mission / "map.bt").string(), "--truth", (mission / "scene.txt").string(),
                    "--vertical-aperture", "35"}));
   EXPECT_GE(std::count(fov_args.begin(), fov_args.end(), "--sensor-pose"), 20);
+  // One sign for the tilt: each pose of the level vehicle is pitched −25°, as --mounting below writes it.
+  for (auto it = std::find(fov_args.begin(), fov_args.end(), "--sensor-pose"); it != fov_args.end();
+       it = std::find(it + 1, fov_args.end(), "--sensor-pose")) {
+    ASSERT_NE(it + 1, fov_args.end());
+    double x = 0, y = 0, z = 0, roll = 0, pitch = 0, yaw = 0;
+    ASSERT_EQ(std::sscanf((it + 1)->c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &z, &roll, &pitch, &yaw), 6) << *(it + 1);
+    EXPECT_NEAR(pitch, -25.0, 1e-3) << *(it + 1);
+    EXPECT_NEAR(roll, 0.0, 1e-3) << *(it + 1);
+  }
   const ProgramRun seen = run(fov_args);
   ASSERT_EQ(seen.exit_code, 0) << seen.err;
   ASSERT_GE(linesOf(seen.out).size(), 3U) << seen.out;
@@ -240,7 +249,7 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
       commandArgs(lines[6], "3d: score it against the surface its beams heard (docs/accuracy.md):");
   EXPECT_EQ(heard_args, (Names{"eval", (mission / "map.bt").string(), "--truth", (mission / "scene.txt").string(),
                                "--heard-by", (mission / "beams.csv").string(), "--nav",
-                               (mission / "truth_nav.csv").string(), "--mounting", "0,0,0,180,-25,0", "--sonar",
+                               (mission / "truth_nav.csv").string(), "--mounting", "0,0,0,0,-25,0", "--sonar",
                                "micron"}));
   const ProgramRun heard = run(heard_args);
   ASSERT_EQ(heard.exit_code, 0) << heard.err;

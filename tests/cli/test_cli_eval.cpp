@@ -110,13 +110,13 @@ TEST_F(cliEval, SensorPosesAndTheVerticalApertureLimitWhatCountsAsSeen) {
                                 "--vertical-aperture", "35"});
   ASSERT_EQ(level.exit_code, 0) << level.err;
   EXPECT_EQ(linesOf(level.out)[1], "recall 0.5833 (7 of 12 visible surface voxels mapped)");
-  // Tilted 30° down (positive pitch): the wall's layer, about 3° up, lies above its ±17.5°.
-  const ProgramRun down = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,30,0",
+  // Tilted 30° down (pitch −30, as --mounting): the wall's layer, about 3° up, lies above its ±17.5°.
+  const ProgramRun down = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,-30,0",
                                "--vertical-aperture", "35"});
   ASSERT_EQ(down.exit_code, 0) << down.err;
   EXPECT_EQ(linesOf(down.out)[1], "recall 0.0000 (0 of 0 visible surface voxels mapped)");
   // Two poses: the union.
-  const ProgramRun both = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,30,0",
+  const ProgramRun both = run({"eval", map.string(), "--truth", scene.string(), "--sensor-pose", "0,0,0,0,-30,0",
                                "--sensor-pose", "0,0,0,0,0,0", "--vertical-aperture", "35"});
   ASSERT_EQ(both.exit_code, 0) << both.err;
   EXPECT_EQ(linesOf(both.out)[1], "recall 0.5833 (7 of 12 visible surface voxels mapped)");
@@ -319,8 +319,8 @@ TEST_F(cliEval, BadHeardSurfaceArgumentsAndInputsFailWithOneLine) {
     expectError(with({"--heard-by", beams, "--heard-level", level}), 2);
   }
   expectError(with({"--heard-by", beams, "--sonar", "sidescan"}), 2);              // no such preset
-  expectError(with({"--heard-by", beams, "--mounting", "0,0,0,180,0,0"}), 2);      // a mounting without --nav
-  expectError(with({"--heard-by", beams, "--nav", nav, "--mounting", "0,0,0,180,0"}), 2);  // five numbers
+  expectError(with({"--heard-by", beams, "--mounting", "0,0,0,0,0,0"}), 2);      // a mounting without --nav
+  expectError(with({"--heard-by", beams, "--nav", nav, "--mounting", "0,0,0,0,0"}), 2);  // five numbers
   expectError(with({"--nav", nav}), 2);                                             // no --heard-by
   expectError(with({"--sonar", "micron"}), 2);
   expectError(with({"--heard-level", "-6"}), 2);
@@ -332,7 +332,7 @@ TEST_F(cliEval, BadHeardSurfaceArgumentsAndInputsFailWithOneLine) {
   EXPECT_NE(other_head.err.find("not recorded by this head"), std::string::npos) << other_head.err;
   expectError(with({"--heard-by", beams, "--nav", nav, "--heard-level", "200"}), 1);  // nothing that loud
   // The same options well formed work.
-  EXPECT_EQ(with({"--heard-by", beams, "--nav", nav, "--mounting", "0,0,0,180,0,0", "--sonar", "micron"}).exit_code, 0);
+  EXPECT_EQ(with({"--heard-by", beams, "--nav", nav, "--mounting", "0,0,0,0,0,0", "--sonar", "micron"}).exit_code, 0);
 }
 
 }  // namespace

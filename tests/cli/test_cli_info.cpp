@@ -192,20 +192,20 @@ TEST_F(cliInfo, ABagsTfStaticMountsTheSonar) {
   NavTrack nav = run_.nav;
   for (Beam& beam : log.beams) beam.time_s += 1.4e9;
   for (NavSample& fix : nav) fix.time_s += 1.4e9;
-  const std::vector<double> numbers{0.3, 0.1, 0.2, 180.0, 0.0, 30.0};  // X,Y,Z m, roll, pitch, yaw deg
+  const std::vector<double> numbers{0.3, 0.1, 0.2, 0.0, 0.0, 30.0};  // X,Y,Z m, roll, pitch, yaw deg
   const fs::path bag = root_ / "mounted.bag";
   writeRosBag(bag.string(), log, nav, {.sonar_to_body = sonarToBodyOfMounting(numbers)});
   const ProgramRun from_bag = run({"map", bag.string(), "-o", (root_ / "bag.bt").string(), "-q"});
   ASSERT_EQ(from_bag.exit_code, 0) << from_bag.err;
   EXPECT_NE(from_bag.out.find("mounting from /tf_static: base_link -> sonar (sonar at 0.300, 0.100, 0.200 m"),
             std::string::npos) << from_bag.out;
-  const ProgramRun from_csv = run({"map", beams_.string(), "--nav", nav_.string(), "--mounting", "0.3,0.1,0.2,180,0,30",
+  const ProgramRun from_csv = run({"map", beams_.string(), "--nav", nav_.string(), "--mounting", "0.3,0.1,0.2,0,0,30",
                                    "-o", (root_ / "csv.bt").string(), "-q"});
   ASSERT_EQ(from_csv.exit_code, 0) << from_csv.err;
   auto obstacles = [](const std::string& out) { return std::stoul(out.substr(out.find(" sweeps, ") + 9)); };
   EXPECT_NEAR(static_cast<double>(obstacles(from_bag.out)), static_cast<double>(obstacles(from_csv.out)),
               0.02 * static_cast<double>(obstacles(from_csv.out)));
-  const ProgramRun told = run({"map", bag.string(), "--mounting", "0,0,0,180,0,0", "-o", (root_ / "told.bt").string(), "-q"});
+  const ProgramRun told = run({"map", bag.string(), "--mounting", "0,0,0,0,0,0", "-o", (root_ / "told.bt").string(), "-q"});
   ASSERT_EQ(told.exit_code, 0) << told.err;
   EXPECT_EQ(told.out.find("mounting from /tf_static"), std::string::npos) << told.out;
 }

@@ -120,25 +120,48 @@ TEST_F(cliNav, BeamsOutsideTheNavigationAreCountedInTheSummary) {
 }
 
 TEST_F(cliNav, MountingIsMetresThenZyxEulerDegrees) {
-  // Sonar 0.5 m forward of the body origin, upright (roll 180°) and turned 90° to starboard.
+  // Sonar 0.5 m forward of the body origin, upright (roll 0°) and turned 90° to starboard.
   const fs::path bt = out_ / "mounted.bt";
   const ProgramRun result =
-      run({"map", beams_.string(), "--nav", nav_.string(), "--mounting", "0.5,0,0,180,0,90", "-o", bt.string(), "-q"});
+      run({"map", beams_.string(), "--nav", nav_.string(), "--mounting", "0.5,0,0,0,0,90", "-o", bt.string(), "-q"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   NavSample mounting;
   mounting.position_ned_m = Eigen::Vector3d(0.5, 0.0, 0.0);
-  mounting.roll_rad = 180.0 * std::numbers::pi / 180.0;
   mounting.yaw_rad = 90.0 * std::numbers::pi / 180.0;
   EXPECT_EQ(readFile(bt), libraryMap(run_.nav, bodyToNed(mounting)));
   EXPECT_NE(readFile(bt), libraryMap(run_.nav, defaultSonarToBody()));
+}
+
+TEST_F(cliNav, ZerosMountAlignedAsTheDefaultDoes) {
+  // A simulated run of the harbour heading east: typed "mounted straight" (all zeros), the map is
+  // the default's, byte for byte, and it lies on the scene (not mirrored about the track).
+  const fs::path dir = root_ / "east";
+  ASSERT_EQ(run({"simulate", "harbour", "-o", dir.string(), "--turns", "2", "--speed", "0.3", "--heading", "90", "-q"})
+                .exit_code,
+            0);
+  const std::string beams = (dir / "beams.csv").string(), nav = (dir / "nav.csv").string();
+  const fs::path by_default = out_ / "default.bt", zeros = out_ / "zeros.bt";
+  ASSERT_EQ(run({"map", beams, "--nav", nav, "-o", by_default.string(), "-q"}).exit_code, 0);
+  const ProgramRun mapped = run({"map", beams, "--nav", nav, "--mounting", "0,0,0,0,0,0", "-o", zeros.string(), "-q"});
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  EXPECT_TRUE(readFile(zeros) == readFile(by_default)) << "--mounting 0,0,0,0,0,0 maps differently from the default";
+  const ProgramRun scored = run({"eval", zeros.string(), "--truth", (dir / "scene.txt").string()});
+  ASSERT_EQ(scored.exit_code, 0) << scored.err;
+  const Names lines = linesOf(scored.out);
+  ASSERT_GE(lines.size(), 2U) << scored.out;
+  double precision = 0.0, recall = 0.0;
+  ASSERT_EQ(std::sscanf(lines[0].c_str(), "precision %lf", &precision), 1) << lines[0];
+  ASSERT_EQ(std::sscanf(lines[1].c_str(), "recall %lf", &recall), 1) << lines[1];
+  EXPECT_GT(precision, 0.95);  // 0.998 (0.000 when zeros meant upside down)
+  EXPECT_GT(recall, 0.6);      // 0.759 in two turns
 }
 
 TEST_F(cliNav, BadMountingIsAUsageErrorAndBadNavigationADataError) {
   const std::string bt = (out_ / "x.bt").string();
   const std::string beams = beams_.string(), nav = nav_.string();
   expectError(run({"map", beams, "--nav", nav, "--mounting", "1,2,3", "-o", bt}), 2);            // too few values
-  expectError(run({"map", beams, "--nav", nav, "--mounting", "0,0,0,180,0,nan", "-o", bt}), 2);  // not finite
-  expectError(run({"map", beams, "--mounting", "0,0,0,180,0,0", "-o", bt}), 2);                  // without --nav
+  expectError(run({"map", beams, "--nav", nav, "--mounting", "0,0,0,0,0,nan", "-o", bt}), 2);  // not finite
+  expectError(run({"map", beams, "--mounting", "0,0,0,0,0,0", "-o", bt}), 2);                    // without --nav
   expectError(run({"map", beams, "--nav", (root_ / "missing.csv").string(), "-o", bt}), 1);
   const fs::path broken = root_ / "broken.csv";
   writeFile(broken, "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,0,0,0,0,0,0\n0,1,0,0,0,0,0\n");  // time repeats
@@ -149,7 +172,7 @@ TEST_F(cliNav, BadMountingIsAUsageErrorAndBadNavigationADataError) {
 TEST_F(cliNav, HelpDocumentsNavAndMounting) {
   const ProgramRun result = run({"map", "--help"});
   ASSERT_EQ(result.exit_code, 0);
-  for (const char* part : {"--nav", "--mounting", "DEGREES", "0,0,0,180,0,0"}) {
+  for (const char* part : {"--nav", "--mounting", "DEGREES", "0,0,0,0,0,0", "PITCH -25"}) {
     EXPECT_NE(result.out.find(part), std::string::npos) << "'" << part << "' missing from: " << result.out;
   }
 }

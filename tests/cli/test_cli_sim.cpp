@@ -77,9 +77,9 @@ TEST_F(cliSim, DefaultRunIsTheMicronAndUnchanged) {
                 .exit_code,
             0);
   // Hashes of the files `sonarmap simulate tank --turns 2 --seed 7` writes; they change only on
-  // purpose (last in issue 21: the Micron's noise from the CRAS log, the tank's reverberation in
-  // its scene file).
-  EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0xc97475781858db06ULL);
+  // purpose (last in issue 54: bearings clockwise from ahead, the head still turning
+  // counter-clockwise, so its bearings are written decreasing; the echoes are unchanged).
+  EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0x3355be1bedef9eb4ULL);
   EXPECT_EQ(fnv1a(readFile(plain / "nav.csv")), 0xe498463d125b3807ULL);
   EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0x8fc3cc34d5377912ULL);
   for (const std::string& file : kSimulationFiles) EXPECT_EQ(readFile(plain / file), readFile(micron / file)) << file;
@@ -105,9 +105,9 @@ TEST_F(cliSim, SonarPresetScansASectorOfASceneBuiltForItsRange) {
     EXPECT_LE(std::abs(std::remainder(bearing_deg + 10.0, 360.0)), 45.0 + 1e-6) << i;
     const double step_deg = std::remainder(bearing_deg - previous_deg, 360.0);
     if (i == 2) {
-      EXPECT_NEAR(step_deg, 0.9, 1e-6);  // the first pass turns counter-clockwise
+      EXPECT_NEAR(step_deg, -0.9, 1e-6);  // the first pass turns counter-clockwise: bearings decrease
     } else if (i == 103) {
-      EXPECT_NEAR(step_deg, -0.9, 1e-6);  // the second one back
+      EXPECT_NEAR(step_deg, 0.9, 1e-6);  // the second one back
     }
     previous_deg = bearing_deg;
   }

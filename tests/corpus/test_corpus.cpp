@@ -312,7 +312,7 @@ TEST(corpusRosBag, aMiniKingTopicReadsByItsFields) {
   EXPECT_EQ(log.sonar, "ROS topic /miniking_node/sonar (miniking_ros/AcousticBeam)");
   EXPECT_DOUBLE_EQ(log.beams[0].bin_length_m, 10.0 / 8.0);  // range_max over the bins
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{0, 1, 5, 200, 80, 9, 4, 2}));
-  EXPECT_NEAR(log.beams[1].bearing_rad, 2.0 * 3.14159265358979 - (90.9 * 3.14159265358979 / 180.0), 1e-6);
+  EXPECT_NEAR(log.beams[1].bearing_rad, 90.9 * 3.14159265358979 / 180.0, 1e-6);  // clockwise, as beam.hpp counts
   EXPECT_DOUBLE_EQ(log.beams[2].time_s, 1002.0);
 }
 
@@ -332,8 +332,8 @@ TEST(corpusRealViewer, messagesSplitOverRecordsOrSharingOneAreReassembled) {
   const SonarLog log = readSonarLog(valid("viewer_chunked.bin"));
   ASSERT_EQ(log.beams.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
-    // angles 0, 1, 2, 3 gradians clockwise: bearings 0, then counter-clockwise from a full turn
-    EXPECT_NEAR(log.beams[i].bearing_rad, static_cast<double>((400 - i) % 400) * 2.0 * 3.141592653589793 / 400.0, 1e-12)
+    // angles 0, 1, 2, 3 gradians clockwise from ahead: bearings clockwise from ahead (beam.hpp)
+    EXPECT_NEAR(log.beams[i].bearing_rad, static_cast<double>(i) * 2.0 * 3.141592653589793 / 400.0, 1e-12)
         << i;
     EXPECT_EQ(log.beams[i].intensities.size(), 3u) << i;
   }

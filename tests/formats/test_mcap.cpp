@@ -182,7 +182,7 @@ TEST(formatsMcap, Ros2DefinitionsWithBoundsDefaultsAndUnitsInComments) {
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{0, 10, 200, 30}));
   EXPECT_DOUBLE_EQ(log.beams[0].bin_length_m, 0.5);
   EXPECT_NEAR(log.beams[0].time_s, 1700000000.25, 1e-6);
-  EXPECT_NEAR(log.beams[0].bearing_rad, 2.0 * std::numbers::pi - 0.5, 1e-6);  // radians, clockwise
+  EXPECT_NEAR(log.beams[0].bearing_rad, 0.5, 1e-6);  // radians, clockwise as beam.hpp counts
   EXPECT_NE(log.notes[0].find("read as radians"), std::string::npos) << log.notes[0];
 }
 

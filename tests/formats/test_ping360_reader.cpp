@@ -70,10 +70,10 @@ TEST(formatsPing360, ConvertsDeviceDataAndAutoDeviceData) {
   // the fixture's transmit duration, 32 µs, is a pulse of 2.4 cm at 1500 m/s
   ASSERT_TRUE(log.beams[0].pulse_length_m.has_value());
   EXPECT_NEAR(*log.beams[0].pulse_length_m, 32e-6 * 1500.0 / 2.0, 1e-15);
-  EXPECT_NEAR(log.beams[1].bearing_rad, 1.5 * kPi, 1e-12);
+  EXPECT_NEAR(log.beams[1].bearing_rad, 0.5 * kPi, 1e-12);  // clockwise, as beam.hpp counts
   EXPECT_NEAR(log.beams[1].bin_length_m, 0.01875, 1e-15);  // 1200 samples reach 22.5 m
   EXPECT_EQ(log.beams[1].intensities.size(), 1200u);
-  EXPECT_NEAR(log.beams[2].bearing_rad, 2.0 * kPi / 400, 1e-12);
+  EXPECT_NEAR(log.beams[2].bearing_rad, 2.0 * kPi * 399 / 400, 1e-12);  // one gradian to port of ahead
   for (const Beam& beam : log.beams) EXPECT_EQ(beam.time_s, 0.0);
 
   const SonarLog timed = parseStream(ping360Message(ahead) + ping360Message(last), CaptureOptions{1450.0, 0.1});
@@ -171,7 +171,7 @@ TEST(formatsPingViewerLog, ReadsMessagesWithTheirRecordTimes) {
     EXPECT_DOUBLE_EQ(log.beams[0].time_s, 1.25);
     EXPECT_DOUBLE_EQ(log.beams[1].time_s, 62.005);  // its last byte came with the third record
     EXPECT_DOUBLE_EQ(log.beams[2].time_s, 62.005);
-    EXPECT_NEAR(log.beams[1].bearing_rad, 2 * kPi * 350 / 400, 1e-12);
+    EXPECT_NEAR(log.beams[1].bearing_rad, 2 * kPi * 50 / 400, 1e-12);
     ASSERT_EQ(log.skip_reasons.size(), 1u);
     EXPECT_TRUE(contains(log.skip_reasons[0], "(record 3): id 1, not device_data")) << log.skip_reasons[0];
   }

@@ -98,8 +98,7 @@ TEST(formatsRosBag, TheBearingsUnitAndDirectionCanBeTold) {
     const double bearing_rad = clockwise_deg.beams[i].bearing_rad;
     EXPECT_NEAR(std::remainder(anticlockwise.beams[i].bearing_rad + bearing_rad, turn), 0.0, 1e-9) << "beam " << i;
     // the same number read as gradians: 0.9 of the angle (a turn is 400 grad)
-    const double clockwise_read_rad = std::fmod(turn - bearing_rad, turn);
-    EXPECT_NEAR(std::remainder(gradians.beams[i].bearing_rad + 0.9 * clockwise_read_rad, turn), 0.0, 1e-9) << "beam " << i;
+    EXPECT_NEAR(std::remainder(gradians.beams[i].bearing_rad - 0.9 * bearing_rad, turn), 0.0, 1e-9) << "beam " << i;
   }
   EXPECT_NE(gradians.notes[0].find("read as gradians (as told)"), std::string::npos) << gradians.notes[0];
   EXPECT_NE(anticlockwise.notes[0].find("counter-clockwise"), std::string::npos) << anticlockwise.notes[0];

@@ -123,7 +123,7 @@ TEST(formatsRosbag2, AHumbleFolderSplitInTwoFilesReadsWithBuiltInDefinitions) {
   EXPECT_EQ(log.beams[4].intensities, (std::vector<std::uint8_t>{0, 10, 200, 30}));
   EXPECT_DOUBLE_EQ(log.beams[0].bin_length_m, 0.5);  // range 2 m over 4 samples
   EXPECT_NEAR(log.beams[4].time_s, kSec + 4.0, 1e-6);
-  EXPECT_NEAR(log.beams[2].bearing_rad, 2.0 * std::numbers::pi - 0.2, 1e-6);  // radians, clockwise
+  EXPECT_NEAR(log.beams[2].bearing_rad, 0.2, 1e-6);  // radians, clockwise as beam.hpp counts
   const std::optional<RosBagNavigation> nav = readRosBagNavigation(folder.string());
   ASSERT_TRUE(nav.has_value());
   ASSERT_EQ(nav->track.size(), 2u);
@@ -169,7 +169,7 @@ TEST(formatsRosbag2, AnIronDatabaseCarriesTheDefinitionOfADriversOwnMessage) {
   ASSERT_EQ(log.beams.size(), 1u);
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{5, 250, 7}));
   EXPECT_NEAR(log.beams[0].bin_length_m, 0.1, 1e-7);
-  EXPECT_NEAR(log.beams[0].bearing_rad, 1.5 * std::numbers::pi, 1e-9);  // 90° clockwise
+  EXPECT_NEAR(log.beams[0].bearing_rad, 0.5 * std::numbers::pi, 1e-9);  // 90° clockwise: starboard
 }
 
 // A Humble database of a driver's own message (no definitions stored): unreadable with the

@@ -20,6 +20,7 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/seanet_capture.hpp"
 #include "sonarmap/formats/v4log_reader.hpp"
+#include "sonarmap/formats/wire_encoder.hpp"
 #include "wire_fixture.hpp"
 
 namespace sonarmap {
@@ -60,17 +61,19 @@ void expectSameBeams(const SonarLog& wire, const SonarLog& v4) {
 }
 
 TEST(formatsSeaNetCapture, ConvertsPacketsBuiltFromTheSpec) {
-  SeaNetHeadPacket ahead;  // 8-bit bins
-  ahead.bearing = 0;
+  SeaNetHeadPacket ahead;  // 8-bit bins, an upright head (HdCtrl invert clear)
+  ahead.head_control = 0x2305;
+  ahead.bearing = 3200;  // Tritech's ahead
   ahead.ad_interval = 10;
   ahead.data = {0, 7, 255, 128};
   SeaNetHeadPacket four_bit;
-  four_bit.head_control = 0x230C;  // adc8on clear: two 4-bit bins per byte
-  four_bit.bearing = 1600;         // a quarter turn clockwise
+  four_bit.head_control = 0x2304;  // adc8on clear: two 4-bit bins per byte; upright
+  four_bit.bearing = 4800;         // a quarter turn clockwise from ahead: starboard
   four_bit.ad_span = 0;            // no span: unknown
   four_bit.data = {0xF1, 0x0A};
   SeaNetHeadPacket last;
-  last.bearing = 6399;
+  last.head_control = 0x2305;
+  last.bearing = 3201;
   const std::string capture = seanetHeadData(ahead) + seanetHeadData(four_bit) + seanetHeadData(last);
   ASSERT_EQ(capture.size(), 4 + 45 + 2 + 45 + 3 + 45u);  // data bytes + 45 each
 
@@ -82,7 +85,7 @@ TEST(formatsSeaNetCapture, ConvertsPacketsBuiltFromTheSpec) {
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{0, 7, 255, 128}));
   ASSERT_TRUE(log.beams[0].intensity_span_db.has_value());
   EXPECT_NEAR(*log.beams[0].intensity_span_db, 149 * 80.0 / 255.0, 1e-12);
-  EXPECT_NEAR(log.beams[1].bearing_rad, 1.5 * kPi, 1e-12);  // clockwise 90° = counter-clockwise 270°
+  EXPECT_NEAR(log.beams[1].bearing_rad, 0.5 * kPi, 1e-12);  // clockwise 90°, as beam.hpp counts
   EXPECT_EQ(log.beams[1].intensities, (std::vector<std::uint8_t>{255, 17, 0, 170}));  // high nibble first, ×17
   EXPECT_FALSE(log.beams[1].intensity_span_db.has_value());
   EXPECT_NEAR(log.beams[1].bin_length_m, 33 * 640e-9 * 750.0, 1e-15);
@@ -92,6 +95,37 @@ TEST(formatsSeaNetCapture, ConvertsPacketsBuiltFromTheSpec) {
   const SonarLog timed = parse(capture, CaptureOptions{1400.0, 0.25});
   EXPECT_NEAR(timed.beams[0].bin_length_m, 10 * 640e-9 * 700.0, 1e-15);
   EXPECT_DOUBLE_EQ(timed.beams[2].time_s, 0.5);
+}
+
+TEST(formatsSeaNetCapture, AheadIsBearingZeroAndInvertReversesTheTurn) {
+  // Beams ahead, a quarter turn to starboard and one step to port, as the project's encoder writes them.
+  std::vector<Beam> beams(3);
+  const double bearings_rad[] = {0.0, 0.5 * kPi, 2.0 * kPi - 2.0 * kPi / 6400};
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    beams[i].bearing_rad = bearings_rad[i];
+    beams[i].bin_length_m = 0.05;
+    beams[i].intensities = {1, 2, 3};
+  }
+  std::vector<std::uint8_t> bytes = encodeSeaNetCapture(beams);
+  // The head's own count in each 48-byte packet (bytes 40–41): ahead 3200, clockwise.
+  ASSERT_EQ(bytes.size(), 3u * 48u);
+  const unsigned expected_counts[] = {3200, 4800, 3199};
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    EXPECT_EQ(bytes[48 * i + 40] | (bytes[48 * i + 41] << 8), expected_counts[i]) << "packet " << i;
+  }
+  const auto read = [&] {
+    return parse(std::string(bytes.begin(), bytes.end()));
+  };
+  const SonarLog upright = read();
+  ASSERT_EQ(upright.beams.size(), 3u);
+  for (std::size_t i = 0; i < beams.size(); ++i) EXPECT_NEAR(upright.beams[i].bearing_rad, bearings_rad[i], 1e-12);
+  // HdCtrl bit 3 `invert` (bytes 18–19): the head upside down counts the other way seen from above.
+  for (std::size_t i = 0; i < beams.size(); ++i) bytes[48 * i + 18] |= 0x08;
+  const SonarLog inverted = read();
+  ASSERT_EQ(inverted.beams.size(), 3u);
+  EXPECT_NEAR(inverted.beams[0].bearing_rad, 0.0, 1e-12);         // ahead stays ahead
+  EXPECT_NEAR(inverted.beams[1].bearing_rad, 1.5 * kPi, 1e-12);   // starboard of the head: port
+  EXPECT_NEAR(inverted.beams[2].bearing_rad, 2.0 * kPi / 6400, 1e-12);
 }
 
 TEST(formatsSeaNetCapture, SkipsAndCountsGarbageAndOtherMessages) {
@@ -104,7 +138,7 @@ TEST(formatsSeaNetCapture, SkipsAndCountsGarbageAndOtherMessages) {
                               seanetHeadData(b) + "tail";
   const SonarLog log = parse(capture);
   ASSERT_EQ(log.beams.size(), 2u);
-  EXPECT_NEAR(log.beams[1].bearing_rad, 2 * kPi * (6400 - 164) / 6400, 1e-12);
+  EXPECT_NEAR(log.beams[1].bearing_rad, 2 * kPi * (3200 - 164) / 6400, 1e-12);  // the fixture's head is inverted
   ASSERT_EQ(log.skipped_beams, 5u);
   ASSERT_EQ(log.skip_reasons.size(), 5u);
   EXPECT_EQ(log.skip_reasons[0], "cap.seanet: byte 0 to byte 8: 9 bytes outside any packet (at byte 7: length is not "

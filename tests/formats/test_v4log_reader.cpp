@@ -79,7 +79,7 @@ TEST(sonarV4log, ReadsTheRealSectorLog) {
   // 15.58 mm: the head samples 642 × 15.84 mm = 10.17 m.
   const double bin_length_m = 33 * 640e-9 * 1500.0 / 2.0;
   double min_deg = 360.0;
-  double max_deg = 0.0;
+  double max_deg = -360.0;
   std::size_t repeated = 0;
   for (std::size_t i = 0; i < log.beams.size(); ++i) {
     const Beam& beam = log.beams[i];
@@ -87,23 +87,26 @@ TEST(sonarV4log, ReadsTheRealSectorLog) {
     ASSERT_NEAR(beam.bin_length_m, bin_length_m, 1e-12) << "beam " << i;
     ASSERT_GE(beam.bearing_rad, 0.0);
     ASSERT_LT(beam.bearing_rad, 2.0 * kPi);
-    min_deg = std::min(min_deg, degrees(beam.bearing_rad));
-    max_deg = std::max(max_deg, degrees(beam.bearing_rad));
+    // From ahead, in (−180°, 180°]: the sector straddles bearing 0.
+    const double from_ahead_deg = std::remainder(degrees(beam.bearing_rad), 360.0);
+    min_deg = std::min(min_deg, from_ahead_deg);
+    max_deg = std::max(max_deg, from_ahead_deg);
     if (i == 0) continue;
     ASSERT_GT(beam.time_s, log.beams[i - 1].time_s) << "beam " << i;
-    const double step_deg = degrees(beam.bearing_rad - log.beams[i - 1].bearing_rad);
+    const double step_deg = std::remainder(degrees(beam.bearing_rad - log.beams[i - 1].bearing_rad), 360.0);
     ASSERT_NEAR(std::abs(step_deg), std::abs(step_deg) < 1.8 ? 0.0 : 3.6, 1e-9) << "beam " << i;
     repeated += std::abs(step_deg) < 1.8 ? 1 : 0;
   }
   EXPECT_NEAR(bin_length_m * 642, 10.17, 0.01);
   EXPECT_NEAR(10.0 / 642, bin_length_m, 0.02 * bin_length_m);
-  // SeaNet bearings 2368…3968 (1/16 gradian, clockwise) → (6400 − b) × 360° / 6400.
-  EXPECT_NEAR(min_deg, 136.8, 1e-9);
-  EXPECT_NEAR(max_deg, 226.8, 1e-9);
+  // SeaNet bearings 2368…3968 (1/16 gradian, clockwise, ahead 3200); the head's HdCtrl has
+  // `invert` set (0x230D), so its count runs the other way: (3200 − b) × 360° / 6400.
+  EXPECT_NEAR(min_deg, -43.2, 1e-9);
+  EXPECT_NEAR(max_deg, 46.8, 1e-9);
   EXPECT_NEAR(max_deg - min_deg, 90.0, 1e-9);
   EXPECT_EQ(repeated, 18u);  // the head pings twice at each end of the sector
-  EXPECT_NEAR(degrees(log.beams[0].bearing_rad), 172.8, 1e-9);  // SeaNet 3328
-  EXPECT_NEAR(degrees(log.beams[1].bearing_rad), 169.2, 1e-9);  // 3392: SeaNet +64 is 3.6° clockwise
+  EXPECT_NEAR(degrees(log.beams[0].bearing_rad), 352.8, 1e-9);  // SeaNet 3328, inverted: 7.2° to port
+  EXPECT_NEAR(degrees(log.beams[1].bearing_rad), 349.2, 1e-9);  // 3392: +64 on the inverted head is 3.6° counter-clockwise
   EXPECT_DOUBLE_EQ(log.beams[0].time_s, 0.0);
   EXPECT_NEAR(log.beams[1].time_s, 0.844, 0.001);
   EXPECT_NEAR(log.beams.back().time_s, 45.188, 0.001);
@@ -117,17 +120,18 @@ TEST(sonarV4log, ReadsTheRealSectorLog) {
 TEST(sonarV4log, ConvertsSyntheticRecordsAndSkipsOthers) {
   TempDir dir;
   std::vector<Record> records(6);
-  records[0].bearing = 0;
+  for (Record& record : records) record.head_control = 0x2305;  // an upright head: adc8on, scanright
+  records[0].bearing = 3200;  // Tritech's ahead
   records[0].ad_interval = 10;
   records[1].type = 6;  // mtBBUserData: not a beam
-  records[2].head_control = 0x2308;  // adc8on clear: 4-bit bins
+  records[2].head_control = 0x2304;  // adc8on clear: 4-bit bins
   records[2].bearing = 1600;
   records[2].data = {0xF1, 0x0A};
   records[3].bearing = 4800;
   records[3].date_days = kFirstDate_days + 1.5 / 86400.0;
   records[3].appended_bytes = 7;
   records[4].data.clear();  // no data bytes
-  records[5].bearing = 6399;
+  records[5].bearing = 3201;
   records[5].date_days = kFirstDate_days + 2.0 / 86400.0;  // times must not go backwards
   const SonarLog log = readSeaNetV4Log(writeFile(dir, "synthetic.V4LOG", v4log(records)));
 
@@ -142,7 +146,7 @@ TEST(sonarV4log, ConvertsSyntheticRecordsAndSkipsOthers) {
   EXPECT_DOUBLE_EQ(log.beams[0].bearing_rad, 0.0);
   EXPECT_NEAR(log.beams[0].bin_length_m, 10 * 640e-9 * 750.0, 1e-15);
   EXPECT_EQ(log.beams[0].intensities, (std::vector<std::uint8_t>{10, 20, 30}));
-  // SeaNet 1600 is a quarter turn clockwise: 3π/2 counter-clockwise.
+  // SeaNet 1600 is three quarters of a turn clockwise from ahead (3200): port.
   EXPECT_NEAR(log.beams[1].bearing_rad, 1.5 * kPi, 1e-12);
   EXPECT_EQ(log.beams[1].intensities, (std::vector<std::uint8_t>{255, 17, 0, 170}));  // high nibble first, ×17
   EXPECT_NEAR(log.beams[2].bearing_rad, 0.5 * kPi, 1e-12);

@@ -90,7 +90,10 @@ TEST(MappingArguments, InputFormatByNameOrExtension) {
 
 TEST(MappingArguments, MountingInDegrees) {
   EXPECT_TRUE(sonarToBodyOfMounting({}).isApprox(defaultSonarToBody()));
-  EXPECT_TRUE(sonarToBodyOfMounting({0, 0, 0, 180, 0, 0}).isApprox(defaultSonarToBody(), 1e-12));
+  EXPECT_TRUE(sonarToBodyOfMounting({0, 0, 0, 0, 0, 0}).isApprox(defaultSonarToBody(), 1e-12));  // zeros: aligned
+  // Pitch −25°: bearing 0 tilted 25° down (body z is down), as a navigation fix's pitch.
+  const Eigen::Vector3d tilted = sonarToBodyOfMounting({0, 0, 0, 0, -25, 0}).linear() * Eigen::Vector3d::UnitX();
+  EXPECT_NEAR(tilted.z(), std::sin(25.0 * std::numbers::pi / 180.0), 1e-12);
   const Eigen::Isometry3d shifted = sonarToBodyOfMounting({1, 2, 3, 0, 0, 90});
   EXPECT_TRUE(shifted.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
   EXPECT_TRUE((shifted.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(), 1e-12));

@@ -160,7 +160,7 @@ TEST(mappingWholeEcho, AKnownWaterSurfaceTellsALevelHeadsSeabedFromIt) {
 
 /// The default mounting tilted nose down by `tilt_deg`.
 Eigen::Isometry3d tiltedMounting(double tilt_deg) {
-  return defaultSonarToBody() * Eigen::AngleAxisd(tilt_deg * kDegree, Eigen::Vector3d::UnitY());
+  return defaultSonarToBody() * Eigen::AngleAxisd(-tilt_deg * kDegree, Eigen::Vector3d::UnitY());  // FRD: pitch down
 }
 
 /// A static head (default: the Micron) tilted down by `tilt_deg`, `altitude_m` over a flat sandy

@@ -79,11 +79,15 @@ TEST(navInterpolation, NedToMapIsNorthWestUp) {
   EXPECT_TRUE(nedToMap().translation().isZero());
 }
 
-TEST(navInterpolation, UprightSonarOnAZeroPoseVehicleHasTheIdentityMapPose) {
-  Eigen::Isometry3d sonar_to_body = Eigen::Isometry3d::Identity();
-  sonar_to_body.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // (x fwd, y left, z up) → FRD
+TEST(navInterpolation, UprightAlignedSonarHasTheIdentityMountingAndTheStaticMapPose) {
+  // The sonar frame is FRD like the body: upright and aligned is the identity mounting.
+  const Eigen::Isometry3d sonar_to_body = defaultSonarToBody();
+  EXPECT_TRUE(sonar_to_body.matrix().isIdentity(0.0)) << sonar_to_body.matrix();
   const Eigen::Isometry3d sonar_to_map = nedToMap() * bodyToNed(atTime(0.0)) * sonar_to_body;
-  EXPECT_TRUE(sonar_to_map.matrix().isIdentity(1e-15)) << sonar_to_map.matrix();
+  EXPECT_TRUE(sonar_to_map.isApprox(staticSonarToMap(), 1e-15)) << sonar_to_map.matrix();
+  // Bearing 0 north (map +x), bearing 90° (sonar +y, clockwise from above) east (map −y).
+  expectNear(sonar_to_map * Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX());
+  expectNear(sonar_to_map * Eigen::Vector3d::UnitY(), -Eigen::Vector3d::UnitY());
   // Heading east: the sonar's +x (forward) points east, which is map −y (map y is west).
   const Eigen::Isometry3d heading_east =
       nedToMap() * bodyToNed(fix(0.0, Eigen::Vector3d::Zero(), 0.0, 0.0, kPi / 2)) * sonar_to_body;

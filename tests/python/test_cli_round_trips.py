@@ -49,14 +49,14 @@ def test_map_same_bt_as_cli(cli, tmp_path, tank_csv, options, flags):
 def test_map_with_nav_same_bt_as_cli(cli, tmp_path):
     cli("simulate", "harbour", "-o", tmp_path / "sim", "--turns", "2", "--speed", "0.1", "--heading", "30")
     beams, nav = tmp_path / "sim" / "beams.csv", tmp_path / "sim" / "nav.csv"
-    mounting = "0.1,0,0.2,180,0,5"
+    mounting = "0.1,0,0.2,0,0,5"
     cli("map", beams, "-o", tmp_path / "cli.bt", "-q", "--nav", nav, "--mounting", mounting, "--resolution", "0.05")
     log = sonarmap.read_sonar_log(str(beams))
-    m = sonarmap.map_sonar_log(log, nav=sonarmap.read_nav_csv(str(nav)), mounting=[0.1, 0, 0.2, 180, 0, 5],
+    m = sonarmap.map_sonar_log(log, nav=sonarmap.read_nav_csv(str(nav)), mounting=[0.1, 0, 0.2, 0, 0, 5],
                                resolution=0.05)
     m.write(str(tmp_path / "py.bt"))
     assert (tmp_path / "py.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
-    from_path = sonarmap.map_sonar_log(log, nav=str(nav), mounting=(0.1, 0, 0.2, 180, 0, 5), resolution=0.05)
+    from_path = sonarmap.map_sonar_log(log, nav=str(nav), mounting=(0.1, 0, 0.2, 0, 0, 5), resolution=0.05)
     from_path.write(str(tmp_path / "py2.bt"))
     assert (tmp_path / "py2.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
 
@@ -85,7 +85,7 @@ def test_demo_3d_mission_same_bt_from_python(cli, tmp_path):
     same bytes as the demo's map.bt."""
     cli("demo", "-o", tmp_path / "demo", "-q")
     mission = sonarmap.simulate_mission("tilted-loop", sonar="micron", scene="quay3d")
-    assert mission.mounting == [0.0, 0.0, 0.0, 180.0, -25.0, 0.0]
+    assert mission.mounting == [0.0, 0.0, 0.0, 0.0, -25.0, 0.0]
     written = sonarmap.read_sonar_log(str(tmp_path / "demo" / "3d-mission" / "beams.csv"))
     assert len(written) == len(mission.log)
     m = sonarmap.map_sonar_log(written, nav=mission.nav, mounting=mission.mounting, volume=True,

@@ -123,7 +123,7 @@ def test_map_options_errors(simulated_tank):
     with pytest.raises(sonarmap.ValueError, match="nav"):
         sonarmap.map_sonar_log(simulated_tank.log, nav=np.zeros((3, 6)))
     with pytest.raises(sonarmap.ValueError, match="mounting"):
-        sonarmap.map_sonar_log(simulated_tank.log, mounting=[0, 0, 0, 180, 0, 0])
+        sonarmap.map_sonar_log(simulated_tank.log, mounting=[0, 0, 0, 0, 0, 0])
 
 
 def test_map_pictures_for_notebooks(simulated_tank):

@@ -84,8 +84,9 @@ std::uint64_t checksum(const SonarLog& log) {
 
 /// Range of the first surface along the horizontal ray at `bearing_rad` from the map origin.
 SceneHit horizontalHit(const Scene& scene, double bearing_rad) {
-  const auto hit = firstHit(scene, Eigen::Vector3d::Zero(),
-                            Eigen::Vector3d(std::cos(bearing_rad), std::sin(bearing_rad), 0.0), 100.0);
+  // A static head: the sonar frame placed by staticSonarToMap (bearing b at map angle −b).
+  const Eigen::Vector3d along = staticSonarToMap().linear() * Eigen::Vector3d(std::cos(bearing_rad), std::sin(bearing_rad), 0.0);
+  const auto hit = firstHit(scene, Eigen::Vector3d::Zero(), along, 100.0);
   EXPECT_TRUE(hit);
   return hit.value_or(SceneHit{});
 }
@@ -105,7 +106,8 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
     EXPECT_NEAR(beam.time_s, 0.043 * static_cast<double>(i), 1e-9);
     EXPECT_GE(beam.bearing_rad, 0.0);
     EXPECT_LT(beam.bearing_rad, 2.0 * std::numbers::pi);
-    EXPECT_NEAR(std::remainder(beam.bearing_rad - 1.8 * kDegree * static_cast<double>(i), 2.0 * std::numbers::pi), 0.0,
+    // The head turns counter-clockwise seen from above: bearings (clockwise, beam.hpp) decrease.
+    EXPECT_NEAR(std::remainder(beam.bearing_rad + 1.8 * kDegree * static_cast<double>(i), 2.0 * std::numbers::pi), 0.0,
                 1e-9);
   }
   // The ground truth travels with the log.
@@ -125,13 +127,13 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
 
 TEST(simMsis, DefaultTankAndHarbourLogsAreUnchanged) {
   // Checksums of what the defaults (the Micron, 360° turns, the 5 m scenes) write: they change
-  // only on purpose. Last changed in issue 21: the Micron's noise taken from the CRAS log's quiet
-  // bins (−41.5 dB) and the tank's reverberation moved from the noise into the scene.
-  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0x8f37471839190d6fULL);
+  // only on purpose. Last changed in issue 54: bearings count clockwise (beam.hpp) while the head
+  // still turns counter-clockwise, so they are negated; the echoes are those of issue 21.
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0xd01dab525ddf3aaULL);
   MsisSimulationOptions moving = turns(1);
   moving.seed = 3;
   moving.trajectory = constantVelocityTrajectory(NavSample{}, Eigen::Vector3d(0.0, 0.3, 0.0));
-  EXPECT_EQ(checksum(simulateMsis(builtinScene("harbour"), moving).log), 0xa1bebf42c02a9f5dULL);
+  EXPECT_EQ(checksum(simulateMsis(builtinScene("harbour"), moving).log), 0xa4b8d6fe5e36c8cbULL);
 }
 
 TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
@@ -144,8 +146,8 @@ TEST(simMsis, ClockwiseHeadAndOtherRangeScale) {
   const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
   ASSERT_EQ(run.log.beams.size(), 100U);
   EXPECT_DOUBLE_EQ(run.log.beams[0].bearing_rad, 0.5);
-  EXPECT_NEAR(run.log.beams[1].bearing_rad, 0.5 - 3.6 * kDegree, 1e-12);
-  EXPECT_NEAR(run.log.beams[20].bearing_rad, 0.5 - 72.0 * kDegree + 2.0 * std::numbers::pi, 1e-9);  // wrapped
+  EXPECT_NEAR(run.log.beams[1].bearing_rad, 0.5 + 3.6 * kDegree, 1e-12);  // clockwise: bearings increase
+  EXPECT_NEAR(run.log.beams[20].bearing_rad, 0.5 + 72.0 * kDegree, 1e-9);
   EXPECT_EQ(run.log.beams[0].intensities.size(), 200U);
   EXPECT_DOUBLE_EQ(run.log.beams[0].bin_length_m, 0.05);
   EXPECT_EQ(splitSweeps(run.log.beams).size(), 1U);
@@ -169,7 +171,7 @@ TEST(simMsis, SectorHeadSweepsBackAndForthBetweenItsLimits) {
     const MsisSimulation run = simulateMsis(builtinScene("tank"), options);
     const std::vector<Beam>& beams = run.log.beams;
     ASSERT_EQ(beams.size(), 4U * 51U);  // `turns` counts passes across the sector
-    const double first_sign = counter_clockwise ? 1.0 : -1.0;
+    const double first_sign = counter_clockwise ? -1.0 : 1.0;  // counter-clockwise: bearings decrease
     EXPECT_NEAR(wrappedDifference(350.0 * kDegree, beams[0].bearing_rad), -first_sign * 45.0 * kDegree, 1e-9);
     for (std::size_t i = 0; i < beams.size(); ++i) {
       EXPECT_GE(beams[i].bearing_rad, 0.0);
@@ -256,7 +258,7 @@ TEST(simMsis, WallEchoesAtTheRangesOfTheGeometry) {
   std::size_t walls = 0, found = 0;
   for (const Beam& beam : run.log.beams) {
     const SceneHit wall = horizontalHit(tank, beam.bearing_rad);
-    if (std::abs(beam.bearing_rad - 95.0 * kDegree) < 20.0 * kDegree) continue;  // the floater is in front
+    if (std::abs(beam.bearing_rad - 265.0 * kDegree) < 20.0 * kDegree) continue;  // the floater (map 95°) is in front
     ++walls;
     // A strong echo starts within a few centimetres of the wall's range (the leading edge).
     const auto [intensity, range_m] = peak(beam, wall.surface.range_m - 0.03, wall.surface.range_m + 0.1);
@@ -310,7 +312,7 @@ TEST(simMsis, MultipathLandsBehindTheWallsStrongestNearCorners) {
     const double wall_m = horizontalHit(tank, beam.bearing_rad).surface.range_m;
     // In front of the walls a double bounce never arrives (its path is longer than the way to the
     // wall and back), except around the floater (floater–surface–wall paths).
-    if (std::abs(beam.bearing_rad - 95.0 * kDegree) > 20.0 * kDegree) {
+    if (std::abs(beam.bearing_rad - 265.0 * kDegree) > 20.0 * kDegree) {  // away from the floater (map 95°)
       EXPECT_LT(std::abs(meanIntensity(beam, 1.0, wall_m - 0.05) - meanIntensity(direct_beam, 1.0, wall_m - 0.05)), 0.5)
           << "bearing " << beam.bearing_rad / kDegree;
     }
@@ -353,7 +355,7 @@ TEST(simMsis, MovingVehicleCarriesItsPoseAndTime) {
     EXPECT_GT(run.log.beams[i].time_s, run.log.beams[i - 1].time_s);
   for (const std::size_t i : {std::size_t{0}, std::size_t{200}}) {
     const Beam& beam = run.log.beams[i];
-    ASSERT_NEAR(beam.bearing_rad, 0.0, 1e-9);
+    ASSERT_NEAR(std::remainder(beam.bearing_rad, 2.0 * std::numbers::pi), 0.0, 1e-9);  // ahead, a turn apart
     const double expected_m = 1.8 - 0.05 * beam.time_s;
     EXPECT_NEAR(firstAbove(beam, 100, 1.0), expected_m, 0.05) << "at " << beam.time_s << " s";
   }
@@ -369,31 +371,33 @@ TEST(simMsis, MovingVehicleCarriesItsPoseAndTime) {
 }
 
 TEST(simMsis, HeadingTurnsTheBeamsInTheMap) {
-  // Heading east (yaw 90°): the sonar's +x looks east (map −y, open water) and its +y (bearing
-  // 90°) looks north, at the pile 1.8 m away.
+  // Heading east (yaw 90°): the sonar's +x looks east (map −y, open water) and its port side
+  // (bearing 270°, where the counter-clockwise head is 50 beams later) looks north, at the pile
+  // 1.8 m away.
   NavSample east;
   east.yaw_rad = 90.0 * kDegree;
   MsisSimulationOptions options = noiseless(1);
   options.trajectory = staticTrajectory(east);
   const MsisSimulation run = simulateMsis(builtinScene("harbour"), options);
   const Beam& ahead = run.log.beams[0];  // bearing 0°
-  const Beam& left = run.log.beams[50];  // bearing 90°
-  ASSERT_NEAR(left.bearing_rad, 90.0 * kDegree, 1e-9);
+  const Beam& left = run.log.beams[50];  // bearing 270°: port
+  ASSERT_NEAR(left.bearing_rad, 270.0 * kDegree, 1e-9);
   EXPECT_LT(peak(ahead, 1.0, 5.0).first, 10);
   EXPECT_NEAR(firstAbove(left, 100, 1.0), 1.8, 0.05);
 }
 
 TEST(simMsis, DefaultMountingMapsTheSonarOntoTheVehicle) {
   const Eigen::Isometry3d at_origin = sonarToMap(NavSample{}, defaultSonarToBody());
-  EXPECT_TRUE(at_origin.isApprox(Eigen::Isometry3d::Identity(), 1e-12));
+  EXPECT_TRUE(at_origin.isApprox(staticSonarToMap(), 1e-12));  // a log without navigation
+  EXPECT_TRUE((at_origin.linear() * Eigen::Vector3d::UnitY()).isApprox(-Eigen::Vector3d::UnitY(), 1e-12));  // starboard: east
   NavSample moved;
   moved.position_ned_m = Eigen::Vector3d(1.0, 2.0, 3.0);  // north, east, down
   moved.yaw_rad = 90.0 * kDegree;
   const Eigen::Isometry3d pose = sonarToMap(moved, defaultSonarToBody());
   EXPECT_TRUE(pose.translation().isApprox(Eigen::Vector3d(1.0, -2.0, -3.0), 1e-12));  // NWU
-  // Heading east: the sonar's +x (forward) is the map's −y (east), its +z still up.
+  // Heading east: the sonar's +x (forward) is the map's −y (east), its +z (down) the map's −z.
   EXPECT_TRUE((pose.linear() * Eigen::Vector3d::UnitX()).isApprox(-Eigen::Vector3d::UnitY(), 1e-12));
-  EXPECT_TRUE((pose.linear() * Eigen::Vector3d::UnitZ()).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+  EXPECT_TRUE((pose.linear() * Eigen::Vector3d::UnitZ()).isApprox(-Eigen::Vector3d::UnitZ(), 1e-12));
 }
 
 TEST(simMsis, InvalidOptionsAndScenesAreRejected) {

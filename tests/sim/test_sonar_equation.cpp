@@ -95,7 +95,7 @@ TEST(simSonarEquation, TiltedHeadSeesTheSeabedAsTheClosedFormSays) {
   const SonarPreset preset = sonarPreset("micron");
   MsisSimulationOptions options = seabedOnly(preset);
   const double tilt_rad = 25.0 * std::numbers::pi / 180.0;
-  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(tilt_rad, Eigen::Vector3d::UnitY());
+  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(-tilt_rad, Eigen::Vector3d::UnitY());  // nose down
   const double altitude_m = 2.0;
   const MsisSimulation run = simulateMsis(Scene{{Plane{{0.0, 0.0, -altitude_m}, Eigen::Vector3d::UnitZ(), 0.5}}}, options);
   int checked = 0;

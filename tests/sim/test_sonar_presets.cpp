@@ -187,8 +187,10 @@ TEST(simSonarPresets, WallsPilesAndHullsEchoAtTheirGeometricRanges) {
       SCOPED_TRACE(scene_name + " at " + std::to_string(normal_deg) + "°");
       // Beams within half a beam width of the normal: the nearest point is in the main lobe.
       const double width_deg = preset.head.horizontal_beam_width_rad / kDegree;
+      // The static head's bearing b looks along map angle −b (staticSonarToMap: bearings clockwise).
+      const double bearing_deg = std::fmod(360.0 - normal_deg, 360.0);
       const MsisSimulation run =
-          simulateMsis(sceneFor(scene_name, preset), noiseless(sectorRun(preset, normal_deg, width_deg)));
+          simulateMsis(sceneFor(scene_name, preset), noiseless(sectorRun(preset, bearing_deg, width_deg)));
       ASSERT_GE(run.log.beams.size(), 2U);
       for (const Beam& beam : run.log.beams) {
         const double edge_m = leadingEdge_m(beam, distance_m, preset);

@@ -318,8 +318,8 @@ TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
   options.echo.speckle_looks = 0;
   options.echo.noise_level_db = -300.0;
   options.trajectory = waypointTrajectory(points);
-  const double tilt_rad = 25.0 * kDegree;  // positive about the sonar's y (left) axis: +x down
-  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(tilt_rad, Eigen::Vector3d::UnitY());
+  const double tilt_rad = 25.0 * kDegree;  // pitched down: negative about the sonar's y (starboard) axis
+  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(-tilt_rad, Eigen::Vector3d::UnitY());
   const MsisSimulation run = simulateMsis(builtinScene("quay3d"), options);
   ASSERT_FALSE(run.nav.empty());
   const Trajectory expected = waypointTrajectory(points);
@@ -342,7 +342,8 @@ TEST(simTrajectory, WaypointMissionsDriveTheSimulatorOverTheQuay) {
   EXPECT_NEAR(truth->surface.range_m, (2.0 + 1.5 / 8.0) / (std::sin(tilt_rad) + std::cos(tilt_rad) / 8.0), 1e-9);
   // The beam is 35° tall: its lower edge, 42.5° down, meets the seabed first (2.85 m); the echo
   // peaks between that range and the axis's.
-  const Eigen::Vector3d lower_edge = pose.linear() * Eigen::Vector3d(std::cos(17.5 * kDegree), 0.0, -std::sin(17.5 * kDegree));
+  // (the sonar frame's z is down: FRD)
+  const Eigen::Vector3d lower_edge = pose.linear() * Eigen::Vector3d(std::cos(17.5 * kDegree), 0.0, std::sin(17.5 * kDegree));
   const auto nearest = firstHit(run.scene, pose.translation(), lower_edge, 5.0);
   ASSERT_TRUE(nearest);
   EXPECT_EQ(nearest->primitive, 1U);

@@ -56,7 +56,7 @@ TEST(sonarPolarImage, RejectsEmptyRangeAndMixedBinLengths) {
   EXPECT_NO_THROW(makePolarImage(beams, 1, 2));
 }
 
-TEST(sonarCartesianImage, BeamAtBearingZeroLightsPositiveX) {
+TEST(sonarCartesianImage, BeamAtBearingZeroLightsAheadUp) {
   const std::vector<Beam> beams = {beam(0.0, std::vector<std::uint8_t>(10, 200))};  // 1 m of bins
   const PolarImage polar = makePolarImage(beams, 0, 1);
   const cv::Mat image = makeCartesianImage(polar, 0.05, 10.0 * kPi / 180.0);
@@ -64,27 +64,28 @@ TEST(sonarCartesianImage, BeamAtBearingZeroLightsPositiveX) {
   ASSERT_EQ(image.rows, 41);  // 2 · ceil(1.0 / 0.05) + 1
   ASSERT_EQ(image.cols, 41);
   const int c = 20;
-  // (the last pixel lies at exactly 1.0 m, the far end of the last bin, and stays 0)
-  for (int u = c + 1; u < image.cols - 1; ++u) EXPECT_EQ(image.at<std::uint8_t>(c, u), 200) << "+x pixel " << u;
-  for (int u = 0; u < c; ++u) EXPECT_EQ(image.at<std::uint8_t>(c, u), 0) << "−x pixel " << u;
-  for (int v = 0; v < c; ++v) EXPECT_EQ(image.at<std::uint8_t>(v, c), 0) << "+y pixel " << v;
-  EXPECT_EQ(cv::countNonZero(image.colRange(0, c)), 0);  // nothing on the left half
+  // Seen from above, ahead (+x) up. (The last pixel lies at exactly 1.0 m, the far end of the last
+  // bin, and stays 0.)
+  for (int v = 1; v < c; ++v) EXPECT_EQ(image.at<std::uint8_t>(v, c), 200) << "+x (ahead) pixel " << v;
+  for (int v = c + 1; v < image.rows; ++v) EXPECT_EQ(image.at<std::uint8_t>(v, c), 0) << "−x pixel " << v;
+  for (int u = c + 1; u < image.cols; ++u) EXPECT_EQ(image.at<std::uint8_t>(c, u), 0) << "+y pixel " << u;
+  EXPECT_EQ(cv::countNonZero(image.rowRange(c + 1, image.rows)), 0);  // nothing on the lower half
   // The wedge is ±5°: at 0.9 m a pixel 0.05 m off-axis (3.2°) is lit, 0.15 m off (9.5°) is not.
-  EXPECT_EQ(image.at<std::uint8_t>(c - 1, c + 18), 200);
-  EXPECT_EQ(image.at<std::uint8_t>(c - 3, c + 18), 0);
+  EXPECT_EQ(image.at<std::uint8_t>(c - 18, c + 1), 200);
+  EXPECT_EQ(image.at<std::uint8_t>(c - 18, c + 3), 0);
 }
 
-TEST(sonarCartesianImage, PositiveYIsUpAndAnglesInterpolate) {
+TEST(sonarCartesianImage, StarboardIsRightAndAnglesInterpolate) {
   // Beams at 80° and 100°, 20° apart, width 30°: the gap is filled, blending the two values.
   const std::vector<Beam> beams = {beam(80.0 * kPi / 180.0, std::vector<std::uint8_t>(10, 100)),
                                    beam(100.0 * kPi / 180.0, std::vector<std::uint8_t>(10, 200))};
   const cv::Mat image = makeCartesianImage(makePolarImage(beams, 0, 2), 0.05, 30.0 * kPi / 180.0);
   const int c = 20;
-  EXPECT_NEAR(image.at<std::uint8_t>(c - 15, c), 150, 1);  // straight up (90°): halfway
-  EXPECT_EQ(image.at<std::uint8_t>(c + 15, c), 0);          // straight down: no beam
-  // Right of the vertical (bearing < 90°) is nearer the 100-valued beam.
-  EXPECT_LT(image.at<std::uint8_t>(c - 15, c + 2), 150);
-  EXPECT_GT(image.at<std::uint8_t>(c - 15, c - 2), 150);
+  EXPECT_NEAR(image.at<std::uint8_t>(c, c + 15), 150, 1);  // right (90°, starboard): halfway
+  EXPECT_EQ(image.at<std::uint8_t>(c, c - 15), 0);          // left (port): no beam
+  // Above the horizontal (bearing < 90°, towards ahead) is nearer the 100-valued beam.
+  EXPECT_LT(image.at<std::uint8_t>(c - 2, c + 15), 150);
+  EXPECT_GT(image.at<std::uint8_t>(c + 2, c + 15), 150);
 }
 
 TEST(sonarCartesianImage, DistantBeamsOnlyFillTheirOwnWidth) {
@@ -94,8 +95,8 @@ TEST(sonarCartesianImage, DistantBeamsOnlyFillTheirOwnWidth) {
   const int c = 20;
   const double r_px = 15.0;  // 0.75 m
   const auto at = [&](double deg) {
-    return image.at<std::uint8_t>(static_cast<int>(std::lround(c - r_px * std::sin(deg * kPi / 180.0))),
-                                  static_cast<int>(std::lround(c + r_px * std::cos(deg * kPi / 180.0))));
+    return image.at<std::uint8_t>(static_cast<int>(std::lround(c - r_px * std::cos(deg * kPi / 180.0))),
+                                  static_cast<int>(std::lround(c + r_px * std::sin(deg * kPi / 180.0))));
   };
   EXPECT_EQ(at(0.0), 100);
   EXPECT_EQ(at(90.0), 100);

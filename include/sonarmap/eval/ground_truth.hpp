@@ -19,7 +19,7 @@
 ///    a wall lies just beyond the last voxel the sonar cleared).
 ///  - Field of view (only when both GroundTruthOptions::sensor_orientations and
 ///    vertical_aperture_rad, A, are set): sensor i is a scanning head turning 360° about the z axis
-///    of its own frame (sonar frame, beam.hpp: x along bearing 0, y left, z up), whose orientation
+///    of its own frame (sonar frame, beam.hpp: x along bearing 0, y starboard, z down), whose orientation
 ///    sensor_orientations[i] maps sonar-frame vectors to the map frame. It sees a point p when the
 ///    elevation of p in its frame, asin(z component of Rᵢᵀ · (p − sᵢ) / |p − sᵢ|), lies within
 ///    [−A/2, A/2]; no horizontal limit. Without them every direction is seen (a sphere).
@@ -87,7 +87,7 @@ struct GroundTruthOptions {
   std::vector<Eigen::Vector3d> sensor_positions_m{Eigen::Vector3d::Zero()};
   std::optional<double> max_range_m;    ///< sonar reach, > 0; unset: the map's reach + T (see above)
   double match_distance_m = 0.5;        ///< occupied voxels within it enter the wall-position error, > 0
-  /// Orientation of each sensor: the rotation from its sonar frame (x along bearing 0, y left, z
+  /// Orientation of each sensor: the rotation from its sonar frame (x along bearing 0, y starboard, z
   /// up) to the map frame, parallel to sensor_positions_m. Empty: no field-of-view check (every
   /// direction seen). Set together with vertical_aperture_rad.
   std::vector<Eigen::Matrix3d> sensor_orientations;

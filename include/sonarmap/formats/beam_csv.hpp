@@ -8,8 +8,8 @@
 ///
 ///  - time_s: seconds, the log's own clock (the navigation's clock when there is one); finite;
 ///    rows in time order (equal times allowed, going backwards is an error).
-///  - bearing_deg: degrees in the sonar frame of beam.hpp, 0 along the sonar's +x, counter-
-///    clockwise positive seen from above; any finite value, wrapped to [0°, 360°).
+///  - bearing_deg: degrees in the sonar frame of beam.hpp, 0 along the sonar's +x (ahead),
+///    clockwise positive seen from above (90° is +y, starboard); any finite value, wrapped to [0°, 360°).
 ///  - bin_length_m: metres, finite and > 0.
 ///  - intensity_span_db (optional column, right after bin_length_m): the dB span of the
 ///    intensities 0…255 (Beam::intensity_span_db, e.g. a SeaNet head's AD span), finite and > 0;

@@ -17,10 +17,14 @@ namespace sonarmap {
 ///   - `intensities` 1×N or N×1, echo intensity per bin, bin 0 nearest: uint8, or double/single
 ///                   holding integers 0…255 (the published CRAS file stores double).
 ///
-/// Bearing convention: the authors draw a beam in the plane at `theta = radians(angle + 180)`,
-/// `x = r cos(theta)`, `y = r sin(theta)`. We follow them so our maps match their figures:
-/// `Beam::bearing_rad = radians(angle + 180)` wrapped to [0, 2π), counter-clockwise from +x of
-/// the sonar frame (beam.hpp). On the CRAS data the first beam (angle 180°) has bearing 0.
+/// Bearing convention: the head is a Tritech Micron and `angle` its SeaNet bearing in degrees
+/// (6,400 counts per turn scaled to 360°), so it counts clockwise seen from above with the head's
+/// "ahead" at 180° (SeaNet's 3,200; the authors too place angle 180° on their +x axis,
+/// `theta = radians(angle + 180)`). `Beam::bearing_rad = radians(angle − 180)` wrapped to
+/// [0, 2π), clockwise from ahead as beam.hpp counts, the same as the SeaNet readers give for the
+/// same head. The authors draw `x = r cos(theta)`, `y = r sin(theta)` with y up, a view from
+/// below for a clockwise head: our maps are their figures mirrored about the x axis. On the CRAS
+/// data the first beam (angle 180°) has bearing 0.
 ///
 /// A malformed beam is not an error of the file: it is left out of `SonarLog::beams`, counted in
 /// `skipped_beams` and described in `skip_reasons` (element index, field, what was expected).

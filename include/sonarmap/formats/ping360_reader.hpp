@@ -48,9 +48,9 @@ SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& s
 
 /// Parses a raw ping-protocol stream. Each device_data or auto_device_data message becomes one
 /// Beam:
-///   - `bearing_rad` = 2π · ((400 − angle) mod 400) / 400: the Ping360 counts gradians clockwise
-///     seen from above (Ping Viewer adds the vehicle's yaw to it and draws it clockwise),
-///     beam.hpp counter-clockwise; the head's zero is kept at +x;
+///   - `bearing_rad` = 2π · angle / 400: the Ping360 counts gradians clockwise seen from above
+///     from its zero, which Ping Viewer draws ahead, at the top of its fan (it adds the vehicle's
+///     yaw to the angle and draws it clockwise); beam.hpp's bearings are clockwise from ahead;
 ///   - `bin_length_m` = sample_period × 25 ns × sound speed / 2;
 ///   - `intensities`: the data array, sample 0 nearest (its length, not number_of_samples, gives
 ///     the bin count); `intensity_span_db` unset (the protocol does not give one);

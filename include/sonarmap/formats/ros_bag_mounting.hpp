@@ -6,11 +6,12 @@
 /// robot_state_publisher latch them), chained from the navigation's body frame to the frame the
 /// sonar's messages name.
 ///
-/// Frames: ROS's body and sensor frames are forward-left-up (REP 103), so a sonar frame in tf is
-/// beam.hpp's sonar frame as it is (x along bearing 0, y left, z up); a body frame whose name says
-/// FRD or NED ("base_link_frd") is taken as forward-right-down, any other turned into FRD by
-/// diag(1, −1, −1). The result is the `sonar_to_body` the mapper takes (navigation.hpp); the
-/// identity transform gives defaultSonarToBody().
+/// Frames: ROS's body and sensor frames are forward-left-up (REP 103); the mapper's sonar and body
+/// frames are forward-right-down (navigation.hpp). A frame whose name says FRD or NED
+/// ("base_link_frd", "sonar_frd") is taken as forward-right-down, any other as FLU and turned by
+/// diag(1, −1, −1). The result is the `sonar_to_body` the mapper takes (navigation.hpp): an
+/// identity transform between two FLU frames (or two FRD ones) gives defaultSonarToBody(), the
+/// identity.
 
 #include <optional>
 #include <string>

@@ -18,7 +18,7 @@
 /// bearing: `_rad` and `_deg` say it; otherwise degrees when any bearing of the topic exceeds 2π,
 /// else radians. The bearing grows clockwise seen from above, as the Tritech head counts it (the
 /// micron_driver_ros driver publishes the SeaNet head's bearing, 1/16 gradian clockwise, in
-/// degrees; docs/formats.md, SeaNet), and is turned into beam.hpp's counter-clockwise radians.
+/// degrees; docs/formats.md, SeaNet), as beam.hpp's radians count; the message's zero is bearing 0.
 /// RosBagOptions::bearing_unit and bearing_direction override both. What was decided is said in
 /// SonarLog::notes.
 

@@ -33,8 +33,8 @@ SonarLog readSeaNetCapture(const std::string& path, const CaptureOptions& option
 
 /// Parses the bytes of a raw SeaNet capture. Every mtHeadData packet of an imaging head becomes
 /// one Beam, converted exactly as the `.V4LOG` reader converts its records (v4log_reader.hpp):
-/// `bearing_rad` = 2π · ((6400 − bearing) mod 6400) / 6400 (SeaNet's 1/16 gradian clockwise →
-/// counter-clockwise, head zero at +x), `bin_length_m` = ADInterval × 640 ns × sound speed / 2,
+/// `bearing_rad` = 2π · ((bearing − 3200) mod 6400) / 6400 (SeaNet's 1/16 gradian clockwise,
+/// ahead at 3200; reversed about ahead when HdCtrl `invert` is set), `bin_length_m` = ADInterval × 640 ns × sound speed / 2,
 /// 8-bit bins copied or 4-bit bins unpacked high nibble first ×17, `intensity_span_db` =
 /// ADspan × 80 / 255 dB. `time_s` = beam index × options.beam_interval_s (the protocol has no
 /// clock).

@@ -50,12 +50,13 @@ SonarLog readSeaNetV4Log(const std::string& path, const V4LogOptions& options = 
 ///     above: the head scans from its left limit to its right limit with bearings increasing;
 ///     HdCtrl bit 2 `scanright` ("scanning direction is clockwise", ros-tritech-micron `sonar.py`)
 ///     is set on both beams of every increasing step of the sample and clear on every decreasing
-///     one; rock's `Micron.cpp` notes "sonars coordinate system is clock wise".
-///     beam.hpp counts counter-clockwise from the head's zero, so
-///     `bearing_rad = 2π · ((6400 − bearing) mod 6400) / 6400`, in [0, 2π). The head's zero is kept
-///     at +x: Tritech's "ahead" (3,200, the centre of the default 2,400…4,000 sector) lands at π
-///     (drivers that put "ahead" at 0 rotate by π). The HdCtrl `invert` flag (head mounted boot
-///     down) and the heading offset are not applied: bearings are taken as the head reports them.
+///     one; rock's `Micron.cpp` notes "sonars coordinate system is clock wise". Tritech's "ahead"
+///     is 3,200, the centre of the default 2,400…4,000 sector (rock's driver places a beam at
+///     π − bearing·2π/6400 counter-clockwise: 3,200 ahead). beam.hpp counts clockwise from ahead,
+///     so `bearing_rad = 2π · ((bearing − 3200) mod 6400) / 6400`, in [0, 2π). The HdCtrl bit 3
+///     `invert` flag (head mounted boot up, upside down) reverses the count seen from above:
+///     `2π · ((3200 − bearing) mod 6400) / 6400`, so an inverted head is mapped with the same
+///     mounting as an upright one. The heading offset is not applied.
 ///   - `bin_length_m` = ADInterval × 640 ns × sound_speed / 2 (two-way travel time of one sample).
 ///   - `intensities`: 8-bit bins (HdCtrl bit 0 `adc8on` set) are copied; 4-bit bins (bit clear)
 ///     come two per byte, high nibble first (pySonar, tritech_micron; rock's driver takes the low

@@ -10,7 +10,8 @@
 ///
 /// What the wire cannot carry is lost or rounded (the reader gives it back so):
 ///  - time: neither mtHeadData nor device_data has a clock (the reader numbers the beams instead);
-///  - bearing: 1/16 gradian (SeaNet) or 1 gradian (Ping360), clockwise seen from above;
+///  - bearing: 1/16 gradian (SeaNet, ahead at 3200) or 1 gradian (Ping360, ahead at 0), clockwise
+///    seen from above, as the readers take them (beam.hpp's bearing 0 is ahead);
 ///  - bin length: the sample interval, 640 ns (SeaNet ADInterval) or 25 ns (Ping360 sample period)
 ///    of two-way travel at CaptureOptions::sound_speed_m_s: 0.48 mm and 0.019 mm at 1500 m/s;
 ///  - the intensity span: SeaNet ADspan (dB × 255 / 80, rounded; 0 when unknown), none on Ping360.

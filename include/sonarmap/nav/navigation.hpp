@@ -3,16 +3,22 @@
 /// Vehicle navigation for a moving sonar: fixes in the local NED frame (the marine convention),
 /// pose interpolation at beam times, and the sonar's mounting on the vehicle.
 ///
-/// Frames:
+/// Frames (the one statement of the project's convention; docs/frames.md explains it with examples):
 ///  - NED: local tangent frame, x north, y east, z down, metres; the navigation's frame.
 ///  - body: the vehicle's frame, x forward, y starboard, z down (FRD); roll, pitch, yaw are the
-///    usual Z-Y-X (yaw, then pitch, then roll) Euler angles of body in NED, radians.
-///  - sonar: the head's frame of beam.hpp (x along bearing 0, y left, z up).
+///    usual Z-Y-X (yaw, then pitch, then roll) Euler angles of body in NED, radians: pitch
+///    positive raises the bow (nose up), negative lowers it; roll positive lowers the starboard side.
+///  - sonar: the head's frame, the same axes and handedness as the body frame: x along the head's
+///    zero bearing ("ahead", each reader maps its head's ahead there), y to starboard, z down (FRD)
+///    for a head mounted upright. A beam's bearing (beam.hpp) is measured from +x towards +y:
+///    clockwise seen from above, so bearing b points along (cos b, sin b, 0) in the sonar frame
+///    and bearing π/2 is to starboard. A sonar mounted upright and aligned has the identity
+///    mounting (defaultSonarToBody(), `--mounting 0,0,0,0,0,0`); a mounting's roll, pitch, yaw
+///    have the body's meaning, so a head tilted 25° down is pitch −25°.
 ///  - map: the frame the octree is written in, z up so that octovis shows it upright: NWU,
-///    x north, y west, z up (NED with y and z negated). A sonar mounted upright and aligned with
-///    the vehicle, on a vehicle at the NED origin with zero attitude, has the identity pose in the
-///    map, so a static log maps the same with or without navigation.
-
+///    x north, y west, z up (NED with y and z negated). A log without navigation is mapped as
+///    from a vehicle at the NED origin with zero attitude and the default mounting
+///    (staticSonarToMap()), so a static log maps the same with or without a navigation at rest.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -43,13 +49,17 @@ using NavTrack = std::vector<NavSample>;
 Eigen::Isometry3d bodyToNed(const NavSample& sample);
 
 /// NED → map (NWU): (n, e, d) ↦ (n, −e, −d), the rotation diag(1, −1, −1) with no translation.
-/// The same matrix maps an upright sonar frame (x forward, y left, z up) to body (FRD), so
-/// nedToMap() · bodyToNed(zero fix) · diag(1, −1, −1) is the identity (see the frames above).
 Eigen::Isometry3d nedToMap();
 
-/// The sonar's mounting on the vehicle: sonar frame (beam.hpp: x along bearing 0, y left, z up) →
-/// body frame (FRD). Default: upright and aligned, at the body origin: diag(1, −1, −1).
+/// The sonar's mounting on the vehicle: sonar frame (FRD, see the frames above) → body frame (FRD).
+/// Default: upright and aligned, at the body origin: the identity.
 Eigen::Isometry3d defaultSonarToBody();
+
+/// Pose of the sonar in the map for a log without navigation: a vehicle at the NED origin with
+/// zero attitude, the sonar mounted with defaultSonarToBody(): sonarToMap(NavSample{},
+/// defaultSonarToBody()), which is nedToMap(). Bearing 0 then points north (map +x) and bearing
+/// π/2 east (map −y).
+Eigen::Isometry3d staticSonarToMap();
 
 /// Pose of the sonar frame in the map frame for one navigation fix:
 /// nedToMap() · bodyToNed(fix) · sonar_to_body.

@@ -14,7 +14,7 @@
 namespace sonarmap {
 
 /// The polar image (polar_image.hpp) with range to the right (x axis, "range (m)", from 0 to
-/// cols × bin_length_m) and bearing up (y axis, "bearing (deg)", sonar frame, counter-clockwise
+/// cols × bin_length_m) and bearing up (y axis, "bearing (deg)", sonar frame, clockwise
 /// from bearing 0). The rows are ordered by bearing, unwrapped along the sweep so that a turn
 /// through 360° or a sector across 0° stays continuous (the lowest bearing in [−180°, 180°)), and
 /// drawn as evenly spaced: each row spans (highest − lowest) / (rows − 1) degrees (1° for a single
@@ -23,8 +23,8 @@ namespace sonarmap {
 ///         polar.bearing_rad does not hold one bearing per row.
 cv::Mat polarFigure(const PolarImage& polar, const std::string& title);
 
-/// makeCartesianImage(polar, pixel_size_m, beam_width_rad) with the sonar at (0, 0), axes x (m)
-/// along bearing 0 and y (m) along bearing 90°, sonar frame; pixels no beam covers are black
+/// makeCartesianImage(polar, pixel_size_m, beam_width_rad) with the sonar at (0, 0), seen from
+/// above: "ahead" (m, bearing 0) up, "starboard" (m, bearing 90°) right; pixels no beam covers are black
 /// (intensity 0).
 /// @throws ValueError as makeCartesianImage.
 cv::Mat cartesianFigure(const PolarImage& polar, double pixel_size_m, double beam_width_rad, const std::string& title);

@@ -95,8 +95,9 @@ struct MsisHeadOptions {
   /// Bearing of the first beam of a 360° head, radians (wrapped to [0, 2π)); a sector head starts
   /// at a limit of its sector instead.
   double start_bearing_rad = 0.0;
-  /// The head turns counter-clockwise (bearings increase); false: clockwise. A sector head's first
-  /// pass runs this way, the next one back.
+  /// The head turns counter-clockwise seen from above (bearings, which count clockwise (beam.hpp),
+  /// decrease); false: clockwise (bearings increase), as a Tritech head scanning right. A sector
+  /// head's first pass runs this way, the next one back.
   bool counter_clockwise = true;
   /// Width of the scanned sector, radians, in (0, 2π]. 2π (the default): a continuous 360° scan.
   /// Less: a sector scan. The head then sweeps between the limits
@@ -106,7 +107,7 @@ struct MsisHeadOptions {
   /// sectorSteps() + 1 beams, from one limit to the other, both included. The sector must hold at
   /// least one step (sector_width_rad ≥ step_rad).
   double sector_width_rad = 2.0 * std::numbers::pi;
-  double sector_center_rad = 0.0;  ///< bearing of the sector's centre, radians (sector scans only)
+  double sector_center_rad = 0.0;  ///< bearing of the sector's centre, radians clockwise from ahead (sector scans only)
   /// The head's log records its pulse with each beam (Beam::pulse_length_m = the echo model's
   /// pulse_length_m), as a Ping360's device_data does (transmit_duration); false: as Tritech's
   /// SeaNet logs and the CRAS .mat, which do not.
@@ -122,7 +123,7 @@ struct MsisHeadOptions {
   /// pass across the sector, sectorSteps() + 1.
   std::size_t beamsPerTurn() const;
   /// Bearing of beam `index` (0 for the first beam of the run), radians in [0, 2π), sonar frame.
-  /// 360° head: start_bearing_rad + index · step (− for clockwise), wrapped. Sector head: pass
+  /// 360° head: start_bearing_rad − index · step (+ for clockwise), wrapped. Sector head: pass
   /// p = index / beamsPerTurn() starts at the limit where pass p − 1 ended (the first pass at the
   /// limit from which counter_clockwise leads across the sector) and steps to the other limit.
   double bearingOf(std::size_t index) const;

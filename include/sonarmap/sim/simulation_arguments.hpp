@@ -20,7 +20,7 @@ namespace sonarmap {
 struct SimulationArguments {
   std::string sonar = "micron";    ///< a head preset (sonarPresetNames); built-in scenes are built for its range
   double sector_deg = 360.0;       ///< width of the scanned sector, degrees, in (0, 360]; 360: continuous turns
-  double sector_center_deg = 0.0;  ///< bearing of the sector's centre, degrees counter-clockwise from the sonar's x
+  double sector_center_deg = 0.0;  ///< bearing of the sector's centre, degrees clockwise from the sonar's ahead (beam.hpp)
   std::uint64_t seed = 1;          ///< seed of the speckle and noise
   std::size_t turns = 28;          ///< full turns of the head (passes across a sector), ≥ 1; ignored with a mission
   /// Vehicle speed over ground, metres per second: along the heading without a mission; along the

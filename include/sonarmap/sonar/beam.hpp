@@ -2,9 +2,11 @@
 /// @file beam.hpp
 /// One MSIS beam and a log of beams (paper §2.1).
 ///
-/// Sonar frame: x forward along the head's zero bearing, y to the left, z up; bearing is measured
-/// from +x, counter-clockwise seen from above, in radians within [0, 2π). Bin i covers ranges
-/// [i, i+1) × bin_length_m from the transducer.
+/// Sonar frame (nav/navigation.hpp states the frames once): x along the head's "ahead" (bearing 0),
+/// y to starboard, z down for a head mounted upright (FRD, as the vehicle's body frame); bearing is
+/// measured from +x towards +y, clockwise seen from above, in radians within [0, 2π): a beam at
+/// bearing b points along (cos b, sin b, 0). Every reader maps its head's ahead to 0 and its count
+/// to this direction. Bin i covers ranges [i, i+1) × bin_length_m from the transducer.
 
 #include <cstddef>
 #include <cstdint>
@@ -17,7 +19,7 @@ namespace sonarmap {
 /// One beam: the echo intensities along one bearing at one time.
 struct Beam {
   double time_s = 0.0;        ///< time of the beam in seconds (the log's own clock)
-  double bearing_rad = 0.0;   ///< bearing in the sonar frame, radians in [0, 2π)
+  double bearing_rad = 0.0;   ///< bearing in the sonar frame, radians in [0, 2π), clockwise from ahead
   double bin_length_m = 0.0;  ///< length of one bin along the beam, metres (> 0)
   std::vector<std::uint8_t> intensities{};  ///< echo intensity per bin, 0…255, bin 0 nearest
   /// dB span the intensities 0…255 cover, when the format records it (SeaNet: ADspan × 80 / 255);

@@ -6,7 +6,7 @@
 /// covers it. Computed from the beams alone: no format, no detector, no map.
 ///
 /// Units are in the names: seconds (the log's own clock, Beam::time_s), metres, degrees. Bearings
-/// are in the sonar frame of beam.hpp (counter-clockwise from the head's zero bearing, seen from
+/// are in the sonar frame of beam.hpp (clockwise from the head's ahead, bearing 0, seen from
 /// above), reported in degrees in [0, 360).
 
 #include <cstddef>
@@ -36,14 +36,14 @@ struct SweepSummary {
   std::size_t first_beam = 0;  ///< index of its first beam in SonarLog::beams
   std::size_t beams = 0;       ///< its beam count (≥ 1)
   SweepKind kind = SweepKind::kPartialTurn;
-  int direction = 0;           ///< +1 counter-clockwise, −1 clockwise, 0 the head did not move
+  int direction = 0;           ///< +1 clockwise (bearings increase), −1 counter-clockwise, 0 the head did not move
   double span_deg = 0.0;       ///< accumulated |bearing step| from its first beam to its last, degrees
   double first_bearing_deg = 0.0;  ///< bearing of its first beam, degrees in [0, 360)
   double last_bearing_deg = 0.0;   ///< bearing of its last beam, degrees in [0, 360)
   double duration_s = 0.0;     ///< time of its last beam − time of its first, seconds
 };
 
-/// The smallest arc of bearings that holds every bearing of a set: counter-clockwise from
+/// The smallest arc of bearings that holds every bearing of a set: clockwise from
 /// `from_deg` to `to_deg` (to_deg < from_deg when it crosses bearing 0).
 struct BearingArc {
   double from_deg = 0.0;   ///< degrees in [0, 360)

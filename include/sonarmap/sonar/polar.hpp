@@ -25,8 +25,8 @@ namespace sonarmap {
 ///   the beams do not all share one bin length (the message names the beam and both lengths).
 PolarImage makePolarImage(const std::vector<Beam>& beams, std::size_t first, std::size_t last_exclusive);
 
-/// Renders a polar image as a top view: the sonar at the centre pixel, +x (bearing 0) to the right,
-/// +y (bearing π/2, counter-clockwise) up. The image is square, of side 2·ceil(R / pixel_size_m) + 1
+/// Renders a polar image as a top view, seen from above: the sonar at the centre pixel, +x
+/// (bearing 0, ahead) up, +y (bearing π/2, starboard: bearings turn clockwise, beam.hpp) right. The image is square, of side 2·ceil(R / pixel_size_m) + 1
 /// pixels with R = cols × bin_length_m, CV_8U; pixels no beam covers are 0.
 ///
 /// Angle interpolation (paper §2.1, Fig. 4), by our own polar lookup (not cv::warpPolar, which
@@ -36,7 +36,7 @@ PolarImage makePolarImage(const std::vector<Beam>& beams, std::size_t first, std
 ///   - If those two neighbours are at most `beam_width_rad` apart, their footprints touch and the
 ///     value is interpolated linearly in angle between them.
 ///   - Otherwise each beam only fills ±beam_width_rad/2 around its own bearing with its own value.
-/// A single beam at bearing 0 thus lights a wedge along +x of half-angle beam_width_rad/2.
+/// A single beam at bearing 0 thus lights a wedge upwards of half-angle beam_width_rad/2.
 ///
 /// @param polar           a polar image with bin_length_m > 0 and at least one row.
 /// @param pixel_size_m    side of one pixel in metres, > 0.

@@ -24,7 +24,7 @@ struct HeadSetting {
 inline HeadSetting headSettingOf(const Beam& beam) { return HeadSetting{beam.bin_length_m, beam.gain_setting}; }
 
 /// The head's step from bearing `from_rad` to bearing `to_rad`: their difference wrapped to (−π, π],
-/// radians; positive counter-clockwise (the sonar frame's direction of bearing, beam.hpp).
+/// radians; positive clockwise seen from above (the sonar frame's direction of bearing, beam.hpp).
 double bearingStep_rad(double from_rad, double to_rad);
 
 /// Beams [first, last_exclusive) of a beam list form one sweep.
@@ -85,7 +85,7 @@ class SweepSplitter {
     HeadSetting setting;
   };
   std::optional<Previous> previous_;  ///< the last beam seen
-  int direction_ = 0;                 ///< +1 counter-clockwise, −1 clockwise, 0 not known yet
+  int direction_ = 0;                 ///< +1 clockwise (bearings increase), −1 counter-clockwise, 0 not known yet
   double turned_rad_ = 0.0;           ///< accumulated |step| since the sweep's first beam
 };
 
