@@ -28,7 +28,7 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 PolarImage tiltedTurn(bool seabed) {
   MsisSimulationOptions options;
   options.turns = 1;
-  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(25.0 * kDegree, Eigen::Vector3d::UnitY());
+  options.sonar_to_body = defaultSonarToBody() * Eigen::AngleAxisd(-25.0 * kDegree, Eigen::Vector3d::UnitY());  // 25° down
   const Scene scene = seabed ? Scene{{Plane{{0.0, 0.0, -2.0}, Eigen::Vector3d::UnitZ(), 0.5}}}
                              : Scene{{Plane{{0.0, 0.0, -500.0}, Eigen::Vector3d::UnitZ(), 0.5}}};
   const MsisSimulation run = simulateMsis(scene, options);

@@ -280,7 +280,7 @@ TEST(formatsLogFormat, NamesAndExtensions) {
     parseLogFormat("micron");
     ADD_FAILURE() << "no ValueError for an unknown format name";
   } catch (const ValueError& e) {
-    EXPECT_TRUE(contains(e.what(), "'micron', expected mat, csv, v4log, seanet, ping360, rosbag, mcap or rosbag2")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "'micron', expected mat, csv, v4log, seanet, ping360, rosbag, mcap, rosbag2")) << e.what();
   }
 }
 
