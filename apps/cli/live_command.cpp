@@ -227,15 +227,17 @@ void printStatus(LiveMapping& live, std::size_t bytes, std::size_t skipped, doub
 /// on its own thread, so that writing a large map never holds up the beams.
 class PeriodicWriter {
  public:
-  PeriodicWriter(const LiveMapping& mapper, std::string path, MapFrame frame, double every_s)
-      : thread_([this, &mapper, path = std::move(path), frame, every_s](std::stop_token stop) {
+  /// `origin_ned_m`: the local origin known before the first beam (a --nav file's); a streamed
+  /// navigation's origin, decided at its first fix, is named by the final write only.
+  PeriodicWriter(const LiveMapping& mapper, std::string path, MapFrame frame, Eigen::Vector3d origin_ned_m, double every_s)
+      : thread_([this, &mapper, path = std::move(path), frame, origin_ned_m, every_s](std::stop_token stop) {
           std::mutex mutex;
           std::unique_lock lock(mutex);
           while (!wake_.wait_for(lock, stop, std::chrono::duration<double>(every_s), [] { return false; })) {
             if (stop.stop_requested()) return;
             if (mapper.sweepsIntegrated() == 0) continue;  // a map from the first sweep on
             try {
-              writeMapFileInFrame(mapper.shownSnapshot(), path, frame);
+              writeMapFileInFrame(mapper.shownSnapshot(), path, frame, origin_ned_m);
             } catch (const std::exception& error) {  // the last good map stays; the final write reports for good
               std::fprintf(stderr, "sonarmap: warning: periodic map write failed: %s\n", error.what());
             }
@@ -263,7 +265,7 @@ void finishLive(const LiveArgs& args, LiveMapping& live, Clock::time_point start
                           " as the range scale grew)";
   }
   run.mapper.stats().beams_skipped = skipped;
-  writeMapFileInFrame(run.mapper.map(), args.map.output_bt, args.map.map_frame);
+  writeMapFileInFrame(run.mapper.map(), args.map.output_bt, args.map.map_frame, live.origin().ned_m);
   if (!args.map.trajectory_out.empty()) {
     FileTransaction outputs;
     stageTrajectory(outputs, args.map.trajectory_out, inNavigationFrame(trajectory, live.origin()));
@@ -297,7 +299,8 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: reading %s\n", source.description().c_str());
   WireStreamDecoder decoder(format, {}, args.map.input);
 
-  std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.map.map_frame, args.write_every_s);
+  std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.map.map_frame,
+                                      origin ? origin->ned_m : Eigen::Vector3d::Zero(), args.write_every_s);
   std::vector<SkipReasonGroup> skip_reasons;  // grouped as they come: a stream may run for days
   std::array<std::uint8_t, 65536> buffer{};
   double last_status_s = 0.0;
@@ -400,7 +403,8 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
   g_stop = 0;
   catchStopSignals();
   if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: replaying %s\n", args.map.input.c_str());
-  std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.map.map_frame, args.write_every_s);
+  std::optional<PeriodicWriter> writer(std::in_place, live, args.map.output_bt, args.map.map_frame,
+                                      origin ? origin->ned_m : Eigen::Vector3d::Zero(), args.write_every_s);
   double last_status_s = 0.0;
   std::size_t beams_at_status = 0;
   source->rewind();

@@ -186,6 +186,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, inNavigationFrame(trajectory, origin));
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
+  shown.map_origin_ned_m = origin.ned_m;
   stageMapOutputs(outputs, shown, *source, survey, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
                   trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
                                      : sonarTrack(trajectory, mounting, survey));

@@ -35,6 +35,9 @@ struct MapArgs : MappingArguments {
   std::string trajectory_out;    ///< --trajectory: the trajectory the map was built with (nav CSV, or TUM)
   std::vector<double> origin;    ///< --origin N,E[,D]: the map's zero in the navigation's frame; empty: automatic
   MapFrame map_frame = kDefaultMapFrame;  ///< --map-frame: the frame the map file is written in
+  /// Not an option: the local origin the navigation was mapped about (--origin's or the automatic
+  /// one, NED m), named in the map file's header when not zero.
+  Eigen::Vector3d map_origin_ned_m = Eigen::Vector3d::Zero();
 };
 
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.

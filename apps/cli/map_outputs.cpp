@@ -155,9 +155,9 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& 
   outputs.stage(args.output_bt, [&](std::ostream& out) {
     const OcTree16& framed = args.map_frame == MapFrame::kNwu ? map : mapInFrame(map, args.map_frame);
     if (mapFormatOf(args.output_bt) == MapFormat::kFull) {
-      writeFull(framed, out, {mapFrameComment(args.map_frame)});
+      writeFull(framed, out, mapHeaderComments(args.map_frame, args.map_origin_ned_m));
     } else {
-      writeBinary(framed, out, {mapFrameComment(args.map_frame)});
+      writeBinary(framed, out, mapHeaderComments(args.map_frame, args.map_origin_ned_m));
     }
   });
   const double res = map.resolution_m();

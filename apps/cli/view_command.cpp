@@ -7,6 +7,7 @@
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/local_origin.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
 
 namespace sonarmap::embedded {
@@ -47,11 +48,13 @@ void run(const ViewArgs& args) {
   options.max_boxes = args.max_boxes;
   options.max_free_boxes = args.max_free_boxes;
   options.title = std::filesystem::path(args.input).filename().string();
+  const FramedMap file = readMapFileToNwu(args.input);
   if (!args.trajectory_csv.empty()) {
-    options.trajectory_m = trajectoryInMap(readNavCsv(args.trajectory_csv));
+    NavTrack track = readNavCsv(args.trajectory_csv);  // the navigation's own coordinates
+    moveToOrigin(track, file.origin_ned_m);              // the map's local origin (its header's)
+    options.trajectory_m = trajectoryInMap(track);
     options.trajectory_source = std::filesystem::path(args.trajectory_csv).filename().string();
   }
-  const FramedMap file = readMapFileToNwu(args.input);
   const OcTree16 map = mapInFrame(file.map, MapFrame::kEnu);
   if (file.frame != MapFrame::kEnu) {
     options.frame += "; the file is " + mapFrameDescription(file.frame) +

@@ -115,8 +115,11 @@ Raises sonarmap.ValueError for a resolution that is not finite and > 0, or proba
           "read",
           [](const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt, std::nullopt,
-                                mapFrameOfComments(readMapFileHeader(path.string()).comments)};
+            const std::vector<std::string> comments = readMapFileHeader(path.string()).comments;
+            const Eigen::Vector3d origin_ned_m = mapOriginOfComments(comments);
+            return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt,
+                                origin_ned_m.isZero(0.0) ? std::nullopt : std::optional(origin_ned_m),
+                                mapFrameOfComments(comments)};
           },
           py::arg("path"), R"doc(Reads a map file: ``.bt`` (OctoMap binary: free leaves get the lower, occupied the
 upper clamping log-odds) or ``.ot`` (OctoMap full tree, exact log-odds), chosen by the extension
@@ -128,8 +131,9 @@ sonarmap.ValueError for a resolution that is not finite and > 0.)doc")
           "write",
           [](const OccupancyMap& map, const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            writeMapFile(map.tree, path.string(),
-                         map.frame ? std::vector<std::string>{mapFrameComment(*map.frame)} : std::vector<std::string>{});
+            std::vector<std::string> comments;
+            if (map.frame) comments = mapHeaderComments(*map.frame, map.origin.value_or(Eigen::Vector3d::Zero()));
+            writeMapFile(map.tree, path.string(), comments);
           },
           py::arg("path"), R"doc(Writes the map to ``path`` atomically in the format its extension names: ``.bt``
 (maximum likelihood, as OctoMap's writeBinary) or ``.ot`` (full log-odds). The map is not modified
@@ -164,7 +168,8 @@ cannot be written (an existing file is then left untouched).)doc")
             return py::make_tuple(map.origin->x(), map.origin->y(), map.origin->z());
           },
           "map_sonar_log: the map's zero in nav's frame, (north_m, east_m, down_m), when nav was mapped about a "
-          "local origin (the keyword origin, or nav's first fix when nav lies far from zero); None otherwise.")
+          "local origin (the keyword origin, or nav's first fix when nav lies far from zero); read: the origin "
+          "the file's header names; write names it. None otherwise.")
       .def_property_readonly(
           "slam",
           [](const OccupancyMap& map) -> py::object {

@@ -4,6 +4,8 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/map_file.hpp"
@@ -12,6 +14,7 @@ namespace sonarmap {
 namespace {
 
 constexpr std::string_view kCommentPrefix = "sonarmap map frame: ";
+constexpr std::string_view kOriginPrefix = "sonarmap map origin: ";
 
 /// Moves every leaf of `map` by the signed permutation `rotation` (entries 0, ±1).
 OcTree16 permuted(const OcTree16& map, const Eigen::Matrix3d& rotation) {
@@ -109,15 +112,43 @@ std::optional<MapFrame> mapFrameOfComments(const std::vector<std::string>& comme
   return std::nullopt;
 }
 
-void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame) {
-  writeMapFile(frame == MapFrame::kNwu ? map : mapInFrame(map, frame), path, {mapFrameComment(frame)});
+std::string mapOriginComment(const Eigen::Vector3d& origin_ned_m) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%.17g %.17g %.17g m (north, east, down of the navigation's frame)", origin_ned_m.x(),
+                origin_ned_m.y(), origin_ned_m.z());
+  return std::string(kOriginPrefix) + text;
+}
+
+Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments) {
+  for (const std::string& comment : comments) {
+    if (!comment.starts_with(kOriginPrefix)) continue;
+    std::istringstream numbers(comment.substr(kOriginPrefix.size()));
+    Eigen::Vector3d origin_ned_m;
+    if (!(numbers >> origin_ned_m.x() >> origin_ned_m.y() >> origin_ned_m.z()) || !origin_ned_m.allFinite()) {
+      throw ValueError("map header line '" + comment + "': expected three finite numbers, north east down in metres");
+    }
+    return origin_ned_m;
+  }
+  return Eigen::Vector3d::Zero();
+}
+
+std::vector<std::string> mapHeaderComments(MapFrame frame, const Eigen::Vector3d& origin_ned_m) {
+  std::vector<std::string> comments{mapFrameComment(frame)};
+  if (!origin_ned_m.isZero(0.0)) comments.push_back(mapOriginComment(origin_ned_m));
+  return comments;
+}
+
+void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame, const Eigen::Vector3d& origin_ned_m) {
+  writeMapFile(frame == MapFrame::kNwu ? map : mapInFrame(map, frame), path, mapHeaderComments(frame, origin_ned_m));
 }
 
 FramedMap readMapFileToNwu(const std::string& path, const OctreeOptions& options) {
-  const MapFrame frame = mapFrameOfComments(readMapFileHeader(path).comments).value_or(MapFrame::kNwu);
+  const std::vector<std::string> comments = readMapFileHeader(path).comments;
+  const MapFrame frame = mapFrameOfComments(comments).value_or(MapFrame::kNwu);
+  const Eigen::Vector3d origin_ned_m = mapOriginOfComments(comments);
   OcTree16 map = readMapFile(path, options);
-  if (frame == MapFrame::kNwu) return {std::move(map), frame};
-  return {mapFromFrame(map, frame), frame};
+  if (frame == MapFrame::kNwu) return {std::move(map), frame, origin_ned_m};
+  return {mapFromFrame(map, frame), frame, origin_ned_m};
 }
 
 }  // namespace sonarmap

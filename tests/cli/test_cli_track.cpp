@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -18,6 +19,17 @@ namespace {
 using cliTrack = CliTest;
 
 const fs::path kPoolBag = fs::path(SONARMAP_SHARED_DATA) / "micron_pool_ros1.bag";
+
+/// `bt` (a map file's bytes) without its header's origin line, and that line ("" when none).
+std::pair<std::string, std::string> splitOriginLine(std::string bt) {
+  const std::string prefix = "# sonarmap map origin: ";
+  const std::size_t at = bt.find(prefix);
+  if (at == std::string::npos) return {bt, ""};
+  const std::size_t end = bt.find('\n', at) + 1;
+  std::string line = bt.substr(at, end - at);
+  bt.erase(at, end - at);
+  return {bt, line};
+}
 
 /// The fastest speed (m/s) and turn rate (degrees/s) two consecutive rows of `track` imply.
 std::pair<double, double> fastestStep(const NavTrack& track) {
@@ -66,7 +78,9 @@ TEST_F(cliTrack, LiveReplayInUtmMapsAsNearZero) {
                               "-o", (out_ / "utm.bt").string(), "-q"});
   ASSERT_EQ(far.exit_code, 0) << far.err;
   EXPECT_EQ(far.out.rfind("origin: 4600000, 500000, 0 m (N, E, D; the first fix", 0), 0U) << far.out;
-  EXPECT_EQ(readFile(out_ / "utm.bt"), readFile(out_ / "zero.bt"));
+  const auto [utm_map, utm_origin] = splitOriginLine(readFile(out_ / "utm.bt"));
+  EXPECT_EQ(utm_origin.rfind("# sonarmap map origin: 4600000 500000 0 m", 0), 0U) << utm_origin;
+  EXPECT_EQ(utm_map, readFile(out_ / "zero.bt"));  // near zero: no origin line
 }
 
 /// A simulated harbour loop in `dir` (beams.csv, nav.csv), and its navigation moved by
@@ -107,7 +121,10 @@ TEST_F(cliOrigin, AUtmNavigationMapsAsTheSameNavigationNearZero) {
   const ProgramRun given = map(utm, "given.bt", {"--origin", "4600000,500000"});
   ASSERT_EQ(given.exit_code, 0) << given.err;
   EXPECT_NE(given.out.find("origin: 4600000, 500000, 0 m (N, E, D; given)"), std::string::npos) << given.out;
-  EXPECT_EQ(readFile(out_ / "given.bt"), readFile(out_ / "near.bt"));
+  // The same voxels; the header names the origin, so the map can be placed back in UTM.
+  const auto [given_map, given_origin] = splitOriginLine(readFile(out_ / "given.bt"));
+  EXPECT_EQ(given_map, readFile(out_ / "near.bt"));
+  EXPECT_EQ(given_origin.rfind("# sonarmap map origin: 4600000 500000 0 m", 0), 0U) << given_origin;
 
   // By default: the first fix, stated; the same map as the navigation near zero about its first fix.
   const NavSample first = readNavCsv((sim_ / "nav.csv").string()).front();
@@ -119,7 +136,21 @@ TEST_F(cliOrigin, AUtmNavigationMapsAsTheSameNavigationNearZero) {
       map(sim_ / "nav.csv", "first.bt",
           {"--origin", std::to_string(first.position_ned_m.x()) + "," + std::to_string(first.position_ned_m.y())});
   ASSERT_EQ(about_first.exit_code, 0) << about_first.err;
-  EXPECT_EQ(readFile(out_ / "auto.bt"), readFile(out_ / "first.bt"));
+  EXPECT_EQ(splitOriginLine(readFile(out_ / "auto.bt")).first, splitOriginLine(readFile(out_ / "first.bt")).first);
+  // `view` draws the trajectory written in UTM on the map, moved to the origin the map's header names:
+  // its first point, the first fix, is the map's zero.
+  const fs::path page = out_ / "auto.html";
+  const ProgramRun view = run({"view", (out_ / "auto.bt").string(), "-o", page.string(), "--trajectory",
+                               (out_ / "auto.csv").string()});
+  ASSERT_EQ(view.exit_code, 0) << view.err;
+  const std::string html = readFile(page);
+  const std::string key = "\"trajectory_m\":[";
+  const std::size_t at = html.find(key);
+  ASSERT_NE(at, std::string::npos);
+  double east_m = 1e9, north_m = 1e9;
+  ASSERT_EQ(std::sscanf(html.c_str() + at + key.size(), "%lf,%lf", &east_m, &north_m), 2);
+  EXPECT_NEAR(east_m, 0.0, 1e-6);
+  EXPECT_NEAR(north_m, 0.0, 1e-6);
   // The trajectory is written in the navigation's own coordinates.
   const NavTrack written = readNavCsv((out_ / "auto.csv").string());
   EXPECT_NEAR(written.front().position_ned_m.x(), 4'600'000.0 + first.position_ned_m.x(), 1e-6);

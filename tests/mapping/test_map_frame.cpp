@@ -122,5 +122,28 @@ TEST(MapFrame, FileHeaderNamesTheFrameAndReadsBackIntoTheInternalFrame) {
   std::filesystem::remove_all(dir);
 }
 
+// A map mapped about a local origin (UTM) names it in its header, so it can be placed back; the
+// voxels are the same.
+TEST(MapFrame, FileHeaderNamesTheLocalOriginAndReadsItBack) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sonarmap_test_map_origin";
+  std::filesystem::create_directories(dir);
+  const OcTree16 nwu = mapOfNedEchoes({{2.03, -1.07, 0.52}});
+  const Eigen::Vector3d origin_ned_m(4'600'123.25, 500'456.5, -0.75);
+  const std::string path = (dir / "utm.bt").string();
+  writeMapFileInFrame(nwu, path, MapFrame::kEnu, origin_ned_m);
+  const FramedMap back = readMapFileToNwu(path);
+  EXPECT_EQ(back.origin_ned_m, origin_ned_m);  // exactly: 17 significant digits
+  EXPECT_EQ(back.map.occupancyAt(nedToMap() * Eigen::Vector3d(2.03, -1.07, 0.52)), Occupancy::kOccupied);
+  // Near zero no line is written and the origin reads as zero.
+  writeMapFileInFrame(nwu, path, MapFrame::kEnu);
+  EXPECT_EQ(mapHeaderComments(MapFrame::kEnu, Eigen::Vector3d::Zero()),
+            std::vector<std::string>{mapFrameComment(MapFrame::kEnu)});
+  for (const std::string& comment : readMapFileHeader(path).comments) EXPECT_FALSE(comment.starts_with("sonarmap map origin"));
+  EXPECT_EQ(readMapFileToNwu(path).origin_ned_m, Eigen::Vector3d::Zero());
+  EXPECT_THROW(mapOriginOfComments({"sonarmap map origin: 4600000 east 0 m"}), ValueError);
+  EXPECT_THROW(mapOriginOfComments({"sonarmap map origin: nan 0 0 m"}), ValueError);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace sonarmap

@@ -190,7 +190,14 @@ def test_map_sonar_log_about_a_local_origin(tmp_path):
     assert given.origin == (4_600_000.0, 500_000.0, 0.0)
     near.write(tmp_path / "near.bt")
     given.write(tmp_path / "given.bt")
-    assert (tmp_path / "near.bt").read_bytes() == (tmp_path / "given.bt").read_bytes()
+    # The same voxels; the file names its origin in a header line, read back with it.
+    origin_line = b"# sonarmap map origin: 4600000 500000 0 m"
+    given_bytes = (tmp_path / "given.bt").read_bytes()
+    assert origin_line in given_bytes
+    line_end = given_bytes.index(b"\n", given_bytes.index(origin_line)) + 1
+    without_origin = given_bytes[: given_bytes.index(origin_line)] + given_bytes[line_end:]
+    assert (tmp_path / "near.bt").read_bytes() == without_origin
+    assert sonarmap.OccupancyMap.read(tmp_path / "given.bt").origin == (4_600_000.0, 500_000.0, 0.0)
     # By default the first fix; the trajectory is given back in the navigation's own coordinates.
     automatic = sonarmap.map_sonar_log(run.log, utm, resolution=0.1, slam=True, nav_class="absolute")
     assert automatic.origin == (utm[0, 1], utm[0, 2], 0.0)

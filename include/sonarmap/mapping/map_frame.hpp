@@ -60,16 +60,33 @@ std::string mapFrameComment(MapFrame frame);
 /// is (files written before frames were named, or by another tool).
 std::optional<MapFrame> mapFrameOfComments(const std::vector<std::string>& comments);
 
+/// The header comment line naming the map's zero as a point of the navigation's own frame (NED
+/// metres: north, east, down; local_origin.hpp), written when a navigation far from zero (UTM) was
+/// mapped about a local origin: "sonarmap map origin: 4600000 500000 0 m (north, east, down ...)".
+/// Positions in the map plus this origin (as NED) are the navigation's coordinates.
+std::string mapOriginComment(const Eigen::Vector3d& origin_ned_m);
+
+/// The origin named by a mapOriginComment line among `comments`, NED metres; zero when none is.
+/// @throws ValueError for such a line whose three numbers do not read as finite numbers.
+Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments);
+
+/// The header comments of a map written in `frame` about `origin_ned_m`: the frame's line
+/// (mapFrameComment), then the origin's (mapOriginComment) when the origin is not zero.
+std::vector<std::string> mapHeaderComments(MapFrame frame, const Eigen::Vector3d& origin_ned_m);
+
 /// Writes the internal (NWU) map `map` to `path` (map_file.hpp: .bt or .ot by extension) in
-/// `frame`, its header naming the frame (mapFrameComment).
+/// `frame`, its header naming the frame and, when not zero, the local origin `origin_ned_m`
+/// (mapHeaderComments).
 /// @throws FileError as writeMapFile.
-void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame);
+void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame,
+                         const Eigen::Vector3d& origin_ned_m = Eigen::Vector3d::Zero());
 
 /// A map file read back into the internal NWU frame, converted from the frame its header names
 /// (NWU when it names none: files written before the frame was named, or by another tool).
 struct FramedMap {
   OcTree16 map;     ///< internal NWU frame
   MapFrame frame;   ///< the frame the file was written in
+  Eigen::Vector3d origin_ned_m = Eigen::Vector3d::Zero();  ///< its local origin (mapOriginOfComments)
 };
 
 /// Reads the map file `path` (map_file.hpp) and converts it to the internal NWU frame.
