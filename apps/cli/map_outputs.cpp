@@ -13,8 +13,6 @@
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
 #include "sonarmap/io/map_file.hpp"
-#include "sonarmap/io/octomap_binary.hpp"
-#include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/render/map_figures.hpp"
@@ -154,11 +152,7 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& 
                      const std::vector<Eigen::Vector3d>& track_m) {
   outputs.stage(args.output_bt, [&](std::ostream& out) {
     const OcTree16& framed = args.map_frame == MapFrame::kNwu ? map : mapInFrame(map, args.map_frame);
-    if (mapFormatOf(args.output_bt) == MapFormat::kFull) {
-      writeFull(framed, out, mapHeaderComments(args.map_frame, args.map_origin_ned_m));
-    } else {
-      writeBinary(framed, out, mapHeaderComments(args.map_frame, args.map_origin_ned_m));
-    }
+    writeMap(framed, out, mapFormatOf(args.output_bt), mapHeaderComments(args.map_frame, args.map_origin_ned_m));
   });
   const double res = map.resolution_m();
   if (!args.map_png.empty() || !side_png.empty()) {

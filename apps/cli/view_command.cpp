@@ -58,7 +58,7 @@ void run(const ViewArgs& args) {
   const OcTree16 map = mapInFrame(file.map, MapFrame::kEnu);
   if (file.frame != MapFrame::kEnu) {
     options.frame += "; the file is " + mapFrameDescription(file.frame) +
-                     (mapFrameOfComments(readMapFileHeader(args.input).comments) ? "" : " (its header names no frame)");
+                     (file.frame_named ? "" : " (its header names no frame)");
   }
   FileTransaction output;
   const HtmlView view = stageView(output, args.output, map, options);

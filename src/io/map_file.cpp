@@ -28,6 +28,14 @@ void writeMapFile(const OcTree16& tree, const std::string& path, const std::vect
   }
 }
 
+void writeMap(const OcTree16& tree, std::ostream& out, MapFormat format, const std::vector<std::string>& comments) {
+  if (format == MapFormat::kBinary) {
+    writeBinary(tree, out, comments);
+  } else {
+    writeFull(tree, out, comments);
+  }
+}
+
 OctomapHeader readMapFileHeader(const std::string& path) {
   const char* first_line = mapFormatOf(path) == MapFormat::kBinary ? kBinaryFileFirstLine : kFullFileFirstLine;
   std::ifstream in(path, std::ios::binary);

@@ -144,11 +144,12 @@ void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame 
 
 FramedMap readMapFileToNwu(const std::string& path, const OctreeOptions& options) {
   const std::vector<std::string> comments = readMapFileHeader(path).comments;
-  const MapFrame frame = mapFrameOfComments(comments).value_or(MapFrame::kNwu);
+  const std::optional<MapFrame> named = mapFrameOfComments(comments);
+  const MapFrame frame = named.value_or(MapFrame::kNwu);
   const Eigen::Vector3d origin_ned_m = mapOriginOfComments(comments);
   OcTree16 map = readMapFile(path, options);
-  if (frame == MapFrame::kNwu) return {std::move(map), frame, origin_ned_m};
-  return {mapFromFrame(map, frame), frame, origin_ned_m};
+  if (frame == MapFrame::kNwu) return {std::move(map), frame, named.has_value(), origin_ned_m};
+  return {mapFromFrame(map, frame), frame, named.has_value(), origin_ned_m};
 }
 
 }  // namespace sonarmap

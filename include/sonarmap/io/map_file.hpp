@@ -4,6 +4,7 @@
 /// octomap_binary.hpp) or `.ot` (OctoMap full tree, exact log-odds; octomap_full.hpp).
 /// The extension is compared without regard to case.
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ MapFormat mapFormatOf(const std::string& path);
 /// @throws FileError on an unknown extension or when the file cannot be written (an existing
 ///         file is then left untouched); ValueError for a comment holding a line break.
 void writeMapFile(const OcTree16& tree, const std::string& path, const std::vector<std::string>& comments = {});
+
+/// Writes `tree` to `out` in `format`, `comments` as header comment lines (as writeMapFile; for
+/// a caller that stages the file itself, e.g. in a transaction).
+/// @throws FileError when `out` fails; ValueError for a comment holding a line break.
+void writeMap(const OcTree16& tree, std::ostream& out, MapFormat format, const std::vector<std::string>& comments = {});
 
 /// The header of the map file `path` (its comments, resolution, node count), the data not read.
 /// @throws FileError on an unknown extension, a file that cannot be opened, and as readOctomapHeader.

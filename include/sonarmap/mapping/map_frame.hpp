@@ -86,6 +86,7 @@ void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame 
 struct FramedMap {
   OcTree16 map;     ///< internal NWU frame
   MapFrame frame;   ///< the frame the file was written in
+  bool frame_named = false;  ///< whether its header names `frame` (else NWU is assumed)
   Eigen::Vector3d origin_ned_m = Eigen::Vector3d::Zero();  ///< its local origin (mapOriginOfComments)
 };
 
