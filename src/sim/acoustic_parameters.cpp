@@ -23,4 +23,16 @@ FlatSeabedHead flatSeabedHeadOf(const MsisHeadOptions& head, const EchoModelOpti
                         echo.pulse_length_m, head.binLength_m()};
 }
 
+ForwardModelHead forwardModelHeadOf(const MsisHeadOptions& head, const EchoModelOptions& echo) {
+  return ForwardModelHead{head.horizontal_beam_width_rad,
+                          head.vertical_beam_width_rad,
+                          transducerPatternOf(head, echo),
+                          apertureSamplingOf(echo.horizontal),
+                          apertureSamplingOf(echo.vertical),
+                          head.bins,
+                          head.range_m,
+                          echo.absorption_db_per_m,
+                          echo.lambert_exponent};
+}
+
 }  // namespace sonarmap

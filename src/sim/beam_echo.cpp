@@ -30,66 +30,14 @@ BeamEchoTracer::BeamEchoTracer(const Scene& scene, const MsisHeadOptions& head, 
       primitive_count_(scene.primitives.size()),
       head_(head),
       echo_(echo),
-      pattern_(transducerPatternOf(head, echo)),
-      sidelobe_floor_(powerOfLevel(echo.sidelobe_level_db)) {
-  const ApertureSampling horizontal = apertureSamplingOf(echo.horizontal);
-  const ApertureSampling vertical = apertureSamplingOf(echo.vertical);
-  horizontal_step_rad_ = apertureStep_rad(horizontal, head.horizontal_beam_width_rad);
-  vertical_step_rad_ = apertureStep_rad(vertical, head.vertical_beam_width_rad);
-  double total_weight = 0.0;
-  for (int i = 0; i < echo.horizontal.rays; ++i) {
-    for (int j = 0; j < echo.vertical.rays; ++j) {
-      ApertureRay ray;
-      ray.horizontal_rad = apertureAngle_rad(horizontal, head.horizontal_beam_width_rad, i);
-      ray.elevation_rad = apertureAngle_rad(vertical, head.vertical_beam_width_rad, j);
-      ray.sin_elevation = std::sin(ray.elevation_rad);
-      ray.cos_elevation = std::cos(ray.elevation_rad);
-      ray.pattern = oneWayPattern(pattern_, ray.horizontal_rad, ray.elevation_rad);
-      // The two-way pattern times the ray's solid angle (cos v dh dv, the cells' dh dv equal).
-      ray.weight = ray.pattern * ray.pattern * ray.cos_elevation;
-      total_weight += ray.weight;
-      rays_.push_back(ray);
-    }
-  }
-  for (ApertureRay& ray : rays_) ray.weight /= total_weight;
-}
+      model_(forwardModelHeadOf(head, echo)),
+      sidelobe_floor_(powerOfLevel(echo.sidelobe_level_db)) {}
 
 void BeamEchoTracer::trace(const Eigen::Isometry3d& sonar_to_map, double bearing_rad,
                            std::vector<double>& energy) const {
   energy.assign(static_cast<std::size_t>(head_.bins), 0.0);
   const Beam beam{sonar_to_map.translation(), sonar_to_map.linear(), bearing_rad};
-  for (const ApertureRay& ray : rays_) traceRay(beam, ray, energy);
-}
-
-/// A ray's direction and its derivatives across the ray's angular cell (map frame).
-struct BeamEchoTracer::RayCell {
-  Eigen::Vector3d direction;
-  Eigen::Vector3d d_elevation;  // ∂direction/∂v
-  Eigen::Vector3d d_azimuth;    // ∂direction/∂h
-
-  /// The cell after a mirror reflection at a surface of unit normal `normal` (a linear map).
-  RayCell mirrored(const Eigen::Vector3d& normal) const {
-    auto mirror = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d { return v - 2.0 * v.dot(normal) * normal; };
-    return {mirror(direction), mirror(d_elevation), mirror(d_azimuth)};
-  }
-};
-
-double BeamEchoTracer::footprintSpan(double range_m, const Eigen::Vector3d& normal, const RayCell& cell) const {
-  // On a locally flat surface the range changes across the cell by dr/dα = r (n · ∂d/∂α) / cos θ.
-  const double cos_incidence = std::max(-normal.dot(cell.direction), 1e-6);
-  const double span_m = range_m / cos_incidence *
-                        (std::abs(normal.dot(cell.d_elevation)) * vertical_step_rad_ +
-                         std::abs(normal.dot(cell.d_azimuth)) * horizontal_step_rad_);
-  return std::min(span_m, head_.range_m);
-}
-
-BeamEchoTracer::RayCell BeamEchoTracer::rayCell(const Beam& beam, const ApertureRay& ray) const {
-  const double azimuth_rad = beam.bearing_rad + ray.horizontal_rad;
-  const double sin_v = ray.sin_elevation, cos_v = ray.cos_elevation;
-  const double sin_h = std::sin(azimuth_rad), cos_h = std::cos(azimuth_rad);
-  return {beam.sonar_to_map * Eigen::Vector3d(cos_v * cos_h, cos_v * sin_h, sin_v),
-          beam.sonar_to_map * Eigen::Vector3d(-sin_v * cos_h, -sin_v * sin_h, cos_v),
-          beam.sonar_to_map * Eigen::Vector3d(-cos_v * sin_h, cos_v * cos_h, 0.0)};
+  for (const ApertureRay& ray : model_.rays()) traceRay(beam, ray, energy);
 }
 
 struct BeamEchoTracer::DirectEcho {
@@ -102,18 +50,16 @@ std::optional<BeamEchoTracer::DirectEcho> BeamEchoTracer::directEcho(const Beam&
                                                                      const RayCell& cell) const {
   const std::optional<SceneHit> hit = scene_.firstHit(beam.origin_m, cell.direction, head_.range_m);
   if (!hit) return std::nullopt;
-  const double range_m = hit->surface.range_m;
-  const double cos_incidence = std::max(-hit->surface.normal.dot(cell.direction), 0.0);
-  const double backscatter = lambertScatterPerSolidAngle(hit->reflectivity, cos_incidence, echo_.lambert_exponent);
-  return DirectEcho{*hit, footprintSpan(range_m, hit->surface.normal, cell),
-                    ray.weight * backscatter * propagationLoss(2.0 * range_m)};
+  const ReflectorHit surface{hit->surface.range_m, hit->surface.normal, hit->reflectivity};
+  return DirectEcho{*hit, model_.footprintSpan_m(surface.range_m, surface.normal, cell),
+                    model_.directEchoEnergy(ray, surface, cell)};
 }
 
 void BeamEchoTracer::traceRay(const Beam& beam, const ApertureRay& ray, std::vector<double>& energy) const {
-  const RayCell cell = rayCell(beam, ray);
+  const RayCell cell = BeamForwardModel::rayCell(beam.sonar_to_map, beam.bearing_rad, ray);
   const std::optional<DirectEcho> echo = directEcho(beam, ray, cell);
   if (!echo) return;
-  deposit(echo->hit.surface.range_m, echo->span_m, echo->value, energy);
+  model_.deposit(echo->hit.surface.range_m, echo->span_m, echo->value, energy);
   if (echo_.multipath && echo_.specular_share > 0.0) traceMultipath(beam, ray, cell, echo->hit, echo->span_m, energy);
 }
 
@@ -121,9 +67,9 @@ void BeamEchoTracer::traceDirect(const Eigen::Isometry3d& sonar_to_map, double b
                                  std::vector<std::vector<double>>& energy) const {
   energy.assign(primitive_count_, std::vector<double>(static_cast<std::size_t>(head_.bins), 0.0));
   const Beam beam{sonar_to_map.translation(), sonar_to_map.linear(), bearing_rad};
-  for (const ApertureRay& ray : rays_) {
-    const std::optional<DirectEcho> echo = directEcho(beam, ray, rayCell(beam, ray));
-    if (echo) deposit(echo->hit.surface.range_m, echo->span_m, echo->value, energy[echo->hit.primitive]);
+  for (const ApertureRay& ray : model_.rays()) {
+    const std::optional<DirectEcho> echo = directEcho(beam, ray, BeamForwardModel::rayCell(beam.sonar_to_map, beam.bearing_rad, ray));
+    if (echo) model_.deposit(echo->hit.surface.range_m, echo->span_m, echo->value, energy[echo->hit.primitive]);
   }
 }
 
@@ -154,36 +100,15 @@ void BeamEchoTracer::traceMultipath(const Beam& beam, const ApertureRay& ray, co
   const double scatter = first.reflectivity * echo_.specular_share * second->reflectivity * (cos_out + glint);
   // The double-bounce path varies across the cell less than either surface's footprint (not at
   // all for a corner reflector): spread it over the smaller of the two.
-  const double span_m = std::min(first_span_m, footprintSpan(first_m + second_m, normal, bounced));
-  deposit(0.5 * path_m, span_m, weight * scatter * propagationLoss(path_m), energy);
+  const double span_m = std::min(first_span_m, model_.footprintSpan_m(first_m + second_m, normal, bounced));
+  model_.deposit(0.5 * path_m, span_m, weight * scatter * model_.propagationLoss(path_m), energy);
 }
 
 double BeamEchoTracer::receivePattern(const Beam& beam, const Eigen::Vector3d& arrival_map) const {
   const Eigen::Vector3d arrival = beam.sonar_to_map.transpose() * arrival_map;
-  const double main_lobe = oneWayPattern(pattern_, wrapToPi(std::atan2(arrival.y(), arrival.x()) - beam.bearing_rad),
+  const double main_lobe = oneWayPattern(model_.head().pattern, wrapToPi(std::atan2(arrival.y(), arrival.x()) - beam.bearing_rad),
                                          std::asin(std::clamp(arrival.z(), -1.0, 1.0)));
   return std::max(main_lobe, sidelobe_floor_);  // the side and back lobes hear the rest
-}
-
-double BeamEchoTracer::propagationLoss(double path_m) const {
-  return twoWayLossPerSolidAngle(path_m, echo_.absorption_db_per_m, head_.binLength_m());
-}
-
-void BeamEchoTracer::deposit(double center_m, double span_m, double value, std::vector<double>& energy) const {
-  const double bin_m = head_.binLength_m();
-  const double begin_m = std::max(0.0, center_m - 0.5 * span_m);
-  const double end_m = std::min(head_.range_m, center_m + 0.5 * span_m);
-  if (end_m - begin_m < 1e-3 * bin_m) {  // narrower than a bin: all into the centre's bin
-    const auto bin = static_cast<std::size_t>(center_m / bin_m);
-    if (bin < energy.size()) energy[bin] += value;
-    return;
-  }
-  const double density = value / span_m;  // what falls outside [0, range_m] is lost
-  const auto first = static_cast<std::size_t>(begin_m / bin_m);
-  for (std::size_t bin = first; bin < energy.size() && static_cast<double>(bin) * bin_m < end_m; ++bin) {
-    const double overlap_m = std::min(end_m, (bin + 1) * bin_m) - std::max(begin_m, bin * bin_m);
-    if (overlap_m > 0.0) energy[bin] += density * overlap_m;
-  }
 }
 
 }  // namespace sonarmap::sim

@@ -2,31 +2,21 @@
 /// @file beam_echo.hpp
 /// Private to the simulator: the geometric part of one beam's echo (steps 1–3 of
 /// msis_simulator.hpp): rays across the aperture, direct echoes and one-bounce multipath, as
-/// received energy per range bin before the pulse, the gain and the noise. The beam pattern, the
-/// aperture's cells, Lambert's law and the two-way loss are the acoustics layer's
-/// (acoustics/beam_pattern.hpp, backscatter.hpp, propagation.hpp); the ray geometry, the footprint's
-/// range extent and the multipath glint are the simulator's own.
+/// received energy per range bin before the pulse, the gain and the noise. The direct echoes are
+/// the forward model's (acoustics/forward_model.hpp: the aperture's rays, Lambert's law, the two-way
+/// loss, the footprint's range extent) on the scene's surfaces; the multipath glint is the
+/// simulator's own.
 
 #include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "sonarmap/acoustics/beam_pattern.hpp"
+#include "sonarmap/acoustics/forward_model.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene.hpp"
 
 namespace sonarmap::sim {
-
-/// One direction of the aperture grid, relative to the beam's axis (sonar frame).
-struct ApertureRay {
-  double horizontal_rad = 0.0;  ///< added to the bearing (clockwise, beam.hpp)
-  double elevation_rad = 0.0;   ///< above the horizontal plane of the sonar
-  double sin_elevation = 0.0;
-  double cos_elevation = 1.0;
-  double pattern = 0.0;  ///< one-way pattern p(h) p(v)
-  double weight = 0.0;   ///< p(h)² p(v)² cos v, normalised so that the grid's weights add up to 1
-};
 
 /// Traces the beams of one head in one scene.
 class BeamEchoTracer {
@@ -45,10 +35,7 @@ class BeamEchoTracer {
 
  private:
   struct Beam;     // one beam's pose and axis
-  struct RayCell;  // one ray's direction and its derivatives across the ray's cell
   struct DirectEcho;  // where a ray's direct echo lands and how much it brings
-  /// The ray's direction and derivatives across its cell (map frame).
-  RayCell rayCell(const Beam& beam, const ApertureRay& ray) const;
   /// The ray's direct echo (step 2), or nothing when it meets no surface within the range.
   std::optional<DirectEcho> directEcho(const Beam& beam, const ApertureRay& ray, const RayCell& cell) const;
   /// A ray's direct echo, then its multipath.
@@ -56,26 +43,15 @@ class BeamEchoTracer {
   /// `first_span_m`: the footprint span of the ray's direct echo.
   void traceMultipath(const Beam& beam, const ApertureRay& ray, const RayCell& cell, const SceneHit& first,
                       double first_span_m, std::vector<double>& energy) const;
-  /// Range extent of the surface a ray cell meets at `range_m` (at most range_m of the head).
-  double footprintSpan(double range_m, const Eigen::Vector3d& normal, const RayCell& cell) const;
   /// One-way receive pattern for an echo arriving along `arrival_map` (unit, map frame, from the
   /// head towards where the echo comes from), never below the side-lobe floor.
   double receivePattern(const Beam& beam, const Eigen::Vector3d& arrival_map) const;
-  /// Two-way loss per solid angle over a path of total length path_m, seen at range path_m / 2
-  /// (twoWayLossPerSolidAngle), at one bin from the head at least: a surface touching the head
-  /// does not blow up.
-  double propagationLoss(double path_m) const;
-  /// Adds `value` spread evenly over ranges [center_m − span_m/2, center_m + span_m/2].
-  void deposit(double center_m, double span_m, double value, std::vector<double>& energy) const;
 
   SceneRayCaster scene_;
   std::size_t primitive_count_ = 0;
   const MsisHeadOptions& head_;
   const EchoModelOptions& echo_;
-  TransducerPattern pattern_;
-  std::vector<ApertureRay> rays_;
-  double horizontal_step_rad_ = 0.0;
-  double vertical_step_rad_ = 0.0;
+  BeamForwardModel model_;
   double sidelobe_floor_ = 0.0;  // one-way power of the side and back lobes
 };
 

@@ -7,6 +7,7 @@
 /// acoustics functions validate what they are given).
 
 #include "sonarmap/acoustics/beam_pattern.hpp"
+#include "sonarmap/acoustics/forward_model.hpp"
 #include "sonarmap/acoustics/receiver_model.hpp"
 #include "sonarmap/acoustics/sonar_equation.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
@@ -28,5 +29,9 @@ ReceiverNoise receiverNoiseOf(const EchoModelOptions& echo);
 /// What the flat-seabed closed form needs: the vertical pattern and cells, the pulse length and
 /// the head's bin length.
 FlatSeabedHead flatSeabedHeadOf(const MsisHeadOptions& head, const EchoModelOptions& echo);
+
+/// What the forward model (acoustics/forward_model.hpp) needs: widths, patterns and aperture cells,
+/// bins and range, the water's absorption and the Lambert exponent.
+ForwardModelHead forwardModelHeadOf(const MsisHeadOptions& head, const EchoModelOptions& echo);
 
 }  // namespace sonarmap
