@@ -2,7 +2,7 @@
 // mission (eval/simulated_mission.hpp) mapped with the planar model, the beam-volume model, and the
 // beam-volume model without the water surface's depth, at 5 cm voxels, scored in 3D against the scene with the head's
 // field of view: precision, recall, F1, surface error (median, 90th percentile), erosion, free
-// accuracy; obstacles, voxel updates and mapping time. Each map is also scored against the surface
+// accuracy; obstacles, voxel updates, mapping time and the real-time factor (the mission's length over it). Each map is also scored against the surface
 // its log's beams heard (eval/heard_surface.hpp, issue 40) at 0 dB and at −6 dB over the receiver's
 // floor: heard recall and heard F1 (with the precision above). The heard surface is computed once
 // per mission, level and voxel size, not once per model.
@@ -167,8 +167,8 @@ int main(int argc, char** argv) {
                           {"volume, water surface unknown", BeamModel::kVolume, std::numeric_limits<double>::quiet_NaN()}};
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "heard recall / F1, 0 dB | heard recall / F1, −6 dB | "
-              "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | voxel (m) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | real time / mapping | voxel (m) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::string by_surface;  // the default model's recall and erosion per scene primitive
   std::string heard_rows;  // the heard surfaces' sizes
   for (const std::string& preset : presets) {
@@ -182,6 +182,8 @@ int main(int argc, char** argv) {
         continue;
       }
       HeardSurfaces heard(*run);
+      const std::vector<Beam>& beams = run->simulation.log.beams;
+      const double duration_s = beams.empty() ? 0.0 : beams.back().time_s - beams.front().time_s;  // the mission's length
       for (const Model& model : models) {
         MapperOptions options;
         if (!automatic) options.resolution_m = resolution_m;
@@ -199,12 +201,13 @@ int main(int argc, char** argv) {
           const GroundTruthReport& t = a.truth;
           const std::size_t off_surface = t.occupied_voxels - t.occupied_on_surface;
           std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.4f "
-                      "| %.3f | %zu | %.3g | %.2f | %.3g |\n",
+                      "| %.3f | %zu | %.3g | %.2f | %.0f | %.3g |\n",
                       preset.c_str(), mission.c_str(), model.name, t.occupied_voxels, t.precision,
                       off_surface > 0 ? static_cast<double>(t.occupied_in_water) / static_cast<double>(off_surface) : 0.0,
                       t.recall, a.f1(), scores[0].recall, scores[0].f1, scores[1].recall, scores[1].f1,
                       t.surface_error_median_m, t.surface_error_p90_m, t.erosion, t.free_accuracy, a.obstacles,
-                      static_cast<double>(a.voxel_updates), a.seconds_mapping, a.resolution_m);
+                      static_cast<double>(a.voxel_updates), a.seconds_mapping, duration_s / a.seconds_mapping,
+                      a.resolution_m);
           if (model.beam == BeamModel::kVolume && model.water_surface_depth_m == MapperOptions{}.water_surface_depth_m) {
             by_surface += recallBySurface(preset, mission, run->simulation.scene, a);
           }
