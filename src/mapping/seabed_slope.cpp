@@ -102,10 +102,18 @@ std::optional<SeabedSlope::Fit> SeabedSlope::robustFit(const Eigen::Vector3d& at
   }
   // Onsets of returns that are no seabed (a weak echo of a wall or a pile heard by a beam without
   // an obstacle) do not pull the least-median plane while they are fewer than half.
-  Fit fit{at_m, Eigen::Vector3d::Zero(), 0.0};
+  Fit fit{at_m, Eigen::Vector3d::Zero(), 0.0, false};
   double median_sq = 0.0;
   if (near.size() < kMinOnsets || !leastMedianPlane(near, fit.plane, median_sq)) return std::nullopt;
   fit.deviation_m = 1.4826 * (1.0 + 5.0 / (static_cast<double>(near.size()) - 3.0)) * std::sqrt(median_sq);
+  Eigen::Vector2d mean_look = Eigen::Vector2d::Zero();
+  std::size_t inliers = 0;
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    if (std::abs(residual(fit.plane, near[i])) > kInlierDeviations * fit.deviation_m) continue;
+    mean_look += looks[i];
+    ++inliers;
+  }
+  fit.seen_around = inliers > 0 && mean_look.norm() <= kMaxMeanLook * static_cast<double>(inliers);
   return fit;
 }
 

@@ -17,6 +17,7 @@
 #include "sonarmap/sonar/polar_units.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
+#include "beam_cells.hpp"
 #include "sweep_work.hpp"
 
 namespace sonarmap {
@@ -365,8 +366,59 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
   keySweep();
   integrateFreeCells();
   integrateHits();
+  if (options_.beam_model == BeamModel::kVolume) addLevelSurfaceLooks(polar, detections, pose_of);
   if (options_.octree.lazy) map_.updateInnerOccupancy();
   if (whole_sweep) ++stats_.sweeps;
+}
+
+template <class PoseOfRow>
+void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vector<BeamDetection>& detections,
+                                       PoseOfRow&& pose_of) {
+  SweepWork& work = *work_;
+  const double resolution_m = *options_.resolution_m;
+  if (!work.seabed_looks) {
+    const double bins_per_cell = std::max(1.0, resolution_m / polar.bin_length_m);
+    work.seabed_looks.emplace(resolution_m, bins_per_cell);
+    work.surface_looks.emplace(resolution_m, bins_per_cell);
+  }
+  const std::vector<CellBeam> cells = cellBeams(polar, detections, resolution_m, work.tolerance_m);
+  // The seabed where the weak onsets of every sweep so far place it (seabed_slope.hpp), once they
+  // were seen from around (their errors cancel): their plane's height at the latest onsets, its
+  // slope where the onsets ask for one (normalAt); the water surface where the navigation's depth
+  // places it (nedToMap: map z = −depth).
+  std::optional<LevelPlane> seabed;
+  if (work.seabed_onsets_m) {
+    const auto& [onsets_m, radius_m] = *work.seabed_onsets_m;
+    if (const std::optional<SeabedSlope::Fit> fit = work.seabed.fitAround(onsets_m, radius_m); fit && fit->seen_around) {
+      seabed = LevelPlane{onsets_m - fit->heightAbove(onsets_m) * Eigen::Vector3d::UnitZ(),
+                          work.seabed.normalAt(onsets_m, radius_m)};
+    }
+  }
+  std::optional<LevelPlane> surface;
+  if (std::isfinite(options_.water_surface_depth_m)) {
+    surface = LevelPlane{Eigen::Vector3d(0.0, 0.0, -options_.water_surface_depth_m), -Eigen::Vector3d::UnitZ()};
+  }
+  for (std::size_t row = 0; row < detections.size(); ++row) {
+    const Eigen::Isometry3d* pose = pose_of(row);
+    if (pose == nullptr) continue;
+    const double bearing_rad = polar.bearing_rad[row];
+    if (seabed) {
+      work.seabed_looks->addBeam(*pose, bearing_rad, options_.beam_width_rad, options_.vertical_aperture_rad,
+                                 cells[row].cell_power, *seabed);
+    }
+    if (surface) {
+      work.surface_looks->addBeam(*pose, bearing_rad, options_.beam_width_rad, options_.vertical_aperture_rad,
+                                  cells[row].cell_power, *surface);
+    }
+  }
+  const auto occupy = [&](const Eigen::Vector3d& point_m) {
+    if (const std::optional<Key16> key = map_.coder().keyOf(point_m)) {
+      map_.updateNode(*key, map_.model().hit, true);
+      ++stats_.occupied_updates;
+    }
+  };
+  work.seabed_looks->drainHeard(occupy);
+  work.surface_looks->drainHeard(occupy);
 }
 
 namespace {

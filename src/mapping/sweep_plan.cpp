@@ -89,6 +89,7 @@ void SonarMapper::placeSeabedTraces() {
   if (!traces.empty()) {
     const Eigen::Vector3d normal = work.seabed.normalAt(centre_m / static_cast<double>(traces.size()), 2.0 * reach_m);
     for (PlannedBeam* beam : traces) beam->trace_normal = normal;
+    work.seabed_onsets_m = {centre_m / static_cast<double>(traces.size()), 2.0 * reach_m};
   }
   checkLoudTraces();
 }

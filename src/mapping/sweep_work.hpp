@@ -5,9 +5,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "sonarmap/mapping/level_surfaces.hpp"
 #include "sonarmap/mapping/seabed_slope.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
@@ -34,7 +36,13 @@ struct SonarMapper::SweepWork {
   /// cells), so a sweep can protect them from the outer part of its cones.
   std::vector<std::uint64_t> occupied_keys;  ///< mortonCode() of each, sorted, unique
   std::vector<std::uint64_t> merged_keys;    ///< integrateHits: scratch for the union
-  SeabedSlope seabed;  ///< the volume model: the onsets of every seabed trace so far (placeSeabedTraces)
+  SeabedSlope seabed;
+  /// The volume model: the looks of every beam so far at the fitted seabed and at the water surface
+  /// (level_surfaces.hpp), created at the first sweep (they need its bins per cell).
+  std::optional<LevelSurfaceEvidence> seabed_looks, surface_looks;
+  /// The latest sweep's weak seabed onsets: their centroid (map frame) and the radius their plane
+  /// is fitted over (placeSeabedTraces); the seabed's looks go to that plane.
+  std::optional<std::pair<Eigen::Vector3d, double>> seabed_onsets_m;  ///< the volume model: the onsets of every seabed trace so far (placeSeabedTraces)
   /// The sweep's loud traces (PlannedBeam::loud_trace): their index in `beams`, and each as the
   /// obstacle it was detected as, which it becomes again where the seabed lies well below its
   /// trace (checkLoudTraces).

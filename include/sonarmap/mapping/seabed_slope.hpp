@@ -60,6 +60,9 @@ class SeabedSlope {
     Eigen::Vector3d at_m;     ///< where the plane was fitted, map frame
     Eigen::Vector3d plane;    ///< z = plane(0) + plane(1) (x − at.x) + plane(2) (y − at.y)
     double deviation_m = 0;   ///< the robust deviation of the onsets' heights about the plane
+    /// The inliers' look directions spread (their mean resultant length at most 0.5): seen from
+    /// around, their errors cancel (see the file's comment), so the plane's height can be trusted.
+    bool seen_around = false;
     /// Height of `point_m` over the plane, metres (vertical).
     double heightAbove(const Eigen::Vector3d& point_m) const;
   };

@@ -180,6 +180,11 @@ class SonarMapper {
   /// Turns back into obstacles the sweep's loud traces whose onset lies above the seabed measured
   /// so far (sweep_plan.cpp).
   void checkLoudTraces();
+  /// The volume model: every posed beam's looks at the level surfaces (level_surfaces.hpp: the
+  /// seabed fitted so far, the water surface at its depth), and the columns they have now heard
+  /// as occupied cells.
+  template <class PoseOfRow>
+  void addLevelSurfaceLooks(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
   void planBeams();
   /// The beams' shape: the width, and the vertical aperture with the volume model (0: planar).
