@@ -388,7 +388,7 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
   const LogSurvey survey = surveyLog(pass, 1, spanOf(navigation));
   std::optional<LocalOrigin> origin;
   const double origin_resolution_m = sonar_options.resolution_m.value_or(
-      survey.beams > 0 ? autoResolutionForLog(survey, pass, sonar_options).resolution_m : autoResolution_m(sonar_options.max_range_m));
+      survey.beams > 0 ? autoResolutionForLog(survey, sonar_options).resolution_m : autoResolution_m(sonar_options.max_range_m));
   if (navigation) {
     printNavigationSource(*navigation, args.map.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);

@@ -130,13 +130,13 @@ MappedLog mapLog(const MapArgs& args, BeamSource& source, const LogSurvey& surve
 
 }  // namespace
 
-std::string resolutionNote(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
+std::string resolutionNote(const LogSurvey& survey, const MapperOptions& options) {
   if (options.resolution_m) return {};
-  const AutoResolution chosen = autoResolutionForLog(survey, pass, options);
+  const AutoResolution chosen = autoResolutionForLog(survey, options);
   if (chosen.scales < 2 && !chosen.coarsened) return {};
   char note[160];
   std::snprintf(note, sizeof note, " (auto: the %.3g m range scale, %zu of %zu beams%s)", chosen.scale.reach_m,
-                chosen.scale.beams, chosen.beams, chosen.coarsened ? ", coarsened to fit --max-voxel-updates" : "");
+                chosen.scale.beams, chosen.beams, chosen.coarsened ? ", coarsened to fit --max-voxel-updates-per-beam" : "");
   return note;
 }
 
@@ -169,7 +169,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
     printNavigationSource(*navigation, args.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
     const double resolution_m = sonar_options.resolution_m ? *sonar_options.resolution_m
-                                                           : autoResolutionForLog(survey, pass, sonar_options).resolution_m;
+                                                           : autoResolutionForLog(survey, sonar_options).resolution_m;
     origin = moveTrackToOrigin(navigation->source.track, args.origin, resolution_m,
                                std::min(survey.reach_m, sonar_options.max_range_m));
     printOrigin(origin);
@@ -180,7 +180,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
       mountingFor(args.input, format, source->header(), navigation, !args.mounting.empty(), sonar_to_body);
   SlamResult slam;
   MappedLog mapped = mapLog(args, *source, survey, whole ? &*whole : nullptr, sonar_options, nav, mounting, slam);
-  mapped.resolution_note = resolutionNote(survey, pass, sonar_options);
+  mapped.resolution_note = resolutionNote(survey, sonar_options);
   const NavTrack& trajectory = args.slam ? slam.trajectory : nav;
   FileTransaction outputs;  // nothing appears unless every output could be written
   if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, inNavigationFrame(trajectory, origin));

@@ -36,7 +36,7 @@ class _MappingOptions(TypedDict, total=False):
     max_range: float
     beam_width_deg: Optional[float]
     range_tolerance: _NumberOrAuto
-    max_voxel_updates: float
+    max_voxel_updates_per_beam: float
     hit_probability: float
     volume: bool
     vertical_aperture_deg: Optional[float]

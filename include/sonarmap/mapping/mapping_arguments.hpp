@@ -49,7 +49,7 @@ struct MappingArguments {
   double beam_width_deg = 0.0;
   bool beam_width_given = false;  ///< the user gave the beam width (else the sonar's, withSonarBeam)
   std::string range_tolerance;
-  double max_voxel_updates = 0.0;
+  double max_voxel_updates_per_beam = 0.0;
   double hit_probability = 0.0;
   bool volume = false;  ///< `--3d`
   double vertical_aperture_deg = 0.0;
