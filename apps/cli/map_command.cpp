@@ -62,12 +62,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
                      "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
                      "outside its time span are skipped");
-  cmd->add_option("--mounting", args.mounting,
-                  "With --nav: the sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's body frame "
-                  "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
-                  "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,0,0,0; a head tilted 25 deg down is PITCH -25")
-      ->delimiter(',')
-      ->expected(6);
+  addMountingOption(*cmd, args.mounting, "With --nav: ", "Default: at the body origin, upright and aligned = 0,0,0,0,0,0");
   cmd->add_flag("--slam", args.slam,
                 "Correct the navigation by matching the sonar's scans with each other (motion-compensated scans, "
                 "probabilistic ICP, loop closures, a pose graph) and map with the corrected trajectory. Without "

@@ -299,7 +299,7 @@ for a map with nothing known.)doc")
                std::to_string(s.run.simulation.nav.size()) + " nav fixes)";
       });
 
-  m.def("mission_names", &simulatedMissionNames, "The simulated 3D missions: \"lawnmower\", \"tilted-loop\".");
+  m.def("mission_names", &simulatedMissionNames, "The simulated 3D missions: \"lawnmower-3d\", \"tilted-loop\".");
   const SimulatedMission mission_defaults{};
   m.def(
       "simulate_mission",
@@ -320,10 +320,11 @@ for a map with nothing known.)doc")
       py::arg("mission") = mission_defaults.mission, py::arg("sonar") = mission_defaults.preset,
       py::arg("scene") = mission_defaults.scene, py::arg("seed") = mission_defaults.seed,
       R"doc(Simulates one of the 3D missions of docs/accuracy.md (eval/simulated_mission.hpp): a head
-preset on a moving vehicle over a built-in 3D scene, as ``sonarmap demo`` does for its 3D run.
+preset on a moving vehicle over a built-in 3D scene, as ``sonarmap demo`` does for its 3D run and
+``sonarmap simulate quay3d --sonar SONAR --mission MISSION --seed SEED`` does (the same run).
 
 mission: mission_names() ("tilted-loop": a rectangle with the sonar tilted 25 degrees down;
-"lawnmower": legs at two depths, the sonar upright). sonar: sonar_preset_names(). scene: a
+"lawnmower-3d": legs at two depths, the sonar upright). sonar: sonar_preset_names(). scene: a
 built-in scene ("quay3d"), built for the head's range. seed: of the speckle and noise.
 Map it with ``map_sonar_log(m.log, nav=m.nav, mounting=m.mounting, volume=True,
 beam_width_deg=m.beam_width_deg, vertical_aperture_deg=m.vertical_aperture_deg, resolution=...)`` and score the map
