@@ -34,11 +34,10 @@ std::string mountingText(const std::array<double, 6>& mounting) {
 
 CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when,
                                const std::string& default_text) {
-  return cmd
-      .add_option("--mounting", mounting,
-                  when + "the sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's "
-                         "body frame (x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler "
-                         "angles in DEGREES; a head tilted 25 deg down is PITCH -25. " + default_text)
+  const std::string what = "he sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's "
+                           "body frame (x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler "
+                           "angles in DEGREES; a head tilted 25 deg down is PITCH -25. ";
+  return cmd.add_option("--mounting", mounting, when + (when.empty() ? "T" : "t") + what + default_text)
       ->delimiter(',')
       ->expected(6);
 }
