@@ -48,7 +48,8 @@ MapArgs demoMapArgs(const OutputDir& dir, bool quiet) {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
-/// The 3D run: the moving mission with the tilted sonar (eval/simulated_mission.hpp).
+/// The 3D run: the simulator's tilted loop (sim/missions.hpp) with its default mounting, the sonar
+/// tilted 25° down, as `sonarmap simulate quay3d --sonar micron --mission tilted-loop` flies it.
 const SimulatedMission k3dMission{"micron", "quay3d", "tilted-loop"};
 constexpr const char* k3dResolution_m = "0.05";
 
@@ -112,9 +113,8 @@ void print3dHeader(const MissionRun& mission, const std::string& folder) {
 void print3dCommands(const MapArgs& map_args, const std::string& side_png, const std::string& scene,
                      const std::string& truth_nav, const MissionRun& mission) {
   // The numbers the mission's mounting was built from, exactly: the map command rebuilds the same pose.
-  char mounting[200];
-  std::snprintf(mounting, sizeof mounting, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", mission.mounting[0],
-                mission.mounting[1], mission.mounting[2], mission.mounting[3], mission.mounting[4], mission.mounting[5]);
+  const std::string mounting_text = mountingText(mission.mounting);
+  const char* mounting = mounting_text.c_str();
   std::printf("3d: score it:  sonarmap eval %s --truth %s\n", map_args.output_bt.c_str(), scene.c_str());
   std::printf("3d: score what the sonar could see (docs/accuracy.md):  sonarmap eval %s --truth %s %s\n",
               map_args.output_bt.c_str(), scene.c_str(), fieldOfViewOptions(mission).c_str());
@@ -122,6 +122,9 @@ void print3dCommands(const MapArgs& map_args, const std::string& side_png, const
               "--heard-by %s --nav %s --mounting %s --sonar %s\n",
               map_args.output_bt.c_str(), scene.c_str(), map_args.input.c_str(), truth_nav.c_str(), mounting,
               k3dMission.preset.c_str());
+  std::printf("3d: simulate it again:  sonarmap simulate %s --sonar %s --mission %s --seed %llu -o DIR\n",
+              k3dMission.scene.c_str(), k3dMission.preset.c_str(), k3dMission.mission.c_str(),
+              static_cast<unsigned long long>(k3dMission.seed));
   std::printf("3d: map it again:  sonarmap map %s --nav %s --mounting %s --3d --resolution %s "
               "--beam-width %g --vertical-aperture %g -o %s --png %s --side-png %s\n",
               map_args.input.c_str(), map_args.nav_file.c_str(), mounting,

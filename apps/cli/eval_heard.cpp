@@ -6,6 +6,7 @@
 #include <limits>
 #include <system_error>
 
+#include "map_options.hpp"
 #include "progress.hpp"
 #include "simulate_command.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -26,12 +27,7 @@ void addHeardOptions(CLI::App& cmd, HeardArgs& args) {
                  "With --heard-by: the TRUE navigation CSV of the log (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: "
                  "NED metres, radians, the log's clock; e.g. sonarmap simulate's truth_nav.csv); beams outside its "
                  "time span are skipped and counted. Default: the sonar static at the map origin");
-  cmd.add_option("--mounting", args.mounting,
-                 "With --nav: the sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's body frame "
-                 "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
-                 "DEGREES, as sonarmap map --mounting. Default: 0,0,0,0,0,0 (upright and aligned)")
-      ->delimiter(',')
-      ->expected(6);
+  addMountingOption(cmd, args.mounting, "With --nav: ", "Default: 0,0,0,0,0,0 (upright and aligned)");
   cmd.add_option("--heard-level", args.level_db,
                  "With --heard-by: a surface point counts as heard where its mean echo is at least this many dB "
                  "over the receiver's floor; -inf or any: every surface point a beam's rays meet (the geometry)")

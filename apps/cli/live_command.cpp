@@ -388,7 +388,7 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
   const LogSurvey survey = surveyLog(pass, 1, spanOf(navigation));
   std::optional<LocalOrigin> origin;
   const double origin_resolution_m = sonar_options.resolution_m.value_or(
-      survey.beams > 0 ? autoResolutionForLog(survey, pass, sonar_options).resolution_m : autoResolution_m(sonar_options.max_range_m));
+      survey.beams > 0 ? autoResolutionForLog(survey, sonar_options).resolution_m : autoResolution_m(sonar_options.max_range_m));
   if (navigation) {
     printNavigationSource(*navigation, args.map.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
@@ -461,11 +461,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
                   "A second SOURCE (serial, udp://, tcp://, a file) of navigation CSV rows as they are sent: each fix "
                   "timed on the arrival clock (the stream's own clock aligned at its first row); bad rows skipped")
       ->excludes("--nav");
-  cmd->add_option("--mounting", args.map.mounting,
-                  "With --nav or --nav-stream: the sonar in the body frame as X,Y,Z,ROLL,PITCH,YAW (metres, DEGREES), as "
-                  "for `map`")
-      ->delimiter(',')
-      ->expected(6);
+  addMountingOption(*cmd, args.map.mounting, "With --nav or --nav-stream: ", "Default: 0,0,0,0,0,0 (upright and aligned)");
   cmd->add_flag("--slam", args.map.slam,
                 "Correct the navigation by scan matching as sweeps complete (as `map --slam`); when a loop closes the "
                 "map is rebuilt with the corrected trajectory, so each written map is the current best");

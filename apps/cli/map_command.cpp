@@ -62,12 +62,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
   addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
                      "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
                      "outside its time span are skipped");
-  cmd->add_option("--mounting", args.mounting,
-                  "With --nav: the sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's body frame "
-                  "(x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler angles in "
-                  "DEGREES. Default: at the body origin, upright and aligned = 0,0,0,0,0,0; a head tilted 25 deg down is PITCH -25")
-      ->delimiter(',')
-      ->expected(6);
+  addMountingOption(*cmd, args.mounting, "With --nav: ", "Default: at the body origin, upright and aligned = 0,0,0,0,0,0");
   cmd->add_flag("--slam", args.slam,
                 "Correct the navigation by matching the sonar's scans with each other (motion-compensated scans, "
                 "probabilistic ICP, loop closures, a pose graph) and map with the corrected trajectory. Without "
@@ -130,13 +125,13 @@ MappedLog mapLog(const MapArgs& args, BeamSource& source, const LogSurvey& surve
 
 }  // namespace
 
-std::string resolutionNote(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
+std::string resolutionNote(const LogSurvey& survey, const MapperOptions& options) {
   if (options.resolution_m) return {};
-  const AutoResolution chosen = autoResolutionForLog(survey, pass, options);
+  const AutoResolution chosen = autoResolutionForLog(survey, options);
   if (chosen.scales < 2 && !chosen.coarsened) return {};
   char note[160];
   std::snprintf(note, sizeof note, " (auto: the %.3g m range scale, %zu of %zu beams%s)", chosen.scale.reach_m,
-                chosen.scale.beams, chosen.beams, chosen.coarsened ? ", coarsened to fit --max-voxel-updates" : "");
+                chosen.scale.beams, chosen.beams, chosen.coarsened ? ", coarsened to fit --max-voxel-updates-per-beam" : "");
   return note;
 }
 
@@ -169,7 +164,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
     printNavigationSource(*navigation, args.nav_file);
     requireClockOverlap(survey, source->header().clock_utc_s, *navigation);
     const double resolution_m = sonar_options.resolution_m ? *sonar_options.resolution_m
-                                                           : autoResolutionForLog(survey, pass, sonar_options).resolution_m;
+                                                           : autoResolutionForLog(survey, sonar_options).resolution_m;
     origin = moveTrackToOrigin(navigation->source.track, args.origin, resolution_m,
                                std::min(survey.reach_m, sonar_options.max_range_m));
     printOrigin(origin);
@@ -180,7 +175,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
       mountingFor(args.input, format, source->header(), navigation, !args.mounting.empty(), sonar_to_body);
   SlamResult slam;
   MappedLog mapped = mapLog(args, *source, survey, whole ? &*whole : nullptr, sonar_options, nav, mounting, slam);
-  mapped.resolution_note = resolutionNote(survey, pass, sonar_options);
+  mapped.resolution_note = resolutionNote(survey, sonar_options);
   const NavTrack& trajectory = args.slam ? slam.trajectory : nav;
   FileTransaction outputs;  // nothing appears unless every output could be written
   if (!args.trajectory_out.empty()) stageTrajectory(outputs, args.trajectory_out, inNavigationFrame(trajectory, origin));

@@ -26,7 +26,7 @@ Eigen::Isometry3d toSonarToBody(const std::vector<double>& mounting);
 /// What the summary says after an automatic resolution (MappedLog::resolution_note): the range
 /// scale it follows when the log has several, and whether it was coarsened to fit the budget;
 /// empty for a resolution given by the user or a log of one scale.
-std::string resolutionNote(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
+std::string resolutionNote(const LogSurvey& survey, const MapperOptions& options);
 
 /// Reads, maps and writes. Prints the warnings about the options and the mapping (mappingWarnings)
 /// on stderr and the one-line summary on stdout. With navigation (args.nav_file, or the input bag's own), each beam is placed with the

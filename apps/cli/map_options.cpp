@@ -1,6 +1,8 @@
 #include "map_options.hpp"
 
+#include <charconv>
 #include <string>
+#include <system_error>
 #include <variant>
 
 #include "sonarmap/formats/log_reader.hpp"
@@ -17,6 +19,27 @@ void addLogFormatOption(CLI::App& cmd, std::string& format) {
 
 std::string logInputHelp() {
   return "Sonar log: " + logFormatExtensionsText() + " (or any name with --format)";
+}
+
+std::string mountingText(const std::array<double, 6>& mounting) {
+  std::string text;
+  for (const double value : mounting) {
+    char number[32];
+    const auto [end, error] = std::to_chars(number, number + sizeof number, value);
+    if (!text.empty()) text += ',';
+    text.append(number, error == std::errc{} ? end : number);
+  }
+  return text;
+}
+
+CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when,
+                               const std::string& default_text) {
+  const std::string what = "he sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's "
+                           "body frame (x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler "
+                           "angles in DEGREES; a head tilted 25 deg down is PITCH -25. ";
+  return cmd.add_option("--mounting", mounting, when + (when.empty() ? "T" : "t") + what + default_text)
+      ->delimiter(',')
+      ->expected(6);
 }
 
 void addMappingOptions(CLI::App& cmd, MapArgs& args) {

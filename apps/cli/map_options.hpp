@@ -3,6 +3,7 @@
 // the library's table (mapping_option_table.hpp), converted into MapperOptions by toMapperOptions
 // (mapping_arguments.hpp). Defaults are the library's, not copies.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,17 @@ std::string logInputHelp();
 /// default shown), --map-frame, --quiet and --tank-report to `cmd`: everything but the input,
 /// outputs, --nav and --mounting.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
+
+/// `mounting` as --mounting takes it, "X,Y,Z,ROLL,PITCH,YAW": each number in the shortest form that
+/// reads back exactly (0.3, not 0.29999999999999999), so a printed command rebuilds the same pose.
+std::string mountingText(const std::array<double, 6>& mounting);
+
+/// Adds --mounting X,Y,Z,ROLL,PITCH,YAW to `cmd`, six numbers separated by commas into `mounting`
+/// (sonarToBodyOfMounting, nav/mounting.hpp, turns them into the pose): the sonar's frame (FRD) in
+/// the vehicle's body frame (FRD), metres and Z-Y-X Euler angles in degrees. Its help is `when`
+/// (what it needs, e.g. "With --nav: "), the frames and units, then `default_text`.
+CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when,
+                               const std::string& default_text);
 
 // inputFormat, withSonarBeam and toMapperOptions live in the library
 // (sonarmap/mapping/mapping_arguments.hpp), shared with the Python module.

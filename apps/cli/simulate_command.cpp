@@ -1,12 +1,14 @@
 #include "simulate_command.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <numbers>
 
+#include "map_options.hpp"
 #include "output_dir.hpp"
 #include "sonarmap/formats/mcap_writer.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
@@ -25,6 +27,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
 /// "a, b, c".
 std::string joined(const std::vector<std::string>& names, const char* separator) {
   std::string text;
@@ -38,6 +42,23 @@ void checkScene(const std::string& scene) {
   if (isBuiltinSceneName(scene) || fs::exists(scene)) return;
   throw ValueError("unknown scene '" + scene + "': neither a built-in scene (" + joined(allBuiltinSceneNames(), ", ") +
                    ") nor a scene file");
+}
+
+/// `sonarmap map` of the run written in args.output_dir: its beams with nav.csv, the mounting it was
+/// simulated with (simulationMounting's numbers, printed exactly, so that the map rebuilds the same
+/// pose), the head's beam widths (a beam CSV does not name its sonar), and --3d in a 3D scene.
+std::string mapCommand(const SimulateArgs& args, const MsisHeadOptions& head) {
+  const std::array<double, 6> mounting = simulationMounting(args);
+  const fs::path dir(args.output_dir);
+  const std::vector<std::string> scenes_3d = builtinScene3dNames();
+  const bool volume = std::find(scenes_3d.begin(), scenes_3d.end(), args.scene) != scenes_3d.end();
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                "sonarmap map %s --nav %s --mounting %s --beam-width %g --vertical-aperture %g%s -o %s",
+                (dir / "beams.csv").string().c_str(), (dir / "nav.csv").string().c_str(), mountingText(mounting).c_str(),
+                head.horizontal_beam_width_rad * kDegPerRad, head.vertical_beam_width_rad * kDegPerRad,
+                volume ? " --3d" : "", (dir / "map.bt").string().c_str());
+  return text;
 }
 
 void check(const SimulateArgs& args, MsisSimulationOptions& options) {
@@ -78,9 +99,8 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
               simulation.log.beams.size(), options.turns, turns, simulation.nav.size(),
               simulation.scene.primitives.size(), args.output_dir.c_str());
   if (!args.mission.empty() && !simulation.nav.empty()) {
-    const MissionPlan plan = missionPlan(args.mission, head.range_m,
-                                         args.speed_mps > 0.0 ? args.speed_mps : defaultMissionSpeed_mps(head.range_m),
-                                         args.laps);
+    const double speed_mps = args.speed_mps > 0.0 ? args.speed_mps : defaultMissionSpeed_mps(args.mission, head.range_m);
+    const MissionPlan plan = missionPlan(args.mission, head.range_m, speed_mps, args.laps);
     std::printf("mission %s: %zu lap(s), %.1f m in %.1f s\n", plan.name.c_str(), args.laps, plan.length_m,
                 plan.duration_s);
   }
@@ -91,6 +111,10 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
                 drift_m.norm());
   } else if (!simulation.nav.empty()) {
     std::printf("nav.csv, truth_nav.csv: the true track\n");
+  }
+  // A mission or a mounting: the map needs the navigation and the mounting, named in full.
+  if (!simulation.nav.empty() && (!args.mission.empty() || !args.mounting.empty())) {
+    std::printf("map it:  %s\n", mapCommand(args, head).c_str());
   }
 }
 
@@ -151,7 +175,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->capture_default_str();
   cmd->add_option("--speed", args.speed_mps,
                   "Vehicle speed in m/s along --heading (0: static); with --mission along its path (0: the mission's "
-                  "default, range / 20 s up to 0.5 m/s)")
+                  "default: range / 20 s up to 0.5 m/s, the 3D missions range / 25 s)")
       ->capture_default_str();
   cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north (not with --mission)")
       ->capture_default_str();
@@ -161,10 +185,14 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "range; 0 elsewhere)");
   cmd->add_option("--mission", args.mission,
                   "Fly a named mission in its scene, sized for the sonar's range (" + joined(missionNames(), " | ") +
-                      "; include/sonarmap/sim/missions.hpp); the head turns until the mission ends, --turns is "
-                      "ignored");
+                      "; include/sonarmap/sim/missions.hpp); lawnmower-3d and tilted-loop fly at depth over quay3d "
+                      "(tilted-loop with the sonar tilted 25 deg down unless --mounting says otherwise); the head turns "
+                      "until the mission ends, --turns is ignored");
   cmd->add_option("--laps", args.laps, "Times the mission is flown (loops again, lines back and forth)")
       ->capture_default_str();
+  addMountingOption(*cmd, args.mounting, "",
+                    "Default: the mission's (tilted-loop: 0,0,0,0,-25,0), else 0,0,0,0,0,0 (upright and aligned). "
+                    "The map command printed at the end maps the run with it");
   cmd->add_option("--dvl-noise", args.dvl_noise_mps,
                   "Dead reckoning: sigma of the DVL's velocity noise per axis and nav fix, m/s; any dead-reckoning "
                   "error makes nav.csv the drifting believed track (truth_nav.csv stays the truth)")

@@ -36,7 +36,7 @@ class _MappingOptions(TypedDict, total=False):
     max_range: float
     beam_width_deg: Optional[float]
     range_tolerance: _NumberOrAuto
-    max_voxel_updates: float
+    max_voxel_updates_per_beam: float
     hit_probability: float
     volume: bool
     vertical_aperture_deg: Optional[float]
@@ -317,6 +317,8 @@ class Simulation:
     def dead_reckoning(self) -> Float64Array: ...
     @property
     def scene(self) -> Scene: ...
+    @property
+    def mounting(self) -> list[float]: ...
 
 class Mission:
     @property
@@ -360,6 +362,7 @@ def simulate(
     heading_bias_deg: float = 0.0,
     gyro_walk: float = 0.0,
     depth: Optional[float] = None,
+    mounting: Optional[Sequence[float]] = None,
 ) -> Simulation: ...
 def mission_plan_names() -> list[str]: ...
 def eval_trajectory(

@@ -208,7 +208,7 @@ the file's header. Without nav the vehicle is taken at the NED origin heading no
 Returns sonarmap.OccupancyMap with ``stats`` (sonarmap.MappingStats). What `sonarmap map` prints as
 warnings is issued as RuntimeWarning. The GIL is released while mapping.
 Raises sonarmap.ValueError for an invalid option (named by its keyword), a log whose work
-exceeds max_voxel_updates, a bad navigation track, or one the map cannot hold about any origin (naming
+exceeds max_voxel_updates_per_beam, a bad navigation track, or one the map cannot hold about any origin (naming
 the fix and what fits); sonarmap.FileError for an unreadable nav CSV;
 TypeError for an unknown keyword.)doc";
   m.def("map_sonar_log", &mapLog, py::arg("log"), py::arg("nav") = py::none(), py::arg("mounting") = py::none(),

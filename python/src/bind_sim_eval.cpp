@@ -32,6 +32,7 @@ struct PySimulation {
   NavTrack nav;             ///< the true track
   NavTrack dead_reckoning;  ///< the believed track; empty without dead-reckoning errors
   Scene scene;
+  std::array<double, 6> mounting{};  ///< simulationMounting: X, Y, Z metres, ROLL, PITCH, YAW degrees
 };
 
 /// A simulated 3D mission (eval/simulated_mission.hpp) as Python sees it: the run without its log
@@ -185,6 +186,10 @@ the names for an unknown one.)doc");
           "float64 (N, 7) the track a dead-reckoning navigation with the run's DVL and heading errors believes "
           "(the CLI's nav.csv then), same times as nav; (0, 7) without dead-reckoning errors.")
       .def_readonly("scene", &PySimulation::scene, "sonarmap.Scene that was scanned (map frame).")
+      .def_property_readonly(
+          "mounting", [](const PySimulation& s) { return std::vector<double>(s.mounting.begin(), s.mounting.end()); },
+          "The sonar in the body frame as simulated, as map_sonar_log's mounting= takes it: [x_m, y_m, z_m, "
+          "roll_deg, pitch_deg, yaw_deg] (the CLI's --mounting; the mission's default when none was given).")
       .def("__repr__", [](const PySimulation& s) {
         return "Simulation(" + std::to_string(s.log.log.beams.size()) + " beams, " + std::to_string(s.nav.size()) +
                " nav fixes, " + std::to_string(s.scene.primitives.size()) + " primitives)";
@@ -196,9 +201,10 @@ the names for an unknown one.)doc");
       [](const py::object& scene, const std::string& sonar, std::size_t turns, std::uint64_t seed, double sector,
          double sector_center, double speed, double heading, double nav_rate, const std::string& mission,
          std::size_t laps, double dvl_noise, double dvl_scale_error, double heading_bias_deg, double gyro_walk,
-         std::optional<double> depth) {
+         std::optional<double> depth, std::optional<std::vector<double>> mounting) {
         SimulationArguments args;
         if (depth) args.depth_m = *depth;
+        if (mounting) args.mounting = *mounting;
         args.mission = mission;
         args.laps = laps;
         args.dvl_noise_mps = dvl_noise;
@@ -226,6 +232,7 @@ the names for an unknown one.)doc");
           out.dead_reckoning = std::move(run.dead_reckoning);
           out.scene = std::move(run.scene);
         }
+        out.mounting = simulationMounting(args);
         out.log.format = "simulated";
         out.log.beam = NominalBeam{options.head.horizontal_beam_width_rad, options.head.vertical_beam_width_rad};
         return out;
@@ -237,7 +244,7 @@ the names for an unknown one.)doc");
       py::arg("mission") = defaults.mission, py::arg("laps") = defaults.laps,
       py::arg("dvl_noise") = defaults.dvl_noise_mps, py::arg("dvl_scale_error") = defaults.dvl_scale_error,
       py::arg("heading_bias_deg") = defaults.heading_bias_deg, py::arg("gyro_walk") = defaults.gyro_walk_deg_per_sqrt_s,
-      py::arg("depth") = py::none(),
+      py::arg("depth") = py::none(), py::arg("mounting") = py::none(),
       R"doc(Simulates an MSIS scanning a scene, as ``sonarmap simulate`` (the same arguments, the same run).
 
 scene: a built-in scene name (built for the preset's range), a scene file path, or a sonarmap.Scene.
@@ -249,10 +256,13 @@ without a mission; None: the built-in scene's (3 m in quay3d at 5 m range, under
 depth 0, scaled with the range; 0 elsewhere).
 mission: a named mission (mission_plan_names(); scene must then be its built-in scene, by name) flown
 laps times, speed 0 meaning its default speed; turns and heading are then ignored.
+mounting: the sonar on the vehicle as map_sonar_log's mounting= (and the CLI's --mounting) takes it,
+[x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg]; None: the mission's (tilted-loop: pitch -25), else
+all 0. .mounting holds the one simulated.
 dvl_noise (m/s per axis and fix), dvl_scale_error (fraction), heading_bias_deg (degrees), gyro_walk
 (degrees per sqrt(s)): dead-reckoning errors; with any set, .dead_reckoning holds the drifting
 believed track (nav and truth_nav stay the truth; the beams do not change).
-Returns sonarmap.Simulation (log, nav, truth_nav, dead_reckoning, scene).
+Returns sonarmap.Simulation (log, nav, truth_nav, dead_reckoning, scene, mounting).
 ``simulate(...).log.write_csv(p)`` writes the file
 the CLI writes as beams.csv. Raises sonarmap.ValueError for a value out of range or an unknown
 scene or preset; sonarmap.FileError for a bad scene file.)doc");
@@ -299,7 +309,7 @@ for a map with nothing known.)doc")
                std::to_string(s.run.simulation.nav.size()) + " nav fixes)";
       });
 
-  m.def("mission_names", &simulatedMissionNames, "The simulated 3D missions: \"lawnmower\", \"tilted-loop\".");
+  m.def("mission_names", &simulatedMissionNames, "The simulated 3D missions: \"lawnmower-3d\", \"tilted-loop\".");
   const SimulatedMission mission_defaults{};
   m.def(
       "simulate_mission",
@@ -320,10 +330,11 @@ for a map with nothing known.)doc")
       py::arg("mission") = mission_defaults.mission, py::arg("sonar") = mission_defaults.preset,
       py::arg("scene") = mission_defaults.scene, py::arg("seed") = mission_defaults.seed,
       R"doc(Simulates one of the 3D missions of docs/accuracy.md (eval/simulated_mission.hpp): a head
-preset on a moving vehicle over a built-in 3D scene, as ``sonarmap demo`` does for its 3D run.
+preset on a moving vehicle over a built-in 3D scene, as ``sonarmap demo`` does for its 3D run and
+``sonarmap simulate quay3d --sonar SONAR --mission MISSION --seed SEED`` does (the same run).
 
 mission: mission_names() ("tilted-loop": a rectangle with the sonar tilted 25 degrees down;
-"lawnmower": legs at two depths, the sonar upright). sonar: sonar_preset_names(). scene: a
+"lawnmower-3d": legs at two depths, the sonar upright). sonar: sonar_preset_names(). scene: a
 built-in scene ("quay3d"), built for the head's range. seed: of the speckle and noise.
 Map it with ``map_sonar_log(m.log, nav=m.nav, mounting=m.mounting, volume=True,
 beam_width_deg=m.beam_width_deg, vertical_aperture_deg=m.vertical_aperture_deg, resolution=...)`` and score the map
@@ -332,7 +343,7 @@ mission, preset or scene.)doc");
 
   m.def("mission_plan_names", &missionNames,
         "The named missions simulate(mission=...) flies (sim/missions.hpp): \"harbour-loop\", "
-        "\"harbour-lawnmower\", \"harbour-featureless\", \"hull-loop\".");
+        "\"harbour-lawnmower\", \"harbour-featureless\", \"hull-loop\" (planar), \"lawnmower-3d\", \"tilted-loop\" (over quay3d).");
   m.def(
       "eval_trajectory",
       [](const py::object& estimate, const py::object& truth, bool se3, double segment_m) {

@@ -8,48 +8,25 @@
 #include <cmath>
 
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/mapping/mapping_arguments.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
-#include "sonarmap/sim/sonar_presets.hpp"
-#include "sonarmap/sim/trajectory.hpp"
+#include "sonarmap/sim/missions.hpp"
+#include "sonarmap/sim/simulation_arguments.hpp"
 
 namespace sonarmap {
 namespace {
 
-constexpr double kTiltDown_deg = 25.0;
 constexpr std::size_t kTruthPoses = 24;
-
-/// The waypoints of `name` at scale s (metres per Micron metre), and the sonar's tilt down.
-std::vector<NavSample> missionWaypoints(const std::string& name, double s, double& tilt_deg) {
-  const double speed_mps = 0.2 * s;
-  if (name == "lawnmower") {
-    LawnmowerPattern pattern;
-    pattern.legs = 3;
-    pattern.leg_length_m = 4.0 * s;
-    pattern.leg_spacing_m = 1.5 * s;
-    pattern.depths_m = {3.0 * s, 3.5 * s};
-    pattern.speed_mps = speed_mps;
-    tilt_deg = 0.0;
-    return lawnmowerWaypoints(pattern);
-  }
-  if (name == "tilted-loop") {
-    LoopPattern pattern;
-    pattern.length_m = 4.0 * s;
-    pattern.width_m = 3.0 * s;
-    pattern.depths_m = {3.0 * s};
-    pattern.speed_mps = speed_mps;
-    tilt_deg = kTiltDown_deg;
-    return loopWaypoints(pattern);
-  }
-  std::string known;
-  for (const std::string& candidate : simulatedMissionNames()) known += (known.empty() ? "" : ", ") + candidate;
-  throw ValueError("unknown mission '" + name + "', expected one of: " + known);
-}
 
 }  // namespace
 
-std::vector<std::string> simulatedMissionNames() { return {"lawnmower", "tilted-loop"}; }
+std::vector<std::string> simulatedMissionNames() {
+  std::vector<std::string> names;
+  for (const std::string& name : missionNames()) {
+    if (missionPlan(name, kBuiltinSceneReach_m, 1.0).scene == "quay3d") names.push_back(name);
+  }
+  return names;
+}
 
 double MissionAccuracy::f1() const {
   const double sum = truth.precision + truth.recall;
@@ -57,23 +34,16 @@ double MissionAccuracy::f1() const {
 }
 
 MissionRun simulateMission(const SimulatedMission& mission) {
-  const SonarPreset preset = sonarPreset(mission.preset);
+  if (mission.mission.empty()) throw ValueError("a simulated mission needs a mission's name");
+  SimulationArguments args;  // `sonarmap simulate SCENE --sonar PRESET --mission MISSION --seed SEED`
+  args.sonar = mission.preset;
+  args.mission = mission.mission;
+  args.seed = mission.seed;
+  checkMissionScene(args, mission.scene);
   MissionRun run;
-  MsisSimulationOptions& options = run.options;
-  options.head = preset.head;
-  options.echo = preset.echo;
-  options.seed = mission.seed;
-  const double s = preset.head.range_m / kBuiltinSceneReach_m;
-  double tilt_deg = 0.0;
-  const std::vector<NavSample> waypoints = missionWaypoints(mission.mission, s, tilt_deg);
-  options.trajectory = waypointTrajectory(waypoints);
-  // Tilted down: upright and aligned (the identity), pitched down (negative pitch, FRD).
-  run.mounting = {0.0, 0.0, 0.0, 0.0, -tilt_deg, 0.0};
-  options.sonar_to_body = sonarToBodyOfMounting(std::vector<double>(run.mounting.begin(), run.mounting.end()));
-  const double turn_s = options.head.beam_period_s * static_cast<double>(options.head.beamsPerTurn());
-  options.turns = static_cast<std::size_t>(std::ceil(waypoints.back().time_s / turn_s));
-  const Scene scene = builtinScene(mission.scene, preset.head.range_m, preset.head.vertical_beam_width_rad);
-  run.simulation = simulateMsis(scene, options);
+  run.options = toSimulationOptions(args, mission.scene);
+  run.mounting = simulationMounting(args);
+  run.simulation = simulateInMissionScene(mission.mission, run.options);
   return run;
 }
 

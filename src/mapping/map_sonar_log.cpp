@@ -53,9 +53,8 @@ std::size_t surveyMinBeams(const MapperOptions& options) {
 
 SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const MapperOptions& options,
                         const ProgressCallback& progress) {
-  const BeamPass pass = passOver(source);
-  const MapperOptions resolved = resolveForLog(options, survey, pass);
-  checkWorkBudget(survey, pass, resolved);
+  const MapperOptions resolved = resolveForLog(options, survey);
+  checkWorkBudget(survey, resolved);
   OnlineMapper online(resolved, OnlineIntegration::kSweep, progressOf(survey, progress));
   return mapThroughOnline(source, online);
 }
@@ -64,9 +63,8 @@ SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const NavTr
                         const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
                         const ProgressCallback& progress) {
   const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
-  const BeamPass pass = passOver(source);
-  const MapperOptions resolved = resolveForLog(options, survey, pass);
-  checkWorkBudget(survey, pass, resolved);
+  const MapperOptions resolved = resolveForLog(options, survey);
+  checkWorkBudget(survey, resolved);
   OnlineMapper online(resolved, sonar_to_body, OnlineIntegration::kSweep, progressOf(survey, progress));
   for (const NavSample& fix : nav) online.addNavFix(fix);
   return mapThroughOnline(source, online);

@@ -1,5 +1,5 @@
 /// @file mapper_options.cpp
-/// MapperOptions validation, the automatic resolution and the work budget (see mapper_options.hpp).
+/// MapperOptions validation, the automatic resolution and the work budget per beam (see mapper_options.hpp).
 
 #include "sonarmap/mapping/mapper_options.hpp"
 
@@ -14,7 +14,6 @@
 namespace sonarmap {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kAutoVoxelsPerReach = 256.0;
 constexpr double kFinestAutoResolution_m = 0.001;
 
@@ -33,9 +32,9 @@ void checkOptionalLength(const std::optional<double>& value_m, const char* name,
   }
 }
 
-/// The voxel updates of one beam reaching `range_m` (> 0) whose wedge spans `width_rad`, at `voxel_m`
-/// (estimateVoxelUpdates' terms).
-double beamUpdates(const MapperOptions& options, double voxel_m, double range_m, double width_rad) {
+/// The voxel updates of one beam reaching `range_m` (> 0) at `voxel_m` (estimateVoxelUpdatesPerBeam).
+double beamUpdates(const MapperOptions& options, double voxel_m, double range_m) {
+  const double width_rad = std::max(options.beam_width_rad, voxel_m / range_m);
   if (options.beam_model == BeamModel::kVolume) {
     // The free cone (its core) in volume, the shell (whole aperture) in area.
     const double free_rad = std::max(freeVerticalAperture_rad(options), voxel_m / range_m);
@@ -46,20 +45,18 @@ double beamUpdates(const MapperOptions& options, double voxel_m, double range_m,
   return width_rad * range_m * range_m / (2.0 * voxel_m * voxel_m) + range_m / voxel_m;
 }
 
-/// Whether mapping at options.resolution_m (set) surely fits options.max_voxel_updates, told from
-/// the survey's reaches alone: each wedge taken as wide as the beam (or a voxel), never narrower
-/// than the bearing step estimateVoxelUpdates limits it to, so the bound is at least the estimate
-/// (with a margin for the sums' rounding). False when the survey could not count the reaches.
-bool surelyFits(const LogSurvey& survey, const MapperOptions& options) {
-  if (!survey.reaches_counted) return false;
-  const double voxel_m = *options.resolution_m;
-  double bound = 0.0;
-  for (const auto& [reach_m, beams] : survey.beams_by_reach) {
-    const double range_m = std::min(reach_m, options.max_range_m);
-    if (!(range_m > 0.0)) continue;
-    bound += static_cast<double>(beams) * beamUpdates(options, voxel_m, range_m, std::max(options.beam_width_rad, voxel_m / range_m));
+/// The finest voxel edge, metres, at which a beam reaching `range_m` fits `budget` updates, rounded
+/// up to three significant digits (what a user types): the updates fall as the voxel grows, so
+/// bisection (in log scale) between a micrometre and the range, where a beam is a voxel or two.
+double finestFitting_m(const MapperOptions& options, double range_m, double budget) {
+  double fits_m = range_m, too_fine_m = kFinestAutoResolution_m * 1e-3;
+  if (beamUpdates(options, too_fine_m, range_m) <= budget) return too_fine_m;
+  for (int i = 0; i < 100 && fits_m / too_fine_m > 1.0 + 1e-9; ++i) {
+    const double mid_m = std::sqrt(fits_m * too_fine_m);
+    (beamUpdates(options, mid_m, range_m) <= budget ? fits_m : too_fine_m) = mid_m;
   }
-  return bound * (1.0 + 1e-9) <= options.max_voxel_updates;
+  const double digit_m = std::pow(10.0, std::floor(std::log10(fits_m)) - 2.0);
+  return std::ceil(fits_m / digit_m) * digit_m;
 }
 
 }  // namespace
@@ -91,8 +88,8 @@ void MapperOptions::validate() const {
   if (beam_model == BeamModel::kVolume && !(vertical_aperture_rad > 0.0 && vertical_aperture_rad < std::numbers::pi)) {
     throw ValueError("vertical aperture must be within (0, pi) rad, got " + std::to_string(vertical_aperture_rad));
   }
-  if (!(max_voxel_updates > 0.0)) {
-    throw ValueError("the voxel-update budget must be > 0, got " + std::to_string(max_voxel_updates));
+  if (!(max_voxel_updates_per_beam > 0.0)) {
+    throw ValueError("the voxel-update budget per beam must be > 0, got " + std::to_string(max_voxel_updates_per_beam));
   }
   if (std::isinf(water_surface_depth_m)) throw ValueError("the water surface's depth must be finite or NaN (unknown)");
   if (threads == 0) throw ValueError("the mapper needs at least one thread");
@@ -126,7 +123,7 @@ double logReach_m(const SonarLog& log, double max_range_m) {
 
 double logReach_m(const LogSurvey& survey, double max_range_m) { return std::min(survey.reach_m, max_range_m); }
 
-AutoResolution autoResolutionForLog(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
+AutoResolution autoResolutionForLog(const LogSurvey& survey, const MapperOptions& options) {
   options.validate();
   const RangeScale* most_used = mostUsedRangeScale(survey.scales);
   if (most_used == nullptr || !(most_used->reach_m > 0.0)) {
@@ -135,14 +132,10 @@ AutoResolution autoResolutionForLog(const LogSurvey& survey, const BeamPass& pas
   AutoResolution chosen{0.0, *most_used, survey.scales.size(), survey.beams, false};
   chosen.scale.reach_m = std::min(chosen.scale.reach_m, options.max_range_m);
   chosen.resolution_m = autoResolution_m(chosen.scale.reach_m);
-  const double coarsest_m = autoResolution_m(logReach_m(survey, options.max_range_m));
-  MapperOptions trial = options;
-  for (;;) {
-    trial.resolution_m = chosen.resolution_m;
-    if (chosen.resolution_m >= coarsest_m || surelyFits(survey, trial) ||
-        estimateVoxelUpdates(survey, pass, trial) <= options.max_voxel_updates) {
-      break;
-    }
+  const double reach_m = logReach_m(survey, options.max_range_m);
+  const double coarsest_m = autoResolution_m(reach_m);
+  while (chosen.resolution_m < coarsest_m &&
+         beamUpdates(options, chosen.resolution_m, reach_m) > options.max_voxel_updates_per_beam) {
     // The next of 1, 2, 5 × 10^k: ×2 from a 1 or a 5, ×2.5 from a 2.
     const double mantissa = chosen.resolution_m / std::pow(10.0, std::floor(std::log10(chosen.resolution_m) + 1e-9));
     chosen.resolution_m *= std::abs(mantissa - 2.0) < 0.01 ? 2.5 : 2.0;
@@ -152,61 +145,28 @@ AutoResolution autoResolutionForLog(const LogSurvey& survey, const BeamPass& pas
 }
 
 AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options) {
-  const BeamPass pass = passOver(log);
-  return autoResolutionForLog(surveyLog(pass), pass, options);
+  return autoResolutionForLog(surveyLog(passOver(log)), options);
 }
 
-MapperOptions resolveForLog(const MapperOptions& options, const LogSurvey& survey, const BeamPass& pass) {
+MapperOptions resolveForLog(const MapperOptions& options, const LogSurvey& survey) {
   options.validate();
   MapperOptions resolved = options;
-  if (!resolved.resolution_m) resolved.resolution_m = autoResolutionForLog(survey, pass, options).resolution_m;
+  if (!resolved.resolution_m) resolved.resolution_m = autoResolutionForLog(survey, options).resolution_m;
   return resolved;
 }
 
 MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log) {
-  const BeamPass pass = passOver(log);
-  return resolveForLog(options, surveyLog(pass), pass);
+  return resolveForLog(options, surveyLog(passOver(log)));
 }
 
-namespace {
-/// The resolution estimates use: the option, else the automatic one (a 1 mm floor for a log
-/// without bins).
-double resolutionOrAuto_m(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
-  if (options.resolution_m) return *options.resolution_m;
-  const double reach_m = logReach_m(survey, options.max_range_m);
-  return reach_m > 0.0 ? autoResolutionForLog(survey, pass, options).resolution_m : autoResolution_m(1e-3);
-}
-}  // namespace
-
-double estimateVoxelUpdates(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
-  const double voxel_m = resolutionOrAuto_m(survey, pass, options);
-  // Each beam's wedge spans at most the bearing step to the next beam (the last: from the one
-  // before; a log of one beam: 2π): a beam is counted when the next arrives.
-  double updates = 0.0;
-  std::size_t seen = 0;
-  double held_range_m = 0.0, held_bearing_rad = 0.0, step_rad = kTwoPi;
-  auto count = [&](double range_m, double step) {
-    if (!(range_m > 0.0)) return;
-    // The union of overlapping wedges grows by one bearing step per beam; a ray is a line of voxels.
-    updates += beamUpdates(options, voxel_m, range_m, std::min(std::max(options.beam_width_rad, voxel_m / range_m), step));
-  };
-  pass([&](const Beam& beam) {
-    const double range_m = std::min(static_cast<double>(beam.intensities.size()) * beam.bin_length_m, options.max_range_m);
-    if (seen > 0) {
-      step_rad = std::abs(std::remainder(beam.bearing_rad - held_bearing_rad, kTwoPi));
-      count(held_range_m, step_rad);
-    }
-    held_range_m = range_m;
-    held_bearing_rad = beam.bearing_rad;
-    ++seen;
-  });
-  if (seen > 0) count(held_range_m, step_rad);
-  return updates;
-}
-
-double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options) {
-  const BeamPass pass = passOver(log);
-  return estimateVoxelUpdates(surveyLog(pass), pass, options);
+double estimateVoxelUpdatesPerBeam(const MapperOptions& options, double range_m) {
+  options.validate();
+  if (!options.resolution_m) throw ValueError("voxel updates per beam: the resolution must be set");
+  if (!(std::isfinite(range_m) && range_m > 0.0)) {
+    throw ValueError("voxel updates per beam: the range must be a finite number of metres > 0, got " +
+                     std::to_string(range_m));
+  }
+  return beamUpdates(options, *options.resolution_m, std::min(range_m, options.max_range_m));
 }
 
 std::vector<std::string> optionWarnings(const MapperOptions& options, const SonarLog& log) {
@@ -255,30 +215,28 @@ std::vector<std::string> optionWarnings(const MapperOptions& options, const LogS
   return lines;
 }
 
-void checkWorkBudget(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options) {
-  const bool resolved = options.resolution_m.has_value();
-  if (resolved && surelyFits(survey, options)) return;
-  const double updates = estimateVoxelUpdates(survey, pass, options);
-  if (updates <= options.max_voxel_updates) return;
-  // Updates scale with 1 / resolution² (planar) or 1 / resolution³ (volume): the finest that fits.
-  const double voxel_m = resolutionOrAuto_m(survey, pass, options);
+void checkWorkBudget(const LogSurvey& survey, const MapperOptions& options) {
+  const double reach_m = logReach_m(survey, options.max_range_m);
+  if (!(reach_m > 0.0)) return;
   MapperOptions automatic = options;
   automatic.resolution_m.reset();
-  const double power = options.beam_model == BeamModel::kVolume ? 1.0 / 3.0 : 0.5;
-  const double fits_m = voxel_m * std::pow(updates / options.max_voxel_updates, power);
-  char text[400];
+  const double auto_m = autoResolutionForLog(survey, automatic).resolution_m;
+  const double voxel_m = options.resolution_m.value_or(auto_m);
+  const double updates = beamUpdates(options, voxel_m, reach_m);
+  if (updates <= options.max_voxel_updates_per_beam) return;
+  char text[480];
   std::snprintf(text, sizeof text,
-                "mapping this log at %s voxels needs about %.3g voxel updates, more than the budget of %.3g "
-                "(max_voxel_updates, --max-voxel-updates): use a resolution of at least %s (auto: %s), or raise "
-                "the budget",
-                metres(voxel_m).c_str(), updates, options.max_voxel_updates, metres(fits_m).c_str(),
-                metres(resolutionOrAuto_m(survey, pass, automatic)).c_str());
+                "mapping this log at %s voxels needs about %.3g voxel updates for its longest beam (%s), more than "
+                "the budget of %.3g per beam (max_voxel_updates_per_beam, --max-voxel-updates-per-beam): use a "
+                "resolution of at least %s (auto: %s), or raise the budget",
+                metres(voxel_m).c_str(), updates, metres(reach_m).c_str(), options.max_voxel_updates_per_beam,
+                metres(finestFitting_m(options, reach_m, options.max_voxel_updates_per_beam)).c_str(),
+                metres(auto_m).c_str());
   throw ValueError(text);
 }
 
 void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
-  const BeamPass pass = passOver(log);
-  checkWorkBudget(surveyLog(pass), pass, options);
+  checkWorkBudget(surveyLog(passOver(log)), options);
 }
 
 }  // namespace sonarmap

@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kEast_rad = 0.5 * std::numbers::pi;
 constexpr double kTurnRate_radps = 0.5;
+constexpr double kTiltDown_deg = 25.0;  ///< the tilted loop's sonar, below the vehicle's horizontal plane
 
 void requirePositive(const char* field, double value) {
   if (!(std::isfinite(value) && value > 0.0)) {
@@ -65,14 +66,27 @@ std::vector<NavSample> eastwardLegs(std::size_t legs, double first_north_m, doub
   return lawnmowerWaypoints(pattern);
 }
 
+/// The missions over quay3d (3D), whose depths and mountings differ from the planar ones'.
+bool isMission3d(const std::string& name) { return name == "lawnmower-3d" || name == "tilted-loop"; }
+
+/// "unknown mission 'x', expected one of: ...".
+ValueError unknownMission(const std::string& name) {
+  std::string known;
+  for (const std::string& candidate : missionNames()) known += (known.empty() ? "" : ", ") + candidate;
+  return ValueError("unknown mission '" + name + "', expected one of: " + known);
+}
+
 }  // namespace
 
 std::vector<std::string> missionNames() {
-  return {"harbour-loop", "harbour-lawnmower", "harbour-featureless", "hull-loop"};
+  return {"harbour-loop", "harbour-lawnmower", "harbour-featureless", "hull-loop", "lawnmower-3d", "tilted-loop"};
 }
 
-double defaultMissionSpeed_mps(double range_m) {
+double defaultMissionSpeed_mps(const std::string& name, double range_m) {
   requirePositive("range_m", range_m);
+  const std::vector<std::string> names = missionNames();
+  if (std::find(names.begin(), names.end(), name) == names.end()) throw unknownMission(name);
+  if (isMission3d(name)) return 0.2 * (range_m / kBuiltinSceneReach_m);
   return std::min(range_m / 20.0, 0.5);
 }
 
@@ -95,10 +109,29 @@ MissionPlan missionPlan(const std::string& name, double range_m, double speed_mp
   } else if (name == "hull-loop") {
     plan.scene = "hull";
     plan.waypoints = rectangle(0.0, -3.25 * s, 0.0, 9.0 * s, 6.5 * s, false, speed_mps, laps);
+  } else if (name == "lawnmower-3d") {
+    plan.scene = "quay3d";
+    LawnmowerPattern pattern;
+    pattern.legs = 3;
+    pattern.leg_length_m = 4.0 * s;
+    pattern.leg_spacing_m = 1.5 * s;
+    pattern.depths_m.clear();
+    for (std::size_t lap = 0; lap < laps; ++lap) pattern.depths_m.insert(pattern.depths_m.end(), {3.0 * s, 3.5 * s});
+    pattern.speed_mps = speed_mps;
+    pattern.turn_rate_radps = kTurnRate_radps;
+    plan.waypoints = lawnmowerWaypoints(pattern);
+  } else if (name == "tilted-loop") {
+    plan.scene = "quay3d";
+    LoopPattern pattern;
+    pattern.length_m = 4.0 * s;
+    pattern.width_m = 3.0 * s;
+    pattern.depths_m.assign(laps, 3.0 * s);
+    pattern.speed_mps = speed_mps;
+    pattern.turn_rate_radps = kTurnRate_radps;
+    plan.waypoints = loopWaypoints(pattern);
+    plan.mounting = {0.0, 0.0, 0.0, 0.0, -kTiltDown_deg, 0.0};  // pitched down: negative pitch (FRD)
   } else {
-    std::string known;
-    for (const std::string& candidate : missionNames()) known += (known.empty() ? "" : ", ") + candidate;
-    throw ValueError("unknown mission '" + name + "', expected one of: " + known);
+    throw unknownMission(name);
   }
   plan.length_m = pathLength_m(plan.waypoints);
   plan.duration_s = plan.waypoints.back().time_s;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/nav/mounting.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/missions.hpp"
@@ -67,12 +68,14 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const
     if (args.laps < 1) throw ValueError("--laps must be at least 1");
     if (args.speed_mps < 0.0) throw ValueError("--speed must be >= 0 with --mission (0: the mission's default speed)");
     const double range_m = options.head.range_m;
-    const double speed_mps = args.speed_mps > 0.0 ? args.speed_mps : defaultMissionSpeed_mps(range_m);
+    const double speed_mps = args.speed_mps > 0.0 ? args.speed_mps : defaultMissionSpeed_mps(args.mission, range_m);
     MissionPlan plan = missionPlan(args.mission, range_m, speed_mps, args.laps);
     const double turn_s = static_cast<double>(options.head.beamsPerTurn()) * options.head.beam_period_s;
     options.turns = static_cast<std::size_t>(std::ceil((plan.duration_s + options.head.beam_period_s) / turn_s));
     options.trajectory = waypointTrajectory(std::move(plan.waypoints));
   }
+  const std::array<double, 6> mounting = simulationMounting(args);
+  options.sonar_to_body = sonarToBodyOfMounting(std::vector<double>(mounting.begin(), mounting.end()));
   auto finite = [](double value, const char* flag) {
     if (!std::isfinite(value)) throw ValueError(std::string(flag) + " must be finite");
   };
@@ -90,6 +93,17 @@ MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const
   options.dead_reckoning.seed = args.seed;
   options.validate();
   return options;
+}
+
+std::array<double, 6> simulationMounting(const SimulationArguments& args) {
+  if (!args.mounting.empty()) {
+    sonarToBodyOfMounting(args.mounting);  // throws unless six finite numbers
+    std::array<double, 6> mounting{};
+    std::copy(args.mounting.begin(), args.mounting.end(), mounting.begin());
+    return mounting;
+  }
+  if (args.mission.empty()) return {};
+  return missionPlan(args.mission, kBuiltinSceneReach_m, 1.0).mounting;
 }
 
 void checkMissionScene(const SimulationArguments& args, const std::string& scene) {

@@ -15,18 +15,10 @@ LogSurvey surveyLog(const BeamPass& pass, std::size_t min_beams, const std::opti
   SweepGrouper grouper(min_beams);
   pass([&](const Beam& beam) {
     countRangeScale(survey.scales, beam, survey.beams);
-    const double reach_m = static_cast<double>(beam.intensities.size()) * beam.bin_length_m;
-    survey.reach_m = std::max(survey.reach_m, reach_m);
+    survey.reach_m = std::max(survey.reach_m, static_cast<double>(beam.intensities.size()) * beam.bin_length_m);
     survey.earliest_s = survey.beams == 0 ? beam.time_s : std::min(survey.earliest_s, beam.time_s);
     survey.latest_s = survey.beams == 0 ? beam.time_s : std::max(survey.latest_s, beam.time_s);
     if (!span || (beam.time_s >= span->first && beam.time_s <= span->second)) ++survey.beams_in_span;
-    if (survey.reaches_counted) {
-      ++survey.beams_by_reach[reach_m];
-      if (survey.beams_by_reach.size() > LogSurvey::kMaxReaches) {
-        survey.beams_by_reach.clear();
-        survey.reaches_counted = false;
-      }
-    }
     const bool starts = splitter.startsSweep(beam);
     if (grouper.add(starts, headSettingOf(beam)) > 0) ++survey.sweeps;
     ++survey.beams;

@@ -196,7 +196,7 @@ INSTANTIATE_TEST_SUITE_P(
                       UsageCase{"ZeroIntensitySpan", mapWith({"--intensity-span", "0"})},
                       UsageCase{"ZeroCfarTraining", mapWith({"--cfar-training", "0"})},
                       UsageCase{"CertainHit", mapWith({"--hit-probability", "1"})},
-                      UsageCase{"ZeroBudget", mapWith({"--max-voxel-updates", "0"})},
+                      UsageCase{"ZeroBudget", mapWith({"--max-voxel-updates-per-beam", "0"})},
                       UsageCase{"NegativeSelfReflection", mapWith({"--self-reflection", "-0.5"})},
                       UsageCase{"NoSubcommand", {}},
                       UsageCase{"UnknownSubcommand", {"mapp", "{IN}", "-o", "{OUT}/MAP.bt"}}),
@@ -321,7 +321,7 @@ TEST_F(cliHelp, MapHelpListsItsOptions) {
                              "--smoothing", "--ray", "--aggregation", "--self-reflection", "--beam-width", "--quiet",
                              "--false-alarm", "--min-contrast", "--min-echo-length", "--leading-edge", "--min-range",
                              "--intensity-span", "--smoothing-range", "--smoothing-bearing", "--cfar-training",
-                             "--cfar-guard", "--max-range", "--range-tolerance", "--max-voxel-updates",
+                             "--cfar-guard", "--max-range", "--range-tolerance", "--max-voxel-updates-per-beam",
                              "--hit-probability"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option << " missing from:\n" << result.out;
   }

@@ -184,9 +184,9 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
     // The vehicle's loop, 4 × 3 m seen from above, a line at z = −0.5 m from the side: red.
     EXPECT_GT(pixelsOf(image, kTrackBgr), std::string(png) == "map_top.png" ? 2000 : 500) << png;
   }
-  // tank summary, tank report, the 3D run's header, its summary, four commands.
+  // tank summary, tank report, the 3D run's header, its summary, five commands.
   const Names lines = linesOf(result.out);
-  ASSERT_EQ(lines.size(), 8U) << result.out;
+  ASSERT_EQ(lines.size(), 9U) << result.out;
   EXPECT_EQ(lines[2], "3d: micron flying the tilted-loop mission over quay3d, sonar tilted 25 deg down, mapped with "
                       "--3d at 0.05 m -> " + mission.string());
   std::size_t used = 0, skipped = 0, without_nav = 0;
@@ -265,13 +265,25 @@ TEST_F(cli3d, DemoMissionIsScoredByEvalAndRemadeByTheCommandItPrints) {
   // The map command it prints makes the same map and pictures from the files it wrote.
   const std::string map_bt = readFile(mission / "map.bt"), top = readFile(mission / "map_top.png"),
                     side = readFile(mission / "map_side.png");
-  Names map_args = commandArgs(lines[7], "3d: map it again:");
+  Names map_args = commandArgs(lines[8], "3d: map it again:");
   map_args.push_back("-q");
   const ProgramRun remade = run(map_args);
   ASSERT_EQ(remade.exit_code, 0) << remade.err;
   EXPECT_TRUE(readFile(mission / "map.bt") == map_bt) << "the remade map differs";
   EXPECT_TRUE(readFile(mission / "map_top.png") == top) << "the remade top view differs";
   EXPECT_TRUE(readFile(mission / "map_side.png") == side) << "the remade side view differs";
+
+  // The mission is the simulator's named mission: the command it prints simulates the same files.
+  Names simulate_args = commandArgs(lines[7], "3d: simulate it again:");
+  EXPECT_EQ(simulate_args, (Names{"simulate", "quay3d", "--sonar", "micron", "--mission", "tilted-loop", "--seed", "1",
+                                  "-o", "DIR"}));
+  simulate_args.back() = (out_ / "again").string();
+  simulate_args.push_back("-q");
+  const ProgramRun again = run(simulate_args);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  for (const char* file : {"beams.csv", "nav.csv", "truth_nav.csv", "scene.txt"}) {
+    EXPECT_TRUE(readFile(out_ / "again" / file) == readFile(mission / file)) << file << " differs";
+  }
 }
 
 }  // namespace

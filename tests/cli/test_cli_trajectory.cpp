@@ -38,11 +38,14 @@ TEST_F(cliTrajectory, MissionWithDeadReckoningErrorsAndItsEvaluation) {
                               "--heading-bias", "1", "-o", dir.string(), "-q"});
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const Names lines = linesOf(sim.out);
-  ASSERT_EQ(lines.size(), 3U) << sim.out;
+  ASSERT_EQ(lines.size(), 4U) << sim.out;
   // 34 m at 0.25 m/s and three quarter turns at 0.5 rad/s: 145.4 s, 17 turns of 8.6 s.
   EXPECT_EQ(lines[0].rfind("micron: 3400 beams in 17 turns, 1463 nav fixes", 0), 0U) << lines[0];
   EXPECT_EQ(lines[1], "mission harbour-loop: 1 lap(s), 34.0 m in 145.4 s");
   EXPECT_EQ(lines[2].rfind("nav.csv: dead reckoning, ", 0), 0U) << lines[2];
+  // The map command: the believed navigation and the mission's mounting (upright and aligned).
+  EXPECT_EQ(lines[3], "map it:  sonarmap map " + (dir / "beams.csv").string() + " --nav " + (dir / "nav.csv").string() +
+                          " --mounting 0,0,0,0,0,0 --beam-width 3 --vertical-aperture 35 -o " + (dir / "map.bt").string());
   EXPECT_EQ(listDir(dir), (Names{"beams.csv", "nav.csv", "scene.txt", "truth_nav.csv"}));
   const std::string nav = readFile(dir / "nav.csv"), truth = readFile(dir / "truth_nav.csv");
   EXPECT_NE(nav, truth);

@@ -52,7 +52,7 @@ TEST_F(cliWarnings, WorkBeyondTheBudgetIsRefusedNamingTheOption) {
   const std::string beams = simulate(*this, run({"simulate", "tank", "-o", dir.string(), "--turns", "2"}), dir);
   const ProgramRun result = run({"map", beams, "-o", (out_ / "MAP.bt").string(), "-q", "--resolution", "0.0001"});
   expectError(result, 1);
-  EXPECT_NE(result.err.find("--max-voxel-updates"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("--max-voxel-updates-per-beam"), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("auto: 0.02 m"), std::string::npos) << result.err;
   EXPECT_EQ(listDir(out_), Names{});
 }
@@ -61,7 +61,7 @@ TEST_F(cliWarnings, MapNoBeamFitsInIsAnErrorNamingTheResolutionThatFits) {
   const fs::path dir = root_ / "sim";
   const std::string beams = simulate(*this, run({"simulate", "tank", "-o", dir.string(), "--turns", "2"}), dir);
   const ProgramRun result = run({"map", beams, "-o", (out_ / "MAP.bt").string(), "-q", "--resolution", "1e-5",
-                                 "--max-voxel-updates", "1e16"});
+                                 "--max-voxel-updates-per-beam", "1e16"});
   expectError(result, 1);
   EXPECT_NE(result.err.find("no beam could be mapped"), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("a resolution of at least"), std::string::npos) << result.err;

@@ -75,38 +75,6 @@ TEST(mappingBeamSource, TheSurveySumsTheLogUp) {
   EXPECT_EQ(survey.beams_in_span, 5u);
   EXPECT_EQ(survey.earliest_s, log.beams.front().time_s);
   EXPECT_EQ(survey.latest_s, log.beams.back().time_s);
-  EXPECT_TRUE(survey.reaches_counted);
-  EXPECT_EQ(survey.beams_by_reach.size(), 3u);
-}
-
-TEST(mappingBeamSource, TheAutomaticResolutionIsTheFirstThatFitsWhateverTheBudget) {
-  // The survey's bound decides without a pass only where the exact estimate surely fits: the
-  // choice is the first resolution of the ladder whose exact estimate does.
-  for (const char* sonar : {"micron", "ping360"}) {
-    const SonarLog log = movingRun(sonar).log;
-    for (const BeamModel model : {BeamModel::kPlanar, BeamModel::kVolume}) {
-      MapperOptions options;
-      options.beam_model = model;
-      const double finest_m = autoResolutionForLog(log, options).resolution_m;
-      MapperOptions at = options;
-      at.resolution_m = finest_m;
-      const double updates = estimateVoxelUpdates(log, at);
-      for (const double fraction : {2.0, 1.0, 0.999999, 0.5, 0.2, 0.05, 0.01, 1e-4}) {
-        options.max_voxel_updates = updates * fraction;
-        const AutoResolution chosen = autoResolutionForLog(log, options);
-        double expected_m = finest_m;
-        const double coarsest_m = autoResolution_m(logReach_m(log, options.max_range_m));
-        for (;;) {
-          at.resolution_m = expected_m;
-          if (expected_m >= coarsest_m || estimateVoxelUpdates(log, at) <= options.max_voxel_updates) break;
-          const double mantissa = expected_m / std::pow(10.0, std::floor(std::log10(expected_m) + 1e-9));
-          expected_m *= std::abs(mantissa - 2.0) < 0.01 ? 2.5 : 2.0;
-        }
-        EXPECT_EQ(chosen.resolution_m, expected_m) << sonar << " budget " << fraction;
-        EXPECT_EQ(chosen.coarsened, expected_m != finest_m);
-      }
-    }
-  }
 }
 
 }  // namespace

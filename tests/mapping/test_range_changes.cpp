@@ -73,17 +73,20 @@ TEST(mappingRangeChanges, BatchMapsEveryScaleAndCountsAPassingOne) {
 }
 
 TEST(mappingRangeChanges, TheAutomaticResolutionIsCoarsenedToFitTheBudgetUpToTheLongestReach) {
+  // The longest beams (10 m) set the work per beam: 2 cm does not fit half of what they need at
+  // 2 cm, 5 cm (the next of 1, 2, 5) does.
   const SonarLog log = powerOnThenUserRange();
   MapperOptions options;
   options.resolution_m = 0.02;
-  const double updates = estimateVoxelUpdates(log, options);
+  const double updates = estimateVoxelUpdatesPerBeam(options, logReach_m(log, options.max_range_m));
   options.resolution_m.reset();
-  options.max_voxel_updates = 0.5 * updates;  // 2 cm does not fit, 5 cm (the next of 1, 2, 5) does
+  options.max_voxel_updates_per_beam = 0.5 * updates;
   AutoResolution chosen = autoResolutionForLog(log, options);
   EXPECT_DOUBLE_EQ(chosen.resolution_m, 0.05);
   EXPECT_TRUE(chosen.coarsened);
+  EXPECT_NO_THROW(checkWorkBudget(log, options));
   // Never coarser than the longest reach's own (10 m: 5 cm); the budget check then says what fits.
-  options.max_voxel_updates = 1.0;
+  options.max_voxel_updates_per_beam = 1.0;
   chosen = autoResolutionForLog(log, options);
   EXPECT_DOUBLE_EQ(chosen.resolution_m, 0.05);
   EXPECT_THROW(mapSonarLog(log, options), ValueError);

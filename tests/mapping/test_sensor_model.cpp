@@ -1,5 +1,5 @@
 // The mapper's inverse sensor model and its automatic options: arcs carved by neighbouring beams,
-// the range tolerance, the automatic resolution, the work budget, and the warnings a user sees.
+// the range tolerance, the automatic resolution, the work budget per beam, and the warnings a user sees.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
+#include "sonarmap/sim/sonar_presets.hpp"
 
 namespace sonarmap {
 namespace {
@@ -155,28 +156,110 @@ SonarLog logOf(std::size_t beams, int bins, double bin_m) {
   return log;
 }
 
-// The work a log asks for is estimated before mapping, and a log beyond the budget is refused
-// with the option that raises it and the resolution that fits.
-TEST(mappingSensorModel, WorkBeyondTheBudgetIsRefusedBeforeMapping) {
-  const SonarLog log = logOf(400, 399, 0.0125);  // two Micron turns, 5 m
+// A beam's work is its wedge (planar) or cone (volume) over the voxel: estimated from the beam's
+// own geometry, whatever the log's length.
+TEST(mappingSensorModel, VoxelUpdatesPerBeamAreTheBeamsWedgeOrCone) {
   MapperOptions options;
   options.resolution_m = 0.02;
-  const double updates = estimateVoxelUpdates(log, options);
-  // Two turns of π R² / res², plus each beam's line of R / res voxels (an upper estimate).
-  const double area = 2 * std::numbers::pi * 25.0 / 0.0004, lines = 400 * 5.0 / 0.02;
-  EXPECT_NEAR(updates, area + lines, 0.02 * (area + lines));
-  options.resolution_m = 0.0001;
-  try {
-    checkWorkBudget(log, options);
-    FAIL() << "a 0.1 mm map of a 5 m log should be refused";
-  } catch (const ValueError& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find("--max-voxel-updates"), std::string::npos) << message;
-    EXPECT_NE(message.find("auto: 0.02 m"), std::string::npos) << message;
+  // A 3° wedge of 5 m: width × R² / 2 over res², plus its line of R / res voxels.
+  EXPECT_DOUBLE_EQ(estimateVoxelUpdatesPerBeam(options, 5.0), 3.0 * kDegree * 25.0 / (2.0 * 0.0004) + 5.0 / 0.02);
+  EXPECT_DOUBLE_EQ(estimateVoxelUpdatesPerBeam(options, 10.0), 3.0 * kDegree * 100.0 / (2.0 * 0.0004) + 10.0 / 0.02);
+  // A beam longer than max_range_m counts up to it.
+  options.max_range_m = 5.0;
+  EXPECT_DOUBLE_EQ(estimateVoxelUpdatesPerBeam(options, 50.0), estimateVoxelUpdatesPerBeam(options, 5.0));
+  // The volume model: the free cone (3° × half the 35° aperture) × R³ / 3 over res³, plus the shell.
+  options.beam_model = BeamModel::kVolume;
+  const double cone = 3.0 * kDegree * 17.5 * kDegree * 125.0 / (3.0 * 0.02 * 0.02 * 0.02);
+  const double shell = 35.0 * kDegree * 25.0 / (0.02 * 0.02);
+  EXPECT_DOUBLE_EQ(estimateVoxelUpdatesPerBeam(options, 5.0), cone + shell);
+  // A ray (beam width 0) is a voxel wide.
+  options.beam_model = BeamModel::kPlanar;
+  options.beam_width_rad = 0.0;
+  EXPECT_DOUBLE_EQ(estimateVoxelUpdatesPerBeam(options, 5.0), 0.02 * 5.0 / (2.0 * 0.0004) + 5.0 / 0.02);
+  options.resolution_m.reset();
+  EXPECT_THROW(estimateVoxelUpdatesPerBeam(options, 5.0), ValueError);
+}
+
+// Every sonar preset at its automatic resolution fits the default budget with a wide margin
+// (planar and volume), so that no log of any length is refused with the defaults.
+TEST(mappingSensorModel, EveryPresetAtItsAutomaticResolutionFitsTheDefaultBudgetTwentyTimesOver) {
+  for (const std::string& name : sonarPresetNames()) {
+    const SonarPreset preset = sonarPreset(name);
+    for (const BeamModel model : {BeamModel::kPlanar, BeamModel::kVolume}) {
+      MapperOptions options;
+      options.beam_model = model;
+      options.beam_width_rad = preset.head.horizontal_beam_width_rad;
+      options.vertical_aperture_rad = preset.head.vertical_beam_width_rad;
+      options.resolution_m = autoResolution_m(preset.head.range_m);
+      EXPECT_LT(20.0 * estimateVoxelUpdatesPerBeam(options, preset.head.range_m), options.max_voxel_updates_per_beam)
+          << name << (model == BeamModel::kVolume ? " volume" : " planar");
+    }
   }
-  EXPECT_THROW(mapSonarLog(log, options), ValueError);
-  options.max_voxel_updates = 1e13;
+}
+
+/// `beams` beams of `bins` bins of `bin_m` metres, 0.9° apart (a SeaKing's 400 beams a turn).
+SonarLog longLog(std::size_t beams, int bins, double bin_m) {
+  SonarLog log;
+  log.beams.resize(beams);
+  for (std::size_t i = 0; i < beams; ++i) {
+    Beam& beam = log.beams[i];
+    beam.time_s = 0.07 * static_cast<double>(i);
+    beam.bearing_rad = std::fmod(0.9 * kDegree * static_cast<double>(i), 2.0 * std::numbers::pi);
+    beam.bin_length_m = bin_m;
+    beam.intensities.assign(static_cast<std::size_t>(bins), 0);
+  }
+  return log;
+}
+
+// A log of hours is not refused for its length: 120,000 beams of a SeaKing at 30 m (2.3 h), mapped
+// in 3D at the automatic 0.1 m, once needed 1.2e10 voxel updates in all, beyond a whole-log budget
+// of 1e10; each beam needs about 2e5.
+TEST(mappingSensorModel, ALongLogIsNotRefusedForItsLength) {
+  const SonarLog log = longLog(120000, 300, 0.1);
+  MapperOptions options;
+  options.beam_model = BeamModel::kVolume;
+  const AutoResolution chosen = autoResolutionForLog(log, options);
+  EXPECT_DOUBLE_EQ(chosen.resolution_m, 0.1);
+  EXPECT_FALSE(chosen.coarsened);
   EXPECT_NO_THROW(checkWorkBudget(log, options));
+  options.resolution_m = 0.1;
+  EXPECT_LT(estimateVoxelUpdatesPerBeam(options, 30.0), 3e5);
+}
+
+// A mistaken resolution is still refused before mapping, naming the option that raises the budget
+// and the finest resolution that fits: 1 mm voxels on a 50 m Ping360.
+TEST(mappingSensorModel, AMistakenResolutionIsRefusedNamingTheFinestThatFits) {
+  const SonarLog log = longLog(400, 1200, 50.0 / 1200.0);
+  for (const BeamModel model : {BeamModel::kPlanar, BeamModel::kVolume}) {
+    MapperOptions options;
+    options.beam_model = model;
+    options.beam_width_rad = 2.0 * kDegree;
+    options.vertical_aperture_rad = 25.0 * kDegree;
+    options.resolution_m = 0.001;
+    std::string message;
+    try {
+      checkWorkBudget(log, options);
+      ADD_FAILURE() << "1 mm voxels on a 50 m log should be refused";
+    } catch (const ValueError& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find("--max-voxel-updates-per-beam"), std::string::npos) << message;
+    EXPECT_NE(message.find("auto: 0.2 m"), std::string::npos) << message;
+    const std::string lead = "use a resolution of at least ";
+    const std::size_t at = message.find(lead);
+    ASSERT_NE(at, std::string::npos) << message;
+    const double fits_m = std::stod(message.substr(at + lead.size()));
+    // It fits, and a finer one (by 1 %, more than its rounding to three digits) does not.
+    options.resolution_m = fits_m;
+    EXPECT_LE(estimateVoxelUpdatesPerBeam(options, 50.0), options.max_voxel_updates_per_beam) << message;
+    EXPECT_NO_THROW(checkWorkBudget(log, options));
+    options.resolution_m = 0.99 * fits_m;
+    EXPECT_GT(estimateVoxelUpdatesPerBeam(options, 50.0), options.max_voxel_updates_per_beam) << message;
+    options.resolution_m = 0.001;
+    EXPECT_THROW(mapSonarLog(log, options), ValueError);
+    options.max_voxel_updates_per_beam = 1e13;
+    EXPECT_NO_THROW(checkWorkBudget(log, options));
+  }
 }
 
 // A map no beam fits in is an error naming the resolution that fits, not an empty success.
@@ -185,7 +268,7 @@ TEST(mappingSensorModel, MapNoBeamFitsInIsAnError) {
   log.beams[0].intensities.assign(399, 0);
   MapperOptions options;
   options.resolution_m = 1e-5;  // the map spans ±0.33 m
-  options.max_voxel_updates = 1e16;
+  options.max_voxel_updates_per_beam = 1e16;
   try {
     mapSonarLog(log, options);
     FAIL() << "every beam reaches 5 m, outside a ±0.33 m map";

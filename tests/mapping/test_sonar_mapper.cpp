@@ -202,7 +202,7 @@ TEST(mappingSonarMapper, BadInputThrows) {
   options.range_tolerance_m = -0.01;
   EXPECT_THROW(SonarMapper{options}, ValueError);
   options = {};
-  options.max_voxel_updates = 0.0;
+  options.max_voxel_updates_per_beam = 0.0;
   EXPECT_THROW(SonarMapper{options}, ValueError);
 }
 

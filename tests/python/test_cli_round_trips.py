@@ -29,6 +29,17 @@ def test_cli_simulation_reads_as_python_simulation(cli, tmp_path):
     assert np.array_equal(sonarmap.read_nav_csv(str(tmp_path / "sim" / "nav.csv")), run.nav)
 
 
+def test_tilted_loop_with_a_mounting_simulates_as_the_cli_and_maps_as_its_printed_command(cli, tmp_path):
+    out = cli("simulate", "quay3d", "--sonar", "ping360-5m", "--mission", "tilted-loop", "--mounting",
+              "0.3,0,0.2,0,-45,30", "-o", tmp_path / "sim")
+    run = sonarmap.simulate("quay3d", sonar="ping360-5m", mission="tilted-loop", mounting=[0.3, 0, 0.2, 0, -45, 30])
+    assert run.mounting == [0.3, 0, 0.2, 0, -45, 30]
+    assert sonarmap.simulate("quay3d", sonar="ping360-5m", mission="tilted-loop").mounting == [0, 0, 0, 0, -25, 0]
+    run.log.write_csv(str(tmp_path / "py_beams.csv"))
+    assert (tmp_path / "py_beams.csv").read_bytes() == (tmp_path / "sim" / "beams.csv").read_bytes()
+    assert "--mounting 0.3,0,0.2,0,-45,30" in out.stdout
+
+
 @pytest.mark.parametrize(
     "options, flags",
     [

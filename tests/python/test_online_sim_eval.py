@@ -149,7 +149,7 @@ def test_simulated_mission_reproduces_the_accuracy_table():
     median surface error 0.059 m, free accuracy 1.000; the water surface unknown
     (water_surface_depth=None: the sideways beams, whose cones point up and down, trace nothing),
     P 0.714, R 0.575."""
-    assert sonarmap.mission_names() == ["lawnmower", "tilted-loop"]
+    assert sonarmap.mission_names() == ["lawnmower-3d", "tilted-loop"]
     mission = sonarmap.simulate_mission("tilted-loop", sonar="micron")
     assert len(mission.log) > 0 and mission.nav.shape[1] == 7 and mission.range == pytest.approx(5.0)
     assert mission.beam_width_deg == pytest.approx(mission.log.nominal_beam_deg[0])

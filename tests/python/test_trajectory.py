@@ -6,7 +6,8 @@ import sonarmap
 
 
 def test_mission_with_dead_reckoning_errors(tmp_path):
-    assert sonarmap.mission_plan_names() == ["harbour-loop", "harbour-lawnmower", "harbour-featureless", "hull-loop"]
+    assert sonarmap.mission_plan_names() == ["harbour-loop", "harbour-lawnmower", "harbour-featureless", "hull-loop",
+                                             "lawnmower-3d", "tilted-loop"]
     plain = sonarmap.simulate("harbour", mission="harbour-featureless", nav_rate=2)
     run = sonarmap.simulate("harbour", mission="harbour-featureless", nav_rate=2, dvl_scale_error=0.02,
                             heading_bias_deg=1.0, dvl_noise=0.002, gyro_walk=0.002)

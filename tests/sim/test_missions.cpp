@@ -1,4 +1,5 @@
 // The named missions (sim/missions.hpp) and `sonarmap simulate --mission`'s arguments.
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/nav/mounting.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/missions.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
@@ -48,7 +50,7 @@ double clearance_m(const MissionPlan& plan, const Scene& scene) {
 
 TEST(simMissions, NamesLengthsAndDurations) {
   EXPECT_EQ(missionNames(), (std::vector<std::string>{"harbour-loop", "harbour-lawnmower", "harbour-featureless",
-                                                       "hull-loop"}));
+                                                       "hull-loop", "lawnmower-3d", "tilted-loop"}));
   struct Expected {
     const char* name;
     const char* scene;
@@ -61,8 +63,9 @@ TEST(simMissions, NamesLengthsAndDurations) {
                             Expected{"harbour-featureless", "harbour", 40.0, 0.0},
                             Expected{"hull-loop", "hull", 31.0, 3 * quarter}}) {
     for (const double range_m : {5.0, 30.0}) {
-      const double s = range_m / 5.0, speed_mps = defaultMissionSpeed_mps(range_m);
+      const double s = range_m / 5.0, speed_mps = defaultMissionSpeed_mps(e.name, range_m);
       const MissionPlan plan = missionPlan(e.name, range_m, speed_mps);
+      EXPECT_EQ(plan.mounting, (std::array<double, 6>{})) << e.name;  // upright and aligned
       EXPECT_EQ(plan.name, e.name);
       EXPECT_EQ(plan.scene, e.scene);
       EXPECT_NEAR(plan.length_m, e.length_s * s, 1e-9) << e.name;
@@ -72,10 +75,40 @@ TEST(simMissions, NamesLengthsAndDurations) {
       for (const NavSample& point : plan.waypoints) EXPECT_EQ(point.position_ned_m.z(), 0.0);  // planar
     }
   }
-  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(5.0), 0.25);  // Micron
-  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(30.0), 0.5);  // SeaKing-30
-  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps(50.0), 0.5);
+  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps("harbour-loop", 5.0), 0.25);  // Micron
+  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps("harbour-loop", 30.0), 0.5);  // SeaKing-30
+  EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps("hull-loop", 50.0), 0.5);
   EXPECT_NEAR(missionPlan("harbour-loop", 30.0, 1.5).length_m, 204.0, 1e-9);
+}
+
+// The 3D missions over quay3d, sized by the head's range: the tilted loop (4 s × 3 s at 3 s depth,
+// the sonar pitched 25° down) and the lawnmower (three 4 s legs 1.5 s apart at 3 s, back at 3.5 s).
+TEST(simMissions, The3dMissionsFlyAtDepthOverQuay3dWithTheirMounting) {
+  for (const double range_m : {5.0, 50.0}) {
+    const double s = range_m / 5.0;
+    EXPECT_DOUBLE_EQ(defaultMissionSpeed_mps("tilted-loop", range_m), 0.2 * s);
+    const MissionPlan loop = missionPlan("tilted-loop", range_m, 0.2 * s, 2);
+    EXPECT_EQ(loop.scene, "quay3d");
+    EXPECT_EQ(loop.mounting, (std::array<double, 6>{0.0, 0.0, 0.0, 0.0, -25.0, 0.0}));
+    EXPECT_NEAR(loop.length_m, 2 * 14.0 * s, 1e-9);  // two laps at the same depth
+    for (const NavSample& point : loop.waypoints) EXPECT_NEAR(point.position_ned_m.z(), 3.0 * s, 1e-12);
+    const MissionPlan mower = missionPlan("lawnmower-3d", range_m, 0.2 * s);
+    EXPECT_EQ(mower.scene, "quay3d");
+    EXPECT_EQ(mower.mounting, (std::array<double, 6>{}));
+    EXPECT_NEAR(mower.length_m, (2 * (3 * 4.0 + 2 * 1.5) + 0.5) * s, 1e-9);
+    EXPECT_NEAR(mower.waypoints.front().position_ned_m.z(), 3.0 * s, 1e-12);
+    EXPECT_NEAR(mower.waypoints.back().position_ned_m.z(), 3.5 * s, 1e-12);
+  }
+  // The mounting given overrides the mission's; the options are built from those numbers.
+  SimulationArguments args;
+  args.mission = "tilted-loop";
+  EXPECT_EQ(simulationMounting(args), (std::array<double, 6>{0.0, 0.0, 0.0, 0.0, -25.0, 0.0}));
+  args.mounting = {0.3, 0.0, 0.2, 0.0, -45.0, 30.0};
+  EXPECT_EQ(simulationMounting(args), (std::array<double, 6>{0.3, 0.0, 0.2, 0.0, -45.0, 30.0}));
+  EXPECT_TRUE(toSimulationOptions(args).sonar_to_body.isApprox(sonarToBodyOfMounting(args.mounting), 0.0));
+  args.mounting = {0.0, 0.0, 0.0};
+  EXPECT_THROW(toSimulationOptions(args), ValueError);
+  EXPECT_THROW(defaultMissionSpeed_mps("lake-loop", 5.0), ValueError);
 }
 
 TEST(simMissions, StartsAndLoopsCloseWhereTheyBegin) {
@@ -102,10 +135,11 @@ TEST(simMissions, StartsAndLoopsCloseWhereTheyBegin) {
 
 TEST(simMissions, KeepClearOfWhatCrossesTheSonarPlane) {
   for (const std::string& name : missionNames()) {
+    if (missionPlan(name, 5.0, 1.0).scene == "quay3d") continue;  // no plane: it flies at depth, tilted
     for (const char* preset : {"micron", "seaking-30"}) {
       const MsisHeadOptions head = sonarPreset(preset).head;
       const double s = head.range_m / 5.0;
-      const MissionPlan plan = missionPlan(name, head.range_m, defaultMissionSpeed_mps(head.range_m), 1);
+      const MissionPlan plan = missionPlan(name, head.range_m, defaultMissionSpeed_mps(name, head.range_m), 1);
       const Scene scene = builtinScene(plan.scene, head.range_m, head.vertical_beam_width_rad);
       EXPECT_GT(clearance_m(plan, scene), 0.5 * s) << name << " " << preset;
     }
@@ -117,7 +151,7 @@ TEST(simMissions, BadArgumentsAreNamed) {
   EXPECT_THROW(missionPlan("harbour-loop", 0.0, 0.25), ValueError);
   EXPECT_THROW(missionPlan("harbour-loop", 5.0, -1.0), ValueError);
   EXPECT_THROW(missionPlan("harbour-loop", 5.0, 0.25, 0), ValueError);
-  EXPECT_THROW(defaultMissionSpeed_mps(NAN), ValueError);
+  EXPECT_THROW(defaultMissionSpeed_mps("harbour-loop", NAN), ValueError);
 }
 
 TEST(simMissions, SimulationArgumentsFlyTheMission) {

@@ -5,16 +5,10 @@
 /// given MapperOptions and scored in 3D against the scene (ground_truth.hpp) with the head's field
 /// of view.
 ///
-/// Missions, at the preset's scale s = range / 5 m (NED, metres; navigation.hpp), at 0.2 · s m/s
-/// with turns in place at 0.5 rad/s (trajectory.hpp):
-///  - `lawnmower`: three 4 s m legs northwards and back, 1.5 s m apart, centred on the origin, at
-///    3.0 s m and then 3.5 s m depth (two depths: the wide beam sees each surface from two
-///    heights); the sonar upright (its scan plane level).
-///  - `tilted-loop`: a 4 s × 3 s m rectangle at 3.0 s m depth with the sonar tilted 25° down
-///    (how AUVs map the seabed with an MSIS): its scan is a cone opening downwards.
-/// The depths are below quay3d's water surface (map z = 0, a depth sensor's 0), 1.5–2.5 s m above
-/// its seabed. The scene's pontoon (footprint x ∈ [−1.25, 1.25] s, y ∈ [2.4, 3.6] s) stays clear
-/// of both.
+/// The missions are the 3D missions of the simulator (sim/missions.hpp: `lawnmower-3d`,
+/// `tilted-loop` over `quay3d`), flown once at their default speed with their default mounting,
+/// exactly as `sonarmap simulate quay3d --sonar PRESET --mission MISSION --seed SEED` flies them
+/// (simulation_arguments.hpp): the same log, navigation and scene.
 
 #include <array>
 #include <cstdint>
@@ -38,7 +32,8 @@ struct SimulatedMission {
   std::uint64_t seed = 1;
 };
 
-/// "lawnmower", "tilted-loop".
+/// The simulator's missions over quay3d (missionNames(), sim/missions.hpp): "lawnmower-3d",
+/// "tilted-loop".
 std::vector<std::string> simulatedMissionNames();
 
 /// A mission simulated: the log, navigation and scene, and how the sonar was mounted.
@@ -46,13 +41,13 @@ struct MissionRun {
   MsisSimulationOptions options;  ///< head, echo model, trajectory and mounting used
   MsisSimulation simulation;      ///< log, navigation fixes, scene
   /// The sonar's mounting as `sonarmap map --mounting` takes it (X, Y, Z metres; roll, pitch, yaw
-  /// degrees; mapping_arguments.hpp): options.sonar_to_body is built from these numbers
-  /// (sonarToBodyOfMounting), so a map made from them, by the CLI or Python, uses the identical pose.
+  /// degrees; simulationMounting, simulation_arguments.hpp): options.sonar_to_body is built from
+  /// these numbers, so a map made from them, by the CLI or Python, uses the identical pose.
   std::array<double, 6> mounting{};
 };
 
 /// Simulates `mission`: the vehicle flies it once, the head turning throughout.
-/// @throws ValueError for an unknown preset, scene or mission.
+/// @throws ValueError for an unknown preset or mission, or a scene other than the mission's.
 MissionRun simulateMission(const SimulatedMission& mission);
 
 /// The ground-truth options for scoring a map of `run`: 24 sonar poses sampled evenly along its

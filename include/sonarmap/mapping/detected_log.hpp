@@ -45,8 +45,8 @@ struct DetectedLog {
 
 /// Detects every sweep of `log` exactly as mapSonarLog does (the same sweeps, calibrations and
 /// detections), without integrating them. Memory: the log's polar images (one byte per bin).
-/// @throws ValueError for invalid options, a sweep that mixes bin lengths, or a log whose estimated
-///         work exceeds options.max_voxel_updates (checkWorkBudget).
+/// @throws ValueError for invalid options, a sweep that mixes bin lengths, or a log whose longest
+///         beam needs more voxel updates than options.max_voxel_updates_per_beam (checkWorkBudget).
 DetectedLog detectSonarLog(const SonarLog& log, const MapperOptions& options = {});
 
 /// Integrates a detected log from a moving vehicle: each beam placed with the sonar's pose at its

@@ -2,7 +2,7 @@
 /// @file mapper_options.hpp
 /// Everything that turns beams into map updates (MapperOptions), and the values the mapper
 /// derives from a log when an option is left on "auto": the map's resolution from the log's reach,
-/// and the estimate of the work a log asks for, checked against a budget before mapping.
+/// and the estimate of the work each beam asks for, checked against a budget before mapping.
 
 #include <cstddef>
 #include <numbers>
@@ -143,10 +143,17 @@ struct MapperOptions {
   /// this (planArcs, sweep_fan.hpp). Unset: one bin plus half a voxel for the arcs, and for the free
   /// space that plus each echo's rise (BeamDetection::rise_m: leading edge to peak).
   std::optional<double> range_tolerance_m;
-  /// Work budget: mapSonarLog refuses a log whose estimated voxel updates (estimateVoxelUpdates)
-  /// exceed this, before mapping, naming the resolution that would fit. > 0; +inf: no limit.
-  /// The default is about a minute of mapping on one core.
-  double max_voxel_updates = 1e10;
+  /// Work budget of one beam, in voxel updates: mapSonarLog refuses a log whose longest beam (at
+  /// most max_range_m) would update more voxels than this at the map's resolution
+  /// (estimateVoxelUpdatesPerBeam: its wedge, or its cone with the volume model), before mapping,
+  /// naming the finest resolution that fits. It bounds the time and the working memory of each beam
+  /// (a sweep's cell sets hold at most its beams' updates), not the log's length: a log of hours
+  /// maps in time proportional to its beams. > 0; +inf: no limit. The default, 1e7, is over 40×
+  /// what any sonar preset (sonar_presets.hpp) needs at its automatic resolution, planar or volume
+  /// (at most 2.3e5: the 3° × 40° cone of a SeaKing at 30 m and 0.1 m; any head at about 256 voxels
+  /// of reach needs at most 5e5), while 1 mm voxels on a 50 m Ping360 need 4.4e7 planar and 3.2e11
+  /// in volume.
+  double max_voxel_updates_per_beam = 1e7;
   /// mapSonarLog: clean and detect sweep i+1 on a second thread while sweep i is integrated. The
   /// map is the same either way (detection does not depend on the map).
   bool pipeline_detection = true;
@@ -156,7 +163,7 @@ struct MapperOptions {
 
   /// @throws ValueError naming the option for a resolution that is set but not finite and > 0, a
   ///         self-reflection range or range tolerance that is set but not finite and ≥ 0, a max
-  ///         range that is NaN or ≤ 0, a beam width outside [0, π), a budget that is NaN or ≤ 0,
+  ///         range that is NaN or ≤ 0, a beam width outside [0, π), a per-beam budget that is NaN or ≤ 0,
   ///         invalid smoothing, detector or extended-return options, invalid occupancy parameters, or 0 threads.
   void validate() const;
 };
@@ -181,37 +188,38 @@ struct AutoResolution {
   RangeScale scale;           ///< the range scale it follows (its reach at most max_range_m)
   std::size_t scales = 0;     ///< range scales (bin lengths) in the log
   std::size_t beams = 0;      ///< beams in the log
-  bool coarsened = false;     ///< coarser than the scale's own, to fit MapperOptions::max_voxel_updates
+  bool coarsened = false;     ///< coarser than the scale's own, to fit MapperOptions::max_voxel_updates_per_beam
 };
 
 /// The resolution mapSonarLog uses when MapperOptions::resolution_m is unset: autoResolution_m of
 /// the reach of the range scale most beams use (mostUsedRangeScale, range_scales.hpp; at most
 /// max_range_m), so a log mostly recorded at 10 m maps at 5 cm although it opens with a Ping360's
-/// power-on pings at 2 m and the user looked out to 20 m for a while. When mapping every beam at
-/// it would exceed max_voxel_updates (estimateVoxelUpdates), the next coarser of 1, 2, 5 × 10^k m
-/// that fits, but never coarser than autoResolution_m of the log's longest reach (checkWorkBudget
-/// then says what fits). A log of one range scale: autoResolution_m(logReach_m).
+/// power-on pings at 2 m and the user looked out to 20 m for a while. When the log's longest beam
+/// at it would exceed max_voxel_updates_per_beam (estimateVoxelUpdatesPerBeam), the next coarser of
+/// 1, 2, 5 × 10^k m that fits, but never coarser than autoResolution_m of the log's longest reach
+/// (checkWorkBudget then says what fits). A log of one range scale: autoResolution_m(logReach_m).
 /// @throws ValueError when options are invalid or no beam of the log has bins.
 AutoResolution autoResolutionForLog(const SonarLog& log, const MapperOptions& options);
-/// The same for the log `pass` goes over, surveyed as `survey` (log_survey.hpp): a further pass only
-/// where the survey cannot tell that a resolution fits the budget.
-AutoResolution autoResolutionForLog(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
+/// The same for a surveyed log (log_survey.hpp).
+AutoResolution autoResolutionForLog(const LogSurvey& survey, const MapperOptions& options);
 
 /// `options` with every "auto" the mapper needs before the first sweep resolved for `log`:
 /// resolution_m (autoResolutionForLog). Other options are unchanged.
 /// @throws ValueError when options are invalid, or the resolution is auto and the log has no beam.
 MapperOptions resolveForLog(const MapperOptions& options, const SonarLog& log);
-/// The same for a surveyed log (autoResolutionForLog's passes).
-MapperOptions resolveForLog(const MapperOptions& options, const LogSurvey& survey, const BeamPass& pass);
+/// The same for a surveyed log.
+MapperOptions resolveForLog(const MapperOptions& options, const LogSurvey& survey);
 
-/// Upper estimate of the voxel updates mapping `log` with `options` (resolution resolved) costs:
-/// the area each beam's wedge sweeps in the sonar's plane, max(beam width, bearing step to the
-/// next beam) × range² / 2, over the voxel's area, summed over the beams (a 360° sweep: π R² / res²).
-/// The volume model: the volume of that wedge's cone, × vertical aperture × range³ / 3, over the
-/// voxel's volume (a 360° sweep of a 35° beam: 2π · 0.61 · R³ / 3 / res³).
-double estimateVoxelUpdates(const SonarLog& log, const MapperOptions& options);
-/// The same for the log `pass` goes over (one pass, more when the resolution is automatic).
-double estimateVoxelUpdates(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
+/// Upper estimate of the voxel updates of one beam reaching `range_m` (metres, > 0; at most
+/// options.max_range_m is used) mapped with `options` (resolution_m set, metres): the planar model
+/// clears its wedge, beam width × range² / 2 over the voxel's area, plus its line of range / voxel
+/// voxels; the volume model its free cone, beam width × free vertical aperture × range³ / 3 over
+/// the voxel's volume, plus the shell of its whole vertical aperture, aperture × range² over the
+/// voxel's area. A beam narrower than a voxel at its end counts as a voxel wide. A Ping360 at 50 m:
+/// 1.3e3 (planar) and 6.7e4 (volume) at its automatic 0.2 m.
+/// @throws ValueError when options.resolution_m is unset or options are invalid, or range_m is
+///         not finite and > 0.
+double estimateVoxelUpdatesPerBeam(const MapperOptions& options, double range_m);
 
 /// Lines for the user about options that cannot work with `log` (a minimum range, self-reflection
 /// range or echo length beyond the log's reach, a maximum range that cuts its beams, a resolution
@@ -221,12 +229,14 @@ std::vector<std::string> optionWarnings(const MapperOptions& options, const Sona
 /// The same for a surveyed log.
 std::vector<std::string> optionWarnings(const MapperOptions& options, const LogSurvey& survey);
 
-/// Throws when estimateVoxelUpdates() exceeds options.max_voxel_updates.
+/// Throws when the log's longest beam (logReach_m, at most options.max_range_m) needs more voxel
+/// updates (estimateVoxelUpdatesPerBeam at options.resolution_m, else the automatic resolution) than
+/// options.max_voxel_updates_per_beam. Nothing to check for a log without bins.
 /// @throws ValueError naming the estimate, the budget, the option that raises it
-///         (max_voxel_updates, `--max-voxel-updates` on the command line) and the finest
-///         resolution that fits the budget.
+///         (max_voxel_updates_per_beam, `--max-voxel-updates-per-beam` on the command line), the
+///         finest resolution that fits the budget and the automatic one.
 void checkWorkBudget(const SonarLog& log, const MapperOptions& options);
-/// The same for the log `pass` goes over: no pass where the survey's reaches show that it fits.
-void checkWorkBudget(const LogSurvey& survey, const BeamPass& pass, const MapperOptions& options);
+/// The same for a surveyed log.
+void checkWorkBudget(const LogSurvey& survey, const MapperOptions& options);
 
 }  // namespace sonarmap

@@ -7,15 +7,13 @@
 /// Python module, so both map a log with the same options identically. Each option is an entry of
 /// mappingOptionTable() (mapping_option_table.hpp); defaults are the library's (MapperOptions{}).
 
-#include <array>
 #include <string>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
 #include "sonarmap/mapping/mapping_option_table.hpp"
+#include "sonarmap/nav/mounting.hpp"  // sonarToBodyOfMounting: --mounting beside these options
 
 namespace sonarmap {
 
@@ -49,7 +47,7 @@ struct MappingArguments {
   double beam_width_deg = 0.0;
   bool beam_width_given = false;  ///< the user gave the beam width (else the sonar's, withSonarBeam)
   std::string range_tolerance;
-  double max_voxel_updates = 0.0;
+  double max_voxel_updates_per_beam = 0.0;
   double hit_probability = 0.0;
   bool volume = false;  ///< `--3d`
   double vertical_aperture_deg = 0.0;
@@ -84,16 +82,5 @@ MapperOptions toMapperOptions(const MappingArguments& args);
 /// `text` as a number > 0 (≥ 0 with `zero_allowed`) of `unit`, for the option `option`.
 /// @throws ValueError naming the option otherwise.
 double parseOptionNumber(const std::string& text, const char* option, const char* unit, bool zero_allowed = false);
-
-/// The sonar's mounting (sonar frame → body frame FRD, navigation.hpp) from X, Y, Z in metres and
-/// ROLL, PITCH, YAW in degrees (Z-Y-X Euler angles, as a NavSample's attitude); empty: the default
-/// mounting, upright and aligned (defaultSonarToBody()).
-/// @throws ValueError when the list is neither empty nor six finite numbers.
-Eigen::Isometry3d sonarToBodyOfMounting(const std::vector<double>& mounting);
-
-/// The inverse of sonarToBodyOfMounting for any rigid pose (rotation `r`, translation `t`): X, Y, Z
-/// in metres, then ROLL, PITCH, YAW in degrees of r = Rz(yaw)·Ry(pitch)·Rx(roll) (pitch in
-/// [−90°, 90°]); the numbers of map --mounting and eval --sensor-pose.
-std::array<double, 6> mountingOfPose(const Eigen::Matrix3d& r, const Eigen::Vector3d& t);
 
 }  // namespace sonarmap

@@ -215,9 +215,9 @@ class SonarMapper {
 /// joined to their neighbour) with the sonar static at the map origin, options left on "auto"
 /// resolved for the log (resolveForLog). `stats().beams_skipped` includes the reader's skipped
 /// beams; mappingWarnings() says what went wrong when few or no obstacles were found.
-/// @throws ValueError for invalid options, a sweep that mixes bin lengths, a log whose estimated
-///         work exceeds options.max_voxel_updates (checkWorkBudget, before mapping), or when no beam
-///         could be mapped because every one reaches outside the map (naming the resolution that fits).
+/// @throws ValueError for invalid options, a sweep that mixes bin lengths, a log whose longest beam
+///         needs more voxel updates than options.max_voxel_updates_per_beam (checkWorkBudget, before
+///         mapping), or when no beam could be mapped because every one reaches outside the map (naming the resolution that fits).
 SonarMapper mapSonarLog(const SonarLog& log, const MapperOptions& options = {}, const ProgressCallback& progress = {});
 
 /// Maps every sweep of `log` (split and detected as above) from a moving vehicle: each beam is
@@ -240,8 +240,8 @@ std::size_t surveyMinBeams(const MapperOptions& options);
 /// mapSonarLog for a log read beam by beam: `source`'s beams from its first (rewind()), surveyed as
 /// `survey` (surveyLog over it with surveyMinBeams(options)), give the map of mapSonarLog on the
 /// log held whole, byte for byte, holding one beam at a time besides the map and the sweeps being
-/// detected. The resolution needs no pass of its own unless the survey cannot tell that it fits the
-/// budget (autoResolutionForLog). `stats().beams_skipped` is the source's count after the pass.
+/// detected. The resolution and the work budget need no pass of their own (autoResolutionForLog and
+/// checkWorkBudget use the survey). `stats().beams_skipped` is the source's count after the pass.
 /// @throws as mapSonarLog(log, ...), and what the source throws.
 SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const MapperOptions& options = {},
                         const ProgressCallback& progress = {});

@@ -5,6 +5,7 @@
 /// metres per second, and their checked conversion into MsisSimulationOptions. Shared by the
 /// command-line tool and the Python module so both simulate the same run from the same arguments.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -24,7 +25,8 @@ struct SimulationArguments {
   std::uint64_t seed = 1;          ///< seed of the speckle and noise
   std::size_t turns = 28;          ///< full turns of the head (passes across a sector), ≥ 1; ignored with a mission
   /// Vehicle speed over ground, metres per second: along the heading without a mission; along the
-  /// mission's path with one, where 0 means defaultMissionSpeed_mps(the head's range) (missions.hpp).
+  /// mission's path with one, where 0 means defaultMissionSpeed_mps(the mission, the head's range)
+  /// (missions.hpp).
   double speed_mps = 0.0;
   double heading_deg = 0.0;        ///< vehicle heading, degrees clockwise from north (NED yaw); unused with a mission
   /// Vehicle depth without a mission, metres below the NED origin (the water surface in the 3D
@@ -36,6 +38,10 @@ struct SimulationArguments {
   /// line of speed_mps and heading_deg from the origin.
   std::string mission;
   std::size_t laps = 1;  ///< times the mission is flown, ≥ 1 (1 without a mission)
+  /// The sonar's mounting on the vehicle as `--mounting` takes it (mounting.hpp: X, Y, Z metres,
+  /// ROLL, PITCH, YAW degrees, sonar frame FRD like the body); empty: the mission's default
+  /// (MissionPlan::mounting: the tilted loop's pitch −25), without a mission upright and aligned.
+  std::vector<double> mounting;
   // Dead-reckoning errors (dead_reckoning.hpp), in user units; all 0: a perfect navigation.
   double dvl_noise_mps = 0.0;             ///< σ of the DVL's velocity noise per component and fix, m/s, ≥ 0
   double dvl_scale_error = 0.0;           ///< fractional DVL scale error (0.02: reads 2 % fast), > −1
@@ -52,11 +58,19 @@ struct SimulationArguments {
 /// speed_mps or the default mission speed, args.laps laps) and as many turns as the head needs to
 /// keep scanning until the vehicle has come to the mission's end: turns = ceil((duration + one
 /// beam period) / the time of one turn (or sector pass)); args.turns and args.heading_deg are then
-/// ignored.
+/// ignored. The sonar mounted as simulationMounting(args) says (options.sonar_to_body).
 /// @throws ValueError naming the option (as its command-line flag) for a value out of range, an
 ///         unknown preset or mission (listing the names), a negative speed with a mission, or laps
-///         other than 1 without one, or a depth that is not finite.
+///         other than 1 without one, a depth that is not finite, or a mounting that is not six
+///         finite numbers.
 MsisSimulationOptions toSimulationOptions(const SimulationArguments& args, const std::string& scene = {});
+
+/// The sonar's mounting the arguments simulate, as `sonarmap map --mounting` takes it (X, Y, Z
+/// metres, ROLL, PITCH, YAW degrees): args.mounting when given, else the mission's
+/// (MissionPlan::mounting), else all 0. toSimulationOptions builds sonar_to_body from exactly these
+/// numbers (sonarToBodyOfMounting), so a map made with them uses the identical pose.
+/// @throws ValueError for a mounting that is not six finite numbers, or an unknown mission.
+std::array<double, 6> simulationMounting(const SimulationArguments& args);
 
 /// Checks that `scene` is the built-in scene args.mission is drawn for (MissionPlan::scene);
 /// nothing to check without a mission.

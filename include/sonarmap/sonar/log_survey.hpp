@@ -7,7 +7,6 @@
 
 #include <cstddef>
 #include <limits>
-#include <map>
 #include <optional>
 #include <vector>
 
@@ -26,13 +25,6 @@ struct LogSurvey {
   std::size_t sweeps = 0;  ///< groupSweeps(beams, min_beams).size()
   /// Beams whose time lies within the span asked for (surveyLog's `span`); all of them without one.
   std::size_t beams_in_span = 0;
-  /// How many beams reach how far (bins × bin length, metres) while the log has at most
-  /// kMaxReaches different reaches (a head keeps a few: one per range scale), for bounds on the
-  /// voxel updates (mapper_options.hpp) without another pass; empty with `reaches_counted` false
-  /// beyond that.
-  std::map<double, std::size_t> beams_by_reach;
-  bool reaches_counted = true;
-  static constexpr std::size_t kMaxReaches = 4096;
 };
 
 /// Surveys the log `pass` goes over (one pass).
