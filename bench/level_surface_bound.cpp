@@ -14,20 +14,26 @@
 //    precision 1 (the check of the scoring).
 // The tolerance is the scoring's (missionTruthOptions: 0.1 m, at least √3 voxels). Below the table,
 // the default map's voxels off the surfaces by their distance to the nearest one: how many are a
-// surface drawn thick (within 0.25 m) and how many lie far from any.
+// surface drawn thick (within 0.25 m) and how many lie far from any; and the looks per heard voxel:
+// the beams whose −3 dB cone (width × vertical aperture, within the head's range, from the true
+// pose) holds its centre, median and 10th percentile, for the level surfaces (the planes) and the
+// standing ones.
 //
 // Usage: sonarmap_level_surface_bound [RESOLUTION_M | auto] [PRESET ...]   (defaults: 0.05, micron)
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sonarmap/eval/heard_surface.hpp"
 #include "sonarmap/eval/simulated_mission.hpp"
 #include "sonarmap/mapping/mapper_options.hpp"
+#include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/scene.hpp"
 
 namespace {
@@ -67,6 +73,39 @@ void setVoxel(OcTree16& map, const Eigen::Vector3d& point_m, bool occupied) {
   map.updateNode(*key, occupied ? 100.0f : -100.0f, true);
 }
 
+/// The q-quantile (0..1) of `values` (sorted here); 0 when empty.
+double quantile(std::vector<int>& values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1))];
+}
+
+/// Looks per heard voxel (see the file's comment): one count per voxel of `heard_voxels`.
+std::vector<int> looksPerVoxel(const MissionRun& run, const std::vector<Eigen::Vector3d>& heard_voxels) {
+  std::vector<int> looks(heard_voxels.size(), 0);
+  const NavInterpolator nav(run.simulation.nav);
+  const double half_width_rad = 0.5 * run.options.head.horizontal_beam_width_rad;
+  const double sin_half_aperture = std::sin(0.5 * run.options.head.vertical_beam_width_rad);
+  const double range_m = run.options.head.range_m;
+  for (const Beam& beam : run.simulation.log.beams) {
+    const std::optional<Eigen::Isometry3d> body_to_ned = nav.bodyToNedAt(beam.time_s);
+    if (!body_to_ned) continue;
+    const Eigen::Isometry3d sonar_to_map = nedToMap() * *body_to_ned * run.options.sonar_to_body;
+    const Eigen::Matrix3d map_to_sonar = sonar_to_map.linear().transpose();
+    const Eigen::Vector3d origin_m = sonar_to_map.translation();
+    for (std::size_t v = 0; v < heard_voxels.size(); ++v) {
+      const Eigen::Vector3d d = heard_voxels[v] - origin_m;
+      const double r2 = d.squaredNorm();
+      if (r2 > range_m * range_m || r2 <= 0.0) continue;
+      const Eigen::Vector3d s = map_to_sonar * d;
+      if (std::abs(s.z()) > sin_half_aperture * std::sqrt(r2)) continue;
+      const double off_rad = std::remainder(std::atan2(s.y(), s.x()) - beam.bearing_rad, 2.0 * M_PI);
+      if (std::abs(off_rad) <= half_width_rad) ++looks[v];
+    }
+  }
+  return looks;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,7 +116,8 @@ int main(int argc, char** argv) {
   if (presets.empty()) presets = {"micron"};
   std::printf("| head | mission | map | occupied | precision | heard recall | heard F1 | voxel (m) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|\n");
-  std::string distances;  // the default maps' voxels off the surfaces by distance
+  std::string distances;   // the default maps' voxels off the surfaces by distance
+  std::string looks_rows;  // looks per heard voxel
   for (const std::string& preset : presets) {
     for (const std::string& mission : simulatedMissionNames()) {
       try {
@@ -85,6 +125,7 @@ int main(int argc, char** argv) {
         const MissionRun run = simulateMission(simulated);
         const Scene& scene = run.simulation.scene;
         std::size_t off_surface[3] = {0, 0, 0};  // within 0.25 m, 0.25–1 m, farther
+        std::vector<int> level_looks, standing_looks;  // looks per heard voxel of each kind
         MapperOptions options;
         if (!automatic) options.resolution_m = resolution_m;
         options.beam_model = BeamModel::kVolume;
@@ -92,6 +133,10 @@ int main(int argc, char** argv) {
           const double res_m = mapped.resolution_m();
           const OcTree16 heard = heardSurfaceMap(run, HeardSurfaceOptions{res_m, 0.0});
           const std::vector<Eigen::Vector3d> heard_voxels = occupiedCentres(heard);
+          const std::vector<int> looks = looksPerVoxel(run, heard_voxels);
+          for (std::size_t v = 0; v < heard_voxels.size(); ++v) {
+            (isLevel(scene.primitives[nearestPrimitive(scene, heard_voxels[v])]) ? level_looks : standing_looks).push_back(looks[v]);
+          }
           const GroundTruthOptions truth_options = missionTruthOptions(run);
           const double tolerance_m = std::max(truth_options.tolerance_m, std::sqrt(3.0) * res_m);
           auto row = [&](const char* name, const OcTree16& map) {
@@ -135,6 +180,10 @@ int main(int argc, char** argv) {
         std::snprintf(line, sizeof line, "| %s | %s | %zu | %zu | %zu |\n", preset.c_str(), mission.c_str(), off_surface[0],
                       off_surface[1], off_surface[2]);
         distances += line;
+        std::snprintf(line, sizeof line, "| %s | %s | %.0f / %.0f | %.0f / %.0f |\n", preset.c_str(), mission.c_str(),
+                      quantile(level_looks, 0.5), quantile(level_looks, 0.1), quantile(standing_looks, 0.5),
+                      quantile(standing_looks, 0.1));
+        looks_rows += line;
       } catch (const std::exception& error) {
         std::printf("| %s | %s | %s |\n", preset.c_str(), mission.c_str(), error.what());
       }
@@ -143,5 +192,8 @@ int main(int argc, char** argv) {
   std::printf("\nThe default maps' occupied voxels off the surfaces (farther than the tolerance) by distance to the "
               "nearest surface:\n\n| head | mission | ≤ 0.25 m | 0.25–1 m | > 1 m |\n|---|---|---:|---:|---:|\n%s",
               distances.c_str());
+  std::printf("\nLooks per heard voxel (beams whose −3 dB cone holds it), median / 10th percentile:\n\n| head | "
+              "mission | level surfaces | standing surfaces |\n|---|---|---:|---:|\n%s",
+              looks_rows.c_str());
   return 0;
 }
