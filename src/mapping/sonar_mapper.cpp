@@ -101,6 +101,8 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
   options_.resolution_m = wanted_m;
   ++stats_.resolution_changes;
   work_->occupied_keys.clear();  // the volume model's hit cells, in the new map's keys
+  work_->seabed_looks.reset();   // the level surfaces' columns, counted again at the new size
+  work_->surface_looks.reset();
   map_.forEachLeaf([&](const LeafView<16>& leaf) {
     if (!(leaf.log_odds > map_.model().occupied_above)) return;
     const auto edge = static_cast<std::uint32_t>(leaf.edgeVoxels());
@@ -376,12 +378,6 @@ void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vecto
                                        PoseOfRow&& pose_of) {
   SweepWork& work = *work_;
   const double resolution_m = *options_.resolution_m;
-  if (!work.seabed_looks) {
-    const double bins_per_cell = std::max(1.0, resolution_m / polar.bin_length_m);
-    work.seabed_looks.emplace(resolution_m, bins_per_cell);
-    work.surface_looks.emplace(resolution_m, bins_per_cell);
-  }
-  const std::vector<CellBeam> cells = cellBeams(polar, detections, resolution_m, work.tolerance_m);
   // The seabed where the weak onsets of every sweep so far place it (seabed_slope.hpp), once they
   // were seen from around (their errors cancel): their plane's height at the latest onsets, its
   // slope where the onsets ask for one (normalAt); the water surface where the navigation's depth
@@ -398,17 +394,22 @@ void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vecto
   if (std::isfinite(options_.water_surface_depth_m)) {
     surface = LevelPlane{Eigen::Vector3d(0.0, 0.0, -options_.water_surface_depth_m), -Eigen::Vector3d::UnitZ()};
   }
+  if (!seabed && !surface) return;
+  if (!work.seabed_looks) {
+    work.seabed_looks.emplace(resolution_m);
+    work.surface_looks.emplace(resolution_m);
+  }
+  const std::vector<CellBeam> cells = cellBeams(polar, detections, resolution_m, work.tolerance_m);
+  const double bins_per_cell = std::max(1.0, resolution_m / polar.bin_length_m);
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const Eigen::Isometry3d* pose = pose_of(row);
     if (pose == nullptr) continue;
     const double bearing_rad = polar.bearing_rad[row];
-    if (seabed) {
-      work.seabed_looks->addBeam(*pose, bearing_rad, options_.beam_width_rad, options_.vertical_aperture_rad,
-                                 cells[row].cell_power, *seabed);
-    }
-    if (surface) {
-      work.surface_looks->addBeam(*pose, bearing_rad, options_.beam_width_rad, options_.vertical_aperture_rad,
-                                  cells[row].cell_power, *surface);
+    for (const auto& [plane, looks] : {std::pair{&seabed, &work.seabed_looks}, std::pair{&surface, &work.surface_looks}}) {
+      if (*plane) {
+        (*looks)->addBeam(*pose, bearing_rad, options_.beam_width_rad, options_.vertical_aperture_rad,
+                          cells[row].cell_power, bins_per_cell, **plane);
+      }
     }
   }
   const auto occupy = [&](const Eigen::Vector3d& point_m) {

@@ -42,7 +42,7 @@ TEST(mappingLevelSurfaces, LoudCellsWhereTheShellsCrossASlopePutItsColumnsOnIt) 
   const Eigen::Isometry3d head = tiltedHead();
   // A seabed sloping 7° down to the north, 5 m under the origin.
   const LevelPlane seabed{{0.0, 0.0, -2.0}, Eigen::Vector3d(std::sin(7.0 * kDeg), 0.0, std::cos(7.0 * kDeg))};
-  LevelSurfaceEvidence evidence(res_m, 4.0);
+  LevelSurfaceEvidence evidence(res_m);
   const std::size_t cells = 200;  // 10 m
   for (int b = 0; b < 400; ++b) {
     const double bearing_rad = 2.0 * std::numbers::pi * b / 400.0;
@@ -54,7 +54,7 @@ TEST(mappingLevelSurfaces, LoudCellsWhereTheShellsCrossASlopePutItsColumnsOnIt) 
       const double range_m = (static_cast<double>(k) + 0.5) * res_m;
       if (range_m >= near_m && range_m <= far_m) power[k] = 10.0f;
     }
-    evidence.addBeam(head, bearing_rad, width_rad, aperture_rad, power, seabed);
+    evidence.addBeam(head, bearing_rad, width_rad, aperture_rad, power, 4.0, seabed);
   }
   std::size_t heard = 0;
   double worst_m = 0.0;
@@ -75,7 +75,7 @@ TEST(mappingLevelSurfaces, WaterAloneCallsAlmostNoColumnHeard) {
   const Eigen::Isometry3d head = tiltedHead();
   const LevelPlane seabed{{0.0, 0.0, -2.0}, Eigen::Vector3d::UnitZ()};
   const int bins_per_cell = 4;
-  LevelSurfaceEvidence evidence(res_m, bins_per_cell);
+  LevelSurfaceEvidence evidence(res_m);
   std::mt19937_64 random(7);
   std::exponential_distribution<double> speckle(1.0);
   for (int sweep = 0; sweep < 3; ++sweep) {
@@ -86,7 +86,7 @@ TEST(mappingLevelSurfaces, WaterAloneCallsAlmostNoColumnHeard) {
         for (int i = 0; i < bins_per_cell; ++i) sum += speckle(random);
         cell = static_cast<float>(sum / bins_per_cell);
       }
-      evidence.addBeam(head, 2.0 * std::numbers::pi * b / 400.0, width_rad, aperture_rad, power, seabed);
+      evidence.addBeam(head, 2.0 * std::numbers::pi * b / 400.0, width_rad, aperture_rad, power, bins_per_cell, seabed);
     }
   }
   ASSERT_GT(evidence.columns(), 10000U);
@@ -96,11 +96,13 @@ TEST(mappingLevelSurfaces, WaterAloneCallsAlmostNoColumnHeard) {
 }
 
 TEST(mappingLevelSurfaces, InvalidParametersAreRefused) {
-  EXPECT_THROW(LevelSurfaceEvidence(0.0, 1.0), ValueError);
-  EXPECT_THROW(LevelSurfaceEvidence(0.05, 0.5), ValueError);
-  EXPECT_THROW(LevelSurfaceEvidence(0.05, 1.0, NAN), ValueError);
-  EXPECT_THROW(LevelSurfaceEvidence(0.05, 1.0, 0.0, 0.0), ValueError);
-  EXPECT_THROW(LevelSurfaceEvidence(0.05, 1.0, 0.0, 0.5), ValueError);
+  EXPECT_THROW(LevelSurfaceEvidence(0.0), ValueError);
+  EXPECT_THROW(LevelSurfaceEvidence(0.05, NAN), ValueError);
+  EXPECT_THROW(LevelSurfaceEvidence(0.05, 0.0, 0.0), ValueError);
+  EXPECT_THROW(LevelSurfaceEvidence(0.05, 0.0, 0.5), ValueError);
+  LevelSurfaceEvidence evidence(0.05);
+  const std::vector<float> power(10, 1.0f);
+  EXPECT_THROW(evidence.addBeam(tiltedHead(), 0.0, 0.05, 0.6, power, 0.5, LevelPlane{}), ValueError);
 }
 
 // The tilted loop over quay3d: the seabed (primitive 1) and the water surface (primitive 0) are

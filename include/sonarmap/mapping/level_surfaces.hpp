@@ -14,7 +14,7 @@
 /// power over the water, y (beam_cells: 1 = water).
 ///
 /// A column is heard by a sequential test of every look it gets (Wald's SPRT, "Sequential
-/// Analysis", 1947): a look's cell is the mean of m bins (the cell's bins, `bins_per_cell`), each
+/// Analysis", 1947): a look's cell is the mean of m bins (its beam's `bins_per_cell`), each
 /// exponential about its mean (speckle), so against water (mean 1) a surface heard `level_db` over
 /// it (mean μ = 1 + 10^(level/10)) gives the look the log-likelihood ratio
 ///     λ = m · (y (1 − 1/μ) − ln μ)  nats,
@@ -33,8 +33,6 @@
 
 #include <Eigen/Geometry>
 
-#include "sonarmap/core/key.hpp"
-
 namespace sonarmap {
 
 /// A level surface: a plane through `point_m` with unit normal `normal` (map frame, pointing
@@ -48,16 +46,19 @@ struct LevelPlane {
 class LevelSurfaceEvidence {
  public:
   /// `resolution_m`: the map's voxel edge (the columns' size and the cells' length), > 0;
-  /// `bins_per_cell`: the bins averaged per range cell (m above), ≥ 1; `level_db`: the surface's
-  /// level over the water the test is for, dB, finite; `false_alarm`: α, in (0, 0.5).
+  /// `level_db`: the surface's level over the water the test is for, dB, finite; `false_alarm`: α,
+  /// in (0, 0.5).
   /// @throws ValueError for a value out of range.
-  LevelSurfaceEvidence(double resolution_m, double bins_per_cell, double level_db = 0.0, double false_alarm = 1e-3);
+  explicit LevelSurfaceEvidence(double resolution_m, double level_db = 0.0, double false_alarm = 1e-3);
 
   /// Adds the looks of one beam at `plane`: the head at `sonar_to_map`, the beam at `bearing_rad`
   /// (sonar frame, clockwise from ahead) of horizontal width `width_rad` and vertical aperture
-  /// `aperture_rad` (−3 dB, radians), and its cells' power over the water (NaN: not measured).
+  /// `aperture_rad` (−3 dB, radians), its cells' power over the water (NaN: not measured) and the
+  /// bins each cell averages (m of the file's comment: the cell's length over the beam's bin length,
+  /// at least 1).
+  /// @throws ValueError when bins_per_cell is not a finite number ≥ 1.
   void addBeam(const Eigen::Isometry3d& sonar_to_map, double bearing_rad, double width_rad, double aperture_rad,
-               std::span<const float> cell_power, const LevelPlane& plane);
+               std::span<const float> cell_power, double bins_per_cell, const LevelPlane& plane);
 
   /// Calls visit(point_m) once for every column heard since the last call, at the plane's height
   /// where it was heard (map frame, the column's centre).
@@ -79,12 +80,11 @@ class LevelSurfaceEvidence {
   };
   /// The column holding `point_m`'s x and y.
   std::uint64_t columnOf(const Eigen::Vector3d& point_m) const;
-  /// One look of a cell at the column holding `point_m`, unless the cell already looked at it
-  /// (`looked`: the columns this cell has looked at).
-  void addLook(const Eigen::Vector3d& point_m, double power, std::vector<std::uint64_t>& looked);
+  /// One look of a cell, its log-likelihood ratio λ, at the column holding `point_m`, unless the
+  /// cell already looked at it (`looked`: the columns this cell has looked at).
+  void addLook(const Eigen::Vector3d& point_m, double evidence_nats, std::vector<std::uint64_t>& looked);
 
   double resolution_m_;
-  double bins_per_cell_;
   double surface_mean_;    ///< μ
   double heard_evidence_;  ///< ln(1/α)
   std::unordered_map<std::uint64_t, Column> columns_;
