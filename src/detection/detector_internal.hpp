@@ -73,9 +73,15 @@ struct EvidenceReturn {
 std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
                               SweepCalibration& water);
 
-/// The weight of one bin's evidence: its share of an independent look, bin length over the pulse
-/// (PolarImage::pulse_length_m) when the pulse is longer than a bin, else 1.
-double evidenceWeight(const PolarImage& polar);
+/// The weight of one bin's evidence: its share of an independent look, 1 / L. The evidence detector
+/// adds the bins' log-likelihood ratios as if each were a look of its own, and bins closer than the
+/// speckle's correlation length share their speckle (Goodman, "Speckle Phenomena in Optics" 2007;
+/// ../shared/docs/echo-model.md, "What water looks like"). Where the log records its pulse
+/// (PolarImage::pulse_length_m), L is the larger of the pulse's length in bins and the water's own
+/// bins per look `water_bins_per_look` (measured on the sweep: SweepCalibration::water_bins_per_look):
+/// water the receiver clips at its floor (a Ping360 at gain 0) shows its noise in blobs several
+/// pulses long, each one look, not a look per pulse length. Where the log records no pulse, 1.
+double evidenceWeight(const PolarImage& polar, double water_bins_per_look);
 
 /// Evidence detector: the evidence pass, then each return's leading edge. `water` as for
 /// detectBackgroundSubtracted. Options validated.

@@ -101,6 +101,10 @@ struct SweepCalibration {
   /// The level that water's excess is counted from at each column (intensity counts: the evidence
   /// detector's percentile of the rows in water), with water_evidence; empty when not measured.
   std::vector<float> water_level;
+  /// The water's bins per independent look along range as the evidence detector counts them (≥ 1:
+  /// the pulse's length in bins, or the water's own runs where they are longer; evidence_detector.cpp,
+  /// evidenceWeight), with water_evidence; 0 when not measured.
+  double water_bins_per_look = 0.0;
 };
 
 /// The level above the background percentile that makes a range near-field clutter when the
