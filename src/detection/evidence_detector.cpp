@@ -221,6 +221,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
     water.water_evidence.resize(static_cast<std::size_t>(std::min(context.min_bin, cols)), evidence);
   }
   const WaterEvidence* judged_by = &evidence;  // the water this column's bins are judged against
+  const RowRingDown own_ring(polar, water);
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const auto* column = columns.ptr<std::uint8_t>(c);
@@ -269,9 +270,10 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
     std::erase_if(in_water, [&](int r) {
       const auto row = static_cast<std::size_t>(r);
       if (c >= polar.valid_bins[row]) return true;
-      const float excess = static_cast<float>(column[r]) - water.background[i];
+      const float level = std::max(water.background[i], own_ring.at(r, c));  // the water, or the row's own ring
+      const float excess = static_cast<float>(column[r]) - level;
       loud[row] = excess >= water.threshold[i] ? loud[row] + 1 : 0;
-      const double next = sum[row] + weight * judged_by->logLikelihoodRatio(excessOf(column[r], water.background[i]));
+      const double next = sum[row] + weight * judged_by->logLikelihoodRatio(excessOf(column[r], level));
       if (next <= 0.0) {
         sum[row] = 0.0;
         start[row] = -1;

@@ -50,6 +50,22 @@ MsisSimulationOptions ringingAtGainZero(const std::string& preset, double platea
 /// Beams with an obstacle when `log` is mapped with the defaults, and the map's occupied updates.
 MappingStats mapped(const SonarLog& log) { return mapSonarLog(log).stats(); }
 
+TEST(detectionOpenWater, OpenWaterNoiseAndRingDownGiveNoObstacle) {
+  // 50 m: a metre of ring-down (20 counts at about 0.95 m on the mean ping), 6 dB from ping to ping.
+  const SonarLog log = openWater(ringingAtGainZero("ping360", 0.15, 0.9, 6.0));
+  const MappingStats stats = mapped(log);
+  EXPECT_EQ(stats.obstacles, 0U);
+  EXPECT_EQ(stats.occupied_updates, 0U);
+  EXPECT_GT(stats.free_updates, 0U) << "open water is mapped free";
+}
+
+TEST(detectionOpenWater, OpenWaterNoiseAndRingDownGiveNoObstacleAt5m) {
+  // 5 m, 4 mm bins: the ring-down over 1 m is 240 bins of a tail the evidence adds up.
+  const SonarLog log = openWater(ringingAtGainZero("ping360-5m", 0.10, 0.9, 6.0));
+  const MappingStats stats = mapped(log);
+  EXPECT_EQ(stats.obstacles, 0U);
+  EXPECT_EQ(stats.occupied_updates, 0U);
+}
 
 /// Each sweep of `log` detected with the default detector (the evidence detector).
 std::vector<SweepDetection> detectedSweeps(const SonarLog& log) {
