@@ -57,11 +57,12 @@
 ///  - Ring-down: the transducer's ring is a level in dB falling with range, alike in every beam but
 ///    louder or quieter from ping to ping (the shared Ping360 logs at 60 m and gain 0: a 5–6 dB
 ///    spread beyond speckle's), so the near field, which ends where most beams have come down,
-///    leaves the louder pings' tails. Its shape is the median profile from its peak while it stands
-///    above the water's level W, and beyond along the line fitted to its unsaturated decline
-///    (counts are dB); each beam's ring is that shape plus the beam's median excess over it on the
-///    decline (detector_internal.hpp, RowRingDown). Both outward passes measure a beam's excess
-///    over the larger of the water's level and its own ring.
+///    leaves the louder pings' tails. Its shape is the median profile from its peak within the band
+///    or the housing (none without one) while it stands above the water's level W, and beyond along
+///    the line fitted to its unsaturated decline (counts are dB); each beam's ring is that shape
+///    plus the beam's median excess over it on the decline (detector_internal.hpp, RowRingDown).
+///    Both outward passes measure a beam's excess over the larger of the water's level and its own
+///    ring.
 
 #include <vector>
 
@@ -114,7 +115,8 @@ struct SweepCalibration {
   /// evidenceWeight), with water_evidence; 0 when not measured.
   double water_bins_per_look = 0.0;
   /// The transducer's ring-down by column up to the near field's bound, intensity counts (empty
-  /// when no band rises a threshold over the water there): the median over the bearings while it
+  /// without a self-reflection band or a housing rising a threshold over the water): from the
+  /// band's peak, the median over the bearings while it
   /// stands above the water's level, then carried on along the straight line fitted to its
   /// unsaturated decline beyond the self-reflection band (a level in dB falling linearly with range;
   /// counts are dB), below 0 too. Every ping rings with this shape, louder or quieter by its own
