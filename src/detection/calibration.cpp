@@ -155,6 +155,42 @@ int housingEnd(const std::vector<double>& persistence, int near_bins, double clu
   return c;
 }
 
+/// The ring-down (SweepCalibration::ring_down): the median profile from its peak within the head's
+/// own band [0, head_end) (the self-reflection band or the housing's) while it stands above `water`,
+/// its unsaturated part (under 250 counts) beyond `band_end` fitted by a least-squares line and
+/// carried on along it up to near_bins; none without a band or a housing, when the peak is not
+/// `significant` over the water, or when the decline has fewer than 3 such columns or does not fall.
+void fitRingDown(const ColumnProfile& profile, float water, float significant, int band_end, int head_end, int near_bins,
+                 SweepCalibration& calibration) {
+  const auto cols = static_cast<int>(profile.median.size());
+  near_bins = std::clamp(near_bins, 0, cols);
+  head_end = std::min(head_end, near_bins);
+  if (head_end <= 0) return;
+  const auto first = profile.median.begin();
+  const int peak = static_cast<int>(std::max_element(first, first + head_end) - first);
+  if (profile.median[static_cast<std::size_t>(peak)] - water < significant) return;
+  constexpr float kSaturated = 250.0f;
+  int begin = -1, end = peak;
+  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (; end < near_bins && profile.median[static_cast<std::size_t>(end)] > water; ++end) {
+    const float y = profile.median[static_cast<std::size_t>(end)];
+    if (y >= kSaturated || end < band_end) continue;
+    if (begin < 0) begin = end;
+    n += 1.0, sx += end, sy += y, sxx += static_cast<double>(end) * end, sxy += static_cast<double>(end) * y;
+  }
+  if (n < 3.0) return;
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  if (!(slope < 0.0)) return;
+  const double intercept = (sy - slope * sx) / n;
+  calibration.ring_down.resize(static_cast<std::size_t>(near_bins));
+  for (int c = 0; c < near_bins; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    calibration.ring_down[i] = c < end ? profile.median[i] : static_cast<float>(intercept + slope * c);
+  }
+  calibration.ring_fit_begin = begin;
+  calibration.ring_fit_end = end;
+}
+
 }  // namespace
 
 void CalibrationOptions::validate() const {
@@ -218,6 +254,7 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
       housingEnd(echoPersistence(polar, water), std::min(near_limit, polar.cols() / 4), options.clutter_share);
   const int near_start = std::max(band, housing);
   const int near_field = std::min(nearFieldEnd(profile, clutter_level, near_start, gap), max_near_field);
+  fitRingDown(profile, water, threshold, band, near_start, max_near_field, calibration);
   calibration.band_end_m = band * polar.bin_length_m;
   calibration.housing_end_m = housing * polar.bin_length_m;
   calibration.near_field_end_m = near_field * polar.bin_length_m;

@@ -37,6 +37,28 @@ BeamDetection detectionAt(const PolarImage& polar, int row, int bin);
 BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
                             const SweepCalibration& calibration, double edge_db);
 
+/// Each row's own ring-down (SweepCalibration::ring_down): every ping rings with the sweep's shape,
+/// louder or quieter by a level of its own (the shared Ping360 logs at 60 m and gain 0, over
+/// 0.40–0.50 m: a quarter of the pings under 11 counts, a tenth over 63; a louder ping rings
+/// longer). A row's offset is the median of its excess over the ring on the ring's unsaturated
+/// decline; its ring at a column is the ring's level there plus that offset. A return must rise
+/// out of the water at its range, and near the head a ping's water is its own ring.
+class RowRingDown {
+ public:
+  /// `polar` and `calibration` must outlive this object.
+  RowRingDown(const PolarImage& polar, const SweepCalibration& calibration);
+  /// The level of row r's ring at column c, intensity counts (0 where the sweep has none).
+  float at(int r, int c) const {
+    if (c >= static_cast<int>(ring_.size())) return 0.0f;
+    const float ring = ring_[static_cast<std::size_t>(c)] + offset_[static_cast<std::size_t>(r)];
+    return ring > 0.0f ? ring : 0.0f;
+  }
+
+ private:
+  const std::vector<float>& ring_;
+  std::vector<float> offset_;  ///< per row, counts
+};
+
 /// Paper §8.2 threshold on the rise between consecutive bins; options already validated.
 std::vector<BeamDetection> detectThreshold(const PolarImage& polar, const DetectionContext& context,
                                            const ThresholdOptions& options);
@@ -73,9 +95,15 @@ struct EvidenceReturn {
 std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
                               SweepCalibration& water);
 
-/// The weight of one bin's evidence: its share of an independent look, bin length over the pulse
-/// (PolarImage::pulse_length_m) when the pulse is longer than a bin, else 1.
-double evidenceWeight(const PolarImage& polar);
+/// The weight of one bin's evidence: its share of an independent look, 1 / L. The evidence detector
+/// adds the bins' log-likelihood ratios as if each were a look of its own, and bins closer than the
+/// speckle's correlation length share their speckle (Goodman, "Speckle Phenomena in Optics" 2007;
+/// ../shared/docs/echo-model.md, "What water looks like"). Where the log records its pulse
+/// (PolarImage::pulse_length_m), L is the larger of the pulse's length in bins and the water's own
+/// bins per look `water_bins_per_look` (measured on the sweep: SweepCalibration::water_bins_per_look):
+/// water the receiver clips at its floor (a Ping360 at gain 0) shows its noise in blobs several
+/// pulses long, each one look, not a look per pulse length. Where the log records no pulse, 1.
+double evidenceWeight(const PolarImage& polar, double water_bins_per_look);
 
 /// Evidence detector: the evidence pass, then each return's leading edge. `water` as for
 /// detectBackgroundSubtracted. Options validated.

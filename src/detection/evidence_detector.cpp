@@ -12,6 +12,7 @@
 #include "column_histogram.hpp"
 #include "detector_internal.hpp"
 #include "sonarmap/acoustics/speckle.hpp"
+#include "sonarmap/detection/extended_returns.hpp"
 #include "sonarmap/detection/water_evidence.hpp"
 #include "sonarmap/sonar/polar_units.hpp"
 
@@ -23,6 +24,12 @@ namespace {
 constexpr double kMinWaterShare = 0.3;
 /// Water samples a band needs before its evidence is used (the first bands of a sweep wait for it).
 constexpr std::uint64_t kMinBandSamples = 64;
+
+/// Share of the water's bins counted lit when its runs are measured (waterBinsPerLook): those beyond
+/// its 90th percentile, where WaterEvidence's measured body ends and its tail begins.
+constexpr double kLitShare = 0.1;
+/// Water bins a sweep needs before its runs are measured (extended_returns.cpp asks the same).
+constexpr std::size_t kMinLookSamples = 1000;
 
 using ExcessHistogram = std::array<std::uint32_t, WaterEvidence::kExcessValues>;
 
@@ -126,12 +133,57 @@ bool heardInTheSkirt(const PolarImage& polar, int row, double range_m, const std
   return false;
 }
 
+/// The water's bins per look along range, measured on the runs of its loudest bins (see
+/// evidenceWeight): each row's bins from the minimum range to a peak window short of its loud return
+/// (or its end), their excess over `background` (counts); a bin is lit beyond the (1 − kLitShare)
+/// quantile of that excess, and L follows from the runs the lit bins form (binsPerLookFromRuns, with
+/// the measured lit share: water clipped at the receiver's floor lights fewer than kLitShare). 1 with
+/// fewer than kMinLookSamples bins.
+double waterBinsPerLook(const PolarImage& polar, int min_bin, const std::vector<BeamDetection>& loud,
+                        const std::vector<float>& background) {
+  const int window = binsForLength(kPeakWindow_m, polar.bin_length_m, 2, std::max(2, polar.cols()));
+  auto waterEnd = [&](int r) {
+    const auto row = static_cast<std::size_t>(r);
+    const int end = std::min(polar.valid_bins[row], polar.cols());
+    return loud[row].hasObstacle() ? std::min(end, loud[row].obstacle_bin - window) : end;
+  };
+  auto excessAt = [&](int r, int c) {
+    return excessOf(polar.intensities.at<std::uint8_t>(r, c), background[static_cast<std::size_t>(c)]);
+  };
+  ExcessHistogram counts{};
+  std::size_t samples = 0;
+  for (int r = 0; r < polar.rows(); ++r) {
+    for (int c = min_bin; c < waterEnd(r); ++c, ++samples) ++counts[static_cast<std::size_t>(excessAt(r, c) + 255)];
+  }
+  if (samples < kMinLookSamples) return 1.0;
+  // The lit level: the (1 − kLitShare) quantile of the excess (nearest rank).
+  const auto rank = static_cast<std::size_t>(std::llround((1.0 - kLitShare) * static_cast<double>(samples - 1)));
+  std::size_t seen = 0;
+  int lit_above = -255;
+  for (; lit_above < 255; ++lit_above) {
+    seen += counts[static_cast<std::size_t>(lit_above + 255)];
+    if (seen > rank) break;
+  }
+  std::size_t lit = 0, runs = 0;
+  for (int r = 0; r < polar.rows(); ++r) {
+    bool before = false;
+    for (int c = min_bin; c < waterEnd(r); ++c) {
+      const bool here = excessAt(r, c) > lit_above;
+      lit += here ? 1 : 0;
+      runs += here && !before ? 1 : 0;
+      before = here;
+    }
+  }
+  return binsPerLookFromRuns(lit, runs, static_cast<double>(lit) / static_cast<double>(samples));
+}
+
 }  // namespace
 
-double evidenceWeight(const PolarImage& polar) {
+double evidenceWeight(const PolarImage& polar, double water_bins_per_look) {
   // Bins closer than a pulse length share their speckle: each adds only its share of a look.
-  if (polar.pulse_length_m && *polar.pulse_length_m > polar.bin_length_m) return polar.bin_length_m / *polar.pulse_length_m;
-  return 1.0;
+  if (!polar.pulse_length_m || *polar.pulse_length_m <= 0.0) return 1.0;
+  const double pulse_bins = *polar.pulse_length_m / polar.bin_length_m;
+  return 1.0 / std::max({1.0, pulse_bins, water_bins_per_look});
 }
 
 std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
@@ -141,7 +193,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
   const auto min_water = static_cast<std::uint32_t>(std::max(3.0, std::ceil(kMinWaterShare * rows)));
   const int band = binsForLength(options.water_band_m, polar.bin_length_m, 8, std::max(8, cols));
   const double decision = -std::log(calibration.false_alarm_probability);
-  const double weight = evidenceWeight(polar);
+  const double weight = evidenceWeight(polar, water.water_bins_per_look);
   std::vector<EvidenceReturn> first(static_cast<std::size_t>(rows));
   std::vector<int> start(static_cast<std::size_t>(rows), -1);
   std::vector<int> loud(static_cast<std::size_t>(rows), 0);  // bins in a row above the per-bin threshold
@@ -169,6 +221,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
     water.water_evidence.resize(static_cast<std::size_t>(std::min(context.min_bin, cols)), evidence);
   }
   const WaterEvidence* judged_by = &evidence;  // the water this column's bins are judged against
+  const RowRingDown own_ring(polar, water);
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const auto* column = columns.ptr<std::uint8_t>(c);
@@ -217,9 +270,10 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
     std::erase_if(in_water, [&](int r) {
       const auto row = static_cast<std::size_t>(r);
       if (c >= polar.valid_bins[row]) return true;
-      const float excess = static_cast<float>(column[r]) - water.background[i];
+      const float level = std::max(water.background[i], own_ring.at(r, c));  // the water, or the row's own ring
+      const float excess = static_cast<float>(column[r]) - level;
       loud[row] = excess >= water.threshold[i] ? loud[row] + 1 : 0;
-      const double next = sum[row] + weight * judged_by->logLikelihoodRatio(excessOf(column[r], water.background[i]));
+      const double next = sum[row] + weight * judged_by->logLikelihoodRatio(excessOf(column[r], level));
       if (next <= 0.0) {
         sum[row] = 0.0;
         start[row] = -1;
@@ -246,6 +300,12 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
   SweepCalibration measured = water;
   std::vector<BeamDetection> detections = detectBackgroundSubtracted(polar, context, options, water);
   if ((context.measure_background && polar.rows() < options.min_beams) || polar.cols() == 0) return detections;
+  // The water's looks: measured on a whole sweep, in front of its loud returns; a sweep in progress
+  // keeps the whole sweep's.
+  if (context.measure_background) {
+    measured.water_bins_per_look = waterBinsPerLook(polar, context.min_bin, detections, measured.background);
+  }
+  water.water_bins_per_look = measured.water_bins_per_look;
   // A beam whose echo is never loud: its first return certain by the evidence of its bins.
   const std::vector<EvidenceReturn> first = evidencePass(polar, context, options, measured);
   water.water_evidence = std::move(measured.water_evidence);  // kept with the calibration returned

@@ -67,6 +67,11 @@ int wholeCountOf(double lit_bins) { return std::max(1, static_cast<int>(std::cei
 
 }  // namespace
 
+double binsPerLookFromRuns(std::size_t lit, std::size_t runs, double lit_probability) {
+  if (runs == 0) return 1.0;
+  return std::max(1.0, static_cast<double>(lit) / static_cast<double>(runs) * (1.0 - lit_probability));
+}
+
 void ExtendedReturnOptions::validate() const {
   if (!(bin_false_alarm > 0.0 && bin_false_alarm < 0.5)) {
     throw ValueError("extended returns: bin_false_alarm must be in (0, 0.5)");
@@ -166,11 +171,9 @@ ExtendedReturnCalibration calibrateExtendedReturns(const PolarImage& polar, cons
       }
     }
   }
-  if (calibration.measured && runs > 0) {
-    calibration.bins_per_look = std::max(1.0, static_cast<double>(lit) / static_cast<double>(runs) * (1.0 - p0));
-  }
-  if (calibration.measured && row_runs > 0) {
-    calibration.rows_per_look = std::max(1.0, static_cast<double>(row_lit) / static_cast<double>(row_runs) * (1.0 - p0));
+  if (calibration.measured) {
+    calibration.bins_per_look = binsPerLookFromRuns(lit, runs, p0);
+    calibration.rows_per_look = binsPerLookFromRuns(row_lit, row_runs, p0);
   }
   // Rows of the window: the neighbours within bearing_window_deg / 2 at the sweep's median step.
   std::vector<double> steps;

@@ -124,6 +124,8 @@ void EchoModelOptions::validate() const {
           "echo model: self_reflection_intensity must be in 0…255");
   require(finite(self_reflection_taper_m) && self_reflection_taper_m > 0.0,
           "echo model: self_reflection_taper_m must be > 0");
+  require(finite(self_reflection_spread_db) && self_reflection_spread_db >= 0.0,
+          "echo model: self_reflection_spread_db must be ≥ 0");
   require(finite(specular_share) && specular_share >= 0.0 && specular_share <= 1.0,
           "echo model: specular_share must be in [0, 1]");
   require(finite(glint_gain) && glint_gain >= 0.0, "echo model: glint_gain must be ≥ 0");

@@ -21,6 +21,7 @@ Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo)
   gain_.resize(bins);
   mean_noise_.resize(bins);
   self_reflection_.assign(bins, 0.0);
+  self_reflection_db_.assign(bins, -INFINITY);
   const double band_power = powerOfLevel(levelOfIntensity(scale_, echo.self_reflection_intensity));
   for (std::size_t i = 0; i < bins; ++i) {
     const double range_m = (static_cast<double>(i) + 0.5) * bin_m;
@@ -35,7 +36,27 @@ Receiver::Receiver(const MsisHeadOptions& head, const EchoModelOptions& echo)
               ? (remaining > 0.0 ? powerOfLevel(levelOfIntensity(scale_, echo.self_reflection_intensity * remaining)) : 0.0)
               : band_power * remaining;
     }
+    // The dB taper's line carried on past its end: a ping that rings louder rings longer.
+    if (echo.self_reflection_taper_db && echo.self_reflection_end_m > 0.0 && echo.self_reflection_intensity > 0.0) {
+      const double remaining = std::min(1.0, 1.0 - past_end_m / echo.self_reflection_taper_m);
+      self_reflection_db_[i] = levelOfIntensity(scale_, echo.self_reflection_intensity * remaining);
+    }
   }
+}
+
+const std::vector<double>& Receiver::selfReflection(Random& random) {
+  if (!(echo_.self_reflection_spread_db > 0.0)) return self_reflection_;
+  const double shift_db = echo_.self_reflection_spread_db * random.gaussian();
+  band_.resize(self_reflection_.size());
+  for (std::size_t i = 0; i < band_.size(); ++i) {
+    if (echo_.self_reflection_taper_db) {  // the level's line, 0 where it falls below the A/D's floor
+      const double level_db = self_reflection_db_[i] + shift_db;
+      band_[i] = level_db > scale_.ad_low_db ? powerOfLevel(level_db) : 0.0;
+    } else {
+      band_[i] = self_reflection_[i] * powerOfLevel(shift_db);
+    }
+  }
+  return band_;
 }
 
 void Receiver::fluctuation(Random& random, std::vector<double>& factors) {
@@ -78,13 +99,14 @@ void Receiver::receive(const std::vector<double>& energy, Random& random, std::v
   fluctuation(random, speckle_);
   fluctuation(random, noise_);
   waterScatterers(random, clutter_);
+  const std::vector<double>& band = selfReflection(random);
   const double reverberation_power = reverberation_db ? powerOfLevel(*reverberation_db) : 0.0;
   const double bin_m = head_.binLength_m();
   intensities.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) {
     const bool reverberant = reverberation_db && (static_cast<double>(i) + 0.5) * bin_m >= reverberation_from_m;
     const double background = mean_noise_[i] + (reverberant ? reverberation_power : 0.0);
-    const double power = (pulse_[i] * gain_[i] + self_reflection_[i]) * speckle_[i] + background * noise_[i] + clutter_[i];
+    const double power = (pulse_[i] * gain_[i] + band[i]) * speckle_[i] + background * noise_[i] + clutter_[i];
     const bool blanked = (static_cast<double>(i) + 0.5) * bin_m < echo_.blanking_m;
     intensities[i] = blanked ? 0 : countsOfPower(scale_, power);
   }

@@ -24,7 +24,8 @@ class Receiver {
 
   /// @param energy       received energy per bin, head.bins values.
   /// @param random       the run's stream; takes 2 · (bins + speckle_looks − 1) draws (none
-  ///                     without speckle), then the water scatterers' draws when there are any.
+  ///                     without speckle), then the water scatterers' draws when there are any,
+  ///                     then one gaussian draw with a spread self-reflection band.
   /// @param intensities  set to head.bins values.
   /// @param reverberation_db  Scene::reverberation_db: the basin's diffuse reverberation after
   ///                     the gain, added from `reverberation_from_m` on under the noise's
@@ -40,6 +41,9 @@ class Receiver {
   /// Sets `clutter` (one per bin) to the water scatterers' power after the gain
   /// (EchoModelOptions::water_scatterers_per_m); all 0 without scatterers, taking no draws.
   void waterScatterers(Random& random, std::vector<double>& clutter) const;
+  /// This ping's self-reflection band's power per bin after the gain: self_reflection_, or with
+  /// EchoModelOptions::self_reflection_spread_db its level shifted by one gaussian draw (its only draw).
+  const std::vector<double>& selfReflection(Random& random);
 
   MsisHeadOptions head_;
   EchoModelOptions echo_;
@@ -48,6 +52,8 @@ class Receiver {
   std::vector<double> gain_;                             // TVG per bin (power factor)
   std::vector<double> mean_noise_;                       // the noise's mean power per bin, after the gain
   std::vector<double> self_reflection_;                  // band power per bin, after the gain
+  std::vector<double> self_reflection_db_;               // a dB taper's level per bin, its line past the end
+  std::vector<double> band_;                             // this ping's band (a spread band)
   std::vector<double> pulse_, speckle_, noise_, clutter_, draws_;  // per-beam scratch
 };
 

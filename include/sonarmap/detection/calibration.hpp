@@ -54,6 +54,15 @@
 ///    log's ring-down, in every beam of the sector, at 0.70–1.41 m; the Ping360 logs' near fields
 ///    run from 0.27 m (a harbour log's 60 m scale) to the 2 m bound (the basin's 10 and 20 m
 ///    sweeps, saturated to about 2 m in every beam; their median band rule reaches 4.3 m).
+///  - Ring-down: the transducer's ring is a level in dB falling with range, alike in every beam but
+///    louder or quieter from ping to ping (the shared Ping360 logs at 60 m and gain 0: a 5–6 dB
+///    spread beyond speckle's), so the near field, which ends where most beams have come down,
+///    leaves the louder pings' tails. Its shape is the median profile from its peak within the band
+///    or the housing (none without one) while it stands above the water's level W, and beyond along
+///    the line fitted to its unsaturated decline (counts are dB); each beam's ring is that shape
+///    plus the beam's median excess over it on the decline (detector_internal.hpp, RowRingDown).
+///    Both outward passes measure a beam's excess over the larger of the water's level and its own
+///    ring.
 
 #include <vector>
 
@@ -101,6 +110,20 @@ struct SweepCalibration {
   /// The level that water's excess is counted from at each column (intensity counts: the evidence
   /// detector's percentile of the rows in water), with water_evidence; empty when not measured.
   std::vector<float> water_level;
+  /// The water's bins per independent look along range as the evidence detector counts them (≥ 1:
+  /// the pulse's length in bins, or the water's own runs where they are longer; evidence_detector.cpp,
+  /// evidenceWeight), with water_evidence; 0 when not measured.
+  double water_bins_per_look = 0.0;
+  /// The transducer's ring-down by column up to the near field's bound, intensity counts (empty
+  /// without a self-reflection band or a housing rising a threshold over the water): from the
+  /// band's peak, the median over the bearings while it
+  /// stands above the water's level, then carried on along the straight line fitted to its
+  /// unsaturated decline beyond the self-reflection band (a level in dB falling linearly with range;
+  /// counts are dB), below 0 too. Every ping rings with this shape, louder or quieter by its own
+  /// offset, measured per beam on the columns [ring_fit_begin, ring_fit_end).
+  std::vector<float> ring_down;
+  int ring_fit_begin = 0;  ///< first column of the ring's unsaturated decline
+  int ring_fit_end = 0;    ///< one past its last
 };
 
 /// The level above the background percentile that makes a range near-field clutter when the

@@ -59,7 +59,9 @@ struct CannyOptions {
 ///   1. calibrate the sweep: background B(c), threshold T from the speckle model and the
 ///      false-alarm probability, near field (calibration.hpp);
 ///   2. the obstacle is the first bin c at or beyond the minimum range that starts a run of
-///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along;
+///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along; within the near field's
+///      bound B is at least the beam's own ring-down (SweepCalibration::ring_down raised by the
+///      beam's offset: a louder ping rings longer, and its tail is not an echo);
 ///   3. its range is the echo's leading edge, the nearest surface within the beam: from the foot of
 ///      the rise (back from c while the echo stays above T / 2), the centre of the first bin within
 ///      leading_edge_db of the echo's peak (sought within 0.3 m of c). A wall seen at

@@ -93,6 +93,13 @@ struct EchoBins {
   int end = 0;
 };
 
+/// Bins (or rows) per independent look from the runs that lit bins form: L = max(1, (lit / runs)(1 − p)),
+/// with `lit` bins in `runs` runs along range (or across bearings) and p the probability that a bin
+/// is lit. Independent bins light runs of geometric length, mean 1 / (1 − p): L = 1; speckle
+/// correlated over L bins (a pulse longer than a bin: Goodman, "Speckle Phenomena in Optics" 2007,
+/// §3; ../shared/docs/echo-model.md) lights runs about L times as long. 1 when there is no run.
+double binsPerLookFromRuns(std::size_t lit, std::size_t runs, double lit_probability);
+
 /// Calibrates the sweep `polar` for extended returns from its background (the detection's
 /// SweepCalibration::background, percentile `background_percentile`) and its span. `echoes`, empty
 /// or one per row: bins left out of the noise's measurement (τ, the bins and rows per look), the

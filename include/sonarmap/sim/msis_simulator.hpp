@@ -41,7 +41,8 @@
 ///     after it as in the real data. The self-reflection band (reflections from the vehicle and the
 ///     transducer's ringing: a plateau of self_reflection_intensity to self_reflection_end_m, its
 ///     power tapering linearly to 0 over self_reflection_taper_m, or its level in dB with
-///     self_reflection_taper_db) under the same speckle; bins
+///     self_reflection_taper_db; its level spread from ping to ping by self_reflection_spread_db)
+///     under the same speckle; bins
 ///     before blanking_m are 0.
 ///  6. Quantisation. intensity = 255 · (10 log10 P − ad_low_db) / ad_span_db, rounded, clipped to
 ///     0…255 (the Micron's ADlow/ADspan mapping of the log-amplified echo).
@@ -166,6 +167,13 @@ struct EchoModelOptions {
   /// 190 counts at 0.10 m, 150 at 0.15, 90 at 0.20, 55 at 0.25) instead of linearly in power
   /// (which keeps the band within 3 dB of its plateau over half the taper).
   bool self_reflection_taper_db = false;
+  /// Ping-to-ping spread of the band's level, dB, ≥ 0 (0: every ping alike, no draws): each ping's
+  /// band is raised by a normal draw of this standard deviation, in dB over the whole band, so a
+  /// dB taper (an exponential ring-down) ends farther out on a ping that rings louder and nearer on
+  /// one that rings softer, as a real transducer's does (the shared Ping360 logs at 60 m and gain 0:
+  /// the ring-down's 25th, 50th and 90th percentiles 11, 23 and 63 counts over 0.40–0.50 m, 0, 7 and
+  /// 33 over 0.60–0.70 m, docs/accuracy.md). One gaussian draw a ping, after the noise's draws.
+  double self_reflection_spread_db = 0.0;
   bool multipath = true;                                    ///< trace one specular bounce
   double specular_share = 0.6;                              ///< share of the energy a surface mirrors onwards, [0, 1]
   double glint_gain = 8.0;                                  ///< strength of the second surface's mirror lobe, ≥ 0
