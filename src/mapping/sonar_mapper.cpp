@@ -424,7 +424,11 @@ void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vecto
       }
     }
     if (inverting) {
-      inversion_->addBeam({*pose, bearing_rad, cells[row].cell_power, cells[row].water_range_m, seabed, surface}, map_);
+      const BeamDetection& detection = detections[row];
+      const bool echoed = detection.hasObstacle() || detection.hasExtendedReturn();  // else silence: no proof of water
+      inversion_->addBeam({*pose, bearing_rad, cells[row].cell_power, cells[row].water_range_m, echoed ? cells[row].water_range_m : 0.0,
+                           seabed, surface},
+                          map_);
     }
   }
   const auto occupy = [&](const Eigen::Vector3d& point_m) {

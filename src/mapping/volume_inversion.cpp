@@ -98,6 +98,8 @@ struct VolumeInversion::WindowBeam {
   std::optional<LevelPlane> seabed, surface;
   std::size_t used_cells = 0;   ///< flush: cells before what its first loud run hides
   std::size_t water_cells = 0;  ///< flush: cells before its first echo
+  double free_range_m = 0.0;
+  std::size_t free_cells = 0;   ///< flush: cells where it proves water
 };
 
 /// One voxel seen in one cell of one beam: the forward model's G_cv.
@@ -159,6 +161,7 @@ void VolumeInversion::addBeam(const InversionBeam& beam, OcTree16& map) {
   const Eigen::Matrix3d bearing = Eigen::AngleAxisd(beam.bearing_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   WindowBeam window_beam{beam.sonar_to_map.linear() * bearing, beam.sonar_to_map.translation(), cell_power_.size(),
                          beam.cell_power.size(), beam.water_range_m, beam.seabed, beam.surface};
+  window_beam.free_range_m = std::min(beam.free_range_m, beam.water_range_m);
   cell_power_.insert(cell_power_.end(), beam.cell_power.begin(), beam.cell_power.end());
   levelEnergy(beam, beam.cell_power.size());
   beams_.push_back(window_beam);
@@ -183,8 +186,8 @@ void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const
   looks.clear();
   for (std::size_t k = 0; k < cells; ++k) {
     if (std::isnan(cell_power_[beam.first_cell + k])) continue;
-    // Before the first echo only the loud core can hear water (and a quiet look there adds little).
-    for (const Eigen::Vector3d& offset : (k < beam.water_cells ? cone_core_[k] : cone_[k])) {
+    // Where it proves water only the loud core can hear it (and a quiet look there adds little).
+    for (const Eigen::Vector3d& offset : (k < beam.free_cells ? cone_core_[k] : cone_[k])) {
       if (const auto key = map.coder().keyOf(beam.origin_m + beam.beam_to_map * offset)) codes.push_back(mortonCode(*key));
     }
   }
@@ -212,8 +215,8 @@ void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const
     if (!wet(beam.seabed, centre) || !wet(beam.surface, centre)) continue;  // the level surfaces' or hidden by them
     const double expected = 1.0 + seabed_scale_ * seabed_energy_[cell] + surface_scale_ * surface_energy_[cell];
     std::uint8_t flags = 0;
-    if (k < beam.water_cells) {  // before the first echo: water, whatever the speckle
-      if (gain_of.twoWay(h_rad, e_rad) >= core_share) flags |= kWater;
+    if (k < beam.water_cells) {  // before the first echo: never loud, whatever the speckle
+      if (k < beam.free_cells && gain_of.twoWay(h_rad, e_rad) >= core_share) flags |= kWater;
     } else if (power >= loud_share * expected) {
       flags |= kLoud;
     }
@@ -269,6 +272,7 @@ void VolumeInversion::flush(OcTree16& map) {
   std::size_t longest = 0;
   for (WindowBeam& beam : beams_) {
     beam.water_cells = std::min(beam.cells, static_cast<std::size_t>(std::max(0.0, beam.water_range_m / resolution_m_)));
+    beam.free_cells = std::min(beam.water_cells, static_cast<std::size_t>(std::max(0.0, beam.free_range_m / resolution_m_)));
     std::size_t k = beam.water_cells;
     const auto loud = [&](std::size_t i) {
       const float y = cell_power_[beam.first_cell + i];

@@ -84,7 +84,7 @@ void viewScene(const std::vector<Eigen::Vector3d>& voxels, double rho, VolumeInv
             if (mean[k] >= 2.0) first_echo = std::min(first_echo, k);
           }
           const double water_range_m = std::max(0.0, static_cast<double>(first_echo) * kRes - kRes);
-          inversion.addBeam({sonar_to_map, bearing_rad, power, water_range_m, std::nullopt, std::nullopt}, map);
+          inversion.addBeam({sonar_to_map, bearing_rad, power, water_range_m, water_range_m, std::nullopt, std::nullopt}, map);
         }
       }
     }
@@ -146,7 +146,7 @@ OcTree16 viewPoint(const Eigen::Vector3d& v, bool water_beam) {
     Eigen::Isometry3d sonar_to_map = head(position, 0.0);
     sonar_to_map.linear() = sonar_to_map.linear() * Eigen::AngleAxisd(std::atan2(-to.y(), to.x()), Eigen::Vector3d::UnitZ()) *
                             Eigen::AngleAxisd(-tilt_rad, Eigen::Vector3d::UnitY());
-    inversion.addBeam({sonar_to_map, 0.0, power, water_range_m, std::nullopt, std::nullopt}, map);
+    inversion.addBeam({sonar_to_map, 0.0, power, water_range_m, water_range_m, std::nullopt, std::nullopt}, map);
   };
   if (water_beam) {  // its cell at v a speckle peak (+2.8 dB), under the loud level: water, before its first echo
     std::vector<float> power(cells, 1.0f);

@@ -22,15 +22,15 @@
 ///
 /// Unknowns of a beam (the voxels v with a G_cv): the voxels whose centre lies in the beam's cone
 /// (± `extent_half_widths` half −3 dB widths per plane) in a cell up to the end of its first loud
-/// run (the first cells at least `candidate_level_db` over 1 + s_b B_c + s_s S_c, plus one cell:
-/// what lies behind the first surface the beam met is hidden from it), on the water's side of both
-/// level planes by more than a voxel (what lies under the seabed or above the water surface, or on
-/// them, is the level surfaces', level_surfaces.hpp), and not heard as water by any beam of the
-/// window. A voxel is heard as water where it lies in a cell of a beam before its first echo
-/// (CellBeam::water_range_m), the cell is not loud, and its two-way pattern there is at least
-/// `free_pattern_db` (the loud core); before its first echo a beam's cone is enumerated in that core
-/// only. Only voxels in some loud cell are inverted (others have no echo to explain; the update
-/// keeps a 0 at 0).
+/// run (from its first echo on, the first cells at least `candidate_level_db` over
+/// 1 + s_b B_c + s_s S_c, plus one cell: what lies behind the first surface the beam met is hidden
+/// from it), on the water's side of both level planes by more than a voxel (what lies under the
+/// seabed or above the water surface, or on them, is the level surfaces', level_surfaces.hpp), and
+/// not heard as water by any beam of the window. A voxel is heard as water where it lies in a cell
+/// of a beam where the beam proves water (InversionBeam::free_range_m: before its first echo, and
+/// nowhere for a beam that heard no echo) and its two-way pattern there is at least
+/// `free_pattern_db` (the loud core); there a beam's cone is enumerated in that core only. Only
+/// voxels in some loud cell are inverted (others have no echo to explain; the update keeps a 0 at 0).
 ///
 /// The cone is enumerated from sample directions precomputed per range cell in the beam's frame (at
 /// most 0.7 voxel apart), turned by each beam's pose; a beam's voxels are sorted by Morton code and
@@ -95,7 +95,11 @@ struct InversionBeam {
   Eigen::Isometry3d sonar_to_map = Eigen::Isometry3d::Identity();  ///< the head's pose
   double bearing_rad = 0.0;            ///< sonar frame, clockwise from ahead
   std::span<const float> cell_power;   ///< power over the water per range cell of one voxel (NaN: not measured)
-  double water_range_m = 0.0;          ///< the beam heard water up to here (its first echo less the tolerance)
+  double water_range_m = 0.0;          ///< no echo before here (its first echo less the tolerance): no cell is loud
+  /// The beam proves water up to here, ≤ water_range_m: 0 for a beam that heard no echo at all (in
+  /// 3D silence is no proof of water: a seabed met at grazing incidence returns 1–3 dB over the
+  /// noise, below every threshold; docs/mapping-3d.md, "Free space").
+  double free_range_m = 0.0;
   std::optional<LevelPlane> seabed;    ///< the seabed as fitted so far, if any
   std::optional<LevelPlane> surface;   ///< the water surface, if its depth is known
 };
