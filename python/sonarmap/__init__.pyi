@@ -19,12 +19,9 @@ class _MappingOptions(TypedDict, total=False):
     resolution: _NumberOrAuto
     detector: str
     false_alarm: float
-    min_contrast: float
     min_echo_length: float
-    leading_edge: float
     min_range: _NumberOrAuto
     max_near_field: float
-    self_reflection: _NumberOrAuto
     intensity_span: _NumberOrAuto
     smoothing: str
     smoothing_range: float
@@ -32,10 +29,8 @@ class _MappingOptions(TypedDict, total=False):
     cfar_training: float
     cfar_guard: float
     ray: str
-    aggregation: str
     max_range: float
     beam_width_deg: Optional[float]
-    range_tolerance: _NumberOrAuto
     max_voxel_updates_per_beam: float
     hit_probability: float
     volume: bool

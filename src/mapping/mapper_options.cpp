@@ -187,12 +187,9 @@ std::vector<std::string> optionWarnings(const MapperOptions& options, const LogS
                   metres(reach_m).c_str(), "nothing can be detected");
     lines.emplace_back(text);
   };
-  if (options.detector.min_range_m && *options.detector.min_range_m >= reach_m) {
-    add("the detector's minimum range (--min-range)", *options.detector.min_range_m);
-  }
-  if (options.self_reflection_range_m && *options.self_reflection_range_m >= reach_m) {
-    add("the self-reflection range (--self-reflection)", *options.self_reflection_range_m);
-  }
+  // --min-range sets both the detector's minimum range and the bins zeroed before detection.
+  const double near_m = std::max(options.detector.min_range_m.value_or(0.0), options.self_reflection_range_m.value_or(0.0));
+  if (near_m >= reach_m) add("the minimum range (--min-range)", near_m);
   if (options.detector.background.min_echo_length_m >= reach_m) {
     add("the minimum echo length (--min-echo-length)", options.detector.background.min_echo_length_m);
   }

@@ -42,7 +42,6 @@ constexpr OptionWord kDetectors[] = {
 };
 constexpr OptionWord kSmoothings[] = {{"none", ""}, {"gaussian", ""}, {"median", ""}, {"mean", ""}};
 constexpr OptionWord kRays[] = {{"dda", ""}, {"bresenham", ""}};
-constexpr OptionWord kAggregations[] = {{"max", ""}, {"mean", ""}};
 constinit const MappingOption kTable[] = {
     {.name = "resolution",
      .unit = Unit::kMetres,
@@ -69,18 +68,6 @@ constinit const MappingOption kTable[] = {
      .link = NumberLink{&Args::false_alarm, {.ref = [](Options& o) -> auto& {
                           return o.detector.background.calibration.false_alarm_probability;
                         }}}},
-    {.name = "min-contrast",
-     .stage = Stage::kDetection,
-     .unit = Unit::kDecibels,
-     .range = atLeast(0.0, 255.0),
-     .help = "Least rise of an echo above the background",
-     .details = "whatever --false-alarm gives (the CFAR detectors' floor too, never below their own)",
-     .link = NumberLink{&Args::min_contrast_db,
-                        {.get = [](const Options& o) { return o.detector.background.calibration.min_contrast_db; },
-                         .set = [](Options& o, double v) {
-                           o.detector.background.calibration.min_contrast_db = v;
-                           o.detector.cfar.min_contrast_db = std::max(o.detector.cfar.min_contrast_db, v);
-                         }}}},
     {.name = "min-echo-length",
      .stage = Stage::kDetection,
      .unit = Unit::kMetres,
@@ -94,21 +81,13 @@ constinit const MappingOption kTable[] = {
                            o.detector.background.min_echo_length_m = v;
                            o.detector.cfar.min_echo_length_m = v;
                          }}}},
-    {.name = "leading-edge",
-     .stage = Stage::kDetection,
-     .unit = Unit::kDecibels,
-     .range = atLeast(0.0, 255.0),
-     .help = "An obstacle's range is where its echo rises to within this much of its peak",
-     .details = "at 6, the nearest surface within the -3 dB beam",
-     .link = NumberLink{&Args::leading_edge_db,
-                        {.ref = [](Options& o) -> auto& { return o.detector.background.leading_edge_db; }}}},
     {.name = "min-range",
      .stage = Stage::kDetection,
      .unit = Unit::kMetres,
      .range = atLeast(0.0),
      .unset = {"auto", "the end of the near-field clutter measured on each sweep (the vehicle's own returns, the "
                        "transducer's ringing)"},
-     .help = "Detector's minimum range",
+     .help = "Nothing nearer than this is an echo",
      .link = NumberOrWordLink{&Args::min_range, {.ref = [](Options& o) -> auto& { return o.detector.min_range_m; }}}},
     {.name = "max-near-field",
      .stage = Stage::kDetection,
@@ -119,14 +98,6 @@ constinit const MappingOption kTable[] = {
      .link = NumberLink{&Args::max_near_field_m, {.ref = [](Options& o) -> auto& {
                           return o.detector.background.calibration.max_near_field_m;
                         }}}},
-    {.name = "self-reflection",
-     .stage = Stage::kDetection,
-     .unit = Unit::kMetres,
-     .range = atLeast(0.0),
-     .unset = {"auto", "the self-reflection band's end measured on each sweep"},
-     .help = "Zero the bins nearer than this before detection",
-     .link = NumberOrWordLink{&Args::self_reflection,
-                              {.ref = [](Options& o) -> auto& { return o.self_reflection_range_m; }}}},
     {.name = "intensity-span",
      .stage = Stage::kDetection,
      .unit = Unit::kDecibels,
@@ -174,14 +145,6 @@ constinit const MappingOption kTable[] = {
      .help = "Voxel traversal of a ray",
      .link = WordLink{&Args::ray, [](Options& o, std::string_view w) { o.ray = parseRayAlgorithm(w); },
                       [](const Options& a, const Options& b) { return a.ray == b.ray; }}},
-    {.name = "aggregation",
-     .words = kAggregations,
-     .help = "Inner nodes' occupancy from their children",
-     .link = WordLink{&Args::aggregation,
-                      [](Options& o, std::string_view w) {
-                        o.octree.aggregation = w == "mean" ? InnerAggregation::kMean : InnerAggregation::kMax;
-                      },
-                      [](const Options& a, const Options& b) { return a.octree.aggregation == b.octree.aggregation; }}},
     {.name = "max-range",
      .unit = Unit::kMetres,
      .range = above(0.0),
@@ -197,13 +160,6 @@ constinit const MappingOption kTable[] = {
      .link = NumberLink{&Args::beam_width_deg,
                         {.ref = [](Options& o) -> auto& { return o.beam_width_rad; }},
                         &Args::beam_width_given}},
-    {.name = "range-tolerance",
-     .unit = Unit::kMetres,
-     .range = atLeast(0.0),
-     .unset = {"auto", "a bin plus half a voxel plus the echo's rise (leading edge to peak)"},
-     .help = "A beam's free space ends this far before its obstacle",
-     .link = NumberOrWordLink{&Args::range_tolerance,
-                              {.ref = [](Options& o) -> auto& { return o.range_tolerance_m; }}}},
     {.name = "max-voxel-updates-per-beam",
      .unit = Unit::kCount,
      .range = above(0.0),

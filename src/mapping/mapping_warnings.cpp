@@ -27,8 +27,8 @@ std::string likelyCause(const MappingStats& stats) {
   const DetectionDiagnostics& d = stats.detection;
   const MappingStats::Calibration& c = stats.calibration;
   if (c.min_range_m >= d.reach_m) {
-    return format("the detector's minimum range (%.3g m; --min-range, or --self-reflection, which it never goes below) "
-                  "is beyond the log's reach (%.3g m)",
+    return format("the detector's minimum range (%.3g m; --min-range) is beyond "
+                  "the log's reach (%.3g m)",
                   c.min_range_m, d.reach_m);
   }
   if (d.echoes_before_min_range > 0) {

@@ -186,7 +186,7 @@ INSTANTIATE_TEST_SUITE_P(
                       UsageCase{"CfarWithoutVariant", mapWith({"--detector", "cfar"})},
                       UsageCase{"UnknownSmoothing", mapWith({"--smoothing", "bogus"})},
                       UsageCase{"UnknownRay", mapWith({"--ray", "bogus"})},
-                      UsageCase{"UnknownAggregation", mapWith({"--aggregation", "bogus"})},
+                      UsageCase{"RemovedAggregation", mapWith({"--aggregation", "mean"})},
                       UsageCase{"NegativeBeamWidth", mapWith({"--beam-width", "-1"})},
                       UsageCase{"HalfTurnBeamWidth", mapWith({"--beam-width", "180"})},
                       UsageCase{"FalseAlarmOfOneHalf", mapWith({"--false-alarm", "0.5"})},
@@ -197,7 +197,8 @@ INSTANTIATE_TEST_SUITE_P(
                       UsageCase{"ZeroCfarTraining", mapWith({"--cfar-training", "0"})},
                       UsageCase{"CertainHit", mapWith({"--hit-probability", "1"})},
                       UsageCase{"ZeroBudget", mapWith({"--max-voxel-updates-per-beam", "0"})},
-                      UsageCase{"NegativeSelfReflection", mapWith({"--self-reflection", "-0.5"})},
+                      UsageCase{"RemovedSelfReflection", mapWith({"--self-reflection", "0.5"})},
+                      UsageCase{"RemovedLeadingEdge", mapWith({"--leading-edge", "6"})},
                       UsageCase{"NoSubcommand", {}},
                       UsageCase{"UnknownSubcommand", {"mapp", "{IN}", "-o", "{OUT}/MAP.bt"}}),
     [](const ::testing::TestParamInfo<UsageCase>& info) { return std::string(info.param.name); });
@@ -318,12 +319,18 @@ TEST_F(cliHelp, MapHelpListsItsOptions) {
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_EQ(result.err, "");
   for (const char* option : {"Usage:", "--output", "--png", "--polar-png", "--cartesian-png", "--resolution", "--detector",
-                             "--smoothing", "--ray", "--aggregation", "--self-reflection", "--beam-width", "--quiet",
-                             "--false-alarm", "--min-contrast", "--min-echo-length", "--leading-edge", "--min-range",
-                             "--intensity-span", "--smoothing-range", "--smoothing-bearing", "--cfar-training",
-                             "--cfar-guard", "--max-range", "--range-tolerance", "--max-voxel-updates-per-beam",
-                             "--hit-probability"}) {
+                             "--smoothing", "--ray", "--beam-width", "--quiet", "--false-alarm",
+                             "--min-echo-length", "--min-range", "--intensity-span", "--smoothing-range",
+                             "--smoothing-bearing", "--cfar-training", "--cfar-guard", "--max-range",
+                             "--max-voxel-updates-per-beam", "--hit-probability"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option << " missing from:\n" << result.out;
+  }
+  // Settings the pipeline derives or fixes are not options: the echo's leading edge at the -3 dB
+  // beam's 6 dB, the free space's end from the bin, voxel and rise, the near field's zeroed bins
+  // with --min-range, the threshold from --false-alarm alone, OctoMap's max aggregation.
+  for (const char* removed : {"--leading-edge", "--range-tolerance", "--self-reflection", "--min-contrast",
+                              "--aggregation"}) {
+    EXPECT_EQ(result.out.find(removed), std::string::npos) << removed << " still in:\n" << result.out;
   }
   // Every number's unit is in its help.
   for (const char* unit : {"METRES", "DEGREES", "DB", "PROBABILITY", "VOXEL UPDATES"}) {

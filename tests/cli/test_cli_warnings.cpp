@@ -41,9 +41,9 @@ TEST_F(cliWarnings, MinimumRangeBeyondTheWallsIsNamed) {
 TEST_F(cliWarnings, OptionBeyondTheLogsReachIsNamed) {
   const fs::path dir = root_ / "sim";
   const std::string beams = simulate(*this, run({"simulate", "tank", "-o", dir.string(), "--turns", "2"}), dir);
-  const ProgramRun result = run({"map", beams, "-o", (out_ / "MAP.bt").string(), "-q", "--self-reflection", "1e9"});
+  const ProgramRun result = run({"map", beams, "-o", (out_ / "MAP.bt").string(), "-q", "--min-range", "1e9"});
   EXPECT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_NE(result.err.find("--self-reflection) 1e+09 m is beyond the log's reach"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("--min-range) 1e+09 m is beyond the log's reach"), std::string::npos) << result.err;
   EXPECT_NE(result.out.find("EMPTY MAP"), std::string::npos) << result.out;
 }
 

@@ -62,8 +62,8 @@ TEST(MappingArguments, BadValuesNameTheOption) {
   args.detector = "magic";
   EXPECT_NE(message(args).find("magic"), std::string::npos);
   args = {};
-  args.aggregation = "median";
-  EXPECT_NE(message(args).find("aggregation"), std::string::npos);
+  args.ray = "straight";
+  EXPECT_NE(message(args).find("--ray"), std::string::npos);
   EXPECT_THROW(parseOptionNumber("1e999", "--x", "metres"), ValueError);
   EXPECT_THROW(parseOptionNumber("0", "--x", "metres"), ValueError);
   EXPECT_DOUBLE_EQ(parseOptionNumber("0", "--x", "metres", true), 0.0);

@@ -29,12 +29,9 @@ struct MappingArguments {
   std::string resolution;
   std::string detector;
   double false_alarm = 0.0;
-  double min_contrast_db = 0.0;
   double min_echo_length_m = 0.0;
-  double leading_edge_db = 0.0;
   std::string min_range;
   double max_near_field_m = 0.0;
-  std::string self_reflection;
   std::string intensity_span;
   std::string smoothing;
   double smoothing_range_m = 0.0;
@@ -42,11 +39,9 @@ struct MappingArguments {
   double cfar_training_m = 0.0;
   double cfar_guard_m = 0.0;
   std::string ray;
-  std::string aggregation;
   double max_range_m = 0.0;
   double beam_width_deg = 0.0;
   bool beam_width_given = false;  ///< the user gave the beam width (else the sonar's, withSonarBeam)
-  std::string range_tolerance;
   double max_voxel_updates_per_beam = 0.0;
   double hit_probability = 0.0;
   bool volume = false;  ///< `--3d`
