@@ -267,7 +267,8 @@ void VolumeInversion::flush(OcTree16& map) {
     updateLevels();
   }
   predictLevels();
-  // 2. Each beam's cells up to the end of its first loud run (one more), and those before its first echo.
+  // 2. Each beam's cells up to its first loud run's end (through one-cell gaps, and two cells more),
+  // those before its first echo and those where it proves water.
   const double loud_share = powerOfLevel(options_.candidate_level_db);
   std::size_t longest = 0;
   for (WindowBeam& beam : beams_) {

@@ -23,8 +23,8 @@
 /// Unknowns of a beam (the voxels v with a G_cv): the voxels whose centre lies in the beam's cone
 /// (± `extent_half_widths` half −3 dB widths per plane) in a cell up to the end of its first loud
 /// run (from its first echo on, the first cells at least `candidate_level_db` over
-/// 1 + s_b B_c + s_s S_c, plus one cell: what lies behind the first surface the beam met is hidden
-/// from it), on the water's side of both level planes by more than a voxel (what lies under the
+/// 1 + s_b B_c + s_s S_c, through gaps of one cell, and two cells more: what lies behind the first
+/// surface the beam met is hidden from it), on the water's side of both level planes by more than a voxel (what lies under the
 /// seabed or above the water surface, or on them, is the level surfaces', level_surfaces.hpp), and
 /// not heard as water by any beam of the window. A voxel is heard as water where it lies in a cell
 /// of a beam where the beam proves water (InversionBeam::free_range_m: before its first echo, and
