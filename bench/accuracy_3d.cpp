@@ -12,9 +12,11 @@
 // range from the sonar (0.25 m rings): count and height extent against 2 r tan(aperture / 2), the
 // vertical band a static head must give (docs/mapping-3d.md).
 //
-// Usage: sonarmap_accuracy_3d [RESOLUTION_M | auto] [PRESET ... | LOG] [--detector NAME]   (defaults: 0.05,
-// micron; auto: each log's automatic resolution, autoResolutionForLog, as `sonarmap map` without
-// --resolution; --detector: every model with that detector instead of the default, e.g. evidence)
+// Usage: sonarmap_accuracy_3d [RESOLUTION_M | auto] [PRESET ... | LOG] [--detector NAME] [--models LIST]
+// (defaults: 0.05, micron; auto: each log's automatic resolution, autoResolutionForLog, as `sonarmap
+// map` without --resolution; --detector: every model with that detector instead of the default, e.g.
+// evidence; --models: the comma-separated models to table, of planar, volume, volume-surface-unknown
+// and inversion (BeamModel::kInversion), default the first three)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +42,7 @@ using namespace sonarmap;
 
 struct Model {
   const char* name;
+  const char* key;  ///< its name in --models
   BeamModel beam;
   double water_surface_depth_m = MapperOptions{}.water_surface_depth_m;  ///< NaN: unknown
 };
@@ -154,17 +157,27 @@ int main(int argc, char** argv) {
   }
   std::vector<std::string> presets;
   DetectorOptions detector;
+  std::string wanted = "planar,volume,volume-surface-unknown";
   for (int i = 2; i < argc; ++i) {
     if (std::string(argv[i]) == "--detector" && i + 1 < argc) {
       selectDetector(detector, argv[++i]);
+    } else if (std::string(argv[i]) == "--models" && i + 1 < argc) {
+      wanted = std::string(",") + argv[++i] + ",";
     } else {
       presets.emplace_back(argv[i]);
     }
   }
   if (presets.empty()) presets = {"micron"};
-  const Model models[] = {{"planar", BeamModel::kPlanar},
-                          {"volume", BeamModel::kVolume},
-                          {"volume, water surface unknown", BeamModel::kVolume, std::numeric_limits<double>::quiet_NaN()}};
+  const Model all_models[] = {
+      {"planar", "planar", BeamModel::kPlanar},
+      {"volume", "volume", BeamModel::kVolume},
+      {"volume, water surface unknown", "volume-surface-unknown", BeamModel::kVolume, std::numeric_limits<double>::quiet_NaN()},
+      {"inversion", "inversion", BeamModel::kInversion}};
+  wanted = "," + wanted + ",";
+  std::vector<Model> models;
+  for (const Model& model : all_models) {
+    if (wanted.find(std::string(",") + model.key + ",") != std::string::npos) models.push_back(model);
+  }
   std::printf("| head | mission | model | occupied | precision | off the surface, in water | recall | F1 | "
               "heard recall / F1, 0 dB | heard recall / F1, −6 dB | "
               "surface error median / p90 (m) | erosion | free accuracy | obstacles | voxel updates | mapping (s) | real time / mapping | voxel (m) |\n");

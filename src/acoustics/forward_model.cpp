@@ -111,6 +111,22 @@ void BeamForwardModel::deposit(double centre_m, double span_m, double energy_val
   }
 }
 
+ScattererGain::ScattererGain(const TransducerPattern& pattern, double cross_section_m2) {
+  pattern.validate();
+  acoustics_checks::require(acoustics_checks::nonNegative(cross_section_m2),
+                            "forward model: cross_section_m2 must be a finite number ≥ 0", cross_section_m2);
+  twice_inverse_h_ = 2.0 / pattern.horizontal.width_rad;
+  twice_inverse_v_ = 2.0 / pattern.vertical.width_rad;
+  exponent_h_ = pattern.horizontal.exponent;
+  exponent_v_ = pattern.vertical.exponent;
+  scale_ = cross_section_m2 / equivalentSolidAngle_sr(pattern);
+  gaussian_ = exponent_h_ == 2.0 && exponent_v_ == 2.0;
+}
+
+double equivalentSolidAngle_sr(const TransducerPattern& pattern) {
+  return equivalentBeamWidth_rad(pattern.horizontal) * equivalentBeamWidth_rad(pattern.vertical);
+}
+
 std::optional<ReflectorHit> planeHit(const Eigen::Vector3d& point_map, const Eigen::Vector3d& normal_map,
                                    double reflectivity, const Eigen::Vector3d& origin_map,
                                    const Eigen::Vector3d& direction_map, double max_range_m) {

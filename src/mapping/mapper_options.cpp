@@ -35,7 +35,7 @@ void checkOptionalLength(const std::optional<double>& value_m, const char* name,
 /// The voxel updates of one beam reaching `range_m` (> 0) at `voxel_m` (estimateVoxelUpdatesPerBeam).
 double beamUpdates(const MapperOptions& options, double voxel_m, double range_m) {
   const double width_rad = std::max(options.beam_width_rad, voxel_m / range_m);
-  if (options.beam_model == BeamModel::kVolume) {
+  if (mapsBeamVolume(options)) {
     // The free cone (its core) in volume, the shell (whole aperture) in area.
     const double free_rad = std::max(freeVerticalAperture_rad(options), voxel_m / range_m);
     const double aperture_rad = std::max(options.vertical_aperture_rad, voxel_m / range_m);
@@ -70,10 +70,13 @@ RayAlgorithm parseRayAlgorithm(std::string_view name) {
 BeamModel parseBeamModel(std::string_view name) {
   if (name == "planar") return BeamModel::kPlanar;
   if (name == "volume") return BeamModel::kVolume;
-  throw ValueError("unknown beam model '" + std::string(name) + "', expected planar or volume");
+  if (name == "inversion") return BeamModel::kInversion;
+  throw ValueError("unknown beam model '" + std::string(name) + "', expected planar, volume or inversion");
 }
 
 double freeVerticalAperture_rad(const MapperOptions& options) { return 0.5 * options.vertical_aperture_rad; }
+
+bool mapsBeamVolume(const MapperOptions& options) { return options.beam_model != BeamModel::kPlanar; }
 
 bool clearsWithoutObstacle(const MapperOptions& options) { return options.beam_model == BeamModel::kPlanar; }
 
@@ -85,7 +88,7 @@ void MapperOptions::validate() const {
   if (!(beam_width_rad >= 0.0 && beam_width_rad < std::numbers::pi)) {
     throw ValueError("beam width must be within [0, pi) rad, got " + std::to_string(beam_width_rad));
   }
-  if (beam_model == BeamModel::kVolume && !(vertical_aperture_rad > 0.0 && vertical_aperture_rad < std::numbers::pi)) {
+  if (mapsBeamVolume(*this) && !(vertical_aperture_rad > 0.0 && vertical_aperture_rad < std::numbers::pi)) {
     throw ValueError("vertical aperture must be within (0, pi) rad, got " + std::to_string(vertical_aperture_rad));
   }
   if (!(max_voxel_updates_per_beam > 0.0)) {
@@ -96,6 +99,7 @@ void MapperOptions::validate() const {
   smoothing.validate();
   detector.validate();
   extended.validate();
+  inversion.validate();
   octree.occupancy.validate();
 }
 

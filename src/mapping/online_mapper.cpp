@@ -113,6 +113,7 @@ void OnlineMapper::finish() {
     std::unique_ptr<std::future<DetectedSweep>> last = std::move(in_flight_);
     integrate(last->get());
   }
+  mapper_.finish();
 }
 
 void OnlineMapper::emitGroup(std::size_t beams, bool cut) {

@@ -34,7 +34,7 @@ constexpr double kUnresolvedResolution_m = 0.02;
 DetectorOptions detectorOf(const MapperOptions& options) {
   DetectorOptions detector = options.detector;
   detector.beam_width_rad = options.beam_width_rad;
-  if (options.beam_model == BeamModel::kVolume && detector.kind == Detector::kEvidence) {
+  if (mapsBeamVolume(options) && detector.kind == Detector::kEvidence) {
     detector.kind = Detector::kBackgroundSubtracted;
   }
   return detector;
@@ -97,6 +97,10 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
   }
   if (wanted_m <= *options_.resolution_m) return;  // never finer: the map so far would be lost
   // A longer range scale than any before (a Ping360 powers on at 2 m): the map so far, coarser.
+  if (inversion_) {  // the window so far at its own resolution first
+    inversion_->flush(map_);
+    inversion_.reset();
+  }
   map_ = resampledMap(map_, wanted_m);
   options_.resolution_m = wanted_m;
   ++stats_.resolution_changes;
@@ -141,7 +145,7 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
     smoothed.near_field_end_m = recorded.near_field_end_m;
     detection = sonarmap::detectSweep(polar, detector, smoothed);
   }
-  if (options_.beam_model == BeamModel::kVolume) {
+  if (mapsBeamVolume(options_)) {
     addExtendedReturns(polar, detector.background.calibration.background_percentile, detection, options_.extended);
   }
   return detection;
@@ -290,6 +294,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
   const double tolerance_m = work.tolerance_m = rangeTolerance_m(polar);
   const bool clears_without_obstacle = clearsWithoutObstacle(options_);
   const BeamShape shape = beamShape();
+  const bool volume = mapsBeamVolume(options_);
   for (std::size_t row = 0; row < detections.size(); ++row) {
     const Eigen::Isometry3d* sonar_to_map = pose_of(row);
     if (sonar_to_map == nullptr) {
@@ -300,7 +305,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (detection.hasObstacle() && !(std::isfinite(detection.range_m) && detection.range_m > 0.0)) {
       throw ValueError("detection of beam " + std::to_string(row) + " has an obstacle at a range that is not > 0 m");
     }
-    const bool traced = options_.beam_model == BeamModel::kVolume && !detection.hasObstacle() && detection.hasExtendedReturn();
+    const bool traced = volume && !detection.hasObstacle() && detection.hasExtendedReturn();
     if (!detection.hasObstacle() && !clears_without_obstacle && !traced) {  // silence is no proof of water here
       ++stats_.beams_without_evidence;
       continue;
@@ -318,7 +323,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     const double beam_tolerance_m = tolerance_m + (options_.range_tolerance_m ? 0.0 : detection.rise_m);
     double free_range_m = hit ? std::max(0.0, range_m - beam_tolerance_m) : range_m;
     double water_m = -1.0;
-    if (options_.beam_model == BeamModel::kVolume && detection.echo_onset_m < range_m) {
+    if (volume && detection.echo_onset_m < range_m) {
       // The cone met something before: a weak return it cannot call an obstacle, but no water.
       water_m = detection.echo_onset_m;
       free_range_m = std::min(free_range_m, std::max(0.0, water_m - tolerance_m));
@@ -339,7 +344,7 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     beam.surface_z_m = -options_.water_surface_depth_m;  // nedToMap: the map's z is −depth
     std::optional<PlannedBeam> obstacle;  // a loud trace: the obstacle it was detected as
     const std::optional<LoudReturn> loud =
-        hit && options_.beam_model == BeamModel::kVolume ? loudReturn(detection) : std::nullopt;
+        hit && volume ? loudReturn(detection) : std::nullopt;
     if (traced) {
       beam.trace_onset_m = detection.extended_onset_m;
       beam.trace_end_m = std::min(detection.extended_end_m, range_m);
@@ -363,12 +368,14 @@ void SonarMapper::integrateRows(const PolarImage& polar, const std::vector<BeamD
     if (beam.traced()) ++stats_.extended_returns;
     if (beam.hit) ++stats_.obstacles;
   }
-  if (options_.beam_model == BeamModel::kVolume) placeSeabedTraces();
-  planBeams();
-  keySweep();
-  integrateFreeCells();
-  integrateHits();
-  if (options_.beam_model == BeamModel::kVolume) addLevelSurfaceLooks(polar, detections, pose_of);
+  if (volume) placeSeabedTraces();
+  if (options_.beam_model != BeamModel::kInversion) {  // the inversion places no faces, traces nor free rays
+    planBeams();
+    keySweep();
+    integrateFreeCells();
+    integrateHits();
+  }
+  if (volume) addLevelSurfaceLooks(polar, detections, pose_of);
   if (options_.octree.lazy) map_.updateInnerOccupancy();
   if (whole_sweep) ++stats_.sweeps;
 }
@@ -394,7 +401,12 @@ void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vecto
   if (std::isfinite(options_.water_surface_depth_m)) {
     surface = LevelPlane{Eigen::Vector3d(0.0, 0.0, -options_.water_surface_depth_m), -Eigen::Vector3d::UnitZ()};
   }
-  if (!seabed && !surface) return;
+  const bool inverting = options_.beam_model == BeamModel::kInversion;
+  if (!seabed && !surface && !inverting) return;
+  if (inverting && !inversion_) {
+    const TransducerPattern pattern{{options_.beam_width_rad, 2.0}, {options_.vertical_aperture_rad, 2.0}};
+    inversion_ = std::make_unique<VolumeInversion>(pattern, resolution_m, options_.inversion, options_.threads);
+  }
   if (!work.seabed_looks) {
     work.seabed_looks.emplace(resolution_m);
     work.surface_looks.emplace(resolution_m);
@@ -411,6 +423,13 @@ void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vecto
                           cells[row].cell_power, bins_per_cell, **plane);
       }
     }
+    if (inverting) {
+      const BeamDetection& detection = detections[row];
+      const bool echoed = detection.hasObstacle() || detection.hasExtendedReturn();  // else silence: no proof of water
+      inversion_->addBeam({*pose, bearing_rad, cells[row].cell_power, cells[row].water_range_m, echoed ? cells[row].water_range_m : 0.0,
+                           seabed, surface},
+                          map_);
+    }
   }
   const auto occupy = [&](const Eigen::Vector3d& point_m) {
     if (const std::optional<Key16> key = map_.coder().keyOf(point_m)) {
@@ -420,6 +439,12 @@ void SonarMapper::addLevelSurfaceLooks(const PolarImage& polar, const std::vecto
   };
   work.seabed_looks->drainHeard(occupy);
   work.surface_looks->drainHeard(occupy);
+}
+
+void SonarMapper::finish() {
+  if (!inversion_) return;
+  inversion_->flush(map_);
+  map_.updateInnerOccupancy();
 }
 
 namespace {

@@ -130,7 +130,7 @@ void SonarMapper::checkLoudTraces() {
 
 BeamShape SonarMapper::beamShape() const {
   return {options_.beam_width_rad,
-          options_.beam_model == BeamModel::kVolume ? options_.vertical_aperture_rad : 0.0};
+          mapsBeamVolume(options_) ? options_.vertical_aperture_rad : 0.0};
 }
 
 bool SonarMapper::beamInsideMap(const PlannedBeam& beam) {

@@ -23,6 +23,7 @@
 /// pattern being symmetric in v) and the map frame of the pose `sonar_to_map`. Ranges in metres,
 /// angles in radians.
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -132,6 +133,38 @@ class BeamForwardModel {
   double horizontal_step_rad_ = 0.0;
   double vertical_step_rad_ = 0.0;
 };
+
+/// The echo of a small scatterer (a voxel of a surface, a pile's patch) in the units of the file's
+/// comment, for many scatterers of one cross-section and one pattern (checked once: for the
+/// mapper's inner loops): p_h(h)² p_v(v)² · σ / (r² Ω) at range r in direction (h, v) from the
+/// beam's axis, σ the cross-section (ρ cos^k θ · A of surfaceEchoPower, sonar_equation.hpp), Ω the
+/// beam's two-way equivalent solid angle (equivalentSolidAngle_sr). The mapper's inversion
+/// (mapping/volume_inversion.hpp) explains each range cell as the water plus a sum of these.
+class ScattererGain {
+ public:
+  /// @throws ValueError for an invalid pattern or a cross-section not ≥ 0 and finite.
+  ScattererGain(const TransducerPattern& pattern, double cross_section_m2);
+  /// The echo at `range_m` (> 0; not checked) in direction (`horizontal_rad`, `elevation_rad`).
+  double operator()(double horizontal_rad, double elevation_rad, double range_m) const noexcept {
+    return twoWay(horizontal_rad, elevation_rad) * scale_ / (range_m * range_m);
+  }
+  /// The two-way pattern p_h(h)² p_v(v)² of that direction (2^−2|2θ/W|^n per plane).
+  double twoWay(double horizontal_rad, double elevation_rad) const noexcept {
+    const double h = std::abs(horizontal_rad * twice_inverse_h_), v = std::abs(elevation_rad * twice_inverse_v_);
+    if (gaussian_) return std::exp2(-2.0 * (h * h + v * v));
+    return std::exp2(-2.0 * (std::pow(h, exponent_h_) + std::pow(v, exponent_v_)));
+  }
+
+ private:
+  double twice_inverse_h_, twice_inverse_v_, exponent_h_, exponent_v_, scale_;
+  bool gaussian_;  ///< both exponents 2
+};
+
+/// The two-way equivalent solid angle Ω = ∫ p_h² p_v² dΩ of a pattern, steradians: the product of
+/// both planes' equivalent widths (equivalentBeamWidth_rad; cos v ≈ 1 over the narrow plane's
+/// width, Urick 1983 ch. 8).
+/// @throws ValueError for an invalid pattern.
+double equivalentSolidAngle_sr(const TransducerPattern& pattern);
 
 /// The nearest hit of a ray on the plane through `point_map` with unit normal `normal_map` and
 /// reflectivity `reflectivity`, seen from its front side (the normal towards the ray's origin),

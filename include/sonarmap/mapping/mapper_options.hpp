@@ -14,6 +14,7 @@
 #include "sonarmap/detection/detectors.hpp"
 #include "sonarmap/detection/extended_returns.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
+#include "sonarmap/mapping/volume_inversion.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
 #include "sonarmap/sonar/beam_source.hpp"
@@ -41,9 +42,14 @@ enum class BeamModel {
   /// (docs/mapping-3d.md; Moravec & Elfes 1985, Elfes 1987, Fairfield et al. 2007, Ribas et al.
   /// 2008). A 3D map once the vehicle moves, turns or tilts the sonar.
   kVolume,
+  /// The whole beam by the forward model inverted jointly over many beams (volume_inversion.hpp):
+  /// the level surfaces as kVolume maps them (level_surfaces.hpp), their expected echoes explained
+  /// first, and what stands in the water as voxel reflectivities explaining the rest of each range
+  /// cell's power. A 3D map; docs/mapping-3d.md.
+  kInversion,
 };
 
-/// Parses "planar" or "volume". @throws ValueError for any other name.
+/// Parses "planar", "volume" or "inversion". @throws ValueError for any other name.
 BeamModel parseBeamModel(std::string_view name);
 
 struct MapperOptions;
@@ -54,6 +60,9 @@ struct MapperOptions;
 /// erased them (erosion on the simulated missions: docs/accuracy.md). The obstacle's face and the
 /// carving of other beams' faces use the whole aperture.
 double freeVerticalAperture_rad(const MapperOptions& options);
+/// Whether the options' beam model maps the beam's volume (kVolume, kInversion): a 3D map with the
+/// volume model's detection (loud echoes and extended returns) and level surfaces.
+bool mapsBeamVolume(const MapperOptions& options);
 /// Whether a beam without an obstacle clears (up to BeamDetection::echo_onset_m, where a return
 /// below the obstacle threshold starts): the planar model yes (and it carves other beams' arcs up
 /// to its BeamDetection::water_range_m), the volume model no. In 3D a beam's silence is no proof
@@ -136,6 +145,8 @@ struct MapperOptions {
   /// mapper's beams, detected a few at a time, use their first returns. These are the detector's
   /// false-alarm rates and windows (probabilities, looks, degrees).
   ExtendedReturnOptions extended{};
+  /// The inversion model's parameters (BeamModel::kInversion).
+  VolumeInversionOptions inversion{};
   /// Range tolerance of the inverse sensor model, metres, ≥ 0: a beam's free space ends this much
   /// before its obstacle, so the obstacle's range uncertainty (a bin, the pulse, a voxel) does not
   /// clear what the same surface gave in earlier sweeps; an arc point of the obstacle is dropped

@@ -149,6 +149,10 @@ class SonarMapper {
   /// @throws ValueError when `detections` or the poses differ in length from the polar image.
   void integrateBeams(const PolarImage& polar, const std::vector<BeamDetection>& detections,
                       const std::vector<std::optional<Eigen::Isometry3d>>& sonar_to_map_per_row);
+  /// Integrates what the mapper still holds: the inversion model's last window of beams
+  /// (volume_inversion.hpp); nothing for the other models. mapSonarLog and OnlineMapper::finish
+  /// call it; the map is final afterwards.
+  void finish();
   const OcTree16& map() const { return map_; }
   OcTree16& map() { return map_; }
   const MappingStats& stats() const { return stats_; }
@@ -183,6 +187,8 @@ class SonarMapper {
   /// The volume model: every posed beam's looks at the level surfaces (level_surfaces.hpp: the
   /// seabed fitted so far, the water surface at its depth), and the columns they have now heard
   /// as occupied cells.
+  /// The inversion model: also adds every posed beam, with the level planes its looks went to, to
+  /// the inversion's window.
   template <class PoseOfRow>
   void addLevelSurfaceLooks(const PolarImage& polar, const std::vector<BeamDetection>& detections, PoseOfRow&& pose_of);
   /// Plans work_->beams into work_->rays and hit_points, one fan per group of nearby poses.
@@ -206,6 +212,7 @@ class SonarMapper {
   OcTree16 map_;
   MappingStats stats_;
   std::unique_ptr<SweepWork> work_;
+  std::unique_ptr<VolumeInversion> inversion_;  ///< the inversion model's window of beams
 };
 
 // Progress callbacks (core/progress.hpp) count sweeps here: (sweeps done, sweeps in total).
