@@ -92,7 +92,9 @@ void expectKeyIntoMatchesKeyOf(double resolution_m, double extent_m) {
     typename KeyCoder<Depth>::KeyType key;
     const auto expected = coder.keyOf(point);
     ASSERT_EQ(coder.keyInto(point, key), expected.has_value()) << point.transpose();
-    if (expected) EXPECT_EQ(key, *expected) << point.transpose();
+    if (expected) {
+      EXPECT_EQ(key, *expected) << point.transpose();
+    }
   }
 }
 
@@ -126,6 +128,28 @@ TEST(MortonCode, RoundTripsAndOrdersAsTheTreeIsWalked) {
   EXPECT_EQ(mortonCode(Key16{{0, 1, 0}}), 2U);
   EXPECT_EQ(mortonCode(Key16{{0, 0, 1}}), 4U);
   EXPECT_EQ(mortonCode(Key16{{2, 0, 0}}), 8U);
+}
+
+/// The codes of the byte tables against the bit-interleaving formula, both ways, on random keys.
+template <int Depth>
+void expectMortonMatchesInterleaving() {
+  std::mt19937_64 random(Depth);
+  using Index = typename Key<Depth>::Index;
+  for (int i = 0; i < 20000; ++i) {
+    Key<Depth> key;
+    for (int axis = 0; axis < 3; ++axis) key[axis] = static_cast<Index>(random() & ((std::uint64_t{1} << Depth) - 1));
+    const std::uint64_t interleaved = detail::spreadEveryThirdBit(key[0]) | (detail::spreadEveryThirdBit(key[1]) << 1) |
+                                      (detail::spreadEveryThirdBit(key[2]) << 2);
+    ASSERT_EQ(mortonCode(key), interleaved);
+    ASSERT_EQ(keyOfMortonCode<Depth>(interleaved), key);
+  }
+}
+
+TEST(MortonCode, ByteTablesMatchBitInterleaving) {
+  expectMortonMatchesInterleaving<1>();
+  expectMortonMatchesInterleaving<8>();
+  expectMortonMatchesInterleaving<16>();
+  expectMortonMatchesInterleaving<21>();
 }
 
 TEST(LogOdds, OctoMapDefaults) {
