@@ -220,7 +220,6 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
   // A cone holds directions within this angle of its axis (both half-widths at once).
   const double cone_radius_rad = std::hypot(half_rad, half_aperture_rad);
   std::vector<std::size_t> candidates;
-  std::vector<HitPoint> shell;
   std::vector<char> row_kept;
   std::vector<double> column_bearing_rad;     // each column's bearing, sonar frame
   std::vector<Eigen::Vector2d> column_dirs;  // cos, sin of each column's bearing
@@ -296,14 +295,15 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
       column_face_m.clear();
       for (const double bearing_rad : column_bearing_rad) column_face_m.push_back(face.at(bearing_rad));
     }
-    shell.clear();
+    const std::size_t first = hits.size();  // the beam's shell: hits[first, end)
     row_kept.assign(static_cast<std::size_t>(rows) + 1, 0);
     for (int r = 0; r <= rows; ++r) {
       const double elevation = -half_aperture_rad + shape.vertical_aperture_rad * r / rows;
       const double weight = evidence == ArcEvidence::kBeamPattern ? twoWayPattern(elevation, shape.vertical_aperture_rad) : 1.0;
+      const double cos_elevation = std::cos(elevation), sin_elevation = std::sin(elevation);
       for (std::size_t c = 0; c < column_dirs.size(); ++c) {
         const Eigen::Vector2d& dir = column_dirs[c];
-        const Eigen::Vector3d unit(std::cos(elevation) * dir.x(), std::cos(elevation) * dir.y(), std::sin(elevation));
+        const Eigen::Vector3d unit(cos_elevation * dir.x(), cos_elevation * dir.y(), sin_elevation);
         double point_range_m = range_m;
         if (surface == ObstacleSurface::kVertical) {
           const double sin_slope = up.dot(unit);
@@ -314,15 +314,14 @@ void planShellArcs(const std::vector<PlannedBeam>& beams, const BeamShape& shape
         }
         const Eigen::Vector3d point_m = beam.sonar_to_map * (point_range_m * unit);
         if (carved(point_m)) continue;
-        shell.push_back({point_m, weight});
+        hits.push_back({point_m, weight});
         row_kept[static_cast<std::size_t>(r)] = 1;
       }
     }
     if (evidence == ArcEvidence::kSpreadUniform) {
       const auto kept_rows = static_cast<double>(std::count(row_kept.begin(), row_kept.end(), 1));
-      for (HitPoint& point : shell) point.weight = 1.0 / kept_rows;
+      for (std::size_t i = first; i < hits.size(); ++i) hits[i].weight = 1.0 / kept_rows;
     }
-    hits.insert(hits.end(), shell.begin(), shell.end());
   }
 }
 

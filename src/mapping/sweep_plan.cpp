@@ -190,16 +190,25 @@ void SonarMapper::keySweep() {
   work.box_lo = work.box_hi = *map_.coder().keyOf(work.beams.front().sonar_to_map.translation());
   growKeyBoxByRays(map_.coder(), work.rays, work.box_lo, work.box_hi);
   work.hits.reserve(work.hit_points.size());
+  Key16 key, previous_key{};
+  std::uint64_t previous_code = 0;
   for (const HitPoint& hit : work.hit_points) {
-    if (const auto key = map_.coder().keyOf(hit.point_m)) {
-      // std::lround of a value in [0, 65535], without its library call: the integer part, plus one
-      // from a fraction of one half (exact: subtracting the integer part rounds nothing).
-      const double scaled = std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF;
-      const auto whole = static_cast<std::uint64_t>(scaled);
-      const std::uint64_t weight = whole + (scaled - static_cast<double>(whole) >= 0.5 ? 1 : 0);
-      work.hits.push_back(mortonCode(*key) << 16 | weight);
-      growKeyBox(work.box_lo, work.box_hi, *key);
+    if (!map_.coder().keyInto(hit.point_m, key)) continue;
+    // std::lround of a value in [0, 65535], without its library call: the integer part, plus one
+    // from a fraction of one half (exact: subtracting the integer part rounds nothing).
+    const double scaled = std::clamp(hit.weight, 0.0, 1.0) * 0xFFFF;
+    const auto whole = static_cast<std::uint64_t>(scaled);
+    const std::uint64_t weight = whole + (scaled - static_cast<double>(whole) >= 0.5 ? 1 : 0);
+    // Neighbouring points of a shell often share a cell: one entry, the larger weight (what the
+    // reduction below keeps), and no second code or box test.
+    if (!work.hits.empty() && key == previous_key) {
+      work.hits.back() = std::max(work.hits.back(), previous_code | weight);
+      continue;
     }
+    previous_key = key;
+    previous_code = mortonCode(key) << 16;
+    work.hits.push_back(previous_code | weight);
+    growKeyBox(work.box_lo, work.box_hi, key);
   }
   work.crossed.reset(work.box_lo, work.box_hi);
   // The arc points in tree order (by cell only, stable), then one entry per cell with its largest weight.

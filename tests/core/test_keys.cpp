@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "sonarmap/core/key_coder.hpp"
 #include "sonarmap/core/log_odds.hpp"
@@ -69,6 +71,41 @@ TEST(KeyCoder, DeepTreesAddressFarBeyondDepth16) {
   EXPECT_FALSE(KeyCoder<8>(0.1).indexOf(12.9).has_value());
 }
 
+/// keyInto gives keyOf's answer: the same key, or false where keyOf gives none.
+template <int Depth>
+void expectKeyIntoMatchesKeyOf(double resolution_m, double extent_m) {
+  const KeyCoder<Depth> coder(resolution_m);
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> coordinate(-extent_m, extent_m);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 20000; ++i) points.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+  // Cell boundaries, either side of zero, the map's edges, and what is not a number.
+  const double edge_m = KeyCoder<Depth>::offset() * resolution_m;
+  for (const double v : {0.0, -0.0, resolution_m, -resolution_m, 0.5 * resolution_m, -0.5 * resolution_m, edge_m,
+                         -edge_m, std::nextafter(edge_m, 0.0), std::nextafter(-edge_m, -2.0 * edge_m),
+                         std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    points.emplace_back(v, 0.25, -0.25);
+    points.emplace_back(0.1, v, 0.1);
+    points.emplace_back(-0.1, -0.1, v);
+  }
+  for (const Eigen::Vector3d& point : points) {
+    typename KeyCoder<Depth>::KeyType key;
+    const auto expected = coder.keyOf(point);
+    ASSERT_EQ(coder.keyInto(point, key), expected.has_value()) << point.transpose();
+    if (expected) {
+      EXPECT_EQ(key, *expected) << point.transpose();
+    }
+  }
+}
+
+TEST(KeyCoder, KeyIntoMatchesKeyOf) {
+  expectKeyIntoMatchesKeyOf<16>(0.02, 700.0);  // beyond the map's ±655.36 m too
+  expectKeyIntoMatchesKeyOf<16>(0.05, 10.0);
+  expectKeyIntoMatchesKeyOf<8>(0.1, 15.0);
+  expectKeyIntoMatchesKeyOf<21>(0.013, 1e5);
+  expectKeyIntoMatchesKeyOf<60>(1e-3, 1e9);
+}
+
 TEST(ChildIndex, XIsBit0YBit1ZBit2) {
   Key16 key{{0x8000, 0x0000, 0x8000}};
   EXPECT_EQ(childIndex(key, 0), 5U);
@@ -91,6 +128,28 @@ TEST(MortonCode, RoundTripsAndOrdersAsTheTreeIsWalked) {
   EXPECT_EQ(mortonCode(Key16{{0, 1, 0}}), 2U);
   EXPECT_EQ(mortonCode(Key16{{0, 0, 1}}), 4U);
   EXPECT_EQ(mortonCode(Key16{{2, 0, 0}}), 8U);
+}
+
+/// The codes of the byte tables against the bit-interleaving formula, both ways, on random keys.
+template <int Depth>
+void expectMortonMatchesInterleaving() {
+  std::mt19937_64 random(Depth);
+  using Index = typename Key<Depth>::Index;
+  for (int i = 0; i < 20000; ++i) {
+    Key<Depth> key;
+    for (int axis = 0; axis < 3; ++axis) key[axis] = static_cast<Index>(random() & ((std::uint64_t{1} << Depth) - 1));
+    const std::uint64_t interleaved = detail::spreadEveryThirdBit(key[0]) | (detail::spreadEveryThirdBit(key[1]) << 1) |
+                                      (detail::spreadEveryThirdBit(key[2]) << 2);
+    ASSERT_EQ(mortonCode(key), interleaved);
+    ASSERT_EQ(keyOfMortonCode<Depth>(interleaved), key);
+  }
+}
+
+TEST(MortonCode, ByteTablesMatchBitInterleaving) {
+  expectMortonMatchesInterleaving<1>();
+  expectMortonMatchesInterleaving<8>();
+  expectMortonMatchesInterleaving<16>();
+  expectMortonMatchesInterleaving<21>();
 }
 
 TEST(LogOdds, OctoMapDefaults) {

@@ -115,25 +115,58 @@ constexpr std::uint64_t gatherEveryThirdBit(std::uint64_t v) noexcept {
 }
 }  // namespace detail
 
+namespace detail {
+/// kSpreadByte[v]: spreadEveryThirdBit(v) of a byte, for mortonCode.
+inline constexpr auto kSpreadByte = [] {
+  std::array<std::uint32_t, 256> table{};
+  for (std::uint64_t v = 0; v < 256; ++v) table[v] = static_cast<std::uint32_t>(spreadEveryThirdBit(v));
+  return table;
+}();
+
+/// kGatherByte[j][v]: the axes' bits held by byte j = v of a Morton code, gathered: x in bits
+/// 0…20, y in 21…41, z in 42…62 (bit 8j + k of the code is bit (8j + k) / 3 of axis (8j + k) % 3).
+inline constexpr auto kGatherByte = [] {
+  std::array<std::array<std::uint64_t, 256>, 8> table{};
+  for (unsigned j = 0; j < 8; ++j)
+    for (unsigned v = 0; v < 256; ++v)
+      for (unsigned k = 0; k < 8; ++k) {
+        const unsigned m = 8 * j + k;
+        if (((v >> k) & 1U) != 0 && m < 63) table[j][v] |= std::uint64_t{1} << (21 * (m % 3) + m / 3);
+      }
+  return table;
+}();
+}  // namespace detail
+
 /// A key of depth ≤ 21 as its Morton code (Z-order, Morton 1966): bit 3i + a of the code is bit i
 /// of axis a (x = 0, y = 1, z = 2), 48 bits for depth 16. Ascending codes are the order in which a
 /// depth-first walk of the octree meets the voxels (children 0 … 7 at every level, childIndex()),
-/// so keys updated in this order share the longest paths from the root.
+/// so keys updated in this order share the longest paths from the root. Computed a byte of each
+/// axis at a time (a table of 256 spread bytes).
 template <int Depth>
   requires(Depth <= 21)
 constexpr std::uint64_t mortonCode(const Key<Depth>& key) noexcept {
-  return detail::spreadEveryThirdBit(key[0]) | (detail::spreadEveryThirdBit(key[1]) << 1) |
-         (detail::spreadEveryThirdBit(key[2]) << 2);
+  const auto spread = [](std::uint64_t v) {
+    v &= (std::uint64_t{1} << Depth) - 1;
+    std::uint64_t out = 0;
+    for (int byte = 0; 8 * byte < Depth; ++byte) {
+      out |= static_cast<std::uint64_t>(detail::kSpreadByte[(v >> (8 * byte)) & 0xFFU]) << (24 * byte);
+    }
+    return out;
+  };
+  return spread(key[0]) | (spread(key[1]) << 1) | (spread(key[2]) << 2);
 }
 
-/// The key whose mortonCode() is `code`.
+/// The key whose mortonCode() is `code` (bits beyond 3 · Depth are ignored), a byte of the code at
+/// a time (a table of each byte's bits gathered per axis).
 template <int Depth>
   requires(Depth <= 21)
 constexpr Key<Depth> keyOfMortonCode(std::uint64_t code) noexcept {
   using Index = typename Key<Depth>::Index;
-  return Key<Depth>{{static_cast<Index>(detail::gatherEveryThirdBit(code)),
-                     static_cast<Index>(detail::gatherEveryThirdBit(code >> 1)),
-                     static_cast<Index>(detail::gatherEveryThirdBit(code >> 2))}};
+  std::uint64_t axes = 0;
+  for (int byte = 0; 8 * byte < 3 * Depth; ++byte) axes |= detail::kGatherByte[static_cast<std::size_t>(byte)][(code >> (8 * byte)) & 0xFFU];
+  constexpr std::uint64_t mask = (std::uint64_t{1} << Depth) - 1;
+  return Key<Depth>{{static_cast<Index>(axes & mask), static_cast<Index>((axes >> 21) & mask),
+                     static_cast<Index>((axes >> 42) & mask)}};
 }
 
 /// Hash of a key, for unordered sets of keys (packKey() for depth ≤ 21).

@@ -58,6 +58,26 @@ class KeyCoder {
     return key;
   }
 
+  /// keyOf without the optional, for loops over many points: writes the key of `point_m` (metres,
+  /// world frame) to `key` and returns true, or returns false, leaving `key` unspecified, when any
+  /// axis lies outside the map or is not finite. The same keys as keyOf. Nothing is thrown.
+  bool keyInto(const Eigen::Vector3d& point_m, KeyType& key) const {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double scaled = point_m[axis] * inv_resolution_;
+      // floor(scaled) lies in [-offset, offset) exactly when scaled does (offset is an integer).
+      if (!(scaled >= -offset() && scaled < offset())) return false;  // also rejects NaN
+      if constexpr (Depth <= 53) {
+        // floor by truncation, one less below zero: exact, every cell here fits a long long.
+        auto cell = static_cast<long long>(scaled);
+        if (scaled < static_cast<double>(cell)) --cell;
+        key[axis] = static_cast<Index>(cell + (1LL << (Depth - 1)));
+      } else {
+        key[axis] = indexFromCell(std::floor(scaled));
+      }
+    }
+    return true;
+  }
+
   /// Key of a point in metres.
   /// @throws OutOfMapError if the point is outside the map or not finite.
   KeyType keyOfChecked(const Eigen::Vector3d& point_m) const {

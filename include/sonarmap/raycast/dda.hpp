@@ -33,6 +33,7 @@
 #include <limits>
 #include <optional>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -153,11 +154,10 @@ void snapToEnd(DdaAxis<Index>& axis, VisitCurrent& visit_current) {
 template <bool kTellAxis, int Depth, class Visitor>
 [[gnu::always_inline]] inline bool walkDDA(const KeyCoder<Depth>& coder, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m,
              Visitor&& visit) {
-  const std::optional<Key<Depth>> origin_key = coder.keyOf(origin_m);
-  const std::optional<Key<Depth>> end_key = coder.keyOf(end_m);
-  if (!origin_key || !end_key) return false;
-  visit(*origin_key, SteppedAxis<-1>{});
-  if (*origin_key == *end_key) return true;
+  Key<Depth> origin_key, end_key;
+  if (!coder.keyInto(origin_m, origin_key) || !coder.keyInto(end_m, end_key)) return false;
+  visit(std::as_const(origin_key), SteppedAxis<-1>{});
+  if (origin_key == end_key) return true;
 
   // --- Initialisation phase (A&W §3), with t in metres along the ray. ---
   const Eigen::Vector3d direction_m = end_m - origin_m;
@@ -165,7 +165,7 @@ template <bool kTellAxis, int Depth, class Visitor>
   const double resolution_m = coder.resolution_m();
   const double inv_resolution = 1.0 / resolution_m;
   const auto axis = [&](int a) {
-    return makeDdaAxis((*origin_key)[a], (*end_key)[a], origin_m[a], direction_m[a], length_m, resolution_m,
+    return makeDdaAxis(origin_key[a], end_key[a], origin_m[a], direction_m[a], length_m, resolution_m,
                        inv_resolution);
   };
   auto x = axis(0);
