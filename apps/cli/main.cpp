@@ -17,6 +17,7 @@
 #include "localize_command.hpp"
 #include "map_command.hpp"
 #include "simulate_command.hpp"
+#include "suggest.hpp"
 #include "view_command.hpp"
 #include "sonarmap/core/errors.hpp"
 
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& version) {
     return app.exit(version);
   } catch (const CLI::ParseError& error) {
-    return fail(2, error.what());
+    return fail(2, sonarmap::cli::parseErrorMessage(app, std::vector<std::string>(argv + 1, argv + argc), error).c_str());
   }
   for (const sonarmap::cli::Command& command : commands) {
     if (!command.parser->parsed()) continue;

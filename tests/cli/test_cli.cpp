@@ -203,6 +203,33 @@ INSTANTIATE_TEST_SUITE_P(
                       UsageCase{"UnknownSubcommand", {"mapp", "{IN}", "-o", "{OUT}/MAP.bt"}}),
     [](const ::testing::TestParamInfo<UsageCase>& info) { return std::string(info.param.name); });
 
+using cliMistyped = CliTest;
+
+// A mistyped command or option is answered with the nearest names and the usage line, on one line.
+TEST_F(cliMistyped, CommandIsAnsweredWithTheNearestCommand) {
+  const ProgramRun result = run({"mapp", kTankLog.string(), "-o", (out_ / "MAP.bt").string()});
+  expectError(result, 2);
+  EXPECT_NE(result.err.find("unknown command `mapp`: did you mean `map`?"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("Usage: sonarmap COMMAND"), std::string::npos) << result.err;
+  EXPECT_NE(run({"locallize"}).err.find("did you mean `localize`?"), std::string::npos);
+  const ProgramRun far = run({"photograph"});
+  expectError(far, 2);
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;  // nothing is near
+}
+
+TEST_F(cliMistyped, OptionIsAnsweredWithTheNearestOptionsOfItsCommand) {
+  const ProgramRun result =
+      run({"map", kTankLog.string(), "-o", (out_ / "MAP.bt").string(), "--resolutoin", "0.1"});
+  expectError(result, 2);
+  EXPECT_NE(result.err.find("unknown option `--resolutoin`: did you mean `--resolution`?"), std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("Usage: sonarmap map [OPTIONS]"), std::string::npos) << result.err;
+  EXPECT_NE(run({"map", kTankLog.string(), "-o", (out_ / "MAP.bt").string(), "--vertical-apperture=30"})
+                .err.find("did you mean `--vertical-aperture`?"),
+            std::string::npos);
+  EXPECT_EQ(listDir(out_), Names{});
+}
+
 using cliUsageOk = CliTest;
 
 TEST_F(cliUsageOk, EveryDetectorNamePassesTheUsageCheck) {
