@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "help_groups.hpp"
 #include "map_command.hpp"
 #include "map_outputs.hpp"
 #include "output_dir.hpp"
@@ -204,16 +205,11 @@ void run(const DemoArgs& args) {
 }  // namespace
 
 Command addDemoCommand(CLI::App& app, DemoArgs& args) {
-  CLI::App* cmd = app.add_subcommand(
-      "demo", "Simulate the built-in tank and map it, and a moving 3D mission and map it in 3D (needs no data)");
-  cmd->add_option("-o,--output", args.output_dir,
-                  "Output folder (created when missing): the static tank (tank.bt, tank.html, tank.png, tank_polar.png, "
-                  "tank_cartesian.png, beams.csv, scene.txt), and in 3d-mission/ the Micron flying a loop over the "
-                  "quay3d scene with its sonar tilted 25 degrees down, mapped with --3d at 5 cm (map.bt, "
-                  "map.html, map_top.png, map_side.png, beams.csv, nav.csv, truth_nav.csv, scene.txt); it prints how "
-                  "to score that map with sonarmap eval (also against the surface its beams heard)")
-      ->required();
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  CLI::App* cmd = app.add_subcommand("demo", "Simulate a tank and a 3D mission, map and score them (needs no data)");
+  cmd->add_option("-o,--output", args.output_dir, "Output folder (created when missing)")
+      ->required()
+      ->group(help_group::kOutput);
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};
 }
 
