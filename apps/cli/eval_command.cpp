@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include "eval_scoring_file.hpp"
 #include "help_groups.hpp"
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -57,7 +58,8 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   CLI::App* cmd = app.add_subcommand("eval", "Score a map (.bt/.ot) against a ground-truth scene, 2D or 3D");
   cmd->add_option("map", args.map, "Map to score: .bt or .ot")->required();
   cmd->add_option("--truth", args.truth, "Scene file, or a built-in scene: " + builtinNames(" | "))
-      ->required()
+      ->group(help_group::kInput);
+  cmd->add_option("--scoring", args.scoring, "Scoring file: eval's options as JSON (demo's scoring.json)")
       ->group(help_group::kInput);
   cmd->add_option("--z-min", args.z_min_m, "Lowest voxel centre scored (m)")->group(help_group::kScoring);
   cmd->add_option("--z-max", args.z_max_m, "Highest voxel centre scored (m)")->group(help_group::kScoring);
@@ -74,7 +76,8 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
       ->delimiter(',')
       ->allow_extra_args(false)
       ->group(help_group::kScoring);
-  cmd->add_option("--vertical-aperture", args.vertical_aperture_deg, "With --sensor-pose: field of view (deg)")
+  cmd->add_option("--vertical-aperture", args.vertical_aperture_deg,
+                  "With --sensor-pose: the sonar's vertical aperture (deg)")
       ->group(help_group::kScoring);
   addHeardOptions(*cmd, args.heard);
   cmd->add_option("--png", args.png, "Also write the map coloured by distance to the truth (PNG)")
@@ -87,6 +90,8 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   auto checked = std::make_shared<Checked>();
   return {cmd,
           [cmd, &args, checked] {
+            if (!args.scoring.empty()) applyScoringFile(args.scoring, *cmd, args);
+            if (args.truth.empty()) throw ValueError("eval needs --truth, or a --scoring file naming the truth");
             checked->options = toGroundTruthOptions(*cmd, args);
             checked->heard = toHeardRequest(*cmd, args.heard);
           },
@@ -94,7 +99,10 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
 }
 
 GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& args) {
-  const auto given = [&](const std::string& flag) { return cmd.count(flag) > 0; };
+  const auto given = [&](const std::string& flag) {
+    return cmd.count(flag) > 0 ||
+           std::find(args.file_options.begin(), args.file_options.end(), flag) != args.file_options.end();
+  };
   GroundTruthOptions options;
   options.tolerance_m = args.tolerance_m;
   if (given("--z-min")) options.z_min_m = args.z_min_m;
