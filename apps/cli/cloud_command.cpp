@@ -1,5 +1,7 @@
 #include "cloud_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -87,14 +89,21 @@ void run(const CloudArgs& args) {
 
 Command addCloudCommand(CLI::App& app, CloudArgs& args) {
   CLI::App* cmd = app.add_subcommand("cloud", "Insert point clouds (.graph, or x y z text) into an occupancy octree");
-  cmd->add_option("input", args.input, "OctoMap scan graph (.graph) or x y z text cloud (world frame, metres)")->required();
-  cmd->add_option("-o,--output", args.output, "Output map: OctoMap .bt (max likelihood) or .ot (full log-odds)")->required();
-  cmd->add_option("--resolution", args.resolution_m, "Voxel edge in metres")->capture_default_str();
-  cmd->add_option("--max-range", args.max_range_m, "Points farther than this clear free space up to it only (m); < 0: none")
+  cmd->add_option("input", args.input, "OctoMap scan graph (.graph) or x y z text cloud (m)")->required();
+  cmd->add_option("-o,--output", args.output, "Output map: .bt (max likelihood) or .ot (log-odds)")
+      ->required()
+      ->group(help_group::kOutput);
+  cmd->add_option("--resolution", args.resolution_m, "Voxel edge in METRES")
+      ->capture_default_str()
+      ->group(help_group::kMapping);
+  cmd->add_option("--max-range", args.max_range_m, "Points beyond this only clear free space (m); < 0: none")
+      ->group(help_group::kMapping)
       ->capture_default_str();
-  cmd->add_option("--origin", args.origin, "Sensor origin X,Y,Z (m) of an x y z text cloud (default 0,0,0)");
-  cmd->add_flag("--discretize", args.discretize, "One ray per endpoint voxel (OctoMap's discretize)");
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  cmd->add_option("--origin", args.origin, "Sensor origin X,Y,Z (m) of a text cloud (default 0,0,0)")
+      ->group(help_group::kInput);
+  cmd->add_flag("--discretize", args.discretize, "One ray per endpoint voxel (OctoMap's discretize)")
+      ->group(help_group::kMapping);
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};
 }
 

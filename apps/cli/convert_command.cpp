@@ -1,5 +1,7 @@
 #include "convert_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -59,17 +61,16 @@ void run(const ConvertArgs& args) {
 
 Command addConvertCommand(CLI::App& app, ConvertArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "convert", "Write a sonar log as beam CSV, or as the bytes a sonar sends (a SeaNet or Ping360 capture to replay)");
+      "convert", "Write a sonar log as beam CSV, or as a SeaNet or Ping360 capture");
   cmd->add_option("input", args.input, logInputHelp())->required();
-  cmd->add_option("-o,--output", args.output,
-                  "Output by extension: .csv beam CSV (time_s,bearing_deg,bin_length_m,b0,...), .seanet SeaNet "
-                  "mtHeadData packets, .bin Ping360 device_data messages (no clock: times are lost)")
-      ->required();
+  cmd->add_option("-o,--output", args.output, "Output by extension: .csv, .seanet or .bin (Ping360)")
+      ->required()
+      ->group(help_group::kOutput);
   addLogFormatOption(*cmd, args.format);
-  cmd->add_option("--sound-speed", args.sound_speed_m_s,
-                  "Speed of sound in M/S turning bin lengths into the sample intervals of a .seanet or .bin output")
+  cmd->add_option("--sound-speed", args.sound_speed_m_s, "Speed of sound for .seanet and .bin timing (m/s)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->group(help_group::kOutput);
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};
 }
 

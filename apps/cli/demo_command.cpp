@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "eval_scoring_file.hpp"
+#include "help_groups.hpp"
 #include "map_command.hpp"
 #include "map_outputs.hpp"
 #include "output_dir.hpp"
@@ -26,6 +28,8 @@ namespace {
 
 /// The 3D run's folder inside the demo's output folder.
 constexpr const char* k3dFolder = "3d-mission";
+/// The 3D run's scoring file (eval_scoring_file.hpp), in its folder.
+constexpr const char* kScoringFile = "scoring.json";
 
 void check(const DemoArgs& args) {
   if (std::filesystem::exists(args.output_dir) && !std::filesystem::is_directory(args.output_dir)) {
@@ -70,32 +74,37 @@ MapArgs demo3dMapArgs(const OutputDir& dir, const MsisHeadOptions& head, bool qu
   return args;
 }
 
-/// x,y,z,roll,pitch,yaw of a pose (rotation `r`, translation `t`): metres, then the Z-Y-X Euler
-/// angles of r = Rz(yaw)·Ry(pitch)·Rx(roll) in degrees: the form of map --mounting and eval
-/// --sensor-pose.
-std::string poseText(const Eigen::Matrix3d& r, const Eigen::Vector3d& t) {
-  std::array<double, 6> pose = mountingOfPose(r, t);
-  for (double& value : pose) value = std::abs(value) < 1e-9 ? 0.0 : value;  // rounding, not a pose: -7e-15°
-  char text[160];
-  std::snprintf(text, sizeof text, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", pose[0], pose[1], pose[2], pose[3], pose[4], pose[5]);
-  return text;
+/// `value` to six significant digits, as the demo's printed eval command gave the poses and the
+/// aperture, so the scoring file scores as that command did (a rounding's -7e-15 is 0).
+double sixDigits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", std::abs(value) < 1e-9 ? 0.0 : value);
+  return std::stod(text);
 }
 
-/// The eval options that score the map as docs/accuracy.md does (missionTruthOptions): the
-/// sonar's poses along the mission and its vertical aperture, for the field-of-view check, and its
-/// range, which also bounds where the truth is sought.
-std::string fieldOfViewOptions(const MissionRun& mission) {
+/// The scoring file of the 3D run (eval_scoring_file.hpp), its files named as the 3D run's folder
+/// holds them: eval scores the map as docs/accuracy.md does (missionTruthOptions), against what
+/// the sonar could see (its poses along the mission as navigation fixes, NED, its vertical aperture
+/// and its range) and against the surface its beams heard (the log, the TRUE navigation, the mounting
+/// the mission was flown with, the head).
+ScoringFile scoringFile(const MissionRun& mission) {
   const GroundTruthOptions truth = missionTruthOptions(mission);
-  char aperture[64];
-  std::snprintf(aperture, sizeof aperture, "--vertical-aperture %.6g --max-range %.6g",
-                truth.vertical_aperture_rad.value_or(0.0) * kDegPerRad, truth.max_range_m.value_or(0.0));
-  std::string options = aperture;
+  ScoringFile file;
+  file.truth = "scene.txt";
+  file.max_range_m = sixDigits(truth.max_range_m.value_or(0.0));
+  file.vertical_aperture_deg = sixDigits(truth.vertical_aperture_rad.value_or(0.0) * kDegPerRad);
+  const Eigen::Matrix3d map_to_ned = nedToMap().linear().transpose();
   for (std::size_t i = 0; i < truth.sensor_positions_m.size(); ++i) {
-    // --sensor-pose is a navigation fix (NED) of the sonar, as eval reads it.
-    const Eigen::Matrix3d map_to_ned = nedToMap().linear().transpose();
-    options += " --sensor-pose " + poseText(map_to_ned * truth.sensor_orientations[i], map_to_ned * truth.sensor_positions_m[i]);
+    std::array<double, 6> pose =
+        mountingOfPose(map_to_ned * truth.sensor_orientations[i], map_to_ned * truth.sensor_positions_m[i]);
+    for (double& value : pose) value = sixDigits(value);
+    file.sensor_poses.push_back(pose);
   }
-  return options;
+  file.heard_by = "beams.csv";
+  file.nav = "truth_nav.csv";
+  file.mounting = mission.mounting;
+  file.sonar = k3dMission.preset;
+  return file;
 }
 
 /// The line that introduces the 3D run: what was simulated and where it went.
@@ -107,30 +116,6 @@ void print3dHeader(const MissionRun& mission, const std::string& folder) {
               k3dResolution_m, folder.c_str());
 }
 
-/// The lines that tell the user how to score the 3D run's map (against the scene, what the sonar
-/// could see, and the surface its beams heard, from the log and the true navigation `truth_nav`) and
-/// how to make it again.
-void print3dCommands(const MapArgs& map_args, const std::string& side_png, const std::string& scene,
-                     const std::string& truth_nav, const MissionRun& mission) {
-  // The numbers the mission's mounting was built from, exactly: the map command rebuilds the same pose.
-  const std::string mounting_text = mountingText(mission.mounting);
-  const char* mounting = mounting_text.c_str();
-  std::printf("3d: score it:  sonarmap eval %s --truth %s\n", map_args.output_bt.c_str(), scene.c_str());
-  std::printf("3d: score what the sonar could see (docs/accuracy.md):  sonarmap eval %s --truth %s %s\n",
-              map_args.output_bt.c_str(), scene.c_str(), fieldOfViewOptions(mission).c_str());
-  std::printf("3d: score it against the surface its beams heard (docs/accuracy.md):  sonarmap eval %s --truth %s "
-              "--heard-by %s --nav %s --mounting %s --sonar %s\n",
-              map_args.output_bt.c_str(), scene.c_str(), map_args.input.c_str(), truth_nav.c_str(), mounting,
-              k3dMission.preset.c_str());
-  std::printf("3d: simulate it again:  sonarmap simulate %s --sonar %s --mission %s --seed %llu -o DIR\n",
-              k3dMission.scene.c_str(), k3dMission.preset.c_str(), k3dMission.mission.c_str(),
-              static_cast<unsigned long long>(k3dMission.seed));
-  std::printf("3d: map it again:  sonarmap map %s --nav %s --mounting %s --3d --resolution %s "
-              "--beam-width %g --vertical-aperture %g -o %s --png %s --side-png %s\n",
-              map_args.input.c_str(), map_args.nav_file.c_str(), mounting,
-              map_args.resolution.c_str(), map_args.beam_width_deg, map_args.vertical_aperture_deg,
-              map_args.output_bt.c_str(), map_args.map_png.c_str(), side_png.c_str());
-}
 
 void printRun(const MappedLog& mapped, const MapArgs& args, bool with_nav) {
   const std::vector<std::string> warnings =
@@ -177,6 +162,8 @@ void run(const DemoArgs& args) {
                   mapped_3d.mapper.map().resolution_m(), side_png,
                   sonarTrack(simulation_3d.nav, mission.options.sonar_to_body, simulation_3d.log));
   stageSimulation(outputs, folder_3d, simulation_3d);
+  const std::string scoring_json = dir_3d.file(kScoringFile);
+  outputs.stage(scoring_json, [&](std::ostream& out) { writeScoringFile(out, scoringFile(mission)); });
   // The 3D viewer's pages (sonarmap view) beside each map, the 3D run's with the vehicle's path;
   // left out, with a warning, by a tool built without three.js.
   if (viewerAvailable()) {
@@ -196,24 +183,22 @@ void run(const DemoArgs& args) {
   dir_3d.keep();
   printRun(mapped, map_args, false);
   printTankReport(mapped.mapper.map());
+  std::printf("tank: score it:  sonarmap eval %s --truth %s\n", map_args.output_bt.c_str(),
+              dir.file("scene.txt").c_str());
   print3dHeader(mission, folder_3d);
   printRun(mapped_3d, map_args_3d, true);
-  print3dCommands(map_args_3d, side_png, dir_3d.file("scene.txt"), dir_3d.file("truth_nav.csv"), mission);
+  std::printf("3d: score it (docs/accuracy.md):  sonarmap eval %s --scoring %s\n", map_args_3d.output_bt.c_str(),
+              scoring_json.c_str());
 }
 
 }  // namespace
 
 Command addDemoCommand(CLI::App& app, DemoArgs& args) {
-  CLI::App* cmd = app.add_subcommand(
-      "demo", "Simulate the built-in tank and map it, and a moving 3D mission and map it in 3D (needs no data)");
-  cmd->add_option("-o,--output", args.output_dir,
-                  "Output folder (created when missing): the static tank (tank.bt, tank.html, tank.png, tank_polar.png, "
-                  "tank_cartesian.png, beams.csv, scene.txt), and in 3d-mission/ the Micron flying a loop over the "
-                  "quay3d scene with its sonar tilted 25 degrees down, mapped with --3d at 5 cm (map.bt, "
-                  "map.html, map_top.png, map_side.png, beams.csv, nav.csv, truth_nav.csv, scene.txt); it prints how "
-                  "to score that map with sonarmap eval (also against the surface its beams heard)")
-      ->required();
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  CLI::App* cmd = app.add_subcommand("demo", "Simulate a tank and a 3D mission, map and score them (needs no data)");
+  cmd->add_option("-o,--output", args.output_dir, "Output folder (created when missing)")
+      ->required()
+      ->group(help_group::kOutput);
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};
 }
 

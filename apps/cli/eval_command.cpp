@@ -12,6 +12,8 @@
 
 #include <Eigen/Geometry>
 
+#include "eval_scoring_file.hpp"
+#include "help_groups.hpp"
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
@@ -54,34 +56,33 @@ Eigen::Isometry3d sonarToMapOfSensorPose(const double* pose) {
 
 Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   CLI::App* cmd = app.add_subcommand("eval", "Score a map (.bt/.ot) against a ground-truth scene, 2D or 3D");
-  cmd->add_option("map", args.map, "Map to score: OctoMap binary (.bt) or full (.ot) tree")->required();
-  cmd->add_option("--truth", args.truth, "Scene file, or a built-in scene: " + builtinNames(" | "))->required();
-  cmd->add_option("--z-min", args.z_min_m, "Lowest voxel centre scored, m (default: lowest known voxel)");
-  cmd->add_option("--z-max", args.z_max_m, "Highest voxel centre scored, m (default: highest known voxel)");
-  cmd->add_option("--tolerance", args.tolerance_m, "Match distance, m (never below one voxel diagonal)")
-      ->capture_default_str();
-  cmd->add_option("--max-range", args.max_range_m,
-                  "Sonar reach, m (default: farthest known voxel); with it, recall and erosion seek the truth within "
-                  "this reach of the sonar positions, whatever the map reaches");
-  cmd->add_option("--sensor", args.sensor, "Sonar position x,y,z in the map frame, m; repeatable (default: origin)")
+  cmd->add_option("map", args.map, "Map to score: .bt or .ot")->required();
+  cmd->add_option("--truth", args.truth, "Scene file, or a built-in scene: " + builtinNames(" | "))
+      ->group(help_group::kInput);
+  cmd->add_option("--scoring", args.scoring, "Scoring file: eval's options as JSON (demo's scoring.json)")
+      ->group(help_group::kInput);
+  cmd->add_option("--z-min", args.z_min_m, "Lowest voxel centre scored (m)")->group(help_group::kScoring);
+  cmd->add_option("--z-max", args.z_max_m, "Highest voxel centre scored (m)")->group(help_group::kScoring);
+  cmd->add_option("--tolerance", args.tolerance_m, "Match distance (m, at least a voxel diagonal)")
+      ->capture_default_str()
+      ->group(help_group::kScoring);
+  cmd->add_option("--max-range", args.max_range_m, "Sonar reach: truth sought within it of the sonar (m)")
+      ->group(help_group::kScoring);
+  cmd->add_option("--sensor", args.sensor, "Sonar position x,y,z in the map frame (m); repeatable")
       ->delimiter(',')
-      ->allow_extra_args(false);
-  cmd->add_option("--sensor-pose", args.sensor_pose,
-                  "Sonar pose x,y,z,roll,pitch,yaw as a navigation fix with map --mounting's angles: x north, "
-                  "y east, z down in m (NED), then roll, pitch, yaw in deg (Z-Y-X; yaw clockwise from north, "
-                  "pitch -25 = bearing 0 tilted 25 deg down); 0,0,0,0,0,0 is a log mapped without --nav; "
-                  "repeatable; instead of --sensor")
+      ->allow_extra_args(false)
+      ->group(help_group::kScoring);
+  cmd->add_option("--sensor-pose", args.sensor_pose, "Sonar pose x,y,z (m, NED),roll,pitch,yaw (deg); repeatable")
       ->delimiter(',')
-      ->allow_extra_args(false);
+      ->allow_extra_args(false)
+      ->group(help_group::kScoring);
   cmd->add_option("--vertical-aperture", args.vertical_aperture_deg,
-                  "Sonar's vertical aperture, deg, in (0, 180): with --sensor-pose, a surface counts as seen only "
-                  "within +-half of it from the sonar's scan plane (default: no field-of-view check)");
-  cmd->add_option("--png", args.png,
-                  "Also write a PNG: the map seen from above (and, for a 3D map, from the side), each column's "
-                  "occupied voxels coloured by their largest distance to the truth (blue 0 m to red, legend in "
-                  "metres), the sonar positions drawn");
+                  "With --sensor-pose: the sonar's vertical aperture (deg)")
+      ->group(help_group::kScoring);
   addHeardOptions(*cmd, args.heard);
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  cmd->add_option("--png", args.png, "Also write the map coloured by distance to the truth (PNG)")
+      ->group(help_group::kOutput);
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   struct Checked {
     GroundTruthOptions options;
     std::optional<HeardRequest> heard;
@@ -89,6 +90,8 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
   auto checked = std::make_shared<Checked>();
   return {cmd,
           [cmd, &args, checked] {
+            if (!args.scoring.empty()) applyScoringFile(args.scoring, *cmd, args);
+            if (args.truth.empty()) throw ValueError("eval needs --truth, or a --scoring file naming the truth");
             checked->options = toGroundTruthOptions(*cmd, args);
             checked->heard = toHeardRequest(*cmd, args.heard);
           },
@@ -96,11 +99,15 @@ Command addEvalCommand(CLI::App& app, EvalArgs& args) {
 }
 
 GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& args) {
+  const auto given = [&](const std::string& flag) {
+    return cmd.count(flag) > 0 ||
+           std::find(args.file_options.begin(), args.file_options.end(), flag) != args.file_options.end();
+  };
   GroundTruthOptions options;
   options.tolerance_m = args.tolerance_m;
-  if (cmd.count("--z-min") > 0) options.z_min_m = args.z_min_m;
-  if (cmd.count("--z-max") > 0) options.z_max_m = args.z_max_m;
-  if (cmd.count("--max-range") > 0) options.max_range_m = args.max_range_m;
+  if (given("--z-min")) options.z_min_m = args.z_min_m;
+  if (given("--z-max")) options.z_max_m = args.z_max_m;
+  if (given("--max-range")) options.max_range_m = args.max_range_m;
   if (!args.sensor.empty() && !args.sensor_pose.empty()) {
     throw ValueError("--sensor and --sensor-pose exclude each other: give every sonar's pose with --sensor-pose");
   }
@@ -126,7 +133,7 @@ GroundTruthOptions toGroundTruthOptions(const CLI::App& cmd, const EvalArgs& arg
       orientations.push_back(sonar_to_map.linear());
     }
   }
-  if (cmd.count("--vertical-aperture") > 0) {
+  if (given("--vertical-aperture")) {
     const double aperture_deg = args.vertical_aperture_deg;
     if (!(std::isfinite(aperture_deg) && aperture_deg > 0.0 && aperture_deg < 180.0)) {
       throw ValueError("--vertical-aperture must be in (0, 180) degrees, got " + std::to_string(aperture_deg));

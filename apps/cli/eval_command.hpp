@@ -32,13 +32,17 @@ struct EvalArgs {
   std::string png;             ///< --png: the occupied voxels coloured by their distance to the truth
   bool quiet = false;          ///< -q: no progress bar
   HeardArgs heard;             ///< --heard-by, --nav, --mounting, --heard-level, --sonar
+  std::string scoring;         ///< --scoring: a scoring file (eval_scoring_file.hpp) giving the options above
+  std::vector<std::string> file_options;  ///< not an option: the flags the --scoring file gave
 };
 
 /// Adds the `eval` subcommand to `app`; its options fill `args`.
 Command addEvalCommand(CLI::App& app, EvalArgs& args);
 
 /// Turns the arguments into evaluation options: --sensor positions, or --sensor-pose poses (their
-/// orientations enter the options only with --vertical-aperture, for the field-of-view check).
+/// orientations enter the options only with --vertical-aperture, for the field-of-view check). An
+/// option counts as given when the command line gave it or the --scoring file did
+/// (args.file_options).
 /// @throws ValueError for a bad value (usage): a count that is not a multiple of 3 (--sensor) or 6
 ///         (--sensor-pose), both given, a non-finite pose, an aperture outside (0, 180) degrees or
 ///         without --sensor-pose, or options GroundTruthOptions::validate rejects.

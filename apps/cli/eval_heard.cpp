@@ -1,5 +1,7 @@
 #include "eval_heard.hpp"
 
+#include "help_groups.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -17,24 +19,17 @@
 namespace sonarmap::cli {
 
 void addHeardOptions(CLI::App& cmd, HeardArgs& args) {
-  cmd.add_option("--heard-by", args.beams,
-                 "Also score the map against the surface this log's beams heard (eval/heard_surface.hpp): a log "
-                 "sonarmap map reads (.mat, .V4LOG, beam .csv), recorded by the --sonar preset in the --truth scene. "
-                 "Prints heard_recall (heard surface voxels with an occupied map voxel within the tolerance), "
-                 "heard_f1 (with the precision above) and the heard surface's size; the heard surface is computed "
-                 "at the map's resolution");
-  cmd.add_option("--nav", args.nav_csv,
-                 "With --heard-by: the TRUE navigation CSV of the log (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: "
-                 "NED metres, radians, the log's clock; e.g. sonarmap simulate's truth_nav.csv); beams outside its "
-                 "time span are skipped and counted. Default: the sonar static at the map origin");
-  addMountingOption(cmd, args.mounting, "With --nav: ", "Default: 0,0,0,0,0,0 (upright and aligned)");
-  cmd.add_option("--heard-level", args.level_db,
-                 "With --heard-by: a surface point counts as heard where its mean echo is at least this many dB "
-                 "over the receiver's floor; -inf or any: every surface point a beam's rays meet (the geometry)")
-      ->capture_default_str();
-  cmd.add_option("--sonar", args.sonar,
-                 sonarPresetHelp("With --heard-by: the simulator preset that recorded the log:"))
-      ->capture_default_str();
+  cmd.add_option("--heard-by", args.beams, "Also score against the surface this log's beams heard")
+      ->group(help_group::kScoring);
+  cmd.add_option("--nav", args.nav_csv, "With --heard-by: the log's TRUE navigation CSV (truth_nav.csv)")
+      ->group(help_group::kNavigation);
+  addMountingOption(cmd, args.mounting, "With --nav: ");
+  cmd.add_option("--heard-level", args.level_db, "With --heard-by: heard at this many dB over the floor, or any")
+      ->capture_default_str()
+      ->group(help_group::kScoring);
+  cmd.add_option("--sonar", args.sonar, sonarPresetHelp("With --heard-by: the log's head:"))
+      ->capture_default_str()
+      ->group(help_group::kScoring);
 }
 
 double parseHeardLevel(const std::string& text) {

@@ -1,5 +1,7 @@
 #include "eval_trajectory_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -13,19 +15,16 @@ namespace sonarmap::cli {
 Command addEvalTrajectoryCommand(CLI::App& app, EvalTrajectoryArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "eval-trajectory",
-      "Score an estimated vehicle track against the true one: ATE (after a rigid alignment, and with the start positions "
-      "matched), RPE over segments and final drift; one 'key value' line each");
-  cmd->add_option("estimate", args.estimate,
-                  "Estimated track: navigation CSV (time_s,x_m,...) or TUM trajectory (time x y z qx qy qz qw), "
-                  "NED, told apart by content")
-      ->required();
-  cmd->add_option("--truth", args.truth, "True track, navigation CSV or TUM (e.g. sonarmap simulate's truth_nav.csv)")
-      ->required();
-  cmd->add_flag("--se3", args.se3,
-                "Align in SE(3) (3D rotation and translation) for the ATE; default SE(2): in the horizontal plane, "
-                "depth unaligned");
-  cmd->add_option("--segment", args.segment_m, "RPE segment: distance the truth travels, m, > 0")
-      ->capture_default_str();
+      "Score a vehicle track against the true one: ATE, RPE, final drift");
+  cmd->add_option("estimate", args.estimate, "Estimated track: navigation CSV or TUM (NED)")->required();
+  cmd->add_option("--truth", args.truth, "True track: navigation CSV or TUM (e.g. truth_nav.csv)")
+      ->required()
+      ->group(help_group::kInput);
+  cmd->add_flag("--se3", args.se3, "Align in SE(3) for the ATE (default SE(2), depth unaligned)")
+      ->group(help_group::kScoring);
+  cmd->add_option("--segment", args.segment_m, "RPE segment: distance the truth travels (m, > 0)")
+      ->capture_default_str()
+      ->group(help_group::kScoring);
   auto check = [&args] {
     if (!(std::isfinite(args.segment_m) && args.segment_m > 0.0)) {
       throw ValueError("--segment must be a number > 0 (metres)");

@@ -1,5 +1,7 @@
 #include "info_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
@@ -288,13 +290,12 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
 
 Command addInfoCommand(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "info", "What a sonar log holds, before mapping it: beams, sweeps, range scales and gains, skipped data");
+      "info", "What a sonar log holds: beams, sweeps, range scales, gains, skips");
   cmd->add_option("input", args.input, logInputHelp())->required();
   addLogFormatOption(*cmd, args.format);
   addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
-                     "The vehicle's navigation: how many fixes, the distance travelled, and which beams fall "
-                     "outside its time span (map would skip them)");
-  cmd->add_flag("--json", args.json, "Print one JSON object instead of the text (units in the keys' names)");
+                     "Navigation to check against the log's beams and times");
+  cmd->add_flag("--json", args.json, "Print one JSON object (units in the keys' names)")->group(help_group::kOutput);
   return {cmd,
           [&args] {
             if (args.format != "auto") parseLogFormat(args.format);  // a bad name is a usage error

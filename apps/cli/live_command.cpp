@@ -1,5 +1,7 @@
 #include "live_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <poll.h>
 
 #include <algorithm>
@@ -398,47 +400,38 @@ void runLiveReplay(const LiveArgs& args, const MapperOptions& options, const Eig
 
 Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "live", "Map beams as they arrive from a sonar (SeaNet or Ping360 wire stream) into an occupancy octree (.bt)");
-  cmd->add_option("source", args.map.input,
-                  "Where the bytes come from: a serial device (/dev/ttyUSB0), udp://HOST:PORT (bound; port 0 picks "
-                  "one, printed), tcp://HOST:PORT (connected), - for standard input, or a capture file (a replay); or a "
-                  "recorded log, replayed beam by beam with its own times and navigation as `map` reads it: a ROS log "
-                  "(.bag, .mcap, .db3, a rosbag2 folder) or a Ping Viewer log (.bin, known by its header)")
+      "live", "Map beams as they arrive from a sonar (SeaNet, Ping360) or a replayed log");
+  cmd->add_option("source", args.map.input, "Serial device, udp://HOST:PORT, tcp://HOST:PORT, - or a file")
       ->required();
-  cmd->add_option("-o,--output", args.map.output_bt,
-                  "Output map, OctoMap binary tree (.bt) or full tree (.ot): rewritten atomically every --write-every "
-                  "seconds and at the end")
-      ->required();
+  cmd->add_option("-o,--output", args.map.output_bt, "Output map (.bt or .ot), rewritten every --write-every")
+      ->required()
+      ->group(help_group::kOutput);
   addMappingOptions(*cmd, args.map);
-  cmd->add_option("--baud", args.baud, "Serial devices: bits per second (8N1, raw)")->capture_default_str();
-  cmd->add_option("--show", args.show,
-                  "When a beam shows in the written map. beam: on arrival, on a provisional layer until its sweep is "
-                  "complete (after a first sweep of its range and gain) | sweep: once its sweep is complete (no "
-                  "per-beam work: a replay faster than real time). Either way the map is built sweep by sweep as "
-                  "`sonarmap map` builds it, and the final map is `map`'s on the same bytes")
+  cmd->add_option("--baud", args.baud, "Serial devices: bits per second (8N1, raw)")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--show", args.show, "When a beam shows in the written map: beam | sweep")
       ->check(CLI::IsMember({"beam", "sweep"}))
-      ->capture_default_str();
-  cmd->add_option("--write-every", args.write_every_s, "SECONDS between map writes (> 0)")->capture_default_str();
-  cmd->add_option("--idle-timeout", args.idle_timeout_s,
-                  "End the stream after this many SECONDS without a byte (0: never; UDP has no end of stream)")
-      ->capture_default_str();
-  cmd->add_option("--nav", args.map.nav_file,
-                  "Navigation CSV loaded at the start (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad): its times are "
-                  "seconds since `live` started, the clock beams are stamped with on arrival. Replaying a recorded log: any "
-                  "navigation `map --nav` takes, on the log's clock (default: the log's own navigation topic)");
-  cmd->add_option("--nav-stream", args.nav_stream,
-                  "A second SOURCE (serial, udp://, tcp://, a file) of navigation CSV rows as they are sent: each fix "
-                  "timed on the arrival clock (the stream's own clock aligned at its first row); bad rows skipped")
-      ->excludes("--nav");
-  addMountingOption(*cmd, args.map.mounting, "With --nav or --nav-stream: ", "Default: 0,0,0,0,0,0 (upright and aligned)");
-  cmd->add_flag("--slam", args.map.slam,
-                "Correct the navigation by scan matching as sweeps complete (as `map --slam`); when a loop closes the "
-                "map is rebuilt with the corrected trajectory, so each written map is the current best");
+      ->capture_default_str()
+      ->group(help_group::kOutput);
+  cmd->add_option("--write-every", args.write_every_s, "SECONDS between map writes (> 0)")
+      ->capture_default_str()
+      ->group(help_group::kOutput);
+  cmd->add_option("--idle-timeout", args.idle_timeout_s, "End after this many SECONDS without a byte (0: never)")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--nav", args.map.nav_file, "Navigation CSV (times since the start) or a replayed log's")
+      ->group(help_group::kNavigation);
+  cmd->add_option("--nav-stream", args.nav_stream, "A second SOURCE sending navigation CSV rows")
+      ->excludes("--nav")
+      ->group(help_group::kNavigation);
+  addMountingOption(*cmd, args.map.mounting, "With --nav or --nav-stream: ");
+  cmd->add_flag("--slam", args.map.slam, "Correct the navigation by scan matching as sweeps complete")
+      ->group(help_group::kLocalization);
   addOdometryOptions(*cmd, args.map.odometry);
   addOriginOption(*cmd, args.map.origin);
-  cmd->add_option("--trajectory", args.map.trajectory_out,
-                  "With --slam: write the corrected trajectory at the end (navigation CSV, or TUM for .tum/.txt), in "
-                  "the navigation's own coordinates (--origin added back)");
+  cmd->add_option("--trajectory", args.map.trajectory_out, "With --slam: write the corrected trajectory (.csv, .tum)")
+      ->group(help_group::kOutput);
   struct Checked {
     MapperOptions options;
     Eigen::Isometry3d sonar_to_body;

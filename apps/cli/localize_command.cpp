@@ -1,5 +1,7 @@
 #include "localize_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -16,33 +18,25 @@ namespace sonarmap::cli {
 Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "localize",
-      "Localize point scans detected elsewhere with the scan matcher, loop closures and pose graph of map --slam, and "
-      "write the corrected trajectory");
-  cmd->add_option("scans", args.scans,
-                  "Point scans: a CSV with the header scan,time_s,x_m,y_m, one row per point: its scan (an integer, a "
-                  "scan's rows together, in increasing number), when it was measured (s, the navigation's clock, never "
-                  "decreasing) and where it lay in the vehicle's body frame then (m, x forward, y to starboard); gzipped or "
-                  "not (.csv.gz)")
-      ->required();
-  cmd->add_option("--nav", args.nav,
-                  "The dead reckoning the scans correct: a navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,"
-                  "yaw_rad; NED), a ROS log (.bag, .mcap, .db3), a BlueROV2 .tlog or .BIN; none (the default): the "
-                  "vehicle believed still, its motion from the scans alone")
-      ->capture_default_str();
-  cmd->add_option("--nav-topic", args.nav_topic, "The navigation topic of a ROS log given to --nav");
-  cmd->add_option("--trajectory", args.trajectory,
-                  "Where to write the corrected trajectory: a navigation CSV, or TUM (time x y z qx qy qz qw, NED) when "
-                  "the name ends in .tum or .txt")
-      ->required();
-  cmd->add_option("--range-sigma", args.range_sigma_m,
-                  "1-sigma of a point's range along its line of sight, METRES > 0 (the sonar's range resolution)")
-      ->capture_default_str();
-  cmd->add_option("--bearing-sigma", args.bearing_sigma_deg,
-                  "1-sigma of a point's bearing, DEGREES > 0 (half the horizontal beam width)")
-      ->capture_default_str();
+      "Correct a track by matching point scans detected elsewhere, as map --slam");
+  cmd->add_option("scans", args.scans, "Point scans: CSV scan,time_s,x_m,y_m (body frame, m)")->required();
+  cmd->add_option("--nav", args.nav, "Dead reckoning the scans correct: CSV, ROS log, .tlog, .BIN, or none")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--nav-topic", args.nav_topic, "Navigation topic of a ROS log given to --nav")
+      ->group(help_group::kNavigation);
+  cmd->add_option("--trajectory", args.trajectory, "Corrected trajectory to write (.csv, or TUM .tum/.txt)")
+      ->required()
+      ->group(help_group::kOutput);
+  cmd->add_option("--range-sigma", args.range_sigma_m, "1-sigma of a point's range, METRES > 0")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--bearing-sigma", args.bearing_sigma_deg, "1-sigma of a point's bearing, DEGREES > 0")
+      ->capture_default_str()
+      ->group(help_group::kInput);
   addOdometryOptions(*cmd, args.odometry);
   addOriginOption(*cmd, args.origin);
-  cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success");
+  cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success")->group(help_group::kOutput);
   auto check = [&args] {
     checkOdometryArgs(args.odometry, true);
     if (!(std::isfinite(args.range_sigma_m) && args.range_sigma_m > 0.0)) {

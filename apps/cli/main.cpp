@@ -2,6 +2,7 @@
 // Exit codes: 0 success, 1 bad data or failed output, 2 bad usage. Errors are one line on stderr.
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "demo_command.hpp"
 #include "eval_command.hpp"
 #include "eval_trajectory_command.hpp"
+#include "help_groups.hpp"
 #include "info_command.hpp"
 #include "live_command.hpp"
 #include "localize_command.hpp"
@@ -34,6 +36,12 @@ int main(int argc, char** argv) {
   CLI::App app{"sonarmap: probabilistic 3D occupancy maps from mechanically scanned imaging sonar and point clouds"};
   app.set_version_flag("--version", std::string("sonarmap ") + SONARMAP_VERSION);
   app.require_subcommand(1);
+  // Every option's help is one line (details: docs/commands.md); the widest option name fits the
+  // column, so each option stays on one line. The subcommands share this formatter.
+  auto formatter = std::make_shared<sonarmap::cli::GroupedHelpFormatter>();
+  formatter->column_width(44);
+  app.formatter(formatter);
+  app.footer("Options of a command: sonarmap COMMAND --help; all of them in detail: docs/commands.md");
   sonarmap::cli::MapArgs map_args;
   sonarmap::cli::CloudArgs cloud_args;
   sonarmap::cli::ConvertArgs convert_args;

@@ -1,5 +1,7 @@
 #include "map_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,9 +36,9 @@ void requireNavigation(const MapArgs& args, bool without_navigation) {
 Command addMapCommand(CLI::App& app, MapArgs& args) {
   CLI::App* cmd = app.add_subcommand("map", "Map a sonar log into an occupancy octree (.bt)");
   cmd->add_option("input", args.input, logInputHelp())->required();
-  cmd->add_option("-o,--output", args.output_bt,
-                  "Output map: OctoMap binary tree (.bt, maximum likelihood) or full tree (.ot, log-odds)")
-      ->required();
+  cmd->add_option("-o,--output", args.output_bt, "Output map: .bt (maximum likelihood) or .ot (log-odds)")
+      ->required()
+      ->group(help_group::kOutput);
   // MapArgs (map_options.hpp) has no field for the side view: it lives beside the checked options.
   struct Checked {
     MapperOptions options;
@@ -44,35 +46,22 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
     std::string side_png;
   };
   auto checked = std::make_shared<Checked>();
-  cmd->add_option("--png", args.map_png,
-                  "Top view of the map (PNG figure, >= 800 px, axes in metres, title, legend, the sonar's track "
-                  "from --nav in red): the slice at z = 0, occupied near-black, free light grey, unknown white; "
-                  "with --3d each column's highest occupied voxel coloured by its height (viridis, legend in "
-                  "metres), free columns light grey, unknown white");
-  cmd->add_option("--side-png", checked->side_png,
-                  "With --3d: side view of the map (PNG), looking along +y (x to the right, z up), each occupied "
-                  "voxel nearest the viewer coloured by its y (viridis, legend in metres): walls' heights, the "
-                  "seabed's slope");
-  cmd->add_option("--polar-png", args.polar_png,
-                  "Polar image of the largest sweep (PNG figure: range in m across, bearing in degrees up); in a "
-                  "log of several range scales, the last largest sweep of the scale most beams use (named)");
-  cmd->add_option("--cartesian-png", args.cartesian_png,
-                  "Cartesian image of the largest sweep (PNG figure, axes in metres, the sonar at 0,0), as --polar-png");
+  cmd->add_option("--png", args.map_png, "Top view of the map (PNG, axes in metres)")->group(help_group::kOutput);
+  cmd->add_option("--side-png", checked->side_png, "With --3d: side view of the map (PNG, along +y)")
+      ->group(help_group::kOutput);
+  cmd->add_option("--polar-png", args.polar_png, "Polar image of the largest sweep (PNG)")->group(help_group::kOutput);
+  cmd->add_option("--cartesian-png", args.cartesian_png, "Cartesian image of the largest sweep (PNG, metres)")
+      ->group(help_group::kOutput);
   addMappingOptions(*cmd, args);
   addLogInputOptions(*cmd, args.nav_file, args.log_read, args.nav_topic, args.nav_time_offset_s,
-                     "The vehicle's navigation: each beam is placed with the vehicle's pose at its time; beams "
-                     "outside its time span are skipped");
-  addMountingOption(*cmd, args.mounting, "With --nav: ", "Default: at the body origin, upright and aligned = 0,0,0,0,0,0");
-  cmd->add_flag("--slam", args.slam,
-                "Correct the navigation by matching the sonar's scans with each other (motion-compensated scans, "
-                "probabilistic ICP, loop closures, a pose graph) and map with the corrected trajectory. Without "
-                "--nav the vehicle is believed still and its motion comes from the scans alone");
+                     "Vehicle navigation: CSV, ROS log, .tlog, .BIN, or none");
+  addMountingOption(*cmd, args.mounting, "With --nav: ");
+  cmd->add_flag("--slam", args.slam, "Correct the navigation by matching the sonar's scans")
+      ->group(help_group::kLocalization);
   addOdometryOptions(*cmd, args.odometry);
   addOriginOption(*cmd, args.origin);
-  cmd->add_option("--trajectory", args.trajectory_out,
-                  "Write the trajectory the map was built with (the corrected one with --slam, else --nav's), in the "
-                  "navigation's own coordinates (--origin added back): a navigation CSV, or TUM format (time x y z "
-                  "qx qy qz qw, NED) when the name ends in .tum or .txt");
+  cmd->add_option("--trajectory", args.trajectory_out, "Write the trajectory mapped with (.csv, or TUM .tum/.txt)")
+      ->group(help_group::kOutput);
   auto check = [&args, checked] {
     // A bag may hold its own navigation: known once it is read (requireNavigation).
     const std::optional<LogFormat> format = args.format == "auto" ? logFormatOfPath(args.input) : parseLogFormat(args.format);

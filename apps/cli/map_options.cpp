@@ -1,5 +1,7 @@
 #include "map_options.hpp"
 
+#include "help_groups.hpp"
+
 #include <charconv>
 #include <string>
 #include <system_error>
@@ -11,14 +13,15 @@
 namespace sonarmap::cli {
 
 void addLogFormatOption(CLI::App& cmd, std::string& format) {
-  cmd.add_option("--format", format,
-                 "Log format: auto (by the input's extension) | " + logFormatNamesText(" | ") +
-                     " (a file of any name, e.g. ping360 for a raw capture)")
-      ->capture_default_str();
+  cmd.add_option("--format", format, "Log format: auto (by extension) | " + logFormatNamesText(" | "))
+      ->capture_default_str()
+      ->group(help_group::kInput);
 }
 
 std::string logInputHelp() {
-  return "Sonar log: " + logFormatExtensionsText() + " (or any name with --format)";
+  std::string help = "Sonar log:";
+  for (const LogFormatEntry& format : logFormats()) help += " " + std::string(format.extension);
+  return help + " (or --format)";
 }
 
 std::string mountingText(const std::array<double, 6>& mounting) {
@@ -32,14 +35,12 @@ std::string mountingText(const std::array<double, 6>& mounting) {
   return text;
 }
 
-CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when,
-                               const std::string& default_text) {
-  const std::string what = "he sonar's frame (x along bearing 0 = the head's ahead, y starboard, z down) in the vehicle's "
-                           "body frame (x forward, y starboard, z down) as X,Y,Z,ROLL,PITCH,YAW: metres, then Z-Y-X Euler "
-                           "angles in DEGREES; a head tilted 25 deg down is PITCH -25. ";
-  return cmd.add_option("--mounting", mounting, when + (when.empty() ? "T" : "t") + what + default_text)
+CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when) {
+  return cmd.add_option("--mounting", mounting, when + "sonar in the body: X,Y,Z (m), ROLL,PITCH,YAW (deg)")
       ->delimiter(',')
-      ->expected(6);
+      ->expected(6)
+      ->type_name("X,Y,Z,R,P,Y")
+      ->group(help_group::kNavigation);
 }
 
 void addMappingOptions(CLI::App& cmd, MapArgs& args) {
@@ -47,29 +48,32 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   for (const MappingOption& option : mappingOptionTable()) {
     const std::string flag = optionFlag(option);
     const std::string help = optionHelp(option);
+    const std::string group(option.group);
     std::visit(
         LinkVisitor{[&](const NumberLink& link) {
-                      CLI::Option* added = cmd.add_option(flag, args.*link.arg, help)->capture_default_str();
+                      CLI::Option* added =
+                          cmd.add_option(flag, args.*link.arg, help)->capture_default_str()->group(group);
                       if (link.given != nullptr) {
                         added->each([&args, given = link.given](const std::string&) { args.*given = true; });
                       }
                     },
                     [&](const BoolLink& link) {
                       if (link.flag) {
-                        cmd.add_flag(flag, args.*link.arg, help);
+                        cmd.add_flag(flag, args.*link.arg, help)->group(group);
                       } else {
-                        cmd.add_option(flag, args.*link.arg, help)->capture_default_str();
+                        cmd.add_option(flag, args.*link.arg, help)->capture_default_str()->group(group);
                       }
                     },
-                    [&](const auto& link) { cmd.add_option(flag, args.*link.arg, help)->capture_default_str(); }},
+                    [&](const auto& link) {
+                      cmd.add_option(flag, args.*link.arg, help)->capture_default_str()->group(group);
+                    }},
         option.link);
   }
   cmd.add_option_function<std::string>(
          "--map-frame", [&args](const std::string& text) { args.map_frame = parseMapFrame(text); },
-         "Frame the map file is written in: enu (x east, y north, z up: ROS REP 103/105, overlays a bag's "
-         "odom frame, upright in octovis) or ned (x north, y east, z down, as the navigation). The file's "
-         "header names it; the PNGs are drawn east right, north up either way")
+         "Frame the map file is written in: enu | ned")
       ->default_str("enu")
+      ->group(help_group::kOutput)
       ->check([](const std::string& text) {
         try {
           parseMapFrame(text);
@@ -78,10 +82,9 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
           return std::string(error.what());
         }
       });
-  cmd.add_flag("-q,--quiet", args.quiet, "No progress bar");
-  cmd.add_flag("--tank-report", args.tank_report,
-               "Also print how well the occupied cells trace a rectangular tank's walls, in the slice holding "
-               "the most occupied cells (the sonar's plane, at the vehicle's depth)");
+  cmd.add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
+  cmd.add_flag("--tank-report", args.tank_report, "Also print how well the map traces a rectangular tank")
+      ->group(help_group::kOutput);
 }
 
 }  // namespace sonarmap::cli

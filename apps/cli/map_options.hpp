@@ -44,25 +44,24 @@ struct MapArgs : MappingArguments {
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.
 void addLogFormatOption(CLI::App& cmd, std::string& format);
 
-/// The help of a command's input log: every extension the readers know, from their registry
-/// (logFormatExtensionsText).
+/// The one-line help of a command's input log: every extension the readers know, from their
+/// registry (logFormats).
 std::string logInputHelp();
 
 /// Adds --format, every option of mappingOptionTable() (its flag, its help with unit and range, its
-/// default shown), --map-frame, --quiet and --tank-report to `cmd`: everything but the input,
-/// outputs, --nav and --mounting.
+/// default shown, in its help group), --map-frame, --quiet and --tank-report to `cmd`: everything
+/// but the input, outputs, --nav and --mounting.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
 
 /// `mounting` as --mounting takes it, "X,Y,Z,ROLL,PITCH,YAW": each number in the shortest form that
 /// reads back exactly (0.3, not 0.29999999999999999), so a printed command rebuilds the same pose.
 std::string mountingText(const std::array<double, 6>& mounting);
 
-/// Adds --mounting X,Y,Z,ROLL,PITCH,YAW to `cmd`, six numbers separated by commas into `mounting`
-/// (sonarToBodyOfMounting, nav/mounting.hpp, turns them into the pose): the sonar's frame (FRD) in
-/// the vehicle's body frame (FRD), metres and Z-Y-X Euler angles in degrees. Its help is `when`
-/// (what it needs, e.g. "With --nav: "), the frames and units, then `default_text`.
-CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when,
-                               const std::string& default_text);
+/// Adds --mounting X,Y,Z,ROLL,PITCH,YAW to `cmd` (help group Navigation), six numbers separated by
+/// commas into `mounting` (sonarToBodyOfMounting, nav/mounting.hpp, turns them into the pose): the
+/// sonar's frame (FRD) in the vehicle's body frame (FRD), metres and Z-Y-X Euler angles in degrees.
+/// Its one-line help is `when` (what it needs, e.g. "With --nav: ") then the frames and units.
+CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, const std::string& when);
 
 // inputFormat, withSonarBeam and toMapperOptions live in the library
 // (sonarmap/mapping/mapping_arguments.hpp), shared with the Python module.

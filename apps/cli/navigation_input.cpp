@@ -2,6 +2,8 @@
 
 #include "navigation_input.hpp"
 
+#include "help_groups.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,32 +17,23 @@ namespace sonarmap::cli {
 
 void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& log_read, std::string& nav_topic,
                         double& nav_time_offset_s, const std::string& nav_help) {
-  cmd.add_option("--nav", nav_file,
-                 nav_help + ". A navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad: NED metres, radians, "
-                            "the log's clock), a ROS log (.bag, .mcap, .db3: its nav_msgs/Odometry or pose topic, ENU "
-                            "turned into NED), a BlueROV2's MAVLink telemetry (.tlog) or ArduPilot dataflash log (.BIN). "
-                            "Default: the input bag's own navigation topic when it has one; `none`: no navigation");
-  cmd.add_option("--sonar-topic", log_read.sonar_topic,
-                 "The sonar topic of a ROS bag input. Default: the first topic whose message has a bearing, a bin "
-                 "length or range, and intensities");
-  cmd.add_option("--bearing-unit", log_read.bearing_unit,
-                 "A ROS bag's bearing unit where it cannot tell: auto (degrees unless the field's name ends in _rad or "
-                 "every bearing fits in 2 pi) | deg | rad | grad")
+  cmd.add_option("--nav", nav_file, nav_help)->group(help_group::kNavigation);
+  cmd.add_option("--sonar-topic", log_read.sonar_topic, "Sonar topic of a ROS log (default: found by its fields)")
+      ->group(help_group::kInput);
+  cmd.add_option("--bearing-unit", log_read.bearing_unit, "A ROS log's bearing unit: auto | deg | rad | grad")
       ->check(CLI::IsMember({"auto", "deg", "rad", "grad"}))
-      ->capture_default_str();
-  cmd.add_option("--bearing-direction", log_read.bearing_direction,
-                 "Which way a ROS bag's bearings grow seen from above: cw (as Tritech heads count) | ccw (as REP 103 "
-                 "angles do)")
+      ->capture_default_str()
+      ->option_text("UNIT=auto")
+      ->group(help_group::kInput);
+  cmd.add_option("--bearing-direction", log_read.bearing_direction, "Way a ROS log's bearings grow from above: cw | ccw")
       ->check(CLI::IsMember({"cw", "ccw"}))
-      ->capture_default_str();
-  cmd.add_option("--nav-topic", nav_topic,
-                 "The navigation topic of a ROS bag (the input's, or --nav's). Default: nav_msgs/Odometry, else the "
-                 "topic with a header and a pose that has most messages");
-  cmd.add_option("--nav-time-offset", nav_time_offset_s,
-                 "Seconds added to the navigation's times after both clocks are put on UTC where the files say "
-                 "(a Ping Viewer log's name, a .tlog, a bag, a dataflash log's GPS); alone, when either does not. "
-                 "`info --nav` prints both spans")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd.add_option("--nav-topic", nav_topic, "Navigation topic of a ROS log (default: found by its fields)")
+      ->group(help_group::kNavigation);
+  cmd.add_option("--nav-time-offset", nav_time_offset_s, "Time added to the navigation's clock (s)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
   cmd.add_option_function<std::string>(
          "--timezone",
          [&log_read](const std::string& zone) {
@@ -50,13 +43,12 @@ void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& lo
              throw CLI::ValidationError("--timezone", e.what());
            }
          },
-         "The recording computer's offset from UTC, for a log named in local time (Ping Viewer: "
-         "yyyyMMdd-hhmmsszzz.bin): UTC | +03:30 | -05:00. Default: UTC")
-      ->type_name("ZONE");
-  cmd.add_option("--msg-path", log_read.msg_path,
-                 "A folder of .msg files (PKG/msg/NAME.msg) for the message types a ROS 2 log in rosbag2's SQLite "
-                 "storage (before Iron) names without definitions. Default: the common types, built in")
-      ->type_name("DIR");
+         "UTC offset of a log named in local time: UTC | +03:30 | -05:00")
+      ->type_name("ZONE")
+      ->group(help_group::kInput);
+  cmd.add_option("--msg-path", log_read.msg_path, "Folder of .msg files for a rosbag2 SQLite log's types")
+      ->type_name("DIR")
+      ->group(help_group::kInput);
 }
 
 std::optional<AlignedNavigation> navigationFor(const std::string& input, LogFormat format, const SonarLog& log,

@@ -14,7 +14,7 @@
 
 namespace sonarmap::cli {
 
-/// Adds --nav (`nav_help` first in its help) into `nav_file`, --nav-topic, --nav-time-offset into
+/// Adds --nav (`nav_help` its one-line help) into `nav_file`, --nav-topic, --nav-time-offset into
 /// `nav_time_offset_s`, --timezone, --msg-path and a ROS bag's --sonar-topic, --bearing-unit and
 /// --bearing-direction into `log_read`.
 void addLogInputOptions(CLI::App& cmd, std::string& nav_file, LogReadOptions& log_read, std::string& nav_topic,

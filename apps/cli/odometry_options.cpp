@@ -1,5 +1,7 @@
 #include "odometry_options.hpp"
 
+#include "help_groups.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -14,33 +16,28 @@ bool OdometryArgs::stated() const {
 
 void addOdometryOptions(CLI::App& cmd, OdometryArgs& args) {
   std::string classes;
-  for (const std::string& name : navigationClasses()) classes += (classes.empty() ? "" : ", ") + name;
-  cmd.add_option("--nav-class", args.nav_class,
-                 "How far localization (--slam) trusts the navigation, by its sensors (" + classes +
-                     "): dvl-ahrs, a DVL with an AHRS or compass (3 % of the distance, 1.5 deg); dvl-ins, a "
-                     "DVL-aided INS (0.3 %, 0.2 deg); absolute, aided by USBL or GPS fixes or post-processed (0.1 %, "
-                     "0.1 deg); ahrs, the heading only, from an AHRS or compass without a DVL (the position comes from "
-                     "the scans). The scans move the navigation only as far as their information outweighs this. "
-                     "auto: ahrs when --nav's north and east never change (a BlueROV2 log without a DVL), else "
-                     "dvl-ahrs")
-      ->capture_default_str();
+  for (const std::string& name : navigationClasses()) classes += (classes.empty() ? "" : " | ") + name;
+  cmd.add_option("--nav-class", args.nav_class, "How far --slam trusts the navigation: auto | " + classes)
+      ->capture_default_str()
+      ->group(help_group::kLocalization);
   cmd.add_option_function<double>("--nav-scale-sigma", [&args](double value) { args.scale_sigma_pct = value; },
-                 "Localization: 1-sigma error of the distance travelled (a DVL's scale), PERCENT >= 0; default: "
-                 "--nav-class's");
+                                   "1-sigma distance travelled error, PERCENT >= 0")
+      ->group(help_group::kLocalization);
   cmd.add_option_function<double>("--nav-heading-sigma", [&args](double value) { args.heading_sigma_deg = value; },
-                 "Localization: 1-sigma heading error (a compass's bias), DEGREES >= 0; default: --nav-class's");
+                                   "1-sigma heading error, DEGREES >= 0")
+      ->group(help_group::kLocalization);
   cmd.add_option_function<double>("--nav-velocity-noise", [&args](double value) { args.velocity_noise_mps = value; },
-                 "Localization: 1-sigma white noise of each velocity reading, M/S >= 0; default: --nav-class's");
+                                   "1-sigma noise of each velocity reading, M/S >= 0")
+      ->group(help_group::kLocalization);
   cmd.add_option_function<double>("--nav-gyro-walk", [&args](double value) { args.gyro_walk_deg_per_sqrt_s = value; },
-                 "Localization: heading random walk (a gyro's angle random walk), DEGREES/sqrt(s) >= 0; default: "
-                 "--nav-class's");
+                                   "Heading random walk, DEGREES/sqrt(s) >= 0")
+      ->group(help_group::kLocalization);
   cmd.add_option_function<double>("--max-speed", [&args](double value) { args.max_speed_mps = value; },
-                 "Localization where the navigation gives no position (no --nav, or the heading only): the "
-                 "vehicle's top speed, M/S > 0 (default 2, above a small ROV's or AUV's); a scan match that needs "
-                 "more is refused");
+                                   "Vehicle's top speed without a navigated position, M/S > 0 (2)")
+      ->group(help_group::kLocalization);
   cmd.add_option_function<double>("--max-turn-rate", [&args](double value) { args.max_turn_rate_deg_s = value; },
-                 "Localization without --nav: the vehicle's top turn rate, DEGREES/s > 0 (default 30); a scan match "
-                 "that needs more is refused");
+                                   "Vehicle's top turn rate without --nav, DEGREES/s > 0 (30)")
+      ->group(help_group::kLocalization);
 }
 
 OdometryNoise toOdometryNoise(const OdometryArgs& args, const NavTrack& track) {

@@ -2,19 +2,18 @@
 
 #include "origin_option.hpp"
 
+#include "help_groups.hpp"
+
 #include <cstdio>
 
 namespace sonarmap::cli {
 
 void addOriginOption(CLI::App& cmd, std::vector<double>& origin) {
-  cmd.add_option("--origin", origin,
-                 "The map's zero in the navigation's frame, N,E[,D]: METRES north, east (and down), e.g. UTM northing "
-                 "and easting. Positions are mapped relative to it and written back (--trajectory) in the "
-                 "navigation's own coordinates. Default: the first fix when some fix lies farther from zero than the "
-                 "map holds (32,767 voxels: 1,638 m at 5 cm, less the beams' reach), else zero")
+  cmd.add_option("--origin", origin, "Map's zero in the navigation's frame, METRES north,east[,down]")
       ->delimiter(',')
       ->expected(2, 3)
-      ->type_name("N,E[,D]");
+      ->type_name("N,E[,D]")
+      ->group(help_group::kNavigation);
 }
 
 std::optional<Eigen::Vector3d> givenOrigin(const std::vector<double>& origin) {

@@ -1,5 +1,7 @@
 #include "simulate_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -122,7 +124,7 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
 
 std::string sonarPresetHelp(const std::string& lead) {
   std::string help = lead;
-  for (const std::string& name : sonarPresetNames()) help += "\n  " + name + ": " + sonarPreset(name).description;
+  for (const std::string& name : sonarPresetNames()) help += (help == lead ? " " : " | ") + name;
   return help;
 }
 
@@ -139,76 +141,59 @@ void stageSimulation(FileTransaction& outputs, const std::string& dir, const Msi
 
 Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "simulate", "Simulate a mechanically scanned sonar (default: the Tritech Micron) scanning a scene: DIR/beams.csv, "
-                  "DIR/nav.csv (the navigation the vehicle believes), DIR/truth_nav.csv (the true track), "
-                  "DIR/scene.txt");
-  cmd->add_option("scene", args.scene,
-                  "Built-in scene (" + joined(allBuiltinSceneNames(), " | ") +
-                      "), sized for the sonar's range, or a scene file in metres (format: "
-                      "include/sonarmap/sim/scene_file.hpp)")
+      "simulate", "Simulate a scanning sonar in a scene: beams.csv, nav.csv, truth_nav.csv, scene.txt");
+  cmd->add_option("scene", args.scene, "Built-in scene (" + joined(allBuiltinSceneNames(), " | ") + ") or scene file")
       ->required();
-  cmd->add_option("-o,--output", args.output_dir, "Output folder (created when missing)")->required();
-  cmd->add_option("--sonar", args.sonar,
-                  sonarPresetHelp("Sonar head preset; built-in scenes are built for its range scale:"))
-      ->capture_default_str();
-  cmd->add_option("--sector", args.sector_deg,
-                  "Width of the scanned sector in degrees, (0, 360]; less than 360: the head sweeps back and forth "
-                  "across it")
-      ->capture_default_str();
-  cmd->add_option("--sector-center", args.sector_center_deg,
-                  "Bearing of the sector's centre in degrees, clockwise from the sonar's ahead (bearing 0)")
-      ->capture_default_str();
-  cmd->add_option("--bag", args.bag,
-                  "Also write the log as a ROS 1 bag: the beams as micron_driver_ros/ScanLine on /sonar/scan_line, "
-                  "the navigation nav.csv holds as nav_msgs/Odometry on /odometry (ENU, REP 103) and as the raw "
-                  "sensors it is dead-reckoned from (sensor_msgs/Imu on /imu/data, a DVL's TwistStamped on /dvl/twist, "
-                  "sensor_msgs/FluidPressure on /pressure), the simulator's clock as the stamps; `sonarmap map FILE.bag` "
-                  "maps it with that navigation");
-  cmd->add_option("--mcap", args.mcap,
-                  "Also write the log as a ROS 2 log in MCAP (zstd chunks, CDR): the beams as "
-                  "micron_driver_ros/msg/ScanLine on /sonar/scan_line, nav.csv's track as nav_msgs/msg/Odometry on "
-                  "/odometry (ENU, REP 103); `sonarmap map FILE.mcap` maps it with that navigation");
-  cmd->add_option("--seed", args.seed, "Seed of the speckle and noise: a seed always gives the same files")
-      ->capture_default_str();
-  cmd->add_option("--turns", args.turns,
-                  "Full 360-degree turns of the head (the Micron: 200 beams each), or passes across a sector")
-      ->capture_default_str();
-  cmd->add_option("--speed", args.speed_mps,
-                  "Vehicle speed in m/s along --heading (0: static); with --mission along its path (0: the mission's "
-                  "default: range / 20 s up to 0.5 m/s, the 3D missions range / 25 s)")
-      ->capture_default_str();
-  cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees clockwise from north (not with --mission)")
-      ->capture_default_str();
-  cmd->add_option("--depth", args.depth_m,
-                  "Vehicle depth in METRES, NED down from the origin (not with --mission); default: the built-in "
-                  "scene's (3 m in quay3d at the Micron's range, under its water surface at depth 0, scaled with the "
-                  "range; 0 elsewhere)");
-  cmd->add_option("--mission", args.mission,
-                  "Fly a named mission in its scene, sized for the sonar's range (" + joined(missionNames(), " | ") +
-                      "; include/sonarmap/sim/missions.hpp); lawnmower-3d and tilted-loop fly at depth over quay3d "
-                      "(tilted-loop with the sonar tilted 25 deg down unless --mounting says otherwise); the head turns "
-                      "until the mission ends, --turns is ignored");
-  cmd->add_option("--laps", args.laps, "Times the mission is flown (loops again, lines back and forth)")
-      ->capture_default_str();
-  addMountingOption(*cmd, args.mounting, "",
-                    "Default: the mission's (tilted-loop: 0,0,0,0,-25,0), else 0,0,0,0,0,0 (upright and aligned). "
-                    "The map command printed at the end maps the run with it");
-  cmd->add_option("--dvl-noise", args.dvl_noise_mps,
-                  "Dead reckoning: sigma of the DVL's velocity noise per axis and nav fix, m/s; any dead-reckoning "
-                  "error makes nav.csv the drifting believed track (truth_nav.csv stays the truth)")
-      ->capture_default_str();
-  cmd->add_option("--dvl-scale-error", args.dvl_scale_error,
-                  "Dead reckoning: DVL scale error as a fraction (0.02: reads 2 % fast, 2 m along track per 100 m)")
-      ->capture_default_str();
-  cmd->add_option("--heading-bias", args.heading_bias_deg,
-                  "Dead reckoning: constant compass heading bias, degrees (1: 1.75 m across track per 100 m)")
-      ->capture_default_str();
-  cmd->add_option("--gyro-walk", args.gyro_walk_deg_per_sqrt_s,
-                  "Dead reckoning: heading random walk, degrees per square root of a second (deg/sqrt(s))")
-      ->capture_default_str();
-  cmd->add_option("--nav-rate", args.nav_rate_hz, "Navigation fixes per second in nav.csv; 0: no nav.csv")
-      ->capture_default_str();
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar");
+  cmd->add_option("-o,--output", args.output_dir, "Output folder (created when missing)")
+      ->required()
+      ->group(help_group::kOutput);
+  cmd->add_option("--sonar", args.sonar, sonarPresetHelp("Head preset:"))
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--sector", args.sector_deg, "Scanned sector's width in degrees, (0, 360]")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--sector-center", args.sector_center_deg, "Sector's centre bearing in degrees from ahead, cw")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--seed", args.seed, "Seed of the speckle and noise (same seed, same files)")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--turns", args.turns, "Full turns of the head, or passes across a sector")
+      ->capture_default_str()
+      ->group(help_group::kInput);
+  cmd->add_option("--speed", args.speed_mps, "Vehicle speed in M/S (0: static, or the mission's)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees cw from north (not with --mission)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--depth", args.depth_m, "Vehicle depth in METRES, NED (not with --mission)")
+      ->group(help_group::kNavigation);
+  cmd->add_option("--mission", args.mission, "Fly a named mission: " + joined(missionNames(), " | "))
+      ->group(help_group::kNavigation);
+  cmd->add_option("--laps", args.laps, "Times the mission is flown")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  addMountingOption(*cmd, args.mounting, "");
+  cmd->add_option("--dvl-noise", args.dvl_noise_mps, "Dead reckoning: DVL velocity noise sigma per fix (m/s)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--dvl-scale-error", args.dvl_scale_error, "Dead reckoning: DVL scale error, a fraction (0.02 = 2 %)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--heading-bias", args.heading_bias_deg, "Dead reckoning: compass heading bias (degrees)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--gyro-walk", args.gyro_walk_deg_per_sqrt_s, "Dead reckoning: heading random walk (deg/sqrt(s))")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--nav-rate", args.nav_rate_hz, "Navigation fixes per second in nav.csv (Hz; 0: none)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_option("--bag", args.bag, "Also write the log as a ROS 1 bag (.bag)")->group(help_group::kOutput);
+  cmd->add_option("--mcap", args.mcap, "Also write the log as a ROS 2 log in MCAP (.mcap)")->group(help_group::kOutput);
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   auto options = std::make_shared<MsisSimulationOptions>();
   return {cmd, [&args, options] { check(args, *options); }, [&args, options] { run(args, *options); }};
 }

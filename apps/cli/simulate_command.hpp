@@ -37,8 +37,8 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args);
 /// (navigation CSV of the true track, run.nav). @throws FileError when a file cannot be staged.
 void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run);
 
-/// A --sonar option's help: `lead`, then every head preset (sonarPresetNames) with its one-line
-/// description, one a line.
+/// A --sonar option's one-line help: `lead`, then every head preset's name (sonarPresetNames)
+/// joined by " | " (what each head is: docs/commands.md).
 std::string sonarPresetHelp(const std::string& lead);
 
 }  // namespace sonarmap::cli

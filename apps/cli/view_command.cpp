@@ -1,5 +1,7 @@
 #include "view_command.hpp"
 
+#include "help_groups.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -98,20 +100,21 @@ void printViewNotes(const HtmlView& view, const HtmlViewOptions& options, double
 
 Command addViewCommand(CLI::App& app, ViewArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "view", "Write a map as one self-contained HTML page that shows it in 3D in a browser, offline");
-  cmd->add_option("map", args.input, "Map file: .bt (OctoMap binary) or .ot (OctoMap full)")->required();
-  cmd->add_option("-o,--output", args.output, "The page to write: .html (three.js inlined, no server needed)")
-      ->required();
-  cmd->add_option("--trajectory", args.trajectory_csv,
-                  "Navigation CSV (time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad, NED) drawn as the vehicle's path");
-  cmd->add_option("--max-boxes", args.max_boxes,
-                  "Cap on the occupied boxes drawn; a map with more occupied leaves is downsampled to the "
-                  "deepest octree level that fits, and the page and stderr say so")
+      "view", "Write a map as one self-contained HTML page showing it in 3D, offline");
+  cmd->add_option("map", args.input, "Map file: .bt or .ot")->required();
+  cmd->add_option("-o,--output", args.output, "The page to write (.html, three.js inlined)")
+      ->required()
+      ->group(help_group::kOutput);
+  cmd->add_option("--trajectory", args.trajectory_csv, "Navigation CSV drawn as the vehicle's path")
+      ->group(help_group::kInput);
+  cmd->add_option("--max-boxes", args.max_boxes, "Most occupied boxes drawn (more: downsampled)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--max-free-boxes", args.max_free_boxes, "The same cap for the free boxes (shown on a toggle)")
+      ->check(CLI::PositiveNumber)
+      ->group(help_group::kOutput);
+  cmd->add_option("--max-free-boxes", args.max_free_boxes, "Most free boxes drawn (more: downsampled)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->group(help_group::kOutput);
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};
 }
 

@@ -57,28 +57,21 @@ std::string numberAccepts(const MappingOption& option, bool capitals) {
   return unitText(option.unit, capitals) + (range.empty() ? "" : " " + range);
 }
 
-std::string wordList(std::span<const OptionWord> words, bool with_help) {
+std::string wordList(std::span<const OptionWord> words) {
   std::string list;
-  for (const OptionWord& word : words) {
-    list += (list.empty() ? "" : " | ") + std::string(word.word);
-    if (with_help && !word.help.empty()) list += " (" + std::string(word.help) + ")";
-  }
+  for (const OptionWord& word : words) list += (list.empty() ? "" : " | ") + std::string(word.word);
   return list;
 }
 
-constexpr OptionWord kYesNo[] = {{"yes", ""}, {"no", ""}};
+constexpr OptionWord kYesNo[] = {{"yes"}, {"no"}};
 
 /// The help of a number: the unit and range after the phrase (" in METRES > 0", ", a PROBABILITY
-/// in (0, 0.5)"), then the unset word and its meaning, then the details.
+/// in (0, 0.5)"), then the unset word.
 std::string numberHelp(const MappingOption& option) {
   const bool physical =
       option.unit == OptionUnit::kMetres || option.unit == OptionUnit::kDegrees || option.unit == OptionUnit::kDecibels;
   std::string help = std::string(option.help) + (physical ? " in " : ", ") + numberAccepts(option, true);
-  if (!option.unset.word.empty()) {
-    help += ", or " + std::string(option.unset.word);
-    if (!option.unset.help.empty()) help += ": " + std::string(option.unset.help);
-  }
-  if (!option.details.empty()) help += (option.unset.word.empty() ? ": " : "; ") + std::string(option.details);
+  if (!option.unset.word.empty()) help += ", or " + std::string(option.unset.word);
   return help;
 }
 
@@ -125,17 +118,17 @@ std::string optionAccepts(const MappingOption& option, bool capitals) {
       LinkVisitor{[&](const NumberOrWordLink&) {
                     return numberAccepts(option, capitals) + " or " + std::string(option.unset.word);
                   },
-                  [&](const WordLink&) { return wordList(option.words, false); },
-                  [&](const BoolLink& link) { return link.flag ? std::string() : wordList(kYesNo, false); },
+                  [&](const WordLink&) { return wordList(option.words); },
+                  [&](const BoolLink& link) { return link.flag ? std::string() : wordList(kYesNo); },
                   [&](const auto&) { return numberAccepts(option, capitals); }},
       option.link);
 }
 
 std::string optionHelp(const MappingOption& option) {
   return std::visit(
-      LinkVisitor{[&](const WordLink&) { return std::string(option.help) + ": " + wordList(option.words, true); },
+      LinkVisitor{[&](const WordLink&) { return std::string(option.help) + ": " + wordList(option.words); },
                   [&](const BoolLink& link) {
-                    return std::string(option.help) + (link.flag ? "" : ": " + wordList(kYesNo, false));
+                    return std::string(option.help) + (link.flag ? "" : ": " + wordList(kYesNo));
                   },
                   [&](const auto&) { return numberHelp(option); }},
       option.link);
@@ -160,7 +153,7 @@ void setDefaultArgument(const MappingOption& option, MappingArguments& args) {
                       }
                     }
                     throw ValueError(optionFlag(option) + ": the library's default is none of " +
-                                     wordList(option.words, false));
+                                     wordList(option.words));
                   },
                   [&](const BoolLink& link) { args.*link.arg = link.field.read(library); },
                   [&](const CountLink& link) { args.*link.arg = link.field.read(library); }},

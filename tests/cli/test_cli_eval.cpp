@@ -172,6 +172,45 @@ TEST_F(cliEval, BadArgumentsAndInputsFailWithOneLine) {
   expectError(run({"eval", map.string(), "--truth", "tank", "--z-min", "3", "--z-max", "4"}), 1);  // nothing known
 }
 
+// A scoring file (what `demo` writes beside its 3D map) gives eval's options by their names, its
+// files relative to its folder: the same scores as the options typed, the command line winning,
+// and a file that cannot be read as one is a usage error.
+TEST_F(cliEval, ScoringFileGivesTheOptionsItNames) {
+  const fs::path folder = root_ / "mission";
+  fs::create_directory(folder);
+  const fs::path map = writeWallMap(folder / "wall.bt");
+  std::ofstream(folder / "wall.scene") << "# the wall\nplane 1.05 0 0  1 0 0  0.9\n";
+  std::ofstream(folder / "scoring.json") << R"({"truth": "wall.scene", "max-range": 0.8, "vertical-aperture": 35,
+                                             "sensor-pose": [[0, 0, 0, 0, 0, 0], [0.1, 0, 0, 0, 0, 90]]})";
+  const ProgramRun filed = run({"eval", map.string(), "--scoring", (folder / "scoring.json").string()});
+  ASSERT_EQ(filed.exit_code, 0) << filed.err;
+  const ProgramRun typed = run({"eval", map.string(), "--truth", (folder / "wall.scene").string(), "--max-range", "0.8",
+                                "--vertical-aperture", "35", "--sensor-pose", "0,0,0,0,0,0", "--sensor-pose",
+                                "0.1,0,0,0,0,90"});
+  ASSERT_EQ(typed.exit_code, 0) << typed.err;
+  Names filed_lines = linesOf(filed.out), typed_lines = linesOf(typed.out);
+  ASSERT_GE(filed_lines.size(), 2U) << filed.out;
+  filed_lines.pop_back();  // the summary line times the run
+  typed_lines.pop_back();
+  EXPECT_EQ(filed_lines, typed_lines);
+  EXPECT_NE(filed.out.find("range 0.800 m"), std::string::npos) << filed.out;
+  // The command line wins over the file.
+  const ProgramRun nearer =
+      run({"eval", map.string(), "--scoring", (folder / "scoring.json").string(), "--max-range", "0.5"});
+  ASSERT_EQ(nearer.exit_code, 0) << nearer.err;
+  EXPECT_NE(nearer.out.find("range 0.500 m"), std::string::npos) << nearer.out;
+  // Unreadable, not an object, an unknown key, a value of the wrong kind, no truth at all.
+  const auto scoring = [&](const std::string& text) {
+    std::ofstream(folder / "bad.json") << text;
+    return run({"eval", map.string(), "--scoring", (folder / "bad.json").string()});
+  };
+  expectError(run({"eval", map.string(), "--scoring", (folder / "missing.json").string()}), 2);
+  expectError(scoring("[1, 2]"), 2);
+  expectError(scoring(R"({"truth": "wall.scene", "range": 1})"), 2);
+  expectError(scoring(R"({"truth": "wall.scene", "sensor-pose": [[0, 0, 0]]})"), 2);
+  expectError(scoring(R"({"max-range": 1})"), 2);
+}
+
 /// The heard-surface lines of an eval run with --heard-by (after precision and recall), read back.
 struct HeardLines {
   double recall = -1.0, f1 = -1.0, precision = -1.0, recall_again = -1.0;

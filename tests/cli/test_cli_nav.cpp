@@ -172,7 +172,8 @@ TEST_F(cliNav, BadMountingIsAUsageErrorAndBadNavigationADataError) {
 TEST_F(cliNav, HelpDocumentsNavAndMounting) {
   const ProgramRun result = run({"map", "--help"});
   ASSERT_EQ(result.exit_code, 0);
-  for (const char* part : {"--nav", "--mounting", "DEGREES", "0,0,0,0,0,0", "PITCH -25"}) {
+  // The units in one line; the frames, default and the tilt's sign in docs/commands.md.
+  for (const char* part : {"--nav", "--mounting", "X,Y,Z (m)", "ROLL,PITCH,YAW (deg)"}) {
     EXPECT_NE(result.out.find(part), std::string::npos) << "'" << part << "' missing from: " << result.out;
   }
 }

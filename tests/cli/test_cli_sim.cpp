@@ -178,7 +178,7 @@ TEST_F(cliSim, DemoMapsTheSimulatedTankWithItsWalls) {
   EXPECT_EQ(result.err, "");
   EXPECT_EQ(listDir(dir), kDemoFiles);
   const Names lines = linesOf(result.out);
-  ASSERT_EQ(lines.size(), 9U) << result.out;  // the tank's two, then the 3D run's (test_cli_3d.cpp)
+  ASSERT_EQ(lines.size(), 6U) << result.out;  // the tank's three, then the 3D run's (test_cli_3d.cpp)
   std::size_t used = 0, skipped = 0, sweeps = 0;
   ASSERT_EQ(std::sscanf(lines[0].c_str(), "%zu beams used, %zu skipped, %zu sweeps", &used, &skipped, &sweeps), 3)
       << lines[0];

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <string>
@@ -98,6 +99,25 @@ TEST(MappingOptionTable, RefusedValuesNameTheFlagAndWhatItAccepts) {
         EXPECT_NE(message.find(optionFlag(option) + " expects " + optionAccepts(option)), std::string::npos) << message;
       }
     }
+  }
+}
+
+// The command line lists each option in its group (Detection, Mapping, 3D) with a help of one line;
+// the details are in docs/commands.md, which names every option.
+TEST(MappingOptionTable, EveryOptionHasAGroupAndAOneLineHelp) {
+  const std::string commands = [] {
+    std::ifstream file(std::string(SONARMAP_SOURCE_DIR) + "/docs/commands.md");
+    return std::string(std::istreambuf_iterator<char>(file), {});
+  }();
+  ASSERT_FALSE(commands.empty()) << "docs/commands.md missing";
+  for (const MappingOption& option : mappingOptionTable()) {
+    EXPECT_TRUE(option.group == "Detection" || option.group == "Mapping" || option.group == "3D")
+        << optionFlag(option) << ": group '" << option.group << "'";
+    EXPECT_EQ(option.group == "Detection", option.stage == OptionStage::kDetection) << optionFlag(option);
+    const std::string help = optionHelp(option);
+    EXPECT_EQ(help.find('\n'), std::string::npos) << help;
+    EXPECT_LE(help.size(), 100U) << help;  // a short sentence with its unit, or the words it takes
+    EXPECT_NE(commands.find("`" + optionFlag(option)), std::string::npos) << optionFlag(option) << " not in docs/commands.md";
   }
 }
 

@@ -44,10 +44,9 @@ struct OptionRange {
   bool hi_open = false;
 };
 
-/// A word an option accepts (a detector's name, "auto"), with what it does (may be empty).
+/// A word an option accepts (a detector's name, "auto"); what each does is in docs/commands.md.
 struct OptionWord {
   std::string_view word;
-  std::string_view help{};
 };
 
 /// Where an option acts: on detection (Python's detect_obstacles takes these) or on mapping.
@@ -133,16 +132,17 @@ struct MappingOption {
   /// also accepts by that name).
   std::string_view keyword{};
   OptionStage stage = OptionStage::kMapping;
+  /// The command line's help group: "Detection", "Mapping" or "3D" (docs/commands.md has the same).
+  std::string_view group{};
   OptionUnit unit = OptionUnit::kNone;  ///< numbers: the unit the user gives them in
   OptionRange range{};                  ///< numbers and counts: the values accepted
-  /// NumberOrWordLink: the word the option takes instead of a number ("auto", "none") and what it
-  /// means.
+  /// NumberOrWordLink: the word the option takes instead of a number ("auto", "none").
   OptionWord unset{};
   std::span<const OptionWord> words{};  ///< WordLink: the accepted words, in the order help lists them
-  /// What the option does: a phrase the unit and range follow ("Voxel edge" → "Voxel edge in
-  /// METRES > 0"), or for words the phrase their list follows after a colon.
+  /// What the option does, short: a phrase the unit and range follow ("Voxel edge" → "Voxel edge in
+  /// METRES > 0"), or for words the phrase their list follows after a colon. The details are in
+  /// docs/commands.md.
   std::string_view help{};
-  std::string_view details{};  ///< more, after the unit and range (or after the unset word's meaning)
   OptionLink link{};
 };
 
@@ -169,8 +169,8 @@ const MappingOption* findMappingOption(std::string_view keyword);
 /// PROBABILITY", "METRES").
 std::string optionAccepts(const MappingOption& option, bool capitals = false);
 
-/// The command line's help of the option: its help phrase with the unit and range ("in METRES >
-/// 0"), the unset word and what it means, the words and what each does, and the details.
+/// The command line's one-line help of the option: its help phrase with the unit and range ("in
+/// METRES > 0"), the unset word, or the words.
 std::string optionHelp(const MappingOption& option);
 
 /// Sets the option's field of `args` to the library's default (MapperOptions{}), in the user's unit.
