@@ -1,6 +1,6 @@
 // The mapping option table (mapping/mapping_option_table.hpp): each option's default is the
 // library's, its words each set their own setting, values outside its range are refused naming its
-// flag and what it accepts, its help states its unit, and the README's usage block names it.
+// flag and what it accepts, its help states its unit, and docs/commands.md documents it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -140,32 +140,30 @@ TEST(MappingOptionTable, HelpStatesUnitRangeAndWords) {
   EXPECT_NE(optionHelp(*findMappingOption("resolution")).find("in METRES > 0, or auto"), std::string::npos);
 }
 
-/// The README's `sonarmap map` usage block: from its first line to the end of the code block.
-std::string readmeUsageBlock() {
-  std::ifstream file(std::string(SONARMAP_SOURCE_DIR) + "/README.md");
-  std::stringstream text;
-  text << file.rdbuf();
-  const std::string readme = text.str();
-  const std::size_t start = readme.find("sonarmap map INPUT");
-  if (start == std::string::npos) return {};
-  return readme.substr(start, readme.find("```", start) - start);
+/// docs/commands.md's table row of `flag` (the line that starts "| `--flag`", or that lists it
+/// with another flag: "| `--smoothing-range`, `--smoothing-bearing` |"); empty when there is none.
+std::string commandsPageRow(const std::string& flag) {
+  std::ifstream file(std::string(SONARMAP_SOURCE_DIR) + "/docs/commands.md");
+  std::string line;
+  while (std::getline(file, line)) {
+    if (line.rfind("| `", 0) != 0) continue;
+    const std::string first_cell = line.substr(0, line.find(" |", 2));
+    if (first_cell.find("`" + flag + "`") != std::string::npos) return line;
+  }
+  return {};
 }
 
-TEST(MappingOptionTable, ReadmeUsageBlockNamesEveryFlagAndItsWords) {
-  const std::string usage = readmeUsageBlock();
-  ASSERT_FALSE(usage.empty()) << "no `sonarmap map INPUT` usage block in README.md";
+TEST(MappingOptionTable, CommandsPageRowNamesEveryFlagAndItsWords) {
   for (const MappingOption& option : mappingOptionTable()) {
     const std::string flag = optionFlag(option);
-    std::size_t at = usage.find(flag + " ");
-    if (at == std::string::npos) at = usage.find(flag + "]");
-    ASSERT_NE(at, std::string::npos) << flag << " missing from README.md's usage block";
-    const std::string value = usage.substr(at, usage.find(']', at) - at);  // "--smoothing none|gaussian|median|mean"
+    const std::string row = commandsPageRow(flag);
+    ASSERT_FALSE(row.empty()) << flag << " has no row in docs/commands.md";
     std::vector<std::string_view> words;
     for (const OptionWord& word : option.words) words.push_back(word.word);
     if (!option.unset.word.empty()) words.push_back(option.unset.word);
     if (const auto* boolean = std::get_if<BoolLink>(&option.link); boolean && !boolean->flag) words = {"yes", "no"};
     for (std::string_view word : words) {
-      EXPECT_NE(value.find(word), std::string::npos) << flag << ": '" << word << "' missing from '" << value << "'";
+      EXPECT_NE(row.find(word), std::string::npos) << flag << ": '" << word << "' missing from '" << row << "'";
     }
   }
 }
