@@ -1,6 +1,7 @@
-# The Debian package (issue 13, item 4): `cpack -G DEB` in the build folder writes
+# The Debian package: `cpack -G DEB` in the build folder writes
 # sonarmap_<version>_<arch>.deb with everything `cmake --install` installs under /usr: the
-# library (static), its headers and CMake package (find_package(sonarmap)), the `sonarmap` CLI
+# library (static, one libsonarmap_<component>.a per component), its headers and CMake package
+# (find_package(sonarmap [COMPONENTS ...])), the `sonarmap` CLI
 # and, when built, the Python module (/usr/lib/python3/dist-packages/sonarmap).
 # `apt-get install ./sonarmap_*.deb` pulls what it needs from Debian: the shared libraries the
 # CLI and the module link (dpkg-shlibdeps) and, since the library is static and its headers

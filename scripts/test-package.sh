@@ -3,8 +3,9 @@
 # sonarmap_<version>_<arch>.deb from build/ (cpack), makes a minimal Debian 12 root with debootstrap
 # (root, and Debian's mirror, needed), installs the package there with
 # `apt-get install ./sonarmap_*.deb` (pulling its dependencies from Debian), then, inside that root:
-# builds and runs the consumer project (tests/consumer, find_package(sonarmap)), runs the
-# `sonarmap` tool, and imports the Python module with the system's python3.
+# builds and runs the consumer projects (tests/consumer, find_package(sonarmap); tests/consumer/octree,
+# the octree component alone), runs the `sonarmap` tool, and imports the Python module with the
+# system's python3.
 # Usage: bash scripts/test-package.sh [ROOT_DIR]   (default: a temporary folder, removed after; a
 #        ROOT_DIR given is kept and reused). BUILD_DIR=... names the build folder (default build).
 set -euo pipefail
@@ -42,6 +43,9 @@ chroot "$root" /bin/bash -euo pipefail -c '
   cmake -S consumer -B consumer-build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build consumer-build >/dev/null
   ./consumer-build/consumer /tmp/sonarmap/map.bt
+  cmake -S consumer/octree -B octree-build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build octree-build >/dev/null
+  ./octree-build/octree_consumer
   python3 -c "import sonarmap, numpy as np
 m = sonarmap.OccupancyMap(0.1)
 m.insert_point_cloud(np.array([[1.0, 0.0, 0.0]]), np.zeros(3))

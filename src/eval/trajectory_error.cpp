@@ -22,17 +22,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void checkEstimate(const NavTrack& track) {
   if (track.empty()) throw ValueError("trajectory evaluation: the estimated track is empty");
-  for (std::size_t i = 0; i < track.size(); ++i) {
-    const NavSample& fix = track[i];
-    if (!(std::isfinite(fix.time_s) && fix.position_ned_m.allFinite() && std::isfinite(fix.roll_rad) &&
-          std::isfinite(fix.pitch_rad) && std::isfinite(fix.yaw_rad))) {
-      throw ValueError("trajectory evaluation: estimate fix " + std::to_string(i) + " holds a non-finite value");
-    }
-    if (i > 0 && !(fix.time_s > track[i - 1].time_s)) {
-      throw ValueError("trajectory evaluation: estimate fix " + std::to_string(i) +
-                       "'s time is not after the previous fix's; times must increase strictly");
-    }
+  const std::optional<NavTrackFault> fault = findNavTrackFault(track);
+  if (!fault) return;
+  if (fault->kind == NavTrackFault::Kind::kNotFinite) {
+    throw ValueError("trajectory evaluation: estimate fix " + std::to_string(fault->index) + " holds a non-finite value");
   }
+  throw ValueError("trajectory evaluation: estimate fix " + std::to_string(fault->index) +
+                   "'s time is not after the previous fix's; times must increase strictly");
 }
 
 /// Distance travelled along the truth's fixes from its first fix to `time_s` (within its span).

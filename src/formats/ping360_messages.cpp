@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "../io/byte_io.hpp"
 #include "frame_scanner.hpp"
 #include "wire_protocols.hpp"
 
@@ -33,10 +34,6 @@ constexpr std::size_t kTransmitDurationAt = 4;  ///< µs
 constexpr std::size_t kSamplePeriodAt = 6;
 constexpr std::size_t kDeviceDataLengthAt = 12;      // device_data: after number_of_samples
 constexpr std::size_t kAutoDeviceDataLengthAt = 18;  // auto_device_data: after the sector fields
-
-std::uint16_t u16At(std::span<const unsigned char> bytes, std::size_t at) {
-  return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8));
-}
 
 /// Ping-protocol framing of `stream` (from a 'B' 'R' to the last byte received).
 FrameProbe probeMessage(std::span<const unsigned char> stream, std::size_t /*at*/) {

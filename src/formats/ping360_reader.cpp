@@ -16,12 +16,8 @@ namespace sonarmap {
 
 SonarLog parsePing360Stream(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s);
-  detail::checkBeamInterval(options.beam_interval_s);
-  SonarLog log = WireStreamDecoder(LogFormat::kPing360, options, source).decodeAll(bytes);
-  detail::finishClocklessCapture(log, bytes.size(), source, "Ping360 device_data messages ('B' 'R' ... checksum)",
-                                 options.beam_interval_s);
-  return log;
+  return detail::parseClocklessCapture(LogFormat::kPing360, bytes, source, options,
+                                       "Ping360 device_data messages ('B' 'R' ... checksum)");
 }
 
 SonarLog parsePing360(std::span<const unsigned char> bytes, const std::string& source, const CaptureOptions& options) {

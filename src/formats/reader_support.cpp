@@ -51,4 +51,13 @@ void finishClocklessCapture(SonarLog& log, std::size_t capture_bytes, const std:
   for (std::size_t i = 0; i < log.beams.size(); ++i) log.beams[i].time_s = static_cast<double>(i) * beam_interval_s;
 }
 
+SonarLog parseClocklessCapture(LogFormat format, std::span<const unsigned char> bytes, const std::string& source,
+                               const CaptureOptions& options, std::string_view expected) {
+  checkSoundSpeed(options.sound_speed_m_s);
+  checkBeamInterval(options.beam_interval_s);
+  SonarLog log = WireStreamDecoder(format, options, source).decodeAll(bytes);
+  finishClocklessCapture(log, bytes.size(), source, expected, options.beam_interval_s);
+  return log;
+}
+
 }  // namespace sonarmap::detail

@@ -3,10 +3,12 @@
 /// Private to src/formats: what the binary sonar log readers share: a whole file read into memory
 /// and the check of the options that turn head settings into metres and seconds.
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "sonarmap/formats/wire_stream.hpp"
 #include "sonarmap/sonar/beam.hpp"
 
 namespace sonarmap::detail {
@@ -30,5 +32,13 @@ void finishClocklessCapture(SonarLog& log, std::size_t capture_bytes, const std:
 
 /// @throws FileError as finishClocklessCapture when `log` has no beam.
 void requireBeams(const SonarLog& log, std::size_t capture_bytes, const std::string& source, std::string_view expected);
+
+/// A whole capture without a clock (raw SeaNet or Ping360 bytes, `format`) decoded as one stream
+/// (WireStreamDecoder), its beams then timed by finishClocklessCapture; `expected` names what the
+/// capture holds, for its messages.
+/// @throws ValueError for an invalid sound speed or beam interval; FileError as
+///         finishClocklessCapture.
+SonarLog parseClocklessCapture(LogFormat format, std::span<const unsigned char> bytes, const std::string& source,
+                               const CaptureOptions& options, std::string_view expected);
 
 }  // namespace sonarmap::detail

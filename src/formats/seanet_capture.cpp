@@ -109,12 +109,8 @@ FrameScan seaNetFrameScan(const std::string& source, double sound_speed_m_s, Son
 
 SonarLog parseSeaNetCapture(std::span<const unsigned char> bytes, const std::string& source,
                             const CaptureOptions& options) {
-  detail::checkSoundSpeed(options.sound_speed_m_s);
-  detail::checkBeamInterval(options.beam_interval_s);
-  SonarLog log = WireStreamDecoder(LogFormat::kSeaNet, options, source).decodeAll(bytes);
-  detail::finishClocklessCapture(log, bytes.size(), source, "SeaNet mtHeadData packets ('@', hex length, ..., LF)",
-                                 options.beam_interval_s);
-  return log;
+  return detail::parseClocklessCapture(LogFormat::kSeaNet, bytes, source, options,
+                                       "SeaNet mtHeadData packets ('@', hex length, ..., LF)");
 }
 
 SonarLog readSeaNetCapture(const std::string& path, const CaptureOptions& options) {

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <vector>
 
+#include "../io/byte_io.hpp"
+
 namespace sonarmap::detail {
 namespace {
 
@@ -27,10 +29,6 @@ constexpr std::size_t kAdSpanAt = 18;
 constexpr std::size_t kAdIntervalAt = 22;
 constexpr std::size_t kBearingAt = 29;
 constexpr std::size_t kDataBytesAt = 31;
-
-std::uint16_t u16At(std::span<const unsigned char> body, std::size_t at) {
-  return static_cast<std::uint16_t>(body[at] | (body[at + 1] << 8));
-}
 
 /// Unpacks the data bytes of one beam: copied (8-bit) or two 4-bit bins per byte, high nibble
 /// first, scaled ×17 onto 0…255.

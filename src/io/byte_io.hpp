@@ -1,8 +1,9 @@
 #pragma once
 /// @file byte_io.hpp
-/// Private to src/io: little-endian reading with bounds checks and little-endian writing, for the
-/// binary OctoMap formats (`.graph`, `.ot`). Every failed read throws FileError naming the source,
-/// the byte offset and what was expected there.
+/// Private to the library (src/): little-endian reading with bounds checks and little-endian
+/// writing, for the binary OctoMap formats (`.graph`, `.ot`) and the sonars' wire formats. Every
+/// failed read of a ByteCursor throws FileError naming the source, the byte offset and what was
+/// expected there.
 
 #include <bit>
 #include <cmath>
@@ -16,6 +17,12 @@
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap::detail {
+
+/// The little-endian 16-bit number at `bytes[at]`, `bytes[at + 1]` (the caller has checked that
+/// both are there).
+inline std::uint16_t u16At(std::span<const unsigned char> bytes, std::size_t at) {
+  return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8));
+}
 
 /// Sequential reader over bytes already in memory. Offsets in messages are `base + position`, so
 /// a reader over the data part of a file can report file offsets.
@@ -51,7 +58,7 @@ class ByteCursor {
   }
   std::uint16_t u16(std::string_view what) {
     require(2, what);
-    const auto value = static_cast<std::uint16_t>(data_[position_] | (data_[position_ + 1] << 8));
+    const std::uint16_t value = u16At(data_, position_);
     position_ += 2;
     return value;
   }

@@ -53,9 +53,7 @@ OnlineMapper::~OnlineMapper() {
 
 void OnlineMapper::addNavFix(const NavSample& fix) {
   if (!sonar_to_body_) throw ValueError("online mapper: navigation fixes need the navigation constructor");
-  const bool finite = std::isfinite(fix.time_s) && fix.position_ned_m.allFinite() && std::isfinite(fix.roll_rad) &&
-                      std::isfinite(fix.pitch_rad) && std::isfinite(fix.yaw_rad);
-  if (!finite) throw ValueError("online mapper: navigation fix with a value that is not finite");
+  if (!isFinite(fix)) throw ValueError("online mapper: navigation fix with a value that is not finite");
   if (!fixes_.empty() && !(fix.time_s > fixes_.back().time_s)) {
     throw ValueError("online mapper: navigation fix at " + std::to_string(fix.time_s) + " s is not after the previous one (" +
                      std::to_string(fixes_.back().time_s) + " s)");

@@ -31,25 +31,19 @@ Eigen::Quaterniond attitudeOf(const NavSample& sample) {
          Eigen::AngleAxisd(sample.roll_rad, Eigen::Vector3d::UnitX());
 }
 
-bool isFinite(const NavSample& sample) {
-  return std::isfinite(sample.time_s) && sample.position_ned_m.allFinite() && std::isfinite(sample.roll_rad) &&
-         std::isfinite(sample.pitch_rad) && std::isfinite(sample.yaw_rad);
-}
-
 /// @throws ValueError (prefixed by `caller`) when the track is empty, holds a non-finite value or
 ///         its times do not increase strictly.
 void checkTrack(const NavTrack& track, const char* caller) {
   if (track.empty()) throw ValueError(std::string(caller) + ": the navigation track is empty");
-  for (std::size_t i = 0; i < track.size(); ++i) {
-    if (!isFinite(track[i])) {
-      throw ValueError(std::string(caller) + ": navigation fix " + std::to_string(i) + " holds a non-finite value");
-    }
-    if (i > 0 && !(track[i].time_s > track[i - 1].time_s)) {
-      throw ValueError(std::string(caller) + ": navigation fix " + std::to_string(i) + " (time " +
-                       csv::formatNumber(track[i].time_s) + " s) is not after fix " + std::to_string(i - 1) +
-                       " (time " + csv::formatNumber(track[i - 1].time_s) + " s); times must increase strictly");
-    }
+  const std::optional<NavTrackFault> fault = findNavTrackFault(track);
+  if (!fault) return;
+  const std::size_t i = fault->index;
+  if (fault->kind == NavTrackFault::Kind::kNotFinite) {
+    throw ValueError(std::string(caller) + ": navigation fix " + std::to_string(i) + " holds a non-finite value");
   }
+  throw ValueError(std::string(caller) + ": navigation fix " + std::to_string(i) + " (time " +
+                   csv::formatNumber(track[i].time_s) + " s) is not after fix " + std::to_string(i - 1) + " (time " +
+                   csv::formatNumber(track[i - 1].time_s) + " s); times must increase strictly");
 }
 
 NavSample readFix(const csv::LineReader& reader) {
@@ -69,6 +63,19 @@ NavSample readFix(const csv::LineReader& reader) {
 }
 
 }  // namespace
+
+bool isFinite(const NavSample& sample) {
+  return std::isfinite(sample.time_s) && sample.position_ned_m.allFinite() && std::isfinite(sample.roll_rad) &&
+         std::isfinite(sample.pitch_rad) && std::isfinite(sample.yaw_rad);
+}
+
+std::optional<NavTrackFault> findNavTrackFault(const NavTrack& track) {
+  for (std::size_t i = 0; i < track.size(); ++i) {
+    if (!isFinite(track[i])) return NavTrackFault{NavTrackFault::Kind::kNotFinite, i};
+    if (i > 0 && !(track[i].time_s > track[i - 1].time_s)) return NavTrackFault{NavTrackFault::Kind::kNotAfter, i};
+  }
+  return std::nullopt;
+}
 
 Eigen::Isometry3d bodyToNed(const NavSample& sample) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

@@ -27,17 +27,14 @@ constexpr std::string_view kComment =
 ///         increase strictly.
 void checkTrack(const NavTrack& track) {
   if (track.empty()) throw ValueError("TUM trajectory not written: the track is empty");
-  for (std::size_t i = 0; i < track.size(); ++i) {
-    const NavSample& fix = track[i];
-    if (!(std::isfinite(fix.time_s) && fix.position_ned_m.allFinite() && std::isfinite(fix.roll_rad) &&
-          std::isfinite(fix.pitch_rad) && std::isfinite(fix.yaw_rad))) {
-      throw ValueError("TUM trajectory not written: fix " + std::to_string(i) + " holds a non-finite value");
-    }
-    if (i > 0 && !(fix.time_s > track[i - 1].time_s)) {
-      throw ValueError("TUM trajectory not written: fix " + std::to_string(i) + "'s time is not after fix " +
-                       std::to_string(i - 1) + "'s; times must increase strictly");
-    }
+  const std::optional<NavTrackFault> fault = findNavTrackFault(track);
+  if (!fault) return;
+  const std::size_t i = fault->index;
+  if (fault->kind == NavTrackFault::Kind::kNotFinite) {
+    throw ValueError("TUM trajectory not written: fix " + std::to_string(i) + " holds a non-finite value");
   }
+  throw ValueError("TUM trajectory not written: fix " + std::to_string(i) + "'s time is not after fix " +
+                   std::to_string(i - 1) + "'s; times must increase strictly");
 }
 
 /// `line` without surrounding spaces, tabs and a carriage return.

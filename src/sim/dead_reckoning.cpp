@@ -37,15 +37,12 @@ Eigen::Vector2d rotated(double yaw_rad, const Eigen::Vector2d& v) {
 }
 
 void requireValidTrack(const NavTrack& track) {
-  for (std::size_t k = 0; k < track.size(); ++k) {
-    const NavSample& fix = track[k];
-    if (!(std::isfinite(fix.time_s) && fix.position_ned_m.allFinite() && std::isfinite(fix.roll_rad) &&
-          std::isfinite(fix.pitch_rad) && std::isfinite(fix.yaw_rad))) {
+  if (const std::optional<NavTrackFault> fault = findNavTrackFault(track)) {
+    const std::size_t k = fault->index;
+    if (fault->kind == NavTrackFault::Kind::kNotFinite) {
       throw ValueError("dead reckoning: fix " + std::to_string(k) + " of the true track holds a non-finite value");
     }
-    if (k > 0 && !(fix.time_s > track[k - 1].time_s)) {
-      throw ValueError("dead reckoning: fix " + std::to_string(k) + "'s time is not after the previous fix's");
-    }
+    throw ValueError("dead reckoning: fix " + std::to_string(k) + "'s time is not after the previous fix's");
   }
 }
 

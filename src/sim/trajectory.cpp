@@ -20,11 +20,6 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// `angle_rad` wrapped into [−π, π).
 double wrapAngle(double angle_rad) { return angle_rad - kTwoPi * std::floor((angle_rad + std::numbers::pi) / kTwoPi); }
 
-bool finiteSample(const NavSample& sample) {
-  return std::isfinite(sample.time_s) && sample.position_ned_m.allFinite() && std::isfinite(sample.roll_rad) &&
-         std::isfinite(sample.pitch_rad) && std::isfinite(sample.yaw_rad);
-}
-
 /// `value` must be finite and > 0.
 void requirePositive(const char* where, const char* field, double value) {
   if (!(std::isfinite(value) && value > 0.0)) {
@@ -135,7 +130,7 @@ Trajectory constantVelocityTrajectory(const NavSample& start, const Eigen::Vecto
 Trajectory waypointTrajectory(std::vector<NavSample> waypoints) {
   if (waypoints.empty()) throw ValueError("waypoint trajectory: no waypoint");
   for (std::size_t i = 0; i < waypoints.size(); ++i) {
-    if (!finiteSample(waypoints[i])) {
+    if (!isFinite(waypoints[i])) {
       throw ValueError("waypoint trajectory: waypoint " + std::to_string(i) + " holds a non-finite value");
     }
     if (i > 0 && !(waypoints[i].time_s > waypoints[i - 1].time_s)) {

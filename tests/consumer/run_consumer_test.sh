@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Builds and runs tests/consumer against an installed sonarmap, as a user's project would find the
-# package (find_package with the prefix on CMAKE_PREFIX_PATH, nothing else).
+# package (find_package with the prefix on CMAKE_PREFIX_PATH, nothing else): the whole library
+# (sonarmap::sonarmap), then the octree alone (tests/consumer/octree: COMPONENTS octree), configured
+# with every other dependency's find_package disabled and linked with nothing but its library.
 # Usage: run_consumer_test.sh install BUILD_DIR SOURCE_DIR
 #          `cmake --install` into a temporary prefix (not /usr/local, where a compiler looks anyway)
 #        run_consumer_test.sh deb BUILD_DIR SOURCE_DIR
@@ -29,7 +31,8 @@ case "$mode" in
     done
     files=$(dpkg-deb -c "$deb" | awk '{print $6}')
     for needed in ./usr/bin/sonarmap ./usr/include/sonarmap/io/octomap_binary.hpp \
-                  ./usr/lib/cmake/sonarmap/sonarmapConfig.cmake ./usr/lib/libsonarmap.a; do
+                  ./usr/lib/cmake/sonarmap/sonarmapConfig.cmake ./usr/lib/cmake/sonarmap/sonarmap_octreeTargets.cmake \
+                  ./usr/lib/libsonarmap_octree.a ./usr/lib/libsonarmap_mapping.a; do
       grep -qxF "$needed" <<<"$files" || fail "the package lacks $needed"
     done
     dpkg -x "$deb" "$tmp/root"
@@ -52,3 +55,19 @@ cmake -S "$source_dir/tests/consumer" -B "$tmp/build" -G Ninja -DCMAKE_BUILD_TYP
   -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$tmp/build" >/dev/null
 "$tmp/build/consumer" "$tmp/map.bt"
+
+# The octree alone: a find_package of anything but Eigen fails the configure, and the program links
+# libsonarmap_octree.a and nothing else of sonarmap or its other dependencies.
+disabled=()
+for package in OpenCV Ceres nanoflann absl ZLIB ICU BZip2 PkgConfig; do
+  disabled+=("-DCMAKE_DISABLE_FIND_PACKAGE_$package=ON")
+done
+cmake -S "$source_dir/tests/consumer/octree" -B "$tmp/octree" -G Ninja -DCMAKE_BUILD_TYPE="$(cached CMAKE_BUILD_TYPE)" \
+  -DCMAKE_CXX_FLAGS="$(cached CMAKE_CXX_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(cached CMAKE_EXE_LINKER_FLAGS)" \
+  -DCMAKE_PREFIX_PATH="$prefix" --no-warn-unused-cli "${disabled[@]}" >/dev/null || fail "find_package(sonarmap COMPONENTS octree) needs more than Eigen"
+link=$(cd "$tmp/octree" && ninja -t commands octree_consumer | tail -1)
+[[ "$link" == *libsonarmap_octree.a* ]] || fail "the octree consumer does not link libsonarmap_octree.a: $link"
+others=$(tr ' ' '\n' <<<"$link" | grep -E '\.(a|so)$|^-l' | grep -v 'libsonarmap_octree\.a$' || true)
+[ -z "$others" ] || fail "the octree consumer links more than the octree: $others"
+cmake --build "$tmp/octree" >/dev/null
+"$tmp/octree/octree_consumer"

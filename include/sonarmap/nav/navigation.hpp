@@ -43,6 +43,21 @@ struct NavSample {
 /// Navigation fixes sorted by strictly increasing time.
 using NavTrack = std::vector<NavSample>;
 
+/// Whether every value of `sample` (time, position, attitude) is finite.
+bool isFinite(const NavSample& sample);
+
+/// The first place where a track breaks NavTrack's rules: fix `index` holds a value that is not
+/// finite (kNotFinite), or its time is not after fix index − 1's (kNotAfter).
+struct NavTrackFault {
+  enum class Kind { kNotFinite, kNotAfter };
+  Kind kind = Kind::kNotFinite;
+  std::size_t index = 0;
+};
+
+/// The first fault of `track`, fix by fix in order (a fix's values before its time); nullopt when
+/// it has none (an empty track has none). Each caller words its own error.
+std::optional<NavTrackFault> findNavTrackFault(const NavTrack& track);
+
 /// Pose of the body frame in NED (maps body coordinates to NED) for one fix: rotation
 /// Rz(yaw)·Ry(pitch)·Rx(roll) (Z-Y-X Euler angles, Eigen::AngleAxis about NED's axes), translation
 /// `position_ned_m`. Yaw π/2 turns body +x (forward) to NED +y (east). No check on the values.
