@@ -175,7 +175,7 @@ void VolumeInversion::addBeam(const InversionBeam& beam, OcTree16& map) {
 }
 
 void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const OcTree16& map,
-                                std::vector<Look>& looks) const {
+                                std::span<const double> levels, std::vector<Look>& looks) const {
   const double half_h_rad = 0.5 * options_.extent_half_widths * pattern_.horizontal.width_rad;
   const double half_e_rad = 0.5 * options_.extent_half_widths * pattern_.vertical.width_rad;
   const ScattererGain gain_of(pattern_, resolution_m_ * resolution_m_);
@@ -213,11 +213,10 @@ void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const
     const double h_rad = std::atan2(in_beam.y(), in_beam.x());
     if (std::abs(h_rad) > half_h_rad || std::abs(e_rad) > half_e_rad) continue;
     if (!wet(beam.seabed, centre) || !wet(beam.surface, centre)) continue;  // the level surfaces' or hidden by them
-    const double expected = 1.0 + seabed_scale_ * seabed_energy_[cell] + surface_scale_ * surface_energy_[cell];
     std::uint8_t flags = 0;
     if (k < beam.water_cells) {  // before the first echo: never loud, whatever the speckle
       if (k < beam.free_cells && gain_of.twoWay(h_rad, e_rad) >= core_share) flags |= kWater;
-    } else if (power >= loud_share * expected) {
+    } else if (power >= loud_share * levels[cell]) {
       flags |= kLoud;
     }
     looks.push_back({code, static_cast<std::uint32_t>(cell), static_cast<float>(gain_of(h_rad, e_rad, range_m)), flags});
@@ -307,9 +306,10 @@ void VolumeInversion::flush(OcTree16& map) {
       }
     }
   }
-  // 4. Every beam's looks, the beams shared among the threads.
+  // 4. Every beam's looks, the beams shared among the threads (`predicted` holds the levels alone).
   std::vector<std::vector<Look>> looks(beams_.size());
-  parallelFor(beams_.size(), threads_, [&](std::size_t b) { coneLooks(beams_[b], beams_[b].used_cells, map, looks[b]); });
+  parallelFor(beams_.size(), threads_,
+              [&](std::size_t b) { coneLooks(beams_[b], beams_[b].used_cells, map, predicted, looks[b]); });
   // 5. The unknowns: voxels of a loud cell that no beam heard as water.
   std::vector<std::uint64_t> candidates, water;
   for (const std::vector<Look>& beam_looks : looks) {

@@ -124,10 +124,11 @@ class VolumeInversion {
 
  private:
   struct WindowBeam;
-  struct Cone;
   struct Look;
-  /// The voxels of `beam`'s cone in its cells [0, cells) with their looks, into `looks` (cleared first).
-  void coneLooks(const WindowBeam& beam, std::size_t cells, const OcTree16& map, std::vector<Look>& looks) const;
+  /// The voxels of `beam`'s cone in its cells [0, cells) with their looks, into `looks` (cleared first);
+  /// `levels`: each window cell's expected power from the water and the level surfaces alone.
+  void coneLooks(const WindowBeam& beam, std::size_t cells, const OcTree16& map, std::span<const double> levels,
+                 std::vector<Look>& looks) const;
   /// The level surfaces' energy per cell of a beam (B_c, S_c of the file's comment), appended.
   void levelEnergy(const InversionBeam& beam, std::size_t cells);
 
