@@ -85,6 +85,12 @@ void parallelFor(std::size_t n, unsigned threads, Work&& work) {
   }
 }
 
+/// Sorts `codes` ascending and drops repeats; `scratch` is the sort's working memory.
+void sortUnique(std::vector<std::uint64_t>& codes, std::vector<std::uint64_t>& scratch) {
+  radixSortHighBits(codes, 0, scratch);
+  codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
+}
+
 /// The multiplicative Itakura–Saito factor Σ a y/ŷ² / Σ a/ŷ of an unknown from its sums.
 double isFactor(double numerator, double denominator) { return denominator > 0.0 ? numerator / denominator : 1.0; }
 }  // namespace
@@ -192,8 +198,7 @@ void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const
     }
   }
   thread_local std::vector<std::uint64_t> scratch;
-  radixSortHighBits(codes, 0, scratch);
-  codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
+  sortUnique(codes, scratch);
   const Eigen::Matrix3d map_to_beam = beam.beam_to_map.transpose();
   const double surface_margin_m = resolution_m_;  // the level surfaces' voxels, and beyond
   const auto wet = [&](const std::optional<LevelPlane>& plane, const Eigen::Vector3d& centre) {
@@ -319,10 +324,8 @@ void VolumeInversion::flush(OcTree16& map) {
     }
   }
   std::vector<std::uint64_t> scratch;
-  radixSortHighBits(candidates, 0, scratch);
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  radixSortHighBits(water, 0, scratch);
-  water.erase(std::unique(water.begin(), water.end()), water.end());
+  sortUnique(candidates, scratch);
+  sortUnique(water, scratch);
   std::vector<std::uint64_t> unknowns;
   std::set_difference(candidates.begin(), candidates.end(), water.begin(), water.end(), std::back_inserter(unknowns));
   // A bitset of the unknowns' hashed codes rejects most looks before the binary search.
