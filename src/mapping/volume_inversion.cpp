@@ -134,9 +134,10 @@ VolumeInversion::~VolumeInversion() = default;
 
 void VolumeInversion::levelEnergy(const InversionBeam& beam, std::size_t cells) {
   // Each aperture ray meets the nearer of the two planes (the other is hidden behind it).
-  std::vector<double>& seabed = level_scratch_;
-  std::vector<double> surface(cells, 0.0);
+  std::vector<double>& seabed = seabed_scratch_;
+  std::vector<double>& surface = surface_scratch_;
   seabed.assign(cells, 0.0);
+  surface.assign(cells, 0.0);
   const Eigen::Vector3d origin = beam.sonar_to_map.translation();
   const double reach_m = static_cast<double>(cells) * resolution_m_;
   for (const ApertureRay& ray : level_model_.rays()) {
