@@ -5,15 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <iterator>
 #include <limits>
 #include <numbers>
 #include <string>
-#include <thread>
 
 #include "sonarmap/acoustics/decibels.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "../algorithms/on_threads.hpp"
 #include "../algorithms/radix_sort.hpp"
 
 namespace sonarmap {
@@ -63,26 +62,9 @@ constexpr std::uint8_t kLoud = 1, kWater = 2;
 template <class Work>
 void parallelFor(std::size_t n, unsigned threads, Work&& work) {
   threads = static_cast<unsigned>(std::clamp<std::size_t>(n, 1, threads));
-  if (threads <= 1) {
-    for (std::size_t i = 0; i < n; ++i) work(i);
-    return;
-  }
-  std::vector<std::exception_ptr> errors(threads);
-  {
-    std::vector<std::jthread> workers;
-    const auto run = [&](unsigned t) {
-      try {
-        for (std::size_t i = t; i < n; i += threads) work(i);
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    };
-    for (unsigned t = 1; t < threads; ++t) workers.emplace_back(run, t);
-    run(0);
-  }
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  runOnThreads(threads, [&](unsigned t) {
+    for (std::size_t i = t; i < n; i += threads) work(i);
+  });
 }
 
 /// Sorts `codes` ascending and drops repeats; `scratch` is the sort's working memory.
