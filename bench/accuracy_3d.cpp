@@ -1,9 +1,9 @@
-// sonarmap_accuracy_3d: the 3D accuracy table of docs/accuracy.md (issue 11). Each simulated
+// sonarmap_accuracy_3d: the 3D accuracy table of docs/accuracy.md. Each simulated
 // mission (eval/simulated_mission.hpp) mapped with the planar model, the beam-volume model, and the
 // beam-volume model without the water surface's depth, at 5 cm voxels, scored in 3D against the scene with the head's
 // field of view: precision, recall, F1, surface error (median, 90th percentile), erosion, free
 // accuracy; obstacles, voxel updates, mapping time and the real-time factor (the mission's length over it). Each map is also scored against the surface
-// its log's beams heard (eval/heard_surface.hpp, issue 40) at 0 dB and at −6 dB over the receiver's
+// its log's beams heard (eval/heard_surface.hpp) at 0 dB and at −6 dB over the receiver's
 // floor: heard recall and heard F1 (with the precision above). The heard surface is computed once
 // per mission, level and voxel size, not once per model.
 //

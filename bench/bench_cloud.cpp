@@ -1,5 +1,5 @@
 /// @file bench_cloud.cpp
-/// Point-cloud workloads of issue 3, each through sonarmap and OctoMap 1.9 in the same run
+/// Point-cloud workloads, each through sonarmap and OctoMap 1.9 in the same run
 /// (workloads in bench_cloud_workloads.hpp):
 ///   BM_CloudSonarmap/<w>        insertPointCloud (insertScan for the graph), serial, fresh map
 ///   BM_CloudOctoMap/<w>         OcTree::insertPointCloud (ScanNode overload for the graph)

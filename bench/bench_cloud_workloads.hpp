@@ -1,6 +1,6 @@
 #pragma once
 /// @file bench_cloud_workloads.hpp
-/// Point-cloud workloads of issue 3, built once per process for both libraries, and what is
+/// Point-cloud workloads, built once per process for both libraries, and what is
 /// compared between the maps they produce (see bench_cloud.cpp).
 
 #include <cstddef>

@@ -35,7 +35,7 @@ enum class Variant {
 /// MapperOptions of a variant.
 MapperOptions mapperOptions(Variant variant);
 
-/// The beam-volume model (issue 11): MapperOptions{} with beam_model = BeamModel::kVolume and
+/// The beam-volume model: MapperOptions{} with beam_model = BeamModel::kVolume and
 /// `resolution_m` set, every other option at its default (the Micron's 3° × 35° cone, the default
 /// free aperture and arc evidence, detection pipelined unless `pipeline_detection` is false).
 MapperOptions volumeOptions(double resolution_m, bool pipeline_detection = true);

@@ -1,7 +1,7 @@
 /// @file bench_mapping.cpp
 /// sonarmap alone: the whole pipeline as the CLI runs it (BM_MapCras, BM_MapSynthetic), the same
 /// split into stages (BM_CrasStages, BM_SyntheticStages) and reading the .mat log (BM_ReadCras).
-/// The planar model (the 2D map, paper §6–§8) at 2 cm, and the beam-volume model (issue 11: the 3D
+/// The planar model (the 2D map, paper §6–§8) at 2 cm, and the beam-volume model (the 3D
 /// map, BeamModel::kVolume, every other option at its default) at 2 cm and 5 cm: BM_MapCras/volume_*
 /// (detection included, on a second thread as the CLI does), BM_MapCras/volume_*_one_thread (the
 /// same on one thread: pipeline_detection off), BM_CrasStages/integrate_volume_* (the integration

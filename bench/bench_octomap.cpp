@@ -18,7 +18,7 @@
 /// voxel apart); OctoMap gives every hit its fixed log-odds (the mapper scales it by the echo
 /// intensity). The map is one voxel thick, so nothing prunes in either library.
 ///
-/// BM_OctoMapSameBeams/volume_*: the beam-volume model (issue 11) against OctoMap, see
+/// BM_OctoMapSameBeams/volume_*: the beam-volume model against OctoMap, see
 /// volumeSameBeams() below.
 
 #include <algorithm>
@@ -170,7 +170,7 @@ BENCHMARK_CAPTURE(BM_OctoMapSameRays, dda_fan3deg, Source::kCras, Variant::kDefa
 BENCHMARK_CAPTURE(BM_OctoMapSameRays, single_ray, Source::kCras, Variant::kSingleRay)->Apply(configure);
 BENCHMARK_CAPTURE(BM_OctoMapSameRays, synthetic_fan3deg, Source::kSynthetic, Variant::kDefault)->Apply(configure);
 
-// --- The beam-volume model (issue 11) ------------------------------------------------------------
+// --- The beam-volume model -----------------------------------------------------------------------
 //
 // What OctoMap receives, per sweep of the CRAS log (sonar static at the map origin, detections of
 // the sonarmap pipeline computed once outside the timed loop, the same as BM_CrasStages/integrate_*):

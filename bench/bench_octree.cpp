@@ -1,5 +1,5 @@
 /// @file bench_octree.cpp
-/// The occupancy octree on its own, sonarmap against OctoMap 1.9 on the same keys (issue 3):
+/// The occupancy octree on its own, sonarmap against OctoMap 1.9 on the same keys:
 ///
 ///   BM_OctreeCube/<lib>_<mode>   paper §5.4-5.5, Table 1: a 1 m cube at 1 cm, centred on the map
 ///                                origin (keys 32718 … 32817 on each axis, i.e. [-0.5 m, 0.5 m)),

@@ -1,5 +1,5 @@
 /// @file bench_octree_rays.cpp
-/// Pure ray traversal, no map (issue 3): the floor that ray insertion cannot beat.
+/// Pure ray traversal, no map: the floor that ray insertion cannot beat.
 ///
 /// 100,000 random segments at 5 cm, the same for both libraries: origin uniform in [-5 m, 5 m]³,
 /// direction uniform on the sphere, length uniform in [0 m, 10 m]. The end points are generated

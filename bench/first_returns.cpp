@@ -1,5 +1,5 @@
-// sonarmap_first_returns: how many of a real log's first returns its default map holds (issue 40;
-// eval/first_returns.hpp): each beam's first return is where its echo first rises out of the water
+// sonarmap_first_returns: how many of a real log's first returns its default map holds
+// (eval/first_returns.hpp): each beam's first return is where its echo first rises out of the water
 // in front of it and stays up, found on the beam alone, and it counts as mapped when an occupied
 // voxel lies in the beam's wedge at that range. Each log is mapped as `sonarmap map LOG` maps it, with
 // each detector named, and scored at rises of 3, 6 and 10 dB (6: the measure of docs/accuracy.md).

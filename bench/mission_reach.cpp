@@ -1,4 +1,4 @@
-// sonarmap_mission_reach: what the 3D accuracy missions can reach (issue 21). For each simulated
+// sonarmap_mission_reach: what the 3D accuracy missions can reach. For each simulated
 // mission of sonarmap_accuracy_3d, the surface its beams could hear (eval/heard_surface.hpp: every
 // surface point a fine grid of rays across each beam meets, kept where its primitive's mean echo is
 // at least L dB over the receiver's floor), scored as sonarmap_accuracy_3d scores a map: recall,

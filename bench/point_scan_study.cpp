@@ -1,5 +1,5 @@
 // sonarmap_point_scan_study: `sonarmap localize` on point scans as users' detectors give them
-// (docs/localization.md, issue 42's fifth round; not a test).
+// (docs/localization.md; not a test).
 //
 // For each head (Micron, SeaKing-30, Ping360) and loop mission, seeds 1…N with the drifting dead
 // reckoning of tests/slam/slam_fixture.hpp (3 % DVL scale error, 2° heading bias, 0.02°/√s): the

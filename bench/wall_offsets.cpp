@@ -1,5 +1,5 @@
-// sonarmap_wall_offsets: where scan forming places an oblique wall's points (docs/localization.md,
-// issue 42's third round; not a test).
+// sonarmap_wall_offsets: where scan forming places an oblique wall's points (docs/localization.md;
+// not a test).
 //
 // For each head, seed 1 of the harbour loop (sim/missions.hpp) flown at the head's default speed,
 // its scans formed with the true navigation (slam/scan_forming.hpp): each point seen on the quay

@@ -1,5 +1,5 @@
 #pragma once
-// `sonarmap info`: what a sonar log holds, before mapping it (issue 19): the format and sonar, the
+// `sonarmap info`: what a sonar log holds, before mapping it: the format and sonar, the
 // beams and their clock, the sweeps, the bearings, each head setting (range scale and gain) with
 // its beams, what the reader skipped and why, and the navigation's coverage when given. One screen
 // of text, or one JSON object with --json.

@@ -5,14 +5,13 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <exception>
-#include <functional>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "key_marks.hpp"
+#include "on_threads.hpp"
 #include "sonarmap/raycast/dda.hpp"
 
 namespace sonarmap {
@@ -127,24 +126,11 @@ void traceScan(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const
     return;
   }
   std::vector<Marks> parts(threads - 1);
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::jthread> workers;  // joined on every exit path, also if starting one throws
-  const auto run = [&](unsigned t, Marks& marks) {
-    try {
-      traceRays(coder, origin_m, scan.rays.data() + n * t / threads, scan.rays.data() + n * (t + 1) / threads, marks);
-    } catch (...) {
-      errors[t] = std::current_exception();
-    }
-  };
-  for (unsigned t = 1; t < threads; ++t) {
-    parts[t - 1].reset(scan.lo, scan.hi);
-    workers.emplace_back(run, t, std::ref(parts[t - 1]));
-  }
-  run(0, crossed);
-  for (std::jthread& worker : workers) worker.join();
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  for (Marks& part : parts) part.reset(scan.lo, scan.hi);
+  runOnThreads(threads, [&](unsigned t) {
+    traceRays(coder, origin_m, scan.rays.data() + n * t / threads, scan.rays.data() + n * (t + 1) / threads,
+              t == 0 ? crossed : parts[t - 1]);
+  });
   for (const Marks& part : parts) crossed.merge(part);
 }
 

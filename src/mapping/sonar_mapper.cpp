@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <exception>
 #include <future>
 #include <limits>
-#include <thread>
 #include <optional>
 #include <string>
 
@@ -17,6 +15,7 @@
 #include "sonarmap/sonar/polar_units.hpp"
 #include "sonarmap/sonar/sweeps.hpp"
 #include "sonarmap/mapping/sweep_fan.hpp"
+#include "../algorithms/on_threads.hpp"
 #include "beam_cells.hpp"
 #include "sweep_work.hpp"
 
@@ -210,25 +209,10 @@ void SonarMapper::integrateFreeCells() {
     const auto threads = static_cast<unsigned>(std::clamp<std::size_t>(n / 256, 1, options_.threads));
     if (threads <= 1) return markRange(marks, outer, 0, n);
     work.parts.resize(threads - 1);
-    std::vector<std::exception_ptr> errors(threads);
-    {
-      std::vector<std::jthread> workers;  // joined on every exit path
-      const auto run = [&](unsigned t, KeyMarks<16>& part) {
-        try {
-          markRange(part, outer, n * t / threads, n * (t + 1) / threads);
-        } catch (...) {
-          errors[t] = std::current_exception();
-        }
-      };
-      for (unsigned t = 1; t < threads; ++t) {
-        work.parts[t - 1].reset(work.box_lo, work.box_hi);
-        workers.emplace_back(run, t, std::ref(work.parts[t - 1]));
-      }
-      run(0, marks);
-    }
-    for (const std::exception_ptr& error : errors) {
-      if (error) std::rethrow_exception(error);
-    }
+    for (KeyMarks<16>& part : work.parts) part.reset(work.box_lo, work.box_hi);
+    runOnThreads(threads, [&](unsigned t) {
+      markRange(t == 0 ? marks : work.parts[t - 1], outer, n * t / threads, n * (t + 1) / threads);
+    });
     for (unsigned t = 1; t < threads; ++t) marks.merge(work.parts[t - 1]);
   };
   markRays(work.crossed, false);

@@ -5,15 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <iterator>
 #include <limits>
 #include <numbers>
 #include <string>
-#include <thread>
 
 #include "sonarmap/acoustics/decibels.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "../algorithms/on_threads.hpp"
 #include "../algorithms/radix_sort.hpp"
 
 namespace sonarmap {
@@ -63,26 +62,15 @@ constexpr std::uint8_t kLoud = 1, kWater = 2;
 template <class Work>
 void parallelFor(std::size_t n, unsigned threads, Work&& work) {
   threads = static_cast<unsigned>(std::clamp<std::size_t>(n, 1, threads));
-  if (threads <= 1) {
-    for (std::size_t i = 0; i < n; ++i) work(i);
-    return;
-  }
-  std::vector<std::exception_ptr> errors(threads);
-  {
-    std::vector<std::jthread> workers;
-    const auto run = [&](unsigned t) {
-      try {
-        for (std::size_t i = t; i < n; i += threads) work(i);
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    };
-    for (unsigned t = 1; t < threads; ++t) workers.emplace_back(run, t);
-    run(0);
-  }
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  runOnThreads(threads, [&](unsigned t) {
+    for (std::size_t i = t; i < n; i += threads) work(i);
+  });
+}
+
+/// Sorts `codes` ascending and drops repeats; `scratch` is the sort's working memory.
+void sortUnique(std::vector<std::uint64_t>& codes, std::vector<std::uint64_t>& scratch) {
+  radixSortHighBits(codes, 0, scratch);
+  codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
 }
 
 /// The multiplicative Itakura–Saito factor Σ a y/ŷ² / Σ a/ŷ of an unknown from its sums.
@@ -128,9 +116,10 @@ VolumeInversion::~VolumeInversion() = default;
 
 void VolumeInversion::levelEnergy(const InversionBeam& beam, std::size_t cells) {
   // Each aperture ray meets the nearer of the two planes (the other is hidden behind it).
-  std::vector<double>& seabed = level_scratch_;
-  std::vector<double> surface(cells, 0.0);
+  std::vector<double>& seabed = seabed_scratch_;
+  std::vector<double>& surface = surface_scratch_;
   seabed.assign(cells, 0.0);
+  surface.assign(cells, 0.0);
   const Eigen::Vector3d origin = beam.sonar_to_map.translation();
   const double reach_m = static_cast<double>(cells) * resolution_m_;
   for (const ApertureRay& ray : level_model_.rays()) {
@@ -175,7 +164,7 @@ void VolumeInversion::addBeam(const InversionBeam& beam, OcTree16& map) {
 }
 
 void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const OcTree16& map,
-                                std::vector<Look>& looks) const {
+                                std::span<const double> levels, std::vector<Look>& looks) const {
   const double half_h_rad = 0.5 * options_.extent_half_widths * pattern_.horizontal.width_rad;
   const double half_e_rad = 0.5 * options_.extent_half_widths * pattern_.vertical.width_rad;
   const ScattererGain gain_of(pattern_, resolution_m_ * resolution_m_);
@@ -192,8 +181,7 @@ void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const
     }
   }
   thread_local std::vector<std::uint64_t> scratch;
-  radixSortHighBits(codes, 0, scratch);
-  codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
+  sortUnique(codes, scratch);
   const Eigen::Matrix3d map_to_beam = beam.beam_to_map.transpose();
   const double surface_margin_m = resolution_m_;  // the level surfaces' voxels, and beyond
   const auto wet = [&](const std::optional<LevelPlane>& plane, const Eigen::Vector3d& centre) {
@@ -213,11 +201,10 @@ void VolumeInversion::coneLooks(const WindowBeam& beam, std::size_t cells, const
     const double h_rad = std::atan2(in_beam.y(), in_beam.x());
     if (std::abs(h_rad) > half_h_rad || std::abs(e_rad) > half_e_rad) continue;
     if (!wet(beam.seabed, centre) || !wet(beam.surface, centre)) continue;  // the level surfaces' or hidden by them
-    const double expected = 1.0 + seabed_scale_ * seabed_energy_[cell] + surface_scale_ * surface_energy_[cell];
     std::uint8_t flags = 0;
     if (k < beam.water_cells) {  // before the first echo: never loud, whatever the speckle
       if (k < beam.free_cells && gain_of.twoWay(h_rad, e_rad) >= core_share) flags |= kWater;
-    } else if (power >= loud_share * expected) {
+    } else if (power >= loud_share * levels[cell]) {
       flags |= kLoud;
     }
     looks.push_back({code, static_cast<std::uint32_t>(cell), static_cast<float>(gain_of(h_rad, e_rad, range_m)), flags});
@@ -307,9 +294,10 @@ void VolumeInversion::flush(OcTree16& map) {
       }
     }
   }
-  // 4. Every beam's looks, the beams shared among the threads.
+  // 4. Every beam's looks, the beams shared among the threads (`predicted` holds the levels alone).
   std::vector<std::vector<Look>> looks(beams_.size());
-  parallelFor(beams_.size(), threads_, [&](std::size_t b) { coneLooks(beams_[b], beams_[b].used_cells, map, looks[b]); });
+  parallelFor(beams_.size(), threads_,
+              [&](std::size_t b) { coneLooks(beams_[b], beams_[b].used_cells, map, predicted, looks[b]); });
   // 5. The unknowns: voxels of a loud cell that no beam heard as water.
   std::vector<std::uint64_t> candidates, water;
   for (const std::vector<Look>& beam_looks : looks) {
@@ -319,10 +307,8 @@ void VolumeInversion::flush(OcTree16& map) {
     }
   }
   std::vector<std::uint64_t> scratch;
-  radixSortHighBits(candidates, 0, scratch);
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  radixSortHighBits(water, 0, scratch);
-  water.erase(std::unique(water.begin(), water.end()), water.end());
+  sortUnique(candidates, scratch);
+  sortUnique(water, scratch);
   std::vector<std::uint64_t> unknowns;
   std::set_difference(candidates.begin(), candidates.end(), water.begin(), water.end(), std::back_inserter(unknowns));
   // A bitset of the unknowns' hashed codes rejects most looks before the binary search.

@@ -1,6 +1,6 @@
 // OctoMap's own test scan (../shared/data/octomap_spherical_scan.graph) through both libraries:
 // our reader and insertPointCloud against OctoMap's ScanGraph and insertPointCloud, at 5 cm and
-// 2 cm. The maps must agree on ≥ 99.9 % of the known volume (issue 3) and write files the other
+// 2 cm. The maps must agree on ≥ 99.9 % of the known volume and write files the other
 // library reads with identical leaves.
 #include <gtest/gtest.h>
 

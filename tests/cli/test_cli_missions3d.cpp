@@ -1,4 +1,4 @@
-// End-to-end tests of the 3D missions of `sonarmap simulate` (sim/missions.hpp, issue 55): any head
+// End-to-end tests of the 3D missions of `sonarmap simulate` (sim/missions.hpp): any head
 // flies the tilted loop with any mounting (--mounting, as `map --mounting`), and the map command it
 // prints maps the run in 3D with that mounting. No shared data needed.
 #include <gtest/gtest.h>

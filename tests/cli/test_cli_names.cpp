@@ -94,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(
                                    "t.bt"}),
     [](const ::testing::TestParamInfo<MismatchCase>& info) { return std::string(info.param.name); });
 
-// `-o NAME.ot` writes the full tree its extension names (it used to be the binary tree under that
+// `-o NAME.ot` writes the full tree its extension names (not the binary tree under that
 // name, which nothing reading .ot could open).
 TEST_F(cliNames, AnOtOutputIsAFullTree) {
   if (!fs::exists(kTankLog)) GTEST_SKIP() << "shared data absent: " << kTankLog;

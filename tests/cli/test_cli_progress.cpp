@@ -1,4 +1,4 @@
-// End-to-end tests of the progress bars (issue 13): the long commands (map, cloud, simulate, eval)
+// End-to-end tests of the progress bars: the long commands (map, cloud, simulate, eval)
 // draw one on a terminal and end with their summary line; -q or a stderr that is not a terminal
 // draws none. The tool runs on a pseudo-terminal (forkpty), stdout and stderr both on it.
 #include <gtest/gtest.h>

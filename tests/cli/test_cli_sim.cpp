@@ -77,8 +77,8 @@ TEST_F(cliSim, DefaultRunIsTheMicronAndUnchanged) {
                 .exit_code,
             0);
   // Hashes of the files `sonarmap simulate tank --turns 2 --seed 7` writes; they change only on
-  // purpose (last in issue 54: bearings clockwise from ahead, the head still turning
-  // counter-clockwise, so its bearings are written decreasing; the echoes are unchanged).
+  // purpose. Bearings count clockwise from ahead while the simulated head turns
+  // counter-clockwise, so its bearings are written decreasing.
   EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0x3355be1bedef9eb4ULL);
   EXPECT_EQ(fnv1a(readFile(plain / "nav.csv")), 0xe498463d125b3807ULL);
   EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0x8fc3cc34d5377912ULL);

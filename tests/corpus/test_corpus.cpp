@@ -1,5 +1,5 @@
 /// @file test_corpus.cpp
-/// The hand-made broken-input corpus (issue 5, item 5). For every row of broken/MANIFEST.tsv:
+/// The hand-made broken-input corpus. For every row of broken/MANIFEST.tsv:
 ///  - the library reader the row's CLI command uses throws a sonarmap::Error (never another
 ///    exception type) whose message names the file and contains the row's text;
 ///  - the `sonarmap` CLI run on it exits with the row's code, prints exactly one line on stderr

@@ -39,7 +39,7 @@ TEST(evalSimulatedAccuracy, OpenWaterGivesNoFalseObstacleWithAnyHead) {
   }
 }
 
-// The Micron in the tank and the harbour meets every target of the issue: precision and recall
+// The Micron in the tank and the harbour meets every 2D target: precision and recall
 // ≥ 0.9, each wall's median offset within half a voxel (the floater, above the sonar's plane, is a
 // 2D-mapping limit and reported apart: SimulatedAccuracy::off_plane).
 TEST(evalSimulatedAccuracy, MicronTankAndHarbourMeetTheTargets) {
@@ -59,8 +59,7 @@ TEST(evalSimulatedAccuracy, WorstRowsStayAsMeasured) {
   const SimulatedAccuracy seaking = runAndPrint(SimulatedRun{"seaking-30", "harbour"});
   EXPECT_GE(seaking.truth.precision, 0.75);  // measured 0.792
   EXPECT_GE(seaking.truth.recall, 0.90);     // measured 0.954
-  // measured 0.081; 0.067 before issue 54 negated the simulated bearings (the same echoes: one
-  // wall's median offset moves by their rounding; precision and recall are unchanged)
+  // measured 0.081: one wall's median offset moves with how the simulated bearings round
   EXPECT_LE(seaking.worst_offset_m, 0.085);
   const SimulatedAccuracy ping = runAndPrint(SimulatedRun{"ping360", "harbour"});
   EXPECT_GE(ping.truth.precision, 0.83);     // measured 0.872

@@ -1,4 +1,4 @@
-// The 3D mission of docs/accuracy.md (issue 11): the Micron on a loop over quay3d with the sonar
+// The 3D mission of docs/accuracy.md: the Micron on a loop over quay3d with the sonar
 // tilted 25° down, mapped at 5 cm with the default volume model and with the planar model. Pins
 // the measured rows (docs/accuracy.md, "3D"): the volume model maps the 3D surfaces the planar
 // model cannot, clears almost nothing that is not water, and erodes a bounded share.
@@ -28,7 +28,7 @@ TEST(evalSimulatedMission, VolumeModelMapsTheTiltedLoopIn3D) {
   // 0.0000, free accuracy 1.000, median surface error 0.126 m for the volume model.
   EXPECT_GT(volume.truth.recall, 4.0 * planar.truth.recall);
   EXPECT_GT(volume.truth.precision, 0.38);
-  EXPECT_LT(volume.truth.erosion, 0.01);  // issue 11's target: silent cones clear nothing
+  EXPECT_LT(volume.truth.erosion, 0.01);  // the target: silent cones clear nothing
   EXPECT_GT(volume.truth.free_accuracy, 0.99);
   EXPECT_LT(volume.truth.surface_error_median_m, 0.15);  // three voxels
   // A 3D map: occupied voxels across metres of height, not one layer.

@@ -1,4 +1,4 @@
-// The beam-volume inverse sensor model (issue 11): a single beam's free cone and shell against a
+// The beam-volume inverse sensor model: a single beam's free cone and shell against a
 // brute-force classification of the voxels, evidence shares, one update per voxel and sweep, the
 // protection of occupied cells from a cone's quiet outer part, and a tilted mounting.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Loud level returns (issue 21): an obstacle whose loud echo lasts longer than any vertical face in
+// Loud level returns: an obstacle whose loud echo lasts longer than any vertical face in
 // its cone could echo, or that starts where the known water surface enters a cone pointing up, is
 // a level surface met at the cone's edge and traced as one (isLevelReturn, sweep_fan.hpp), unless
 // the seabed the sweep's weak returns measure lies well below it (SonarMapper::checkLoudTraces).

@@ -50,7 +50,7 @@ TEST(MapFrame, NedEchoIsAtEastNorthUpInEnuAndAsItIsInNed) {
     // The voxel holding the echo, not a neighbour: its centre is within half a voxel per axis.
     const Eigen::Vector3d centre = enu.coder().centerOf(enu.coder().keyOfChecked(at_enu));
     EXPECT_LE((centre - at_enu).cwiseAbs().maxCoeff(), kRes / 2 + 1e-12);
-    // Nothing where the old frame (NWU) put it, nor at the unconverted position.
+    // Nothing where an NWU frame would put it, nor at the unconverted position.
     EXPECT_NE(enu.occupancyAt(nedToMap() * p), Occupancy::kOccupied);
     EXPECT_NE(ned.occupancyAt(nedToMap() * p), Occupancy::kOccupied);
   }

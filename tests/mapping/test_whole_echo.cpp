@@ -1,4 +1,4 @@
-// Evidence from the whole echo (issue 21): weak extended returns found by binary integration over
+// Evidence from the whole echo: weak extended returns found by binary integration over
 // bins and bearings (extended_returns.hpp) and placed on the level surface their onset implies
 // (appendLevelTrace, sweep_fan.hpp). A single beam's trace against a brute-force search of its
 // shells; a tilted head's seabed mapped as a floor; speckle in open water that must not accumulate.
@@ -221,8 +221,8 @@ TEST(mappingWholeEcho, TiltedHeadMapsTheSeabedAsAFloor) {
 }
 
 // The tilted loop over quay3d turns the head round the seabed: the onsets' errors cancel, their
-// plane gives the seabed's 7° slope, and the traces follow it (docs/accuracy.md, issue 21's sixth
-// round: level traces through each onset found less of it).
+// plane gives the seabed's 7° slope, and the traces follow it (docs/accuracy.md: level
+// traces through each onset found less of it).
 TEST(mappingWholeEcho, AVehicleTurningOverASlopeMapsTheSeabedAlongIt) {
   MapperOptions options;
   options.resolution_m = 0.05;

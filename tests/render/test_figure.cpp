@@ -31,7 +31,7 @@ int countOf(const cv::Mat& image, const cv::Rect& area, const cv::Vec3b& colour)
 }
 
 TEST(renderFigure, LayoutMagnifiesByWholePixelsToTheLongSide) {
-  const FigureLayout tank = figureLayout(224, 214, true);  // the old tank.png, one pixel per voxel
+  const FigureLayout tank = figureLayout(224, 214, true);  // the tank map, one pixel per voxel
   EXPECT_EQ(tank.scale_x, 4);
   EXPECT_EQ(tank.scale_y, 4);
   EXPECT_GE(std::max(tank.plot.width, tank.plot.height), kMinFigureLongSide_px);

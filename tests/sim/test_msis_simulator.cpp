@@ -127,8 +127,8 @@ TEST(simMsis, MicronDefaultsGiveTheCrasLayout) {
 
 TEST(simMsis, DefaultTankAndHarbourLogsAreUnchanged) {
   // Checksums of what the defaults (the Micron, 360° turns, the 5 m scenes) write: they change
-  // only on purpose. Last changed in issue 54: bearings count clockwise (beam.hpp) while the head
-  // still turns counter-clockwise, so they are negated; the echoes are those of issue 21.
+  // only on purpose. Bearings count clockwise (beam.hpp) while the simulated head turns
+  // counter-clockwise, so a turn's bearings decrease.
   EXPECT_EQ(checksum(simulateMsis(builtinScene("tank"), turns(2)).log), 0xd01dab525ddf3aaULL);
   MsisSimulationOptions moving = turns(1);
   moving.seed = 3;

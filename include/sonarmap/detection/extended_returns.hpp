@@ -1,6 +1,6 @@
 #pragma once
 /// @file extended_returns.hpp
-/// Weak extended returns from the whole echo (issue 21): the onset of a seabed, a grazing wall or
+/// Weak extended returns from the whole echo: the onset of a seabed, a grazing wall or
 /// a soft bank that stays under the obstacle threshold in every bin but lights many of them.
 ///
 /// The obstacle detectors (detectors.hpp) ask whether one echo rises far above the sweep's

@@ -1,6 +1,6 @@
 #pragma once
 /// @file first_returns.hpp
-/// How many of a log's first returns a map holds: the measure of issue 40 for real logs whose walls
+/// How many of a log's first returns a map holds: the recall measure for real logs whose walls
 /// are steps into reverberation rather than peaks (docs/accuracy.md, "First returns").
 ///
 /// A beam's first return is where its echo first rises out of the water in front of it and stays

@@ -1,14 +1,14 @@
 #pragma once
 /// @file heard_surface.hpp
-/// The surface a log's beams could hear, as a map, and a map scored against it (issue 40).
+/// The surface a log's beams could hear, as a map, and a map scored against it.
 ///
 /// The heard surface is an oracle for the 3D accuracy missions (simulated_mission.hpp) and for any
 /// log a simulated head recorded in a known scene: scored like a mapped log (evaluateAgainstScene
 /// with missionTruthOptions), its recall bounds what any map of that log can reach with a detector
 /// that needs a surface's mean echo that far above the receiver's floor (sim/echo_levels.hpp), and
 /// its precision is 1 up to the voxel grid: every occupied voxel holds a surface point. F1 ≤ 2R /
-/// (1 + R) follows for any map whose recall is bounded by R (issue 21: how far the 3D targets can be
-/// reached). scoreAgainstHeardSurface() turns it round: a map's recall measured over the heard
+/// (1 + R) follows for any map whose recall is bounded by R: how far the 3D targets can be
+/// reached. scoreAgainstHeardSurface() turns it round: a map's recall measured over the heard
 /// surface only, not over every surface the sonar could geometrically see.
 ///
 /// Method: for every beam of the log, from the head's true pose at the beam's time, a grid of rays

@@ -1,8 +1,8 @@
 #pragma once
 /// @file last_sweep.hpp
 /// Do obstacles survive? The echoes of a log's last sweep, detected as the mapper detected them,
-/// and whether each is an occupied cell of the final map (issue 10: a target seen in the last
-/// sweeps must be occupied, however often earlier sweeps cleared that water).
+/// and whether each is an occupied cell of the final map: a target seen in the last
+/// sweeps must be occupied, however often earlier sweeps cleared that water.
 
 #include <vector>
 

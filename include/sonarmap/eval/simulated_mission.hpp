@@ -1,6 +1,6 @@
 #pragma once
 /// @file simulated_mission.hpp
-/// The 3D accuracy missions of docs/accuracy.md (issue 11): a simulated head (sonar_presets.hpp)
+/// The 3D accuracy missions of docs/accuracy.md: a simulated head (sonar_presets.hpp)
 /// on a moving vehicle over a built-in 3D scene (builtin_scenes.hpp, `quay3d`), mapped with the
 /// given MapperOptions and scored in 3D against the scene (ground_truth.hpp) with the head's field
 /// of view.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file v4log_reader.hpp
-/// Reader for Tritech SeaNet V4 logs (`.V4LOG`) of mechanically scanned imaging sonars (issue 4).
+/// Reader for Tritech SeaNet V4 logs (`.V4LOG`) of mechanically scanned imaging sonars.
 ///
 /// Layout (little-endian), as checked on `seanet_sector_target.V4LOG` (see
 /// ../shared/docs/formats.md, "Tritech SeaNet V4 log"; field names from Tritech's mtHeadData

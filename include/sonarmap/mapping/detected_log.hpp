@@ -1,6 +1,6 @@
 #pragma once
 /// @file detected_log.hpp
-/// A log's sweeps detected once (issue 40's pipeline: detect, then model, then integrate): the
+/// A log's sweeps detected once (the pipeline is detect, then model, then integrate): the
 /// detection stage of mapSonarLog (sonar_mapper.hpp) kept for whatever needs the same detections
 /// before the map is made. Localization (`map --slam`) forms its scans from them and the map is
 /// then integrated from them with the corrected trajectory: every sweep is detected once.

@@ -1,13 +1,13 @@
 #pragma once
 /// @file seabed_slope.hpp
-/// A seabed's local slope from where weak extended returns start (issue 21), so that a beam's
+/// A seabed's local slope from where weak extended returns start, so that a beam's
 /// seabed trace (appendLevelTrace, sweep_fan.hpp) follows the seabed instead of the level through
 /// its onset.
 ///
 /// A down-looking cone's seabed return starts on the aperture's lowest edge (appendLevelTrace): the
 /// onset point, sonar + onset range × that edge's direction, lies on the seabed whatever its slope.
-/// A sweep's onsets cover a narrow fan ahead of a tilted head, too little to fit a plane (issue
-/// 21's fifth round: fitted slopes of 0–19° in varying directions on a 7° seabed); the onsets of
+/// A sweep's onsets cover a narrow fan ahead of a tilted head, too little to fit a plane (on
+/// quay3d, fitted slopes of 0–19° in varying directions on a 7° seabed); the onsets of
 /// every sweep so far, around the vehicle's track, do. SeabedSlope keeps them and fits, around a
 /// point, a plane z = a + g · (x, y) to those within a horizontal radius: least median of squares
 /// over triples of onsets (Rousseeuw 1984, JASA 79(388) 871), since some onsets are no seabed (a

@@ -11,7 +11,7 @@
 /// Overlapping beams (3° wide every 1.8°) are thus cast once, not twice, and neighbouring rays are
 /// neighbours in memory. With w = 0 every beam is one ray from the sonar (paper §6).
 ///
-/// The beam volume (issue 11): a beam of vertical aperture a is the cone bearing ± w/2 × elevation
+/// The beam volume: a beam of vertical aperture a is the cone bearing ± w/2 × elevation
 /// ± a/2 in its sonar frame (elevation above the sonar's x–y plane). Its free space is the cone's
 /// loud core up to the free range; its obstacle a vertical face (or, for planArcs's callers that
 /// ask, the shell) at the hit range across both angles (docs/mapping-3d.md). The fan is then a

@@ -124,10 +124,11 @@ class VolumeInversion {
 
  private:
   struct WindowBeam;
-  struct Cone;
   struct Look;
-  /// The voxels of `beam`'s cone in its cells [0, cells) with their looks, into `looks` (cleared first).
-  void coneLooks(const WindowBeam& beam, std::size_t cells, const OcTree16& map, std::vector<Look>& looks) const;
+  /// The voxels of `beam`'s cone in its cells [0, cells) with their looks, into `looks` (cleared first);
+  /// `levels`: each window cell's expected power from the water and the level surfaces alone.
+  void coneLooks(const WindowBeam& beam, std::size_t cells, const OcTree16& map, std::span<const double> levels,
+                 std::vector<Look>& looks) const;
   /// The level surfaces' energy per cell of a beam (B_c, S_c of the file's comment), appended.
   void levelEnergy(const InversionBeam& beam, std::size_t cells);
 
@@ -139,7 +140,7 @@ class VolumeInversion {
   std::vector<WindowBeam> beams_;
   std::vector<float> cell_power_;  ///< every window beam's cells, one after the other
   std::vector<double> seabed_energy_, surface_energy_;  ///< B_c and S_c, as cell_power_
-  std::vector<double> level_scratch_;
+  std::vector<double> seabed_scratch_, surface_scratch_;  ///< levelEnergy's per-beam energy
   std::size_t estimated_pairs_ = 0;
   double seabed_scale_ = -1.0, surface_scale_ = -1.0;  ///< s_b, s_s of the last window (< 0: none yet)
   std::vector<std::vector<Eigen::Vector3d>> cone_;  ///< per cell index: the cone's sample offsets, beam frame

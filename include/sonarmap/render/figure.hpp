@@ -1,6 +1,6 @@
 #pragma once
 /// @file figure.hpp
-/// Figures a person can read at a glance (issue 13): a raw raster (one pixel per voxel, bin or
+/// Figures a person can read at a glance: a raw raster (one pixel per voxel, bin or
 /// beam) magnified with nearest-neighbour to at least kMinFigureLongSide_px on its long side, framed
 /// by axes whose ticks are labelled in the raster's units (metres, degrees), under a title line,
 /// beside a legend (colour swatches, a colour bar), with polylines such as the vehicle's track drawn

@@ -56,8 +56,8 @@
 /// 3.4 to 5 m) but follows the tank (medians 30, 41, 31, 30, 27, 44, 54, 60 counts in 0.2 m steps
 /// from 3.3 m): the basin's reverberation, which is the `tank` scene's (Scene::reverberation_db,
 /// −27 dB: median 0.4–1.6 m behind the wall 43 → 42). The noise is what the quietest of those
-/// steps allows, 27 counts at 4.2 m with the reverberation in it: −41.5 dB at 1 m (issue 21; it
-/// was −37.5, fitted to the reverberation, which put a seabed in open water at the noise).
+/// steps allows, 27 counts at 4.2 m with the reverberation in it: −41.5 dB at 1 m (not the
+/// reverberation's level, −37.5 dB, which would put a seabed in open water at the noise).
 /// Known differences: the real log holds more energy behind the walls (90th percentile ≈ 100 at
 /// 3–5 m; here ≈ 60–65), and its surface ring falls back to ≈ 4 counts within 0.3 m where the
 /// simulated surface, a Lambertian scatterer, keeps ≈ 30 up to the walls.

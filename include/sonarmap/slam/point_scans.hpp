@@ -1,6 +1,6 @@
 #pragma once
 /// @file point_scans.hpp
-/// The SLAM back end on point scans (issue 42): scans whose points were detected elsewhere (another
+/// The SLAM back end on point scans: scans whose points were detected elsewhere (another
 /// sonar driver, a forward-looking sonar's detector, a lidar), given as a point-scan CSV, localized
 /// with the same motion compensation, scan matcher, gates and pose graph as `map --slam`.
 ///

@@ -1,6 +1,6 @@
 #pragma once
 /// @file log_summary.hpp
-/// What a sonar log holds, before mapping it (`sonarmap info`, issue 19): its beams and clock, its
+/// What a sonar log holds, before mapping it (`sonarmap info`): its beams and clock, its
 /// sweeps (full turns, sector passes), the bearings it covers, each head setting (range scale and
 /// gain) with the beams that use it, what the reader skipped and why, and how a navigation track
 /// covers it. Computed from the beams alone: no format, no detector, no map.

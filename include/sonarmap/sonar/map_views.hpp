@@ -1,6 +1,6 @@
 #pragma once
 /// @file map_views.hpp
-/// Pictures of a 3D map (issue 11): a top view coloured by height and a side view, each with its
+/// Pictures of a 3D map: a top view coloured by height and a side view, each with its
 /// colour scale, and the map's height extent. Each finest voxel is one pixel, or a square of whole
 /// pixels when the view is magnified; pruned leaves count as each of their finest voxels. The 2D
 /// slice of the sonar's plane is map_slice.hpp's renderSlice.

@@ -42,7 +42,7 @@ struct SweepRange {
 ///   - continuous (360°) scan: the head has turned a full turn since the sweep's first beam, i.e.
 ///     the accumulated |step| reaches 2π (the bearing wraps back to where the sweep began). This
 ///     is independent of where bearing 0 lies, so it also works when the first beam is not at 0;
-///   - sector scan (SeaNet, issue 4): the direction of rotation reverses (the step's sign differs
+///   - sector scan (SeaNet): the direction of rotation reverses (the step's sign differs
 ///     from the sweep's direction); the beam at the turning point ends the old sweep;
 ///   - the head setting changes (HeadSetting: the bin length with a range change, or the gain), so
 ///     each sweep can become one PolarImage and is calibrated on beams of one setting.
