@@ -10,7 +10,7 @@
 // With a log (an argument ending in .mat, .V4LOG or .csv, e.g. the CRAS tank), that log is mapped
 // in 3D with the defaults at RESOLUTION_M instead, and its occupied voxels are tabled by horizontal
 // range from the sonar (0.25 m rings): count and height extent against 2 r tan(aperture / 2), the
-// vertical band a static head must give (docs/mapping-3d.md).
+// vertical band a static head must give (docs/mapping.md).
 //
 // Usage: sonarmap_accuracy_3d [RESOLUTION_M | auto] [PRESET ... | LOG] [--detector NAME] [--models LIST]
 // (defaults: 0.05, micron; auto: each log's automatic resolution, autoResolutionForLog, as `sonarmap

@@ -1,6 +1,6 @@
 """How fast sonar logs read: for each file, the best of 3 of sonarmap.read_sonar_log (the beams)
 and of sonarmap.read_navigation (the vehicle's track, where the file records one), in seconds and
-in MB/s of the file's size. The program's start is not counted (docs/benchmarks.md, "Reading ROS
+in MB/s of the file's size. The program's start is not counted (docs/performance.md, "Reading logs"; "Reading ROS
 logs").
 
     PYTHONPATH=build/python /usr/bin/python3 bench/read_speed.py FILE...

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Replays a SeaNet wire capture (.seanet) to a UDP port, one datagram per packet, at RATE times a
-Micron's beam interval (43 ms): the end-to-end latency measurement of docs/benchmarks.md.
+Micron's beam interval (43 ms): the end-to-end latency measurement of docs/performance.md.
 Usage: replay_udp.py CAPTURE.seanet PORT RATE"""
 import socket, sys, time
 path, port, rate = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])

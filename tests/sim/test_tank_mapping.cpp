@@ -60,8 +60,8 @@ TEST(simTankMapping, DefaultPipelineMapsTheSimulatedTank) {
   EXPECT_NEAR(side_y_m, 4.4, 0.15);
   EXPECT_NEAR(walls.rect.center_m.x(), 0.0, 0.05);
   EXPECT_NEAR(walls.rect.center_m.y(), 0.4, 0.05);
-  // The real CRAS log gives on walls 0.83, covered 0.74, inside free 0.95 (docs/map-quality.md);
-  // the simulated tank (no fixtures in its corners) measured 0.98, 0.94, 0.99.
+  // The real CRAS log's walls are less clean (on walls and covered about 0.7: docs/accuracy.md,
+  // "The real CRAS tank"); the simulated tank has no fixtures in its corners.
   EXPECT_GT(walls.share_on_walls, 0.9);
   EXPECT_GT(walls.wall_coverage, 0.85);
   EXPECT_LT(walls.rms_wall_distance_m, 0.06);

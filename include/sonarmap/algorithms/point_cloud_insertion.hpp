@@ -17,7 +17,7 @@
 /// voxels of one node two levels above the finest (OccupancyOctree::updateBrick): a brick in
 /// unknown space is built at once with its children arrays at their final size, a known one is
 /// merged in place. Leaves are updated first and the inner nodes above them fixed once at the end
-/// (the same tree as eager updates). See docs/benchmarks.md, "Point-cloud workloads".
+/// (the same tree as eager updates). See docs/performance.md, "Point-cloud workloads".
 
 #include <cstddef>
 

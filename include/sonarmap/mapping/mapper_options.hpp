@@ -39,13 +39,13 @@ enum class BeamModel {
   kPlanar,
   /// The whole beam: the loud core of the cone of horizontal width × vertical aperture is free up to
   /// the obstacle, and the obstacle is a vertical face across both, weighted by the beam pattern
-  /// (docs/mapping-3d.md; Moravec & Elfes 1985, Elfes 1987, Fairfield et al. 2007, Ribas et al.
+  /// (docs/mapping.md; Moravec & Elfes 1985, Elfes 1987, Fairfield et al. 2007, Ribas et al.
   /// 2008). A 3D map once the vehicle moves, turns or tilts the sonar.
   kVolume,
   /// The whole beam by the forward model inverted jointly over many beams (volume_inversion.hpp):
   /// the level surfaces as kVolume maps them (level_surfaces.hpp), their expected echoes explained
   /// first, and what stands in the water as voxel reflectivities explaining the rest of each range
-  /// cell's power. A 3D map; docs/mapping-3d.md.
+  /// cell's power. A 3D map; docs/mapping.md.
   kInversion,
 };
 

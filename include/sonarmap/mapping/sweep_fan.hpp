@@ -14,7 +14,7 @@
 /// The beam volume: a beam of vertical aperture a is the cone bearing ± w/2 × elevation
 /// ± a/2 in its sonar frame (elevation above the sonar's x–y plane). Its free space is the cone's
 /// loud core up to the free range; its obstacle a vertical face (or, for planArcs's callers that
-/// ask, the shell) at the hit range across both angles (docs/mapping-3d.md). The fan is then a
+/// ask, the shell) at the hit range across both angles (docs/mapping.md). The fan is then a
 /// 2D hierarchical grid (grid angle × elevation, the same angular step on both axes): a ray's level
 /// is the finer of its two indices' levels, and it starts where its coarser neighbours on that axis
 /// drift a voxel apart. The rays are at most one voxel apart at the longest range in both

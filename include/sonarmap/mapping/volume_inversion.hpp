@@ -98,7 +98,7 @@ struct InversionBeam {
   double water_range_m = 0.0;          ///< no echo before here (its first echo less the tolerance): no cell is loud
   /// The beam proves water up to here, ≤ water_range_m: 0 for a beam that heard no echo at all (in
   /// 3D silence is no proof of water: a seabed met at grazing incidence returns 1–3 dB over the
-  /// noise, below every threshold; docs/mapping-3d.md, "Free space").
+  /// noise, below every threshold; docs/mapping.md, "Free space").
   double free_range_m = 0.0;
   std::optional<LevelPlane> seabed;    ///< the seabed as fitted so far, if any
   std::optional<LevelPlane> surface;   ///< the water surface, if its depth is known

@@ -4,7 +4,7 @@
 /// `sonarmap map`, `simulate`, `live` and `eval --heard-by`; the Python module's `mounting=`):
 /// the sonar frame's pose in the body frame (both forward-right-down, navigation.hpp), X, Y, Z in
 /// metres and ROLL, PITCH, YAW the Z-Y-X Euler angles in degrees. All zeros: upright and aligned
-/// (defaultSonarToBody()); a head tilted 25° down is pitch −25 (docs/frames.md).
+/// (defaultSonarToBody()); a head tilted 25° down is pitch −25 (docs/formats.md, "Frames").
 
 #include <array>
 #include <vector>

@@ -3,7 +3,7 @@
 /// Vehicle navigation for a moving sonar: fixes in the local NED frame (the marine convention),
 /// pose interpolation at beam times, and the sonar's mounting on the vehicle.
 ///
-/// Frames (the one statement of the project's convention; docs/frames.md explains it with examples):
+/// Frames (the one statement of the project's convention; docs/formats.md, "Frames", explains it with examples):
 ///  - NED: local tangent frame, x north, y east, z down, metres; the navigation's frame.
 ///  - body: the vehicle's frame, x forward, y starboard, z down (FRD); roll, pitch, yaw are the
 ///    usual Z-Y-X (yaw, then pitch, then roll) Euler angles of body in NED, radians: pitch

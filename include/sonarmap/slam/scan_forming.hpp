@@ -80,7 +80,7 @@ struct ScanFormingOptions {
   /// as a DVL-aided INS it takes the SeaKing's and Ping360's error from 0.035–0.103 m to
   /// 0.006–0.026 m (the SeaKing hull loop excepted: 0.074 → 0.090 m), but with drifting dead
   /// reckoning it makes most missions worse and the Micron hull loop closes loops wrongly
-  /// (docs/localization.md, issue 42's third round).
+  /// (docs/localization.md).
   bool leading_edge_bearing = false;
 
   /// @throws ValueError for a sigma or travel that is negative or not finite, or invalid odometry
