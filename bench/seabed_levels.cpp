@@ -1,6 +1,6 @@
 // sonarmap_seabed_levels: where a flat seabed's echo sits against each head's noise, by the sonar
 // equation the simulator follows (acoustics/sonar_equation.hpp, asked through sim/sonar_equation.hpp),
-// for the quay3d missions' geometry (docs/accuracy.md). Not a test.
+// for the quay3d missions' geometry (sim/missions.hpp). Not a test.
 //
 //   sonarmap_seabed_levels
 //

@@ -145,7 +145,7 @@ def test_map_pictures_for_notebooks(simulated_tank):
 
 def test_simulated_mission_reproduces_the_accuracy_table():
     """The tilted loop mapped from Python as sonarmap_accuracy_3d maps it (--3d, 5 cm, the head's
-    beam) and scored with the head's field of view: docs/accuracy.md's row, P 0.707, R 0.594,
+    beam) and scored with the head's field of view, as that bench scores it: P 0.707, R 0.594,
     median surface error 0.059 m, free accuracy 1.000; the water surface unknown
     (water_surface_depth=None: the sideways beams, whose cones point up and down, trace nothing),
     P 0.714, R 0.575."""

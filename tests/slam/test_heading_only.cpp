@@ -55,7 +55,7 @@ TEST(slamHeadingOnly, ATrackThatNeverMovesIsTakenForTheHeadingAlone) {
 TEST(slamHeadingOnly, TheScansGiveThePositionOfAVehicleAlongAHull) {
   // A SeaKing flying the hull loop (186 m) with a drifting heading (1.5° bias, 0.02°/√s walk) and
   // no position: the track believed still is 27 m off; the scans, matched from the last scans'
-  // velocity, give the path within a few metres (3.8 m on this seed; docs/localization.md).
+  // velocity, give the path within a few metres (3.8 m on this seed).
   const MsisSimulation run = testing::missionRun("hull-loop", "seaking-30", 0.0, 1.5, 0.02, 1);
   const NavTrack heading = headingOnly(run.dead_reckoning);
   ASSERT_EQ(navigationClassOf(heading), "ahrs");

@@ -191,7 +191,7 @@ struct EchoModelOptions {
   /// ("Novel physical interpretations of K-distributed reverberation", IEEE J. Oceanic Eng. 27(4)),
   /// where fully developed speckle alone (the noise above) has an exponential tail. Real water has
   /// that tail: in the CRAS tank log 4.3·10⁻³ of the water bins rise 16.9 dB above the background,
-  /// 1.8·10⁻² rise 13.8 dB (docs/accuracy.md, noise tails), the simulator's open water none.
+  /// 1.8·10⁻² rise 13.8 dB (`sonarmap_accuracy_table --noise-tails`), the simulator's open water none.
   double water_scatterers_per_m = 0.0;
   double water_scatterer_level_db = 8.0;  ///< mean level L of a scatterer above the noise, dB, > 0
 

@@ -85,7 +85,7 @@
 ///    pulse) a 0.10 m plateau and 0.30 m taper, between the 2 m pings and the 60 m scale's
 ///    (saturated to 0.25 m, gone by about 0.45 m) [A]. (The shared logs also disagree with the
 ///    `ping360` preset's noise floor: at 60 m and gain 2 their water is 0 beyond 4 m, median and
-///    90th percentile; that preset keeps its assumed floor, see docs/accuracy.md.)
+///    90th percentile; that preset keeps its assumed floor.)
 ///  - `imagenex-881a`: an Imagenex 881A-like head at 675 kHz, 20 m with 500 samples (4 cm) [A].
 ///    Beam 1.8° × 20° [D]; 0.9° steps (400 a turn) [D]; period 26.7 ms + 550 B at 115.2 kBd
 ///    (48 ms) = 75 ms [C] (30 s a turn). Pulse 80 µs, 0.06 m (1.5 samples) [A]; speckle_looks 2.
