@@ -240,12 +240,14 @@ const CloudComparison& cloudComparison(CloudId id, const CloudWorkload& w) {
   c.known_octomap = agreement.theirs_known;
   c.known_both = agreement.agree + agreement.differ;
   c.agree = agreement.agree;
-  OcTree16 parallel(w.resolution_m);
-  PointCloud buffer;
-  insertSonarmapParallel(parallel, w, 2, buffer);
-  c.parallel_identical = testing::leavesOf(parallel) == testing::leavesOf(ours);
   slot = c;
   return *slot;
+}
+
+bool parallelMapIsSerial(const CloudWorkload& w, const OcTree16& map) {
+  OcTree16 serial(w.resolution_m);
+  insertSonarmap(serial, w);
+  return testing::leavesOf(map) == testing::leavesOf(serial);
 }
 
 }  // namespace sonarmap::bench

@@ -69,8 +69,9 @@ struct CloudComparison {
   std::size_t sonarmap_bytes = 0;
   /// Finest voxels, pruned leaves expanded (tests/algorithms/octomap_reference.hpp).
   std::size_t known_sonarmap = 0, known_octomap = 0, known_both = 0, agree = 0;
-  bool parallel_identical = false;  ///< 2-thread map == serial map, leaf by leaf
 };
 const CloudComparison& cloudComparison(CloudId id, const CloudWorkload& workload);
+/// Whether `map` (from insertSonarmapParallel) equals the serial insertion's map leaf by leaf.
+bool parallelMapIsSerial(const CloudWorkload& workload, const OcTree16& map);
 
 }  // namespace sonarmap::bench

@@ -73,7 +73,7 @@ void run(const CloudArgs& args) {
     for (std::size_t i = 0; i < scans.size(); ++i) {
       world.clear();
       for (const Eigen::Vector3d& p : scans[i].points_m) world.push_back(scans[i].sensor_to_world * p);
-      total += insertPointCloud(map, world, scans[i].sensor_to_world.translation(), options);
+      total += insertPointCloudParallel(map, world, scans[i].sensor_to_world.translation(), options, args.threads);
       if (!args.quiet) bar.update(i + 1, scans.size());
     }
   }
@@ -102,6 +102,10 @@ Command addCloudCommand(CLI::App& app, CloudArgs& args) {
   cmd->add_option("--origin", args.origin, "Sensor origin X,Y,Z (m) of a text cloud (default 0,0,0)")
       ->group(help_group::kInput);
   cmd->add_flag("--discretize", args.discretize, "One ray per endpoint voxel (OctoMap's discretize)")
+      ->group(help_group::kMapping);
+  cmd->add_option("--threads", args.threads, "Threads tracing each scan's rays; the same map for any count")
+      ->check(CLI::Range(1U, 64U))
+      ->capture_default_str()
       ->group(help_group::kMapping);
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   return {cmd, [&args] { check(args); }, [&args] { run(args); }};

@@ -17,6 +17,7 @@ struct CloudArgs {
   double max_range_m = -1.0;
   std::string origin;  ///< "X,Y,Z" in metres, for x y z text clouds
   bool discretize = false;
+  unsigned threads = 1;  ///< threads tracing each scan's rays; the map is the same for any count
   bool quiet = false;
 };
 

@@ -87,6 +87,35 @@ TEST_F(cliCloud, TextCloudWithOriginSkipsNonFinitePoints) {
   EXPECT_FALSE(octree->isNodeOccupied(free));
 }
 
+TEST_F(cliCloud, ThreadsGiveTheSameMapByteForByte) {
+  // 4,000 points on a tilted 3 m sphere with a bump, half of them past the 2.5 m range limit, so
+  // that both hit and clipped rays are split between the threads (256 rays a thread at least).
+  std::string text;
+  for (int i = 0; i < 4000; ++i) {
+    const double azimuth = 0.0157 * i, elevation = std::asin(-0.95 + 1.9 * ((i * 37) % 4000) / 4000.0);
+    const double range = 2.0 + (i % 2) * 1.0 + 0.1 * std::sin(5.0 * azimuth);
+    char line[96];
+    std::snprintf(line, sizeof line, "%.6f %.6f %.6f\n", range * std::cos(elevation) * std::cos(azimuth),
+                  range * std::cos(elevation) * std::sin(azimuth), 0.3 + range * std::sin(elevation));
+    text += line;
+  }
+  writeFile(root_ / "cloud.txt", text);
+  std::string first;
+  for (const char* threads : {"1", "2", "4"}) {
+    const fs::path ot = out_ / (std::string("map") + threads + ".ot");
+    const ProgramRun result = run({"cloud", (root_ / "cloud.txt").string(), "-o", ot.string(), "--max-range", "2.5",
+                                   "--resolution", "0.04", "--threads", threads, "-q"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const std::string bytes = readFile(ot);
+    ASSERT_GT(bytes.size(), 10000U);
+    if (first.empty()) {
+      first = bytes;
+    } else {
+      EXPECT_TRUE(bytes == first) << threads << " threads gave another map";
+    }
+  }
+}
+
 TEST_F(cliCloud, UsageErrorsExitTwoAndWriteNothing) {
   writeFile(root_ / "cloud.txt", "1 0 0\n");
   const std::string input = (root_ / "cloud.txt").string();
@@ -95,6 +124,7 @@ TEST_F(cliCloud, UsageErrorsExitTwoAndWriteNothing) {
                             Names{"cloud", input, "-o", out, "--resolution", "0"},
                             Names{"cloud", input, "-o", out, "--origin", "1,2"},
                             Names{"cloud", input, "-o", out, "--origin", "a,b,c"},
+                            Names{"cloud", input, "-o", out, "--threads", "0"},
                             Names{"cloud", input}}) {
     expectError(run(args), 2);
   }
