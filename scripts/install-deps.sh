@@ -3,7 +3,7 @@
 # also what its tests need (the notebook's runner, pytest, headless Chromium).
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
-  libopencv-dev libmatio-dev zlib1g-dev libicu-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev libeigen3-dev libabsl-dev libceres-dev
+  libopencv-dev libpng-dev libmatio-dev zlib1g-dev libicu-dev libnanoflann-dev libcli11-dev nlohmann-json3-dev libeigen3-dev libabsl-dev libceres-dev
   # ROS 1 bags: the container (chunks, bz2, lz4, index) from Debian's rosbag_storage; ROS 2's MCAP
   # chunks: zstd and lz4 frames
   librosbag-storage-dev libzstd-dev liblz4-dev libsqlite3-dev

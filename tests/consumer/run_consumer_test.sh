@@ -59,7 +59,7 @@ cmake --build "$tmp/build" >/dev/null
 # The octree alone: a find_package of anything but Eigen fails the configure, and the program links
 # libsonarmap_octree.a and nothing else of sonarmap or its other dependencies.
 disabled=()
-for package in OpenCV Ceres nanoflann absl ZLIB ICU BZip2 PkgConfig; do
+for package in OpenCV PNG Ceres nanoflann absl ZLIB ICU BZip2 PkgConfig; do
   disabled+=("-DCMAKE_DISABLE_FIND_PACKAGE_$package=ON")
 done
 cmake -S "$source_dir/tests/consumer/octree" -B "$tmp/octree" -G Ninja -DCMAKE_BUILD_TYPE="$(cached CMAKE_BUILD_TYPE)" \

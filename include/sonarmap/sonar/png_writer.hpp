@@ -9,7 +9,7 @@
 
 namespace sonarmap {
 
-/// Encodes `image` as PNG bytes with cv::imencode.
+/// Encodes `image` as PNG bytes with libpng (colour images as OpenCV keeps them: B, G, R, A).
 /// @param image  CV_8U or CV_16U, 1, 3 or 4 channels (what PNG stores), not empty.
 /// @throws FileError when the image is empty, of a type PNG cannot store, or encoding fails.
 std::vector<unsigned char> encodePng(const cv::Mat& image);
