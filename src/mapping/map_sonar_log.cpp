@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "sonarmap/core/errors.hpp"
@@ -35,6 +36,8 @@ SonarMapper releaseMapped(OnlineMapper& online, std::size_t skipped_beams) {
 
 /// mapSonarLog's body: every beam of `source` through `online` (an OnlineMapper), in order.
 SonarMapper mapThroughOnline(BeamSource& source, OnlineMapper& online) {
+  // A log is read faster than its sweeps are detected: keep every core detecting.
+  online.setDetectionsAhead(std::max(1U, std::thread::hardware_concurrency()));
   source.rewind();
   while (std::optional<Beam> beam = source.next()) online.addBeam(std::move(*beam));
   return releaseMapped(online, source.header().skipped_beams);

@@ -48,7 +48,9 @@ OnlineMapper::OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d
 }
 
 OnlineMapper::~OnlineMapper() {
-  if (in_flight_ && in_flight_->valid()) in_flight_->wait();  // never leave the detection thread running
+  for (std::future<DetectedSweep>& f : in_flight_) {
+    if (f.valid()) f.wait();  // never leave a detection thread running
+  }
 }
 
 void OnlineMapper::addNavFix(const NavSample& fix) {
@@ -107,10 +109,7 @@ void OnlineMapper::finish() {
   finished_ = true;
   if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last, true);
   processReady();
-  if (in_flight_) {
-    std::unique_ptr<std::future<DetectedSweep>> last = std::move(in_flight_);
-    integrate(last->get());
-  }
+  integrateInFlight();
   mapper_.finish();
 }
 
@@ -155,10 +154,26 @@ void OnlineMapper::processReady() {
       integrate(detect());
       continue;
     }
-    // Detect this sweep on a second thread while the one before it is integrated here.
-    auto next = std::make_unique<std::future<DetectedSweep>>(std::async(std::launch::async, std::move(detect)));
-    std::unique_ptr<std::future<DetectedSweep>> previous = std::exchange(in_flight_, std::move(next));
-    if (previous) integrate(previous->get());  // rethrows what its detection threw
+    // Detect this sweep on another thread while the oldest sweep in detection is integrated here.
+    in_flight_.push_back(std::async(std::launch::async, std::move(detect)));
+    while (in_flight_.size() > detections_ahead_) {
+      std::future<DetectedSweep> oldest = std::move(in_flight_.front());
+      in_flight_.pop_front();
+      integrate(oldest.get());  // rethrows what its detection threw
+    }
+  }
+}
+
+void OnlineMapper::setDetectionsAhead(std::size_t sweeps) {
+  if (sweeps == 0) throw ValueError("online mapper: at least one sweep is detected ahead");
+  detections_ahead_ = sweeps;
+}
+
+void OnlineMapper::integrateInFlight() {
+  while (!in_flight_.empty()) {
+    std::future<DetectedSweep> oldest = std::move(in_flight_.front());
+    in_flight_.pop_front();
+    integrate(oldest.get());
   }
 }
 
@@ -169,10 +184,7 @@ bool OnlineMapper::detectedAsShort(const ReadyGroup& group) {
   // its own background and near field would be those of one patch of the scene (a seabed seen in
   // every one of its beams is taken for the near field). Its setting's last whole sweep measured
   // them over more bearings; the sweep before it may still be in detection.
-  if (in_flight_) {
-    std::unique_ptr<std::future<DetectedSweep>> previous = std::move(in_flight_);
-    integrate(previous->get());
-  }
+  integrateInFlight();
   const HeadSetting setting = headSettingOf(group.beams.front());
   for (const KeptCalibration& kept : calibrations_) {
     if (kept.setting == setting) return 2 * group.beams.size() < kept.beams;
@@ -184,10 +196,7 @@ void OnlineMapper::processShortGroup(ReadyGroup ready) {
   const std::vector<Beam>& group = ready.beams;
   // Too few bearings to measure a background on: detected with the calibration of the last whole
   // sweep of its head setting, which must be known first.
-  if (in_flight_) {
-    std::unique_ptr<std::future<DetectedSweep>> previous = std::move(in_flight_);
-    integrate(previous->get());
-  }
+  integrateInFlight();
   const HeadSetting setting = headSettingOf(group.front());
   const SweepCalibration* calibration = calibrationOf(setting);
   if (calibration == nullptr) {
@@ -343,8 +352,10 @@ MappingStats OnlineMapper::statsSnapshot() const {
 }
 
 SonarMapper OnlineMapper::release() && {
-  if (in_flight_ && in_flight_->valid()) in_flight_->wait();
-  in_flight_.reset();
+  for (std::future<DetectedSweep>& f : in_flight_) {
+    if (f.valid()) f.wait();
+  }
+  in_flight_.clear();
   return std::move(mapper_);
 }
 

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <thread>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
@@ -43,15 +44,17 @@ MapperOptions atTwoCentimetres(bool pipeline) {
 }
 
 // Fed beam by beam, with the fixes first or interleaved with the beams (each fix as soon as its
-// time has come), with or without pipelined detection: the batch's map, leaf for leaf.
+// time has come), with or without pipelined detection, one or three sweeps detected ahead: the
+// batch's map, leaf for leaf.
 TEST(mappingOnlineMapper, BeamByBeamGivesTheBatchMap) {
   const MsisSimulation run = movingRun();
   const Eigen::Isometry3d mounting = defaultSonarToBody();
   const SonarMapper batch = mapSonarLog(run.log, run.nav, mounting, atTwoCentimetres(true));
   const auto expected = leavesOf(batch.map());
   ASSERT_GT(expected.size(), 1000U);
-  for (const bool pipeline : {false, true}) {
+  for (const auto& [pipeline, ahead] : {std::pair{false, 1U}, std::pair{true, 1U}, std::pair{true, 3U}}) {
     OnlineMapper online(atTwoCentimetres(pipeline), mounting);
+    online.setDetectionsAhead(ahead);
     std::size_t next_fix = 0;
     for (const Beam& beam : run.log.beams) {
       while (next_fix < run.nav.size() && run.nav[next_fix].time_s <= beam.time_s) online.addNavFix(run.nav[next_fix++]);
@@ -59,11 +62,28 @@ TEST(mappingOnlineMapper, BeamByBeamGivesTheBatchMap) {
     }
     while (next_fix < run.nav.size()) online.addNavFix(run.nav[next_fix++]);
     online.finish();
-    EXPECT_EQ(online.sweepsIntegrated(), batch.stats().sweeps) << "pipeline " << pipeline;
+    EXPECT_EQ(online.sweepsIntegrated(), batch.stats().sweeps) << "pipeline " << pipeline << ", ahead " << ahead;
     EXPECT_EQ(online.beamsPending(), 0U);
-    EXPECT_EQ(leavesOf(online.mapper().map()), expected) << "pipeline " << pipeline;
+    EXPECT_EQ(leavesOf(online.mapper().map()), expected) << "pipeline " << pipeline << ", ahead " << ahead;
     EXPECT_EQ(online.mapper().stats().beams_used, batch.stats().beams_used);
   }
+}
+
+// With three sweeps detected ahead, a sweep waits for three more to be final, then is
+// integrated; none is detected ahead is refused.
+TEST(mappingOnlineMapper, SweepsDetectedAheadWaitForTheirTurn) {
+  const MsisSimulation run = movingRun(5);
+  const std::vector<SweepRange> sweeps = splitSweeps(run.log.beams);
+  ASSERT_EQ(sweeps.size(), 5U);
+  OnlineMapper online(atTwoCentimetres(true));
+  EXPECT_THROW(online.setDetectionsAhead(0), ValueError);
+  online.setDetectionsAhead(3);
+  const std::size_t min_beams = static_cast<std::size_t>(atTwoCentimetres(true).detector.background.min_beams);
+  // Sweeps 0..3 final (sweep 4 has its min_beams beams): four in detection, the first integrated.
+  for (std::size_t i = 0; i < sweeps[4].first + min_beams; ++i) online.addBeam(run.log.beams[i]);
+  EXPECT_EQ(online.sweepsIntegrated(), 1U);
+  online.finish();
+  EXPECT_EQ(online.sweepsIntegrated(), 5U);
 }
 
 // Without pipelining a sweep is integrated once the next sweep has the detector's min_beams

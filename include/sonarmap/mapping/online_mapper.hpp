@@ -14,8 +14,9 @@
 /// (MappingStats::beams_uncalibrated): a handful of bearings gives no background. A final sweep is detected (calibration, cleaning, first obstacle per beam: the
 /// detector needs the whole sweep for its per-sweep background) and integrated as soon as the
 /// navigation covers its last beam (a fix at or after its time), or at finish(). Detection runs on
-/// a second thread while the previous sweep is integrated when MapperOptions::pipeline_detection
-/// is set (the batch's throughput; a sweep is then integrated when the next one is final);
+/// other threads while the previous sweep is integrated when MapperOptions::pipeline_detection
+/// is set (the batch's throughput; a sweep is then integrated when the next one is final, or the
+/// next few: setDetectionsAhead);
 /// without it each final sweep is detected and integrated at once (the least latency).
 ///
 /// With OnlineIntegration::kProvisionalBeams each beam is also shown at once on a provisional layer
@@ -96,6 +97,14 @@ class OnlineMapper {
   ///         mapper given beams to show (showBeam), or what detecting or integrating a sweep threw
   ///         (a sweep that mixes bin lengths).
   void addBeam(Beam beam);
+  /// With MapperOptions::pipeline_detection: how many final sweeps may be in detection, each on its
+  /// own thread, while the oldest of them waits to be integrated here. 1 (the default): a sweep is
+  /// integrated once the next one is final, the least lag for live mapping. More keeps every core
+  /// detecting when detection is the slower stage (mapSonarLog: one per hardware thread; CRAS in
+  /// 2D on two cores maps in 30 ms instead of 36, docs/performance.md). Sweeps are integrated in
+  /// order, so the map is the same for any number. Set it before the first beam.
+  /// @throws ValueError for 0.
+  void setDetectionsAhead(std::size_t sweeps);
   /// The end of the stream: the last sweep is final, every held sweep is integrated (beams beyond
   /// the last fix counted without navigation). Further beams are refused. Idempotent.
   /// @throws ValueError  what detecting or integrating a sweep threw.
@@ -196,7 +205,10 @@ class OnlineMapper {
   std::deque<Beam> held_;                        ///< beams of groups not yet final
   std::deque<ReadyGroup> ready_;                 ///< final groups waiting for navigation
   std::size_t waiting_beams_ = 0;                ///< beams of final groups not yet integrated
-  std::unique_ptr<std::future<DetectedSweep>> in_flight_;  ///< detection running beside integration
+  std::deque<std::future<DetectedSweep>> in_flight_;  ///< detections running beside integration, oldest first
+  std::size_t detections_ahead_ = 1;                  ///< setDetectionsAhead
+  /// Integrates every sweep still in detection, in order.
+  void integrateInFlight();
   std::size_t sweeps_ = 0;
   std::size_t beams_grouped_ = 0;  ///< beams handed to final groups so far
   bool finished_ = false;
