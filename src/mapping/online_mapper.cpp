@@ -47,11 +47,7 @@ OnlineMapper::OnlineMapper(const MapperOptions& options, const Eigen::Isometry3d
   sonar_to_body_ = sonar_to_body;
 }
 
-OnlineMapper::~OnlineMapper() {
-  for (std::future<DetectedSweep>& f : in_flight_) {
-    if (f.valid()) f.wait();  // never leave a detection thread running
-  }
-}
+OnlineMapper::~OnlineMapper() { waitForDetections(); }
 
 void OnlineMapper::addNavFix(const NavSample& fix) {
   if (!sonar_to_body_) throw ValueError("online mapper: navigation fixes need the navigation constructor");
@@ -156,11 +152,7 @@ void OnlineMapper::processReady() {
     }
     // Detect this sweep on another thread while the oldest sweep in detection is integrated here.
     in_flight_.push_back(std::async(std::launch::async, std::move(detect)));
-    while (in_flight_.size() > detections_ahead_) {
-      std::future<DetectedSweep> oldest = std::move(in_flight_.front());
-      in_flight_.pop_front();
-      integrate(oldest.get());  // rethrows what its detection threw
-    }
+    while (in_flight_.size() > detections_ahead_) integrateOldest();
   }
 }
 
@@ -169,11 +161,19 @@ void OnlineMapper::setDetectionsAhead(std::size_t sweeps) {
   detections_ahead_ = sweeps;
 }
 
+void OnlineMapper::integrateOldest() {
+  std::future<DetectedSweep> oldest = std::move(in_flight_.front());
+  in_flight_.pop_front();
+  integrate(oldest.get());  // rethrows what its detection threw
+}
+
 void OnlineMapper::integrateInFlight() {
-  while (!in_flight_.empty()) {
-    std::future<DetectedSweep> oldest = std::move(in_flight_.front());
-    in_flight_.pop_front();
-    integrate(oldest.get());
+  while (!in_flight_.empty()) integrateOldest();
+}
+
+void OnlineMapper::waitForDetections() {
+  for (std::future<DetectedSweep>& detection : in_flight_) {
+    if (detection.valid()) detection.wait();  // never leave a detection thread running
   }
 }
 
@@ -352,9 +352,7 @@ MappingStats OnlineMapper::statsSnapshot() const {
 }
 
 SonarMapper OnlineMapper::release() && {
-  for (std::future<DetectedSweep>& f : in_flight_) {
-    if (f.valid()) f.wait();
-  }
+  waitForDetections();
   in_flight_.clear();
   return std::move(mapper_);
 }

@@ -8,7 +8,10 @@
 #include <png.h>
 
 #include <csetjmp>
+#include <new>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
@@ -24,13 +27,21 @@ bool isPngStorable(const cv::Mat& image) {
 
 /// What libpng's callbacks report back: the bytes written, and its error message if any.
 struct PngOutput {
-  std::vector<unsigned char>* bytes;
+  std::vector<unsigned char> bytes;
   std::string error;
 };
 
+/// libpng's write callback. An allocation failure becomes a libpng error (its longjmp), so that no
+/// C++ exception crosses libpng's C frames.
 void appendBytes(png_structp png, png_bytep data, png_size_t length) {
   auto* output = static_cast<PngOutput*>(png_get_io_ptr(png));
-  output->bytes->insert(output->bytes->end(), data, data + length);
+  bool out_of_memory = false;
+  try {
+    output->bytes.insert(output->bytes.end(), data, data + length);
+  } catch (const std::bad_alloc&) {
+    out_of_memory = true;
+  }
+  if (out_of_memory) png_error(png, "out of memory for the encoded image");
 }
 
 void flushNothing(png_structp /*png*/) {}
@@ -44,8 +55,7 @@ void onPngWarning(png_structp /*png*/, png_const_charp /*message*/) {}
 
 /// Writes `image` through `png` into `output`; false after a libpng error (its message in
 /// `output`). Only trivially destructible objects live in this frame, so that libpng's longjmp
-/// back to the setjmp below skips no destructor. The `appendBytes` allocation may throw
-/// std::bad_alloc through libpng's C frames, as OpenCV's encoder also lets it.
+/// back to the setjmp below skips no destructor.
 bool writeImage(png_structp png, png_infop info, const cv::Mat& image) {
   if (setjmp(png_jmpbuf(png)) != 0) return false;
   const int channels = image.channels();
@@ -66,8 +76,7 @@ bool writeImage(png_structp png, png_infop info, const cv::Mat& image) {
 std::vector<unsigned char> encodePng(const cv::Mat& image) {
   if (image.empty()) throw FileError("PNG encoding: the image is empty");
   if (!isPngStorable(image)) throw FileError("PNG encoding: PNG stores CV_8U/CV_16U with 1, 3 or 4 channels");
-  std::vector<unsigned char> bytes;
-  PngOutput output{&bytes, {}};
+  PngOutput output;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &output, onPngError, onPngWarning);
   if (png == nullptr) throw FileError("PNG encoding: libpng could not start");
   png_infop info = png_create_info_struct(png);
@@ -79,7 +88,7 @@ std::vector<unsigned char> encodePng(const cv::Mat& image) {
   const bool written = writeImage(png, info, image);
   png_destroy_write_struct(&png, &info);
   if (!written) throw FileError("PNG encoding: libpng failed: " + output.error);
-  return bytes;
+  return std::move(output.bytes);
 }
 
 void writePng(const std::string& path, const cv::Mat& image) {

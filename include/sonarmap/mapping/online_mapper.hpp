@@ -101,7 +101,7 @@ class OnlineMapper {
   /// own thread, while the oldest of them waits to be integrated here. 1 (the default): a sweep is
   /// integrated once the next one is final, the least lag for live mapping. More keeps every core
   /// detecting when detection is the slower stage (mapSonarLog: one per hardware thread; CRAS in
-  /// 2D on two cores maps in 30 ms instead of 36, docs/performance.md). Sweeps are integrated in
+  /// 2D on two cores maps in 31 ms instead of 36, docs/performance.md). Sweeps are integrated in
   /// order, so the map is the same for any number. Set it before the first beam.
   /// @throws ValueError for 0.
   void setDetectionsAhead(std::size_t sweeps);
@@ -207,8 +207,12 @@ class OnlineMapper {
   std::size_t waiting_beams_ = 0;                ///< beams of final groups not yet integrated
   std::deque<std::future<DetectedSweep>> in_flight_;  ///< detections running beside integration, oldest first
   std::size_t detections_ahead_ = 1;                  ///< setDetectionsAhead
+  /// Integrates the oldest sweep in detection, once detected.
+  void integrateOldest();
   /// Integrates every sweep still in detection, in order.
   void integrateInFlight();
+  /// Waits for every detection still running, without integrating it.
+  void waitForDetections();
   std::size_t sweeps_ = 0;
   std::size_t beams_grouped_ = 0;  ///< beams handed to final groups so far
   bool finished_ = false;
