@@ -20,7 +20,7 @@ set(CPACK_DEBIAN_PACKAGE_MAINTAINER "sonarmap developers <sonarmap@localhost>")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-  "libopencv-dev, libpng-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, libicu-dev, libnanoflann-dev, libceres-dev, librosbag-storage-dev, libzstd-dev, liblz4-dev, libsqlite3-dev, pkg-config")
+  "libopencv-dev, libpng-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, libicu-dev, libnanoflann-dev, libceres-dev, librosbag-storage-dev, libzstd-dev, liblz4-dev, libsqlite3-dev, libcpp-httplib-dev, pkg-config")
 if(TARGET sonarmap_python)
   # the extension is built for one Python minor version (its ABI)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS

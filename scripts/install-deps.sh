@@ -11,7 +11,9 @@ packages=(build-essential cmake ninja-build pkg-config
   # the Python module and its examples (Debian's python3, not PyPI)
   python3-dev pybind11-dev python3-numpy python3-matplotlib
   # sonarmap view: three.js, compiled into the tool and inlined into each page
-  libjs-three)
+  libjs-three
+  # live --serve: the page's HTTP server
+  libcpp-httplib-dev)
 if [ "${1:-}" = test ]; then
   # pytest, the notebook run by nbconvert, headless Chromium for the viewer's browser tests, and
   # ccache for the repeated builds of CI and the sanitizers (scripts/compiler-cache.sh)

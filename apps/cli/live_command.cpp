@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "live_latency.hpp"
-#include "live_source.hpp"
+#include "sonarmap/live/byte_link.hpp"
 #include "output_checks.hpp"
 #include "reader_skips.hpp"
 #include "navigation_input.hpp"
@@ -266,7 +266,7 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
                    !args.map.nav_file.empty() || !args.nav_stream.empty(), origin, origin_resolution_m);
   g_stop = 0;
   catchStopSignals();
-  LiveSource source(args.map.input, args.baud);
+  ByteLink source(args.map.input, args.baud);
   if (!args.map.quiet) std::fprintf(stderr, "sonarmap: live: reading %s\n", source.description().c_str());
   WireStreamDecoder decoder(format, {}, args.map.input);
 
@@ -277,7 +277,7 @@ void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Is
   double last_status_s = 0.0;
   double last_byte_s = 0.0;
   std::size_t beams_at_status = 0;
-  std::optional<LiveSource> nav_source;
+  std::optional<ByteLink> nav_source;
   std::optional<NavCsvStream> nav_rows;
   if (!args.nav_stream.empty()) {
     nav_source.emplace(args.nav_stream, args.baud);

@@ -7,10 +7,9 @@
 #include <numbers>
 #include <string>
 
-#include "beam_echo.hpp"
-#include "random.hpp"
-#include "receiver.hpp"
+#include "pose_checks.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/sim/beam_simulator.hpp"
 
 namespace sonarmap {
 namespace {
@@ -22,17 +21,6 @@ constexpr double kSectorSlack_rad = 1e-9;
 
 void require(bool valid, const std::string& what) {
   if (!valid) throw ValueError(what);
-}
-
-bool isRigid(const Eigen::Isometry3d& pose) {
-  const Eigen::Matrix3d rotation = pose.linear();
-  return pose.matrix().allFinite() && (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
-         std::abs(rotation.determinant() - 1.0) < 1e-6;
-}
-
-double wrapBearing(double bearing_rad) {
-  const double wrapped = std::fmod(bearing_rad, kTwoPi);
-  return wrapped < 0.0 ? wrapped + kTwoPi : (wrapped >= kTwoPi ? 0.0 : wrapped);
 }
 
 /// Fixes of the trajectory every 1 / rate_hz seconds from first_s until at least last_s.
@@ -63,13 +51,13 @@ std::size_t MsisHeadOptions::beamsPerTurn() const {
 
 double MsisHeadOptions::bearingOf(std::size_t index) const {
   const double signed_step_rad = counter_clockwise ? -step_rad : step_rad;  // bearings count clockwise (beam.hpp)
-  if (!isSector()) return wrapBearing(start_bearing_rad + static_cast<double>(index) * signed_step_rad);
+  if (!isSector()) return sim::wrapBearing(start_bearing_rad + static_cast<double>(index) * signed_step_rad);
   const std::size_t steps = sectorSteps();
   const std::size_t pass = index / (steps + 1);
   const std::size_t along = index % (steps + 1);
   const std::size_t from_first_limit = pass % 2 == 0 ? along : steps - along;
   const double first_limit_rad = sector_center_rad - 0.5 * static_cast<double>(steps) * signed_step_rad;
-  return wrapBearing(first_limit_rad + static_cast<double>(from_first_limit) * signed_step_rad);
+  return sim::wrapBearing(first_limit_rad + static_cast<double>(from_first_limit) * signed_step_rad);
 }
 
 void MsisHeadOptions::validate() const {
@@ -139,42 +127,22 @@ void MsisSimulationOptions::validate() const {
   require(static_cast<bool>(trajectory), "MSIS simulation: the trajectory is empty");
   require(std::isfinite(start_time_s), "MSIS simulation: start_time_s must be finite");
   require(std::isfinite(nav_rate_hz) && nav_rate_hz >= 0.0, "MSIS simulation: nav_rate_hz must be ≥ 0");
-  require(isRigid(sonar_to_body),
+  require(sim::isRigid(sonar_to_body),
           "MSIS simulation: sonar_to_body must be a finite rigid transform (rotation + translation)");
   dead_reckoning.validate();
 }
 
 MsisSimulation simulateMsis(const Scene& scene, const MsisSimulationOptions& options, const ProgressCallback& progress) {
   options.validate();
-  validateScene(scene);
   MsisSimulation run;
   run.scene = scene;
   const MsisHeadOptions& head = options.head;
-  const sim::BeamEchoTracer tracer(run.scene, head, options.echo);
-  sim::Receiver receiver(head, options.echo);
-  sim::Random random(options.seed);
+  MsisBeamSimulator simulator(scene, head, options.echo, options.trajectory, options.sonar_to_body, options.seed);
   const std::size_t beams = options.turns * head.beamsPerTurn();
-  std::vector<double> energy;
   run.log.beams.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
-    Beam beam;
-    beam.time_s = options.start_time_s + static_cast<double>(i) * head.beam_period_s;
-    beam.bearing_rad = head.bearingOf(i);
-    beam.bin_length_m = head.binLength_m();
-    if (head.logs_pulse_length) beam.pulse_length_m = options.echo.pulse_length_m;
-    NavSample fix = options.trajectory(beam.time_s);
-    fix.time_s = beam.time_s;
-    const Eigen::Isometry3d sonar_to_map = sonarToMap(fix, options.sonar_to_body);
-    tracer.trace(sonar_to_map, beam.bearing_rad, energy);
-    double reverberation_from_m = head.range_m;  // from the first surface on the beam's axis
-    if (run.scene.reverberation_db) {
-      const Eigen::Vector3d axis =
-          sonar_to_map.linear() * Eigen::Vector3d(std::cos(beam.bearing_rad), std::sin(beam.bearing_rad), 0.0);
-      const std::optional<SceneHit> hit = firstHit(run.scene, sonar_to_map.translation(), axis, head.range_m);
-      if (hit) reverberation_from_m = hit->surface.range_m;
-    }
-    receiver.receive(energy, random, beam.intensities, run.scene.reverberation_db, reverberation_from_m);
-    run.log.beams.push_back(std::move(beam));
+    run.log.beams.push_back(
+        simulator.simulate(options.start_time_s + static_cast<double>(i) * head.beam_period_s, head.bearingOf(i)));
     if (progress) progress(i + 1, beams);
   }
   if (beams > 0) {
