@@ -16,10 +16,16 @@ namespace {
 using detail::RosSchema;
 using detail::RosValue;
 
+/// The fields of a fix given in NED and Euler angles (dive_recorder.hpp's NavFix, and any message
+/// laid out so): north_m, east_m, down_m, roll_rad, pitch_rad, yaw_rad on its top level.
+constexpr std::initializer_list<const char*> kNedFixFields{"north_m", "east_m", "down_m", "roll_rad", "pitch_rad", "yaw_rad"};
+
 /// The fields leading from the message to its pose (a message with `position` x, y, z and
-/// `orientation` x, y, z, w), or empty when it has none, or no std_msgs/Header.
+/// `orientation` x, y, z, w), {"."} for a message holding kNedFixFields itself, or empty when it
+/// has neither, or no std_msgs/Header.
 std::vector<std::string> posePath(const RosSchema& schema) {
   if (schema.typeAt({"header"}) != "std_msgs/Header") return {};
+  if (schema.holdsNumbers({}, kNedFixFields)) return {"."};
   for (std::vector<std::string> path : {std::vector<std::string>{"pose"}, std::vector<std::string>{"pose", "pose"}}) {
     std::vector<std::string> position = path, orientation = path;
     position.emplace_back("position");
@@ -32,6 +38,17 @@ std::vector<std::string> posePath(const RosSchema& schema) {
 /// One message's fix, NED and FRD; `ned` says which frame its header named.
 NavSample fixOf(const RosValue& message, const std::vector<std::string>& path, double record_time_s, bool& ned) {
   using detail::finiteNumber;
+  if (path.size() == 1 && path.front() == ".") {  // NED and Euler angles, taken as they are
+    ned = true;
+    NavSample fix;
+    fix.time_s = detail::headerTime(message, record_time_s);
+    fix.position_ned_m = {finiteNumber(message.field("north_m"), "north_m"), finiteNumber(message.field("east_m"), "east_m"),
+                          finiteNumber(message.field("down_m"), "down_m")};
+    fix.roll_rad = finiteNumber(message.field("roll_rad"), "roll_rad");
+    fix.pitch_rad = finiteNumber(message.field("pitch_rad"), "pitch_rad");
+    fix.yaw_rad = finiteNumber(message.field("yaw_rad"), "yaw_rad");
+    return fix;
+  }
   ned = detail::headerNamesNed(message);
   const RosValue& pose = detail::valueAt(message, path);
   const RosValue* position = pose.field("position");

@@ -33,6 +33,11 @@ constexpr std::array<std::string_view, 4> kRangeNames{"range", "range_m", "max_r
 constexpr std::array<std::string_view, 6> kIntensityArrayNames{"intensities", "intensity", "data",
                                                                "bins", "samples", "echo"};
 constexpr std::array<std::string_view, 2> kIntensityNames{"intensity", "value"};
+// What a head reports with each beam, when the message carries it (dive_recorder.hpp's SonarBeam,
+// ping360_sonar's SonarEcho `gain`).
+constexpr std::array<std::string_view, 2> kGainNames{"gain_setting", "gain"};
+constexpr std::array<std::string_view, 1> kPulseLengthNames{"pulse_length_m"};
+constexpr std::array<std::string_view, 1> kIntensitySpanNames{"intensity_span_db"};
 
 bool isNumber(const std::string& type) {
   return RosSchema::isBuiltin(type) && type != "string" && type != "time" && type != "duration";
@@ -53,6 +58,7 @@ const RosField* fieldNamed(const std::vector<RosField>& fields, const std::array
 /// Where a topic's message keeps a beam's parts (see ros_bag_reader.hpp).
 struct SonarFields {
   std::string bearing, bin_length, range, intensities, element_intensity;  // field names; empty: absent
+  std::string gain, pulse_length, intensity_span;                          // optional; empty: absent
   bool bearing_in_degrees = false, bearing_in_radians = false;             // said by the name
   bool header = false;
 };
@@ -85,6 +91,10 @@ std::optional<SonarFields> sonarFields(const RosSchema& schema) {
   found.bearing_in_radians = bearing->name.ends_with("_rad");
   if (bin_length != nullptr) found.bin_length = bin_length->name;
   if (range != nullptr) found.range = range->name;
+  auto integer = [](const RosField& f) { return f.array < 0 && isNumber(f.type) && !f.type.starts_with("float"); };
+  if (const RosField* gain = fieldNamed(fields, kGainNames, integer)) found.gain = gain->name;
+  if (const RosField* pulse = fieldNamed(fields, kPulseLengthNames, scalarNumber)) found.pulse_length = pulse->name;
+  if (const RosField* span = fieldNamed(fields, kIntensitySpanNames, scalarNumber)) found.intensity_span = span->name;
   for (const RosField& field : fields) {
     if (field.name == "header" && field.type == "std_msgs/Header" && field.array < 0) found.header = true;
   }
@@ -127,6 +137,25 @@ RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record
   }
   if (!(raw.beam.bin_length_m > 0.0)) throw Error("its bin length is not > 0 m");
   if (out.empty()) throw Error("it holds no bins");
+  // Optional: a negative gain or a length or span that is not > 0 says the head did not report it.
+  const auto number = [&](const std::string& name) {
+    const RosValue* value = message.field(name);
+    const double* number = value != nullptr ? std::get_if<double>(&value->value) : nullptr;
+    return number != nullptr && std::isfinite(*number) ? std::optional<double>(*number) : std::nullopt;
+  };
+  if (!fields.gain.empty()) {
+    if (const std::optional<double> gain = number(fields.gain); gain && *gain >= 0.0) {
+      raw.beam.gain_setting = static_cast<int>(*gain);
+    }
+  }
+  if (!fields.pulse_length.empty()) {
+    if (const std::optional<double> pulse = number(fields.pulse_length); pulse && *pulse > 0.0) raw.beam.pulse_length_m = *pulse;
+  }
+  if (!fields.intensity_span.empty()) {
+    if (const std::optional<double> span = number(fields.intensity_span); span && *span > 0.0) {
+      raw.beam.intensity_span_db = *span;
+    }
+  }
   raw.time_s = fields.header ? detail::headerTime(message, record_time_s) : record_time_s;
   return raw;
 }
@@ -238,7 +267,8 @@ class RosBagBeamSource final : public BeamSource {
 
   /// `bearing` in the topic's unit and direction as beam.hpp's clockwise radians in [0, 2π).
   double bearingOf(double bearing) const {
-    const double turned_rad = bearing * 2.0 * std::numbers::pi / turn_;
+    // Radians are taken as they are (scaling by 2π / 2π could move the last bit).
+    const double turned_rad = turn_ == 2.0 * std::numbers::pi ? bearing : bearing * 2.0 * std::numbers::pi / turn_;
     double bearing_rad = std::fmod(clockwise_ ? turned_rad : -turned_rad, 2.0 * std::numbers::pi);
     if (bearing_rad < 0.0) bearing_rad += 2.0 * std::numbers::pi;
     if (!(bearing_rad < 2.0 * std::numbers::pi)) bearing_rad = 0.0;  // −0 and rounding up to a whole turn

@@ -177,14 +177,14 @@ double decodeNumber(RosKind kind, Reader& in, const Path* where) {
       // int32 sec and a uint32 nanosec for both.
       if (in.cdr()) {
         const double seconds = in.take<std::int32_t>(where);
-        return seconds + 1e-9 * in.take<std::uint32_t>(where);
+        return rosStampSeconds(seconds, in.take<std::uint32_t>(where));
       }
       if (kind == RosKind::kTime) {
         const double seconds = in.take<std::uint32_t>(where);
-        return seconds + 1e-9 * in.take<std::uint32_t>(where);
+        return rosStampSeconds(seconds, in.take<std::uint32_t>(where));
       }
       const double seconds = in.take<std::int32_t>(where);
-      return seconds + 1e-9 * in.take<std::int32_t>(where);
+      return rosStampSeconds(seconds, in.take<std::int32_t>(where));
     }
     default: return 0.0;  // kString, kMessage: not numbers (decodeElement)
   }

@@ -21,6 +21,10 @@
 
 namespace sonarmap::detail {
 
+/// A ROS time (seconds and nanoseconds since the epoch, as a message stores them) in seconds: the
+/// one conversion the readers use, so a writer that stamps a time can say what comes back.
+inline double rosStampSeconds(double seconds, double nanoseconds) { return seconds + 1e-9 * nanoseconds; }
+
 /// What a field's elements are, resolved once when the schema is parsed (not per message).
 enum class RosKind : std::uint8_t {
   kBool, kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kInt64, kUint64, kFloat32, kFloat64,

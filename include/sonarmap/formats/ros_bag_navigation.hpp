@@ -8,8 +8,9 @@
 /// `pose.position` and `pose.orientation` (geometry_msgs/PoseStamped) or `pose.pose.position` and
 /// `pose.pose.orientation` (nav_msgs/Odometry, geometry_msgs/PoseWithCovarianceStamped, and any
 /// vendor message laid out the same way): a position x, y, z in metres and an orientation
-/// quaternion x, y, z, w. Among several, nav_msgs/Odometry comes first, then the one with most
-/// messages.
+/// quaternion x, y, z, w; or a fix in NED with Euler angles, `north_m`, `east_m`, `down_m`,
+/// `roll_rad`, `pitch_rad`, `yaw_rad` (the NavFix of a recorded dive, dive_recorder.hpp), taken as
+/// it is. Among several, nav_msgs/Odometry comes first, then the one with most messages.
 ///
 /// Frames. ROS's convention (REP 103) is a world frame x east, y north, z up (ENU) and a body
 /// frame x forward, y left, z up (FLU); marine stacks that publish in NED say so in the frame's

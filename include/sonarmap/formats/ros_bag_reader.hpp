@@ -12,7 +12,9 @@
 ///    `range_max` (metres), divided by the bins;
 ///  - the intensities: a uint8/int8/byte array named `intensities`, `intensity`, `data`, `bins`,
 ///    `samples` or `echo`, or an array of messages holding a number named `intensity` or `value`
-///    (micron_driver_ros/ScanLine's `IntensityBin[] bins`); values clamped to 0…255.
+///    (micron_driver_ros/ScanLine's `IntensityBin[] bins`); values clamped to 0…255;
+///  - when present, what the head reported: an integer `gain_setting` or `gain` (Beam::gain_setting;
+///    negative: not reported), `pulse_length_m` and `intensity_span_db` (unset unless > 0).
 /// Each beam's time is its `header.stamp` (seconds since the epoch) when the message has a
 /// std_msgs/Header with a stamp, else the time the bag recorded it. Units and direction of the
 /// bearing: `_rad` and `_deg` say it; otherwise degrees when any bearing of the topic exceeds 2π,
