@@ -9,7 +9,7 @@
 namespace sonarmap::cli {
 namespace {
 
-constexpr std::array<std::string_view, 9> kOrder{"Options",           help_group::kInput,      help_group::kDetection,
+constexpr std::array<std::string_view, 10> kOrder{"Options", help_group::kInput, help_group::kHead, help_group::kDetection,
                                                  help_group::kMapping, help_group::k3d,        help_group::kNavigation,
                                                  help_group::kLocalization, help_group::kScoring, help_group::kOutput};
 

@@ -11,6 +11,7 @@ namespace sonarmap::cli {
 
 namespace help_group {
 inline constexpr const char* kInput = "Input";
+inline constexpr const char* kHead = "Head";  // the settings `live` sends to a head
 inline constexpr const char* kDetection = "Detection";  // also the mapping option table's groups
 inline constexpr const char* kMapping = "Mapping";
 inline constexpr const char* k3d = "3D";

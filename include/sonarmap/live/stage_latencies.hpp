@@ -1,13 +1,13 @@
 #pragma once
-/// @file live_latency.hpp
-/// `live`'s latency bookkeeping: how long each beam took from its arrival to a stage (shown in the
+/// @file stage_latencies.hpp
+/// A live run's latency bookkeeping: how long each beam took from its arrival to a stage (shown in the
 /// map, or committed to it), in seconds on the live run's steady clock.
 
 #include <deque>
 #include <utility>
 #include <vector>
 
-namespace sonarmap::cli {
+namespace sonarmap {
 
 /// The latencies of beams from their arrival to one stage (shown, or in the committed map). Beams
 /// reach a stage in arrival order, so those still waiting are the newest.
@@ -40,4 +40,4 @@ class StageLatencies {
   std::vector<double> first_sweep_;  ///< waiting for the first sweep's calibration
 };
 
-}  // namespace sonarmap::cli
+}  // namespace sonarmap
