@@ -142,10 +142,10 @@ void finishLive(const LiveArgs& args, LiveSession& session, const LiveResult& re
   printMapSummary(run, args.map, with_nav || args.map.slam, warnings.size());
   if (slam_report) printSlamSummary(*slam_report, with_nav);
   if (!result.recorded.empty()) {
-    std::printf("recorded: %zu beams and %zu fixes -> %s (map it with `sonarmap map %s`)\n", result.beams, result.fixes,
-                result.recorded.c_str(), result.recorded.c_str());
+    std::fprintf(stderr, "sonarmap: live: recorded %zu beams and %zu fixes -> %s (map it with `sonarmap map %s`)\n",
+                 result.beams, result.fixes, result.recorded.c_str(), result.recorded.c_str());
   }
-  if (result.resets > 0) std::printf("the map was reset %zu times from the page\n", result.resets);
+  if (result.resets > 0) std::fprintf(stderr, "sonarmap: live: the map was reset %zu times from the page\n", result.resets);
 }
 
 /// The mapping options of a run: the sonar's beam, the integration, the navigation and SLAM.

@@ -1,0 +1,123 @@
+/// End-to-end tests of what a live run keeps and refuses: the beams and navigation it received,
+/// recorded (--record) and mapped again by `sonarmap map` to the live map byte for byte; a recorded
+/// log replayed at its own pace (--rate); a run whose beams never met the navigation, or that
+/// received nothing, fails with the reason instead of writing an empty map.
+
+#include <sys/wait.h>
+
+#include "live_fixture.hpp"
+#include "sonarmap/formats/ros_bag_writer.hpp"
+
+namespace sonarmap::test {
+namespace {
+
+class CliLiveRecord : public CliLive {};
+
+const std::string kNavHeader = "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
+
+// A head over UDP and its navigation as CSV rows on a second link, recorded: `map` of the recording
+// gives the live map, with the navigation it recorded.
+TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
+  Names args = liveArgs("udp://:0");
+  const fs::path recording = out_ / "dive.mcap";
+  args.insert(args.end(), {"--idle-timeout", "0.5", "--nav-stream", "udp://:0", "--record", recording.string()});
+  Child child(args, root_, -1);
+  const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
+  ASSERT_GT(sonar_port, 0);
+  ASSERT_GT(nav_port, 0);
+  // The vehicle moves north and turns while the head sends: fixes every 0.1 s of the sender's clock.
+  std::thread navigation([&] {
+    std::string rows = kNavHeader;
+    for (int i = 0; i < 40; ++i) {
+      rows += std::to_string(0.1 * i) + "," + std::to_string(0.05 * i) + ",0.2,0,0,0," + std::to_string(0.01 * i) + "\n";
+      sendUdp(nav_port, rows);
+      rows.clear();
+      std::this_thread::sleep_for(100ms);
+    }
+  });
+  std::this_thread::sleep_for(150ms);  // fixes before the first beam
+  const std::string& capture = tankCapture();
+  for (std::size_t at = 0; at < capture.size(); at += capture.size() / 8) {  // 8 bursts over ~1.6 s
+    sendUdp(sonar_port, capture.substr(at, capture.size() / 8));
+    std::this_thread::sleep_for(200ms);
+  }
+  navigation.join();
+  const ProgramRun live = child.wait();
+  expectFinished(live);
+  EXPECT_NE(live.err.find("sonarmap: live: recorded 800 beams"), std::string::npos) << live.err;
+  ASSERT_TRUE(fs::exists(recording)) << live.err;
+  EXPECT_FALSE(fs::exists(out_ / "dive.mcap.part"));
+  const ProgramRun batch = run({"map", recording.string(), "-q", "-o", (root_ / "batch.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  EXPECT_NE(batch.out.find("navigation /navigation/fix"), std::string::npos) << batch.out;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs from live's";
+  EXPECT_NE(readFile(out_ / "live.bt"), batchMap()) << "the navigation did not move the beams";
+}
+
+// A log replayed with --rate 1 takes as long as it lasted; --rate 4 a quarter; no rate, no wait.
+TEST_F(CliLiveRecord, AReplayedLogRunsAtItsOwnPace) {
+  MsisSimulationOptions options;
+  options.turns = 2;
+  options.head.beam_period_s = 0.004;  // 400 beams over 1.6 s
+  MsisSimulation sim = simulateMsis(builtinScene("tank"), options);
+  for (Beam& beam : sim.log.beams) beam.time_s += 1.5e9;
+  for (NavSample& fix : sim.nav) fix.time_s += 1.5e9;
+  const fs::path bag = root_ / "short.bag";
+  writeRosBag(bag.string(), sim.log, sim.nav);
+  const double span_s = sim.log.beams.back().time_s - sim.log.beams.front().time_s;
+  auto timed = [&](const Names& extra) {
+    Names args{"live", bag.string(), "-q", "-o", (out_ / "r.bt").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto start = std::chrono::steady_clock::now();
+    const ProgramRun replay = run(args);
+    EXPECT_EQ(replay.exit_code, 0) << replay.err;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const double own_pace_s = timed({"--rate", "1"});
+  EXPECT_GE(own_pace_s, span_s);
+  EXPECT_LT(own_pace_s, span_s + 1.5);
+  const std::string paced = readFile(out_ / "r.bt");
+  const double fast_s = timed({"--rate", "4"});
+  EXPECT_GE(fast_s, span_s / 4);
+  EXPECT_LT(fast_s, own_pace_s);
+  EXPECT_TRUE(readFile(out_ / "r.bt") == paced) << "the pace changed the map";
+  EXPECT_LT(timed({}), span_s / 2);
+  // --rate paces replays only; a head's link runs at its own pace.
+  expectError(run({"live", "udp://:0", "--format", "seanet", "--rate", "1", "-o", (out_ / "m.bt").string()}), 2);
+  expectError(run({"live", bag.string(), "--rate", "-1", "-o", (out_ / "m.bt").string()}), 2);
+}
+
+// Navigation that never gives a fix (rows that do not parse, as MAVLink sent to a CSV reader gave):
+// no beam is placed, and the run says so and fails instead of writing an empty map.
+TEST_F(CliLiveRecord, BeamsThatNeverMeetTheNavigationFailTheRun) {
+  Names args = liveArgs("udp://:0");
+  args.insert(args.end(), {"--idle-timeout", "0.5", "--nav-stream", "udp://:0"});
+  Child child(args, root_, -1);
+  const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
+  ASSERT_GT(sonar_port, 0);
+  ASSERT_GT(nav_port, 0);
+  sendUdp(nav_port, "not,a,navigation,row\nstill not\n");
+  sendUdp(sonar_port, tankCapture());
+  const ProgramRun run = child.wait();
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("none of the 800 beams lies within the navigation's time span (0 fixes received"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(out_ / "live.bt"));
+}
+
+// A head that never answers: the run, ended by SIGINT, fails and says why.
+TEST_F(CliLiveRecord, AHeadThatNeverAnswersFailsTheRun) {
+  Names args = liveArgs("udp://:0", "ping360");
+  Child child(args, root_, -1);
+  ASSERT_GT(boundPort(child, "reading"), 0);
+  std::this_thread::sleep_for(200ms);
+  ::kill(child.pid(), SIGINT);
+  const ProgramRun run = child.wait();
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("no beam received in 0 bytes"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out_ / "live.bt"));
+}
+
+}  // namespace
+}  // namespace sonarmap::test
