@@ -58,7 +58,7 @@ class ConsoleObserver final : public LiveObserver {
   void note(const std::string& line) override {
     if (!quiet_) std::fprintf(stderr, "sonarmap: live: %s\n", line.c_str());
   }
-  void status(const LiveStatus& s) override {
+  void status(const LiveProgress& s) override {
     if (quiet_) return;
     std::fprintf(stderr,
                  "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "

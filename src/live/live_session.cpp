@@ -134,7 +134,7 @@ std::vector<std::string> LiveSession::saveNow() {
 
 void LiveSession::report(double now_s, LiveResult& result) {
   if (now_s < last_status_s_ + 1.0) return;
-  LiveStatus status;
+  LiveProgress status;
   status.elapsed_s = now_s;
   status.bytes = inputs_->head ? inputs_->head->bytes() : 0;
   status.beams = mapping_->beams();

@@ -39,7 +39,7 @@
 namespace sonarmap {
 
 /// What a live run tells its observer, once a second.
-struct LiveStatus {
+struct LiveProgress {
   double elapsed_s = 0.0;          ///< since the start, steady clock
   std::size_t bytes = 0;           ///< bytes received from the head
   std::size_t beams = 0;           ///< beams received
@@ -64,7 +64,7 @@ class LiveObserver {
                     const Eigen::Isometry3d& /*sonar_to_map*/) {}
   /// A navigation fix, moved to the map's origin (NED).
   virtual void fix(const NavSample& /*fix*/) {}
-  virtual void status(const LiveStatus& /*status*/) {}
+  virtual void status(const LiveProgress& /*status*/) {}
   /// A line for the user (a command repeated, the head's refusal, a recorder flush failing).
   virtual void note(const std::string& /*line*/) {}
   /// The map was started again.
