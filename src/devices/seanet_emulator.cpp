@@ -112,7 +112,9 @@ struct SeaNetEmulator::State {
     using A = seanet::AliveInfo;
     if (!has_params) info.head_info |= A::kNoParams;
     if (sent_config) info.head_info |= A::kSentConfig;
-    if (has_params && (command.hd_ctrl & seanet::hdctrl::kMotorOff) == 0) info.head_info |= A::kMotorOn | A::kCentred;
+    // InCentre, not Centred: mcgill reads HeadInf most significant bit first, so its "has config"
+    // is InCentre and its "no params" Centred (seanet_emulator.hpp).
+    if (has_params && (command.hd_ctrl & seanet::hdctrl::kMotorOff) == 0) info.head_info |= A::kMotorOn | A::kInCentre;
     if (has_params && (command.hd_ctrl & seanet::hdctrl::kScanRight) != 0) info.head_info |= A::kDirection;
     if (in_scan) info.head_info |= A::kInScan;
     if (at_s < busy_until_s) info.head_info |= A::kMotoring;

@@ -4,8 +4,11 @@
 /// (head_emulator.hpp, sim/beam_simulator.hpp), as the open drivers expect it to answer
 /// (seanet_protocol.hpp names them):
 ///  - powered from the first call: an mtAlive every second (HeadInf: NoParams until a head
-///    command; then SentCfg, centred, motor on, clockwise or not; in scan once asked for beams);
-///    its head time counts ms since power-up. After mtReBoot it forgets its parameters and its
+///    command; then SentCfg, InCentre, motor on, clockwise or not; in scan once asked for beams);
+///    its head time counts ms since power-up. Bits as rock, RobDos and ENSTA number them (bit 0
+///    InCentre … bit 7 SentCfg). mcgill reads the byte most significant bit first (bitstring), so
+///    its "has config" is bit 0 and its "no params" bit 1; the head sets InCentre and leaves
+///    Centred clear once it has parameters, so that both readings see the parameters in. After mtReBoot it forgets its parameters and its
 ///    next mtAlive comes 1 s later (a guess: how long a real head takes is not known here).
 ///  - mtSendVersion → mtVersionData, mtSendBBUser → mtBBUserData (the identity below).
 ///  - mtHeadCommand: applies range (NBins · ADInterval · 640 ns · 1500 m/s / 2), NBins, adc8on,
