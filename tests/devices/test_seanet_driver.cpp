@@ -127,6 +127,59 @@ TEST(SeaNetDriver, SettingsReachTheHead) {
   EXPECT_NE(head.find("IGain 116, ADSpan 149, ADLow 14"), std::string::npos) << head;
 }
 
+/// The mtHeadCommand RobDos/Tritech-Micron-Driver (commit c55d7470c38b21fe1d9d1ee86a7e9925c5d62649)
+/// sent with its shipped configuration (config/tritech_micron_config.yaml: 200 bins, 5 m, 1500 m/s,
+/// step 32, limits 6399 and 6399) to the emulator over a pty: its TritechMicronDriver built in /tmp
+/// with ros/ros.h stubbed, run against sonarmap_seanet_pty_head, the bytes as that program printed
+/// them.
+const char* const kRobDosPtyHeadCommand =
+    "40303034434c00ff02471380021d0123029999990266666605a3703d06703d0a0928003200ff18ff18510854545a007d0019203400"
+    "c800e803970340060100000050510908545400005a007d00000000000a";
+
+TEST(SeaNetDriver, HeadCommandAgreesWithRobDosForTheSameSettings) {
+  seanet::PacketParser parser;
+  std::vector<std::uint8_t> robdos_bytes;
+  for (std::size_t i = 0; kRobDosPtyHeadCommand[i] != 0; i += 2) {
+    robdos_bytes.push_back(static_cast<std::uint8_t>(std::stoi(std::string(kRobDosPtyHeadCommand + i, 2), nullptr, 16)));
+  }
+  const auto robdos = seanet::decodeHeadCommand(parser.feed(robdos_bytes).at(0));
+  ASSERT_TRUE(robdos);
+  SeaNetDriverOptions o = options(5.0, 200);
+  o.settings.step_rad = 1.8 * kDeg;
+  SeaNetBench bench("micron", o);
+  bench.runUntil(5.0, [&] { return bench.emulator.hasParameters(); });
+  EXPECT_EQ(seanet::encodeHeadCommand(*robdos), robdos_bytes);
+  // Field by field against the driver's command, as the emulator reports it applied and as the
+  // driver lists it.
+  EXPECT_NE(bench.emulator.settingsText().find("range 5.0 m (50 dm), 200 bins, ADInterval 52"), std::string::npos)
+      << bench.emulator.settingsText();
+  EXPECT_EQ(robdos->range_scale_dm, 50);
+  EXPECT_EQ(robdos->nbins, 200);
+  EXPECT_EQ(robdos->ad_interval, 52);  // the rule the driver uses (mcgill would send 53)
+  EXPECT_EQ(bench.driver.applied().value("ad_interval_ns"), "33280");  // 52 × 640 ns
+  EXPECT_EQ(robdos->step, 32);
+  EXPECT_EQ(bench.driver.applied().value("step_grad16"), "32");
+  // What the driver sends alike: V3B block, head type 2, TxN/RxN of 325 and 675 kHz, slopes 90
+  // and 125, MoTime 25, MaxADBuf 1000, MinorAxisDir 1600, MajorAxisPan 1.
+  EXPECT_TRUE(robdos->v3b);
+  EXPECT_EQ(robdos->head_type, 2);
+  EXPECT_EQ(robdos->tx_n[0], seanet::frequencyWord(325e3));
+  EXPECT_EQ(robdos->rx_n[1], seanet::frequencyWord(1130e3));
+  EXPECT_EQ(robdos->slope[0], 90);
+  EXPECT_EQ(robdos->slope[1], 125);
+  EXPECT_EQ(robdos->mo_time, 25);
+  EXPECT_EQ(robdos->max_ad_buf, 1000);
+  EXPECT_EQ(robdos->minor_axis_dir, 1600);
+  EXPECT_EQ(robdos->major_axis_pan, 1);
+  // Where they differ by choice (seanet_driver.hpp): RobDos asks a full turn with LeftLim =
+  // RightLim and no cont bit, the driver with cont and scanright; ADSpan 81 / ADLow 8 against the
+  // V4LOG's 149 / 14; IGain 84 (40%) alike.
+  EXPECT_EQ(robdos->hd_ctrl, 0x2301);
+  EXPECT_EQ(robdos->left_limit, robdos->right_limit);
+  EXPECT_EQ(robdos->igain[0], 84);
+  EXPECT_EQ(bench.driver.applied().value("igain"), "84/210");
+}
+
 TEST(SeaNetDriver, FrequencyChoosesTheNearestChannelOfATwoChannelHead) {
   SeaNetDriverOptions o = options();
   o.settings.frequency_khz = 700.0;
