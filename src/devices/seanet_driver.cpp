@@ -120,6 +120,8 @@ struct SeaNetDriver::State {
   }
 
   void onPacket(const seanet::Packet& packet, DriverOutput& out, double now_s) {
+    // Only the head's own packets: a half-duplex RS-485 line also echoes the host's commands.
+    if (packet.tx_node != options.head_node) return;
     heard = true;
     switch (static_cast<MessageType>(packet.type)) {
       case MessageType::kAlive:

@@ -240,6 +240,20 @@ TEST(SeaNetDriver, UnansweredQuestionsAreRepeated) {
   EXPECT_EQ(bench.beams.size(), 1U);
 }
 
+TEST(SeaNetDriver, IgnoresItsOwnCommandsEchoedOnTheLine) {
+  SeaNetDriver driver(options());
+  const DriverOutput first = driver.start(0.0);
+  // A half-duplex line hands the host its own mtReBoot back: not the head's mtAlive.
+  const DriverOutput echoed = driver.receive(first.send, 0.1);
+  EXPECT_TRUE(echoed.send.empty());
+  EXPECT_FALSE(driver.heard());
+  seanet::AliveInfo alive;
+  alive.head_info = seanet::AliveInfo::kNoParams;
+  const DriverOutput next = driver.receive(seanet::encodeAlive(alive), 0.2);
+  EXPECT_TRUE(driver.heard());
+  EXPECT_EQ(next.send, seanet::encodeSimpleCommand(MessageType::kSendVersion));
+}
+
 TEST(SeaNetDriver, StopRebootsTheHeadAndFallsSilent) {
   SeaNetBench bench("micron", options());
   bench.runUntil(10.0, [&] { return bench.beams.size() >= 2; });

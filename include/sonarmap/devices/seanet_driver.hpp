@@ -58,7 +58,8 @@
 ///  90 and 125 (SeaNet Pro); MoTime 25 (every driver); MaxADBuf 1000; Lockout 100 µs; MinorAxisDir
 ///  1600; MajorAxisPan 1; Ctl2 and ScanZ 0.
 ///
-/// Beams come from the mtHeadData decoder (seanet_protocol.hpp, decodeHeadData): bearings as
+/// Packets not sent by the head's node (the host's own commands echoed on a half-duplex RS-485
+/// line, another node) are ignored. Beams come from the mtHeadData decoder (seanet_protocol.hpp, decodeHeadData): bearings as
 /// seanet_capture.hpp documents them, bin length = ADInterval · 640 ns · sound speed / 2.
 
 #include <cstdint>
