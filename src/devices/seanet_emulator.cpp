@@ -25,6 +25,8 @@ constexpr int kAheadUnits = 3200;
 constexpr double kAdIntervalUnit_s = 640e-9;
 constexpr double kSimulatedSoundSpeed_m_s = 1500.0;  // sonar_presets.hpp
 constexpr double kBootTime_s = 1.0;
+constexpr int kMaxBins = 1500;         // rock's limit on NBins
+constexpr double kMaxRange_m = 1638.3;  // RangeScale's 14 bits of decimetres
 constexpr double kBitsPerByte = 10.0;  // 8N1
 // The driver's default command (seanet_driver.hpp): the presets' levels hold for it.
 constexpr int kReferenceIGain = 84;
@@ -123,10 +125,11 @@ struct SeaNetEmulator::State {
 
   /// Applies a head command to the simulated head; false (nothing changes) when it cannot be.
   bool apply(const seanet::HeadCommand& c) {
-    if (c.nbins == 0 || c.ad_interval == 0 || c.step == 0) return false;
+    const double range_m = static_cast<double>(c.nbins) * c.ad_interval * kAdIntervalUnit_s * kSimulatedSoundSpeed_m_s / 2.0;
+    if (c.nbins == 0 || c.nbins > kMaxBins || c.ad_interval == 0 || c.step == 0 || range_m > kMaxRange_m) return false;
     MsisHeadOptions head = reference_head;
     head.bins = c.nbins;
-    head.range_m = c.nbins * c.ad_interval * kAdIntervalUnit_s * kSimulatedSoundSpeed_m_s / 2.0;
+    head.range_m = range_m;
     EchoModelOptions echo = reference_echo;
     echo.ad_low_db = reference_echo.ad_low_db - (c.igain[0] - kReferenceIGain) * 80.0 / 210.0 +
                      (c.ad_low - kReferenceAdLow) * 80.0 / 255.0;
@@ -188,7 +191,8 @@ struct SeaNetEmulator::State {
     fields.step = command.step;
     fields.bearing = motor_units;
     std::vector<std::uint8_t> packet = seanet::encodeHeadData(fields, data);
-    const double due_s = ping_s + command.nbins * command.ad_interval * kAdIntervalUnit_s + transfer_s(packet.size());
+    const double due_s = ping_s + static_cast<double>(command.nbins) * command.ad_interval * kAdIntervalUnit_s +
+                         transfer_s(packet.size());
     busy_until_s = due_s;
     ++beams;
     return {due_s, std::move(packet)};

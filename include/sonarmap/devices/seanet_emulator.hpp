@@ -17,7 +17,8 @@
 ///    Gain and AD mapping fold into the echo model: ad_low_db moves by −(IGain − 84) · 80/210 dB
 ///    + (ADLow − 14) · 80/255 dB and ad_span_db by (ADSpan − 149) · 80/255 dB (at least 1 dB), so the
 ///    driver's default command (seanet_driver.hpp) gives the preset's own levels. A command with
-///    the wrong size is ignored.
+///    the wrong size, no bins, more than 1500 (rock's limit), ADInterval or Step 0, or a range past
+///    1638.3 m (RangeScale's limit) is ignored.
 ///  - mtSendData (with parameters): one mtHeadData at the head's next bearing. The head steps
 ///    itself as MsisHeadOptions::bearingOf does: continuous turns (cont set, or LeftLim = RightLim
 ///    as RobDos's driver sends for a full turn) from ahead, clockwise when scanright is set; else
