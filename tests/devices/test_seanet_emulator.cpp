@@ -164,6 +164,12 @@ TEST(SeaNetEmulator, IgnoresMalformedInput) {
   seanet::HeadCommand zero = defaultCommand();
   zero.nbins = 0;
   EXPECT_TRUE(head.receive(seanet::encodeHeadCommand(zero), 3.0).empty());
+  seanet::HeadCommand huge = defaultCommand();
+  huge.nbins = 2000;  // past rock's 1500
+  EXPECT_TRUE(head.receive(seanet::encodeHeadCommand(huge), 3.0).empty());
+  huge.nbins = 1500;
+  huge.ad_interval = 65535;  // 47 km
+  EXPECT_TRUE(head.receive(seanet::encodeHeadCommand(huge), 3.0).empty());
   EXPECT_FALSE(head.hasParameters());
   EXPECT_EQ(head.headCommands(), 0U);
   // A command for another node is not for this head.
