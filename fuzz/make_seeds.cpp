@@ -25,6 +25,7 @@
 #include "sonarmap/formats/beam_csv.hpp"
 #include "sonarmap/formats/mcap_writer.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
+#include "sonarmap/formats/seanet_protocol.hpp"
 
 namespace fs = std::filesystem;
 using namespace sonarmap;
@@ -132,6 +133,25 @@ void wireSeeds() {
   four_bit.bearing = 3264;
   seed("seanet", "three.seanet", [&](std::ostream& out) {
     out << "\r\n" << test::seanetHeadData({}) << test::seanetOther(4, 8) << test::seanetHeadData(four_bit);
+  });
+  // A SeaNet conversation both ways: the host's commands, the head's replies, noise between.
+  seed("seanet_protocol", "conversation.seanet", [&](std::ostream& out) {
+    namespace sn = seanet;
+    std::vector<std::vector<std::uint8_t>> packets = {
+        sn::encodeSimpleCommand(sn::MessageType::kReBoot), sn::encodeAlive({}),
+        sn::encodeSimpleCommand(sn::MessageType::kSendVersion), sn::encodeVersionData({}),
+        sn::encodeSimpleCommand(sn::MessageType::kSendBBUser), sn::encodeBBUserData({})};
+    sn::HeadCommand command;
+    command.hd_ctrl = 0x2307;
+    command.ad_interval = 104;
+    command.nbins = 8;
+    command.step = 32;
+    packets.push_back(sn::encodeHeadCommand(command));
+    packets.push_back(sn::encodeSendData(1000));
+    sn::HeadDataFields fields;
+    fields.ad_interval = 104;
+    packets.push_back(sn::encodeHeadData(fields, std::vector<std::uint8_t>{1, 2, 3, 250}));
+    for (const auto& packet : packets) out << "x" << std::string(packet.begin(), packet.end());
   });
   test::Ping360Data sector;
   sector.auto_device_data = true;

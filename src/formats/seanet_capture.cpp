@@ -4,12 +4,12 @@
 
 #include "sonarmap/formats/seanet_capture.hpp"
 
-#include <cctype>
 #include <cstdint>
 #include <utility>
 
 #include "frame_scanner.hpp"
 #include "reader_support.hpp"
+#include "seanet_framing.hpp"
 #include "seanet_head_data.hpp"
 #include "sonarmap/formats/wire_stream.hpp"
 #include "wire_protocols.hpp"
@@ -17,53 +17,10 @@
 namespace sonarmap {
 namespace {
 
-using detail::FrameProbe;
-
-constexpr unsigned char kPacketEnd = 0x0A;  // LF
-/// '@', the 4 hex digits and the final LF are outside the packet length.
-constexpr std::size_t kUncountedBytes = 6;
-/// The smallest packet: header up to the node byte (13 bytes) and the LF (rock: at least 14).
-constexpr std::size_t kMinPacketBytes = 14;
-constexpr std::size_t kHexLengthAt = 1;
-constexpr std::size_t kBinaryLengthAt = 5;
 constexpr std::size_t kMessageTypeAt = 10;
 constexpr std::size_t kBodyAt = 11;  // the mtHeadData body: from the sequence byte
 /// Bytes of an mtHeadData packet before its data bytes.
 constexpr std::size_t kHeadDataHeaderBytes = kBodyAt + detail::kSeaNetHeadDataFieldBytes;
-
-FrameProbe cutShort(std::size_t available, const std::string& what) {
-  return {FrameProbe::Kind::kCutShort, 0,
-          what + ", the capture ends " + std::to_string(available) + " bytes after its start"};
-}
-
-/// SeaNet framing of `bytes` (from an '@' at stream offset `at` to the last byte received): hex
-/// and binary lengths equal, at least the smallest packet, LF at the end.
-FrameProbe probePacket(std::span<const unsigned char> bytes, std::size_t at) {
-  const std::size_t available = bytes.size();
-  std::size_t hex_length = 0;
-  for (std::size_t i = kHexLengthAt; i < kHexLengthAt + 4; ++i) {
-    if (i >= available) return cutShort(available, "header");
-    const unsigned char digit = bytes[i];
-    if (!std::isxdigit(digit)) return {FrameProbe::Kind::kNotAFrame, 0, "length is not 4 ASCII hex digits"};
-    hex_length = 16 * hex_length + static_cast<std::size_t>(std::isdigit(digit) ? digit - '0' : std::tolower(digit) - 'a' + 10);
-  }
-  if (available < kBinaryLengthAt + 2) return cutShort(available, "header");
-  const std::size_t length = bytes[kBinaryLengthAt] | (bytes[kBinaryLengthAt + 1] << 8);
-  if (length != hex_length) {
-    return {FrameProbe::Kind::kNotAFrame, 0,
-            "hex length " + std::to_string(hex_length) + " and binary length " + std::to_string(length) + " differ"};
-  }
-  const std::size_t size = length + kUncountedBytes;
-  if (size < kMinPacketBytes) {
-    return {FrameProbe::Kind::kNotAFrame, 0,
-            "length " + std::to_string(length) + ", expected at least " + std::to_string(kMinPacketBytes - kUncountedBytes)};
-  }
-  if (size > available) return cutShort(available, "declares " + std::to_string(size) + " bytes");
-  if (bytes[size - 1] != kPacketEnd) {
-    return {FrameProbe::Kind::kNotAFrame, 0, "no LF at its end (byte " + std::to_string(at + size - 1) + ")"};
-  }
-  return {FrameProbe::Kind::kFrame, size, {}};
-}
 
 /// One whole packet: a beam, or a skipped item saying why not.
 void readPacket(std::span<const unsigned char> packet, std::size_t at, const std::string& source,
@@ -98,7 +55,7 @@ FrameScan seaNetFrameScan(const std::string& source, double sound_speed_m_s, Son
   FrameScan scan;
   scan.start = "@";
   scan.noun = "packet";
-  scan.probe = probePacket;
+  scan.probe = detail::probeSeaNetPacket;
   scan.on_frame = [source, sound_speed_m_s, &log](std::span<const unsigned char> packet, std::size_t at) {
     readPacket(packet, at, source, sound_speed_m_s, log);
   };

@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <string>
 
 #include "reader_support.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/seanet_protocol.hpp"
 
 namespace sonarmap {
 namespace {
@@ -20,11 +20,6 @@ constexpr std::size_t kMaxBins = 65000;
 void putU16(std::vector<std::uint8_t>& out, unsigned value) {
   out.push_back(static_cast<std::uint8_t>(value & 0xFF));
   out.push_back(static_cast<std::uint8_t>((value >> 8) & 0xFF));
-}
-
-void putU32(std::vector<std::uint8_t>& out, std::uint32_t value) {
-  putU16(out, value & 0xFFFF);
-  putU16(out, value >> 16);
 }
 
 /// The beam's bin length as a whole number of `tick_s` of two-way travel, 1…65535.
@@ -72,32 +67,18 @@ std::vector<std::uint8_t> encodeSeaNetCapture(const std::vector<Beam>& beams, co
     const auto bins = static_cast<unsigned>(beam.intensities.size());
     const double span_db = beam.intensity_span_db.value_or(0.0);
     const auto ad_span = static_cast<unsigned>(std::clamp(std::lround(span_db * 255.0 / 80.0), 0L, 255L));
-    std::vector<std::uint8_t> message = {0x02, 0xFF, 0x00, 0x02, 0x80, 0x02};  // source, destination, count, mtHeadData, sequence, node
-    putU16(message, bins + 31);                    // packed size
-    message.insert(message.end(), {0x02, 0x10, 0x00});  // device type, head status, sweep code
-    putU16(message, 0x0001);                       // HdCtrl: adc8on (8-bit bins)
-    putU16(message, static_cast<unsigned>(std::lround(std::min(6553.5, bins * beam.bin_length_m * 10.0))));  // range, dm
-    putU32(message, 0);                            // TxN
-    message.push_back(gainByte(beam));             // gain
-    putU16(message, 0);                            // slope
-    message.push_back(static_cast<std::uint8_t>(ad_span));
-    message.push_back(0);                          // AD low
-    putU16(message, 0);                            // heading offset
-    putU16(message, ad_interval);
-    putU16(message, 0);                            // left limit
-    putU16(message, 6399);                         // right limit
-    message.push_back(32);                         // step: 1.8°
-    putU16(message, clockwiseSteps(beam.bearing_rad, 6400, 3200));
-    putU16(message, bins);
-    message.insert(message.end(), beam.intensities.begin(), beam.intensities.end());
-    const std::size_t length = message.size() + 2;  // from its binary copy to the byte before the LF
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "%04zX", length);
-    out.push_back('@');
-    out.insert(out.end(), hex, hex + 4);
-    putU16(out, static_cast<unsigned>(length));
-    out.insert(out.end(), message.begin(), message.end());
-    out.push_back('\n');
+    seanet::HeadDataFields fields;  // head 2 to the host: device type 2, head status 0x10, sweep 0
+    fields.hd_ctrl = seanet::hdctrl::kAdc8On;
+    fields.range_scale_dm = static_cast<std::uint16_t>(std::lround(std::min(6553.5, bins * beam.bin_length_m * 10.0)));
+    fields.gain = gainByte(beam);
+    fields.ad_span = static_cast<std::uint8_t>(ad_span);
+    fields.ad_interval = static_cast<std::uint16_t>(ad_interval);
+    fields.left_limit = 0;
+    fields.right_limit = 6399;
+    fields.step = 32;  // 1.8°
+    fields.bearing = static_cast<std::uint16_t>(clockwiseSteps(beam.bearing_rad, 6400, 3200));
+    const std::vector<std::uint8_t> packet = seanet::encodeHeadData(fields, beam.intensities);
+    out.insert(out.end(), packet.begin(), packet.end());
   }
   return out;
 }

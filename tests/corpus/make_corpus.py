@@ -199,6 +199,13 @@ def seanet_files():
         "seanet_cut_short.seanet": seanet_head()[:30],
         "seanet_no_lf.seanet": bytes(no_lf),
         "seanet_lengths_differ.seanet": bytes(lengths_differ),
+        # The host's side of a conversation (mtReBoot, mtSendVersion, mtSendData as the drivers send
+        # them: seanet_protocol.hpp), no beam in it.
+        "seanet_host_commands.seanet": seanet_frame(struct.pack("<BBBBBB", 255, 2, 3, 16, 0x80, 2))
+        + seanet_frame(struct.pack("<BBBBBB", 255, 2, 3, 23, 0x80, 2))
+        + seanet_frame(struct.pack("<BBBBBBI", 255, 2, 7, 25, 0x80, 2, 45296000)),
+        # Consistent lengths, but 7: shorter than the smallest packet (header and LF, 14 bytes).
+        "seanet_length_too_small.seanet": b"@0007\x07\x00\xff\x02\x03\x10\x80\n",
     }, {"seanet_small.seanet": good}
 
 
