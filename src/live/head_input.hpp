@@ -24,7 +24,8 @@ struct HeadRead {
 
 class HeadInput {
  public:
-  /// Opens `spec`; drives the head when `drive` and the link can reach it (else listens).
+  /// Opens `spec`; drives the head when `drive` and the link can speak first (else listens:
+  /// ByteLink::speaksFirst).
   /// @throws as ByteLink, and makeHeadDriver for settings the head cannot take.
   HeadInput(const std::string& spec, unsigned baud, LogFormat format, bool drive, const HeadSettings& settings);
 

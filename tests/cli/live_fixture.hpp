@@ -159,7 +159,7 @@ class CliLive : public CliTest {
     ::cfmakeraw(&raw);
     EXPECT_EQ(::tcsetattr(slave, TCSANOW, &raw), 0);
     Names args = liveArgs(slave_path, format, show);
-    args.insert(args.end(), {"--baud", "115200"});
+    args.insert(args.end(), {"--baud", "115200", "--listen-only"});  // the capture is another program's head
     Child child(args, root_, -1);
     writeAll(master, capture, 512);
     // `live` has read every byte: then hang up. A written byte passes through the pty's flip buffer

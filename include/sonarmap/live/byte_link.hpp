@@ -41,6 +41,10 @@ class ByteLink {
   const std::string& description() const { return description_; }
   /// Whether write() can reach a peer at all (false for standard input and files).
   bool writable() const { return writable_; }
+  /// Whether this end can speak first: a serial device, a pseudo-terminal, or a UDP or TCP link to
+  /// a HOST:PORT (false for a listening link, which answers whoever spoke last, standard input and
+  /// files). A head is driven only over such a link: a Ping360 or a SeaNet head never speaks first.
+  bool speaksFirst() const { return writable_ && !listening_; }
 
   /// Reads what is available (one datagram for UDP) into `buffer`: the byte count; 0 at the end of
   /// the stream (end of file, the TCP peer gone, a serial line hung up); -1 when interrupted or
