@@ -127,6 +127,7 @@ void MavlinkFixMaker::startBoot(double time_s) {
   chain_value_ = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   chain_words_ = {};
   sourced_ = {};
+  last_horizontal_.reset();
   boot_notes_ = 0;
 }
 
@@ -262,7 +263,15 @@ void MavlinkFixMaker::makeFixes(std::vector<BootFix>& out, bool final) {
       waiting_.pop_front();
       continue;
     }
-    noteChoice(kHorizontal, horizontal, a.time_s);
+    // A sum of deltas is relative: it moves north and east on from the previous fix's, so
+    // changing to it (at the start, or when LOCAL_POSITION_NED stops) makes no jump.
+    Choice h = horizontal;
+    if (h.source == NavSource::kVisionDelta) {
+      if (last_horizontal_ != NavSource::kVisionDelta) vision_anchor_m_ = chain_value_[kHorizontal] - h.value;
+      h.value += vision_anchor_m_;
+    }
+    last_horizontal_ = h.source;
+    noteChoice(kHorizontal, h, a.time_s);
     noteChoice(kDepth, depth, a.time_s);
     BootFix made;
     made.boot = offsets_s_.size() - 1;
@@ -270,7 +279,7 @@ void MavlinkFixMaker::makeFixes(std::vector<BootFix>& out, bool final) {
     made.fix.roll_rad = a.roll_rad;
     made.fix.pitch_rad = a.pitch_rad;
     made.fix.yaw_rad = a.yaw_rad;
-    made.fix.position_ned_m = Eigen::Vector3d(horizontal.value.x(), horizontal.value.y(), depth.value.z());
+    made.fix.position_ned_m = Eigen::Vector3d(h.value.x(), h.value.y(), depth.value.z());
     out.push_back(made);
     waiting_.pop_front();
   }

@@ -118,7 +118,10 @@ class MavlinkFixMaker {
   std::array<SourceSeries, kNavSources> series_;
   std::deque<Attitude> waiting_;
   std::optional<Attitude> latest_attitude_;  ///< turns a VISION_POSITION_DELTA into NED
-  Eigen::Vector2d vision_ne_m_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d vision_ne_m_ = Eigen::Vector2d::Zero();  ///< the sum of VISION_POSITION_DELTAs in NED
+  /// Added to that sum where fixes use it: the position it continues from.
+  Eigen::Vector3d vision_anchor_m_ = Eigen::Vector3d::Zero();
+  std::optional<NavSource> last_horizontal_;  ///< the source of the last fix's north and east
   std::vector<double> offsets_s_;  ///< per boot
   bool in_boot_ = false;
   double boot_first_s_ = 0.0;  ///< the boot's first frame's time

@@ -212,7 +212,7 @@ TEST(formatsMavlinkNavigation, ADvlsVisionPositionDeltaIsTurnedIntoNedByTheAttit
   ASSERT_GE(fixes.size(), 35u);
   for (const NavSample& f : fixes) {
     const double k = std::round((f.time_s - 0.05 - 50.0) * 10.0);  // the attitude's index
-    EXPECT_NEAR(f.position_ned_m.y(), 0.1 * (k + 1), 1e-5) << k;  // east: the deltas up to and at its time
+    EXPECT_NEAR(f.position_ned_m.y(), 0.1 * k, 1e-5) << k;  // east: the deltas since the first fix
     EXPECT_NEAR(f.position_ned_m.x(), 0.0, 1e-6);
     EXPECT_NEAR(f.position_ned_m.z(), 4.0, 1e-4);
   }
@@ -254,6 +254,33 @@ TEST(formatsMavlinkNavigation, ASilentSourceServesMaxHoldThenGivesWayAndNoFixWai
   EXPECT_TRUE(contains(notes, "LOCAL_POSITION_NED (its last sample: the message stopped)")) << notes;
   EXPECT_TRUE(contains(notes, "held at its last value")) << notes;
   EXPECT_TRUE(contains(notes, "depth from boot time 33.100 s: GLOBAL_POSITION_INT.relative_alt")) << notes;
+}
+
+TEST(formatsMavlinkNavigation, WhenTheEkfStopsADvlsDeltasCarryNorthAndEastOnWithoutAJump) {
+  std::vector<Datagram> stream;
+  MavlinkSenderStream ap{.out = &stream};
+  MavlinkSenderStream dvl{.encoder = MavlinkEncoder(255, 0), .out = &stream};
+  for (int i = 0; i <= 50; ++i) {
+    const double t = 30.0 + 0.1 * i;
+    ap.attitude(t, 0.0f, 0.0f, 0.0f);  // heading north
+    if (i % 2 == 0 && t <= 32.0 + 1e-9) ap.localPosition(t, static_cast<float>(t), 0.0f, 2.0f);
+    if (i % 2 == 0) ap.pressure(137, t, test::hpaAtDepth(2.0));
+    MavlinkVisionPositionDelta v;
+    v.position_delta_m = {0.1f, 0.0f, 0.0f};
+    dvl.send(t, toMavlinkPayload(v));
+  }
+  MavlinkNavigation nav;
+  const std::vector<NavSample> fixes = test::decodeAll(nav, stream);
+  ASSERT_EQ(fixes.size(), 51u);
+  const auto northAt = [&fixes](double boot_s) { return fixes[static_cast<std::size_t>(std::lround((boot_s - 30.0) * 10))].position_ned_m.x(); };
+  EXPECT_NEAR(northAt(31.9), 31.9, 1e-5);  // LOCAL_POSITION_NED
+  EXPECT_NEAR(northAt(33.0), 32.0, 1e-5);  // its last sample, up to max_hold_s after it
+  EXPECT_NEAR(northAt(33.1), 32.0, 1e-5);  // then the deltas, from there
+  EXPECT_NEAR(northAt(34.0), 32.9, 1e-5);
+  EXPECT_NEAR(fixes.back().position_ned_m.z(), 2.0, 1e-4);
+  EXPECT_EQ(nav.description(),
+            "attitude ATTITUDE, north and east from LOCAL_POSITION_NED and VISION_POSITION_DELTA, depth from "
+            "LOCAL_POSITION_NED and SCALED_PRESSURE2");
 }
 
 TEST(formatsMavlinkNavigation, TheVehicleIsTheFirstAttitudesSenderAndItsEarlierFramesCount) {

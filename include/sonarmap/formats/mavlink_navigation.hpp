@@ -17,8 +17,10 @@
 ///  - north, east: LOCAL_POSITION_NED x, y (metres; ArduSub sends it while its EKF has a position,
 ///    e.g. fusing a DVL with an EKF origin set), else the sum of VISION_POSITION_DELTA's
 ///    position_delta (metres in the body FRD frame at the message's arrival, turned into NED by the
-///    latest ATTITUDE; the DVL extension sends dt × the DVL's velocity), else held: at 0 until a
-///    source appears, at the last value when one stops;
+///    latest ATTITUDE; the DVL extension sends dt × the DVL's velocity), carried on from the
+///    previous fix's north and east (a sum of deltas is relative: from 0 at the first fix, and no
+///    jump when LOCAL_POSITION_NED stops), else held: at 0 until a source appears, at the last
+///    value when one stops;
 ///  - depth (down, metres): LOCAL_POSITION_NED z, else −GLOBAL_POSITION_INT.relative_alt (mm), else
 ///    the external pressure sensor, (press_abs − surface pressure) / (ρ g): SCALED_PRESSURE2, then
 ///    SCALED_PRESSURE3, then SCALED_PRESSURE. ArduSub sends its barometers 0, 1, 2 as
