@@ -7,7 +7,7 @@
 //       writes a telemetry log: before each frame its reception time, a big-endian uint64 of µs
 //       (epoch + boot time + 20 ms, + 0..30 ms of jitter after the first row)
 //   node encode_navigation.js NAV.csv --version 1|2 --udp HOST:PORT
-//       sends each row's frames as one datagram, 5 ms apart
+//       sends each row's frames as one datagram, in real time (the rows' time differences)
 'use strict'
 const fs = require('fs')
 const dgram = require('dgram')
@@ -83,6 +83,7 @@ if (tlog) {
 } else {
   const [host, port] = option('--udp').split(':')
   const socket = dgram.createSocket('udp4')
+  const start = Date.now()
   let index = 0
   const next = () => {
     if (index === rows.length) return socket.close()
@@ -90,7 +91,8 @@ if (tlog) {
     index += 1
     socket.send(datagram, Number(port), host, error => {
       if (error) throw error
-      setTimeout(next, 5)
+      if (index < rows.length) setTimeout(next, Math.max(0, start + (rows[index][0] - rows[0][0]) * 1000 - Date.now()))
+      else next()
     })
   }
   next()
