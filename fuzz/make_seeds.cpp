@@ -23,6 +23,7 @@
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/scene_file.hpp"
 #include "sonarmap/formats/beam_csv.hpp"
+#include "sonarmap/formats/mavlink_messages.hpp"
 #include "sonarmap/formats/mcap_writer.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
 #include "sonarmap/formats/seanet_protocol.hpp"
@@ -234,6 +235,49 @@ void cloudSeeds() {
   seed("octomap_ot", "small.ot", [&](std::ostream& out) { writeFull(tree, out); });
 }
 
+/// An ArduSub autopilot's stream, as the MAVLink stream harness reads it: byte 0 seeds the chunk
+/// sizes, then frames of every message the decoder reads, noise, a corrupted frame, a reboot.
+void mavlinkSeeds() {
+  const auto stream = [](int version, bool with_ekf) {
+    MavlinkEncoder vehicle(1, 1, version), gcs(255, 190, version), dvl(255, 0, 2);
+    std::vector<std::uint8_t> out{0x05};
+    const auto put = [&out](const std::vector<std::uint8_t>& frame) { out.insert(out.end(), frame.begin(), frame.end()); };
+    put(encodeMavlink(gcs, toMavlinkPayload(MavlinkHeartbeat{0, 6, 8, 0, 4, 3})));
+    for (int boot = 0; boot < 2; ++boot) {
+      for (int i = 0; i < 30; ++i) {
+        const auto ms = static_cast<std::uint32_t>((boot == 0 ? 60000 : 3000) + 100 * i);
+        if (i % 10 == 0) put(encodeMavlink(vehicle, toMavlinkPayload(MavlinkHeartbeat{19, 12, 3, 209, 4, 3})));
+        put(encodeMavlink(vehicle, toMavlinkPayload(MavlinkAttitude{ms, 0.01f * i, -0.02f, 0.1f * i - 1.0f})));
+        if (with_ekf && i % 2 == 0) put(encodeMavlink(vehicle, toMavlinkPayload(MavlinkLocalPositionNed{ms, 0.2f * i, 1.0f, 3.0f})));
+        MavlinkGlobalPositionInt global;
+        global.time_boot_ms = ms;
+        global.relative_alt_mm = -3000 - i;
+        put(encodeMavlink(vehicle, toMavlinkPayload(global)));
+        put(encodeMavlink(vehicle, toMavlinkPayload(MavlinkScaledPressure{137, ms, 1315.0f + i, 0.0f, 1500, 0})));
+        put(encodeMavlink(vehicle, toMavlinkPayload(MavlinkScaledPressure{143, ms, 0.0f, 0.0f, 1210, 0})));
+        put(encodeMavlink(vehicle, toMavlinkPayload(MavlinkScaledPressure{29, ms, 1003.0f, 0.0f, 3000, 0})));
+        MavlinkVisionPositionDelta delta;
+        delta.time_delta_usec = 100000;
+        delta.position_delta_m = {0.05f, 0.0f, 0.0f};
+        put(encodeMavlink(dvl, toMavlinkPayload(delta)));
+        if (i == 15) {
+          const std::vector<std::uint8_t> noise{'n', 0xFD, 0x20, 0x00, 0x00, 0xFE, 0x03, '\n'};
+          out.insert(out.end(), noise.begin(), noise.end());
+          std::vector<std::uint8_t> corrupt = encodeMavlink(vehicle, toMavlinkPayload(MavlinkAttitude{ms + 50, 9.0f, 9.0f, 9.0f}));
+          corrupt.back() ^= 0x5A;
+          put(corrupt);
+        }
+      }
+    }
+    return out;
+  };
+  for (const auto& [name, bytes] : {std::pair{"ardusub_v2_ekf.bin", stream(2, true)}, std::pair{"ardusub_v1_depth.bin", stream(1, false)}}) {
+    seed("mavlink_stream", name, [&bytes](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    });
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -246,5 +290,6 @@ int main(int argc, char** argv) {
   wireSeeds();
   rosBagSeeds();
   cloudSeeds();
+  mavlinkSeeds();
   return 0;
 }

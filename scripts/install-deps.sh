@@ -30,3 +30,19 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+# The MAVLink interop tests' node-mavlink (tests/interop, at the version package-lock.json pins): Node.js
+# and npm from Debian unless a node is already installed, then `npm ci`. Each step only warns when it
+# fails (no network): the build does not need them, and those tests skip themselves, saying why.
+if [ "${1:-}" = test ]; then
+  interop="$(cd "$(dirname "$0")/.." && pwd)/tests/interop"
+  if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null; } ||
+      echo "install-deps.sh: warning: Node.js and npm not installed: the node-mavlink interop tests will be skipped" >&2
+  fi
+  if command -v npm >/dev/null && [ ! -f "$interop/node_modules/node-mavlink/package.json" ]; then
+    (cd "$interop" && npm ci --no-audit --no-fund --loglevel=error) ||
+      echo "install-deps.sh: warning: npm ci in tests/interop failed: the node-mavlink interop tests will be skipped" >&2
+  fi
+fi

@@ -248,18 +248,30 @@ def mcrf4xx(data, crc=0xFFFF):
     return crc
 
 
-def mavlink2(msgid, crc_extra, payload, seq=0, crc_delta=0):
+def mavlink2(msgid, crc_extra, payload, seq=0, crc_delta=0, incompat_flags=0):
     payload = payload.rstrip(b"\0") or b"\0"
-    body = bytes([len(payload), 0, 0, seq & 255, 1, 1]) + struct.pack("<I", msgid)[:3] + payload
+    body = bytes([len(payload), incompat_flags, 0, seq & 255, 1, 1]) + struct.pack("<I", msgid)[:3] + payload
     return b"\xfd" + body + struct.pack("<H", mcrf4xx(bytes([crc_extra]), mcrf4xx(body)) ^ crc_delta)
 
 
-def tlog_fixes(count, crc_delta=0):
+def tlog_fixes(count, crc_delta=0, incompat_flags=0):
     out = b""
     for i in range(count):
         stamp = struct.pack(">Q", 1723630500_000000 + 100000 * i)
-        out += stamp + mavlink2(30, 39, struct.pack("<I6f", 100 * i, 0.01 * i, 0.0, 0.5, 0, 0, 0), i, crc_delta)
-        out += stamp + mavlink2(32, 185, struct.pack("<I6f", 100 * i, 0.1 * i, 0.0, 2.0, 0, 0, 0), i, crc_delta)
+        out += stamp + mavlink2(30, 39, struct.pack("<I6f", 100 * i, 0.01 * i, 0.0, 0.5, 0, 0, 0), i, crc_delta, incompat_flags)
+        out += stamp + mavlink2(32, 185, struct.pack("<I6f", 100 * i, 0.1 * i, 0.0, 2.0, 0, 0, 0), i, crc_delta, incompat_flags)
+    return out
+
+
+def tlog_attitude_before_positions():
+    """ATTITUDEs for 0.3 s, then LOCAL_POSITION_NED from 1 s: no attitude within the positions' span."""
+    out = b""
+    for i in range(4):
+        out += struct.pack(">Q", 1723630500_000000 + 100000 * i)
+        out += mavlink2(30, 39, struct.pack("<I6f", 100 * i, 0.0, 0.0, 0.5, 0, 0, 0), i)
+    for i in range(2):
+        out += struct.pack(">Q", 1723630501_000000 + 100000 * i)
+        out += mavlink2(32, 185, struct.pack("<I6f", 1000 + 100 * i, 1.0, 0.0, 2.0, 0, 0, 0), 4 + i)
     return out
 
 
@@ -283,6 +295,8 @@ def dataflash_files():
         "tlog_no_attitude.tlog": struct.pack(">Q", 1723630500_000000) + mavlink2(0, 50, b"\0\0\0\0\x0c\x03\x51\x04\x03"),
         "tlog_cut_first_frame.tlog": tlog_fixes(1)[:20],
         "tlog_bad_checksums.tlog": tlog_fixes(3, crc_delta=0x5A5A),
+        "tlog_unknown_incompat_flag.tlog": tlog_fixes(3, incompat_flags=0x02),
+        "tlog_attitude_before_positions.tlog": tlog_attitude_before_positions(),
         "dataflash_text.BIN": b"this is not a dataflash log\n",
         "dataflash_no_att.BIN": att + ekf,
         "dataflash_cut_att.BIN": small[:len(att) + len(ekf) + 10],

@@ -33,13 +33,16 @@ struct VehicleLogOptions {
 /// UTC; pymavlink's mavutil.mavlogfile). Frames are MAVLink 1 (0xFE) or 2 (0xFD, with its
 /// optional 13-byte signature; a payload's trailing zeros, truncated by the sender, restored), each
 /// checked by its CRC-16/MCRF4XX with the message's CRC_EXTRA (MAVLink's serialization spec,
-/// mavlink.io/en/guide/serialization.html). Read, from the system and component that sent the
-/// first ATTITUDE: ATTITUDE (#30: roll, pitch, yaw in radians), LOCAL_POSITION_NED (#32: x, y, z
-/// in metres, NED), GLOBAL_POSITION_INT (#33: relative_alt in millimetres, up, as depth when no
-/// LOCAL_POSITION_NED), SCALED_PRESSURE2 (#137: the external pressure sensor, hPa, as depth when
-/// neither is present). Times are each message's time_boot_ms put on the log's UTC clock by the
-/// smallest difference between a frame's reception and its boot time (the least-delayed frame;
+/// mavlink.io/en/guide/serialization.html; readMavlinkFrame, mavlink.hpp). The frames are made
+/// into fixes as the live decoder makes them from the same stream (MavlinkNavigation,
+/// mavlink_navigation.hpp: the vehicle is the sender of the first ATTITUDE; a fix per ATTITUDE,
+/// roll, pitch, yaw in radians; north, east from LOCAL_POSITION_NED, else VISION_POSITION_DELTA,
+/// else 0; depth from LOCAL_POSITION_NED, else GLOBAL_POSITION_INT.relative_alt, else
+/// SCALED_PRESSURE2, 3, 1; each interpolated between the samples around the fix), except the
+/// clock: each message's time_boot_ms is put on the log's UTC clock by the smallest difference
+/// between a frame's reception and its boot time over the whole boot (the least-delayed frame;
 /// again after each reboot), so reception jitter does not move the fixes; `clock_utc_s` = 0.
+/// Attitudes at the end of the log after their source's last sample give no fix.
 /// A frame with a bad checksum is skipped and counted; a frame cut short or bytes that do not
 /// start one end the reading with a note naming the record, its byte and the reason (the fixes
 /// before it are kept).
