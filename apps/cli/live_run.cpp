@@ -131,8 +131,8 @@ void finishLive(const LiveArgs& args, LiveSession& session, const LiveResult& re
       mappingWarnings(run.mapper.stats(), run.mapper.options(), run.mapper.map().resolution_m());
   printWarnings(warnings);
   if (result.nav_skipped > 0) {
-    std::fprintf(stderr, "sonarmap: warning: %zu navigation rows skipped, the last: %s\n", result.nav_skipped,
-                 result.nav_skip_reason.c_str());
+    std::fprintf(stderr, "sonarmap: warning: %zu navigation rows or frames skipped (%s), the last note: %s\n",
+                 result.nav_skipped, result.nav_protocol.c_str(), result.nav_skip_reason.c_str());
   }
   if (result.fixes_dropped > 0) {
     std::fprintf(stderr, "sonarmap: warning: %zu navigation fixes dropped (not after the previous one, or not finite)\n",

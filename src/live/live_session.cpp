@@ -216,7 +216,11 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
           feedFix(std::move(fix), now_s);
         }
         result.nav_skipped = in.nav->skipped();
-        result.nav_skip_reason = in.nav->lastSkipReason();
+        result.nav_protocol = in.nav->protocol();
+        for (const std::string& line : in.nav->takeNotes()) {
+          observer_->note(line);
+          result.nav_skip_reason = line;
+        }
         if (ended) in.nav.reset();  // the navigation ended: beams beyond its last fix wait, then count
       }
       if (ready > 0 && (waiting[0].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {

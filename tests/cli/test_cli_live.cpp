@@ -193,7 +193,7 @@ TEST_F(CliLive, NavigationStreamPlacesTheBeams) {
   expectFinished(run);
   EXPECT_NE(run.out.find("0 without navigation"), std::string::npos) << run.out;
   EXPECT_TRUE(readFile(out_ / "live.bt") == moved_map) << "live map differs from `sonarmap map --nav`";
-  EXPECT_NE(run.err.find("1 navigation rows skipped"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("1 navigation rows or frames skipped (navigation CSV rows)"), std::string::npos) << run.err;
 }
 
 // A recorded ROS bag replayed: beams with their own stamps and the bag's own navigation, the map of

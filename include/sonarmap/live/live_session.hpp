@@ -110,7 +110,8 @@ struct LiveResult {
   std::vector<SkipReasonGroup> skip_reasons;  ///< their reasons, grouped as they came
   std::size_t fixes_dropped = 0;  ///< fixes not after the previous one, or not finite
   std::size_t nav_skipped = 0;    ///< navigation rows or frames the stream's decoder skipped
-  std::string nav_skip_reason;    ///< why the last was skipped
+  std::string nav_skip_reason;    ///< the decoder's last note (why the last was skipped)
+  std::string nav_protocol;       ///< what the navigation stream turned out to be
   std::size_t resets = 0;
   bool stopped = false;           ///< ended by the stop request (a signal), not the stream's end
   std::string device;             ///< the head's identity, when it said
