@@ -18,6 +18,8 @@ if [ "${1:-}" = test ]; then
   # pytest, the notebook run by nbconvert, headless Chromium for the viewer's browser tests, and
   # ccache for the repeated builds of CI and the sanitizers (scripts/compiler-cache.sh)
   packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium ccache)
+  # node and npm for the live page's browser test (tests/live/page_test.js), unless a node is there
+  command -v node >/dev/null || packages+=(nodejs npm)
 fi
 missing=()
 for p in "${packages[@]}"; do
@@ -29,4 +31,11 @@ if [ ${#missing[@]} -gt 0 ]; then
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+if [ "${1:-}" = test ] && command -v npm >/dev/null; then
+  # playwright-core at the version tests/live/package-lock.json pins, which drives Debian's chromium
+  # (it downloads no browser). Without network the build goes on and that test is skipped.
+  live_tests="$(cd "$(dirname "$0")/.." && pwd)/tests/live"
+  (cd "$live_tests" && npm ci --no-audit --no-fund --loglevel=error) ||
+    echo "warning: npm ci in tests/live failed (no network?): the live page's browser test will be skipped" >&2
 fi
