@@ -49,7 +49,8 @@ std::string raster(const RasterInfo& r) {
          ",\"cell\":" + number(r.cell_m) + ",\"cols\":" + std::to_string(r.cols) + ",\"rows\":" + std::to_string(r.rows) +
          ",\"z\":" + number(r.z_m) + ",\"beams\":" + integer(r.beams) + ",\"occupied\":" + integer(r.occupied_px) +
          ",\"free\":" + integer(r.free_px) + ",\"made_s\":" + number(r.made_s) + ",\"render_ms\":" +
-         number(1000.0 * r.render_s) + ",\"bytes\":" + integer(r.png_bytes) + "}";
+         number(1000.0 * r.render_s) + ",\"copy_ms\":" + number(1000.0 * r.copy_s) + ",\"bytes\":" +
+         integer(r.png_bytes) + "}";
 }
 
 std::string status(const LiveStatus& s) {
@@ -134,7 +135,7 @@ std::string update(const ViewUpdate& u) {
 
 std::string latencies(const LiveLatencies& l) {
   return "{\"fan\":" + stats(l.fan) + ",\"map\":" + stats(l.map) + ",\"render\":" + stats(l.render) +
-         ",\"last_png_bytes\":" + integer(l.last_png_bytes) + "}";
+         ",\"copy\":" + stats(l.copy) + ",\"last_png_bytes\":" + integer(l.last_png_bytes) + "}";
 }
 
 std::string cursorText(const ViewCursor& c) {

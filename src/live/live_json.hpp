@@ -21,7 +21,7 @@ std::string number(double value);
 /// b bearing, l bin length, p [x, y, z, yaw], cw, i base64 bins), track_full, track ([t, x, y, z,
 /// heading]), vehicle, settings, raster, status.
 std::string update(const ViewUpdate& update);
-/// {"fan":{count, median_s, p95_s, max_s}, "map":{...}, "render":{...}, "last_png_bytes":n}.
+/// {"fan":{count, median_s, p95_s, max_s}, "map":{...}, "render":{...}, "copy":{...}, "last_png_bytes":n}.
 std::string latencies(const LiveLatencies& latencies);
 
 /// The cursor as the text a polling page sends back ("cursor" in update()).

@@ -94,7 +94,7 @@ struct LiveView::State {
   double last_raster_start_s = -std::numeric_limits<double>::infinity();
   double last_render_s = 0.0;  ///< the last picture's cost
   // Latencies.
-  std::deque<double> fan_latencies, map_latencies, render_times;
+  std::deque<double> fan_latencies, map_latencies, render_times, copy_times;
   std::uint64_t map_drawn_beams = 0;  ///< beams below it were counted in map_latencies
   std::uint64_t timed_from = 0;       ///< beams below it are not timed (resetLatencies)
 
@@ -118,7 +118,7 @@ struct LiveView::State {
 
   /// Publishes a picture, made for `beams` beams, as the next version.
   void publish(const MapRaster& made, std::vector<unsigned char> bytes, std::uint64_t made_beams, double now_s,
-               double render_s) {
+               double render_s, double copy_s) {
     RasterInfo info;
     info.version = raster.version + 1;
     info.north_m = made.north_m;
@@ -132,6 +132,7 @@ struct LiveView::State {
     info.free_px = made.free_px;
     info.made_s = now_s;
     info.render_s = render_s;
+    info.copy_s = copy_s;
     info.png_bytes = bytes.size();
     raster = info;
     png = std::make_shared<const std::vector<unsigned char>>(std::move(bytes));
@@ -301,7 +302,7 @@ void LiveView::mapReset() {
   empty.north_m = (s.sonar ? s.sonar->x_m : 0.0) + empty.cell_m / 2.0;
   empty.west_m = (s.sonar ? s.sonar->y_m : 0.0) + empty.cell_m / 2.0;
   empty.z_m = s.sonar ? s.sonar->z_m : 0.0;
-  s.publish(empty, encodePng(empty.image), s.beams, now_s(), 0.0);
+  s.publish(empty, encodePng(empty.image), s.beams, now_s(), 0.0, 0.0);
   s.map_dirty = true;
   raster_wake_.notify_all();
   changed_.notify_all();
@@ -343,11 +344,13 @@ void LiveView::rasterLoop(std::stop_token stop) {
     std::optional<MapRaster> made;
     std::vector<unsigned char> bytes;
     std::string error;
+    double copied_s = start_s;
     try {
       std::optional<OcTree16> map = std::move(offered);
       if (!map) {
         std::lock_guard source_lock(source_mutex_);
         if (source_) map.emplace(source_());
+        copied_s = now_s();
       }
       if (map) {
         made = rasterizeMap(*map, window);
@@ -365,8 +368,9 @@ void LiveView::rasterLoop(std::stop_token stop) {
       continue;
     }
     if (!made || epoch != s.reset_epoch) continue;  // no source any more, or a picture of the map before a reset
-    s.publish(*made, std::move(bytes), beams, done_s, done_s - start_s);
+    s.publish(*made, std::move(bytes), beams, done_s, done_s - start_s, copied_s - start_s);
     pushBounded(s.render_times, done_s - start_s, options_.latency_samples);
+    pushBounded(s.copy_times, copied_s - start_s, options_.latency_samples);
     changed_.notify_all();
   }
 }
@@ -470,7 +474,8 @@ void LiveView::acknowledge(std::span<const std::uint64_t> beam_seqs, std::span<c
 LiveLatencies LiveView::latencies() const {
   std::lock_guard lock(mutex_);
   const State& s = *state_;
-  return {statsOf(s.fan_latencies), statsOf(s.map_latencies), statsOf(s.render_times), s.raster.png_bytes};
+  return {statsOf(s.fan_latencies), statsOf(s.map_latencies), statsOf(s.render_times), statsOf(s.copy_times),
+          s.raster.png_bytes};
 }
 
 void LiveView::resetLatencies() {
@@ -479,6 +484,7 @@ void LiveView::resetLatencies() {
   s.fan_latencies.clear();
   s.map_latencies.clear();
   s.render_times.clear();
+  s.copy_times.clear();
   s.timed_from = s.beams;
   s.map_drawn_beams = std::max(s.map_drawn_beams, s.beams);
 }

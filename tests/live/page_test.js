@@ -216,7 +216,8 @@ async function main() {
   console.log(`     arrival → pixels over ${latency.fan.count} beams: fan median ${ms(latency.fan.median_s)} ms, ` +
               `p95 ${ms(latency.fan.p95_s)} ms, max ${ms(latency.fan.max_s)} ms; map median ${ms(latency.map.median_s)} ms, ` +
               `p95 ${ms(latency.map.p95_s)} ms, max ${ms(latency.map.max_s)} ms (${latency.map.count} beams); ` +
-              `map picture median ${ms(latency.render.median_s)} ms, p95 ${ms(latency.render.p95_s)} ms, ` +
+              `map picture median ${ms(latency.render.median_s)} ms (copy ${ms(latency.copy.median_s)} ms), ` +
+              `p95 ${ms(latency.render.p95_s)} ms, ` +
               `${latency.last_png_bytes} bytes`);
   check(latency.fan.count >= 150, `every beam's fan was acknowledged (${latency.fan.count} of 160)`);
   check(latency.fan.p95_s < 0.25, 'fan: p95 of arrival → pixels under 0.25 s');

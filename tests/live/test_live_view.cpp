@@ -199,6 +199,9 @@ TEST(LiveView, MakesTheMapPictureOnItsOwnThreadThrottled) {
   EXPECT_DOUBLE_EQ(info.north_m, expected.north_m);
   EXPECT_EQ(info.occupied_px, 60U);
   EXPECT_EQ(info.png_bytes, png->size());
+  EXPECT_GE(info.copy_s, 0.05);  // the source's 50 ms, timed apart
+  EXPECT_GE(info.render_s, info.copy_s);
+  EXPECT_GE(view.latencies().copy.median_s, 0.05);
   const int settled = copies.load();
   std::this_thread::sleep_for(300ms);
   EXPECT_EQ(copies.load(), settled);  // no change, no picture

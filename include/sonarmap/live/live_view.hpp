@@ -83,6 +83,7 @@ struct RasterInfo {
   std::size_t occupied_px = 0, free_px = 0;
   double made_s = 0.0;         ///< session clock when it was published
   double render_s = 0.0;       ///< copying, drawing and encoding it, seconds
+  double copy_s = 0.0;         ///< of which copying the map (the map source's call), seconds
   std::size_t png_bytes = 0;
 };
 
@@ -118,6 +119,7 @@ struct LiveLatencies {
   LatencyStats fan;     ///< arrival → its fan drawn
   LatencyStats map;     ///< arrival → the first map picture including it drawn
   LatencyStats render;  ///< copying the map, rasterising and encoding a picture
+  LatencyStats copy;    ///< of which copying the map (the map source's call; the mapper's shared lock is held)
   std::size_t last_png_bytes = 0;
 };
 
