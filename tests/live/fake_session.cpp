@@ -10,6 +10,8 @@
 //            "fed first=SEQ last=SEQ shown=N sweeps=N bearing_from=RAD bearing_to=RAD"
 //   fast N   the same as fast as it can
 //   status   "status beams=N shown=N sweeps=N"
+//   cost     what a map picture costs now, the best of three: "cost leaves=N copy_ms=T raster_ms=T
+//            png_ms=T png_bytes=N cols=N rows=N" (copy: OnlineMapper::shownSnapshot)
 //   quit     "bye", and the program ends (the server stops first)
 // It prints "listening URL" once it serves. "Save map" writes DIR/map.bt (the map as shown),
 // DIR/recording.txt and DIR/map_cells.json: the occupied cells of the .bt as read back, at the
@@ -28,6 +30,7 @@
 
 #include "sonarmap/io/map_file.hpp"
 #include "sonarmap/live/live_view.hpp"
+#include "sonarmap/live/map_raster.hpp"
 #include "sonarmap/live/web_server.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
@@ -35,6 +38,7 @@
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
 #include "sonarmap/sim/trajectory.hpp"
+#include "sonarmap/sonar/png_writer.hpp"
 
 namespace {
 
@@ -118,6 +122,32 @@ class Session {
   std::string status() {
     std::ostringstream line;
     line << "status beams=" << next_ << " shown=" << shown() << " sweeps=" << sweeps();
+    return line.str();
+  }
+
+  /// The raster thread's work, timed here on the command's thread.
+  std::string cost() {
+    double copy_ms = 1e9, raster_ms = 1e9, png_ms = 1e9;
+    std::size_t bytes = 0, leaves = 0;
+    MapRaster raster;
+    const auto ms = [](Clock::time_point since) { return std::chrono::duration<double, std::milli>(Clock::now() - since).count(); };
+    for (int repeat = 0; repeat < 3; ++repeat) {
+      auto start = Clock::now();
+      const OcTree16 map = mapper()->shownSnapshot();
+      copy_ms = std::min(copy_ms, ms(start));
+      leaves = map.counts().leaves;
+      start = Clock::now();
+      RasterWindow window;
+      window.half_width_m = 1.25 * preset_.head.range_m;
+      raster = rasterizeMap(map, window);
+      raster_ms = std::min(raster_ms, ms(start));
+      start = Clock::now();
+      bytes = encodePng(raster.image).size();
+      png_ms = std::min(png_ms, ms(start));
+    }
+    std::ostringstream line;
+    line << "cost leaves=" << leaves << " copy_ms=" << copy_ms << " raster_ms=" << raster_ms << " png_ms=" << png_ms
+         << " png_bytes=" << bytes << " cols=" << raster.image.cols << " rows=" << raster.image.rows;
     return line.str();
   }
 
@@ -208,6 +238,8 @@ int main(int argc, char** argv) {
         std::cout << session.feed(count, verb == "feed") << std::endl;
       } else if (verb == "status") {
         std::cout << session.status() << std::endl;
+      } else if (verb == "cost") {
+        std::cout << session.cost() << std::endl;
       } else if (verb == "quit") {
         break;
       } else if (!verb.empty()) {
