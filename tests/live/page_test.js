@@ -318,7 +318,7 @@ async function main() {
 
   check(errors.length === 0, `no script errors (${errors.join(' | ')})`);
   const bye = await session.command('quit');
-  console.log(`     the server stopped in ${bye.stop_ms.toFixed(1)} ms with ${3} pages open`);
+  console.log(`     the server stopped in ${bye.stop_ms.toFixed(1)} ms with 3 pages open`);
   check(bye.stop_ms < 1000, 'the server stops promptly with pages connected');
   await browser.close();
   proxy.close();

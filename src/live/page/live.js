@@ -161,6 +161,7 @@ function acknowledge(beams, rasters, drawnAt) {
 
 function setConnection(text, ok) {
   const element = $('connection');
+  if (element.textContent === text) return;  // a live region: announce changes only
   element.textContent = text;
   element.classList.toggle('bad', !ok);
 }

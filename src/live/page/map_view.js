@@ -137,7 +137,12 @@ class MapView {
     ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
     ctx.fillStyle = '#808080';  // unknown, as the map's unknown cells
     ctx.fillRect(0, 0, this.width, this.height);
-    if (!this.scale) return;
+    if (!this.scale) {
+      ctx.font = '14px system-ui, sans-serif';
+      ctx.textBaseline = 'middle';
+      label(ctx, 'Waiting for the sonar…', this.width / 2 - 80, this.height / 2);
+      return;
+    }
     this.drawRaster();
     if (this.showFan) this.drawFan();
     this.drawGrid();
