@@ -142,14 +142,14 @@ std::string cursorText(const ViewCursor& c) {
   if (!c.started) return "";
   return integer(c.next_beam) + "." + integer(c.track_epoch) + "." + integer(c.track_sent) + "." +
          integer(c.settings_version) + "." + integer(c.raster_version) + "." + integer(c.reset_epoch) + "." +
-         integer(c.changes);
+         integer(c.changes) + "." + integer(c.view_id);
 }
 
 std::optional<ViewCursor> parseCursor(std::string_view text) {
-  std::uint64_t values[7] = {};
+  std::uint64_t values[8] = {};
   const char* at = text.data();
   const char* end = text.data() + text.size();
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < 8; ++i) {
     if (i > 0) {
       if (at == end || *at != '.') return std::nullopt;
       ++at;
@@ -159,7 +159,8 @@ std::optional<ViewCursor> parseCursor(std::string_view text) {
     at = next;
   }
   if (at != end) return std::nullopt;
-  return ViewCursor{true, values[0], values[1], static_cast<std::size_t>(values[2]), values[3], values[4], values[5], values[6]};
+  return ViewCursor{true,      values[0], values[1], static_cast<std::size_t>(values[2]), values[3],
+                    values[4], values[5], values[6], values[7]};
 }
 
 }  // namespace sonarmap::live_json

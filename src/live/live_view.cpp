@@ -143,7 +143,10 @@ struct LiveView::State {
 };
 
 LiveView::LiveView(Clock::time_point epoch, LiveViewOptions options)
-    : epoch_(epoch), options_(options), state_(std::make_unique<State>()) {
+    : epoch_(epoch),
+      id_(static_cast<std::uint64_t>(Clock::now().time_since_epoch().count()) ^ reinterpret_cast<std::uintptr_t>(this)),
+      options_(options),
+      state_(std::make_unique<State>()) {
   if (options_.max_bins < 16) throw ValueError("live view: max_bins must be >= 16");
   if (options_.fan_beams == 0) throw ValueError("live view: fan_beams must be > 0");
   if (!(options_.raster_interval_s >= 0.0) || !(options_.raster_half_width_m >= 0.0) ||
@@ -380,7 +383,7 @@ ViewUpdate LiveView::updateSince(const ViewCursor& cursor) const {
   {
     std::lock_guard lock(mutex_);
     const State& s = *state_;
-    update.full = !cursor.started || cursor.reset_epoch != s.reset_epoch;
+    update.full = !cursor.started || cursor.view_id != id_ || cursor.reset_epoch != s.reset_epoch;
     const std::uint64_t from = update.full ? 0 : cursor.next_beam;
     const std::uint64_t newest_kept = s.beams > options_.fan_beams ? s.beams - options_.fan_beams : 0;
     for (const auto& beam : s.fan) {
@@ -393,7 +396,7 @@ ViewUpdate LiveView::updateSince(const ViewCursor& cursor) const {
     if (update.full || cursor.settings_version != s.settings_version) update.settings = s.settings;
     if (s.raster.version != 0 && (update.full || cursor.raster_version != s.raster.version)) update.raster = s.raster;
     update.fan_beams = options_.fan_beams;
-    update.cursor = {true, s.beams, s.track_epoch, s.track.size(), s.settings_version, s.raster.version, s.reset_epoch, s.changes};
+    update.cursor = {true, s.beams, s.track_epoch, s.track.size(), s.settings_version, s.raster.version, s.reset_epoch, s.changes, id_};
   }
   update.status = status();
   return update;

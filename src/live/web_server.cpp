@@ -113,7 +113,7 @@ struct WebServer::Impl {
 };
 
 void WebServer::Impl::routes() {
-  const auto text = [this](std::string_view body, const char* type) {
+  const auto text = [](std::string_view body, const char* type) {
     return [body, type](const httplib::Request&, httplib::Response& res) {
       res.set_header("Cache-Control", "no-cache");
       allowAnyOrigin(res);

@@ -95,7 +95,10 @@ TEST(LiveView, PoolsBinsAndKeepsTheFan) {
   EXPECT_EQ(next.beams.back()->seq, 24U);
   EXPECT_EQ(next.beams.back()->intensities.size(), 300U);
   const ViewUpdate none = view.updateSince(next.cursor);
+  EXPECT_FALSE(none.full);
   EXPECT_TRUE(none.beams.empty());
+  LiveView restarted(Clock::now(), options);
+  EXPECT_TRUE(restarted.updateSince(next.cursor).full);  // a cursor of another view starts over
   EXPECT_FALSE(none.settings);
   EXPECT_EQ(none.status.beams_received, 25U);
 }
@@ -223,6 +226,7 @@ TEST(LiveView, AResetDropsThePictureInTheMaking) {
   });
   view.addBeam(beamOf(100, 0.0), view.now_s(), {});
   view.mapShows(1);
+  const ViewCursor before = view.updateSince({}).cursor;
   ASSERT_TRUE(eventually([&] { return copying.load(); }));
   view.mapReset();  // while the old map is being copied
   const RasterInfo after_reset = view.rasterPng().first;
@@ -231,8 +235,7 @@ TEST(LiveView, AResetDropsThePictureInTheMaking) {
   ASSERT_TRUE(eventually([&] { return copies.load() >= 2; }));  // the stale one dropped, a new one made
   ASSERT_TRUE(eventually([&] { return view.rasterPng().first.version > after_reset.version; }));
   EXPECT_EQ(view.rasterPng().first.version, after_reset.version + 1);  // not two: the stale one was not published
-  const ViewUpdate update = view.updateSince(ViewCursor{true, 1, 0, 0, 0, 0, 0, 0});
-  EXPECT_TRUE(update.full);  // a reset starts the readers over
+  EXPECT_TRUE(view.updateSince(before).full);  // a reset starts the readers over
   view.setMapSource({});
 }
 

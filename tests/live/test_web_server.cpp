@@ -356,7 +356,7 @@ TEST(WebServer, StopsPromptlyWithStreamsAndPollsOpen) {
   std::thread poller([port = server->port()] {
     httplib::Client client("127.0.0.1", port);
     client.set_read_timeout(30, 0);
-    client.Get("/updates?cursor=0.0.0.0.0.0.999999&wait_ms=25000");
+    client.Get("/updates?cursor=0.0.0.0.0.0.999999.0&wait_ms=25000");
   });
   std::this_thread::sleep_for(100ms);
   const auto start = Clock::now();

@@ -133,6 +133,9 @@ struct ViewCursor {
   std::uint64_t raster_version = 0;
   std::uint64_t reset_epoch = 0;
   std::uint64_t changes = 0;     ///< LiveView::changes() when the update was made
+  /// The view it came from: a cursor of another view (a session started again behind the same
+  /// address, a page polling across the restart) starts the reader over.
+  std::uint64_t view_id = 0;
 };
 
 /// What changed since a cursor.
@@ -242,6 +245,7 @@ class LiveView {
   void startRasterThread();
 
   Clock::time_point epoch_;
+  std::uint64_t id_;  ///< ViewCursor::view_id
   LiveViewOptions options_;
   std::unique_ptr<State> state_;
   mutable std::mutex mutex_;
