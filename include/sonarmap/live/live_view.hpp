@@ -2,9 +2,10 @@
 /// @file live_view.hpp
 /// What the page of `sonarmap live --serve` shows, kept by the live session and read by the web
 /// server (web_server.hpp): the latest beams (the fan of the current sweep), the map at the
-/// vehicle's depth as a picture (map_raster.hpp, made on the view's own thread), the track, the
-/// head's settings and the run's status; and how long beams took from their arrival to the page's
-/// pixels, from the page's acknowledgements.
+/// vehicle's depth as a picture (map_raster.hpp, made on the view's own thread: the voxel layer
+/// holding the latest beam's transducer, in a window centred on it), the track, the head's settings
+/// and the run's status; and how long beams took from their arrival to the page's pixels, from the
+/// page's acknowledgements.
 ///
 /// Clock: every time is in seconds on the session's steady clock, counted from the epoch given to
 /// the constructor (the session's start): a beam's arrival, a fix's time on the track, an
