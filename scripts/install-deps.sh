@@ -18,6 +18,8 @@ if [ "${1:-}" = test ]; then
   # pytest, the notebook run by nbconvert, headless Chromium for the viewer's browser tests, and
   # ccache for the repeated builds of CI and the sanitizers (scripts/compiler-cache.sh)
   packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium ccache)
+  # node and npm for the live page's browser test (tests/live/page_test.js), unless a node is there
+  command -v node >/dev/null || packages+=(nodejs npm)
 fi
 missing=()
 for p in "${packages[@]}"; do
@@ -30,19 +32,23 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
-# The MAVLink interop tests' node-mavlink (tests/interop, at the version package-lock.json pins): Node.js
-# and npm from Debian unless a node is already installed, then `npm ci`. Each step only warns when it
-# fails (no network): the build does not need them, and those tests skip themselves, saying why.
+# The tests' npm packages, at the versions their package-lock.json pin: node-mavlink for the MAVLink
+# interop tests (tests/interop) and playwright-core, which drives Debian's chromium for the live
+# page's browser test (tests/live; it downloads no browser). Node.js and npm come from Debian unless a
+# node is already installed. Each step only warns when it fails (no network): the build does not
+# need them, and those tests skip themselves, saying why.
 if [ "${1:-}" = test ]; then
-  interop="$(cd "$(dirname "$0")/.." && pwd)/tests/interop"
+  root="$(cd "$(dirname "$0")/.." && pwd)"
   if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
     sudo=""
     [ "$(id -u)" -eq 0 ] || sudo="sudo"
     { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null; } ||
-      echo "install-deps.sh: warning: Node.js and npm not installed: the node-mavlink interop tests will be skipped" >&2
+      echo "install-deps.sh: warning: Node.js and npm not installed: the npm-based tests will be skipped" >&2
   fi
-  if command -v npm >/dev/null && [ ! -f "$interop/node_modules/node-mavlink/package.json" ]; then
-    (cd "$interop" && npm ci --no-audit --no-fund --loglevel=error) ||
-      echo "install-deps.sh: warning: npm ci in tests/interop failed: the node-mavlink interop tests will be skipped" >&2
-  fi
+  for folder in interop live; do
+    if command -v npm >/dev/null && [ ! -d "$root/tests/$folder/node_modules" ]; then
+      (cd "$root/tests/$folder" && npm ci --no-audit --no-fund --loglevel=error) ||
+        echo "install-deps.sh: warning: npm ci in tests/$folder failed: its tests will be skipped" >&2
+    fi
+  done
 fi

@@ -1,0 +1,166 @@
+#include "live_json.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace sonarmap::live_json {
+namespace {
+
+std::string base64(const std::vector<std::uint8_t>& bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t left = bytes.size() - i;
+    const std::uint32_t word = (static_cast<std::uint32_t>(bytes[i]) << 16) |
+                               (left > 1 ? static_cast<std::uint32_t>(bytes[i + 1]) << 8 : 0U) |
+                               (left > 2 ? static_cast<std::uint32_t>(bytes[i + 2]) : 0U);
+    text += kAlphabet[(word >> 18) & 63U];
+    text += kAlphabet[(word >> 12) & 63U];
+    text += left > 1 ? kAlphabet[(word >> 6) & 63U] : '=';
+    text += left > 2 ? kAlphabet[word & 63U] : '=';
+  }
+  return text;
+}
+
+std::string integer(std::uint64_t value) { return std::to_string(value); }
+
+std::string point(const TrackPoint& p) {
+  std::string out = "[";
+  for (const double value : {p.time_s, p.x_m, p.y_m, p.z_m, p.heading_rad}) {
+    if (out.size() > 1) out += ',';
+    out += number(value);
+  }
+  out += ']';
+  return out;
+}
+
+std::string beam(const LiveBeam& b) {
+  return "{\"s\":" + integer(b.seq) + ",\"t\":" + number(b.arrival_s) + ",\"b\":" + number(b.bearing_rad) +
+         ",\"l\":" + number(b.bin_length_m) + ",\"p\":[" + number(b.sonar.x_m) + "," + number(b.sonar.y_m) + "," +
+         number(b.sonar.z_m) + "," + number(b.sonar.yaw_rad) + "],\"cw\":" + (b.sonar.clockwise ? "1" : "0") +
+         ",\"i\":\"" + base64(b.intensities) + "\"}";
+}
+
+std::string raster(const RasterInfo& r) {
+  return "{\"v\":" + integer(r.version) + ",\"north\":" + number(r.north_m) + ",\"west\":" + number(r.west_m) +
+         ",\"cell\":" + number(r.cell_m) + ",\"cols\":" + std::to_string(r.cols) + ",\"rows\":" + std::to_string(r.rows) +
+         ",\"z\":" + number(r.z_m) + ",\"beams\":" + integer(r.beams) + ",\"occupied\":" + integer(r.occupied_px) +
+         ",\"free\":" + integer(r.free_px) + ",\"made_s\":" + number(r.made_s) + ",\"render_ms\":" +
+         number(1000.0 * r.render_s) + ",\"copy_ms\":" + number(1000.0 * r.copy_s) + ",\"bytes\":" +
+         integer(r.png_bytes) + "}";
+}
+
+std::string status(const LiveStatus& s) {
+  std::string warnings = "[";
+  for (std::size_t i = 0; i < s.warnings.size(); ++i) {
+    if (i > 0) warnings += ',';
+    warnings += quoted(s.warnings[i]);
+  }
+  return "{\"beams\":" + integer(s.beams_received) + ",\"rate\":" + number(s.beams_per_s) +
+         ",\"lag\":" + (s.lag_s ? number(*s.lag_s) : "null") + ",\"waiting\":" + integer(s.beams_waiting) +
+         ",\"sweeps\":" + integer(s.sweeps) + ",\"recording\":" + quoted(s.recording_path) + ",\"warnings\":" +
+         warnings + "]}";
+}
+
+std::string settings(const LiveSettings& s) {
+  std::string fields = "[";
+  for (std::size_t i = 0; i < s.fields.size(); ++i) {
+    fields += i > 0 ? ",[" : "[";
+    fields += quoted(s.fields[i].first);
+    fields += ',';
+    fields += quoted(s.fields[i].second);
+    fields += ']';
+  }
+  return "{\"device\":" + quoted(s.device) + ",\"fields\":" + fields + "]}";
+}
+
+std::string stats(const LatencyStats& s) {
+  return "{\"count\":" + integer(s.count) + ",\"median_s\":" + number(s.median_s) + ",\"p95_s\":" + number(s.p95_s) +
+         ",\"max_s\":" + number(s.max_s) + "}";
+}
+
+}  // namespace
+
+std::string quoted(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (byte < 0x20 || c == '<' || c == '>' || c == '&') {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", byte);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string number(double value) {
+  if (!std::isfinite(value)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value + 0.0);
+  return text;
+}
+
+std::string update(const ViewUpdate& u) {
+  std::string out = "{\"full\":";
+  out += u.full ? "true" : "false";
+  out += ",\"clock_s\":" + number(u.status.clock_s) + ",\"fan_beams\":" + integer(u.fan_beams) + ",\"cursor\":" +
+         quoted(cursorText(u.cursor)) + ",\"beams\":[";
+  for (std::size_t i = 0; i < u.beams.size(); ++i) {
+    if (i > 0) out += ',';
+    out += beam(*u.beams[i]);
+  }
+  out += "],\"track_full\":";
+  out += u.track_full ? "true" : "false";
+  out += ",\"track\":[";
+  for (std::size_t i = 0; i < u.track.size(); ++i) {
+    if (i > 0) out += ',';
+    out += point(u.track[i]);
+  }
+  out += "]";
+  if (u.vehicle) out += ",\"vehicle\":" + point(*u.vehicle);
+  if (u.settings) out += ",\"settings\":" + settings(*u.settings);
+  if (u.raster) out += ",\"raster\":" + raster(*u.raster);
+  out += ",\"status\":" + status(u.status) + "}";
+  return out;
+}
+
+std::string latencies(const LiveLatencies& l) {
+  return "{\"fan\":" + stats(l.fan) + ",\"map\":" + stats(l.map) + ",\"render\":" + stats(l.render) +
+         ",\"copy\":" + stats(l.copy) + ",\"last_png_bytes\":" + integer(l.last_png_bytes) + "}";
+}
+
+std::string cursorText(const ViewCursor& c) {
+  if (!c.started) return "";
+  return integer(c.next_beam) + "." + integer(c.track_epoch) + "." + integer(c.track_sent) + "." +
+         integer(c.settings_version) + "." + integer(c.raster_version) + "." + integer(c.reset_epoch) + "." +
+         integer(c.changes) + "." + integer(c.view_id);
+}
+
+std::optional<ViewCursor> parseCursor(std::string_view text) {
+  std::uint64_t values[8] = {};
+  const char* at = text.data();
+  const char* end = text.data() + text.size();
+  for (int i = 0; i < 8; ++i) {
+    if (i > 0) {
+      if (at == end || *at != '.') return std::nullopt;
+      ++at;
+    }
+    const auto [next, error] = std::from_chars(at, end, values[i]);
+    if (error != std::errc{}) return std::nullopt;
+    at = next;
+  }
+  if (at != end) return std::nullopt;
+  return ViewCursor{true,      values[0], values[1], static_cast<std::size_t>(values[2]), values[3],
+                    values[4], values[5], values[6], values[7]};
+}
+
+}  // namespace sonarmap::live_json
