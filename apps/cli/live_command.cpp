@@ -11,6 +11,7 @@
 #include "origin_option.hpp"
 #include "output_checks.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/live/live_page.hpp"
 #include "sonarmap/nav/navigation.hpp"
 
 namespace sonarmap::cli {
@@ -88,6 +89,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       throw ValueError("--record writes an MCAP file: give a path ending in .mcap, got '" + args.record + "'");
     }
     (void)toHeadSettings(args.head);
+    if (!args.serve.empty()) (void)webServerOptions(args.serve);
     checked->options = toMapperOptions(args.map);
     checked->sonar_to_body = toSonarToBody(args.map.mounting);
   };

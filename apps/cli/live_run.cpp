@@ -23,6 +23,7 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/ping360_reader.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/live/live_page.hpp"
 #include "sonarmap/live/live_session.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/mapping_arguments.hpp"
@@ -181,8 +182,14 @@ LiveOutputs outputsOf(const LiveArgs& args) {
   return outputs;
 }
 
-/// Runs `session` to its end and finishes it.
-void runSession(const LiveArgs& args, LiveSession& session, bool with_nav) {
+/// Runs `session` to its end and finishes it, its page served with --serve.
+void runSession(const LiveArgs& args, LiveSession& session, LiveObserver& console, bool with_nav) {
+  std::optional<LivePage> page;
+  if (!args.serve.empty()) {
+    page.emplace(session, webServerOptions(args.serve), &console);
+    if (!args.record.empty()) page->view().setRecordingPath(args.record);
+    std::fprintf(stderr, "sonarmap: live: the page is at %s\n", page->url().c_str());
+  }
   if (!args.map.quiet) {
     std::fprintf(stderr, "sonarmap: live: reading %s\n", session.headDescription().c_str());
     if (!session.navDescription().empty()) {
@@ -192,6 +199,7 @@ void runSession(const LiveArgs& args, LiveSession& session, bool with_nav) {
   g_stop = 0;
   catchStopSignals();
   const LiveResult result = session.run([] { return g_stop != 0; });
+  page.reset();  // the page stops before the map is handed over
   finishLive(args, session, result, with_nav);
 }
 
@@ -216,7 +224,7 @@ void runOnHead(const LiveArgs& args, const MapperOptions& options, const Eigen::
   LiveSession session(std::move(input), outputsOf(args),
                       mappingOptions(args, sonar_options, sonar_to_body, with_nav, known_fixes, origin_resolution_m),
                       known_fixes, &console);
-  runSession(args, session, with_nav);
+  runSession(args, session, console, with_nav);
 }
 
 /// `live` on a recorded log (a ROS log, a Ping Viewer log): its beams, as `map` reads them, fed in
@@ -255,7 +263,7 @@ void runReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::
   input.rate = args.rate;
   ConsoleObserver console(args.map.quiet);
   LiveSession session(std::move(input), outputsOf(args), std::move(mapping), known_fixes, &console);
-  runSession(args, session, navigation.has_value());
+  runSession(args, session, console, navigation.has_value());
 }
 
 }  // namespace

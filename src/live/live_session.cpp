@@ -99,6 +99,7 @@ void LiveSession::feedBeam(Beam beam, double arrival_s, double time_s) {
   if (const std::optional<NavSample>& fix = mapping_->lastFix()) sonar_to_map = sonarToMap(*fix, mapping_->sonarToBody());
   observer_->beam(mapping_->beams(), beam, arrival_s, sonar_to_map);
   mapping_->addBeam(std::move(beam), arrival_s);
+  observer_->mapped(mapping_->beams() - mapping_->beamsUnshown(), mapping_->sweepsIntegrated());
 }
 
 void LiveSession::feedFix(NavSample fix, double arrival_s) {
@@ -109,25 +110,36 @@ void LiveSession::feedFix(NavSample fix, double arrival_s) {
 }
 
 void LiveSession::serviceRequests() {
-  if (reset_requested_.exchange(false)) {
+  if (reset_requested_) {
     mapping_->reset();
     ++resets_;
     observer_->reset();
     observer_->note("the map was reset: it starts again from the next beam");
+    {
+      const std::lock_guard lock(saving_);
+      reset_requested_ = false;
+    }
+    reset_done_.notify_all();
   }
   if (flush_requested_.exchange(false) && inputs_->recorder) inputs_->recorder->flush();
 }
 
-std::vector<std::string> LiveSession::saveNow() {
-  const std::lock_guard lock(saving_);
-  std::vector<std::string> written;
+void LiveSession::resetNow() {
+  std::unique_lock lock(saving_);
+  if (!running_) return;
+  reset_requested_ = true;
+  reset_done_.wait_for(lock, std::chrono::seconds(2), [this] { return !reset_requested_ || !running_; });
+}
+
+std::vector<std::pair<std::string, std::string>> LiveSession::saveNow() {
+  std::vector<std::pair<std::string, std::string>> written;
   if (!outputs_.map_path.empty()) {
     writeMapFileInFrame(mapping_->shownSnapshot(), outputs_.map_path, outputs_.map_frame, mapping_->origin().ned_m);
-    written.push_back(outputs_.map_path);
+    written.emplace_back("map", outputs_.map_path);
   }
   if (inputs_->recorder) {
     flush_requested_ = true;
-    written.push_back(inputs_->recorder->partialPath());
+    written.emplace_back("recording", inputs_->recorder->partialPath());
   }
   return written;
 }
@@ -197,6 +209,7 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
   Inputs& in = *inputs_;
   LiveResult result;
   live::PeriodicMapWriter writer(*mapping_, outputs_.map_path, outputs_.map_frame, outputs_.write_every_s);
+  running_ = true;
   if (in.head) in.head->start(secondsSinceStart());
   takeHeadNotes(result);
   double last_byte_s = 0.0;
@@ -238,6 +251,11 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
     report(now_s, result);
   }
   result.stopped = stop_requested();
+  {
+    const std::lock_guard lock(saving_);
+    running_ = false;
+  }
+  reset_done_.notify_all();
   if (in.head) {
     in.head->stop();
     const double now_s = secondsSinceStart();

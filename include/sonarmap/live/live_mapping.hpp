@@ -84,6 +84,8 @@ class LiveMapping {
   /// Beams given since the start, and those shown in the map (since the last reset); any thread.
   std::size_t beams() const { return beams_.load(); }
   std::size_t beamsShown() const { return beams_shown_.load(); }
+  /// Beams given and not yet in the map as shown (the newest). Feeding thread.
+  std::size_t beamsUnshown() const { return beams_ - beams_at_reset_ - beams_shown_; }
   /// The map's zero in the navigation's frame (zero before any fix); any thread.
   LocalOrigin origin() const;
   /// The last fix given, moved to the map's origin (NED); nullopt before the first.

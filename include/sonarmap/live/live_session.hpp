@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -23,6 +24,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -62,6 +64,9 @@ class LiveObserver {
   /// placed at `sonar_to_map` (the latest fix's pose: for display; the map uses the interpolated one).
   virtual void beam(std::size_t /*sequence*/, const Beam& /*beam*/, double /*arrival_s*/,
                     const Eigen::Isometry3d& /*sonar_to_map*/) {}
+  /// After a beam was mapped: beams 0 … beams_shown − 1 are in the map as shown (those before a
+  /// reset count as shown), `sweeps` integrated since the last reset.
+  virtual void mapped(std::size_t /*beams_shown*/, std::size_t /*sweeps*/) {}
   /// A navigation fix, moved to the map's origin (NED).
   virtual void fix(const NavSample& /*fix*/) {}
   virtual void status(const LiveProgress& /*status*/) {}
@@ -143,11 +148,15 @@ class LiveSession {
   ///         (the recording is then left as its .part file); ValueError from the mapper.
   LiveResult run(const std::function<bool()>& stop_requested);
 
-  /// Asks run() to start the map again (from the page). Any thread.
-  void requestReset() { reset_requested_ = true; }
-  /// Writes the map as shown now and asks run() to flush the recording; returns the paths written.
-  /// Any thread. @throws FileError when the map cannot be written.
-  std::vector<std::string> saveNow();
+  /// Asks run() to start the map again (from the page) and waits until it did (at most 2 s; after
+  /// run() returned, at once). Any thread.
+  void resetNow();
+  /// Writes the map as shown now and asks run() to flush the recording; returns what was written,
+  /// ("map", path) and ("recording", path of the file being written). Any thread.
+  /// @throws FileError when the map cannot be written.
+  std::vector<std::pair<std::string, std::string>> saveNow();
+  /// Tells `observer` (null: nobody) what happens from now on. Call before run() or from its thread.
+  void setObserver(LiveObserver* observer) { observer_ = observer != nullptr ? observer : &silent_; }
 
   /// The mapper (feeding thread; after run(), the final map and trajectory).
   LiveMapping& mapping() { return *mapping_; }
@@ -182,6 +191,8 @@ class LiveSession {
   std::unique_ptr<Inputs> inputs_;
   std::unique_ptr<LiveMapping> mapping_;
   std::atomic<bool> reset_requested_{false};
+  std::atomic<bool> running_{false};
+  std::condition_variable reset_done_;
   std::atomic<bool> flush_requested_{false};
   std::mutex saving_;
   std::size_t resets_ = 0;
