@@ -2,7 +2,8 @@
 /// @file ping360_driver.hpp
 /// A Blue Robotics Ping360 driven over ping-protocol (ping_protocol.hpp) as Ping Viewer and
 /// ping-python drive it: one `transducer` command a ping, the next angle sent when the previous
-/// ping's device_data arrives. A state machine without I/O (head_driver.hpp).
+/// ping's device_data arrives. A state machine without I/O (head_driver.hpp). The settings'
+/// defaults, their rounding to the head's units and the settings refused: ping360_settings.hpp.
 ///
 /// The conversation:
 ///  1. start(): general_request(protocol_version) and general_request(device_information) (the
