@@ -13,12 +13,10 @@
 
 #include "help_groups.hpp"
 #include "map_options.hpp"
-#include "simulate_command.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/devices/ping360_emulator.hpp"
 #include "sonarmap/live/byte_link.hpp"
 #include "sonarmap/sim/missions.hpp"
-#include "sonarmap/sim/sonar_presets.hpp"
 
 namespace sonarmap::cli {
 namespace {
