@@ -13,10 +13,10 @@
 #   bash scripts/fuzz.sh list                  the harness names
 set -euo pipefail
 cd "$(dirname "$0")/.."
-names=(v4log seanet seanet_protocol ping360 wire_stream mat beam_csv nav_csv nav_stream trajectory scan_graph point_text octomap_bt octomap_ot scene map_beam_csv ros_bag mcap rosbag2 tlog dataflash point_scans gzip_text mavlink_stream)
+names=(v4log seanet seanet_protocol ping360 ping_protocol wire_stream mat beam_csv nav_csv nav_stream trajectory scan_graph point_text octomap_bt octomap_ot scene map_beam_csv ros_bag mcap rosbag2 tlog dataflash point_scans gzip_text mavlink_stream)
 # Files of the hand-made corpus each harness also starts from: tests/corpus/make_corpus.py builds
 # it (binary files generated, text files copied) into build-fuzz/corpus.
-declare -A corpus_glob=([v4log]='*.V4LOG' [seanet]='*.seanet' [seanet_protocol]='*.seanet' [ping360]='*.bin' [wire_stream]='*_small.seanet' [mat]='*.mat' [beam_csv]='beams*.csv' [nav_csv]='nav*.csv' [nav_stream]='nav*.csv'
+declare -A corpus_glob=([v4log]='*.V4LOG' [seanet]='*.seanet' [seanet_protocol]='*.seanet' [ping360]='*.bin' [ping_protocol]='ping*.bin' [wire_stream]='*_small.seanet' [mat]='*.mat' [beam_csv]='beams*.csv' [nav_csv]='nav*.csv' [nav_stream]='nav*.csv'
   [trajectory]='tum_*'
   [scan_graph]='*.graph' [point_text]='*.xyz' [octomap_bt]='*.bt' [octomap_ot]='*.ot'
   [scene]='scene*' [map_beam_csv]='beams*.csv' [ros_bag]='bag*.bag' [mcap]='*.mcap' [rosbag2]='rosbag2*.db3' [tlog]='*.tlog' [dataflash]='*.BIN' [point_scans]='scans*.csv' [gzip_text]='*.csv.gz'

@@ -11,6 +11,7 @@
 #include "cloud_command.hpp"
 #include "convert_command.hpp"
 #include "demo_command.hpp"
+#include "emulate_command.hpp"
 #include "eval_command.hpp"
 #include "eval_trajectory_command.hpp"
 #include "help_groups.hpp"
@@ -50,12 +51,14 @@ int main(int argc, char** argv) {
   sonarmap::cli::EvalArgs eval_args;
   sonarmap::cli::EvalTrajectoryArgs eval_trajectory_args;
   sonarmap::cli::LiveArgs live_args;
+  sonarmap::cli::EmulateArgs emulate_args;
   sonarmap::cli::LocalizeArgs localize_args;
   sonarmap::cli::ViewArgs view_args;
   sonarmap::cli::InfoArgs info_args;
   const std::vector<sonarmap::cli::Command> commands{sonarmap::cli::addMapCommand(app, map_args),
                                                      sonarmap::cli::addInfoCommand(app, info_args),
                                                      sonarmap::cli::addLiveCommand(app, live_args),
+                                                     sonarmap::cli::addEmulateCommand(app, emulate_args),
                                                      sonarmap::cli::addCloudCommand(app, cloud_args),
                                                      sonarmap::cli::addConvertCommand(app, convert_args),
                                                      sonarmap::cli::addSimulateCommand(app, simulate_args),

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "reader_support.hpp"
+#include "sonarmap/formats/ping_protocol.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/seanet_protocol.hpp"
 
@@ -16,6 +17,8 @@ namespace sonarmap {
 namespace {
 
 constexpr std::size_t kMaxBins = 65000;
+/// The source device id of a Ping360's messages (the head of the shared logs sends 2).
+constexpr std::uint8_t kPing360SourceId = 2;
 
 void putU16(std::vector<std::uint8_t>& out, unsigned value) {
   out.push_back(static_cast<std::uint8_t>(value & 0xFF));
@@ -46,7 +49,6 @@ unsigned clockwiseSteps(double bearing_rad, unsigned steps, unsigned ahead_step)
   return static_cast<unsigned>((step % steps + steps) % steps);
 }
 
-/// The beam's gain setting as the wire's byte (0 when unknown).
 /// A Ping360's transmit duration for the beam's pulse, µs (1…65535); 32 µs when the beam has none.
 std::uint16_t transmitDurationUs(const Beam& beam, double sound_speed_m_s) {
   if (!beam.pulse_length_m) return 32;
@@ -54,6 +56,7 @@ std::uint16_t transmitDurationUs(const Beam& beam, double sound_speed_m_s) {
   return static_cast<std::uint16_t>(std::clamp(us, 1.0, 65535.0));
 }
 
+/// The beam's gain setting as the wire's byte (0 when unknown).
 std::uint8_t gainByte(const Beam& beam) { return static_cast<std::uint8_t>(std::clamp(beam.gain_setting.value_or(0), 0, 255)); }
 
 }  // namespace
@@ -88,24 +91,17 @@ std::vector<std::uint8_t> encodePing360Stream(const std::vector<Beam>& beams, co
   std::vector<std::uint8_t> out;
   for (const Beam& beam : beams) {
     checkBins(beam, "encodePing360Stream");
-    const unsigned sample_period = sampleTicks(beam, 25e-9, options.sound_speed_m_s, "encodePing360Stream");
-    const auto bins = static_cast<unsigned>(beam.intensities.size());
-    const std::size_t start = out.size();
-    out.insert(out.end(), {'B', 'R'});
-    putU16(out, 14 + bins);  // payload length
-    putU16(out, 2300);       // device_data
-    out.insert(out.end(), {0x02, 0x00});  // source device, destination
-    out.insert(out.end(), {0x01, gainByte(beam)});  // mode 1, gain setting
-    putU16(out, clockwiseSteps(beam.bearing_rad, 400, 0));
-    putU16(out, transmitDurationUs(beam, options.sound_speed_m_s));
-    putU16(out, sample_period);
-    putU16(out, 750);  // transmit frequency, kHz
-    putU16(out, bins);  // number of samples
-    putU16(out, bins);  // data length
-    out.insert(out.end(), beam.intensities.begin(), beam.intensities.end());
-    unsigned sum = 0;
-    for (std::size_t i = start; i < out.size(); ++i) sum += out[i];
-    putU16(out, sum & 0xFFFF);
+    ping_protocol::DeviceData ping;
+    ping.mode = 1;
+    ping.gain_setting = gainByte(beam);
+    ping.angle_grad = static_cast<std::uint16_t>(clockwiseSteps(beam.bearing_rad, 400, 0));
+    ping.transmit_duration_us = transmitDurationUs(beam, options.sound_speed_m_s);
+    ping.sample_period_ticks =
+        static_cast<std::uint16_t>(sampleTicks(beam, 25e-9, options.sound_speed_m_s, "encodePing360Stream"));
+    ping.transmit_frequency_khz = 750;
+    ping.number_of_samples = static_cast<std::uint16_t>(beam.intensities.size());
+    ping.data = beam.intensities;
+    ping_protocol::appendMessage(out, ping_protocol::kDeviceData, ping.payload(), kPing360SourceId, 0);
   }
   return out;
 }

@@ -311,6 +311,14 @@ def ping360_files():
         "ping_angle_out_of_range.bin": ping360_data(angle=400),
         "ping_zero_sample_period.bin": ping360_data(sample_period=0),
         "ping_cut_short.bin": ping360_data()[:20],
+        # the host's side of the link recorded: general_request and transducer commands, no pings
+        "ping_host_commands.bin": ping_message(6, struct.pack("<H", 4)) + ping_message(
+            2601, struct.pack("<BBHHHHHBB", 1, 1, 0, 107, 888, 750, 1200, 1, 0)),
+        "ping_data_length_short.bin": ping_message(
+            2300, struct.pack("<BBHHHHHH", 1, 0, 0, 32, 80, 750, 3, 3) + b"\x01\x02"),
+        "ping_auto_payload_short.bin": ping_message(2301, struct.pack("<BBHHHH", 1, 0, 0, 32, 80, 750)),
+        "ping_declares_too_long.bin": b"BR\xff\xff\xfc\x08\x02\x00" + bytes(40),
+        "ping_device_information_short.bin": ping_message(4, bytes([2, 1, 3, 1, 1])),
         "viewer_wrong_version.bin": viewer_log([("00:00:00.100", stream)], version=2),
         "viewer_truncated_header.bin": viewer_header()[:40],
         "viewer_no_messages.bin": viewer_log([("00:00:00.100", b"")]),
