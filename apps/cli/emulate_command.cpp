@@ -8,13 +8,15 @@
 #include <cstdio>
 #include <deque>
 #include <filesystem>
+#include <optional>
 
 #include <poll.h>
 
 #include "help_groups.hpp"
 #include "map_options.hpp"
 #include "sonarmap/core/errors.hpp"
-#include "sonarmap/devices/ping360_emulator.hpp"
+#include "sonarmap/devices/autopilot_emulator.hpp"
+#include "sonarmap/devices/heads.hpp"
 #include "sonarmap/live/byte_link.hpp"
 #include "sonarmap/sim/missions.hpp"
 
@@ -70,7 +72,7 @@ struct ServedHead {
 };
 
 void check(const EmulateArgs& args, MsisSimulationOptions& run) {
-  const std::vector<std::string> names = emulatedSonarNames();
+  const std::vector<std::string> names = emulatedHeadNames();
   if (std::find(names.begin(), names.end(), args.sonar) == names.end()) {
     throw ValueError("--sonar " + args.sonar + " cannot be emulated: expected one of " + joined(names, ", "));
   }
@@ -84,20 +86,48 @@ void check(const EmulateArgs& args, MsisSimulationOptions& run) {
   if (!(std::isfinite(args.duration_s) && args.duration_s >= 0.0)) {
     throw ValueError("--duration " + std::to_string(args.duration_s) + " s, expected ≥ 0 (0: until stopped)");
   }
+  if (!(std::isfinite(args.nav_rate_hz) && args.nav_rate_hz > 0.0 && args.nav_rate_hz <= 100.0)) {
+    throw ValueError("--nav-rate must be in (0, 100] Hz");
+  }
+  if (!(std::isfinite(args.time_scale) && args.time_scale >= 0.1 && args.time_scale <= 100.0)) {
+    throw ValueError("--time-scale must be within 0.1 .. 100");
+  }
+  if (args.no_position && args.mavlink.empty()) throw ValueError("--no-position shapes --mavlink's navigation: give --mavlink");
   checkMissionScene(args, args.scene);
   run = toSimulationOptions(args, args.scene);
 }
 
+/// The vehicle's navigation sent as ArduSub sends it: every 1 / rate of the emulated time, the pose
+/// of the trajectory then; its boot clock is the wall clock, as the receiving end times arrivals.
+struct ServedAutopilot {
+  ServedAutopilot(const std::string& spec, const AutopilotEmulatorOptions& options) : link(spec, 115200), autopilot(options) {}
+  ByteLink link;
+  AutopilotEmulator autopilot;
+  double next_s = 0.0;   ///< emulated time of the next update
+  std::size_t updates = 0, dropped = 0;
+};
+
 void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
-  const Scene scene = sceneOf(args.scene, options.head);
+  EmulatedHeadPlace place;
+  place.scene = sceneOf(args.scene, options.head);
+  place.trajectory = options.trajectory;
+  place.sonar_to_body = options.sonar_to_body;
+  place.seed = options.seed;
+  place.sound_speed_m_s = args.sound_speed_m_s;
   std::vector<std::unique_ptr<ServedHead>> heads;
   for (const std::string& spec : args.serial) {
-    heads.push_back(std::make_unique<ServedHead>(
-        spec, args.baud, makeHeadEmulator(args.sonar, scene, options, args.baud, args.sound_speed_m_s)));
+    place.baud = args.baud;
+    heads.push_back(std::make_unique<ServedHead>(spec, args.baud, makeHeadEmulator(args.sonar, place)));
   }
   for (const std::string& spec : args.udp) {
-    heads.push_back(
-        std::make_unique<ServedHead>(spec, args.baud, makeHeadEmulator(args.sonar, scene, options, 0, args.sound_speed_m_s)));
+    place.baud = 0;
+    heads.push_back(std::make_unique<ServedHead>(spec, args.baud, makeHeadEmulator(args.sonar, place)));
+  }
+  std::optional<ServedAutopilot> autopilot;
+  if (!args.mavlink.empty()) {
+    AutopilotEmulatorOptions autopilot_options;
+    autopilot_options.position = !args.no_position;
+    autopilot.emplace(args.mavlink, autopilot_options);
   }
   g_stop = 0;
   catchStopSignals();
@@ -105,18 +135,26 @@ void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
     std::fprintf(stderr, "sonarmap: emulate: %s in %s (built for %g m) on %s\n", args.sonar.c_str(), args.scene.c_str(),
                  options.head.range_m, served->link.description().c_str());
   }
+  if (autopilot) {
+    std::fprintf(stderr, "sonarmap: emulate: the vehicle's navigation as MAVLink at %g Hz%s to %s\n", args.nav_rate_hz,
+                 args.no_position ? " (attitude and depth: no position)" : "", autopilot->link.description().c_str());
+  }
   std::fflush(stderr);
   const Clock::time_point start = Clock::now();
-  const auto now_s = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const auto wall_s = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  // The emulated clock: the heads' and the trajectory's, args.time_scale times the wall clock.
+  const auto now_s = [&] { return args.time_scale * wall_s(); };
   std::array<std::uint8_t, 65536> buffer{};
   while (g_stop == 0 && (args.duration_s == 0.0 || now_s() < args.duration_s)) {
     double wait_s = 0.02;  // the heads are polled at least this often (auto-transmit pings)
     for (const auto& served : heads) {
       if (!served->due.empty()) wait_s = std::min(wait_s, std::max(0.0, served->due.front().at_s - now_s()));
     }
+    if (autopilot) wait_s = std::min(wait_s, std::max(0.0, autopilot->next_s - now_s()));
     std::vector<pollfd> waiting;
     for (const auto& served : heads) waiting.push_back({served->link.fd(), POLLIN, 0});
-    const int ready = ::poll(waiting.data(), waiting.size(), static_cast<int>(std::ceil(wait_s * 1000.0)));
+    const int ready =
+        ::poll(waiting.data(), waiting.size(), static_cast<int>(std::ceil(wait_s / args.time_scale * 1000.0)));
     const double now = now_s();
     for (std::size_t i = 0; i < heads.size(); ++i) {
       ServedHead& served = *heads[i];
@@ -127,6 +165,12 @@ void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
       served.queue(served.head->poll(now));
       served.send(now);
     }
+    if (autopilot && now >= autopilot->next_s) {
+      NavSample fix = options.trajectory(now);
+      if (!autopilot->link.write(autopilot->autopilot.frames(fix, wall_s()))) ++autopilot->dropped;
+      ++autopilot->updates;
+      autopilot->next_s = std::max(autopilot->next_s + 1.0 / args.nav_rate_hz, now);
+    }
   }
   for (const auto& served : heads) {
     const std::string dropped =
@@ -135,27 +179,18 @@ void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
                  served->link.description().c_str(), served->head->beamsSent(), dropped.c_str(),
                  served->head->settingsText().c_str());
   }
+  if (autopilot) {
+    std::fprintf(stderr, "sonarmap: emulate: %s: %zu navigation updates sent\n", autopilot->link.description().c_str(),
+                 autopilot->updates);
+  }
 }
 
 }  // namespace
 
-std::vector<std::string> emulatedSonarNames() { return {"ping360", "ping360-2m", "ping360-5m"}; }
-
-std::unique_ptr<HeadEmulator> makeHeadEmulator(const std::string& sonar, const Scene& scene,
-                                               const MsisSimulationOptions& run, unsigned baud, double sound_speed_m_s) {
-  if (sonar.starts_with("ping360")) {
-    Ping360EmulatorOptions options;
-    options.baud = baud;
-    options.sound_speed_m_s = sound_speed_m_s;
-    return std::make_unique<Ping360Emulator>(scene, run.trajectory, run.sonar_to_body, run.seed, options);
-  }
-  throw ValueError("no emulator for the sonar '" + sonar + "': expected one of " + joined(emulatedSonarNames(), ", "));
-}
-
 Command addEmulateCommand(CLI::App& app, EmulateArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "emulate", "Emulate a sonar head on a pseudo-terminal or UDP, its pings simulated in a scene");
-  cmd->add_option("--sonar", args.sonar, "Head: " + joined(emulatedSonarNames(), " | ") + " (scenes built for its range)")
+  cmd->add_option("--sonar", args.sonar, "Head: " + joined(emulatedHeadNames(), " | ") + " (scenes built for its range)")
       ->capture_default_str()
       ->group(help_group::kInput);
   cmd->add_option("--scene", args.scene, "Built-in scene or scene file")->capture_default_str()->group(help_group::kInput);
@@ -180,6 +215,16 @@ Command addEmulateCommand(CLI::App& app, EmulateArgs& args) {
       ->group(help_group::kOutput);
   cmd->add_option("--udp", args.udp, "Serve a head on udp://:PORT (answers the last peer)")->group(help_group::kOutput);
   cmd->add_option("--baud", args.baud, "Serial rate the replies take to cross (bits/s; UDP: no delay)")
+      ->capture_default_str()
+      ->group(help_group::kOutput);
+  cmd->add_option("--mavlink", args.mavlink, "Send the vehicle's navigation as ArduSub does to this link (udp://HOST:PORT)")
+      ->group(help_group::kOutput);
+  cmd->add_option("--nav-rate", args.nav_rate_hz, "HZ: navigation updates a second")
+      ->capture_default_str()
+      ->group(help_group::kOutput);
+  cmd->add_flag("--no-position", args.no_position, "The vehicle has no DVL: attitude and depth only, no LOCAL_POSITION_NED")
+      ->group(help_group::kOutput);
+  cmd->add_option("--time-scale", args.time_scale, "The dive runs this many times faster than the wall clock")
       ->capture_default_str()
       ->group(help_group::kOutput);
   cmd->add_option("--duration", args.duration_s, "Stop after SECONDS (0: at Ctrl-C or SIGTERM)")

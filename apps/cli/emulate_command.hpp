@@ -26,18 +26,14 @@ struct EmulateArgs : SimulationArguments {
   unsigned baud = 115200;           ///< serial links: the rate replies take to cross (UDP: none)
   double sound_speed_m_s = 1500.0;  ///< the water's
   double duration_s = 0.0;          ///< stop after this long; 0: at SIGINT or SIGTERM
+  std::string mavlink;              ///< --mavlink: a link to send the vehicle's navigation to as ArduSub does
+  double nav_rate_hz = 10.0;        ///< --nav-rate: navigation updates per second
+  bool no_position = false;         ///< --no-position: no LOCAL_POSITION_NED (a vehicle without a DVL)
+  double time_scale = 1.0;          ///< --time-scale: the emulated dive runs this many times faster
 };
 
 /// Adds the `emulate` subcommand to `app`; its options fill `args`.
 Command addEmulateCommand(CLI::App& app, EmulateArgs& args);
 
-/// Preset names `sonarmap emulate --sonar` takes: "ping360", "ping360-2m", "ping360-5m".
-std::vector<std::string> emulatedSonarNames();
-
-/// The emulated head of preset `sonar` in `scene`, on a link of `baud` bits/s (0: UDP), the
-/// vehicle on `run`'s trajectory with `run`'s mounting and seed.
-/// @throws ValueError naming the heads that can be emulated, for another preset.
-std::unique_ptr<HeadEmulator> makeHeadEmulator(const std::string& sonar, const Scene& scene,
-                                               const MsisSimulationOptions& run, unsigned baud, double sound_speed_m_s);
 
 }  // namespace sonarmap::cli

@@ -175,9 +175,8 @@ void printTopics(const BagTopics& bag) {
   }
 }
 
-void printText(const LogSummary& s, const InfoArgs& args, LogFormat format, const BagTopics& bag,
+void printText(const LogSummary& s, const InfoArgs& args, LogFormat format, const NominalBeam& beam, const BagTopics& bag,
                const InfoNavigation& nav_info) {
-  const NominalBeam beam = nominalBeam(format);
   std::printf("%s: %s log (nominal beam %.3g° wide x %.3g° tall)\n",
               std::filesystem::path(args.input).filename().c_str(), std::string(logFormatName(format)).c_str(),
               beam.width_rad * kDegPerRad, beam.vertical_aperture_rad * kDegPerRad);
@@ -212,9 +211,8 @@ nlohmann::json scaleJson(const RangeScale& scale) {
           {"first_beam", scale.first_beam}};
 }
 
-nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat format, const BagTopics& bag,
-                      const InfoNavigation& nav_info) {
-  const NominalBeam beam = nominalBeam(format);
+nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat format, const NominalBeam& beam,
+                      const BagTopics& bag, const InfoNavigation& nav_info) {
   nlohmann::json sweeps = nlohmann::json::array();
   for (const SweepSummary& w : s.sweeps) {
     sweeps.push_back({{"first_beam", w.first_beam}, {"beams", w.beams}, {"kind", sweepKindName(w.kind)},
@@ -321,9 +319,9 @@ void runInfo(const InfoArgs& args) {
   }
   const InfoNavigation nav_info{navigation ? &*navigation : nullptr, log.clock_utc_s};
   if (args.json) {
-    std::printf("%s\n", toJson(summary, args, format, bag, nav_info).dump(2).c_str());
+    std::printf("%s\n", toJson(summary, args, format, nominalBeam(format, log), bag, nav_info).dump(2).c_str());
   } else {
-    printText(summary, args, format, bag, nav_info);
+    printText(summary, args, format, nominalBeam(format, log), bag, nav_info);
   }
 }
 

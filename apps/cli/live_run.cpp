@@ -234,7 +234,7 @@ void runReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::
   const LogFormat format = inputFormat(args.map.input, args.map.format);
   // Read beam by beam: a replay holds no more of the log than a sonar on the wire would send.
   std::unique_ptr<BeamSource> source = openBeamSource(args.map.input, format, args.map.log_read);
-  const MapperOptions sonar_options = withSonarBeam(options, args.map, format);
+  const MapperOptions sonar_options = withSonarBeam(options, args.map, nominalBeam(format, source->header()));
   const std::optional<AlignedNavigation> navigation = navigationFor(
       args.map.input, format, source->header(), args.map.nav_file, args.map.nav_topic, args.map.nav_time_offset_s);
   // One pass before anything is mapped or written: the file's errors and skips, as reading it

@@ -138,7 +138,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   } else {
     source = openBeamSource(args.input, format, args.log_read);
   }
-  const MapperOptions sonar_options = withSonarBeam(options, args, format);
+  const MapperOptions sonar_options = withSonarBeam(options, args, nominalBeam(format, source->header()));
   // The navigation needs only the log's clock; the survey then counts the beams within its span.
   std::optional<AlignedNavigation> navigation = navigationFor(args.input, format, source->header(), args.nav_file,
                                                                     args.nav_topic, args.nav_time_offset_s, args.log_read.msg_path);

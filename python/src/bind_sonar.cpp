@@ -95,7 +95,7 @@ PySonarLog readLog(const std::filesystem::path& file, const std::string& format,
     out.log = readSonarLog(path, log_format, LogReadOptions{sonar_topic, bearing_unit, bearing_direction, utc_offset_s, msg_path});
   }
   out.format = std::string(logFormatName(log_format));
-  out.beam = nominalBeam(log_format);
+  out.beam = nominalBeam(log_format, out.log);
   return out;
 }
 

@@ -17,7 +17,7 @@ namespace {
 
 const std::string kSonarBeam = detail::ros2SchemaWithHeader(
     "std_msgs/Header header\nfloat64 bearing_rad\nfloat64 bin_length_m\nint16 gain_setting\nfloat64 pulse_length_m\n"
-    "float64 intensity_span_db\nuint8[] intensities\n");
+    "float64 intensity_span_db\nfloat64 beam_width_rad\nfloat64 vertical_aperture_rad\nuint8[] intensities\n");
 const std::string kNavFix = detail::ros2SchemaWithHeader(
     "std_msgs/Header header\nfloat64 north_m\nfloat64 east_m\nfloat64 down_m\nfloat64 roll_rad\nfloat64 pitch_rad\n"
     "float64 yaw_rad\n");
@@ -53,6 +53,7 @@ struct DiveRecorder::Writer {
   std::ofstream file;
   detail::McapRecordWriter records;
   std::uint16_t sonar = 0, nav = 0;
+  NominalBeam beam;  ///< written with each beam (0, 0: not said)
 };
 
 DiveRecorder::DiveRecorder(std::string path, const DiveRecorderOptions& options) : path_(std::move(path)) {
@@ -61,6 +62,7 @@ DiveRecorder::DiveRecorder(std::string path, const DiveRecorderOptions& options)
     if (!probe) throw FileError("cannot create '" + partialPath() + "' to record the dive");
   }
   writer_ = std::make_unique<Writer>(partialPath(), options);
+  writer_->beam = options.nominal_beam.value_or(NominalBeam{});
 }
 
 DiveRecorder::~DiveRecorder() {
@@ -92,6 +94,8 @@ void DiveRecorder::addBeam(const Beam& beam) {
   message.put<std::int16_t>(static_cast<std::int16_t>(beam.gain_setting.value_or(-1)));
   message.put<double>(beam.pulse_length_m.value_or(0.0));
   message.put<double>(beam.intensity_span_db.value_or(0.0));
+  message.put<double>(writer_->beam.width_rad);
+  message.put<double>(writer_->beam.vertical_aperture_rad);
   message.bytes(beam.intensities);
   writer_->records.message(writer_->sonar, stamp.nanoseconds(), message.bytes());
   ++beams_;

@@ -105,6 +105,10 @@ NominalBeam nominalBeam(LogFormat format) {
   return {3.0 * kDegree, 35.0 * kDegree};
 }
 
+NominalBeam nominalBeam(LogFormat format, const SonarLog& header) {
+  return header.nominal_beam.value_or(nominalBeam(format));
+}
+
 std::string_view logFormatName(LogFormat format) {
   for (const LogFormatEntry& entry : kFormats) {
     if (entry.format == format) return entry.name;

@@ -38,6 +38,8 @@ constexpr std::array<std::string_view, 2> kIntensityNames{"intensity", "value"};
 constexpr std::array<std::string_view, 2> kGainNames{"gain_setting", "gain"};
 constexpr std::array<std::string_view, 1> kPulseLengthNames{"pulse_length_m"};
 constexpr std::array<std::string_view, 1> kIntensitySpanNames{"intensity_span_db"};
+constexpr std::array<std::string_view, 1> kBeamWidthNames{"beam_width_rad"};
+constexpr std::array<std::string_view, 1> kVerticalApertureNames{"vertical_aperture_rad"};
 
 bool isNumber(const std::string& type) {
   return RosSchema::isBuiltin(type) && type != "string" && type != "time" && type != "duration";
@@ -59,6 +61,7 @@ const RosField* fieldNamed(const std::vector<RosField>& fields, const std::array
 struct SonarFields {
   std::string bearing, bin_length, range, intensities, element_intensity;  // field names; empty: absent
   std::string gain, pulse_length, intensity_span;                          // optional; empty: absent
+  std::string beam_width, vertical_aperture;                               // the log's beam; optional
   bool bearing_in_degrees = false, bearing_in_radians = false;             // said by the name
   bool header = false;
 };
@@ -95,6 +98,12 @@ std::optional<SonarFields> sonarFields(const RosSchema& schema) {
   if (const RosField* gain = fieldNamed(fields, kGainNames, integer)) found.gain = gain->name;
   if (const RosField* pulse = fieldNamed(fields, kPulseLengthNames, scalarNumber)) found.pulse_length = pulse->name;
   if (const RosField* span = fieldNamed(fields, kIntensitySpanNames, scalarNumber)) found.intensity_span = span->name;
+  const RosField* width = fieldNamed(fields, kBeamWidthNames, scalarNumber);
+  const RosField* aperture = fieldNamed(fields, kVerticalApertureNames, scalarNumber);
+  if (width != nullptr && aperture != nullptr) {
+    found.beam_width = width->name;
+    found.vertical_aperture = aperture->name;
+  }
   for (const RosField& field : fields) {
     if (field.name == "header" && field.type == "std_msgs/Header" && field.array < 0) found.header = true;
   }
@@ -105,6 +114,7 @@ std::optional<SonarFields> sonarFields(const RosSchema& schema) {
 struct RawBeam {
   double time_s = 0.0, bearing = 0.0;
   Beam beam;
+  std::optional<NominalBeam> nominal_beam;  ///< when the message records its sonar's beam
 };
 
 RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record_time_s) {
@@ -154,6 +164,12 @@ RawBeam beamOf(const RosValue& message, const SonarFields& fields, double record
   if (!fields.intensity_span.empty()) {
     if (const std::optional<double> span = number(fields.intensity_span); span && *span > 0.0) {
       raw.beam.intensity_span_db = *span;
+    }
+  }
+  if (!fields.beam_width.empty()) {
+    const std::optional<double> width = number(fields.beam_width), aperture = number(fields.vertical_aperture);
+    if (width && aperture && *width > 0.0 && *width < std::numbers::pi && *aperture > 0.0 && *aperture < std::numbers::pi) {
+      raw.nominal_beam = NominalBeam{*width, *aperture};
     }
   }
   raw.time_s = fields.header ? detail::headerTime(message, record_time_s) : record_time_s;
@@ -314,7 +330,10 @@ class RosBagBeamSource final : public BeamSource {
     while (cursor_->next(message, time_s)) {
       try {
         RawBeam raw = beamOf(message, *fields_, time_s);
-        if (++pass_beams_ == 1 && fields_->header) header_.frame_id = detail::headerFrame(message);
+        if (++pass_beams_ == 1) {
+          if (fields_->header) header_.frame_id = detail::headerFrame(message);
+          header_.nominal_beam = raw.nominal_beam;
+        }
         return raw;
       } catch (const Error& error) {
         cursor_->reject(error.what());

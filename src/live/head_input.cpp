@@ -11,7 +11,7 @@ namespace sonarmap::live {
 
 HeadInput::HeadInput(const std::string& spec, unsigned baud, LogFormat format, bool drive, const HeadSettings& settings)
     : link_(spec, baud), decoder_(format, {settings.sound_speed_m_s, 0.0}, spec), buffer_(65536) {
-  if (drive && link_.speaksFirst()) driver_ = makeHeadDriver(format, settings);
+  if (drive && link_.speaksFirst()) driver_ = makeHeadDriver(format, settings, link_.serial() ? baud : 0);
 }
 
 void HeadInput::send(const std::vector<std::uint8_t>& bytes) {

@@ -72,7 +72,9 @@ LiveSession::LiveSession(LiveInput input, LiveOutputs outputs, LiveMappingOption
   }
   if (!input.nav.empty()) in.nav = std::make_unique<live::NavInput>(input.nav, input.baud);
   if (!outputs_.record_path.empty()) {
-    in.recorder = std::make_unique<DiveRecorder>(outputs_.record_path);
+    DiveRecorderOptions record;
+    record.nominal_beam = NominalBeam{mapping.mapper.beam_width_rad, mapping.mapper.vertical_aperture_rad};
+    in.recorder = std::make_unique<DiveRecorder>(outputs_.record_path, record);
     if (!outputs_.record_metadata.empty()) in.recorder->addMetadata("sonarmap.run", outputs_.record_metadata);
     for (const NavSample& fix : known_fixes) in.recorder->addNavFix(fix);
   }

@@ -8,7 +8,9 @@
 ///  - `sonarmap_msgs/msg/SonarBeam` on /sonar/beam: `std_msgs/Header header` (the beam's time),
 ///    `float64 bearing_rad` (sonar frame, clockwise from ahead, beam.hpp), `float64 bin_length_m`,
 ///    `int16 gain_setting` (the head's own gain setting; −1: not reported), `float64
-///    pulse_length_m` and `float64 intensity_span_db` (0: not reported), `uint8[] intensities`.
+///    pulse_length_m` and `float64 intensity_span_db` (0: not reported), `float64 beam_width_rad`
+///    and `float64 vertical_aperture_rad` (the beam the run was mapped with, so that `map` of the
+///    file maps with it; 0: not said), `uint8[] intensities`.
 ///  - `sonarmap_msgs/msg/NavFix` on /navigation/fix: `std_msgs/Header header`, `float64 north_m`,
 ///    `east_m`, `down_m` (NED, metres), `float64 roll_rad`, `pitch_rad`, `yaw_rad` (body FRD in NED,
 ///    Z-Y-X, navigation.hpp).
@@ -26,6 +28,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "sonarmap/formats/mcap_writer.hpp"
@@ -40,6 +43,8 @@ struct DiveRecorderOptions {
   std::string nav_topic = "/navigation/fix";
   McapCompression compression = McapCompression::kZstd;
   std::size_t chunk_bytes = 1u << 20;  ///< a chunk is written once its messages reach this many bytes
+  /// The beam written with each beam (the one it is mapped with); unset: 0, not said.
+  std::optional<NominalBeam> nominal_beam;
 };
 
 /// Writes a dive's beams, fixes and settings as they come (see the file's comment).

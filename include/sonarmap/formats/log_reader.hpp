@@ -68,17 +68,14 @@ std::string_view logFormatName(LogFormat format);
 /// `.bin`, `.bag`, `.mcap`, `.db3`, and a folder (a rosbag2 log); std::nullopt for any other.
 std::optional<LogFormat> logFormatOfPath(const std::string& path);
 
-/// The beam of the sonar a format comes from, as its maker states it (−3 dB widths).
-struct NominalBeam {
-  double width_rad = 0.0;              ///< horizontal beam width, radians
-  double vertical_aperture_rad = 0.0;  ///< vertical beam width, radians
-};
-
 /// The nominal beam of the sonar that writes `format`: Blue Robotics Ping360 (ping360) 2° × 25°
 /// (Ping360 datasheet); Tritech heads (mat: the CRAS Micron; v4log, seanet: SeaNet, whose Micron
 /// and SeaKing DST are 3° wide, 35° and about 40° tall), the beam CSV and the ROS bag (no sonar
 /// named) 3° × 35°, the Micron's and the mapper's defaults.
 NominalBeam nominalBeam(LogFormat format);
+/// The beam of the sonar of a log read in `format` whose header is `header`: the one it records
+/// (SonarLog::nominal_beam), else nominalBeam(format).
+NominalBeam nominalBeam(LogFormat format, const SonarLog& header);
 
 /// Reads the beams of a sonar log in the format its extension names (logFormatOfPath), with each
 /// reader's default options (V4LogOptions, CaptureOptions: 1500 m/s; raw captures have no clock,

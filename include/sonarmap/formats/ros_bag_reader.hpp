@@ -14,7 +14,9 @@
 ///    `samples` or `echo`, or an array of messages holding a number named `intensity` or `value`
 ///    (micron_driver_ros/ScanLine's `IntensityBin[] bins`); values clamped to 0…255;
 ///  - when present, what the head reported: an integer `gain_setting` or `gain` (Beam::gain_setting;
-///    negative: not reported), `pulse_length_m` and `intensity_span_db` (unset unless > 0).
+///    negative: not reported), `pulse_length_m` and `intensity_span_db` (unset unless > 0); and the
+///    sonar's beam, `beam_width_rad` and `vertical_aperture_rad` (SonarLog::nominal_beam, from the
+///    first beam; unset unless both are in (0, π)).
 /// Each beam's time is its `header.stamp` (seconds since the epoch) when the message has a
 /// std_msgs/Header with a stamp, else the time the bag recorded it. Units and direction of the
 /// bearing: `_rad` and `_deg` say it; otherwise degrees when any bearing of the topic exceeds 2π,

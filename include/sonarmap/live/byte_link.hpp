@@ -45,6 +45,8 @@ class ByteLink {
   /// a HOST:PORT (false for a listening link, which answers whoever spoke last, standard input and
   /// files). A head is driven only over such a link: a Ping360 or a SeaNet head never speaks first.
   bool speaksFirst() const { return writable_ && !listening_; }
+  /// Whether this is a serial device or a pseudo-terminal (bytes take their time at a baud rate).
+  bool serial() const { return writable_ && !socket_; }
 
   /// Reads what is available (one datagram for UDP) into `buffer`: the byte count; 0 at the end of
   /// the stream (end of file, the TCP peer gone, a serial line hung up); -1 when interrupted or

@@ -37,6 +37,12 @@ struct Beam {
   std::optional<double> pulse_length_m{};
 };
 
+/// The beam of a sonar as its maker states it (−3 dB widths).
+struct NominalBeam {
+  double width_rad = 0.0;              ///< horizontal beam width, radians
+  double vertical_aperture_rad = 0.0;  ///< vertical beam width, radians
+};
+
 /// Beams read from a file, in recording order, with the count of beams the reader rejected.
 struct SonarLog {
   std::vector<Beam> beams;
@@ -56,6 +62,9 @@ struct SonarLog {
   /// The frame the file names for the sonar (a ROS log's header frame_id: where /tf_static places
   /// it on the vehicle); empty when it names none.
   std::string frame_id;
+  /// The sonar's beam when the file records it (a recorded dive's messages: dive_recorder.hpp);
+  /// unset otherwise (the format's, nominalBeam, applies).
+  std::optional<NominalBeam> nominal_beam;
 };
 
 }  // namespace sonarmap
