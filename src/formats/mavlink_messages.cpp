@@ -91,7 +91,7 @@ MavlinkPayload toMavlinkPayload(const MavlinkGlobalPositionInt& m) {
 
 MavlinkPayload toMavlinkPayload(const MavlinkScaledPressure& m) {
   if (!isPressure(m.message_id)) {
-    throw ValueError("toMavlinkPayload: scaled pressure message id " + std::to_string(m.message_id) +
+    throw ValueError("a scaled pressure message has id " + std::to_string(m.message_id) +
                      ", expected 29 (SCALED_PRESSURE), 137 (SCALED_PRESSURE2) or 143 (SCALED_PRESSURE3)");
   }
   return Writer(m.message_id)

@@ -132,11 +132,16 @@ TEST_F(CliEmulate, APing360OnUdpAnswersTheLastPeer) {
 }
 
 TEST_F(CliEmulate, ArgumentsItCannotServeAreRefused) {
-  ProgramRun run = this->run({"emulate", "--sonar", "micron", "--udp", "udp://:0"});
+  ProgramRun run = this->run({"emulate", "--sonar", "imagenex-881a", "--udp", "udp://:0"});
   expectError(run, 2);
-  EXPECT_NE(run.err.find("--sonar micron cannot be emulated: expected one of ping360, ping360-2m, ping360-5m"),
+  EXPECT_NE(run.err.find("--sonar imagenex-881a cannot be emulated: expected one of ping360, ping360-2m, ping360-5m, "
+                         "micron, seaking-30, seaking-50"),
             std::string::npos)
       << run.err;
+  run = this->run({"emulate", "--udp", "udp://:0", "--time-scale", "1000"});
+  expectError(run, 2);
+  run = this->run({"emulate", "--udp", "udp://:0", "--no-position"});
+  expectError(run, 2);
   run = this->run({"emulate"});
   expectError(run, 2);
   EXPECT_NE(run.err.find("no link to serve the head on"), std::string::npos) << run.err;

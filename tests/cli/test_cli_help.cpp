@@ -21,7 +21,7 @@ using cliHelpGroups = CliTest;
 constexpr std::size_t kLongestHelp = 120;
 
 /// The groups in the order every command's help lists them.
-const Names kGroupOrder{"Options", "Input", "Detection", "Mapping", "3D", "Navigation", "Localization", "Scoring",
+const Names kGroupOrder{"Options", "Input", "Head", "Detection", "Mapping", "3D", "Navigation", "Localization", "Scoring",
                         "Output"};
 
 /// A command's help, section by section: "Options" → its lines, one per option.
