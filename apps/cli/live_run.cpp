@@ -47,6 +47,14 @@ void catchStopSignals() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
+/// "12.3 ms", or "-" for none (NaN: no beam reached the stage in the period).
+std::string milliseconds(double seconds) {
+  if (!std::isfinite(seconds)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f ms", 1000.0 * seconds);
+  return text;
+}
+
 /// A run's progress on stderr: the head's settings, notes, a status line a second.
 class ConsoleObserver final : public LiveObserver {
  public:
@@ -63,9 +71,9 @@ class ConsoleObserver final : public LiveObserver {
     if (quiet_) return;
     std::fprintf(stderr,
                  "sonarmap: live: %.0f s, %zu bytes, %zu beams (%.1f/s), %zu skipped, %zu sweeps, %zu map nodes, "
-                 "%zu fixes, latency median %.1f ms shown, %.1f ms committed\n",
+                 "%zu fixes, latency median %s shown, %s committed\n",
                  s.elapsed_s, s.bytes, s.beams, s.beams_per_s, s.skipped, s.sweeps, s.map_nodes, s.fixes,
-                 1000.0 * s.shown_latency_s, 1000.0 * s.committed_latency_s);
+                 milliseconds(s.shown_latency_s).c_str(), milliseconds(s.committed_latency_s).c_str());
   }
 
  private:

@@ -1,0 +1,229 @@
+/// End-to-end tests of `sonarmap live` driving a head: an emulated Ping360 (`sonarmap emulate`) over
+/// UDP as a Ping360 Ethernet or BlueOS's ping proxy serves it (live sends to HOST:PORT and reads the
+/// replies), an emulated Micron over a pseudo-terminal (a serial line), the settings asked for
+/// reaching the head and the recording; the autopilot's navigation as MAVLink, sent by the emulator
+/// and by npm's node-mavlink (a real MAVLink implementation), placing the beams, the map of the
+/// recording equal to the live map; and SIGINT ending a run whole, the head told to stop.
+
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <thread>
+
+#include "cli_fixture.hpp"
+#include "child_process.hpp"
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/ros_bag_navigation.hpp"
+
+#ifndef SONARMAP_INTEROP_DIR
+#error "SONARMAP_INTEROP_DIR names tests/interop (node-mavlink)"
+#endif
+
+namespace sonarmap::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+class CliLiveHeads : public CliTest {
+ protected:
+  /// The UDP port a child printed after "on udp://:" (an emulator) or "reading udp://:" (live).
+  static int printedPort(Child& child, const std::string& before) {
+    const std::regex line(before + "udp://:([0-9]+)");
+    for (int i = 0; i < 2000; ++i) {
+      std::smatch found;
+      const std::string err = child.err();
+      if (std::regex_search(err, found, line)) return std::stoi(found[1].str());
+      std::this_thread::sleep_for(5ms);
+    }
+    ADD_FAILURE() << child.err();
+    return 0;
+  }
+  /// A UDP port free now (bound and released): for a child that must be told where to send.
+  static int freeUdpPort() {
+    const int probe = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::bind(probe, reinterpret_cast<sockaddr*>(&address), sizeof address);
+    socklen_t size = sizeof address;
+    ::getsockname(probe, reinterpret_cast<sockaddr*>(&address), &size);
+    ::close(probe);
+    return ntohs(address.sin_port);
+  }
+  /// Runs `live` (args) for `seconds`, then SIGINT: its run.
+  ProgramRun liveFor(const Names& args, double seconds) {
+    fs::create_directories(root_ / "live");
+    Child live(args, root_ / "live", -1);
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    ::kill(live.pid(), SIGINT);
+    return live.wait();
+  }
+  static std::size_t numberBefore(const std::string& text, const std::string& word) {
+    std::smatch found;
+    if (!std::regex_search(text, found, std::regex("([0-9]+) " + word))) return 0;
+    return std::stoul(found[1].str());
+  }
+};
+
+// A Ping360 reached at HOST:PORT over UDP (a Ping360 Ethernet, BlueOS's ping proxy on 9092): live
+// commands it with the settings asked for, the head pings only then, and the recording holds them.
+TEST_F(CliLiveHeads, DrivesAPing360AtAnUdpAddress) {
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  const fs::path recording = out_ / "dive.mcap";
+  const ProgramRun run = liveFor({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range",
+                                  "4", "--gain", "high", "--sector", "180", "--step", "1.8", "--record",
+                                  recording.string(), "-o", (out_ / "live.bt").string()},
+                                 3.0);
+  ::kill(emulator.pid(), SIGTERM);
+  const ProgramRun emulated = emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("(driving the head)"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("head: Ping360 (firmware"), std::string::npos) << run.err;
+  EXPECT_TRUE(std::regex_search(run.err, std::regex("settings: Ping360: range_m 3\\.98"))) << run.err;  // 1200 samples of 4.4 µs
+  EXPECT_NE(run.err.find("gain high"), std::string::npos) << run.err;
+  EXPECT_GT(numberBefore(run.out, "beams used"), 20U) << run.out;
+  EXPECT_GT(numberBefore(run.out, "obstacles"), 0U) << run.out;
+  // What the head sent is what was asked: its gain, a bin of 4 m / 1200 samples, bearings within the
+  // sector ahead (±90° of bearing 0, with a step of 2 gradians).
+  const SonarLog log = readSonarLog(recording.string());
+  ASSERT_GT(log.beams.size(), 20U);
+  for (const Beam& beam : log.beams) {
+    EXPECT_EQ(beam.gain_setting, 2);
+    EXPECT_NEAR(beam.bin_length_m * static_cast<double>(beam.intensities.size()), 4.0, 0.05);
+    const double from_ahead_deg = std::remainder(beam.bearing_rad, 2.0 * std::numbers::pi) * 180.0 / std::numbers::pi;
+    EXPECT_LE(std::abs(from_ahead_deg), 90.0 + 1e-6);
+  }
+  // Told to stop: the emulated head's motor is off, and it answered every ping it was asked for.
+  EXPECT_NE(emulated.err.find("pings sent"), std::string::npos) << emulated.err;
+  EXPECT_GE(numberBefore(emulated.err, "pings sent"), log.beams.size());
+  ASSERT_TRUE(fs::exists(out_ / "live.bt"));
+}
+
+// A Tritech Micron on a serial line (a pseudo-terminal): rebooted, asked its version, configured,
+// then one mtSendData per beam.
+TEST_F(CliLiveHeads, DrivesAMicronOnASerialLine) {
+  const fs::path line = root_ / "micron";
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "micron", "--scene", "tank", "--serial", "pty:" + line.string(), "--duration",
+                  "60"},
+                 root_ / "emu", -1);
+  for (int i = 0; i < 2000 && !fs::exists(line); ++i) std::this_thread::sleep_for(5ms);
+  ASSERT_TRUE(fs::exists(line)) << emulator.err();
+  const ProgramRun run = liveFor({"live", line.string(), "--format", "seanet", "--range", "5", "--gain", "45", "-o",
+                                  (out_ / "live.bt").string()},
+                                 5.0);
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("settings: Tritech SeaNet head: range_m 5"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("gain 45%"), std::string::npos) << run.err;
+  EXPECT_GT(numberBefore(run.out, "beams used"), 20U) << run.out;
+  EXPECT_GT(numberBefore(run.out, "obstacles"), 0U) << run.out;
+}
+
+// The emulator flies a straight line and sends its navigation as ArduSub does: the beams are placed
+// by it (none without navigation but the few before the first fix), and `map` of the recording
+// gives the live map byte for byte.
+TEST_F(CliLiveHeads, MavlinkNavigationPlacesTheBeamsAndTheRecordingMapsToTheLiveMap) {
+  const int nav_port = freeUdpPort();
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--speed", "0.2",
+                  "--heading", "45", "--mavlink", "udp://127.0.0.1:" + std::to_string(nav_port), "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  const fs::path recording = out_ / "dive.mcap";
+  const ProgramRun run = liveFor({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range",
+                                  "4", "--nav-stream", "udp://:" + std::to_string(nav_port), "--resolution", "0.05",
+                                  "--record", recording.string(), "-o", (out_ / "live.bt").string()},
+                                 4.0);
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("MAVLink (a frame with a matching checksum)"), std::string::npos) << run.err;
+  const std::size_t used = numberBefore(run.out, "beams used");
+  EXPECT_GT(used, 20U) << run.out;
+  // The decoder learns for a second which messages the vehicle sends before its first fix.
+  EXPECT_LT(numberBefore(run.out, "without navigation"), used / 10) << run.out;
+  const std::optional<RosBagNavigation> nav = readRosBagNavigation(recording.string());
+  ASSERT_TRUE(nav.has_value());
+  ASSERT_GT(nav->track.size(), 20U);
+  const double moved_m = (nav->track.back().position_ned_m - nav->track.front().position_ned_m).norm();
+  EXPECT_NEAR(moved_m, 0.2 * (nav->track.back().time_s - nav->track.front().time_s), 0.05);
+  EXPECT_NEAR(nav->track.back().yaw_rad, std::numbers::pi / 4, 1e-6);
+  const ProgramRun batch =
+      this->run({"map", recording.string(), "--resolution", "0.05", "-q", "-o", (root_ / "batch.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
+}
+
+// The navigation sent by node-mavlink (npm), a MAVLink implementation other than ours, from rows a
+// CSV also gives: the fixes live took are those rows (to float32), and the recording maps to the live map.
+TEST_F(CliLiveHeads, NodeMavlinkNavigationIsTakenAsSent) {
+  const fs::path interop(SONARMAP_INTEROP_DIR);
+  if (!fs::exists(interop / "node_modules" / "node-mavlink") || std::system("node --version > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "needs node and node-mavlink: `npm ci` in tests/interop (scripts/install-deps.sh test does it)";
+  }
+  std::ofstream csv(root_ / "nav.csv");
+  csv << "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
+  for (int i = 0; i < 40; ++i) {
+    const double t = 0.1 * i;
+    csv << 100.0 + t << "," << 0.1 * t << "," << -0.05 * t << ",1.5," << 0.01 << "," << -0.02 << "," << 0.3 + 0.05 * t << "\n";
+  }
+  csv.close();
+  const int nav_port = freeUdpPort();
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--depth", "1.5",
+                  "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  fs::create_directories(root_ / "live");
+  const fs::path recording = out_ / "dive.mcap";
+  Child live({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range", "4", "--nav-stream",
+              "udp://:" + std::to_string(nav_port), "--resolution", "0.05", "--record", recording.string(), "-o",
+              (out_ / "live.bt").string()},
+             root_ / "live", -1);
+  std::this_thread::sleep_for(300ms);
+  const std::string send = "node " + (interop / "encode_navigation.js").string() + " " + (root_ / "nav.csv").string() +
+                           " --version 2 --udp 127.0.0.1:" + std::to_string(nav_port);
+  ASSERT_EQ(std::system(send.c_str()), 0) << send;
+  ::kill(live.pid(), SIGINT);
+  const ProgramRun run = live.wait();
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::optional<RosBagNavigation> nav = readRosBagNavigation(recording.string());
+  ASSERT_TRUE(nav.has_value());
+  ASSERT_GE(nav->track.size(), 30U);  // UDP on loopback: all or nearly all of the 40
+  // Each fix is a row, in order, its values as the frames carry them (float32).
+  std::size_t row = 0;
+  for (const NavSample& fix : nav->track) {
+    while (row < 40 && std::abs(fix.position_ned_m.x() - static_cast<float>(0.1 * 0.1 * row)) > 1e-6) ++row;
+    ASSERT_LT(row, 40U) << "a fix that is no row: " << fix.position_ned_m.transpose();
+    const double t = 0.1 * static_cast<double>(row);
+    EXPECT_EQ(fix.position_ned_m.y(), static_cast<double>(static_cast<float>(-0.05 * t)));
+    EXPECT_EQ(fix.position_ned_m.z(), static_cast<double>(1.5f));
+    EXPECT_EQ(fix.roll_rad, static_cast<double>(0.01f));
+    EXPECT_EQ(fix.pitch_rad, static_cast<double>(-0.02f));
+    EXPECT_EQ(fix.yaw_rad, static_cast<double>(static_cast<float>(0.3 + 0.05 * t)));
+  }
+  const ProgramRun batch =
+      this->run({"map", recording.string(), "--resolution", "0.05", "-q", "-o", (root_ / "batch.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
+}
+
+}  // namespace
+}  // namespace sonarmap::test
