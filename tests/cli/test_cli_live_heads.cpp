@@ -22,6 +22,9 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/ros_bag_navigation.hpp"
 
+// Last: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen's headers after it.
+#include <httplib.h>
+
 #ifndef SONARMAP_INTEROP_DIR
 #error "SONARMAP_INTEROP_DIR names tests/interop (node-mavlink)"
 #endif
@@ -223,6 +226,61 @@ TEST_F(CliLiveHeads, NodeMavlinkNavigationIsTakenAsSent) {
       this->run({"map", recording.string(), "--resolution", "0.05", "-q", "-o", (root_ / "batch.bt").string()});
   ASSERT_EQ(batch.exit_code, 0) << batch.err;
   EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
+}
+
+// `live --serve`: the page and what it reads while the head is driven, BlueOS's extension metadata,
+// nothing that keeps it out of Cockpit's iframe, and its buttons: save writes the map, reset clears it.
+TEST_F(CliLiveHeads, ServesThePageWhileItMaps) {
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  fs::create_directories(root_ / "live");
+  // A 90° sector: the first sweep, which calibrates the beams shown, is done within a second.
+  Child live({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range", "4", "--sector",
+              "90", "--step", "1.8", "--serve",
+              "127.0.0.1:0", "--write-every", "100", "-o", (out_ / "live.bt").string()},
+             root_ / "live", -1);
+  const std::regex page_line("the page is at http://127\\.0\\.0\\.1:([0-9]+)/");
+  std::smatch found;
+  std::string err;
+  for (int i = 0; i < 2000 && !std::regex_search(err = live.err(), found, page_line); ++i) std::this_thread::sleep_for(5ms);
+  ASSERT_TRUE(std::regex_search(err, found, page_line)) << err;
+  httplib::Client page("127.0.0.1", std::stoi(found[1].str()));
+  const httplib::Result index = page.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_NE(index->body.find("<html"), std::string::npos);
+  EXPECT_FALSE(index->has_header("X-Frame-Options"));
+  const httplib::Result service = page.Get("/register_service");
+  ASSERT_TRUE(service);
+  EXPECT_TRUE(std::regex_search(service->body, std::regex("\"works_in_relative_paths\": *true"))) << service->body;
+  std::this_thread::sleep_for(2500ms);  // beams arrive and the map is shown
+  const httplib::Result state = page.Get("/state");
+  ASSERT_TRUE(state);
+  EXPECT_NE(state->body.find("Ping360"), std::string::npos);  // the head's settings
+  const httplib::Result picture = page.Get("/map.png");
+  ASSERT_TRUE(picture);
+  EXPECT_EQ(picture->status, 200);
+  EXPECT_EQ(picture->body.substr(1, 3), "PNG");
+  const httplib::Headers acting{{"X-Sonarmap", "1"}};
+  EXPECT_EQ(page.Post("/save")->status, 403);  // a page of another site cannot press the buttons
+  const httplib::Result saved = page.Post("/save", acting, "", "text/plain");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 200) << saved->body;
+  EXPECT_TRUE(fs::exists(out_ / "live.bt"));
+  const httplib::Result reset = page.Post("/reset", acting, "", "text/plain");
+  ASSERT_TRUE(reset);
+  EXPECT_EQ(reset->status, 200) << reset->body;
+  std::this_thread::sleep_for(300ms);
+  ::kill(live.pid(), SIGINT);
+  const ProgramRun run = live.wait();
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("the map was reset: it starts again from the next beam"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("the map was reset 1 times from the page"), std::string::npos) << run.err;
 }
 
 }  // namespace
