@@ -125,6 +125,9 @@ bool OnlineMapper::navigationCovers(double time_s) const {
 }
 
 namespace {
+/// How long after the last fix a beam is still shown at its pose (showWaitingBeams), seconds.
+constexpr double kHeldPoseShown_s = 1.0;
+
 double latestTime_s(const std::vector<Beam>& beams) {
   double latest_s = -std::numeric_limits<double>::infinity();
   for (const Beam& beam : beams) latest_s = std::max(latest_s, beam.time_s);
@@ -269,7 +272,12 @@ void OnlineMapper::committedBefore(std::size_t end) {
 void OnlineMapper::showWaitingBeams() {
   while (!unshown_.empty()) {
     const UnshownBeam& next = unshown_.front();
-    if (!navigationCovers(next.beam.time_s)) return;
+    // A beam after the last fix is shown at once at that fix's pose, held (the navigation lags the
+    // sonar by up to a fix period, more through an autopilot's stream): for the eye only, as the
+    // whole provisional layer is; its sweep is committed with the interpolated poses once the
+    // navigation covers it. A beam more than kHeldPoseShown_s after the last fix waits.
+    const bool covered = navigationCovers(next.beam.time_s);
+    if (!covered && (fixes_.empty() || next.beam.time_s - fixes_.back().time_s > kHeldPoseShown_s)) return;
     // Otherwise a beam without a calibration waits for its setting's first whole sweep, and every
     // beam for the committed map's first sweep (its resolution).
     const SweepCalibration* calibration = calibrationOf(headSettingOf(next.beam));
@@ -283,7 +291,8 @@ void OnlineMapper::showWaitingBeams() {
     if (calibration == nullptr || !mapper_.options().resolution_m) return;
     PolarImage row = fitToCalibration(makePolarImage(std::vector<Beam>{next.beam}, 0, 1), *calibration);
     SweepDetection detection = mapper_.detectRows(row, *calibration);
-    const std::optional<Eigen::Isometry3d> pose = posesAt(row.time_s).front();
+    const std::optional<Eigen::Isometry3d> pose =
+        covered ? posesAt(row.time_s).front() : std::optional(nedToMap() * bodyToNed(fixes_.back()) * *sonar_to_body_);
     {
       const std::unique_lock lock(map_mutex_);
       provisional_->atResolution(*mapper_.options().resolution_m);

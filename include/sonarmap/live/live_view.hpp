@@ -158,7 +158,7 @@ struct LiveViewOptions {
   std::size_t max_bins = 512;   ///< bins per beam sent to the page (max-pooled), ≥ 16
   /// Least time between the starts of two map pictures, seconds; and at least twice the last
   /// picture's cost, so that the raster thread takes at most half a core.
-  double raster_interval_s = 0.15;
+  double raster_interval_s = 0.05;
   /// Half the edge of the map window drawn, metres; 0: 1.25 × the longest range of the fan's
   /// beams, at least 10 m.
   double raster_half_width_m = 0.0;

@@ -56,8 +56,9 @@ enum class OnlineIntegration {
   /// layer (shownSnapshot; ProvisionalBeams) until its sweep is committed: detected with the
   /// calibration of the last whole sweep of its head setting (SonarMapper::detectRows: its water
   /// background, threshold and near field) and integrated on its own. A beam waits for a first
-  /// whole sweep of its setting (no calibration before) and, with navigation, for a fix at or after
-  /// its time; beams are shown in recording order. Detection is never pipelined: a sweep is
+  /// whole sweep of its setting (no calibration before); with navigation, a beam after the last fix
+  /// (by at most 1 s; later ones wait for a fix) is shown at that fix's pose, held, since the
+  /// navigation lags the sonar; beams are shown in recording order. Detection is never pipelined: a sweep is
   /// committed as soon as it is final, and the provisional beams it held are dropped then. Live
   /// mapping: a beam's latency on screen, and the batch's map at the end.
   kProvisionalBeams,
