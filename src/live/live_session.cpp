@@ -3,6 +3,7 @@
 
 #include "sonarmap/live/live_session.hpp"
 
+#include <malloc.h>
 #include <poll.h>
 
 #include <algorithm>
@@ -163,6 +164,10 @@ void LiveSession::report(double now_s, LiveResult& result) {
   beams_at_status_ = status.beams;
   last_status_s_ = now_s;
   if (inputs_->recorder) inputs_->recorder->flush();  // a killed run loses at most a second
+  // The map's copies (the page's picture, the periodic write) come and go on other threads; glibc
+  // keeps what they freed in their arenas, and a run of hours creeps up by it. Handed back once a
+  // second (bench/live/live_dive.sh: see docs/performance.md, "Live on a vehicle").
+  ::malloc_trim(0);
   (void)result;
 }
 
