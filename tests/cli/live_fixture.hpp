@@ -179,7 +179,7 @@ class CliLive : public CliTest {
   /// `live` on udp://:0 fed `capture` over UDP: its final run.
   ProgramRun replayOverUdp(const std::string& capture, const std::string& format) {
     Names args = liveArgs("udp://:0", format);
-    args.insert(args.end(), {"--idle-timeout", "0.5"});
+    args.insert(args.end(), {"--idle-timeout", "2"});
     Child child(args, root_, -1);
     if (const int port = boundPort(child, "reading"); port > 0) sendUdp(port, capture);
     return child.wait();

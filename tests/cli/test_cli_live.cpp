@@ -179,7 +179,7 @@ TEST_F(CliLive, NavigationStreamPlacesTheBeams) {
   const std::string moved_map = readFile(root_ / "moved.bt");
   ASSERT_NE(moved_map, static_map);
   Names args = liveArgs("udp://:0");
-  args.insert(args.end(), {"--idle-timeout", "0.5", "--nav-stream", "udp://:0"});
+  args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0"});
   Child child(args, root_, -1);
   const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
   ASSERT_GT(sonar_port, 0);

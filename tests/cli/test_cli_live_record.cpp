@@ -20,7 +20,7 @@ const std::string kNavHeader = "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n"
 TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
   Names args = liveArgs("udp://:0");
   const fs::path recording = out_ / "dive.mcap";
-  args.insert(args.end(), {"--idle-timeout", "0.5", "--nav-stream", "udp://:0", "--record", recording.string()});
+  args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0", "--record", recording.string()});
   Child child(args, root_, -1);
   const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
   ASSERT_GT(sonar_port, 0);
@@ -91,7 +91,7 @@ TEST_F(CliLiveRecord, AReplayedLogRunsAtItsOwnPace) {
 // no beam is placed, and the run says so and fails instead of writing an empty map.
 TEST_F(CliLiveRecord, BeamsThatNeverMeetTheNavigationFailTheRun) {
   Names args = liveArgs("udp://:0");
-  args.insert(args.end(), {"--idle-timeout", "0.5", "--nav-stream", "udp://:0"});
+  args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0"});
   Child child(args, root_, -1);
   const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
   ASSERT_GT(sonar_port, 0);
