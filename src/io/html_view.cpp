@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/io/web_text.hpp"
 
 namespace sonarmap {
 namespace embedded {
@@ -30,24 +31,6 @@ struct Bounds {
   }
 };
 
-/// Standard base64 (RFC 4648, with padding).
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  text.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = bytes.size() - i;
-    const std::uint32_t word = (static_cast<std::uint32_t>(bytes[i]) << 16) |
-                               (left > 1 ? static_cast<std::uint32_t>(bytes[i + 1]) << 8 : 0U) |
-                               (left > 2 ? static_cast<std::uint32_t>(bytes[i + 2]) : 0U);
-    text += kAlphabet[(word >> 18) & 63U];
-    text += kAlphabet[(word >> 12) & 63U];
-    text += left > 1 ? kAlphabet[(word >> 6) & 63U] : '=';
-    text += left > 2 ? kAlphabet[word & 63U] : '=';
-  }
-  return text;
-}
-
 /// The boxes as 8 little-endian bytes each: key x, y, z, depth (uint16).
 std::vector<std::uint8_t> boxBytes(const std::vector<ViewBox>& boxes) {
   std::vector<std::uint8_t> bytes;
@@ -67,40 +50,6 @@ std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.9g", value + 0.0);
   return text;
-}
-
-/// `text` as a JSON string literal; '<', '>' and '&' escaped so it cannot end the script element.
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (byte < 0x20 || c == '<' || c == '>' || c == '&') {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", byte);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-/// `text` safe inside HTML element content.
-std::string htmlText(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 std::string vectorJson(const Eigen::Vector3d& v) {

@@ -5,25 +5,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "sonarmap/io/web_text.hpp"
+
 namespace sonarmap::live_json {
 namespace {
-
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  text.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = bytes.size() - i;
-    const std::uint32_t word = (static_cast<std::uint32_t>(bytes[i]) << 16) |
-                               (left > 1 ? static_cast<std::uint32_t>(bytes[i + 1]) << 8 : 0U) |
-                               (left > 2 ? static_cast<std::uint32_t>(bytes[i + 2]) : 0U);
-    text += kAlphabet[(word >> 18) & 63U];
-    text += kAlphabet[(word >> 12) & 63U];
-    text += left > 1 ? kAlphabet[(word >> 6) & 63U] : '=';
-    text += left > 2 ? kAlphabet[word & 63U] : '=';
-  }
-  return text;
-}
 
 std::string integer(std::uint64_t value) { return std::to_string(value); }
 
@@ -57,11 +42,11 @@ std::string status(const LiveStatus& s) {
   std::string warnings = "[";
   for (std::size_t i = 0; i < s.warnings.size(); ++i) {
     if (i > 0) warnings += ',';
-    warnings += quoted(s.warnings[i]);
+    warnings += jsonString(s.warnings[i]);
   }
   return "{\"beams\":" + integer(s.beams_received) + ",\"rate\":" + number(s.beams_per_s) +
          ",\"lag\":" + (s.lag_s ? number(*s.lag_s) : "null") + ",\"waiting\":" + integer(s.beams_waiting) +
-         ",\"sweeps\":" + integer(s.sweeps) + ",\"recording\":" + quoted(s.recording_path) + ",\"warnings\":" +
+         ",\"sweeps\":" + integer(s.sweeps) + ",\"recording\":" + jsonString(s.recording_path) + ",\"warnings\":" +
          warnings + "]}";
 }
 
@@ -69,12 +54,12 @@ std::string settings(const LiveSettings& s) {
   std::string fields = "[";
   for (std::size_t i = 0; i < s.fields.size(); ++i) {
     fields += i > 0 ? ",[" : "[";
-    fields += quoted(s.fields[i].first);
+    fields += jsonString(s.fields[i].first);
     fields += ',';
-    fields += quoted(s.fields[i].second);
+    fields += jsonString(s.fields[i].second);
     fields += ']';
   }
-  return "{\"device\":" + quoted(s.device) + ",\"fields\":" + fields + "]}";
+  return "{\"device\":" + jsonString(s.device) + ",\"fields\":" + fields + "]}";
 }
 
 std::string stats(const LatencyStats& s) {
@@ -83,24 +68,6 @@ std::string stats(const LatencyStats& s) {
 }
 
 }  // namespace
-
-std::string quoted(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (byte < 0x20 || c == '<' || c == '>' || c == '&') {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", byte);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 std::string number(double value) {
   if (!std::isfinite(value)) return "null";
@@ -113,7 +80,7 @@ std::string update(const ViewUpdate& u) {
   std::string out = "{\"full\":";
   out += u.full ? "true" : "false";
   out += ",\"clock_s\":" + number(u.status.clock_s) + ",\"fan_beams\":" + integer(u.fan_beams) + ",\"cursor\":" +
-         quoted(cursorText(u.cursor)) + ",\"beams\":[";
+         jsonString(cursorText(u.cursor)) + ",\"beams\":[";
   for (std::size_t i = 0; i < u.beams.size(); ++i) {
     if (i > 0) out += ',';
     out += beam(*u.beams[i]);

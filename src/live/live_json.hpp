@@ -12,8 +12,6 @@
 
 namespace sonarmap::live_json {
 
-/// `text` as a JSON string literal ('<', '>', '&' escaped too, so it is safe inside HTML).
-std::string quoted(std::string_view text);
 /// A number with 9 significant digits; null when not finite.
 std::string number(double value);
 

@@ -16,6 +16,7 @@
 
 #include "live_json.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/io/web_text.hpp"
 
 // Last: it brings glibc's <resolv.h>, whose `_res` macro breaks Eigen's headers included after it.
 #include <httplib.h>
@@ -36,20 +37,6 @@ using namespace std::chrono_literals;
 /// Longest wait of a long poll, and the least time between two events of one stream.
 constexpr auto kLongestPoll = 25000ms;
 constexpr auto kEventSpacing = 15ms;
-
-std::string htmlText(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 /// Unsigned integers separated by spaces or commas.
 std::vector<std::uint64_t> integers(std::string_view text) {
@@ -139,10 +126,10 @@ void WebServer::Impl::routes() {
     sendJson(res, live_json::latencies(view.latencies()));
   });
   server.Get("/register_service", [this](const httplib::Request&, httplib::Response& res) {
-    sendJson(res, "{\"name\":" + live_json::quoted(options.title) +
+    sendJson(res, "{\"name\":" + jsonString(options.title) +
                       ",\"description\":\"The sonar's map growing during the dive: the current sweep, the map at the "
                       "vehicle's depth, the track\",\"icon\":\"mdi-radar\",\"company\":\"sonarmap\",\"version\":" +
-                      live_json::quoted(SONARMAP_VERSION) +
+                      jsonString(SONARMAP_VERSION) +
                       ",\"webpage\":\"\",\"api\":\"\",\"new_page\":false,\"works_in_relative_paths\":true}");
   });
   server.Post("/ack", [this](const httplib::Request& req, httplib::Response& res) {
@@ -276,13 +263,13 @@ void WebServer::Impl::runAction(const httplib::Request& req, httplib::Response& 
     std::string paths = "{";
     for (const auto& [name, path] : handlers.save()) {
       if (paths.size() > 1) paths += ',';
-      paths += live_json::quoted(name);
+      paths += jsonString(name);
       paths += ':';
-      paths += live_json::quoted(path);
+      paths += jsonString(path);
     }
     sendJson(res, "{\"ok\":true,\"paths\":" + paths + "}}");
   } catch (const std::exception& error) {
-    sendJson(res, "{\"ok\":false,\"error\":" + live_json::quoted(error.what()) + "}", 500);
+    sendJson(res, "{\"ok\":false,\"error\":" + jsonString(error.what()) + "}", 500);
   }
 }
 
