@@ -13,7 +13,7 @@
 #include <poll.h>
 
 #include "help_groups.hpp"
-#include "map_options.hpp"
+#include "simulate_command.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/devices/autopilot_emulator.hpp"
 #include "sonarmap/devices/heads.hpp"
@@ -38,12 +38,6 @@ void catchStopSignals() {
 }
 
 using Clock = std::chrono::steady_clock;
-
-std::string joined(const std::vector<std::string>& names, const char* separator) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
-  return text;
-}
 
 /// One emulated head on one link, and the bytes it has yet to send.
 struct ServedHead {
@@ -199,18 +193,7 @@ Command addEmulateCommand(CLI::App& app, EmulateArgs& args) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber)
       ->group(help_group::kInput);
-  cmd->add_option("--speed", args.speed_mps, "Vehicle speed in M/S (0: static, or the mission's)")
-      ->capture_default_str()
-      ->group(help_group::kNavigation);
-  cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees cw from north (not with --mission)")
-      ->capture_default_str()
-      ->group(help_group::kNavigation);
-  cmd->add_option("--depth", args.depth_m, "Vehicle depth in METRES, NED (not with --mission)")
-      ->group(help_group::kNavigation);
-  cmd->add_option("--mission", args.mission, "Fly a named mission: " + joined(missionNames(), " | "))
-      ->group(help_group::kNavigation);
-  cmd->add_option("--laps", args.laps, "Times the mission is flown")->capture_default_str()->group(help_group::kNavigation);
-  addMountingOption(*cmd, args.mounting, "");
+  addVehiclePathOptions(*cmd, args);
   cmd->add_option("--serial", args.serial, "Serve a head on pty:PATH (a pseudo-terminal linked at PATH) or a serial device")
       ->group(help_group::kOutput);
   cmd->add_option("--udp", args.udp, "Serve a head on udp://:PORT (answers the last peer)")->group(help_group::kOutput);

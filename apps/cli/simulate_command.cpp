@@ -31,13 +31,6 @@ namespace fs = std::filesystem;
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
-/// "a, b, c".
-std::string joined(const std::vector<std::string>& names, const char* separator) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
-  return text;
-}
-
 /// A built-in name wins over a file of the same name (write ./tank for the file).
 /// @throws ValueError (usage) when `scene` is neither a built-in name nor an existing file.
 void checkScene(const std::string& scene) {
@@ -122,6 +115,27 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
 
 }  // namespace
 
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
+  return text;
+}
+
+void addVehiclePathOptions(CLI::App& cmd, SimulationArguments& args) {
+  cmd.add_option("--speed", args.speed_mps, "Vehicle speed in M/S (0: static, or the mission's)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd.add_option("--heading", args.heading_deg, "Vehicle heading in degrees cw from north (not with --mission)")
+      ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd.add_option("--depth", args.depth_m, "Vehicle depth in METRES, NED (not with --mission)")
+      ->group(help_group::kNavigation);
+  cmd.add_option("--mission", args.mission, "Fly a named mission: " + joined(missionNames(), " | "))
+      ->group(help_group::kNavigation);
+  cmd.add_option("--laps", args.laps, "Times the mission is flown")->capture_default_str()->group(help_group::kNavigation);
+  addMountingOption(cmd, args.mounting, "");
+}
+
 std::string sonarPresetHelp(const std::string& lead) {
   std::string help = lead;
   for (const std::string& name : sonarPresetNames()) help += (help == lead ? " " : " | ") + name;
@@ -162,20 +176,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--turns", args.turns, "Full turns of the head, or passes across a sector")
       ->capture_default_str()
       ->group(help_group::kInput);
-  cmd->add_option("--speed", args.speed_mps, "Vehicle speed in M/S (0: static, or the mission's)")
-      ->capture_default_str()
-      ->group(help_group::kNavigation);
-  cmd->add_option("--heading", args.heading_deg, "Vehicle heading in degrees cw from north (not with --mission)")
-      ->capture_default_str()
-      ->group(help_group::kNavigation);
-  cmd->add_option("--depth", args.depth_m, "Vehicle depth in METRES, NED (not with --mission)")
-      ->group(help_group::kNavigation);
-  cmd->add_option("--mission", args.mission, "Fly a named mission: " + joined(missionNames(), " | "))
-      ->group(help_group::kNavigation);
-  cmd->add_option("--laps", args.laps, "Times the mission is flown")
-      ->capture_default_str()
-      ->group(help_group::kNavigation);
-  addMountingOption(*cmd, args.mounting, "");
+  addVehiclePathOptions(*cmd, args);
   cmd->add_option("--dvl-noise", args.dvl_noise_mps, "Dead reckoning: DVL velocity noise sigma per fix (m/s)")
       ->capture_default_str()
       ->group(help_group::kNavigation);

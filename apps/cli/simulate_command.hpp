@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -40,5 +41,13 @@ void stageSimulation(FileTransaction& outputs, const std::string& dir, const Msi
 /// A --sonar option's one-line help: `lead`, then every head preset's name (sonarPresetNames)
 /// joined by " | " (what each head is: docs/commands.md).
 std::string sonarPresetHelp(const std::string& lead);
+
+/// `names` joined with `separator` between them, for help texts and messages.
+std::string joined(const std::vector<std::string>& names, const char* separator);
+
+/// Adds the vehicle's path options shared by `simulate` and `emulate` (help group Navigation):
+/// --speed (m/s), --heading (degrees cw from north), --depth (m, NED), --mission, --laps and
+/// --mounting, filling the fields of `args` of those names (simulation_arguments.hpp).
+void addVehiclePathOptions(CLI::App& cmd, SimulationArguments& args);
 
 }  // namespace sonarmap::cli
