@@ -16,6 +16,8 @@
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <termios.h>
+
+#include <utility>
 #include <unistd.h>
 
 #include <chrono>
@@ -126,6 +128,21 @@ class CliLive : public CliTest {
     }
     ADD_FAILURE() << child.err();
     return 0;
+  }
+  /// `live` on udp://:0 with its navigation on a second UDP port, ending after 2 s of silence;
+  /// `extra` follows.
+  Names liveWithNavStreamArgs(const Names& extra = {}) const {
+    Names args = liveArgs("udp://:0");
+    args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0"});
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+  /// The sonar's and the navigation's UDP ports `child` (liveWithNavStreamArgs) bound.
+  static std::pair<int, int> boundPorts(Child& child) {
+    const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
+    EXPECT_GT(sonar_port, 0);
+    EXPECT_GT(nav_port, 0);
+    return {sonar_port, nav_port};
   }
   /// `bytes` to 127.0.0.1:`port` in datagrams of at most 1400 bytes, paced: none is dropped.
   static void sendUdp(int port, const std::string& bytes) {

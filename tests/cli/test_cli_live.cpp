@@ -178,12 +178,10 @@ TEST_F(CliLive, NavigationStreamPlacesTheBeams) {
             0);
   const std::string moved_map = readFile(root_ / "moved.bt");
   ASSERT_NE(moved_map, static_map);
-  Names args = liveArgs("udp://:0");
-  args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0"});
+  const Names args = liveWithNavStreamArgs();
   Child child(args, root_, -1);
-  const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
-  ASSERT_GT(sonar_port, 0);
-  ASSERT_GT(nav_port, 0);
+  const auto [sonar_port, nav_port] = boundPorts(child);
+  ASSERT_TRUE(sonar_port > 0 && nav_port > 0);
   sendUdp(nav_port, "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,5.013,0,0,0,0,0\n1,5.013,0,oops,0,0,0\n");
   std::this_thread::sleep_for(50ms);  // the first fix comes before the first beam
   sendUdp(nav_port, "100000,5.013,0,0,0,0,0\n");

@@ -18,13 +18,11 @@ const std::string kNavHeader = "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n"
 // A head over UDP and its navigation as CSV rows on a second link, recorded: `map` of the recording
 // gives the live map, with the navigation it recorded.
 TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
-  Names args = liveArgs("udp://:0");
   const fs::path recording = out_ / "dive.mcap";
-  args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0", "--record", recording.string()});
+  const Names args = liveWithNavStreamArgs({"--record", recording.string()});
   Child child(args, root_, -1);
-  const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
-  ASSERT_GT(sonar_port, 0);
-  ASSERT_GT(nav_port, 0);
+  const auto [sonar_port, nav_port] = boundPorts(child);
+  ASSERT_TRUE(sonar_port > 0 && nav_port > 0);
   // The vehicle moves north and turns while the head sends: fixes every 0.1 s of the sender's clock.
   std::thread navigation([&] {
     std::string rows = kNavHeader;
@@ -90,12 +88,10 @@ TEST_F(CliLiveRecord, AReplayedLogRunsAtItsOwnPace) {
 // Navigation that never gives a fix (rows that do not parse, as MAVLink sent to a CSV reader gave):
 // no beam is placed, and the run says so and fails instead of writing an empty map.
 TEST_F(CliLiveRecord, BeamsThatNeverMeetTheNavigationFailTheRun) {
-  Names args = liveArgs("udp://:0");
-  args.insert(args.end(), {"--idle-timeout", "2", "--nav-stream", "udp://:0"});
+  const Names args = liveWithNavStreamArgs();
   Child child(args, root_, -1);
-  const int sonar_port = boundPort(child, "reading"), nav_port = boundPort(child, "navigation from");
-  ASSERT_GT(sonar_port, 0);
-  ASSERT_GT(nav_port, 0);
+  const auto [sonar_port, nav_port] = boundPorts(child);
+  ASSERT_TRUE(sonar_port > 0 && nav_port > 0);
   sendUdp(nav_port, "not,a,navigation,row\nstill not\n");
   sendUdp(sonar_port, tankCapture());
   const ProgramRun run = child.wait();
