@@ -3,7 +3,10 @@
 
 #include "sonarmap/formats/ping_protocol.hpp"
 
+#include <concepts>
 #include <numbers>
+#include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include "frame_scanner.hpp"
@@ -28,68 +31,143 @@ void putU16(std::vector<std::uint8_t>& out, std::uint16_t value) {
   out.push_back(static_cast<std::uint8_t>(value >> 8));
 }
 
-/// Reads a payload field by field; a read past the end leaves the reader failed.
-class PayloadReader {
- public:
-  explicit PayloadReader(std::span<const std::uint8_t> payload) : payload_(payload) {}
-  std::uint8_t u8() {
-    if (at_ + 1 > payload_.size()) return fail();
-    return payload_[at_++];
+/// Appends payload fields, each as its type says: u8; u16 little-endian; a byte vector as its u16
+/// length then its bytes; a string as its bytes, the rest of the payload.
+struct FieldWriter {
+  std::vector<std::uint8_t>& out;
+  void operator()(std::uint8_t field) const { out.push_back(field); }
+  void operator()(std::uint16_t field) const { putU16(out, field); }
+  void operator()(const std::vector<std::uint8_t>& data) const {
+    putU16(out, static_cast<std::uint16_t>(data.size()));
+    out.insert(out.end(), data.begin(), data.end());
   }
-  std::uint16_t u16() {
-    if (at_ + 2 > payload_.size()) return fail();
-    const std::uint16_t value = u16At(payload_, at_);
-    at_ += 2;
-    return value;
+  void operator()(const std::string& text) const { out.insert(out.end(), text.begin(), text.end()); }
+  template <class Field>
+  void operator()(const Field&) const = delete;  // no other field type has a wire form here
+};
+
+/// Reads payload fields as FieldWriter writes them (a vector or string only as the last field),
+/// then says whether they took exactly the payload: no fewer bytes than the fields want, no more
+/// unless the last field takes the rest, a vector's u16 length equal to the bytes after it.
+class FieldReader {
+ public:
+  explicit FieldReader(std::span<const std::uint8_t> payload) : payload_(payload) {}
+  void operator()(std::uint8_t& field) {
+    if (const std::span<const std::uint8_t> bytes = take(1); !bytes.empty()) field = bytes[0];
+  }
+  void operator()(std::uint16_t& field) {
+    if (const std::span<const std::uint8_t> bytes = take(2); !bytes.empty()) field = u16At(bytes, 0);
+  }
+  void operator()(std::vector<std::uint8_t>& data) {
+    std::uint16_t length = 0;
+    (*this)(length);
+    const std::span<const std::uint8_t> bytes = rest();
+    if (!short_ && bytes.size() != length) {
+      data_mismatch_ = "data length " + std::to_string(length) + " but the payload holds " +
+                       std::to_string(bytes.size()) + " bytes after its fields";
+    }
+    data.assign(bytes.begin(), bytes.end());
+  }
+  void operator()(std::string& text) {
+    const std::span<const std::uint8_t> bytes = rest();
+    text.assign(bytes.begin(), bytes.end());
+  }
+  template <class Field>
+  void operator()(Field&) = delete;
+
+  /// Whether the fields read took exactly the payload; sets `why` if not.
+  bool exact(std::string* why) const {
+    std::string reason = data_mismatch_;
+    if (short_ || at_ != payload_.size()) {
+      reason = "payload of " + std::to_string(payload_.size()) + " bytes, expected " +
+               (open_ended_ ? "at least " : "") + std::to_string(wanted_);
+    }
+    if (reason.empty()) return true;
+    if (why) *why = std::move(reason);
+    return false;
+  }
+
+ private:
+  /// The next `count` bytes, or none (the reader then short) past the payload's end.
+  std::span<const std::uint8_t> take(std::size_t count) {
+    wanted_ += count;
+    if (short_ || at_ + count > payload_.size()) {
+      short_ = true;
+      return {};
+    }
+    at_ += count;
+    return payload_.subspan(at_ - count, count);
   }
   std::span<const std::uint8_t> rest() {
-    const std::span<const std::uint8_t> bytes = payload_.subspan(std::min(at_, payload_.size()));
+    open_ended_ = true;
+    if (short_) return {};
+    const std::span<const std::uint8_t> bytes = payload_.subspan(at_);
     at_ = payload_.size();
     return bytes;
   }
-  std::size_t position() const { return at_; }
-  std::size_t size() const { return payload_.size(); }
-  bool failed() const { return failed_; }
 
- private:
-  std::uint8_t fail() {
-    failed_ = true;
-    at_ = payload_.size() + 1;
-    return 0;
-  }
   std::span<const std::uint8_t> payload_;
   std::size_t at_ = 0;
-  bool failed_ = false;
+  std::size_t wanted_ = 0;   ///< bytes the fields read so far want (a vector's length included)
+  bool short_ = false;       ///< a field ran past the end
+  bool open_ended_ = false;  ///< the last field took the rest
+  std::string data_mismatch_;  ///< why a vector's length does not match the bytes after it
 };
 
-/// Whether `reader` read exactly its payload's fixed fields of `bytes` bytes; sets `why` if not.
-bool exactly(const PayloadReader& reader, std::size_t bytes, std::string* why) {
-  if (!reader.failed() && reader.position() == reader.size()) return true;
-  if (why) *why = "payload of " + std::to_string(reader.size()) + " bytes, expected " + std::to_string(bytes);
-  return false;
+// ---- Each payload's fields in wire order: the one list payload() writes and parse() reads ----------
+/// `Self` is `Body`, const (writing) or not (reading).
+template <class Self, class Body>
+concept PayloadOf = std::same_as<std::remove_const_t<Self>, Body>;
+
+auto fields(PayloadOf<Ack> auto& m) { return std::tie(m.acked_id); }
+auto fields(PayloadOf<Nack> auto& m) { return std::tie(m.nacked_id, m.text); }
+auto fields(PayloadOf<AsciiText> auto& m) { return std::tie(m.text); }
+auto fields(PayloadOf<DeviceInformation> auto& m) {
+  return std::tie(m.device_type, m.device_revision, m.firmware_version_major, m.firmware_version_minor,
+                  m.firmware_version_patch, m.reserved);
+}
+auto fields(PayloadOf<ProtocolVersion> auto& m) {
+  return std::tie(m.version_major, m.version_minor, m.version_patch, m.reserved);
+}
+auto fields(PayloadOf<GeneralRequest> auto& m) { return std::tie(m.requested_id); }
+auto fields(PayloadOf<SetDeviceId> auto& m) { return std::tie(m.id, m.reserved); }
+auto fields(PayloadOf<DeviceData> auto& m) {
+  return std::tie(m.mode, m.gain_setting, m.angle_grad, m.transmit_duration_us, m.sample_period_ticks,
+                  m.transmit_frequency_khz, m.number_of_samples, m.data);
+}
+auto fields(PayloadOf<AutoDeviceData> auto& m) {
+  return std::tie(m.mode, m.gain_setting, m.angle_grad, m.transmit_duration_us, m.sample_period_ticks,
+                  m.transmit_frequency_khz, m.start_angle_grad, m.stop_angle_grad, m.num_steps, m.delay_ms,
+                  m.number_of_samples, m.data);
+}
+auto fields(PayloadOf<Reset> auto& m) { return std::tie(m.bootloader, m.reserved); }
+auto fields(PayloadOf<Transducer> auto& m) {
+  return std::tie(m.mode, m.gain_setting, m.angle_grad, m.transmit_duration_us, m.sample_period_ticks,
+                  m.transmit_frequency_khz, m.number_of_samples, m.transmit, m.reserved);
+}
+auto fields(PayloadOf<AutoTransmit> auto& m) {
+  return std::tie(m.mode, m.gain_setting, m.transmit_duration_us, m.sample_period_ticks, m.transmit_frequency_khz,
+                  m.number_of_samples, m.start_angle_grad, m.stop_angle_grad, m.num_steps, m.delay_ms);
+}
+auto fields(PayloadOf<MotorOff> auto&) { return std::tie(); }
+
+/// The payload of `body`: its fields written in order.
+template <class Body>
+std::vector<std::uint8_t> writeFields(const Body& body) {
+  std::vector<std::uint8_t> out;
+  std::apply([&](const auto&... field) { (FieldWriter{out}(field), ...); }, fields(body));
+  return out;
 }
 
-/// Reads a u16 length and that many bytes, the payload's last field; false (with `why`) when the
-/// payload is shorter than `data_at` or the length does not match the bytes after it.
-bool readVector(PayloadReader& reader, std::size_t data_at, std::vector<std::uint8_t>& data, std::string* why) {
-  const std::uint16_t length = reader.u16();
-  if (reader.failed()) {
-    if (why) *why = "payload of " + std::to_string(reader.size()) + " bytes, expected at least " + std::to_string(data_at);
-    return false;
-  }
-  const std::span<const std::uint8_t> bytes = reader.rest();
-  if (bytes.size() != length) {
-    if (why) {
-      *why = "data length " + std::to_string(length) + " but the payload holds " + std::to_string(bytes.size()) +
-             " bytes after its fields";
-    }
-    return false;
-  }
-  data.assign(bytes.begin(), bytes.end());
-  return true;
+/// The `Body` of `payload`: its fields read in order; none (with `why`) unless they take it exactly.
+template <class Body>
+std::optional<Body> readFields(std::span<const std::uint8_t> payload, std::string* why) {
+  Body body;
+  FieldReader reader(payload);
+  std::apply([&](auto&... field) { (reader(field), ...); }, fields(body));
+  if (!reader.exact(why)) return std::nullopt;
+  return body;
 }
-
-std::string textOf(std::span<const std::uint8_t> bytes) { return {bytes.begin(), bytes.end()}; }
 
 }  // namespace
 
@@ -179,63 +257,26 @@ Message messageOf(std::span<const std::uint8_t> frame) {
   return message;
 }
 
-// ---- Common payloads --------------------------------------------------------------------------------
+// ---- Payloads: written and read by their field lists above -----------------------------------------
 
-std::vector<std::uint8_t> Ack::payload() const {
-  std::vector<std::uint8_t> out;
-  putU16(out, acked_id);
-  return out;
-}
-
+std::vector<std::uint8_t> Ack::payload() const { return writeFields(*this); }
 std::optional<Ack> Ack::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  Ack ack;
-  ack.acked_id = reader.u16();
-  if (!exactly(reader, 2, why)) return std::nullopt;
-  return ack;
+  return readFields<Ack>(payload, why);
 }
 
-std::vector<std::uint8_t> Nack::payload() const {
-  std::vector<std::uint8_t> out;
-  putU16(out, nacked_id);
-  out.insert(out.end(), text.begin(), text.end());
-  return out;
-}
-
+std::vector<std::uint8_t> Nack::payload() const { return writeFields(*this); }
 std::optional<Nack> Nack::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  Nack nack;
-  nack.nacked_id = reader.u16();
-  if (reader.failed()) {
-    if (why) *why = "payload of " + std::to_string(payload.size()) + " bytes, expected at least 2";
-    return std::nullopt;
-  }
-  nack.text = textOf(reader.rest());
-  return nack;
+  return readFields<Nack>(payload, why);
 }
 
-std::vector<std::uint8_t> AsciiText::payload() const { return {text.begin(), text.end()}; }
-
-std::optional<AsciiText> AsciiText::parse(std::span<const std::uint8_t> payload, std::string*) {
-  return AsciiText{textOf(payload)};
+std::vector<std::uint8_t> AsciiText::payload() const { return writeFields(*this); }
+std::optional<AsciiText> AsciiText::parse(std::span<const std::uint8_t> payload, std::string* why) {
+  return readFields<AsciiText>(payload, why);
 }
 
-std::vector<std::uint8_t> DeviceInformation::payload() const {
-  return {device_type, device_revision, firmware_version_major, firmware_version_minor, firmware_version_patch,
-          reserved};
-}
-
+std::vector<std::uint8_t> DeviceInformation::payload() const { return writeFields(*this); }
 std::optional<DeviceInformation> DeviceInformation::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  DeviceInformation info;
-  info.device_type = reader.u8();
-  info.device_revision = reader.u8();
-  info.firmware_version_major = reader.u8();
-  info.firmware_version_minor = reader.u8();
-  info.firmware_version_patch = reader.u8();
-  info.reserved = reader.u8();
-  if (!exactly(reader, 6, why)) return std::nullopt;
-  return info;
+  return readFields<DeviceInformation>(payload, why);
 }
 
 std::string DeviceInformation::text() const {
@@ -246,102 +287,29 @@ std::string DeviceInformation::text() const {
          "." + std::to_string(firmware_version_patch) + ")";
 }
 
-std::vector<std::uint8_t> ProtocolVersion::payload() const {
-  return {version_major, version_minor, version_patch, reserved};
-}
-
+std::vector<std::uint8_t> ProtocolVersion::payload() const { return writeFields(*this); }
 std::optional<ProtocolVersion> ProtocolVersion::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  ProtocolVersion version;
-  version.version_major = reader.u8();
-  version.version_minor = reader.u8();
-  version.version_patch = reader.u8();
-  version.reserved = reader.u8();
-  if (!exactly(reader, 4, why)) return std::nullopt;
-  return version;
+  return readFields<ProtocolVersion>(payload, why);
 }
 
-std::vector<std::uint8_t> GeneralRequest::payload() const {
-  std::vector<std::uint8_t> out;
-  putU16(out, requested_id);
-  return out;
-}
-
+std::vector<std::uint8_t> GeneralRequest::payload() const { return writeFields(*this); }
 std::optional<GeneralRequest> GeneralRequest::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  GeneralRequest request;
-  request.requested_id = reader.u16();
-  if (!exactly(reader, 2, why)) return std::nullopt;
-  return request;
+  return readFields<GeneralRequest>(payload, why);
 }
 
-// ---- Ping360 payloads --------------------------------------------------------------------------------
-
-std::vector<std::uint8_t> SetDeviceId::payload() const { return {id, reserved}; }
-
+std::vector<std::uint8_t> SetDeviceId::payload() const { return writeFields(*this); }
 std::optional<SetDeviceId> SetDeviceId::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  SetDeviceId set;
-  set.id = reader.u8();
-  set.reserved = reader.u8();
-  if (!exactly(reader, 2, why)) return std::nullopt;
-  return set;
+  return readFields<SetDeviceId>(payload, why);
 }
 
-std::vector<std::uint8_t> DeviceData::payload() const {
-  std::vector<std::uint8_t> out = {mode, gain_setting};
-  for (const std::uint16_t field : {angle_grad, transmit_duration_us, sample_period_ticks, transmit_frequency_khz,
-                                    number_of_samples, static_cast<std::uint16_t>(data.size())}) {
-    putU16(out, field);
-  }
-  out.insert(out.end(), data.begin(), data.end());
-  return out;
-}
-
+std::vector<std::uint8_t> DeviceData::payload() const { return writeFields(*this); }
 std::optional<DeviceData> DeviceData::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  DeviceData ping;
-  ping.mode = reader.u8();
-  ping.gain_setting = reader.u8();
-  ping.angle_grad = reader.u16();
-  ping.transmit_duration_us = reader.u16();
-  ping.sample_period_ticks = reader.u16();
-  ping.transmit_frequency_khz = reader.u16();
-  ping.number_of_samples = reader.u16();
-  if (!readVector(reader, 14, ping.data, why)) return std::nullopt;
-  return ping;
+  return readFields<DeviceData>(payload, why);
 }
 
-std::vector<std::uint8_t> AutoDeviceData::payload() const {
-  std::vector<std::uint8_t> out = {mode, gain_setting};
-  for (const std::uint16_t field :
-       {angle_grad, transmit_duration_us, sample_period_ticks, transmit_frequency_khz, start_angle_grad, stop_angle_grad}) {
-    putU16(out, field);
-  }
-  out.push_back(num_steps);
-  out.push_back(delay_ms);
-  putU16(out, number_of_samples);
-  putU16(out, static_cast<std::uint16_t>(data.size()));
-  out.insert(out.end(), data.begin(), data.end());
-  return out;
-}
-
+std::vector<std::uint8_t> AutoDeviceData::payload() const { return writeFields(*this); }
 std::optional<AutoDeviceData> AutoDeviceData::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  AutoDeviceData ping;
-  ping.mode = reader.u8();
-  ping.gain_setting = reader.u8();
-  ping.angle_grad = reader.u16();
-  ping.transmit_duration_us = reader.u16();
-  ping.sample_period_ticks = reader.u16();
-  ping.transmit_frequency_khz = reader.u16();
-  ping.start_angle_grad = reader.u16();
-  ping.stop_angle_grad = reader.u16();
-  ping.num_steps = reader.u8();
-  ping.delay_ms = reader.u8();
-  ping.number_of_samples = reader.u16();
-  if (!readVector(reader, 20, ping.data, why)) return std::nullopt;
-  return ping;
+  return readFields<AutoDeviceData>(payload, why);
 }
 
 DeviceData AutoDeviceData::deviceData() const {
@@ -349,78 +317,23 @@ DeviceData AutoDeviceData::deviceData() const {
           number_of_samples, data};
 }
 
-std::vector<std::uint8_t> Reset::payload() const { return {bootloader, reserved}; }
-
+std::vector<std::uint8_t> Reset::payload() const { return writeFields(*this); }
 std::optional<Reset> Reset::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  Reset reset;
-  reset.bootloader = reader.u8();
-  reset.reserved = reader.u8();
-  if (!exactly(reader, 2, why)) return std::nullopt;
-  return reset;
+  return readFields<Reset>(payload, why);
 }
 
-std::vector<std::uint8_t> Transducer::payload() const {
-  std::vector<std::uint8_t> out = {mode, gain_setting};
-  for (const std::uint16_t field :
-       {angle_grad, transmit_duration_us, sample_period_ticks, transmit_frequency_khz, number_of_samples}) {
-    putU16(out, field);
-  }
-  out.push_back(transmit);
-  out.push_back(reserved);
-  return out;
-}
-
+std::vector<std::uint8_t> Transducer::payload() const { return writeFields(*this); }
 std::optional<Transducer> Transducer::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  Transducer command;
-  command.mode = reader.u8();
-  command.gain_setting = reader.u8();
-  command.angle_grad = reader.u16();
-  command.transmit_duration_us = reader.u16();
-  command.sample_period_ticks = reader.u16();
-  command.transmit_frequency_khz = reader.u16();
-  command.number_of_samples = reader.u16();
-  command.transmit = reader.u8();
-  command.reserved = reader.u8();
-  if (!exactly(reader, 14, why)) return std::nullopt;
-  return command;
+  return readFields<Transducer>(payload, why);
 }
 
-std::vector<std::uint8_t> AutoTransmit::payload() const {
-  std::vector<std::uint8_t> out = {mode, gain_setting};
-  for (const std::uint16_t field : {transmit_duration_us, sample_period_ticks, transmit_frequency_khz,
-                                    number_of_samples, start_angle_grad, stop_angle_grad}) {
-    putU16(out, field);
-  }
-  out.push_back(num_steps);
-  out.push_back(delay_ms);
-  return out;
-}
-
+std::vector<std::uint8_t> AutoTransmit::payload() const { return writeFields(*this); }
 std::optional<AutoTransmit> AutoTransmit::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  PayloadReader reader(payload);
-  AutoTransmit command;
-  command.mode = reader.u8();
-  command.gain_setting = reader.u8();
-  command.transmit_duration_us = reader.u16();
-  command.sample_period_ticks = reader.u16();
-  command.transmit_frequency_khz = reader.u16();
-  command.number_of_samples = reader.u16();
-  command.start_angle_grad = reader.u16();
-  command.stop_angle_grad = reader.u16();
-  command.num_steps = reader.u8();
-  command.delay_ms = reader.u8();
-  if (!exactly(reader, 16, why)) return std::nullopt;
-  return command;
+  return readFields<AutoTransmit>(payload, why);
 }
 
 std::optional<MotorOff> MotorOff::parse(std::span<const std::uint8_t> payload, std::string* why) {
-  if (!payload.empty()) {
-    if (why) *why = "payload of " + std::to_string(payload.size()) + " bytes, expected 0";
-    return std::nullopt;
-  }
-  return MotorOff{};
+  return readFields<MotorOff>(payload, why);
 }
 
 // ---- Beams ------------------------------------------------------------------------------------------
