@@ -271,8 +271,9 @@ void mavlinkSeeds() {
     }
     return out;
   };
-  for (const auto& [name, bytes] : {std::pair{"ardusub_v2_ekf.bin", stream(2, true)}, std::pair{"ardusub_v1_depth.bin", stream(1, false)}}) {
-    seed("mavlink_stream", name, [&bytes](std::ostream& out) {
+  for (const auto& named : {std::pair{"ardusub_v2_ekf.bin", stream(2, true)}, std::pair{"ardusub_v1_depth.bin", stream(1, false)}}) {
+    const std::vector<std::uint8_t>& bytes = named.second;  // a structured binding cannot be captured before C++20 in clang 14
+    seed("mavlink_stream", named.first, [&bytes](std::ostream& out) {
       out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     });
   }
