@@ -4,7 +4,6 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -45,16 +44,9 @@ std::vector<std::uint8_t> boxBytes(const std::vector<ViewBox>& boxes) {
   return bytes;
 }
 
-/// A number as JSON: shortest round-trip-ish form with 9 significant digits, deterministic.
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value + 0.0);
-  return text;
-}
-
 std::string vectorJson(const Eigen::Vector3d& v) {
   std::string out = "[";
-  out.append(number(v.x())).append(",").append(number(v.y())).append(",").append(number(v.z()));
+  out.append(jsonNumber(v.x())).append(",").append(jsonNumber(v.y())).append(",").append(jsonNumber(v.z()));
   return out + "]";
 }
 
@@ -115,7 +107,7 @@ HtmlView renderHtmlView(const OcTree16& tree, const HtmlViewOptions& options, co
     if (!point_m.allFinite()) throw ValueError("a trajectory point of the viewer is not finite");
     for (int axis = 0; axis < 3; ++axis) {
       if (trajectory.size() > 1) trajectory += ',';
-      trajectory += number(point_m[axis]);
+      trajectory += jsonNumber(point_m[axis]);
     }
   }
   trajectory += "]";
@@ -137,7 +129,7 @@ HtmlView renderHtmlView(const OcTree16& tree, const HtmlViewOptions& options, co
   });
   const NodeCounts counts = tree.counts();
 
-  std::string payload = "{\"title\":" + jsonString(options.title) + ",\"resolution_m\":" + number(tree.resolution_m());
+  std::string payload = "{\"title\":" + jsonString(options.title) + ",\"resolution_m\":" + jsonNumber(tree.resolution_m());
   payload += ",\"counts\":{\"nodes\":" + std::to_string(counts.nodes) + ",\"inner\":" + std::to_string(counts.inner) +
              ",\"leaves\":" + std::to_string(counts.leaves) + ",\"occupied_leaves\":" +
              std::to_string(view.occupied.leaves) + ",\"free_leaves\":" + std::to_string(view.free.leaves) +

@@ -1,5 +1,6 @@
 #include "sonarmap/io/web_text.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace sonarmap {
@@ -37,6 +38,13 @@ std::string jsonString(std::string_view text) {
     }
   }
   return out + "\"";
+}
+
+std::string jsonNumber(double value) {
+  if (!std::isfinite(value)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value + 0.0);
+  return text;
 }
 
 std::string htmlText(std::string_view text) {

@@ -1,8 +1,6 @@
 #include "live_json.hpp"
 
 #include <charconv>
-#include <cmath>
-#include <cstdio>
 #include <vector>
 
 #include "sonarmap/io/web_text.hpp"
@@ -16,25 +14,25 @@ std::string point(const TrackPoint& p) {
   std::string out = "[";
   for (const double value : {p.time_s, p.x_m, p.y_m, p.z_m, p.heading_rad}) {
     if (out.size() > 1) out += ',';
-    out += number(value);
+    out += jsonNumber(value);
   }
   out += ']';
   return out;
 }
 
 std::string beam(const LiveBeam& b) {
-  return "{\"s\":" + integer(b.seq) + ",\"t\":" + number(b.arrival_s) + ",\"b\":" + number(b.bearing_rad) +
-         ",\"l\":" + number(b.bin_length_m) + ",\"p\":[" + number(b.sonar.x_m) + "," + number(b.sonar.y_m) + "," +
-         number(b.sonar.z_m) + "," + number(b.sonar.yaw_rad) + "],\"cw\":" + (b.sonar.clockwise ? "1" : "0") +
+  return "{\"s\":" + integer(b.seq) + ",\"t\":" + jsonNumber(b.arrival_s) + ",\"b\":" + jsonNumber(b.bearing_rad) +
+         ",\"l\":" + jsonNumber(b.bin_length_m) + ",\"p\":[" + jsonNumber(b.sonar.x_m) + "," + jsonNumber(b.sonar.y_m) + "," +
+         jsonNumber(b.sonar.z_m) + "," + jsonNumber(b.sonar.yaw_rad) + "],\"cw\":" + (b.sonar.clockwise ? "1" : "0") +
          ",\"i\":\"" + base64(b.intensities) + "\"}";
 }
 
 std::string raster(const RasterInfo& r) {
-  return "{\"v\":" + integer(r.version) + ",\"north\":" + number(r.north_m) + ",\"west\":" + number(r.west_m) +
-         ",\"cell\":" + number(r.cell_m) + ",\"cols\":" + std::to_string(r.cols) + ",\"rows\":" + std::to_string(r.rows) +
-         ",\"z\":" + number(r.z_m) + ",\"beams\":" + integer(r.beams) + ",\"occupied\":" + integer(r.occupied_px) +
-         ",\"free\":" + integer(r.free_px) + ",\"made_s\":" + number(r.made_s) + ",\"render_ms\":" +
-         number(1000.0 * r.render_s) + ",\"copy_ms\":" + number(1000.0 * r.copy_s) + ",\"bytes\":" +
+  return "{\"v\":" + integer(r.version) + ",\"north\":" + jsonNumber(r.north_m) + ",\"west\":" + jsonNumber(r.west_m) +
+         ",\"cell\":" + jsonNumber(r.cell_m) + ",\"cols\":" + std::to_string(r.cols) + ",\"rows\":" + std::to_string(r.rows) +
+         ",\"z\":" + jsonNumber(r.z_m) + ",\"beams\":" + integer(r.beams) + ",\"occupied\":" + integer(r.occupied_px) +
+         ",\"free\":" + integer(r.free_px) + ",\"made_s\":" + jsonNumber(r.made_s) + ",\"render_ms\":" +
+         jsonNumber(1000.0 * r.render_s) + ",\"copy_ms\":" + jsonNumber(1000.0 * r.copy_s) + ",\"bytes\":" +
          integer(r.png_bytes) + "}";
 }
 
@@ -44,8 +42,8 @@ std::string status(const LiveStatus& s) {
     if (i > 0) warnings += ',';
     warnings += jsonString(s.warnings[i]);
   }
-  return "{\"beams\":" + integer(s.beams_received) + ",\"rate\":" + number(s.beams_per_s) +
-         ",\"lag\":" + (s.lag_s ? number(*s.lag_s) : "null") + ",\"waiting\":" + integer(s.beams_waiting) +
+  return "{\"beams\":" + integer(s.beams_received) + ",\"rate\":" + jsonNumber(s.beams_per_s) +
+         ",\"lag\":" + (s.lag_s ? jsonNumber(*s.lag_s) : "null") + ",\"waiting\":" + integer(s.beams_waiting) +
          ",\"sweeps\":" + integer(s.sweeps) + ",\"recording\":" + jsonString(s.recording_path) + ",\"warnings\":" +
          warnings + "]}";
 }
@@ -63,23 +61,16 @@ std::string settings(const LiveSettings& s) {
 }
 
 std::string stats(const LatencyStats& s) {
-  return "{\"count\":" + integer(s.count) + ",\"median_s\":" + number(s.median_s) + ",\"p95_s\":" + number(s.p95_s) +
-         ",\"max_s\":" + number(s.max_s) + "}";
+  return "{\"count\":" + integer(s.count) + ",\"median_s\":" + jsonNumber(s.median_s) + ",\"p95_s\":" + jsonNumber(s.p95_s) +
+         ",\"max_s\":" + jsonNumber(s.max_s) + "}";
 }
 
 }  // namespace
 
-std::string number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value + 0.0);
-  return text;
-}
-
 std::string update(const ViewUpdate& u) {
   std::string out = "{\"full\":";
   out += u.full ? "true" : "false";
-  out += ",\"clock_s\":" + number(u.status.clock_s) + ",\"fan_beams\":" + integer(u.fan_beams) + ",\"cursor\":" +
+  out += ",\"clock_s\":" + jsonNumber(u.status.clock_s) + ",\"fan_beams\":" + integer(u.fan_beams) + ",\"cursor\":" +
          jsonString(cursorText(u.cursor)) + ",\"beams\":[";
   for (std::size_t i = 0; i < u.beams.size(); ++i) {
     if (i > 0) out += ',';

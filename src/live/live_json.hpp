@@ -12,8 +12,6 @@
 
 namespace sonarmap::live_json {
 
-/// A number with 9 significant digits; null when not finite.
-std::string number(double value);
 
 /// An update as one JSON object: full, clock_s, fan_beams, cursor, beams (s seq, t arrival,
 /// b bearing, l bin length, p [x, y, z, yaw], cw, i base64 bins), track_full, track ([t, x, y, z,

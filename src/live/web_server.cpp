@@ -236,10 +236,10 @@ void WebServer::Impl::serveMap(httplib::Response& res) {
     return;
   }
   res.set_header("X-Raster-Version", std::to_string(info.version));
-  res.set_header("X-Raster-North", live_json::number(info.north_m));
-  res.set_header("X-Raster-West", live_json::number(info.west_m));
-  res.set_header("X-Raster-Cell", live_json::number(info.cell_m));
-  res.set_header("X-Raster-Z", live_json::number(info.z_m));
+  res.set_header("X-Raster-North", jsonNumber(info.north_m));
+  res.set_header("X-Raster-West", jsonNumber(info.west_m));
+  res.set_header("X-Raster-Cell", jsonNumber(info.cell_m));
+  res.set_header("X-Raster-Z", jsonNumber(info.z_m));
   res.set_header("X-Raster-Beams", std::to_string(info.beams));
   res.set_header("Access-Control-Expose-Headers",
                  "X-Raster-Version, X-Raster-North, X-Raster-West, X-Raster-Cell, X-Raster-Z, X-Raster-Beams");

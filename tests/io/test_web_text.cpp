@@ -1,8 +1,10 @@
 /// Tests of the web text helpers against their standards' own examples: base64 against RFC 4648's
-/// test vectors (section 10), JSON string literals that stay inside an HTML script element, HTML text.
+/// test vectors (section 10), JSON string literals that stay inside an HTML script element, JSON
+/// numbers (none not finite), HTML text.
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,15 @@ TEST(webText, jsonStringEscapesWhatWouldEndTheLiteralOrTheScript) {
   EXPECT_EQ(jsonString("a\nb\t"), R"("a\u000ab\u0009")");
   EXPECT_EQ(jsonString("</script>&"), R"("\u003c/script\u003e\u0026")");
   EXPECT_EQ(jsonString("Brest \xc3\xa9t\xc3\xa9"), "\"Brest \xc3\xa9t\xc3\xa9\"");  // UTF-8 passes
+}
+
+TEST(webText, jsonNumberHasNineDigitsAndNoNonFiniteValue) {
+  EXPECT_EQ(jsonNumber(0.05), "0.05");
+  EXPECT_EQ(jsonNumber(-0.0), "0");
+  EXPECT_EQ(jsonNumber(1.0 / 3.0), "0.333333333");
+  EXPECT_EQ(jsonNumber(1234567890123.0), "1.23456789e+12");
+  EXPECT_EQ(jsonNumber(std::numeric_limits<double>::quiet_NaN()), "null");
+  EXPECT_EQ(jsonNumber(-std::numeric_limits<double>::infinity()), "null");
 }
 
 TEST(webText, htmlTextEscapesMarkupAndQuotes) {

@@ -18,6 +18,11 @@ namespace sonarmap {
 /// element. Bytes of 0x80 and above pass unchanged (UTF-8 text stays UTF-8).
 [[nodiscard]] std::string jsonString(std::string_view text);
 
+/// `value` as a JSON number with 9 significant digits ("%.9g": deterministic, a float's value
+/// exactly, a double's to about 1e-9), -0 written as 0; null when not finite (JSON has no NaN or
+/// infinity, RFC 8259, section 6).
+[[nodiscard]] std::string jsonNumber(double value);
+
 /// `text` safe as HTML element content or a quoted attribute value: '<', '>', '&' and '"' as
 /// character references (HTML Living Standard, "Serializing HTML fragments").
 [[nodiscard]] std::string htmlText(std::string_view text);
