@@ -15,11 +15,13 @@
 // With --png PATH it draws the scans placed three ways side by side: with the dead reckoning, with
 // `localize`, with the DGPS positions (and the compass heading), on one grid of 0.25 m.
 //
-// Usage: sonarmap_marina_study [--data DIR] [--png PATH] [--verbose] [--nav-class NAME] [--scale-sigma PCT]
-//        [--heading-sigma DEG] [--gyro-walk DEG/SQRT(S)] [--velocity-noise M/S]
+// Usage: sonarmap_marina_study [--data DIR] [--png PATH] [--verbose] [--heading-only] [--nav-class NAME]
+//        [--scale-sigma PCT] [--heading-sigma DEG] [--gyro-walk DEG/SQRT(S)] [--velocity-noise M/S]
 //   --data DIR: a folder holding scans.csv.gz (or scans.csv), dr_nav.csv and dgps_truth_nav.csv
 //               (default: the shared data's stpere_marina; the whole survey scored aside has the same layout)
 //   --verbose:  one line per loop closure tried on stderr
+//   --heading-only: the compass alone (dr_nav.csv's north and east set to 0, class ahrs), as a
+//               vehicle without a DVL logs it
 //   --nav-class and the sigmas: the localization's odometry noise (OdometryNoise), as `localize`'s options
 
 #include <algorithm>
@@ -161,6 +163,7 @@ int main(int argc, char** argv) {
   if (const char* env = std::getenv("SONARMAP_DATA")) data = std::string(env) + "/stpere_marina";
   std::string png;
   bool verbose = false;
+  bool heading_only = false;
   SlamOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -181,10 +184,12 @@ int main(int argc, char** argv) {
       data = argv[++i];
     } else if (arg == "--png" && i + 1 < argc) {
       png = argv[++i];
+    } else if (arg == "--heading-only") {
+      heading_only = true;
     } else if (arg == "--verbose") {
       verbose = true;
     } else {
-      std::fprintf(stderr, "usage: sonarmap_marina_study [--data DIR] [--png PATH] [--verbose] [--nav-class NAME] "
+      std::fprintf(stderr, "usage: sonarmap_marina_study [--data DIR] [--png PATH] [--verbose] [--heading-only] [--nav-class NAME] "
                            "[--scale-sigma PCT] [--heading-sigma DEG] [--gyro-walk DEG/SQRT(S)] [--velocity-noise M/S]\n");
       return 2;
     }
@@ -195,12 +200,18 @@ int main(int argc, char** argv) {
     const Clock::time_point read_start = Clock::now();
     const std::vector<BodyPoint> points = readPointScansCsv(scans_path);
     const NavTrack dead_reckoning = readNavCsv(data + "/dr_nav.csv");
+    // --heading-only: the compass alone, as a vehicle without a DVL logs it (north and east 0).
+    NavTrack navigation = dead_reckoning;
+    if (heading_only) {
+      for (NavSample& fix : navigation) fix.position_ned_m.head<2>().setZero();
+      options.forming.odometry = odometryNoiseOf("ahrs");
+    }
     const NavTrack truth = readNavCsv(data + "/dgps_truth_nav.csv");
     const double read_s = std::chrono::duration<double>(Clock::now() - read_start).count();
 
-    const SlamOptions slam = withNavigationPeriod(options, dead_reckoning);
+    const SlamOptions slam = withNavigationPeriod(options, navigation);
     const Clock::time_point start = Clock::now();
-    const SlamResult result = localizePointScans(points, dead_reckoning, PointScanOptions{}, slam);
+    const SlamResult result = localizePointScans(points, navigation, PointScanOptions{}, slam);
     const double localize_s = std::chrono::duration<double>(Clock::now() - start).count();
 
     const TrajectoryError dr = evaluateTrajectory(dead_reckoning, truth);
@@ -255,6 +266,7 @@ int main(int argc, char** argv) {
     if (!png.empty()) {
       const SlamOptions tuned = withNavigationPeriod(options, dead_reckoning);
       const std::vector<SonarScan> scans = formPointScans(points, dead_reckoning, PointScanOptions{}, tuned.forming);
+      // Each scan's points are in its body frame either way: drawn at the dead reckoning's poses.
       std::vector<Pose2> dr_poses;
       for (const SonarScan& scan : scans) dr_poses.push_back(scan.dead_reckoning);
       char title[160];

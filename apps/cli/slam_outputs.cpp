@@ -64,7 +64,7 @@ void printSlamSummary(const SlamReport& report, bool with_nav) {
               !with_nav             ? " (no --nav: the motion comes from the scans alone, and the vehicle stays put "
                                       "between scans they cannot place)"
               : report.heading_only ? " (--nav gives the heading only: the position comes from the scans, and the "
-                                      "vehicle stays put between scans they cannot place; no loop closure is sought)"
+                                      "vehicle keeps its last velocity between scans they cannot place)"
                                     : "");
 }
 

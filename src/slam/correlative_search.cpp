@@ -139,4 +139,26 @@ CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const 
   return result;
 }
 
+double typicalPointSigma(const std::vector<ScanPoint>& points) {
+  if (points.empty()) return 1e-3;
+  std::vector<double> sigmas;
+  sigmas.reserve(points.size());
+  for (const ScanPoint& point : points) sigmas.push_back(std::sqrt(point.covariance_m2.trace()));
+  std::nth_element(sigmas.begin(), sigmas.begin() + static_cast<std::ptrdiff_t>(sigmas.size() / 2), sigmas.end());
+  return std::max(sigmas[sigmas.size() / 2], 1e-3);
+}
+
+std::vector<std::vector<double>> pointLikelihoods(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
+                                                  const std::vector<Pose2>& poses) {
+  std::vector<std::vector<double>> likelihoods(poses.size(), std::vector<double>(source.size(), 0.0));
+  if (target.empty() || source.empty()) return likelihoods;
+  const double sigma_m = typicalPointSigma(source);
+  // Beyond 3σ of the target the likelihood is 0 (LikelihoodField::at outside the grid).
+  const LikelihoodField field = likelihoodField(target, sigma_m / 2.0, sigma_m, 3.0 * sigma_m);
+  for (std::size_t p = 0; p < poses.size(); ++p) {
+    for (std::size_t i = 0; i < source.size(); ++i) likelihoods[p][i] = field.at(poses[p] * source[i].xy_m);
+  }
+  return likelihoods;
+}
+
 }  // namespace sonarmap

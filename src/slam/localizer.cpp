@@ -17,6 +17,10 @@ namespace sonarmap {
 
 namespace {
 
+/// The likelihood of a point that fits no target point: the floor of the mixture that compares two
+/// poses of a match (stillUnlessShown), a tenth of a point that fits exactly.
+constexpr double kOutlierLikelihood = 0.1;
+
 /// Linear interpolation of two planar poses (the yaw along the shorter arc).
 Pose2 interpolate(const Pose2& a, const Pose2& b, double f) {
   return {a.x_m + f * (b.x_m - a.x_m), a.y_m + f * (b.y_m - a.y_m),
@@ -46,7 +50,7 @@ Localizer::Localizer(const SlamOptions& options, bool navigation_known)
     : options_(options),
       navigation_known_(navigation_known),
       noise_(options.forming.odometry),
-      deviation_(navigation_known && options.forming.odometry.position_measured ? options.forming.odometry.deviation_sigma_rad
+      deviation_(navigation_known ? options.forming.odometry.deviation_sigma_rad
                                                                                : 0.0) {
   options_.validate();
   report_.heading_only = headingOnly();
@@ -85,6 +89,7 @@ void Localizer::addScan(SonarScan scan) {
     durations_s_.push_back(0.0);
     odometry_cov_.push_back(Eigen::Matrix3d::Zero());
     travelled_m_.push_back(0.0);
+    scan_odometry_information_.push_back(std::nullopt);
     scans_.push_back(std::move(scan));
     return;
   }
@@ -94,24 +99,46 @@ void Localizer::addScan(SonarScan scan) {
   odometry_.push_back(motion);
   durations_s_.push_back(duration_s);
   odometry_cov_.push_back(noise_.covariance(motion, duration_s, navigation_known_));
-  chain_.append(motion, odometry_cov_.back());
-  const std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> terms = noise_.covarianceTerms(motion, duration_s);
-  for (std::size_t p = 0; p < terms.size(); ++p) term_chains_[p].append(motion, terms[p]);
+  if (positionMeasured()) {
+    chain_.append(motion, odometry_cov_.back());
+    const std::array<Eigen::Matrix3d, kOdometryNoiseTerms + 1> terms = noise_.covarianceTerms(motion, duration_s);
+    for (std::size_t p = 0; p < terms.size(); ++p) term_chains_[p].append(motion, terms[p]);
+    travelled_m_.push_back(travelled_m_.back() + motion.translation().norm());
+  }
   Pose2 predicted = predictedMotion(motion, previous.dead_reckoning.yaw_rad, scan.dead_reckoning.yaw_rad);
   if (headingOnly()) continueAtLastVelocity(k, duration_s, predicted, scan);
   graph_.addNode(graph_.pose(k - 1) * predicted);
-  graph_.addEdge({k - 1, k, motion, odometryEdgeInformation(k), EdgeKind::kOdometry, previous.dead_reckoning.yaw_rad,
-                  scan.dead_reckoning.yaw_rad});
+  // With the heading only, the motion model is the odometry: the last velocity held, the turn the
+  // heading sensor's (a vehicle's speed does not jump); without navigation, a still vehicle.
+  graph_.addEdge({k - 1, k, headingOnly() ? predicted : motion, odometryEdgeInformation(k), EdgeKind::kOdometry,
+                  previous.dead_reckoning.yaw_rad, scan.dead_reckoning.yaw_rad});
   edge_pairs_information_.push_back(std::nullopt);
-  travelled_m_.push_back(travelled_m_.back() + motion.translation().norm());
   scans_.push_back(std::move(scan));
-  measureMatches(k);
+  if (positionMeasured()) measureMatches(k, odometry_[k], odometry_[k - 1] * odometry_[k]);
   // The prediction again with the deviation measured on this scan too.
   if (!headingOnly()) graph_.setPose(k, graph_.pose(k - 1) * predictedMotion(motion, scans_[k - 1].dead_reckoning.yaw_rad,
                                                                              scans_[k].dead_reckoning.yaw_rad));
-  matchToSubmap(k);
+  const std::optional<Eigen::Matrix3d> matched = matchToSubmap(k);
+  if (!positionMeasured()) {
+    // The scans' own estimate of the motion starts the pairwise matches.
+    measureMatches(k, graph_.pose(k - 1).between(graph_.pose(k)), graph_.pose(k >= 2 ? k - 2 : 0).between(graph_.pose(k)));
+    scan_odometry_information_.push_back(matched);
+    chain_.append(graph_.pose(k - 1).between(graph_.pose(k)), scanOdometryCovariance(k));
+    travelled_m_.push_back(travelled_m_.back() + graph_.pose(k - 1).between(graph_.pose(k)).translation().norm());
+  }
   closeLoop(k);
 }
+
+Eigen::Matrix3d Localizer::scanOdometryCovariance(std::size_t k) const {
+  // How well the scans fixed the step: the match's information joined with the motion model's (a
+  // match along a wall measures only across it; along it the motion model decides, with its
+  // uncertainty), or the motion model's alone where no match held.
+  const std::optional<Eigen::Matrix3d>& pairs = scan_odometry_information_[k];
+  if (!pairs) return odometry_cov_[k];
+  return (matchInformation(*pairs) + odometry_cov_[k].inverse()).inverse();
+}
+
+
 
 Pose2 Localizer::predictedMotion(const Pose2& motion, double from_heading_rad, double to_heading_rad) const {
   const double scale = graph_.odometryScale();
@@ -134,7 +161,7 @@ void Localizer::continueAtLastVelocity(std::size_t k, double duration_s, Pose2& 
   for (ScanPoint& point : scan.points) point.xy_m += velocity_mps * point.time_offset_s;
 }
 
-void Localizer::matchToSubmap(std::size_t k) {
+std::optional<Eigen::Matrix3d> Localizer::matchToSubmap(std::size_t k) {
   const std::size_t first = k > options_.submap_scans ? k - options_.submap_scans : 0;
   const std::vector<ScanPoint> target = placedPoints(first, k);
   const Pose2 predicted = graph_.pose(k);
@@ -151,20 +178,36 @@ void Localizer::matchToSubmap(std::size_t k) {
     const bool along_wall = match.reason.rfind("ambiguous: constrained", 0) == 0;
     if (!along_wall || match.pairs < options_.matching.min_pairs) {
       ++report_.matches_refused;
-      return;
+      return std::nullopt;
     }
   }
   if (beyondLimits(k - 1, k, graph_.pose(k - 1).between(match.pose))) {
     ++report_.matches_refused;
     ++report_.matches_beyond_limits;
-    return;
+    return std::nullopt;
   }
+  const Pose2 measured = stillUnlessShown(target, scans_[k].points, predicted, match.pose);
   ++report_.matches_accepted;
-  graph_.setPose(k, match.pose);
+  graph_.setPose(k, measured);
   const Pose2& anchor = graph_.pose(k - 1);
   const Eigen::Matrix3d pairs_information = informationInFrame(match.information, anchor);
-  graph_.addEdge({k - 1, k, anchor.between(match.pose), matchInformation(pairs_information), EdgeKind::kScanMatch});
+  graph_.addEdge({k - 1, k, anchor.between(measured), matchInformation(pairs_information), EdgeKind::kScanMatch});
   edge_pairs_information_.push_back(pairs_information);
+  return pairs_information;
+}
+
+Pose2 Localizer::stillUnlessShown(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& expected,
+                                  const Pose2& matched) const {
+  if (navigation_known_) return matched;
+  // The log-likelihood ratio of the two poses, each point's likelihood a Gaussian's with a floor
+  // for the points that fit neither (a target seen from elsewhere, clutter: a mixture with an
+  // outlier share): 2 Λ against χ²₃'s 99 % quantile, the test of one pose's three parameters.
+  const std::vector<std::vector<double>> likelihoods = pointLikelihoods(target, source, {expected, matched});
+  double log_ratio = 0.0;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    log_ratio += std::log((kOutlierLikelihood + likelihoods[1][i]) / (kOutlierLikelihood + likelihoods[0][i]));
+  }
+  return 2.0 * log_ratio > options_.loop_gate_chi2 ? matched : expected;
 }
 
 bool Localizer::beyondLimits(std::size_t from, std::size_t to, const Pose2& motion) const {

@@ -33,12 +33,10 @@ bool measures(const ScanMatch& match, const ScanMatchOptions& options) {
 
 }  // namespace
 
-void Localizer::measureMatches(std::size_t k) {
-  // Only with a measured position: without one the matches are the position itself.
-  if (!navigation_known_ || !options_.forming.odometry.position_measured) return;
-  const ScanMatch pair = matchScansFrom(scans_[k - 1].points, scans_[k].points, odometry_[k], options_.matching);
+void Localizer::measureMatches(std::size_t k, const Pose2& from_last, const Pose2& from_second_last) {
+  const ScanMatch pair = matchScansFrom(scans_[k - 1].points, scans_[k].points, from_last, options_.matching);
   const bool paired = measures(pair, options_.matching);
-  if (paired) {
+  if (paired && navigation_known_) {
     // The match's turn against the navigation's: evidence on the heading sensor's deviation.
     const Eigen::Matrix3d information = matchInformation(pair.information);
     const double match_variance = (information + 1e-9 * information.trace() * Eigen::Matrix3d::Identity()).inverse()(2, 2);
@@ -56,7 +54,7 @@ void Localizer::measureMatches(std::size_t k) {
   // Triangles of accepted matches only: along a wall a match slides freely where its information
   // is merely weak, which would read as scatter.
   if (k >= 2 && pair.accepted && last_pair_) {
-    const ScanMatch skip = matchScansFrom(scans_[k - 2].points, scans_[k].points, odometry_[k - 1] * odometry_[k], options_.matching);
+    const ScanMatch skip = matchScansFrom(scans_[k - 2].points, scans_[k].points, from_second_last, options_.matching);
     if (skip.accepted) {
       triangles_.push_back({last_pair_->pose, pair.pose, skip.pose, last_pair_->information, pair.information, skip.information});
     }
@@ -93,7 +91,14 @@ bool Localizer::calibrateOdometry() {
 
 void Localizer::restate() {
   for (std::size_t k = 1; k < odometry_.size(); ++k) odometry_cov_[k] = noise_.covariance(odometry_[k], durations_s_[k], navigation_known_);
-  chain_.restate(odometry_cov_);
+  if (positionMeasured()) {
+    chain_.restate(odometry_cov_);
+  } else {
+    std::vector<Eigen::Matrix3d> steps(scans_.size(), Eigen::Matrix3d::Zero());
+    for (std::size_t k = 1; k < chain_.size(); ++k) steps[k] = scanOdometryCovariance(k);
+    steps.resize(chain_.size());
+    chain_.restate(steps);
+  }
   const std::vector<PoseGraphEdge>& edges = graph_.edges();
   for (std::size_t e = 0; e < edges.size(); ++e) {
     if (edges[e].kind == EdgeKind::kOdometry) graph_.setInformation(e, odometryEdgeInformation(edges[e].to));

@@ -42,7 +42,7 @@ void Localizer::closeLoop(std::size_t k) {
   // With the heading alone, the track's position comes from the sequential matches, whose drift
   // along the path the gates below (dead reckoning's drift model) do not describe: measured, 64 of
   // the 76 accepted on three seeds of the simulated missions were wrong (docs/localization.md).
-  if (scans_[k].points.size() < options_.matching.min_pairs || headingOnly()) return;
+  if (scans_[k].points.size() < options_.matching.min_pairs) return;
   // The nearest earlier scan that the vehicle left long enough ago, sought no farther than where
   // its true neighbour can be (SlamOptions::loop_search_radius_m): half the old scans' spacing
   // plus 3σ of dead reckoning's drift along the path since. Two views farther apart than that see
@@ -84,7 +84,7 @@ void Localizer::closeLoop(std::size_t k) {
   LoopClosure loop;
   loop.from = j;
   loop.to = k;
-  loop.measurement = graph_.pose(j).between(match.pose);
+  loop.measurement = graph_.pose(j).between(stillUnlessShown(target, source, graph_.pose(k), match.pose));
   loop.pairs = match.pairs;
   loop.peak_ratio = match.peak_ratio;
   if (!match.accepted) {
@@ -125,6 +125,9 @@ Eigen::Vector2d Localizer::deviationCoefficients() const {
 }
 
 Eigen::Matrix2d Localizer::deviationCovariance() const {
+  // With the heading only, the compass's turns are the track's (the matches are solved about
+  // them): its deviation, shown or not, bends every path by as much as its prior allows.
+  if (headingOnly()) return deviation_.covariance();
   return deviationObserved() ? deviation_.covariance() : Eigen::Matrix2d::Zero();
 }
 

@@ -241,11 +241,7 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
   auto searchFirst = [&] {
     const double half_window_m = std::min(3.0 * std::sqrt(prior_covariance.topLeftCorner<2, 2>().eigenvalues().real().maxCoeff()), 1e4);
     const double half_window_rad = std::min(3.0 * std::sqrt(prior_covariance(2, 2)), 20.0 * 3.14159265358979323846 / 180.0);
-    double sigma_m = 0.0;  // the points' typical σ: the median of their larger axes
-    std::vector<double> sigmas;
-    for (const ScanPoint& point : source) sigmas.push_back(std::sqrt(point.covariance_m2.trace()));
-    std::nth_element(sigmas.begin(), sigmas.begin() + static_cast<std::ptrdiff_t>(sigmas.size() / 2), sigmas.end());
-    sigma_m = std::max(sigmas[sigmas.size() / 2], 1e-3);
+    const double sigma_m = typicalPointSigma(source);
     const CorrelativeResult found =
         correlativeSearch(target, source, initial, half_window_m, half_window_rad, sigma_m, options.max_search_steps);
     ScanMatch refined = icp(target, source, tree, shapes, found.pose, initial, prior_information, options);

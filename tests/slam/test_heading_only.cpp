@@ -63,7 +63,6 @@ TEST(slamHeadingOnly, TheScansGiveThePositionOfAVehicleAlongAHull) {
   options.forming.odometry = odometryNoiseOf("ahrs");
   const SlamResult slam = localize(run.log, heading, defaultSonarToBody(), MapperOptions{}, options);
   EXPECT_TRUE(slam.report.heading_only);
-  EXPECT_EQ(slam.report.loop_closures.size(), 0U);  // none sought
   EXPECT_GT(slam.report.matches_accepted, slam.report.scans / 2);
   const double still_m = evaluateTrajectory(heading, run.nav).ate_rmse_m;
   const double slam_m = evaluateTrajectory(slam.trajectory, run.nav).ate_rmse_m;

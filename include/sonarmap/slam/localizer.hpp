@@ -22,11 +22,20 @@
 /// reckoning give the odometry's noise, never below the stated class, and the candidates are
 /// decided again with it (optimize).
 ///
-/// With the heading alone (OdometryNoise::position_measured false: an AHRS or compass without a
-/// DVL), each scan is predicted at the velocity over the ground of the two scans before it, its
-/// points moved by that velocity to their scan's reference time (the motion compensation a
-/// position would have given), and matched with a correlative search over the unknown motion's
-/// window; no loop closure is sought (the gates assume dead reckoning's drift, not the scans').
+/// Where no position is measured (the heading alone, OdometryNoise::position_measured false, or no
+/// navigation) the scans are the odometry: each step as matched, with the match's information
+/// joined with the motion model's (along a wall, or a corridor's two walls, the match measures only
+/// across it, and the motion model decides along it with its own uncertainty), or the motion
+/// model's alone where no match held. That chain is the dead reckoning the loop closures are
+/// sought with and gated against, so the search radius grows with what the scans left uncertain
+/// since the start. With the heading alone, each scan is predicted at the velocity over the ground
+/// of the two scans before it, its points moved by that velocity to their scan's reference time
+/// (the motion compensation a position would have given), matched with a correlative search over
+/// the unknown motion's window, and joined to the scan before by that prediction (a vehicle's
+/// speed does not jump); the compass's deviation (its prior) bends every path the chain gives, and
+/// the matches estimate it. Without navigation the vehicle is believed still, and a match moves it
+/// only when the scans fit the moved pose better than the still one beyond chance
+/// (stillUnlessShown).
 ///
 /// One path for batch (localize) and live mapping (Localizer fed scan by scan).
 
@@ -198,6 +207,13 @@ class Localizer {
   std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame = {}) const;
   /// The navigation measures the heading only (OdometryNoise::position_measured false).
   bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
+  /// Without navigation the vehicle is believed still: a match (`matched`, the source frame in the
+  /// target's) moves it from where that belief puts it (`expected`) only when the scans fit there
+  /// distinctly better (fitScores at least ScanMatchOptions::min_peak_ratio times, the test that
+  /// tells a search's peaks apart); else `expected`, which the scans then fit as well as anywhere
+  /// they can tell. With navigation, `matched`.
+  Pose2 stillUnlessShown(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& expected,
+                         const Pose2& matched) const;
   /// Whether `motion` (scan `to`'s pose in scan `from`'s frame) needs the vehicle to move or turn
   /// faster than its limits (OdometryNoise::max_speed_mps, max_turn_rate_radps) between the two
   /// scans' times, where the navigation measures no position.
@@ -211,14 +227,24 @@ class Localizer {
   /// The dead reckoning's motion between two scans as the localizer predicts it: its translation
   /// times the odometry scale, its turn corrected by the heading deviation measured so far.
   Pose2 predictedMotion(const Pose2& motion, double from_heading_rad, double to_heading_rad) const;
-  void matchToSubmap(std::size_t k);
+  /// Matches scan k to the scans before it; returns the match's pairs' information (in scan
+  /// k − 1's frame) when the match joined the graph.
+  std::optional<Eigen::Matrix3d> matchToSubmap(std::size_t k);
+  /// Where no position is measured the scans are the odometry (chain_, the loop closures' dead
+  /// reckoning): scan k's step as estimated has the covariance of its match's information joined
+  /// with the motion model's, or the motion model's alone where no match held.
+  Eigen::Matrix3d scanOdometryCovariance(std::size_t k) const;
+  /// The navigation measures the position (a DVL, fixes).
+  bool positionMeasured() const { return navigation_known_ && options_.forming.odometry.position_measured; }
 
   // The navigation measured on the log (localizer_calibration.cpp).
   /// Scan k matched alone to scan k − 1 and to scan k − 2 from the dead reckoning's motion, without
   /// its prior (matchScansFrom): with the match k − 2 → k − 1 kept from the scan before, a triangle
   /// of matches (navigation_calibration.hpp). Recalibrates the match noise when the triangles have
   /// grown by a fifth since the last calibration.
-  void measureMatches(std::size_t k);
+  /// `from_last` and `from_second_last` start the two matches (scan k in scan k − 1's and k − 2's
+  /// frames): the dead reckoning's where it measures the position, else the scans' own estimate.
+  void measureMatches(std::size_t k, const Pose2& from_last, const Pose2& from_second_last);
   /// Fits the odometry noise to the accepted loop closures (calibrateOdometryNoise); false when
   /// nothing changed (no measured position, no accepted loop closure).
   bool calibrateOdometry();
@@ -274,6 +300,8 @@ class Localizer {
   std::vector<Pose2> odometry_;                ///< dead-reckoning motion from scan k−1 to k (k ≥ 1)
   std::vector<double> durations_s_;            ///< time from scan k−1 to k, s
   std::vector<Eigen::Matrix3d> odometry_cov_;  ///< its covariance with the current noise_
+  /// Where no position is measured: scan k's match's pairs' information (scanOdometryCovariance).
+  std::vector<std::optional<Eigen::Matrix3d>> scan_odometry_information_;
   OdometryChain chain_;                        ///< the same as a chain, for any path's covariance
   std::vector<double> travelled_m_;            ///< dead-reckoning path length at each scan
   OdometryNoise noise_;                        ///< the odometry noise: stated, then revised on the log

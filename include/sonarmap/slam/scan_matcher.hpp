@@ -102,4 +102,16 @@ CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const 
                                     const Pose2& initial, double half_window_m, double half_window_rad,
                                     double sigma_m, int max_steps);
 
+/// The points' typical σ, metres: the median of √trace of their covariances (at least 1 mm); what
+/// the correlative search's likelihood field is smoothed by. 1 mm for no points.
+double typicalPointSigma(const std::vector<ScanPoint>& points);
+
+/// How well each of `source`'s points fits `target` with the source placed at each of `poses` (the
+/// source frame in the target frame): exp(−d²/2σ²), d the distance to the nearest target point, σ =
+/// typicalPointSigma(source), as the correlative search scores a pose (Olson 2009), in [0, 1]; shape
+/// poses.size() × source.size(), zeros when either side is empty. What two hypotheses of one match
+/// are compared by.
+std::vector<std::vector<double>> pointLikelihoods(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
+                                                  const std::vector<Pose2>& poses);
+
 }  // namespace sonarmap
