@@ -1,0 +1,70 @@
+// Where no position is measured the scans are the odometry (localizer.hpp): a still head is moved
+// only by what the scans prove.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "sonarmap/slam/localizer.hpp"
+#include "sonarmap/slam/point_scans.hpp"
+
+namespace sonarmap {
+namespace {
+
+/// A wall as a segment in NED's plane.
+struct Wall {
+  Eigen::Vector2d a, b;
+};
+
+/// The range along `direction` from `origin` to the nearest wall within `reach_m`, or NaN.
+double rangeTo(const std::vector<Wall>& walls, const Eigen::Vector2d& origin, const Eigen::Vector2d& direction, double reach_m) {
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (const Wall& wall : walls) {
+    const Eigen::Vector2d edge = wall.b - wall.a;
+    Eigen::Matrix2d system;
+    system << direction, -edge;
+    if (std::abs(system.determinant()) < 1e-12) continue;
+    const Eigen::Vector2d solution = system.colPivHouseholderQr().solve(wall.a - origin);
+    if (solution.x() <= 0.0 || solution.x() > reach_m || solution.y() < 0.0 || solution.y() > 1.0) continue;
+    if (!(solution.x() >= best)) best = solution.x();
+  }
+  return best;
+}
+
+/// A heading-up MSIS turning once per scan (180 beams over 9 s, a scan every 10 s) on a vehicle
+/// heading north at `speed_mps`: its points in the body frame, each range with `noise_m`.
+std::vector<BodyPoint> pointScans(const std::vector<Wall>& walls, int scans, double speed_mps, double noise_m, unsigned seed) {
+  constexpr double kPeriod_s = 10.0, kSweep_s = 9.0, kReach_m = 25.0;
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, noise_m);
+  std::vector<BodyPoint> points;
+  for (int scan = 0; scan < scans; ++scan) {
+    for (int k = 0; k < 180; ++k) {
+      const double time_s = kPeriod_s * scan + kSweep_s * k / 180.0;
+      const double bearing_rad = 2.0 * std::numbers::pi * k / 180.0;
+      const Eigen::Vector2d direction(std::cos(bearing_rad), std::sin(bearing_rad));
+      const double range_m = rangeTo(walls, Eigen::Vector2d(speed_mps * time_s, 0.0), direction, kReach_m);
+      if (std::isnan(range_m)) continue;
+      points.push_back({static_cast<std::size_t>(scan), time_s, (range_m + noise(random)) * direction});
+    }
+  }
+  return points;
+}
+
+TEST(slamScanOdometry, AStillHeadStaysStill) {
+  // A head on a tripod in a pool with two posts, no navigation, the ranges noisy: the scans never
+  // prove a motion, so the track stays at the start.
+  const std::vector<Wall> walls{{{-6.0, -4.0}, {7.0, -4.0}}, {{7.0, -4.0}, {7.0, 5.0}}, {{7.0, 5.0}, {-6.0, 5.0}},
+                                {{-6.0, 5.0}, {-6.0, -4.0}}, {{2.0, 1.0}, {2.3, 1.0}},  {{-3.0, -2.0}, {-3.0, -1.7}}};
+  const std::vector<BodyPoint> points = pointScans(walls, 20, 0.0, 0.05, 7);
+  const SlamResult result = localizePointScans(points, NavTrack{}, PointScanOptions{}, SlamOptions{});
+  ASSERT_EQ(result.scan_poses.size(), 20U);
+  for (const NavSample& fix : result.trajectory) EXPECT_LT(fix.position_ned_m.head<2>().norm(), 0.1) << fix.time_s;
+}
+
+}  // namespace
+}  // namespace sonarmap
