@@ -134,7 +134,7 @@ struct SlamReport {
   /// odometry_scale is 1, the navigation's own.
   bool odometry_scale_observed = false;
   /// The navigation gave the heading only (OdometryNoise::position_measured false): the position
-  /// came from the scans, and no loop closure was sought.
+  /// came from the scans, which are then the loop closures' dead reckoning too.
   bool heading_only = false;
   /// Point scans (localizePointScans): rows left out as lying behind their echo's leading edge
   /// (formPointScans), over every scan; 0 for a sonar log's own detections.
