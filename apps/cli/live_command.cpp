@@ -33,8 +33,9 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
   cmd->add_option("--rate", args.rate, "A replayed log's pace: 1 its own, 2 twice as fast, 0 as fast as possible")
       ->capture_default_str()
       ->group(help_group::kInput);
-  cmd->add_option("--show", args.show, "When a beam shows in the written map: beam | sweep")
-      ->check(CLI::IsMember({"beam", "sweep"}))
+  cmd->add_option("--show", args.show,
+                  "When a beam shows in the written map: beam | sweep | auto (sweep for a log replayed at --rate 0, else beam)")
+      ->check(CLI::IsMember({"auto", "beam", "sweep"}))
       ->capture_default_str()
       ->group(help_group::kOutput);
   cmd->add_option("--write-every", args.write_every_s, "SECONDS between map writes (> 0)")

@@ -20,7 +20,9 @@ struct LiveArgs {
   MapArgs map;
   HeadArgs head;
   unsigned baud = 115200;       ///< serial devices: bits per second
-  std::string show = "beam";    ///< beam (OnlineIntegration::kProvisionalBeams) | sweep (kSweep)
+  /// beam (OnlineIntegration::kProvisionalBeams) | sweep (kSweep) | auto: sweep for a log replayed as
+  /// fast as possible (no one watches it beam by beam), beam otherwise.
+  std::string show = "auto";
   double write_every_s = 10.0;  ///< seconds between map writes (> 0)
   double idle_timeout_s = 0.0;  ///< end the stream after this many seconds without a byte (0: never)
   std::string nav_stream;       ///< a second link sending navigation: MAVLink or CSV rows (empty: none)

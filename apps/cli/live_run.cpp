@@ -164,7 +164,10 @@ LiveMappingOptions mappingOptions(const LiveArgs& args, const MapperOptions& son
   LiveMappingOptions mapping;
   mapping.mapper = sonar_options;
   mapping.sonar_to_body = mounting;
-  mapping.integration = args.show == "sweep" ? OnlineIntegration::kSweep : OnlineIntegration::kProvisionalBeams;
+  // A log replayed as fast as possible is not watched beam by beam: showing each beam on the
+  // provisional layer would cost as much again as mapping it (a 2-hour SeaKing log with --slam).
+  const bool by_sweep = args.show == "sweep" || (args.show == "auto" && isReplay(args) && args.rate == 0.0);
+  mapping.integration = by_sweep ? OnlineIntegration::kSweep : OnlineIntegration::kProvisionalBeams;
   mapping.navigation = navigation;
   // The odometry's reading period from the fixes known at the start, as `map --slam` takes it from
   // its whole track (the default period without them).

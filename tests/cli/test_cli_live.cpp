@@ -209,7 +209,7 @@ TEST_F(CliLive, AReplayedRosBagGivesTheBatchMapWithItsNavigation) {
   writeRosBag(bag.string(), run_moving.log, run_moving.nav);
   const ProgramRun batch = run({"map", bag.string(), "-q", "-o", (root_ / "batch.bt").string()});
   ASSERT_EQ(batch.exit_code, 0) << batch.err;
-  const ProgramRun replay = run({"live", bag.string(), "-q", "-o", (out_ / "live.bt").string()});
+  const ProgramRun replay = run({"live", bag.string(), "--show", "beam", "-q", "-o", (out_ / "live.bt").string()});
   ASSERT_EQ(replay.exit_code, 0) << replay.err;
   EXPECT_NE(replay.out.find("navigation /odometry (nav_msgs/Odometry"), std::string::npos) << replay.out;
   EXPECT_NE(replay.out.find("0 without navigation"), std::string::npos) << replay.out;
