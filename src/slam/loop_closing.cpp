@@ -39,13 +39,11 @@ void Localizer::closeLoop(std::size_t k) {
   const double reach_m = percentile(reaches, 0.5);
   const double radius_m = options_.loop_search_radius_m > 0.0 ? options_.loop_search_radius_m : reach_m / 2.0;
   const double min_travel_m = options_.loop_min_travel_m > 0.0 ? options_.loop_min_travel_m : 2.0 * reach_m;
-  // With the heading alone, the track's position comes from the sequential matches, whose drift
-  // along the path the gates below (dead reckoning's drift model) do not describe: measured, 64 of
-  // the 76 accepted on three seeds of the simulated missions were wrong (docs/localization.md).
   if (scans_[k].points.size() < options_.matching.min_pairs) return;
   // The nearest earlier scan that the vehicle left long enough ago, sought no farther than where
   // its true neighbour can be (SlamOptions::loop_search_radius_m): half the old scans' spacing
-  // plus 3σ of dead reckoning's drift along the path since. Two views farther apart than that see
+  // plus 3σ of dead reckoning's drift along the path since (the scans' own chain where no position
+  // is measured). Two views farther apart than that see
   // small targets from different sides (a pile's echo comes from the side facing the sonar, so
   // the two disagree by up to its radius); a later scan passes nearer.
   std::size_t best = k;
