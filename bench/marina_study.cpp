@@ -40,7 +40,7 @@
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/trajectory_error.hpp"
 #include "sonarmap/nav/navigation.hpp"
-#include "sonarmap/render/figure.hpp"
+#include "sonarmap/render/point_figures.hpp"
 #include "sonarmap/slam/point_scans.hpp"
 
 namespace {
@@ -48,12 +48,6 @@ namespace {
 using namespace sonarmap;
 using Clock = std::chrono::steady_clock;
 constexpr double kDegree = std::numbers::pi / 180.0;
-
-struct Placement {
-  std::string title;
-  std::vector<Pose2> scan_poses;  ///< each scan's reference pose (NED's plane)
-  NavTrack track;
-};
 
 /// Each scan's points (its body frame at its reference time) placed with `poses` in NED.
 std::vector<Eigen::Vector2d> placed(const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses) {
@@ -64,56 +58,14 @@ std::vector<Eigen::Vector2d> placed(const std::vector<SonarScan>& scans, const s
   return points;
 }
 
-/// The three placements side by side, on one extent (east to the right, north up).
-void drawPlacements(const std::vector<SonarScan>& scans, const std::vector<Placement>& placements, const std::string& path) {
-  constexpr double kCell_m = 0.25;
-  Eigen::Vector2d low = Eigen::Vector2d::Constant(1e300), high = -low;
-  std::vector<std::vector<Eigen::Vector2d>> clouds;
-  for (const Placement& placement : placements) {
-    clouds.push_back(placed(scans, placement.scan_poses));
-    for (const Eigen::Vector2d& p : clouds.back()) {
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  }
-  const int cols = static_cast<int>(std::ceil((high.y() - low.y()) / kCell_m)) + 1;  // east
-  const int rows = static_cast<int>(std::ceil((high.x() - low.x()) / kCell_m)) + 1;  // north, up
-  std::vector<cv::Mat> panels;
-  for (std::size_t i = 0; i < placements.size(); ++i) {
-    cv::Mat count(rows, cols, CV_32F, cv::Scalar(0));
-    for (const Eigen::Vector2d& p : clouds[i]) {
-      const int col = static_cast<int>((p.y() - low.y()) / kCell_m);
-      const int row = rows - 1 - static_cast<int>((p.x() - low.x()) / kCell_m);
-      count.at<float>(row, col) += 1.0F;
-    }
-    // Grey levels by the points in a cell: one point light grey, 8 or more black.
-    cv::Mat raster(rows, cols, CV_8UC1);
-    for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) {
-        const float n = count.at<float>(r, c);
-        raster.at<std::uint8_t>(r, c) = n <= 0.0F ? 255 : static_cast<std::uint8_t>(200.0 - 200.0 * std::min(1.0, std::log2(n) / 3.0));
-      }
-    }
-    FigureSpec spec;
-    spec.raster = raster;
-    spec.extent = {low.y(), low.y() + cols * kCell_m, low.x(), low.x() + rows * kCell_m};
-    spec.title = placements[i].title;
-    spec.x_label = "east (m)";
-    spec.y_label = "north (m)";
-    FigureLine track;
-    for (const NavSample& fix : placements[i].track) track.points.emplace_back(fix.position_ned_m.y(), fix.position_ned_m.x());
-    track.label = "vehicle";
-    spec.lines.push_back(track);
-    panels.push_back(composeFigure(spec));
-  }
-  int height = 0;
-  for (const cv::Mat& panel : panels) height = std::max(height, panel.rows);
-  for (cv::Mat& panel : panels) {
-    if (panel.rows < height) cv::copyMakeBorder(panel, panel, 0, height - panel.rows, 0, 0, cv::BORDER_CONSTANT, cv::Scalar(255, 255, 255));
-  }
-  cv::Mat figure;
-  cv::hconcat(panels, figure);
-  if (!cv::imwrite(path, figure)) throw FileError("cannot write '" + path + "'");
+/// A panel of the scans placed with `poses`, the vehicle along `track`.
+PointPanel panelOf(const std::string& title, const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses,
+                   const NavTrack& track) {
+  PointPanel panel;
+  panel.title = title;
+  panel.points_ned_m = placed(scans, poses);
+  for (const NavSample& fix : track) panel.track_ned_m.push_back(fix.position_ned_m.head<2>());
+  return panel;
 }
 
 /// The DGPS pose at each scan's time (positions interpolated; the heading is the compass's).
@@ -270,13 +222,13 @@ int main(int argc, char** argv) {
       std::vector<Pose2> dr_poses;
       for (const SonarScan& scan : scans) dr_poses.push_back(scan.dead_reckoning);
       char title[160];
-      std::vector<Placement> placements;
+      std::vector<PointPanel> panels;
       std::snprintf(title, sizeof title, "dead reckoning: %.2f m from the start, %.2f m aligned", dr.ate_start_rmse_m, dr.ate_rmse_m);
-      placements.push_back({title, dr_poses, dead_reckoning});
+      panels.push_back(panelOf(title, scans, dr_poses, dead_reckoning));
       std::snprintf(title, sizeof title, "localize: %.2f m from the start, %.2f m aligned", est.ate_start_rmse_m, est.ate_rmse_m);
-      placements.push_back({title, result.scan_poses, result.trajectory});
-      placements.push_back({"DGPS positions, compass heading", truth_poses, truth});
-      drawPlacements(scans, placements, png);
+      panels.push_back(panelOf(title, scans, result.scan_poses, result.trajectory));
+      panels.push_back(panelOf("DGPS positions, compass heading", scans, truth_poses, truth));
+      if (!cv::imwrite(png, pointPanelsFigure(panels))) throw FileError("cannot write '" + png + "'");
       std::printf("wrote %s\n", png.c_str());
     }
   } catch (const std::exception& error) {

@@ -1,0 +1,30 @@
+#pragma once
+/// @file point_figures.hpp
+/// Point clouds in the horizontal plane drawn side by side on one extent, each with a track: the
+/// same scans placed by different trajectories (the dead reckoning, a localization, the truth), so
+/// that a wall drawn twice in one panel and once in another shows which trajectory is right.
+/// Drawn as figure.hpp's figures (east to the right, north up, axes in metres).
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+namespace sonarmap {
+
+/// One panel: points and a track, NED's plane (x north, y east), metres.
+struct PointPanel {
+  std::string title;
+  std::vector<Eigen::Vector2d> points_ned_m;
+  std::vector<Eigen::Vector2d> track_ned_m;  ///< drawn as a red line labelled `track_label`
+  std::string track_label = "vehicle";
+};
+
+/// The panels side by side (BGR, CV_8UC3), all on the extent of every panel's points, on a grid of
+/// `cell_m`: a cell's grey level by how many points fall in it (one point light grey, eight or
+/// more black), so a surface seen from several places is dark where they agree.
+/// @throws ValueError for no panel, no point in any panel, or a cell that is not finite and > 0.
+cv::Mat pointPanelsFigure(const std::vector<PointPanel>& panels, double cell_m = 0.25);
+
+}  // namespace sonarmap
