@@ -7,13 +7,46 @@
 #include <numbers>
 
 #include "origin_option.hpp"
+#include "output_checks.hpp"
 #include "slam_outputs.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/navigation_reader.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/map_frame.hpp"
+#include "sonarmap/render/point_figures.hpp"
+#include "sonarmap/slam/point_scan_map.hpp"
 #include "sonarmap/slam/point_scans.hpp"
+#include "sonarmap/sonar/png_writer.hpp"
 
 namespace sonarmap::cli {
+namespace {
+
+/// The scans placed on the dead reckoning (when there is one) and on the corrected track, side by
+/// side, each panel titled.
+cv::Mat localizeFigure(const std::vector<SonarScan>& scans, const NavTrack& dead_reckoning, const SlamResult& result,
+                       double cell_m) {
+  const auto panelOf = [&scans](const std::string& title, const std::vector<Pose2>& poses, const NavTrack& track) {
+    PointPanel panel;
+    panel.title = title;
+    panel.points_ned_m = placedScanPoints(scans, poses);
+    for (const NavSample& fix : track) panel.track_ned_m.push_back(fix.position_ned_m.head<2>());
+    return panel;
+  };
+  std::vector<PointPanel> panels;
+  if (!dead_reckoning.empty()) {
+    std::vector<Pose2> dead_reckoned;
+    for (const SonarScan& scan : scans) dead_reckoned.push_back(scan.dead_reckoning);
+    panels.push_back(panelOf("the scans on the navigation (--nav)", dead_reckoned, dead_reckoning));
+  }
+  char title[96];
+  std::snprintf(title, sizeof title, "on the corrected track: %zu of %zu loop closures accepted",
+                result.report.loopClosuresAccepted(), result.report.loop_closures.size());
+  panels.push_back(panelOf(title, result.scan_poses, result.trajectory));
+  return pointPanelsFigure(panels, cell_m);
+}
+
+}  // namespace
 
 Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
   CLI::App* cmd = app.add_subcommand(
@@ -34,6 +67,12 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
   cmd->add_option("--bearing-sigma", args.bearing_sigma_deg, "1-sigma of a point's bearing, DEGREES > 0")
       ->capture_default_str()
       ->group(help_group::kInput);
+  cmd->add_option("--map", args.map, "Map of the point scans placed on the corrected track (.bt or .ot, ENU)")
+      ->group(help_group::kOutput);
+  cmd->add_option("--png", args.png, "Picture of the point scans on the dead reckoning and on the corrected track")
+      ->group(help_group::kOutput);
+  cmd->add_option("--resolution", args.resolution_m, "Voxel of --map and cell of --png, METRES > 0 (default: the points' typical sigma)")
+      ->group(help_group::kOutput);
   addOdometryOptions(*cmd, args.odometry);
   addOriginOption(*cmd, args.origin);
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success")->group(help_group::kOutput);
@@ -45,6 +84,9 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
     if (!(std::isfinite(args.bearing_sigma_deg) && args.bearing_sigma_deg > 0.0 && args.bearing_sigma_deg < 90.0)) {
       throw ValueError("--bearing-sigma expects DEGREES in (0, 90)");
     }
+    if (!(std::isfinite(args.resolution_m) && args.resolution_m >= 0.0)) throw ValueError("--resolution expects METRES > 0");
+    requireMapOutput(args.map, "--map");
+    requirePngOutput(args.png, "--png");
   };
   return {cmd, check, [&args] { runLocalize(args); }};
 }
@@ -61,13 +103,33 @@ void runLocalize(const LocalizeArgs& args) {
   PointScanOptions options;
   options.range_sigma_m = args.range_sigma_m;
   options.bearing_sigma_rad = args.bearing_sigma_deg * std::numbers::pi / 180.0;
-  const SlamResult result = localizePointScans(points, dead_reckoning, options, toSlamOptions(args.odometry, dead_reckoning));
+  const SlamOptions slam = toSlamOptions(args.odometry, dead_reckoning);
+  const SlamResult result = localizePointScans(points, dead_reckoning, options, slam);
   FileTransaction outputs;
   stageTrajectory(outputs, args.trajectory, inNavigationFrame(result.trajectory, origin));
+  double resolution_m = args.resolution_m;
+  if (!args.map.empty() || !args.png.empty()) {
+    // The scans as the localizer formed them: each echo at its leading edge, in its scan's frame.
+    const std::vector<SonarScan> scans =
+        formPointScans(points, dead_reckoning, options, withNavigationPeriod(slam, dead_reckoning).forming);
+    if (!(resolution_m > 0.0)) resolution_m = typicalPointSigma(scans);
+    if (!args.map.empty()) {
+      const OcTree16 map = mapInFrame(mapScans(scans, result.scan_poses, resolution_m), kDefaultMapFrame);
+      outputs.stage(args.map, [&](std::ostream& out) {
+        writeMap(map, out, mapFormatOf(args.map), mapHeaderComments(kDefaultMapFrame, origin.ned_m));
+      });
+    }
+    if (!args.png.empty()) outputs.stageBytes(args.png, encodePng(localizeFigure(scans, dead_reckoning, result, resolution_m)));
+  }
   outputs.commit();
   if (args.quiet) return;
   printOrigin(origin);
   printSlamSummary(result.report, !dead_reckoning.empty());
+  if (!args.map.empty()) {
+    std::printf("map of the point scans on the corrected track: %.3g m voxels -> %s in %s\n", resolution_m, args.map.c_str(),
+                mapFrameDescription(kDefaultMapFrame).c_str());
+  }
+  if (!args.png.empty()) std::printf("picture: %.3g m cells -> %s\n", resolution_m, args.png.c_str());
 }
 
 }  // namespace sonarmap::cli
