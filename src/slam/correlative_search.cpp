@@ -30,7 +30,8 @@ struct LikelihoodField {
   }
 };
 
-LikelihoodField likelihoodField(const std::vector<ScanPoint>& target, double cell_m, double sigma_m, double margin_m) {
+LikelihoodField likelihoodField(const std::vector<ScanPoint>& target, double cell_m, double sigma_m, double margin_m,
+                                const std::vector<SurfaceSegment>& surfaces) {
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d high = -low;
   for (const ScanPoint& point : target) {
@@ -50,6 +51,10 @@ LikelihoodField likelihoodField(const std::vector<ScanPoint>& target, double cel
     const int cy = static_cast<int>((point.xy_m.y() - field.origin.y()) / field.cell_m);
     free.at<std::uint8_t>(cy, cx) = 0;
   }
+  const auto cellOf = [&field](const Eigen::Vector2d& p) {
+    return cv::Point(static_cast<int>((p.x() - field.origin.x()) / field.cell_m), static_cast<int>((p.y() - field.origin.y()) / field.cell_m));
+  };
+  for (const SurfaceSegment& surface : surfaces) cv::line(free, cellOf(surface.a), cellOf(surface.b), cv::Scalar(0));
   cv::Mat distance_cells;
   cv::distanceTransform(free, distance_cells, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   const double scale = field.cell_m * field.cell_m / (2.0 * sigma_m * sigma_m);
@@ -62,13 +67,13 @@ LikelihoodField likelihoodField(const std::vector<ScanPoint>& target, double cel
 
 CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                                     const Pose2& initial, double half_window_m, double half_window_rad,
-                                    double sigma_m, int max_steps) {
+                                    double sigma_m, int max_steps, const std::vector<SurfaceSegment>& surfaces) {
   CorrelativeResult result;
   result.pose = initial;
   if (target.empty() || source.empty()) return result;
   max_steps = std::max(3, max_steps);
   const double cell_m = std::max(sigma_m / 2.0, 2.0 * half_window_m / (max_steps - 1));
-  const LikelihoodField field = likelihoodField(target, cell_m, sigma_m, half_window_m + 3.0 * sigma_m);
+  const LikelihoodField field = likelihoodField(target, cell_m, sigma_m, half_window_m + 3.0 * sigma_m, surfaces);
   double reach_m = 0.0;
   for (const ScanPoint& point : source) reach_m = std::max(reach_m, point.xy_m.norm());
   // A heading step moves the farthest point by about one cell.
@@ -154,7 +159,7 @@ std::vector<std::vector<double>> pointLikelihoods(const std::vector<ScanPoint>& 
   if (target.empty() || source.empty()) return likelihoods;
   const double sigma_m = typicalPointSigma(source);
   // Beyond 3σ of the target the likelihood is 0 (LikelihoodField::at outside the grid).
-  const LikelihoodField field = likelihoodField(target, sigma_m / 2.0, sigma_m, 3.0 * sigma_m);
+  const LikelihoodField field = likelihoodField(target, sigma_m / 2.0, sigma_m, 3.0 * sigma_m, {});
   for (std::size_t p = 0; p < poses.size(); ++p) {
     for (std::size_t i = 0; i < source.size(); ++i) likelihoods[p][i] = field.at(poses[p] * source[i].xy_m);
   }

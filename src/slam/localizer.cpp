@@ -172,7 +172,13 @@ std::optional<Eigen::Matrix3d> Localizer::matchToSubmap(std::size_t k) {
   const Eigen::Vector2d g(std::cos(to_rad) - std::cos(from_rad), std::sin(to_rad) - std::sin(from_rad));
   prior(2, 2) += g.dot(deviationCovariance() * g);
   const Eigen::Matrix3d prior_ned = rotate * prior * rotate.transpose();
-  const ScanMatch match = matchScans(target, scans_[k].points, predicted, prior_ned, headingOnly(), options_.matching);
+  // With the heading alone the search places every match (here and in the loop closures), and its
+  // walls are drawn between their samples (SearchField::kSurfaces: each turn samples a straight
+  // wall at the same offsets from the vehicle). Elsewhere ICP from the prediction places them; the
+  // search with the surfaces measured worse there (docs/localization.md).
+  const ScanMatch match = matchScans(target, scans_[k].points, predicted, prior_ned, headingOnly(), options_.matching,
+                                     headingOnly() ? SearchField::kSurfaces : SearchField::kSamples);
+  ScanMatch kept = match;
   if (!match.accepted) {
     // A match along one wall still fixes the offset across it and the heading: keep that part.
     const bool along_wall = match.reason.rfind("ambiguous: constrained", 0) == 0;
@@ -180,20 +186,38 @@ std::optional<Eigen::Matrix3d> Localizer::matchToSubmap(std::size_t k) {
       ++report_.matches_refused;
       return std::nullopt;
     }
+    kept = acrossWallOnly(match, predicted);
   }
-  if (beyondLimits(k - 1, k, graph_.pose(k - 1).between(match.pose))) {
+  if (beyondLimits(k - 1, k, graph_.pose(k - 1).between(kept.pose))) {
     ++report_.matches_refused;
     ++report_.matches_beyond_limits;
     return std::nullopt;
   }
-  const Pose2 measured = stillUnlessShown(target, scans_[k].points, predicted, match.pose);
+  const Pose2 measured = stillUnlessShown(target, scans_[k].points, predicted, kept.pose);
   ++report_.matches_accepted;
   graph_.setPose(k, measured);
   const Pose2& anchor = graph_.pose(k - 1);
-  const Eigen::Matrix3d pairs_information = informationInFrame(match.information, anchor);
+  const Eigen::Matrix3d pairs_information = informationInFrame(kept.information, anchor);
   graph_.addEdge({k - 1, k, anchor.between(measured), matchInformation(pairs_information), EdgeKind::kScanMatch});
   edge_pairs_information_.push_back(pairs_information);
   return pairs_information;
+}
+
+ScanMatch Localizer::acrossWallOnly(const ScanMatch& match, const Pose2& predicted) {
+  // The translation's weak direction (along the wall) carries no measurement: the match's
+  // position along it is where the search and the pairs happened to stop (a wall's samples repeat
+  // at no motion), so it is the prediction's there, and its information there none.
+  ScanMatch across = match;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(match.information.topLeftCorner<2, 2>());
+  const Eigen::Vector2d along = translation.eigenvectors().col(0);
+  const Eigen::Vector2d offset(match.pose.x_m - predicted.x_m, match.pose.y_m - predicted.y_m);
+  const Eigen::Vector2d kept = offset - along.dot(offset) * along;
+  across.pose.x_m = predicted.x_m + kept.x();
+  across.pose.y_m = predicted.y_m + kept.y();
+  Eigen::Matrix3d project = Eigen::Matrix3d::Identity();
+  project.topLeftCorner<2, 2>() -= along * along.transpose();
+  across.information = project * match.information * project;
+  return across;
 }
 
 Pose2 Localizer::stillUnlessShown(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& expected,

@@ -227,7 +227,7 @@ void ScanMatchOptions::validate() const {
 
 ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
-                     const ScanMatchOptions& options) {
+                     const ScanMatchOptions& options, SearchField field) {
   options.validate();
   if (!prior_covariance.allFinite()) throw ValueError("scan matching: the prior covariance must be finite");
   if (std::optional<ScanMatch> refused = tooFewPoints(target, source, initial, options)) return *refused;
@@ -242,8 +242,14 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
     const double half_window_m = std::min(3.0 * std::sqrt(prior_covariance.topLeftCorner<2, 2>().eigenvalues().real().maxCoeff()), 1e4);
     const double half_window_rad = std::min(3.0 * std::sqrt(prior_covariance(2, 2)), 20.0 * 3.14159265358979323846 / 180.0);
     const double sigma_m = typicalPointSigma(source);
+    // Each wall drawn between its samples, as far as its neighbours reach either side of each.
+    std::vector<SurfaceSegment> surfaces;
+    for (std::size_t i = 0; i < target.size() && field == SearchField::kSurfaces; ++i) {
+      if (!shapes[i].line) continue;
+      surfaces.push_back({target[i].xy_m - shapes[i].behind_m * shapes[i].tangent, target[i].xy_m + shapes[i].ahead_m * shapes[i].tangent});
+    }
     const CorrelativeResult found =
-        correlativeSearch(target, source, initial, half_window_m, half_window_rad, sigma_m, options.max_search_steps);
+        correlativeSearch(target, source, initial, half_window_m, half_window_rad, sigma_m, options.max_search_steps, surfaces);
     ScanMatch refined = icp(target, source, tree, shapes, found.pose, initial, prior_information, options);
     refined.searched = true;
     refined.peak_ratio = found.distinct_score > 0.0 ? found.score / found.distinct_score : 1e9;

@@ -55,6 +55,36 @@ std::vector<BodyPoint> pointScans(const std::vector<Wall>& walls, int scans, dou
   return points;
 }
 
+/// A compass on a vehicle without a DVL: heading north, north and east 0.
+NavTrack compassOnly(double duration_s) {
+  NavTrack track;
+  for (double time_s = 0.0; time_s <= duration_s; time_s += 0.5) {
+    NavSample fix;
+    fix.time_s = time_s;
+    track.push_back(fix);
+  }
+  return track;
+}
+
+TEST(slamScanOdometry, AlongACorridorTheMotionModelCarriesThePosition) {
+  // A corridor 6 m wide, closed 8 m behind the start: the end wall gives the first scans' motion,
+  // then the two walls measure only across. A vehicle at 0.5 m/s covers 55 m in 11 scans; along
+  // the walls the last velocity is held (a vehicle's speed does not jump), so the track reaches
+  // as far.
+  const std::vector<Wall> walls{{{-8.0, -3.0}, {200.0, -3.0}}, {{-8.0, 3.0}, {200.0, 3.0}}, {{-8.0, -3.0}, {-8.0, 3.0}}};
+  const double speed_mps = 0.5;
+  const int scans = 12;
+  const std::vector<BodyPoint> points = pointScans(walls, scans, speed_mps, 0.02, 1);
+  SlamOptions options;
+  options.forming.odometry = odometryNoiseOf("ahrs");
+  const SlamResult result = localizePointScans(points, compassOnly(10.0 * scans), PointScanOptions{}, options);
+  ASSERT_EQ(result.scan_poses.size(), static_cast<std::size_t>(scans));
+  const double travelled_m = speed_mps * (result.scan_times_s.back() - result.scan_times_s.front());
+  EXPECT_NEAR(result.scan_poses.back().x_m - result.scan_poses.front().x_m, travelled_m, 0.1 * travelled_m);
+  // Across the corridor the walls hold it.
+  for (const Pose2& pose : result.scan_poses) EXPECT_NEAR(pose.y_m, 0.0, 0.3);
+}
+
 TEST(slamScanOdometry, AStillHeadStaysStill) {
   // A head on a tripod in a pool with two posts, no navigation, the ranges noisy: the scans never
   // prove a motion, so the track stays at the start.

@@ -207,6 +207,10 @@ class Localizer {
   std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame = {}) const;
   /// The navigation measures the heading only (OdometryNoise::position_measured false).
   bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
+  /// A match constrained along one direction only (a wall: ScanMatch's "ambiguous: constrained")
+  /// as a measurement across it: along the translation's weakest direction the pose is
+  /// `predicted`'s and the information none, across it and in yaw the match's.
+  static ScanMatch acrossWallOnly(const ScanMatch& match, const Pose2& predicted);
   /// Without navigation the vehicle is believed still: a match (`matched`, the source frame in the
   /// target's) moves it from where that belief puts it (`expected`) only when the scans fit there
   /// distinctly better (fitScores at least ScanMatchOptions::min_peak_ratio times, the test that

@@ -67,6 +67,13 @@ struct ScanMatch {
   double peak_ratio = 0.0;     ///< its best score over the best distinct one (0: not run)
 };
 
+/// What the correlative search scores a source point by: the distance to the nearest target point
+/// (kSamples), or to the nearest target point or stretch of wall between them (kSurfaces: each target
+/// point on a line drawn as far as its neighbours reach either side of it, SurfaceSegment). Two
+/// turns of a head moving along a straight wall sample it at the same offsets from the vehicle, so
+/// to its samples the likelihood peaks at no motion; to the wall it does not.
+enum class SearchField { kSamples, kSurfaces };
+
 /// Matches `source` (points in its own frame) against `target` (points in the target frame),
 /// starting from `initial` (the source frame in the target frame) whose uncertainty is
 /// `prior_covariance` (x, y, yaw; m², rad²). With `search`, a correlative search over
@@ -76,7 +83,7 @@ struct ScanMatch {
 /// @throws ValueError for invalid options or a prior covariance that is not finite.
 ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
-                     const ScanMatchOptions& options = {});
+                     const ScanMatchOptions& options = {}, SearchField field = SearchField::kSamples);
 
 /// ICP from `initial` (the source frame in the target frame) with no prior: the pose the pairs alone
 /// give, judged as matchScans judges; no correlative search. What a match measures independently of
@@ -94,13 +101,23 @@ struct CorrelativeResult {
   double distinct_score = 0.0;
 };
 
+/// A stretch of surface the target's points lie on (the target's frame, metres), drawn into the
+/// correlative search's likelihood field between them: a wall's likelihood is then the distance to
+/// the wall, not to its samples, whose pattern repeats at no motion (each turn of a head samples a
+/// straight wall at the same offsets from itself).
+struct SurfaceSegment {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+};
+
 /// Exhaustive search of poses initial ⊕ (dx, dy, dyaw), |dx|, |dy| ≤ half_window_m and
 /// |dyaw| ≤ half_window_rad, on a grid of at most `max_steps` cells per axis (cells no finer than
 /// sigma_m / 2), scoring each by the mean over the source's points of exp(−d²/2σ²), d the distance
-/// to the nearest target point (a likelihood field from OpenCV's distance transform).
+/// to the nearest target point or `surfaces` segment (a likelihood field from OpenCV's distance
+/// transform).
 CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                                     const Pose2& initial, double half_window_m, double half_window_rad,
-                                    double sigma_m, int max_steps);
+                                    double sigma_m, int max_steps, const std::vector<SurfaceSegment>& surfaces = {});
 
 /// The points' typical σ, metres: the median of √trace of their covariances (at least 1 mm); what
 /// the correlative search's likelihood field is smoothed by. 1 mm for no points.
