@@ -41,6 +41,7 @@
 #include "sonarmap/eval/trajectory_error.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/render/point_figures.hpp"
+#include "sonarmap/slam/point_scan_map.hpp"
 #include "sonarmap/slam/point_scans.hpp"
 
 namespace {
@@ -49,21 +50,12 @@ using namespace sonarmap;
 using Clock = std::chrono::steady_clock;
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-/// Each scan's points (its body frame at its reference time) placed with `poses` in NED.
-std::vector<Eigen::Vector2d> placed(const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses) {
-  std::vector<Eigen::Vector2d> points;
-  for (std::size_t k = 0; k < scans.size() && k < poses.size(); ++k) {
-    for (const ScanPoint& point : scans[k].points) points.push_back(poses[k] * point.xy_m);
-  }
-  return points;
-}
-
 /// A panel of the scans placed with `poses`, the vehicle along `track`.
 PointPanel panelOf(const std::string& title, const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses,
                    const NavTrack& track) {
   PointPanel panel;
   panel.title = title;
-  panel.points_ned_m = placed(scans, poses);
+  panel.points_ned_m = placedScanPoints(scans, poses);
   for (const NavSample& fix : track) panel.track_ned_m.push_back(fix.position_ned_m.head<2>());
   return panel;
 }
