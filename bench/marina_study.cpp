@@ -50,16 +50,6 @@ using namespace sonarmap;
 using Clock = std::chrono::steady_clock;
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-/// A panel of the scans placed with `poses`, the vehicle along `track`.
-PointPanel panelOf(const std::string& title, const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses,
-                   const NavTrack& track) {
-  PointPanel panel;
-  panel.title = title;
-  panel.points_ned_m = placedScanPoints(scans, poses);
-  for (const NavSample& fix : track) panel.track_ned_m.push_back(fix.position_ned_m.head<2>());
-  return panel;
-}
-
 /// The DGPS pose at each scan's time (positions interpolated; the heading is the compass's).
 std::vector<Pose2> truthPoses(const std::vector<double>& times_s, const NavTrack& truth) {
   std::vector<Pose2> poses;
@@ -216,10 +206,10 @@ int main(int argc, char** argv) {
       char title[160];
       std::vector<PointPanel> panels;
       std::snprintf(title, sizeof title, "dead reckoning: %.2f m from the start, %.2f m aligned", dr.ate_start_rmse_m, dr.ate_rmse_m);
-      panels.push_back(panelOf(title, scans, dr_poses, dead_reckoning));
+      panels.push_back(pointPanel(title, placedScanPoints(scans, dr_poses), dead_reckoning));
       std::snprintf(title, sizeof title, "localize: %.2f m from the start, %.2f m aligned", est.ate_start_rmse_m, est.ate_rmse_m);
-      panels.push_back(panelOf(title, scans, result.scan_poses, result.trajectory));
-      panels.push_back(panelOf("DGPS positions, compass heading", scans, truth_poses, truth));
+      panels.push_back(pointPanel(title, placedScanPoints(scans, result.scan_poses), result.trajectory));
+      panels.push_back(pointPanel("DGPS positions, compass heading", placedScanPoints(scans, truth_poses), truth));
       if (!cv::imwrite(png, pointPanelsFigure(panels))) throw FileError("cannot write '" + png + "'");
       std::printf("wrote %s\n", png.c_str());
     }

@@ -26,23 +26,16 @@ namespace {
 /// side, each panel titled.
 cv::Mat localizeFigure(const std::vector<SonarScan>& scans, const NavTrack& dead_reckoning, const SlamResult& result,
                        double cell_m) {
-  const auto panelOf = [&scans](const std::string& title, const std::vector<Pose2>& poses, const NavTrack& track) {
-    PointPanel panel;
-    panel.title = title;
-    panel.points_ned_m = placedScanPoints(scans, poses);
-    for (const NavSample& fix : track) panel.track_ned_m.push_back(fix.position_ned_m.head<2>());
-    return panel;
-  };
   std::vector<PointPanel> panels;
   if (!dead_reckoning.empty()) {
     std::vector<Pose2> dead_reckoned;
     for (const SonarScan& scan : scans) dead_reckoned.push_back(scan.dead_reckoning);
-    panels.push_back(panelOf("the scans on the navigation (--nav)", dead_reckoned, dead_reckoning));
+    panels.push_back(pointPanel("the scans on the navigation (--nav)", placedScanPoints(scans, dead_reckoned), dead_reckoning));
   }
   char title[96];
   std::snprintf(title, sizeof title, "on the corrected track: %zu of %zu loop closures accepted",
                 result.report.loopClosuresAccepted(), result.report.loop_closures.size());
-  panels.push_back(panelOf(title, result.scan_poses, result.trajectory));
+  panels.push_back(pointPanel(title, placedScanPoints(scans, result.scan_poses), result.trajectory));
   return pointPanelsFigure(panels, cell_m);
 }
 

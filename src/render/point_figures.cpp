@@ -1,5 +1,5 @@
 /// @file point_figures.cpp
-/// pointPanelsFigure (point_figures.hpp).
+/// pointPanel and pointPanelsFigure (point_figures.hpp).
 
 #include "sonarmap/render/point_figures.hpp"
 
@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include <opencv2/core.hpp>
 
@@ -14,6 +15,15 @@
 #include "sonarmap/render/figure.hpp"
 
 namespace sonarmap {
+
+PointPanel pointPanel(std::string title, std::vector<Eigen::Vector2d> points_ned_m, const NavTrack& track) {
+  PointPanel panel;
+  panel.title = std::move(title);
+  panel.points_ned_m = std::move(points_ned_m);
+  panel.track_ned_m.reserve(track.size());
+  for (const NavSample& fix : track) panel.track_ned_m.push_back(fix.position_ned_m.head<2>());
+  return panel;
+}
 
 cv::Mat pointPanelsFigure(const std::vector<PointPanel>& panels, double cell_m) {
   if (!(std::isfinite(cell_m) && cell_m > 0.0)) throw ValueError("point figure: the cell must be > 0 m");

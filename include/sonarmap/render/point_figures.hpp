@@ -11,6 +11,8 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "sonarmap/nav/navigation.hpp"
+
 namespace sonarmap {
 
 /// One panel: points and a track, NED's plane (x north, y east), metres.
@@ -20,6 +22,10 @@ struct PointPanel {
   std::vector<Eigen::Vector2d> track_ned_m;  ///< drawn as a red line labelled `track_label`
   std::string track_label = "vehicle";
 };
+
+/// A panel titled `title` of `points_ned_m` (NED's plane, metres) with the horizontal positions of
+/// `track`'s fixes as its track (NED, metres; the fixes' depths and attitudes are not drawn).
+PointPanel pointPanel(std::string title, std::vector<Eigen::Vector2d> points_ned_m, const NavTrack& track);
 
 /// The panels side by side (BGR, CV_8UC3), all on the extent of every panel's points, on a grid of
 /// `cell_m`: a cell's grey level by how many points fall in it (one point light grey, eight or
