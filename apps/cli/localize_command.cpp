@@ -105,7 +105,7 @@ void runLocalize(const LocalizeArgs& args) {
     // The scans as the localizer formed them: each echo at its leading edge, in its scan's frame.
     const std::vector<SonarScan> scans =
         formPointScans(points, dead_reckoning, options, withNavigationPeriod(slam, dead_reckoning).forming);
-    if (!(resolution_m > 0.0)) resolution_m = typicalPointSigma(scans);
+    if (!(resolution_m > 0.0)) resolution_m = scanMapResolution(scans);
     if (!args.map.empty()) {
       const OcTree16 map = mapInFrame(mapScans(scans, result.scan_poses, resolution_m), kDefaultMapFrame);
       outputs.stage(args.map, [&](std::ostream& out) {

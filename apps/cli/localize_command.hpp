@@ -25,14 +25,14 @@ struct LocalizeArgs {
   std::vector<double> origin;      ///< --origin N,E[,D]: the dead reckoning's zero for the localization; empty: automatic
   std::string map;                 ///< --map: the point scans mapped on the corrected track (.bt/.ot); empty: none
   std::string png;                 ///< --png: the point scans placed on the dead reckoning and on the corrected track
-  double resolution_m = 0.0;       ///< --resolution of --map and --png, metres; 0: the points' typical σ
+  double resolution_m = 0.0;       ///< --resolution of --map and --png, metres; 0 (not given): scanMapResolution
 };
 
 /// Adds the `localize` subcommand to `app`; its options fill `args`.
 Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args);
 
 /// Reads the point scans and the navigation, localizes the scans (localizePointScans), writes the
-/// corrected trajectory and, when asked, the map of the scans on it (mapPointScans, ENU) and their
+/// corrected trajectory and, when asked, the map of the scans on it (mapScans, ENU) and their
 /// picture beside the dead reckoning's (pointPanelsFigure), all together or none (FileTransaction),
 /// and prints the localization's one-line summary (unless quiet).
 /// @throws FileError for an unreadable or malformed file or a failed write; ValueError when no scan

@@ -20,19 +20,22 @@ namespace sonarmap {
 /// y east), metres. Scans beyond `poses` are left out.
 std::vector<Eigen::Vector2d> placedScanPoints(const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses);
 
-/// The points' typical uncertainty, metres: the median over every scan's points of √(the larger
-/// eigenvalue of its covariance) (ScanPoint::covariance_m2: the range's σ along its beam, the beam's
-/// width across it). What a map of them can resolve: `localize`'s default voxel.
+/// What a map of the scans can resolve, metres: their points' typical σ, the median over every
+/// scan's points of √(the larger eigenvalue of its covariance) (ScanPoint::covariance_m2: the
+/// range's σ along its beam, the beam's width across it). `localize`'s default voxel and picture
+/// cell. (Not scan_matcher.hpp's typicalPointSigma, the correlative search's smoothing.)
 /// @throws ValueError when no scan has a point.
-double typicalPointSigma(const std::vector<SonarScan>& scans);
+double scanMapResolution(const std::vector<SonarScan>& scans);
 
 /// A planar occupancy map of the scans placed with `poses` (as placedScanPoints), in the mapper's
-/// internal frame (NWU: nedToMap(), mapping/map_frame.hpp; write it with writeMapFileInFrame) at
+/// internal frame (NWU: nedToMap(), nav/navigation.hpp; write it with writeMapFileInFrame) at
 /// depth 0: each point a hit, the ray to it from the sonar that saw it (ScanPoint::toward_sonar ·
 /// range_m back from it; the point alone where that is unknown) free, with the octree's default
 /// sensor model (OctoMap's: hit 0.7, miss 0.4, clamping 0.12–0.97). Each scan is one insertion per
 /// sonar position (insertPointCloud: a voxel is updated once per beam).
-/// @throws ValueError for a resolution that is not finite and > 0.
+/// @throws ValueError for a resolution that is not finite and > 0; OutOfMapError, before anything
+///         is inserted, when a point or a sonar position lies outside the map at that resolution
+///         (±mapHalfExtent_m, mapping/local_origin.hpp), naming the resolution that would hold them.
 OcTree16 mapScans(const std::vector<SonarScan>& scans, const std::vector<Pose2>& poses, double resolution_m);
 
 }  // namespace sonarmap
