@@ -22,10 +22,10 @@
 namespace sonarmap::cli {
 namespace {
 
-/// The scans placed on the dead reckoning (when there is one) and on the corrected track, side by
-/// side, each panel titled.
-cv::Mat localizeFigure(const std::vector<SonarScan>& scans, const NavTrack& dead_reckoning, const SlamResult& result,
-                       double cell_m) {
+/// The panels of --png: the scans placed on the dead reckoning (when there is one) and on the
+/// corrected track, each titled.
+std::vector<PointPanel> localizePanels(const std::vector<SonarScan>& scans, const NavTrack& dead_reckoning,
+                                       const SlamResult& result) {
   std::vector<PointPanel> panels;
   if (!dead_reckoning.empty()) {
     std::vector<Pose2> dead_reckoned;
@@ -36,7 +36,7 @@ cv::Mat localizeFigure(const std::vector<SonarScan>& scans, const NavTrack& dead
   std::snprintf(title, sizeof title, "on the corrected track: %zu of %zu loop closures accepted",
                 result.report.loopClosuresAccepted(), result.report.loop_closures.size());
   panels.push_back(pointPanel(title, placedScanPoints(scans, result.scan_poses), result.trajectory));
-  return pointPanelsFigure(panels, cell_m);
+  return panels;
 }
 
 }  // namespace
@@ -101,6 +101,7 @@ void runLocalize(const LocalizeArgs& args) {
   FileTransaction outputs;
   stageTrajectory(outputs, args.trajectory, inNavigationFrame(result.trajectory, origin));
   double resolution_m = args.resolution_m;
+  double cell_m = 0.0;  // the picture's, coarser than resolution_m over a wide extent (pointFigureCell)
   if (!args.map.empty() || !args.png.empty()) {
     // The scans as the localizer formed them: each echo at its leading edge, in its scan's frame.
     const std::vector<SonarScan> scans =
@@ -112,7 +113,11 @@ void runLocalize(const LocalizeArgs& args) {
         writeMap(map, out, mapFormatOf(args.map), mapHeaderComments(kDefaultMapFrame, origin.ned_m));
       });
     }
-    if (!args.png.empty()) outputs.stageBytes(args.png, encodePng(localizeFigure(scans, dead_reckoning, result, resolution_m)));
+    if (!args.png.empty()) {
+      const std::vector<PointPanel> panels = localizePanels(scans, dead_reckoning, result);
+      cell_m = pointFigureCell(panels, resolution_m);
+      outputs.stageBytes(args.png, encodePng(pointPanelsFigure(panels, cell_m)));
+    }
   }
   outputs.commit();
   if (args.quiet) return;
@@ -122,7 +127,7 @@ void runLocalize(const LocalizeArgs& args) {
     std::printf("map of the point scans on the corrected track: %.3g m voxels -> %s in %s\n", resolution_m, args.map.c_str(),
                 mapFrameDescription(kDefaultMapFrame).c_str());
   }
-  if (!args.png.empty()) std::printf("picture: %.3g m cells -> %s\n", resolution_m, args.png.c_str());
+  if (!args.png.empty()) std::printf("picture: %.3g m cells -> %s\n", cell_m, args.png.c_str());
 }
 
 }  // namespace sonarmap::cli

@@ -1,5 +1,5 @@
 /// @file point_figures.cpp
-/// pointPanel and pointPanelsFigure (point_figures.hpp).
+/// pointPanel, pointFigureCell and pointPanelsFigure (point_figures.hpp).
 
 #include "sonarmap/render/point_figures.hpp"
 
@@ -25,8 +25,11 @@ PointPanel pointPanel(std::string title, std::vector<Eigen::Vector2d> points_ned
   return panel;
 }
 
-cv::Mat pointPanelsFigure(const std::vector<PointPanel>& panels, double cell_m) {
-  if (!(std::isfinite(cell_m) && cell_m > 0.0)) throw ValueError("point figure: the cell must be > 0 m");
+namespace {
+
+/// The corners of every panel's finite points' bounding box (NED's plane, metres).
+/// @throws ValueError for no panel or no point.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> extentOf(const std::vector<PointPanel>& panels) {
   if (panels.empty()) throw ValueError("point figure: no panel to draw");
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d high = -low;
@@ -38,6 +41,22 @@ cv::Mat pointPanelsFigure(const std::vector<PointPanel>& panels, double cell_m) 
     }
   }
   if (!(low.x() <= high.x())) throw ValueError("point figure: no point to draw");
+  return {low, high};
+}
+
+}  // namespace
+
+double pointFigureCell(const std::vector<PointPanel>& panels, double cell_m) {
+  if (!(std::isfinite(cell_m) && cell_m > 0.0)) throw ValueError("point figure: the cell must be > 0 m");
+  const auto [low, high] = extentOf(panels);
+  // ceil(span / cell) + 1 cells along the longer side: at most kMaxPointPanelCells, with a cell of
+  // span / (kMaxPointPanelCells - 2) for rounding's sake.
+  return std::max(cell_m, (high - low).maxCoeff() / (kMaxPointPanelCells - 2));
+}
+
+cv::Mat pointPanelsFigure(const std::vector<PointPanel>& panels, double cell_m) {
+  cell_m = pointFigureCell(panels, cell_m);
+  const auto [low, high] = extentOf(panels);
   const int cols = static_cast<int>(std::ceil((high.y() - low.y()) / cell_m)) + 1;  // east
   const int rows = static_cast<int>(std::ceil((high.x() - low.x()) / cell_m)) + 1;  // north, up
   std::vector<cv::Mat> figures;
