@@ -64,12 +64,13 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
       ->group(help_group::kOutput);
   cmd->add_option("--png", args.png, "Picture of the point scans on the dead reckoning and on the corrected track")
       ->group(help_group::kOutput);
-  cmd->add_option("--resolution", args.resolution_m, "Voxel of --map and cell of --png, METRES > 0 (default: the points' typical sigma)")
-      ->group(help_group::kOutput);
+  CLI::Option* resolution =
+      cmd->add_option("--resolution", args.resolution_m, "Voxel of --map and cell of --png, METRES > 0 (default: the points' typical sigma)")
+          ->group(help_group::kOutput);
   addOdometryOptions(*cmd, args.odometry);
   addOriginOption(*cmd, args.origin);
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on success")->group(help_group::kOutput);
-  auto check = [&args] {
+  auto check = [&args, resolution] {
     checkOdometryArgs(args.odometry, true);
     if (!(std::isfinite(args.range_sigma_m) && args.range_sigma_m > 0.0)) {
       throw ValueError("--range-sigma expects METRES > 0");
@@ -77,7 +78,10 @@ Command addLocalizeCommand(CLI::App& app, LocalizeArgs& args) {
     if (!(std::isfinite(args.bearing_sigma_deg) && args.bearing_sigma_deg > 0.0 && args.bearing_sigma_deg < 90.0)) {
       throw ValueError("--bearing-sigma expects DEGREES in (0, 90)");
     }
-    if (!(std::isfinite(args.resolution_m) && args.resolution_m >= 0.0)) throw ValueError("--resolution expects METRES > 0");
+    if (resolution->count() > 0 && !(std::isfinite(args.resolution_m) && args.resolution_m > 0.0)) {
+      throw ValueError("--resolution expects METRES > 0");
+    }
+    requireTrajectoryOutput(args.trajectory);
     requireMapOutput(args.map, "--map");
     requirePngOutput(args.png, "--png");
   };

@@ -72,6 +72,7 @@ TEST_F(cliLocalizeOutputs, TheMapAndPictureShowTheScansOnTheCorrectedTrack) {
   ASSERT_FALSE(one.empty());
   ASSERT_FALSE(two.empty());
   EXPECT_GT(two.cols, 1.8 * one.cols * (static_cast<double>(two.rows) / one.rows) - 1.0);
+  EXPECT_NE(alone.out.find("picture: 0.1 m cells -> " + (out_ / "alone.png").string()), std::string::npos) << alone.out;
 }
 
 TEST_F(cliLocalizeOutputs, ABadOutputIsRefusedBeforeAnyWork) {
@@ -84,9 +85,30 @@ TEST_F(cliLocalizeOutputs, ABadOutputIsRefusedBeforeAnyWork) {
   const ProgramRun bt_png = run({"localize", scans.string(), "--trajectory", (out_ / "t.csv").string(), "--png",
                                  (out_ / "p.bt").string()});
   expectError(bt_png, 2);
-  const ProgramRun zero = run({"localize", scans.string(), "--trajectory", (out_ / "t.csv").string(), "--resolution", "-1"});
+  const ProgramRun negative = run({"localize", scans.string(), "--trajectory", (out_ / "t.csv").string(), "--resolution", "-1"});
+  expectError(negative, 2);
+  const ProgramRun zero = run({"localize", scans.string(), "--trajectory", (out_ / "t.csv").string(), "--resolution", "0"});
   expectError(zero, 2);
-  EXPECT_FALSE(fs::exists(out_ / "t.csv"));
+  EXPECT_NE(zero.err.find("--resolution"), std::string::npos) << zero.err;
+  EXPECT_EQ(listDir(out_), Names{"pool.csv"});
+}
+
+// The outputs appear together or not at all: a map that cannot be written (its folder is missing),
+// or cannot hold the scans at the resolution asked, leaves no trajectory either.
+TEST_F(cliLocalizeOutputs, AMapThatCannotBeWrittenLeavesNoOutput) {
+  const fs::path scans = out_ / "pool.csv";
+  writePoolScans(scans);
+  const ProgramRun missing = run({"localize", scans.string(), "--trajectory", (out_ / "t.csv").string(), "--map",
+                                  (out_ / "no_such_dir" / "m.bt").string(), "--png", (out_ / "p.png").string()});
+  expectError(missing, 1);
+  EXPECT_NE(missing.err.find("no_such_dir"), std::string::npos) << missing.err;
+  EXPECT_EQ(listDir(out_), Names{"pool.csv"});
+  // At 0.1 mm a map spans ±3.3 m: the pool's walls, 4 m away, are outside it.
+  const ProgramRun fine = run({"localize", scans.string(), "--trajectory", (out_ / "t.csv").string(), "--map",
+                               (out_ / "m.bt").string(), "--resolution", "0.0001"});
+  expectError(fine, 1);
+  EXPECT_NE(fine.err.find("outside the map"), std::string::npos) << fine.err;
+  EXPECT_EQ(listDir(out_), Names{"pool.csv"});
 }
 
 }  // namespace

@@ -91,7 +91,12 @@ INSTANTIATE_TEST_SUITE_P(
                       MismatchCase{"LiveMapAsPng", {"live", "-", "--format", "seanet", "-o", "{OUT}/x.png"}, "x.png"},
                       MismatchCase{"LiveTrajectoryAsBt",
                                    {"live", "-", "--format", "seanet", "--slam", "-o", "{OUT}/m.bt", "--trajectory", "{OUT}/t.bt"},
-                                   "t.bt"}),
+                                   "t.bt"},
+                      MismatchCase{"LocalizeTrajectoryAsBt", {"localize", "{IN}", "--trajectory", "{OUT}/t.bt"}, "t.bt"},
+                      MismatchCase{"LocalizeMapAsPng",
+                                   {"localize", "{IN}", "--trajectory", "{OUT}/t.csv", "--map", "{OUT}/m.png"}, "m.png"},
+                      MismatchCase{"LocalizePictureAsOt",
+                                   {"localize", "{IN}", "--trajectory", "{OUT}/t.csv", "--png", "{OUT}/p.ot"}, "p.ot"}),
     [](const ::testing::TestParamInfo<MismatchCase>& info) { return std::string(info.param.name); });
 
 // `-o NAME.ot` writes the full tree its extension names (not the binary tree under that
