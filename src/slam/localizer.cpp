@@ -120,11 +120,12 @@ void Localizer::addScan(SonarScan scan) {
                                                                              scans_[k].dead_reckoning.yaw_rad));
   const std::optional<Eigen::Matrix3d> matched = matchToSubmap(k);
   if (!positionMeasured()) {
-    // The scans' own estimate of the motion starts the pairwise matches.
-    measureMatches(k, graph_.pose(k - 1).between(graph_.pose(k)), graph_.pose(k >= 2 ? k - 2 : 0).between(graph_.pose(k)));
+    // The scans' own estimate of the motion starts the pairwise matches and is the chain's step.
+    const Pose2 step = graph_.pose(k - 1).between(graph_.pose(k));
+    measureMatches(k, step, graph_.pose(k >= 2 ? k - 2 : 0).between(graph_.pose(k)));
     scan_odometry_information_.push_back(matched);
-    chain_.append(graph_.pose(k - 1).between(graph_.pose(k)), scanOdometryCovariance(k));
-    travelled_m_.push_back(travelled_m_.back() + graph_.pose(k - 1).between(graph_.pose(k)).translation().norm());
+    chain_.append(step, scanOdometryCovariance(k));
+    travelled_m_.push_back(travelled_m_.back() + step.translation().norm());
   }
   closeLoop(k);
 }
@@ -137,8 +138,6 @@ Eigen::Matrix3d Localizer::scanOdometryCovariance(std::size_t k) const {
   if (!pairs) return odometry_cov_[k];
   return (matchInformation(*pairs) + odometry_cov_[k].inverse()).inverse();
 }
-
-
 
 Pose2 Localizer::predictedMotion(const Pose2& motion, double from_heading_rad, double to_heading_rad) const {
   const double scale = graph_.odometryScale();

@@ -213,9 +213,9 @@ class Localizer {
   static ScanMatch acrossWallOnly(const ScanMatch& match, const Pose2& predicted);
   /// Without navigation the vehicle is believed still: a match (`matched`, the source frame in the
   /// target's) moves it from where that belief puts it (`expected`) only when the scans fit there
-  /// distinctly better (fitScores at least ScanMatchOptions::min_peak_ratio times, the test that
-  /// tells a search's peaks apart); else `expected`, which the scans then fit as well as anywhere
-  /// they can tell. With navigation, `matched`.
+  /// better beyond chance: twice the log-likelihood ratio of the two poses (pointLikelihoods, each
+  /// point's with a floor for points that fit neither) above SlamOptions::loop_gate_chi2 (χ²₃'s
+  /// 99 % quantile: one pose's three parameters); else `expected`. With navigation, `matched`.
   Pose2 stillUnlessShown(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& expected,
                          const Pose2& matched) const;
   /// Whether `motion` (scan `to`'s pose in scan `from`'s frame) needs the vehicle to move or turn
