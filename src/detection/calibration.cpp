@@ -248,14 +248,15 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
   // The vehicle's own body lies within max_near_field_m of the head: what returns in many bearings
   // farther out (a basin's floor seen down a slope) is the scene, and is left to the detector.
   const int near_limit = binsForLength(options.max_near_field_m, polar.bin_length_m, 0, std::max(0, polar.cols()));
-  const int max_near_field = std::max(band, near_limit);
+  const int max_near_field = near_limit;
   const float water = waterLevel(polar, profile, options.clutter_share, span_db);
+  calibration.quiet_water_counts = water;
   const int housing =
       housingEnd(echoPersistence(polar, water), std::min(near_limit, polar.cols() / 4), options.clutter_share);
   const int near_start = std::max(band, housing);
   const int near_field = std::min(nearFieldEnd(profile, clutter_level, near_start, gap), max_near_field);
   fitRingDown(profile, water, threshold, band, near_start, max_near_field, calibration);
-  calibration.band_end_m = band * polar.bin_length_m;
+  calibration.band_end_m = std::min(band, max_near_field) * polar.bin_length_m;
   calibration.housing_end_m = housing * polar.bin_length_m;
   calibration.near_field_end_m = near_field * polar.bin_length_m;
   return calibration;

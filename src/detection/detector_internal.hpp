@@ -59,6 +59,40 @@ class RowRingDown {
   std::vector<float> offset_;  ///< per row, counts
 };
 
+/// Each row's floor: the level a row is in where the minimum range cuts it, intensity counts, until
+/// it comes down to the water. A return is a rise: it must stand out of the level its own beam has
+/// come down to, as well as out of the water at its range. A beam still in an echo where the minimum
+/// range cuts it (the near field's reverberation, the seabed or surface entering the vertical
+/// aperture at short range: the shared Ping360 basin log's beams bright from the head to 2.5–5 m)
+/// has not come down: the cut's edge, and the reverberation that only fades beyond it, are never a
+/// return, while an echo that rises out of it (a wall seen through the tail of that reverberation)
+/// still is.
+///
+/// The floor at a column is the lowest mean, since the minimum range, over the row's bins ending
+/// there, at most a band of them, once the row holds a water band's worth
+/// (BackgroundOptions::water_band_m, at least 8 bins; the first water band's mean until then). It
+/// ends (0 from there on) where it falls to the water's level W (SweepCalibration::
+/// quiet_water_counts: the level water alone exceeds in a tenth of its bins); a row that starts in
+/// water has none, and the background decides alone. The band holds kLooks independent looks (the
+/// pulse's length in bins each, where the log records it; a bin each where it does not): one-look
+/// speckle's spread in dB (5.6 dB) shrinks to 1.4 dB over 16 looks, so the lowest band mean lies a
+/// few dB under the level the reverberation came down to, not a threshold (16.8 dB at Pfa 10⁻⁶)
+/// under it as a single look's would, and the patches of a seabed's reverberation do not stand out
+/// of each other. On the shared Ping360 basin log (3 bins a pulse at 10 m) the band is 0.4 m.
+class RowFloor {
+ public:
+  /// Looks a band holds.
+  static constexpr double kLooks = 16.0;
+  /// The floor of every row of `polar` from column `min_bin` on (0 before it, beyond the row's
+  /// valid bins, and from where it comes down to `water_counts`); `water_band_m` ≥ 0.
+  RowFloor(const PolarImage& polar, int min_bin, double water_band_m, float water_counts);
+  /// Row r's floor at column c, intensity counts.
+  float at(int r, int c) const { return floor_.at<float>(r, c); }
+
+ private:
+  cv::Mat floor_;  ///< CV_32FC1, rows × cols
+};
+
 /// Paper §8.2 threshold on the rise between consecutive bins; options already validated.
 std::vector<BeamDetection> detectThreshold(const PolarImage& polar, const DetectionContext& context,
                                            const ThresholdOptions& options);

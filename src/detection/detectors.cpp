@@ -183,6 +183,10 @@ DetectionDiagnostics diagnose(const PolarImage& polar, const detail::DetectionCo
       }
     }
   }
+  if (diagnostics.echoes_before_min_range > 0) {
+    diagnostics.hidden_from_m = band * polar.bin_length_m;
+    diagnostics.hidden_to_m = context.min_bin * polar.bin_length_m;
+  }
   return diagnostics;
 }
 
@@ -222,8 +226,12 @@ void setEchoOnsets(const PolarImage& polar, const DetectorOptions& options, cons
   }
 }
 
-void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& context,
+void setWaterRanges(const PolarImage& polar, const DetectorOptions& options, const detail::DetectionContext& context,
                     const SweepCalibration& calibration, std::vector<BeamDetection>& detections) {
+  // An echo counts from the level its beam has come down to (RowFloor): a beam still in the near
+  // field's reverberation where the minimum range cuts it proves no water there.
+  const detail::RowFloor floor(polar, context.min_bin, options.background.water_band_m,
+                               calibration.quiet_water_counts);
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     if (detection.hasObstacle()) {
@@ -233,7 +241,7 @@ void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& con
     const auto* row = polar.intensities.ptr<std::uint8_t>(r);
     const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
     int c = context.min_bin;
-    while (c < end && static_cast<float>(row[c]) - calibration.background[static_cast<std::size_t>(c)] <
+    while (c < end && static_cast<float>(row[c]) - std::max(calibration.background[static_cast<std::size_t>(c)], floor.at(r, c)) <
                           calibration.threshold[static_cast<std::size_t>(c)]) {
       ++c;
     }
@@ -304,7 +312,7 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
                                          calibration.span_db, measure_background, options.beam_width_rad};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
-  setWaterRanges(polar, context, result.calibration, result.detections);
+  setWaterRanges(polar, options, context, result.calibration, result.detections);
   setEchoOnsets(polar, options, context, result.calibration, result.detections);
   setEchoEnds(polar, result.calibration, binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols())),
               result.detections);
@@ -329,6 +337,8 @@ DetectionDiagnostics& DetectionDiagnostics::operator+=(const DetectionDiagnostic
   beams += other.beams;
   obstacles += other.obstacles;
   echoes_before_min_range += other.echoes_before_min_range;
+  hidden_from_m = std::min(hidden_from_m, other.hidden_from_m);
+  hidden_to_m = std::max(hidden_to_m, other.hidden_to_m);
   echoes_too_short += other.echoes_too_short;
   reach_m = std::max(reach_m, other.reach_m);
   return *this;

@@ -32,10 +32,10 @@ std::string likelyCause(const MappingStats& stats) {
                   c.min_range_m, d.reach_m);
   }
   if (d.echoes_before_min_range > 0) {
-    return format("%zu beams have echoes above the threshold between the self-reflection band's end (%.2f m) and "
-                  "the detector's minimum range (%.2f m), which hides them: they may be walls nearer than it "
-                  "(lower --min-range, or leave it on auto)",
-                  d.echoes_before_min_range, c.band_end_m, c.min_range_m);
+    return format("%zu beams have echoes above the threshold between the self-reflection band's end and the "
+                  "detector's minimum range (%.2f .. %.2f m in their sweeps), which hides them: they may be walls "
+                  "nearer than it (lower --min-range or --max-near-field, or leave them on auto)",
+                  d.echoes_before_min_range, d.hidden_from_m, d.hidden_to_m);
   }
   if (d.echoes_too_short > 0) {
     return format("%zu beams have echoes above the threshold that are shorter than the minimum echo length "
@@ -68,10 +68,9 @@ std::vector<std::string> mappingWarnings(const MappingStats& stats, const Mapper
                            likelyCause(stats).c_str()));
   } else if (d.beams > 0 && 4 * d.echoes_before_min_range > d.beams) {
     lines.push_back(format("%zu of %zu beams have echoes above the threshold between the self-reflection band's end "
-                           "(%.2f m) and the detector's minimum range (%.2f m): obstacles nearer than it are missed "
-                           "(lower --min-range, or leave it on auto)",
-                           d.echoes_before_min_range, d.beams, stats.calibration.band_end_m,
-                           stats.calibration.min_range_m));
+                           "and the detector's minimum range (%.2f .. %.2f m in their sweeps): obstacles nearer than "
+                           "it are missed (lower --min-range or --max-near-field, or leave them on auto)",
+                           d.echoes_before_min_range, d.beams, d.hidden_from_m, d.hidden_to_m));
   }
   if (stats.beams_clipped > 0 && 2 * stats.beams_clipped >= stats.beams_used) {
     lines.push_back(format("%zu of %zu beams reach beyond the maximum range (%g m): they clear free space up to it "

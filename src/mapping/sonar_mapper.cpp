@@ -124,13 +124,23 @@ void SonarMapper::resolveResolution(const PolarImage& polar) {
   std::sort(work_->occupied_keys.begin(), work_->occupied_keys.end());
 }
 
+namespace {
+/// The range the self-reflection band is zeroed to (MapperOptions::self_reflection_range_m): the
+/// option, else the band measured on the sweep, never beyond a minimum range the user set (the
+/// nearest echo used is then the user's: --min-range).
+double selfReflectionRange(const MapperOptions& options, const SweepCalibration& calibration) {
+  if (options.self_reflection_range_m) return *options.self_reflection_range_m;
+  return std::min(calibration.band_end_m, options.detector.min_range_m.value_or(calibration.band_end_m));
+}
+}  // namespace
+
 SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
   // Calibrate on the image as recorded: the band and the near field are measured before the band is
   // zeroed and before any smoothing spreads it.
   DetectorOptions detector = detectorOf(options_);
   const double span_db = detector.intensity_span_db.value_or(intensitySpan_db(polar));
   const SweepCalibration recorded = calibrateSweep(polar, detector.background.calibration, span_db);
-  const double self_reflection_m = options_.self_reflection_range_m.value_or(recorded.band_end_m);
+  const double self_reflection_m = selfReflectionRange(options_, recorded);
   removeSelfReflection(polar, self_reflection_m);
   // Nothing can be detected, nor water seen, where the bins were zeroed.
   detector.min_range_m = std::max(detector.min_range_m.value_or(recorded.near_field_end_m), self_reflection_m);
@@ -152,7 +162,7 @@ SweepDetection SonarMapper::detectSweep(PolarImage& polar) const {
 
 SweepDetection SonarMapper::detectRows(PolarImage& rows, const SweepCalibration& calibration) const {
   DetectorOptions detector = detectorOf(options_);
-  const double self_reflection_m = options_.self_reflection_range_m.value_or(calibration.band_end_m);
+  const double self_reflection_m = selfReflectionRange(options_, calibration);
   removeSelfReflection(rows, self_reflection_m);
   detector.min_range_m = std::max(detector.min_range_m.value_or(calibration.near_field_end_m), self_reflection_m);
   if (options_.smoothing.kind != Smoothing::kNone) smooth(rows, options_.smoothing);

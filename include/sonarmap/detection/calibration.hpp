@@ -31,7 +31,12 @@
 ///    and it fired up to 275 times a sweep in open water; docs/accuracy.md.)
 ///  - Near field: the self-reflection band ends where the median profile (median of each column)
 ///    falls below half-way between its peak within the first quarter of the range and the median
-///    of the far half (no band when that peak is not T above the quietest range after it).
+///    of the far half (no band when that peak is not T above the quietest range after it), at most
+///    max_near_field_m out: where the scene's reverberation fills most bearings near the head (the
+///    shared Ping360 basin log's floor entering the aperture), the median falls with the scene, not
+///    with the head (3.0–4.3 m there). Each beam's own part of what the cut leaves is the
+///    detector's: a beam still in an echo at the minimum range has no return at its edge
+///    (detectors.hpp, the floor).
 ///  - Housing: the head's housing and the transducer's ring-down return at the same ranges in
 ///    nearly every beam whatever the bearing, while the scene's echoes move with bearing. The
 ///    persistence P(c) is the share of the rows (beams) whose level at column c stands above the
@@ -53,7 +58,8 @@
 ///    the pool bag's band rule finds nothing and its housing ends at 0.60–0.80 m; the SeaNet sector
 ///    log's ring-down, in every beam of the sector, at 0.70–1.41 m; the Ping360 logs' near fields
 ///    run from 0.27 m (a harbour log's 60 m scale) to the 2 m bound (the basin's 10 and 20 m
-///    sweeps, saturated to about 2 m in every beam; their median band rule reaches 4.3 m).
+///    sweeps, saturated to about 2 m in every beam; their median band rule reaches 4.3 m, bounded
+///    to 2 m).
 ///  - Ring-down: the transducer's ring is a level in dB falling with range, alike in every beam but
 ///    louder or quieter from ping to ping (the shared Ping360 logs at 60 m and gain 0: a 5–6 dB
 ///    spread beyond speckle's), so the near field, which ends where most beams have come down,
@@ -86,7 +92,7 @@ struct CalibrationOptions {
   /// (a BlueROV2 is 0.46 m long, the CRAS vehicle's returns end at 0.26 m). Farther, what rises in
   /// many bearings is the scene (the shared Ping360 basin log's floor, seen down a slope in a third
   /// of the bearings from 2 to 9 m, made near fields of 7–10 m on a 10 m scale and an empty map);
-  /// the self-reflection band, measured on the median, is never cut.
+  /// the self-reflection band, measured on the median, is bounded by it too.
   double max_near_field_m = 2.0;
 
   /// @throws ValueError naming the option when it is outside its range or not finite.
@@ -102,6 +108,9 @@ struct SweepCalibration {
   double band_end_m = 0.0;        ///< end of the self-reflection band, metres
   double housing_end_m = 0.0;     ///< outer edge of the housing's band (0: none found), metres
   double near_field_end_m = 0.0;  ///< end of the near-field clutter (≥ band_end_m, housing_end_m), metres
+  /// The water's level W, intensity counts: the level water alone exceeds in about clutter_share of
+  /// its bins (the housing's rule above). A beam whose level along it has come down to W is in water.
+  float quiet_water_counts = 0.0f;
   /// The evidence detector's water at each column, measured over a whole sweep (water_evidence.hpp:
   /// the band of water ending at that range); empty when not measured (other detectors). Rows of a
   /// sweep in progress (detectRows) are judged against it: one beam holds too little water to

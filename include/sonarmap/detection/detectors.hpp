@@ -8,6 +8,7 @@
 /// has none. Bins nearer than the minimum range are never reported (paper §8.2: "measurements that
 /// are close to the sonar ... are self-reflections").
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -61,7 +62,10 @@ struct CannyOptions {
 ///   2. the obstacle is the first bin c at or beyond the minimum range that starts a run of
 ///      min_echo_length_m (at least one bin) with I − B ≥ T(c) all along; within the near field's
 ///      bound B is at least the beam's own ring-down (SweepCalibration::ring_down raised by the
-///      beam's offset: a louder ping rings longer, and its tail is not an echo);
+///      beam's offset: a louder ping rings longer, and its tail is not an echo), and on a beam still
+///      in an echo where the minimum range cuts it, at least the lowest level the beam has come down
+///      to since (its floor, until it reaches the water's level: the cut's edge and the
+///      reverberation that only fades beyond it are no return, an echo rising out of it is);
 ///   3. its range is the echo's leading edge, the nearest surface within the beam: from the foot of
 ///      the rise (back from c while the echo stays above T / 2), the centre of the first bin within
 ///      leading_edge_db of the echo's peak (sought within 0.3 m of c). A wall seen at
@@ -129,6 +133,10 @@ struct DetectionDiagnostics {
   /// Rows without an obstacle whose echo rises above the threshold between the self-reflection
   /// band's end and the minimum range: obstacles the minimum range may hide.
   std::size_t echoes_before_min_range = 0;
+  /// Over the sweeps with such echoes, the nearest self-reflection band's end and the farthest
+  /// minimum range, metres: where they were hidden (+∞ and 0 when none were).
+  double hidden_from_m = std::numeric_limits<double>::infinity();
+  double hidden_to_m = 0.0;
   /// Rows without an obstacle with an echo above the threshold shorter than min_echo_length_m.
   std::size_t echoes_too_short = 0;
   double reach_m = 0.0;  ///< the longest row's range (valid bins × bin length), metres
