@@ -66,7 +66,10 @@ struct PySonarLog {
   int bins = 0;
   std::vector<std::uint8_t> intensities;  ///< beams × bins, row-major, 0 beyond each beam's bins
   std::vector<std::int32_t> valid_bins;
-  std::vector<double> time_s, bearing_rad, bin_length_m, intensity_span_db;
+  std::vector<double> time_s, bearing_rad, bin_length_m;
+  // What the head recorded of its settings (Beam's optional fields): NaN, or -1 for the gain, when not.
+  std::vector<double> intensity_span_db, pulse_length_m;
+  std::vector<std::int32_t> gain_setting;
   void cache();
 };
 
