@@ -92,4 +92,12 @@ std::string inPythonWords(const std::string& message);
 /// A keyword's value as a string. @throws sonarmap.ValueError naming `name` when it is not a str.
 std::string textArgument(const py::handle& value, const std::string& name);
 
+/// The nominal beam of the sonar the keyword `format` names (parseLogFormat's names: nominalBeam),
+/// or nullopt for None or "auto" (no sonar named).
+/// @throws sonarmap.ValueError for a value that is not a str or an unknown format name.
+std::optional<NominalBeam> namedSonarBeam(const py::handle& format);
+
+/// Every format's nominal beam, for docstrings and errors: "mat, csv, …: 3° × 35°; ping360: 2° × 25°".
+std::string sonarBeamsText();
+
 }  // namespace sonarmap::python
