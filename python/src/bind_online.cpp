@@ -87,8 +87,9 @@ most of its beams use, the work budget (max_voxel_updates_per_beam) checked. Its
 order (add_beams, or add_beam with every field) then give map_sonar_log(log)'s map byte for byte,
 and `sonarmap map`'s. Without log, an automatic resolution follows the first sweep's reach
 (about 256 voxels) and coarsens as a longer range scale comes, since a stream does not know which
-scale most of its beams will use: the basin log's power-on 2 m pings, 10 m turns and 20 m sectors
-end at 0.1 m where map_sonar_log, following the 10 m turns, gives 0.05 m. Give resolution= then.
+scale most of its beams will use (docs/python.md: a Ping360 log of 2 m power-on pings, 10 m turns
+and 20 m sectors ends at 0.1 m where map_sonar_log, following the 10 m turns, gives 0.05 m); give
+resolution= then.
 One of format, log, or both beam_width_deg and vertical_aperture_deg is required: the beams of a
 Ping360 and of a Tritech head differ.
 Raises sonarmap.ValueError for invalid options, no sonar named, an unknown format, a log whose
