@@ -240,7 +240,8 @@ void runOnHead(const LiveArgs& args, const MapperOptions& options, const Eigen::
 
 /// `live` on a recorded log (a ROS log, a Ping Viewer log): its beams, as `map` reads them, fed in
 /// order with their recorded times at --rate, its own navigation (or --nav's, any file `map --nav`
-/// reads, joined by its clock) known from the start.
+/// reads, joined by its clock) known from the start, mapped with `map`'s options for the log
+/// (mappingOptionsForLog): `map`'s map byte for byte.
 void runReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   const LogFormat format = inputFormat(args.map.input, args.map.format);
   // Read beam by beam: a replay holds no more of the log than a sonar on the wire would send.
@@ -252,8 +253,10 @@ void runReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::
   // whole found them, and the clocks' overlap.
   const BeamPass pass = passOver(*source);
   const LogSurvey survey = surveyLog(pass, 1, spanOf(navigation));
-  const double origin_resolution_m = sonar_options.resolution_m.value_or(
-      survey.beams > 0 ? autoResolutionForLog(survey, sonar_options).resolution_m : autoResolution_m(sonar_options.max_range_m));
+  // `map`'s options for the log: its resolution follows the range scale most of its beams use (a
+  // head's stream can follow only the scales seen so far), its work budget checked.
+  const MapperOptions log_options = survey.beams > 0 ? mappingOptionsForLog(sonar_options, survey) : sonar_options;
+  const double origin_resolution_m = log_options.resolution_m.value_or(autoResolution_m(log_options.max_range_m));
   NavTrack known_fixes;
   std::optional<LocalOrigin> origin;
   if (navigation) {
@@ -267,7 +270,7 @@ void runReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::
   const Eigen::Isometry3d mounting =
       mountingFor(args.map.input, format, source->header(), navigation, !args.map.mounting.empty(), sonar_to_body);
   LiveMappingOptions mapping =
-      mappingOptions(args, sonar_options, mounting, navigation.has_value(), known_fixes, origin_resolution_m);
+      mappingOptions(args, log_options, mounting, navigation.has_value(), known_fixes, origin_resolution_m);
   mapping.origin = origin;
   LiveInput input;
   input.replay = std::move(source);

@@ -102,11 +102,7 @@ OccupancyMap mapLog(const PySonarLog& log, const py::object& nav, const py::obje
   const std::string nav_class = kwargs.contains("nav_class") ? textArgument(kwargs["nav_class"], "nav_class") : "auto";
   const double nav_time_offset_s =
       kwargs.contains("nav_time_offset_s") ? kwargs["nav_time_offset_s"].cast<double>() : 0.0;
-  NominalBeam beam = log.beam;
-  if (kwargs.contains("format") && !kwargs["format"].is_none()) {
-    const std::string format = textArgument(kwargs["format"], "format");
-    if (format != "auto") beam = nominalBeam(parseLogFormat(format));
-  }
+  const NominalBeam beam = namedSonarBeam(kwarg(kwargs, "format")).value_or(log.beam);
   const MapperOptions options = withSonarBeam(toMapperOptions(args), args, beam);
   if (!mounting.is_none() && nav.is_none() && !slam) {
     throwValueError("mounting needs nav or slam (the sonar's mounting on a moving vehicle)");

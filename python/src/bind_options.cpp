@@ -8,6 +8,8 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <utility>
 
 #include <pybind11/stl.h>
 
@@ -157,6 +159,35 @@ std::string inPythonWords(const std::string& message) {
 std::string textArgument(const py::handle& value, const std::string& name) {
   if (!py::isinstance<py::str>(value)) throwValueError(name + " expects a string");
   return value.cast<std::string>();
+}
+
+std::optional<NominalBeam> namedSonarBeam(const py::handle& format) {
+  if (format.is_none()) return std::nullopt;
+  const std::string name = textArgument(format, "format");
+  if (name == "auto") return std::nullopt;
+  return nominalBeam(parseLogFormat(name));
+}
+
+std::string sonarBeamsText() {
+  std::vector<std::pair<NominalBeam, std::string>> beams;  // the formats of each beam, in the registry's order
+  for (const LogFormatEntry& entry : logFormats()) {
+    const NominalBeam beam = nominalBeam(entry.format);
+    const auto same = std::find_if(beams.begin(), beams.end(), [&](const auto& known) {
+      return known.first.width_rad == beam.width_rad && known.first.vertical_aperture_rad == beam.vertical_aperture_rad;
+    });
+    if (same == beams.end()) {
+      beams.emplace_back(beam, std::string(entry.name));
+    } else {
+      same->second += ", " + std::string(entry.name);
+    }
+  }
+  const auto degrees = [](double radians) { return exactNumberText(std::round(radians * 180.0 / std::numbers::pi * 1e6) / 1e6); };
+  std::string text;
+  for (const auto& [beam, names] : beams) {
+    text += (text.empty() ? "" : "; ") + names + ": " + degrees(beam.width_rad) + "° × " +
+            degrees(beam.vertical_aperture_rad) + "°";
+  }
+  return text;
 }
 
 MappingArguments mappingArguments(const py::kwargs& kwargs, const std::vector<std::string>& allowed_extra) {

@@ -33,6 +33,9 @@ void PySonarLog::cache() {
   bearing_rad.resize(beams);
   bin_length_m.resize(beams);
   intensity_span_db.resize(beams);
+  gain_setting.resize(beams);
+  pulse_length_m.resize(beams);
+  constexpr double kNotRecorded = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t b = 0; b < beams; ++b) {
     const Beam& beam = log.beams[b];
     std::copy(beam.intensities.begin(), beam.intensities.end(), intensities.begin() + b * static_cast<std::size_t>(bins));
@@ -40,7 +43,9 @@ void PySonarLog::cache() {
     time_s[b] = beam.time_s;
     bearing_rad[b] = beam.bearing_rad;
     bin_length_m[b] = beam.bin_length_m;
-    intensity_span_db[b] = beam.intensity_span_db.value_or(std::numeric_limits<double>::quiet_NaN());
+    intensity_span_db[b] = beam.intensity_span_db.value_or(kNotRecorded);
+    gain_setting[b] = beam.gain_setting ? static_cast<std::int32_t>(*beam.gain_setting) : -1;
+    pulse_length_m[b] = beam.pulse_length_m.value_or(kNotRecorded);
   }
   cached = true;
 }
@@ -53,6 +58,17 @@ py::array readOnlyView(const std::vector<T>& data, std::vector<py::ssize_t> shap
   py::array_t<T> view(shape, data.data(), owner);
   view.attr("setflags")(py::arg("write") = false);
   return view;
+}
+
+/// The getter of a read-only (beams,) view of the log's cached column `values`.
+template <class T>
+auto column(std::vector<T> PySonarLog::*values) {
+  return [values](py::object self) {
+    auto& log = self.cast<PySonarLog&>();
+    log.cache();
+    const std::vector<T>& column = log.*values;
+    return readOnlyView(column, {static_cast<py::ssize_t>(column.size())}, self);
+  };
 }
 
 /// A PolarImage's intensities as a writable (rows, cols) uint8 view of its cv::Mat, owned by `owner`.
@@ -282,45 +298,32 @@ Raises sonarmap.ValueError for a wrong shape or dtype, a non-finite time or bear
           },
           "Echo intensities, uint8 (beams, bins), 0…255, bin 0 nearest; bins a beam lacks are 0 (see valid_bins).")
       .def_property_readonly(
-          "valid_bins",
-          [](py::object self) {
-            auto& log = self.cast<PySonarLog&>();
-            log.cache();
-            return readOnlyView(log.valid_bins, {static_cast<py::ssize_t>(log.valid_bins.size())}, self);
-          },
+          "valid_bins", column(&PySonarLog::valid_bins),
           "int32 (beams,): the number of real bins of each beam.")
       .def_property_readonly(
-          "time_s",
-          [](py::object self) {
-            auto& log = self.cast<PySonarLog&>();
-            log.cache();
-            return readOnlyView(log.time_s, {static_cast<py::ssize_t>(log.time_s.size())}, self);
-          },
+          "time_s", column(&PySonarLog::time_s),
           "float64 (beams,): time of each beam, seconds on the log's own clock (raw captures: 0).")
       .def_property_readonly(
-          "bearing_rad",
-          [](py::object self) {
-            auto& log = self.cast<PySonarLog&>();
-            log.cache();
-            return readOnlyView(log.bearing_rad, {static_cast<py::ssize_t>(log.bearing_rad.size())}, self);
-          },
+          "bearing_rad", column(&PySonarLog::bearing_rad),
           "float64 (beams,): bearing of each beam, radians in [0, 2π), sonar frame, clockwise from +x (ahead).")
       .def_property_readonly(
-          "bin_length_m",
-          [](py::object self) {
-            auto& log = self.cast<PySonarLog&>();
-            log.cache();
-            return readOnlyView(log.bin_length_m, {static_cast<py::ssize_t>(log.bin_length_m.size())}, self);
-          },
+          "bin_length_m", column(&PySonarLog::bin_length_m),
           "float64 (beams,): length of one bin along each beam, metres.")
       .def_property_readonly(
-          "intensity_span_db",
-          [](py::object self) {
-            auto& log = self.cast<PySonarLog&>();
-            log.cache();
-            return readOnlyView(log.intensity_span_db, {static_cast<py::ssize_t>(log.intensity_span_db.size())}, self);
-          },
-          "float64 (beams,): dB span of 0…255 when the format records it (SeaNet), NaN otherwise.")
+          "intensity_span_db", column(&PySonarLog::intensity_span_db),
+          "float64 (beams,): dB span the intensities 0…255 cover, as the head states it (SeaNet: ADspan × 80 / 255). "
+          "NaN: the format does not state its intensity scale in dB (a Ping360 sends counts whose scale depends on its "
+          "gain; a CRAS .mat, a beam CSV without the column); the mapper then takes intensity_span= if given, else "
+          "assumes 45 dB, as `sonarmap map` does (--intensity-span): its echo threshold, in dB above each sweep's "
+          "measured background, becomes counts at that span.")
+      .def_property_readonly(
+          "gain_setting", column(&PySonarLog::gain_setting),
+          "int32 (beams,): the receiver gain setting the head reported, in its own units (Ping360: 0 low, 1 normal, "
+          "2 high; SeaNet: the gain byte); -1 where the format records none. A change of gain starts a sweep.")
+      .def_property_readonly(
+          "pulse_length_m", column(&PySonarLog::pulse_length_m),
+          "float64 (beams,): the transmitted pulse's length in range, c·τ/2, metres (Ping360: its transmit duration); "
+          "NaN where the format records none. The detector never asks an echo to be longer.")
       .def_property_readonly(
           "clock_utc_s", [](const PySonarLog& log) { return log.log.clock_utc_s; },
           "UTC (seconds since 1970) at time_s = 0 when the file says (a ROS log: 0; a Ping Viewer log named "

@@ -66,7 +66,10 @@ struct PySonarLog {
   int bins = 0;
   std::vector<std::uint8_t> intensities;  ///< beams × bins, row-major, 0 beyond each beam's bins
   std::vector<std::int32_t> valid_bins;
-  std::vector<double> time_s, bearing_rad, bin_length_m, intensity_span_db;
+  std::vector<double> time_s, bearing_rad, bin_length_m;
+  // What the head recorded of its settings (Beam's optional fields): NaN, or -1 for the gain, when not.
+  std::vector<double> intensity_span_db, pulse_length_m;
+  std::vector<std::int32_t> gain_setting;
   void cache();
 };
 
@@ -88,5 +91,13 @@ std::string inPythonWords(const std::string& message);
 
 /// A keyword's value as a string. @throws sonarmap.ValueError naming `name` when it is not a str.
 std::string textArgument(const py::handle& value, const std::string& name);
+
+/// The nominal beam of the sonar the keyword `format` names (parseLogFormat's names: nominalBeam),
+/// or nullopt for None or "auto" (no sonar named).
+/// @throws sonarmap.ValueError for a value that is not a str or an unknown format name.
+std::optional<NominalBeam> namedSonarBeam(const py::handle& format);
+
+/// Every format's nominal beam, for docstrings and errors: "mat, csv, …: 3° × 35°; ping360: 2° × 25°".
+std::string sonarBeamsText();
 
 }  // namespace sonarmap::python

@@ -56,8 +56,7 @@ std::size_t surveyMinBeams(const MapperOptions& options) {
 
 SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const MapperOptions& options,
                         const ProgressCallback& progress) {
-  const MapperOptions resolved = resolveForLog(options, survey);
-  checkWorkBudget(survey, resolved);
+  const MapperOptions resolved = mappingOptionsForLog(options, survey);
   OnlineMapper online(resolved, OnlineIntegration::kSweep, progressOf(survey, progress));
   return mapThroughOnline(source, online);
 }
@@ -66,8 +65,7 @@ SonarMapper mapSonarLog(BeamSource& source, const LogSurvey& survey, const NavTr
                         const Eigen::Isometry3d& sonar_to_body, const MapperOptions& options,
                         const ProgressCallback& progress) {
   const NavInterpolator checked(nav);  // checks the track once: throws ValueError when it is invalid
-  const MapperOptions resolved = resolveForLog(options, survey);
-  checkWorkBudget(survey, resolved);
+  const MapperOptions resolved = mappingOptionsForLog(options, survey);
   OnlineMapper online(resolved, sonar_to_body, OnlineIntegration::kSweep, progressOf(survey, progress));
   for (const NavSample& fix : nav) online.addNavFix(fix);
   return mapThroughOnline(source, online);
@@ -86,8 +84,7 @@ SonarMapper mapSonarLog(const SonarLog& log, const NavTrack& nav, const Eigen::I
 
 DetectedLog detectSonarLog(const SonarLog& log, const MapperOptions& options) {
   DetectedLog detected;
-  detected.options = resolveForLog(options, log);
-  checkWorkBudget(log, detected.options);
+  detected.options = mappingOptionsForLog(options, log);
   detected.beams_skipped = log.skipped_beams;
   OnlineMapper online(detected.options, OnlineIntegration::kSweep);
   online.detectOnly([&detected](DetectedSweep&& sweep) {

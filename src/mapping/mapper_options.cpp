@@ -240,4 +240,14 @@ void checkWorkBudget(const SonarLog& log, const MapperOptions& options) {
   checkWorkBudget(surveyLog(passOver(log)), options);
 }
 
+MapperOptions mappingOptionsForLog(const MapperOptions& options, const LogSurvey& survey) {
+  MapperOptions resolved = resolveForLog(options, survey);
+  checkWorkBudget(survey, resolved);
+  return resolved;
+}
+
+MapperOptions mappingOptionsForLog(const MapperOptions& options, const SonarLog& log) {
+  return mappingOptionsForLog(options, surveyLog(passOver(log)));
+}
+
 }  // namespace sonarmap

@@ -33,6 +33,20 @@ PolarImage fitToCalibration(PolarImage polar, const SweepCalibration& calibratio
   for (int& valid : polar.valid_bins) valid = std::min(valid, cols);
   return polar;
 }
+
+/// @throws ValueError naming the beam's time for a bin length that is not finite and > 0, or an
+/// intensity span or pulse length that is set and not finite and > 0 (unset: not recorded).
+void checkBeam(const Beam& beam) {
+  const auto positive = [](double value) { return std::isfinite(value) && value > 0.0; };
+  const std::string at = "online mapper: beam at " + std::to_string(beam.time_s) + " s has ";
+  if (!positive(beam.bin_length_m)) throw ValueError(at + "a bin length that is not > 0 m");
+  if (beam.intensity_span_db && !positive(*beam.intensity_span_db)) {
+    throw ValueError(at + "an intensity span that is not a finite number of dB > 0 (unset: not recorded)");
+  }
+  if (beam.pulse_length_m && !positive(*beam.pulse_length_m)) {
+    throw ValueError(at + "a pulse length that is not a finite number of metres > 0 (unset: not recorded)");
+  }
+}
 }  // namespace
 
 OnlineMapper::OnlineMapper(const MapperOptions& options, OnlineIntegration integration, SweepCallback on_sweep)
@@ -63,9 +77,7 @@ void OnlineMapper::addNavFix(const NavSample& fix) {
 
 void OnlineMapper::addBeam(Beam beam) {
   if (finished_) throw ValueError("online mapper: beam after finish()");
-  if (!(std::isfinite(beam.bin_length_m) && beam.bin_length_m > 0.0)) {
-    throw ValueError("online mapper: beam at " + std::to_string(beam.time_s) + " s has a bin length that is not > 0 m");
-  }
+  checkBeam(beam);
   if (shows_given_beams_) throw ValueError("online mapper: addBeam on a mapper given beams to show (showBeam)");
   const bool starts_sweep = splitter_.startsSweep(beam);
   const HeadSetting setting = headSettingOf(beam);
@@ -82,9 +94,7 @@ void OnlineMapper::showBeam(std::size_t index, Beam beam) {
   if (!provisional_) throw ValueError("online mapper: showBeam needs OnlineIntegration::kProvisionalBeams");
   if (beams_added_ > 0) throw ValueError("online mapper: showBeam on a mapper fed beams (addBeam), which shows them itself");
   if (finished_) throw ValueError("online mapper: beam after finish()");
-  if (!(std::isfinite(beam.bin_length_m) && beam.bin_length_m > 0.0)) {
-    throw ValueError("online mapper: beam at " + std::to_string(beam.time_s) + " s has a bin length that is not > 0 m");
-  }
+  checkBeam(beam);
   if (shows_given_beams_ && index <= last_shown_index_) {
     throw ValueError("online mapper: beam " + std::to_string(index) + " to show is not after the previous one");
   }
@@ -358,6 +368,11 @@ OcTree16 OnlineMapper::shownSnapshot() const {
 MappingStats OnlineMapper::statsSnapshot() const {
   const std::shared_lock lock(map_mutex_);
   return mapper_.stats();
+}
+
+MapperOptions OnlineMapper::optionsSnapshot() const {
+  const std::shared_lock lock(map_mutex_);
+  return mapper_.options();
 }
 
 SonarMapper OnlineMapper::release() && {

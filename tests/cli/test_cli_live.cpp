@@ -134,6 +134,22 @@ TEST_F(CliLive, APingViewerLogIsReadAsMapReadsIt) {
   }
 }
 
+// A replayed log is surveyed before its first beam, so `live` maps it with `map`'s options at the
+// automatic resolution too: the basin's 10 m scale, which most of its beams use (5 cm), not the 20 m
+// one it ends with (a head's stream would be coarsened to 10 cm); the harbour's 60 m from its start.
+TEST_F(CliLive, AReplayedLogGivesMapsMapAtTheAutomaticResolution) {
+  for (const char* name : {"ping360_basin.bin", "ping360_harbour_range_changes.bin"}) {
+    const fs::path log = fs::path(SONARMAP_SHARED_DATA) / name;
+    if (!fs::exists(log)) GTEST_SKIP() << "shared data absent: " << log;
+    const ProgramRun batch = run({"map", log.string(), "-q", "-o", (root_ / "auto.bt").string()});
+    ASSERT_EQ(batch.exit_code, 0) << batch.err;
+    const ProgramRun live = run({"live", log.string(), "-q", "-o", (out_ / "auto.bt").string()});
+    ASSERT_EQ(live.exit_code, 0) << live.err;
+    EXPECT_TRUE(readFile(out_ / "auto.bt") == readFile(root_ / "auto.bt"))
+        << name << ": live map differs from `sonarmap map`\nlive: " << live.out << "map: " << batch.out;
+  }
+}
+
 // A Ping Viewer log is a file, not the bytes a sonar sends: on a stream it is refused with advice,
 // not decoded into a fraction of its beams.
 TEST_F(CliLive, APingViewerLogOnAStreamIsRefused) {

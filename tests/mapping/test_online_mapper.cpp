@@ -167,6 +167,15 @@ TEST(mappingOnlineMapper, BadInputIsRefused) {
   beam.intensities.assign(10, 0);
   EXPECT_THROW(still.addBeam(beam), ValueError);
   beam.bin_length_m = 0.01;
+  // What the head recorded is unset when not recorded, and valid when set: a NaN is no span.
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), 0.0, -1.0, std::numeric_limits<double>::infinity()}) {
+    Beam with_span = beam;
+    with_span.intensity_span_db = bad;
+    EXPECT_THROW(still.addBeam(with_span), ValueError);
+    Beam with_pulse = beam;
+    with_pulse.pulse_length_m = bad;
+    EXPECT_THROW(still.addBeam(with_pulse), ValueError);
+  }
   still.addBeam(beam);
   still.finish();
   EXPECT_THROW(still.addBeam(beam), ValueError);  // after finish()

@@ -149,6 +149,34 @@ TEST(mappingRangeChanges, LiveGivesTheBatchMapAtAGivenResolution) {
   }
 }
 
+// Three turns at 5 m, then one at 10 m: a stream that has not ended would map at the 10 m scale's
+// 5 cm, the log maps at 2 cm, the scale most of its beams use. Given the log's options
+// (mappingOptionsForLog), the online mapper fed its beams gives the batch map, as `live` replaying
+// a log does.
+TEST(mappingRangeChanges, LiveGivesTheBatchMapWithTheLogsOptions) {
+  SonarLog log = tankTurns(5.0, 399, 3, 0.0, 1);
+  append(log, tankTurns(10.0, 500, 1, lastTime(log), 2));
+  const SonarMapper batch = mapSonarLog(log);
+  EXPECT_DOUBLE_EQ(batch.map().resolution_m(), 0.02);
+  OnlineMapper streamed(MapperOptions{});
+  for (const Beam& beam : log.beams) streamed.addBeam(beam);
+  streamed.finish();
+  EXPECT_DOUBLE_EQ(streamed.mapper().map().resolution_m(), 0.05);
+  const MapperOptions options = mappingOptionsForLog(MapperOptions{}, log);
+  ASSERT_TRUE(options.resolution_m.has_value());
+  EXPECT_DOUBLE_EQ(*options.resolution_m, 0.02);
+  OnlineMapper online(options);
+  EXPECT_EQ(online.optionsSnapshot().resolution_m, options.resolution_m);
+  for (const Beam& beam : log.beams) online.addBeam(beam);
+  online.finish();
+  EXPECT_EQ(leavesOf(online.mapper().map()), leavesOf(batch.map()));
+  // The budget is checked as mapSonarLog checks it.
+  MapperOptions fine;
+  fine.resolution_m = 0.001;
+  fine.max_voxel_updates_per_beam = 1e4;
+  EXPECT_THROW(mappingOptionsForLog(fine, log), ValueError);
+}
+
 }  // namespace
 }  // namespace sonarmap
 

@@ -14,7 +14,7 @@ def _bytes_of(m, path):
 def test_online_mapper_gives_map_sonar_logs_map(simulated_tank, tmp_path):
     log = simulated_tank.log
     batch = sonarmap.map_sonar_log(log, resolution=0.05)
-    online = sonarmap.OnlineMapper(resolution=0.05)
+    online = sonarmap.OnlineMapper(log=log, resolution=0.05)
     for i in range(len(log)):  # beam by beam, as from a live sonar
         online.add_beam(log.time_s[i], log.bearing_rad[i], log.bin_length_m[i],
                         log.intensities[i, : log.valid_bins[i]])
@@ -30,7 +30,7 @@ def test_online_mapper_gives_map_sonar_logs_map(simulated_tank, tmp_path):
 def test_shown_beams_end_on_map_sonar_logs_map(simulated_tank, tmp_path):
     log = simulated_tank.log
     batch = sonarmap.map_sonar_log(log, resolution=0.05)
-    online = sonarmap.OnlineMapper(resolution=0.05, show="beam")
+    online = sonarmap.OnlineMapper(log=log, resolution=0.05, show="beam")
     first_sweep = 200  # the simulated Micron's beams per turn: the first sweep calibrates
     online.add_beams(log, 0, first_sweep + 30)
     assert online.beams_unshown == 0  # every beam after the first sweep is shown on arrival
@@ -54,17 +54,17 @@ def test_online_mapper_with_navigation(tmp_path):
     online.finish()
     assert _bytes_of(online.map(), tmp_path / "online.bt") == _bytes_of(batch, tmp_path / "batch.bt")
     with pytest.raises(sonarmap.ValueError):
-        sonarmap.OnlineMapper().add_nav_fix(0.0, 0.0, 0.0, 0.0)  # no navigation mode
+        sonarmap.OnlineMapper(format="csv").add_nav_fix(0.0, 0.0, 0.0, 0.0)  # no navigation mode
 
 
 def test_online_mapper_bad_beams():
-    online = sonarmap.OnlineMapper(show="beam")
+    online = sonarmap.OnlineMapper(format="csv", show="beam")
     with pytest.raises(sonarmap.ValueError, match="uint8"):
         online.add_beam(0.0, 0.0, 0.01, np.zeros(10, dtype=np.float32))
     with pytest.raises(sonarmap.ValueError):
         online.add_beam(0.0, 0.0, -0.01, np.zeros(10, dtype=np.uint8))
     with pytest.raises(sonarmap.ValueError, match="show"):
-        sonarmap.OnlineMapper(show="sometimes")
+        sonarmap.OnlineMapper(format="csv", show="sometimes")
 
 
 def test_simulate_then_evaluate_is_sane(simulated_tank):

@@ -250,4 +250,15 @@ void checkWorkBudget(const SonarLog& log, const MapperOptions& options);
 /// The same for a surveyed log.
 void checkWorkBudget(const LogSurvey& survey, const MapperOptions& options);
 
+/// The options a log is mapped with: `options` resolved for it (resolveForLog) and its work budget
+/// checked (checkWorkBudget). mapSonarLog maps with them; an OnlineMapper built with them and fed
+/// the log's beams in order, every field of each Beam, gives mapSonarLog's map byte for byte. An
+/// OnlineMapper given `options` with the resolution on "auto" knows only the beams so far: its
+/// resolution follows its first sweep and coarsens as a longer range scale comes (SonarMapper),
+/// whereas a log's follows the range scale most of its beams use, known only once it has ended.
+/// @throws ValueError as resolveForLog and checkWorkBudget.
+MapperOptions mappingOptionsForLog(const MapperOptions& options, const LogSurvey& survey);
+/// The same for a log held whole.
+MapperOptions mappingOptionsForLog(const MapperOptions& options, const SonarLog& log);
+
 }  // namespace sonarmap

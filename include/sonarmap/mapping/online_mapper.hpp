@@ -91,12 +91,16 @@ class OnlineMapper {
   /// @throws ValueError for a fix that is not finite or not strictly after the previous one, or
   ///         without the navigation constructor; rethrows what integrating a waiting sweep threw.
   void addNavFix(const NavSample& fix);
-  /// The next beam in recording order (time_s, bearing_rad, bin_length_m > 0, intensities); may
-  /// integrate a sweep it completes.
+  /// The next beam in recording order (time_s, bearing_rad, bin_length_m > 0, intensities, and
+  /// what the head recorded of its settings: intensity_span_db, gain_setting, pulse_length_m; the
+  /// gain splits sweeps and calibrations, the pulse bounds the echo length asked for, the span
+  /// converts dB to counts); may integrate a sweep it completes. A beam given without a field the
+  /// reader of its log fills is not the log's beam: its map may differ from mapSonarLog's.
   /// kProvisionalBeams: shows it, or the beams before it, if it can (see the enum).
-  /// @throws ValueError for a beam whose bin length is not finite and > 0, after finish(), on a
-  ///         mapper given beams to show (showBeam), or what detecting or integrating a sweep threw
-  ///         (a sweep that mixes bin lengths).
+  /// @throws ValueError for a beam whose bin length is not finite and > 0, whose intensity span or
+  ///         pulse length is set and not finite and > 0, after finish(), on a mapper given beams to
+  ///         show (showBeam), or what detecting or integrating a sweep threw (a sweep that mixes bin
+  ///         lengths).
   void addBeam(Beam beam);
   /// With MapperOptions::pipeline_detection: how many final sweeps may be in detection, each on its
   /// own thread, while the oldest of them waits to be integrated here. 1 (the default): a sweep is
@@ -138,8 +142,8 @@ class OnlineMapper {
   /// detected, before the beams after it: a beam still without a calibration when a beam of
   /// another setting is given is taken for a group too short to calibrate on, and never shown.
   /// @throws ValueError without kProvisionalBeams, after addBeam was used (a mapper fed beams shows
-  ///         them itself), for an index not after the previous one, a bin length that is not
-  ///         finite and > 0, or after finish().
+  ///         them itself), for an index not after the previous one, a beam addBeam refuses, or
+  ///         after finish().
   void showBeam(std::size_t index, Beam beam);
 
   /// Sweeps integrated so far.
@@ -157,6 +161,10 @@ class OnlineMapper {
   OcTree16 shownSnapshot() const;
   /// A copy of the counts as of the last integrated sweep; safe from any thread.
   MappingStats statsSnapshot() const;
+  /// A copy of the options mapped with; safe from any thread. With the resolution on "auto" its
+  /// resolution_m is unset until the first sweep is integrated, and grows with a longer range
+  /// scale (SonarMapper).
+  MapperOptions optionsSnapshot() const;
   /// The mapper itself: only on the feeding thread (no lock).
   const SonarMapper& mapper() const { return mapper_; }
   SonarMapper& mapper() { return mapper_; }
