@@ -112,6 +112,9 @@ def mat_files():
         "mat_negative_step.mat": cras_mat([beam(step=-0.0125)]),
         "mat_wrong_type.mat": cras_mat([beam()[:3] + [matrix(MX_INT16, (1, 2), "", element(MI_UINT8, bytes(4)))]]),
         "mat_time_backwards.mat": cras_mat([beam(10.0), beam(10.1), beam(9.0)]),
+        # cut short in the last element (a full disk): the elements before it are read
+        "mat_cut_in_last_element.mat": good[:-20],
+        "mat_compressed_cut_in_stream.mat": compressed(good)[:-15],
     }, {"cras_small.mat": good, "cras_small_compressed.mat": compressed(good)}
 
 
