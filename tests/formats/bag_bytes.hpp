@@ -39,10 +39,16 @@ inline std::vector<BagBytesRecord> bagRecords(const std::string& bytes, std::siz
   return records;
 }
 
-/// The file byte where each message of an uncompressed bag ends, in file order; a chunk the file
-/// ends in gives its whole messages.
-inline std::vector<std::size_t> bagMessageEnds(const std::string& bytes) {
-  std::vector<std::size_t> ends;
+/// A message record of a chunk: the file byte where it ends and its connection.
+struct BagBytesMessage {
+  std::size_t end = 0;
+  std::uint32_t connection = 0;
+};
+
+/// The messages of an uncompressed bag, in file order; a chunk the file ends in gives its whole
+/// messages.
+inline std::vector<BagBytesMessage> bagMessages(const std::string& bytes) {
+  std::vector<BagBytesMessage> messages;
   for (std::size_t at = 13; at + 4 <= bytes.size();) {
     const std::size_t header_end = at + 4 + bagU32(bytes, at);
     if (header_end + 4 > bytes.size()) break;
@@ -50,12 +56,21 @@ inline std::vector<std::size_t> bagMessageEnds(const std::string& bytes) {
     const std::size_t end = data + bagU32(bytes, header_end);
     if (bytes.find("op=\x05", at + 4) < header_end) {
       for (const BagBytesRecord& inner : bagRecords(bytes, data, std::min(end, bytes.size()))) {
-        if (inner.op == 0x02) ends.push_back(inner.end);
+        if (inner.op == 0x02) messages.push_back({inner.end, bagU32(bytes, bytes.find("conn=", inner.at) + 5)});
       }
     }
     at = end;
   }
-  return ends;
+  return messages;
+}
+
+/// How many messages of `messages` end by byte `cut`, of `connection` only unless it is -1.
+inline std::size_t bagMessagesBefore(const std::vector<BagBytesMessage>& messages, std::size_t cut, long connection = -1) {
+  std::size_t count = 0;
+  for (const BagBytesMessage& message : messages) {
+    count += message.end <= cut && (connection < 0 || message.connection == static_cast<std::uint32_t>(connection));
+  }
+  return count;
 }
 
 /// `bag` as a stopped `rosbag record` leaves it, cut at byte `cut` inside its last chunk: its

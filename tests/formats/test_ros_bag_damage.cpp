@@ -61,11 +61,11 @@ TEST(formatsRosBagDamage, ABagCutShortReadsEveryWholeMessageBeforeTheCut) {
   const test::TempDir dir;
   const std::string bag = tankBag(dir, 1);
   const SonarLog whole = readRosBag(dir.file("whole.bag"));
-  const std::vector<std::size_t> ends = test::bagMessageEnds(bag);
-  ASSERT_EQ(ends.size(), whole.beams.size());
-  for (std::size_t cut = 14; cut < bag.size(); cut += 97) {
+  const std::vector<test::BagBytesMessage> messages = test::bagMessages(bag);
+  ASSERT_EQ(messages.size(), whole.beams.size());
+  for (std::size_t cut = 14; cut < bag.size(); cut += bag.size() / 40 + 1) {
     const std::string path = writeBytes(dir, "cut.bag", bag.substr(0, cut));
-    const auto before = static_cast<std::size_t>(std::count_if(ends.begin(), ends.end(), [&](std::size_t end) { return end <= cut; }));
+    const std::size_t before = test::bagMessagesBefore(messages, cut);
     if (before == 0) {  // nothing usable: the damage named
       try {
         readRosBag(path);
@@ -77,7 +77,7 @@ TEST(formatsRosBagDamage, ABagCutShortReadsEveryWholeMessageBeforeTheCut) {
     }
     const SonarLog log = readRosBag(path);
     expectPrefix(log, whole, before);
-    if (cut < ends.back()) {
+    if (cut < messages.back().end) {
       ASSERT_EQ(log.skip_reasons.size(), 1u) << "cut at " << cut;
       EXPECT_NE(log.skip_reasons[0].find("(cut short); its records read to byte "), std::string::npos) << log.skip_reasons[0];
     }
@@ -94,18 +94,19 @@ TEST(formatsRosBagDamage, AStoppedRecordingIsReadByScanningItsChunks) {
     if (record.op == 0x05) chunks.push_back(record);
   }
   ASSERT_GE(chunks.size(), 2u);
-  const std::vector<std::size_t> ends = test::bagMessageEnds(bag);
+  const std::vector<test::BagBytesMessage> messages = test::bagMessages(bag);
   const std::size_t cut = chunks.back().data + (chunks.back().end - chunks.back().data) / 2;
   const std::string path = writeBytes(dir, "stopped.bag", test::stoppedRecording(bag, cut));
   const SonarLog log = readRosBag(path);
-  expectPrefix(log, whole, static_cast<std::size_t>(std::count_if(ends.begin(), ends.end(), [&](std::size_t end) { return end <= cut; })));
+  expectPrefix(log, whole, test::bagMessagesBefore(messages, cut));
   EXPECT_TRUE(has(log.notes, "the ROS bag is unindexed (its header's index position is 0, as a stopped `rosbag record` "
                              "leaves it): read by scanning its chunks from the start"));
   ASSERT_EQ(log.skip_reasons.size(), 1u);
   EXPECT_NE(log.skip_reasons[0].find("byte " + std::to_string(chunks.back().at) + ": a chunk left unterminated"), std::string::npos)
       << log.skip_reasons[0];
   // Stopped just after a whole message: everything before is read, and nothing is said skipped.
-  const std::size_t at_a_message = *std::find_if(ends.begin(), ends.end(), [&](std::size_t end) { return end > chunks.back().data; });
+  const std::size_t at_a_message =
+      std::find_if(messages.begin(), messages.end(), [&](const test::BagBytesMessage& m) { return m.end > chunks.back().data; })->end;
   const SonarLog clean = readRosBag(writeBytes(dir, "clean.bag", test::stoppedRecording(bag, at_a_message)));
   EXPECT_EQ(clean.skipped_beams, 0u);
   EXPECT_TRUE(has(clean.notes, "is unindexed"));
