@@ -36,14 +36,15 @@ void BagScan::walk() {
     }
     record_starts_.push_back(at);
     const std::uint64_t left = file_.size() - record.data;
+    bool to_the_end = false;  // a chunk whose data is the rest of the file
     try {
       if (record.op() == kBagChunk) {
         // A stopped `rosbag record` leaves its last chunk's sizes 0, its records after the header.
         const bool unterminated = record.data_length == 0 && bagNumber(file_, record, "size") == 0;
-        const bool whole = !unterminated && record.data_length <= left;
+        to_the_end = unterminated || record.data_length > left;
         chunk_starts_.push_back(at);
-        readChunk(record, whole, whole ? record.data_length : left);
-        if (!whole) break;  // the rest of the file was its data
+        readChunk(record, !to_the_end, to_the_end ? left : record.data_length);
+        if (to_the_end) break;
       } else if (record.data_length > left) {
         damaged(at, "byte " + std::to_string(at) + ": record data of " + std::to_string(record.data_length) +
                         " bytes runs past its end",
@@ -54,8 +55,10 @@ void BagScan::walk() {
       } else if (record.op() == kBagConnection) {
         addConnection(file_, record);
       }
-    } catch (const BagRecordError& error) {  // a whole record: the walk goes on after it
-      damaged(at, error.reason(), "its " + std::to_string(std::min(record.data_length, left)) + " bytes of data skipped");
+    } catch (const BagRecordError& error) {  // the walk goes on after a whole record
+      const std::uint64_t skipped = to_the_end ? left : std::min(record.data_length, left);
+      damaged(at, error.reason(), "its " + std::to_string(skipped) + " bytes of data skipped");
+      if (to_the_end) break;
     }
     try {
       if (record.op() == kBagIndex) checkIndexEntries(record);
