@@ -191,8 +191,9 @@ void BagScan::checkIndex(const std::optional<std::uint64_t>& index_pos) {
     }
   }
   for (const auto& [index, connection] : indexed_) {
-    const bool defined = std::any_of(connections_.begin(), connections_.end(),
-                                     [&](const BagConnection& c) { return c.id == connection; });
+    const std::uint64_t id = connection;  // a structured binding is not captured (clang 14)
+    const bool defined =
+        std::any_of(connections_.begin(), connections_.end(), [&](const BagConnection& c) { return c.id == id; });
     if (!defined) {
       index_problem_ = "has an index that does not match its records (byte " + std::to_string(index) +
                        ": an index or chunk info names connection " + std::to_string(connection) +
