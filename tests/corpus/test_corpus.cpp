@@ -6,8 +6,8 @@
 ///    (no stack trace, no sanitizer report) and creates nothing in its output folder.
 /// For every row of exit code 0 (a file read up to its damage, docs/reliability.md):
 ///  - the readers read it, and the sonar log's skip reasons or notes hold the row's text;
-///  - the CLI exits 0 with its output written, no error line, and prints the text when it is a
-///    skip reason (the map summary's "skipped N by the reader: ...").
+///  - the CLI exits 0 with its output written and no error line; `map` prints the text when it is
+///    a skip reason (its summary's "skipped N by the reader: ...").
 /// And for every small valid file of valid/: each truncation and a fixed-seed sample of byte
 /// flips either reads or throws a sonarmap::Error.
 
@@ -214,7 +214,9 @@ TEST_P(corpusBroken, cliFailsWithOneLineAndWritesNothingOrReadsWithTheWarning) {
   if (row.exit_code == 0) {
     EXPECT_EQ(run.err.find("error"), std::string::npos) << run.err;
     EXPECT_EQ(test::listDir(out).size(), 1u) << "no output written for " << row.file;
-    if (logSays(path(), row.message, /*notes=*/false)) EXPECT_NE(run.out.find(row.message), std::string::npos) << run.out;
+    if (row.command == "map" && logSays(path(), row.message, /*notes=*/false)) {  // in its summary
+      EXPECT_NE(run.out.find(row.message), std::string::npos) << run.out;
+    }
     fs::remove_all(out);
     fs::remove_all(capture);
     return;
