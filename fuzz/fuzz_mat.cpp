@@ -1,5 +1,5 @@
 // libFuzzer harness: CRAS Micron MAT-file bytes (through a temporary file: libmatio reads paths)
-// → readCrasMat.
+// → readCrasMat (libmatio, or the walk of mat_cut.cpp for a file cut short).
 #include <cstddef>
 #include <cstdint>
 

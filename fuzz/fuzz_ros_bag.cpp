@@ -1,5 +1,6 @@
-// libFuzzer harness: ROS 1 bag bytes → readRosBag (the container through rosbag_storage, each
-// message decoded from the definition the bag stores), listRosBagTopics, readRosBagMounting
+// libFuzzer harness: ROS 1 bag bytes → readRosBag (the container walked, then read through
+// rosbag_storage when whole and indexed, else from the walk up to its damage: ros_bag_scan.hpp;
+// each message decoded from the definition the bag stores), listRosBagTopics, readRosBagMounting
 // (/tf_static) and readRosBagNavigation.
 #include <cstddef>
 #include <cstdint>

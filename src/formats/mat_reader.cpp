@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mat_cut.hpp"
 #include "mat_size_check.hpp"
 #include "sonarmap/core/errors.hpp"
 
@@ -221,16 +222,20 @@ std::vector<unsigned char> fileBytes(const std::string& path) {
   return bytes;
 }
 
-MatFile openMat(const std::string& path) {
+/// Checks the file before libmatio sees it: it takes any file without a level-5 header for a
+/// version 4 file (which cannot hold structs), and it allocates from declared sizes unchecked.
+/// @return the element the file ends in when it is cut short (then libmatio must not read it).
+std::optional<detail::MatCut> checkMat(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throwFileError(path, "no such file (or not a regular file)");
-  // Before libmatio sees the file: it takes any file without a level-5 header for a version 4
-  // file (which cannot hold structs), and it allocates from declared sizes unchecked.
   const std::vector<unsigned char> bytes = fileBytes(path);
   if (!detail::hasMat5Header(bytes)) {
     throwFileError(path, "has no 128-byte MATLAB 5 header, expected a MATLAB 5 (or 7.3) MAT-file");
   }
-  detail::checkMatSizes(bytes, path);
+  return detail::checkMatSizes(bytes, path);
+}
+
+MatFile openMat(const std::string& path) {
   MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat) throwFileError(path, "cannot be opened as a MATLAB MAT-file");
   return mat;
@@ -301,6 +306,8 @@ MatVar checkedParsedDataInfo(mat_t* mat, const std::string& path) {
   return info;
 }
 
+void requireFields(matvar_t& data, const std::string& path);
+
 MatVar readParsedData(mat_t* mat, const std::string& path) {
   // The checked header, its field data read in place: Mat_VarRead would read the header again
   // (a second pass through the inflated variable, half the reading time of the CRAS log).
@@ -310,8 +317,14 @@ MatVar readParsedData(mat_t* mat, const std::string& path) {
   if (Mat_VarReadDataAll(mat, data.get()) != MATIO_E_NO_ERROR) {
     throwFileError(path, std::string("variable '") + kVariable + "' cannot be read");
   }
-  const unsigned field_count = Mat_VarGetNumberOfFields(data.get());
-  char* const* names = Mat_VarGetStructFieldnames(data.get());
+  requireFields(*data, path);
+  return data;
+}
+
+/// @throws FileError unless `data` has every field of kFields.
+void requireFields(matvar_t& data, const std::string& path) {
+  const unsigned field_count = Mat_VarGetNumberOfFields(&data);
+  char* const* names = Mat_VarGetStructFieldnames(&data);
   for (const char* wanted : kFields) {
     bool found = false;
     for (unsigned f = 0; f < field_count && names != nullptr; ++f) {
@@ -319,7 +332,6 @@ MatVar readParsedData(mat_t* mat, const std::string& path) {
     }
     if (!found) throwFileError(path, std::string("'") + kVariable + "' has no field '" + wanted + "'");
   }
-  return data;
 }
 
 /// The most common bin count among the beams (ties: the larger count).
@@ -364,24 +376,48 @@ SonarLog collectBeams(std::vector<BeamOrReason>& read, const std::string& path) 
   return log;
 }
 
-}  // namespace
-
-SonarLog readCrasMat(const std::string& path) {
-  installQuietMatioLog();
-  g_last_matio_message.clear();
-  MatFile mat = openMat(path);
-  MatVar data = readParsedData(mat.get(), path);
-
-  const std::size_t count = elementCount(*data);
+/// The beams of the struct array `data` (its fields checked), in file order.
+/// @throws FileError when none is valid.
+SonarLog beamsOf(matvar_t& data, const std::string& path) {
+  const std::size_t count = elementCount(data);
   std::vector<BeamOrReason> read;
   read.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) read.push_back(readBeam(data.get(), i));
-
+  for (std::size_t i = 0; i < count; ++i) read.push_back(readBeam(&data, i));
   SonarLog log = collectBeams(read, path);
   if (log.beams.empty()) {
     throwFileError(path, std::string("no valid beam; ") + kVariable + "(1): " + read.front().reason);
   }
   return log;
+}
+
+/// The beams of the whole elements of `parsedData` before the cut `cut` (a file cut short), and a
+/// skip reason for the cut.
+/// @throws FileError when the file ends in another variable, or before parsedData's first element.
+SonarLog readCutMat(const detail::MatCut& cut, const std::string& path) {
+  const detail::CutStruct recovered = detail::wholeStructElements(cut, kVariable);
+  MatVar data(recovered.whole);
+  if (!recovered.is_variable) {  // libmatio would read into the cut: not given the file
+    throw FileError(cut.what + " (cut short, in a variable that is not a whole '" + kVariable + "' struct array)");
+  }
+  if (!data) throw FileError(cut.what + " (cut short before the first whole element of '" + kVariable + "')");
+  requireFields(*data, path);
+  SonarLog log = beamsOf(*data, path);
+  ++log.skipped_beams;
+  log.skip_reasons.push_back(cut.what + " (cut short): the first " + std::to_string(elementCount(*data)) + " of the " +
+                             std::to_string(recovered.declared) + " elements of '" + kVariable +
+                             "' read, the rest skipped");
+  return log;
+}
+
+}  // namespace
+
+SonarLog readCrasMat(const std::string& path) {
+  installQuietMatioLog();
+  g_last_matio_message.clear();
+  if (const std::optional<detail::MatCut> cut = checkMat(path)) return readCutMat(*cut, path);
+  MatFile mat = openMat(path);
+  MatVar data = readParsedData(mat.get(), path);
+  return beamsOf(*data, path);
 }
 
 }  // namespace sonarmap

@@ -3,10 +3,13 @@
 
 #include "mat_size_check.hpp"
 
+#include "mat_elements.hpp"
+
 #include <zlib.h>
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
@@ -14,87 +17,7 @@
 namespace sonarmap::detail {
 namespace {
 
-// Data types and array classes of the MAT-file v5 format (MathWorks, "MAT-File Format", tables
-// 1-1 and 1-3).
-constexpr std::uint32_t kMiInt8 = 1, kMiInt32 = 5, kMiUint32 = 6, kMiMatrix = 14, kMiCompressed = 15;
-constexpr std::uint32_t kCellClass = 1, kStructClass = 2, kObjectClass = 3, kSparseClass = 5;
-constexpr std::size_t kHeaderBytes = 128;
 constexpr int kMaxDepth = 32;
-
-/// A data element: its type and its content (tag excluded).
-struct Element {
-  std::uint32_t type = 0;
-  std::span<const unsigned char> content;
-  std::size_t offset = 0;  ///< of the tag, as reported in messages
-};
-
-/// Sequential reader of the data elements inside one container (the file, or an array's bytes).
-class ElementReader {
- public:
-  ElementReader(std::span<const unsigned char> bytes, std::size_t base, bool swap, const std::string& where)
-      : bytes_(bytes), base_(base), swap_(swap), where_(where) {}
-
-  bool atEnd() const { return position_ >= bytes_.size(); }
-  std::size_t offset() const { return base_ + position_; }
-  std::span<const unsigned char> rest() const { return bytes_.subspan(position_); }
-
-  [[noreturn]] void fail(std::size_t at, const std::string& message) const {
-    throw FileError(where_ + ": byte " + std::to_string(at) + ": " + message);
-  }
-
-  std::uint32_t u32At(std::span<const unsigned char> bytes, std::size_t at) const {
-    std::uint32_t value = 0;
-    for (int i = 0; i < 4; ++i) {
-      const unsigned shift = swap_ ? 8U * (3U - static_cast<unsigned>(i)) : 8U * static_cast<unsigned>(i);
-      value |= static_cast<std::uint32_t>(bytes[at + static_cast<std::size_t>(i)]) << shift;
-    }
-    return value;
-  }
-
-  /// The next element: a small one (type and size in one word, content in the next 4 bytes) or a
-  /// full one (8-byte tag, content padded to 8 bytes, except compressed content).
-  Element next() {
-    const std::size_t at = offset();
-    if (bytes_.size() - position_ < 8) fail(at, "expected an 8-byte data element tag, " + left());
-    const std::uint32_t word = u32At(bytes_, position_);
-    if ((word >> 16) != 0) {  // small data element format
-      const std::size_t size = word >> 16;
-      if (size > 4) fail(at, "small data element declares " + std::to_string(size) + " bytes, at most 4 fit");
-      Element e{word & 0xFFFFU, bytes_.subspan(position_ + 4, size), at};
-      position_ += 8;
-      return e;
-    }
-    const std::size_t size = u32At(bytes_, position_ + 4);
-    position_ += 8;
-    if (size > bytes_.size() - position_) {
-      fail(at, "data element declares " + std::to_string(size) + " bytes, " + left());
-    }
-    Element e{word, bytes_.subspan(position_, size), at};
-    const std::size_t padded = word == kMiCompressed ? size : (size + 7) / 8 * 8;
-    position_ += std::min(padded, bytes_.size() - position_);
-    return e;
-  }
-
-  /// The next element, which must be of `type`.
-  Element expect(std::uint32_t type, const char* what) {
-    const std::size_t at = offset();
-    const Element e = next();
-    if (e.type != type) fail(at, std::string("expected ") + what + " (data type " + std::to_string(type) + "), found data type " + std::to_string(e.type));
-    return e;
-  }
-
-  bool swap() const { return swap_; }
-  const std::string& where() const { return where_; }
-
- private:
-  std::string left() const { return std::to_string(bytes_.size() - position_) + " left"; }
-
-  std::span<const unsigned char> bytes_;
-  std::size_t base_;
-  bool swap_;
-  const std::string& where_;
-  std::size_t position_ = 0;
-};
 
 void checkArray(const Element& matrix, bool swap, const std::string& where, int depth);
 
@@ -168,7 +91,28 @@ void checkArray(const Element& matrix, bool swap, const std::string& where, int 
   while (!reader.atEnd()) reader.next();  // data subelements (real, imaginary, ir, jc…) fit in the array
 }
 
-/// Inflates a compressed variable's zlib stream, at most kMaxInflatedMatBytes.
+/// The element `top` is at, which the file ends in.
+MatCut cutElement(ElementReader& top, bool swap) {
+  MatCut cut;
+  cut.at = top.offset();
+  cut.swap = swap;
+  const std::span<const unsigned char> rest = top.rest();
+  try {
+    top.next();
+  } catch (const FileError& error) {
+    cut.what = error.what();  // "PATH: byte N: data element declares N bytes, M left"
+  }
+  if (rest.size() >= 8 && top.u32At(rest, 0) == kMiCompressed) {
+    cut.compressed = true;
+    cut.element = inflateElement(Element{kMiCompressed, rest.subspan(8), cut.at}, top);
+  } else {
+    cut.element.assign(rest.begin(), rest.end());
+  }
+  return cut;
+}
+
+}  // namespace
+
 std::vector<unsigned char> inflateElement(const Element& compressed, const ElementReader& reader) {
   std::vector<unsigned char> out;
   if (compressed.content.size() > std::numeric_limits<uInt>::max()) {
@@ -194,20 +138,19 @@ std::vector<unsigned char> inflateElement(const Element& compressed, const Eleme
   return out;
 }
 
-}  // namespace
-
 bool hasMat5Header(std::span<const unsigned char> file) {
-  return file.size() >= kHeaderBytes &&
+  return file.size() >= kMatHeaderBytes &&
          ((file[126] == 'I' && file[127] == 'M') || (file[126] == 'M' && file[127] == 'I'));
 }
 
-void checkMatSizes(std::span<const unsigned char> file, const std::string& path) {
-  if (!hasMat5Header(file)) return;  // not this format: the caller says so
+std::optional<MatCut> checkMatSizes(std::span<const unsigned char> file, const std::string& path) {
+  if (!hasMat5Header(file)) return std::nullopt;  // not this format: the caller says so
   const bool swap = file[126] == 'M' && file[127] == 'I';  // written big-endian: "MI" read byte by byte
   const unsigned version = swap ? (file[124] << 8U) | file[125] : (file[125] << 8U) | file[124];
-  if (version != 0x0100) return;  // 7.3 (HDF5) or unknown: not walked
-  ElementReader top(file.subspan(kHeaderBytes), kHeaderBytes, swap, path);
+  if (version != 0x0100) return std::nullopt;  // 7.3 (HDF5) or unknown: not walked
+  ElementReader top(file.subspan(kMatHeaderBytes), kMatHeaderBytes, swap, path);
   while (!top.atEnd()) {
+    if (top.cutShort()) return cutElement(top, swap);
     const Element e = top.next();
     if (e.type == kMiMatrix) checkArray(e, swap, path, 0);
     if (e.type != kMiCompressed) continue;
@@ -219,6 +162,7 @@ void checkMatSizes(std::span<const unsigned char> file, const std::string& path)
       if (variable.type == kMiMatrix) checkArray(variable, swap, where, 0);
     }
   }
+  return std::nullopt;
 }
 
 }  // namespace sonarmap::detail

@@ -7,8 +7,9 @@
 #include <rosbag/view.h>
 #include <ros/serialization.h>
 
-#include "ros_bag_check.hpp"
+#include "ros_bag_scan.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace sonarmap::detail {
@@ -76,7 +77,13 @@ RosBagFile::RosBagFile(const std::string& path, const std::string& msg_path) : p
     }
     return;
   }
-  checkBagRecords(path);
+  auto scan = std::make_unique<BagScan>(path);
+  if (!scan->indexProblem().empty()) {
+    scan_ = std::move(scan);
+    openScanned();
+    return;
+  }
+  scan.reset();  // whole and indexed: rosbag_storage reads it
   bag_ = std::make_unique<rosbag::Bag>(path, rosbag::bagmode::Read);
   rosbag::View everything(*bag_);
   for (const rosbag::ConnectionInfo* connection : everything.getConnections()) {
@@ -96,6 +103,35 @@ RosBagFile::RosBagFile(const std::string& path, const std::string& msg_path) : p
     definitions_.push_back(connection->msg_def);
     encodings_.push_back(RosEncoding::kRos1);
     channels_.emplace_back();
+  }
+}
+
+void RosBagFile::openScanned() {
+  if (scan_->messages().empty() && !scan_->damage().empty()) {
+    failBag(path_, scan_->damage().front().what + " (no whole message before it)");
+  }
+  notes_.push_back("the ROS bag " + scan_->indexProblem() + ": read by scanning its chunks from the start");
+  for (const BagConnection& connection : scan_->connections()) {
+    const auto known = std::find_if(topics_.begin(), topics_.end(), [&](const RosBagTopic& t) { return t.topic == connection.topic; });
+    if (known != topics_.end()) {  // a topic recorded by several publishers: one connection's definition serves
+      connection_ids_[static_cast<std::size_t>(known - topics_.begin())].push_back(connection.id);
+      continue;
+    }
+    topics_.push_back(RosBagTopic{connection.topic, connection.type, 0, 0.0, 0.0});
+    definitions_.push_back(connection.definition);
+    encodings_.push_back(RosEncoding::kRos1);
+    channels_.emplace_back();
+    connection_ids_.push_back({connection.id});
+  }
+  for (const BagMessage& message : scan_->messages()) {
+    for (std::size_t i = 0; i < topics_.size(); ++i) {
+      const std::vector<std::uint32_t>& ids = connection_ids_[i];
+      if (std::find(ids.begin(), ids.end(), message.connection) == ids.end()) continue;
+      RosBagTopic& topic = topics_[i];
+      topic.first_s = topic.messages == 0 ? message.time_s : std::min(topic.first_s, message.time_s);
+      topic.last_s = topic.messages == 0 ? message.time_s : std::max(topic.last_s, message.time_s);
+      ++topic.messages;
+    }
   }
 }
 
@@ -136,10 +172,30 @@ struct RosBagFile::MessageCursor::Bag1 {
   rosbag::View::iterator at;
 };
 
+struct RosBagFile::MessageCursor::Scanned {
+  /// The messages of the connections `ids` in time order (the order of the file for equal times).
+  Scanned(BagScan& bag, const std::vector<std::uint32_t>& ids) : scan(bag) {
+    const std::vector<BagMessage>& messages = scan.messages();
+    for (std::size_t i = 0; i < messages.size(); ++i) {
+      if (std::find(ids.begin(), ids.end(), messages[i].connection) != ids.end()) order.push_back(i);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return messages[a].time_s < messages[b].time_s; });
+  }
+  BagScan& scan;
+  std::vector<std::size_t> order;
+  std::size_t next = 0;
+};
+
 RosBagFile::MessageCursor::MessageCursor(const RosBagFile& file, std::string topic, const RosSchema& schema)
     : topic_(std::move(topic)), schema_(&schema) {
   if (file.mcap_) {
     mcap_.emplace(*file.mcap_, file.channels_[file.indexOf(topic_)]);
+  } else if (file.scan_) {
+    scanned_ = std::make_unique<Scanned>(*file.scan_, file.connection_ids_[file.indexOf(topic_)]);
+    for (const BagDamage& damage : file.scan_->damage()) {  // what the bag lost, in every topic's skips
+      ++skipped_.count;
+      skipped_.reasons.push_back(damage.line());
+    }
   } else if (file.sqlite_) {
     sqlite_.emplace(*file.sqlite_, topic_);
   } else {
@@ -162,6 +218,11 @@ bool RosBagFile::MessageCursor::next(RosValue& message, double& record_time_s) {
       if (!mcap_->next(bytes_, record_time_s)) return false;
     } else if (sqlite_) {
       if (!sqlite_->next(bytes_, record_time_s)) return false;
+    } else if (scanned_) {
+      if (scanned_->next == scanned_->order.size()) return false;
+      const BagMessage& found = scanned_->scan.messages()[scanned_->order[scanned_->next++]];
+      scanned_->scan.read(found, bytes_);
+      record_time_s = found.time_s;
     } else {
       if (bag_->at == bag_->view.end()) return false;
       const rosbag::MessageInstance& instance = *bag_->at;  // valid until the iterator moves on

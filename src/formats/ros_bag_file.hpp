@@ -2,11 +2,13 @@
 /// @file ros_bag_file.hpp
 /// Private to formats: a ROS log opened for reading, shared by the sonar reader
 /// (ros_bag_reader.cpp) and the navigation readers (ros_bag_navigation.cpp,
-/// ros_inertial_navigation.cpp): a ROS 1 bag (checked first, ros_bag_check.hpp, then opened with
+/// ros_inertial_navigation.cpp): a ROS 1 bag (walked first, ros_bag_scan.hpp, then opened with
 /// Debian's rosbag_storage), an MCAP file (ROS 2's storage, mcap_file.hpp) or a rosbag2 SQLite log
 /// (a folder of .db3 files or one of them, rosbag2_sqlite.hpp), told apart by their first bytes; a
 /// rosbag2 folder holding one .mcap file is read as that file. Each topic's messages are decoded from the definition the file stores with it
-/// (ros_message.hpp), ROS 1 serialized or CDR.
+/// (ros_message.hpp), ROS 1 serialized or CDR. A ROS 1 bag that rosbag_storage cannot read by its
+/// index (cut short, unindexed, damaged: ros_bag_scan.hpp) is read from the walk of its records, up
+/// to the damage.
 
 #include <cstddef>
 #include <functional>
@@ -28,6 +30,8 @@ class Bag;
 
 namespace sonarmap::detail {
 
+class BagScan;
+
 /// What readers skipped: how many messages and why (one reason per message).
 struct RosSkipped {
   std::size_t count = 0;
@@ -38,7 +42,8 @@ class RosBagFile {
  public:
   /// Checks and opens the ROS 1 bag or MCAP file at `path`.
   /// @throws FileError naming the file for a file that is neither a readable ROS 1 bag (format
-  ///         2.0) nor a readable MCAP file.
+  ///         2.0) nor a readable MCAP file; for a ROS 1 bag damaged before its first whole message,
+  ///         naming the damage.
   /// `msg_path`: `.msg` files for the types a rosbag2 SQLite log names without definitions
   /// (msgPathDefinition).
   explicit RosBagFile(const std::string& path, const std::string& msg_path = {});
@@ -72,7 +77,8 @@ class RosBagFile {
 
    private:
     friend class RosBagFile;
-    struct Bag1;  ///< a ROS 1 bag's view and where it is
+    struct Bag1;     ///< a ROS 1 bag's view and where it is
+    struct Scanned;  ///< a scanned ROS 1 bag's messages of the topic and where the cursor is
     MessageCursor(const RosBagFile& file, std::string topic, const RosSchema& schema);
     void count(const std::string& why);
 
@@ -83,6 +89,7 @@ class RosBagFile {
     std::optional<McapFile::Cursor> mcap_;
     std::optional<Rosbag2Sqlite::Cursor> sqlite_;
     std::unique_ptr<Bag1> bag_;
+    std::unique_ptr<Scanned> scanned_;
     std::vector<std::uint8_t> bytes_;
   };
   /// A cursor over the messages of `topic`, decoded with `schema`.
@@ -98,18 +105,27 @@ class RosBagFile {
   [[noreturn]] void fail(const std::string& what) const;
   /// "TOPIC (TYPE), ..." of every topic (for errors that list them).
   std::string listing() const;
+  /// What the reader had to do to read the file, for the log's notes ("the ROS bag is unindexed
+  /// (...): read by scanning its chunks from the start"); the damage it read around is in each
+  /// cursor's skips.
+  const std::vector<std::string>& notes() const { return notes_; }
 
  private:
   std::size_t indexOf(const std::string& topic) const;
+  /// The topics of a ROS 1 bag read from the walk of its records (scan_).
+  void openScanned();
 
   std::string path_;
-  std::unique_ptr<rosbag::Bag> bag_;  ///< a ROS 1 bag's
+  std::unique_ptr<rosbag::Bag> bag_;  ///< a ROS 1 bag's, read by its index
+  std::unique_ptr<BagScan> scan_;     ///< a ROS 1 bag's, read from the walk of its records
   std::unique_ptr<McapFile> mcap_;    ///< an MCAP file's
   std::unique_ptr<Rosbag2Sqlite> sqlite_;  ///< a rosbag2 SQLite log's
   std::vector<RosBagTopic> topics_;
   std::vector<std::string> definitions_;
   std::vector<RosEncoding> encodings_;
   std::vector<std::vector<std::uint16_t>> channels_;  ///< an MCAP topic's channels
+  std::vector<std::vector<std::uint32_t>> connection_ids_;  ///< a scanned bag topic's connections
+  std::vector<std::string> notes_;
 };
 
 /// A chain of a log's static transforms (/tf_static, tf2_msgs/TFMessage): the pose of frame `to`

@@ -296,6 +296,7 @@ class RosBagBeamSource final : public BeamSource {
     const RosBagOptions& options = options_;
     bag_ = std::make_unique<detail::RosBagFile>(path_, options.msg_path);
     detail::RosBagFile& bag = *bag_;
+    header_.notes = bag.notes();
     for (const RosBagTopic& candidate : bag.topics()) {
       if (!options.sonar_topic.empty() && candidate.topic != options.sonar_topic) continue;
       const std::string& definition = bag.definition(candidate);

@@ -58,18 +58,11 @@ FileHeader readFileHeader(std::span<const unsigned char> bytes, const std::strin
   FileHeader header;
   const std::size_t data_offset_at = in.offset();
   header.data_offset = in.u32("data offset");
-  const std::size_t count_at = in.offset();
   header.record_count = in.u32("record count");
   if (header.data_offset < kV4LogFileHeaderBytes || header.data_offset > bytes.size()) {
     in.failAt(data_offset_at, "data offset is " + std::to_string(header.data_offset) + ", expected " +
                                   std::to_string(kV4LogFileHeaderBytes) + "…" + std::to_string(bytes.size()) +
                                   " (within the file)");
-  }
-  const std::size_t left = bytes.size() - header.data_offset;
-  if (header.record_count > left / kMinRecordBytes) {
-    in.failAt(count_at, "record count is " + std::to_string(header.record_count) + " but the " + std::to_string(left) +
-                            " bytes after the data offset hold at most " + std::to_string(left / kMinRecordBytes) +
-                            " records of " + std::to_string(kMinRecordBytes) + " bytes");
   }
   return header;
 }
@@ -86,21 +79,30 @@ detail::SeaNetHeadData readHeadData(std::span<const unsigned char> record, std::
   return decoded;
 }
 
-/// The bytes of record `index`, which starts at byte `at`: its length field is checked against
-/// the smallest record and against the end of the file.
-std::span<const unsigned char> recordAt(std::span<const unsigned char> bytes, std::size_t at, std::uint32_t index,
-                                        const std::string& source) {
-  ByteCursor in(bytes.subspan(at), source, at);
-  const std::uint16_t length = in.u16("record length");
+/// The bytes of record `index`, which starts at byte `at`, or why its length cannot frame it: a
+/// length field cut off by the end of the file, below the smallest record, or running past the end
+/// (a log cut short: a full disk, a pulled cable).
+struct Framed {
+  std::span<const unsigned char> record;
+  std::string defect;  ///< set when `record` is empty
+};
+
+Framed recordAt(std::span<const unsigned char> bytes, std::size_t at, std::uint32_t index) {
+  const std::string where = "byte " + std::to_string(at) + ": ";
+  if (bytes.size() - at < 2) {
+    return {{}, where + "the file ends " + std::to_string(bytes.size() - at) + " byte(s) into the length of " +
+                    recordName(index) + " (cut short)"};
+  }
+  const std::uint16_t length = detail::u16At(bytes, at);
   if (length < kMinRecordBytes) {
-    in.failAt(at, "length of " + recordName(index) + " is " + std::to_string(length) + ", expected at least " +
-                      std::to_string(kMinRecordBytes));
+    return {{}, where + "length of " + recordName(index) + " is " + std::to_string(length) + ", expected at least " +
+                    std::to_string(kMinRecordBytes)};
   }
   if (length > bytes.size() - at) {
-    in.failAt(at, "length of " + recordName(index) + " is " + std::to_string(length) + " but the file ends " +
-                      std::to_string(bytes.size() - at) + " bytes after the record's start");
+    return {{}, where + "length of " + recordName(index) + " is " + std::to_string(length) + " but the file ends " +
+                    std::to_string(bytes.size() - at) + " bytes after the record's start (cut short)"};
   }
-  return bytes.subspan(at, length);
+  return {bytes.subspan(at, length), {}};
 }
 
 /// What one record holds: its date and a beam, or why it has none.
@@ -148,12 +150,24 @@ SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::strin
   detail::checkSoundSpeed(options.sound_speed_m_s);
   const FileHeader header = readFileHeader(bytes, source);
   SonarLog log;
-  log.beams.reserve(header.record_count);
+  // Reserved for the records the bytes can hold: a cut file's header declares more.
+  log.beams.reserve(std::min<std::size_t>(header.record_count, (bytes.size() - header.data_offset) / kMinRecordBytes));
   std::size_t at = header.data_offset;
   std::optional<double> first_date_days;
   std::string first_skip;  // why the first record without a beam has none
+  const auto skip = [&](const std::string& reason) {
+    if (first_skip.empty()) first_skip = reason;
+    ++log.skipped_beams;
+    log.skip_reasons.push_back(source + ": " + reason);
+  };
   for (std::uint32_t index = 0; index < header.record_count; ++index) {
-    const std::span<const unsigned char> record = recordAt(bytes, at, index, source);
+    const Framed framed = recordAt(bytes, at, index);
+    if (!framed.defect.empty()) {  // the records before are whole: read up to the damage
+      skip(framed.defect + "; the last " + std::to_string(bytes.size() - at) + " bytes and the " +
+           std::to_string(header.record_count - index) + " record(s) the header declares from there skipped");
+      break;
+    }
+    const std::span<const unsigned char> record = framed.record;
     ParsedRecord parsed = readRecord(record, at, index, source, options.sound_speed_m_s);
     if (!first_date_days) first_date_days = parsed.date_days;
     if (parsed.beam) {
@@ -161,10 +175,7 @@ SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::strin
       if (!log.beams.empty()) checkTimeOrder(parsed.beam->time_s, log.beams.back().time_s, at, index, source);
       log.beams.push_back(std::move(*parsed.beam));
     } else {
-      const std::string reason = recordName(index) + " at byte " + std::to_string(at) + ": " + parsed.skip_reason;
-      if (first_skip.empty()) first_skip = reason;
-      ++log.skipped_beams;
-      log.skip_reasons.push_back(source + ": " + reason);
+      skip(recordName(index) + " at byte " + std::to_string(at) + ": " + parsed.skip_reason);
     }
     at += record.size();  // past any bytes appended after the data
   }

@@ -105,6 +105,38 @@ def huge_chunk(beams):
     return bag[:at] + struct.pack("<I", 4_000_000_000) + bag[at + 4:]
 
 
+def bag_records(data, start):
+    """(start, end, op) of each whole record of `data` from byte `start`."""
+    out = []
+    while start + 4 <= len(data):
+        header_length = struct.unpack_from("<I", data, start)[0]
+        header_end = start + 4 + header_length
+        if header_end + 4 > len(data):
+            break
+        end = header_end + 4 + struct.unpack_from("<I", data, header_end)[0]
+        if end > len(data):
+            break
+        op = data[data.index(b"op=", start + 4, header_end) + 3]
+        out.append((start, end, op))
+        start = end
+    return out
+
+
+def stopped_recording(bag, keep):
+    """`bag` as a stopped `rosbag record` leaves it: its header's index position 0, nothing after its
+    chunk, whose sizes were never written (0), and its records cut `keep` bytes after the chunk's
+    header (the ROS wiki's "Bags/Format/2.0"; rosbag writes the chunk's sizes when it closes it)."""
+    out = bytearray(bag)
+    at = out.index(b"index_pos=") + len(b"index_pos=")
+    out[at:at + 8] = bytes(8)
+    chunk_at, chunk_end, _ = next(r for r in bag_records(bag, 13) if r[2] == 0x05)
+    size_at = out.index(b"size=", chunk_at) + len(b"size=")
+    out[size_at:size_at + 4] = bytes(4)
+    header_end = chunk_at + 4 + struct.unpack_from("<I", bag, chunk_at)[0]
+    out[header_end:header_end + 4] = bytes(4)
+    return bytes(out[:header_end + 4 + keep])
+
+
 def ros_bag_files():
     beams = [scan_line(i, 1.8 * i, [0, 2, 9, 180, 120, 40]) for i in range(3)]
     small = ros_bag(beams)
@@ -127,6 +159,12 @@ def ros_bag_files():
         "bag_index_mid_message.bag": ros_bag(beams, index_shift=6),
         "bag_bz2_not_bz2.bag": ros_bag(beams, compression=b"bz2"),
         "bag_version_1_2.bag": b"#ROSBAG V1.2\n" + small[13:],
+        # cut short inside its chunk's last message (a full disk): the messages before are read
+        "bag_cut_in_chunk.bag": small[:bag_records(small, 13)[1][1] - 30],
+        # a stopped `rosbag record`: unindexed, its last chunk unterminated and cut inside a message
+        "bag_stopped_recording.bag": stopped_recording(small, 800),
+        # the same, its chunk bz2-compressed: nothing of its stream decompresses, nothing is usable
+        "bag_stopped_recording_bz2.bag": stopped_recording(ros_bag(beams, compression=b"bz2", pack=bz2.compress), 40),
         # navigation whose every orientation is no rotation (a pose left at zero)
         "bag_odometry_zero_quaternion.bag": ros_bag(beams, more=[(b"/odom", b"nav_msgs/Odometry", ODOMETRY_DEFINITION,
                                                                   [odometry(i, (i, 0, 0), (0, 0, 0, 0)) for i in range(3)])]),

@@ -112,6 +112,9 @@ def mat_files():
         "mat_negative_step.mat": cras_mat([beam(step=-0.0125)]),
         "mat_wrong_type.mat": cras_mat([beam()[:3] + [matrix(MX_INT16, (1, 2), "", element(MI_UINT8, bytes(4)))]]),
         "mat_time_backwards.mat": cras_mat([beam(10.0), beam(10.1), beam(9.0)]),
+        # cut short in the last element (a full disk): the elements before it are read
+        "mat_cut_in_last_element.mat": good[:-20],
+        "mat_compressed_cut_in_stream.mat": compressed(good)[:-15],
     }, {"cras_small.mat": good, "cras_small_compressed.mat": compressed(good)}
 
 
@@ -161,6 +164,9 @@ def v4_files():
         "v4_time_backwards.V4LOG": v4log([head_data(OLE_DATE), head_data(OLE_DATE - step)]),
         "v4_no_beams.V4LOG": v4log([other_record(), head_data(data=b"")]),
         "v4_zero_records.V4LOG": v4log([]),
+        # a log cut short (a full disk): read up to the cut, or refused when no record is whole
+        "v4_cut_in_last_record.V4LOG": good[:-20],
+        "v4_cut_in_first_record.V4LOG": good[:100],
     }, {"seanet_small.V4LOG": good}
 
 
@@ -287,6 +293,8 @@ def real_viewer_files():
         "viewer_locale_digits_no_ping.bin": viewer_log(viewer_records([device_information()] * 2, zero="\u06f0"), utf16=True),
         # a message split over records whose last piece never came
         "viewer_chunked_cut_short.bin": viewer_log(viewer_records(chunks(one, [9, 9])[:2])),
+        # a log cut short in its last record's data (a pulled cable): the messages before it are read
+        "viewer_cut_in_record.bin": viewer_log(viewer_records([pings[:40], pings[40:]]))[:-10],
         # the power-on 2 m pings in Persian digits, all with a sample period of 0 (no range at all)
         "viewer_power_on_zero_period.bin": viewer_log(viewer_records(
             [device_information(), b"".join(ping360_data(angle=a, sample_period=0) for a in range(3))],

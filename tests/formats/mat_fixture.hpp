@@ -49,7 +49,7 @@ inline matvar_t* makeMatVector(matio_classes cls, const std::vector<double>& val
 /// step_dist, intensities, to make a field go missing).
 inline void writeCrasMat(const std::string& path, const std::vector<MatBeam>& beams,
                          const std::vector<const char*>& fields = {"time", "angle", "step_dist", "intensities"},
-                         const char* variable = "parsedData") {
+                         const char* variable = "parsedData", matio_compression compression = MAT_COMPRESSION_NONE) {
   mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5);
   if (mat == nullptr) throw std::runtime_error("cannot create " + path);
   size_t dims[2] = {1, beams.size()};
@@ -67,7 +67,7 @@ inline void writeCrasMat(const std::string& path, const std::vector<MatBeam>& be
       Mat_VarSetStructFieldByName(array, f, i, value);
     }
   }
-  Mat_VarWrite(mat, array, MAT_COMPRESSION_NONE);
+  Mat_VarWrite(mat, array, compression);
   Mat_VarFree(array);
   Mat_Close(mat);
 }

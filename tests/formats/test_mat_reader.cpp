@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 
@@ -130,6 +131,52 @@ TEST(sonarMatReader, FileLevelProblemsAreFileErrors) {
   for (auto& b : bad) b.step_dist = -1.0;
   test::writeCrasMat(dir.file("allbad.mat"), bad);
   EXPECT_THROW(readCrasMat(dir.file("allbad.mat")), FileError);  // no valid beam at all
+}
+
+TEST(sonarMatReader, AFileCutShortReadsTheWholeElementsBeforeTheCut) {
+  TempDir dir;
+  std::vector<MatBeam> beams(40);
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    beams[i].time = 10.0 + 0.05 * static_cast<double>(i);
+    beams[i].angle = 1.8 * static_cast<double>(i);
+    beams[i].intensities = std::vector<double>(12, static_cast<double>(i));
+  }
+  for (const matio_compression compression : {MAT_COMPRESSION_NONE, MAT_COMPRESSION_ZLIB}) {
+    const std::string whole_path = dir.file("whole.mat");
+    test::writeCrasMat(whole_path, beams, {"time", "angle", "step_dist", "intensities"}, "parsedData", compression);
+    const SonarLog whole = readCrasMat(whole_path);
+    ASSERT_EQ(whole.beams.size(), beams.size());
+    std::ifstream in(whole_path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t previous = 0;
+    std::vector<std::size_t> cuts;
+    for (std::size_t cut = 129; cut < bytes.size(); cut += 61) cuts.push_back(cut);
+    cuts.push_back(bytes.size() - 1);  // in the last element (in the stream's checksum when compressed)
+    for (const std::size_t cut : cuts) {
+      const std::string path = dir.file("cut.mat");
+      std::ofstream(path, std::ios::binary) << bytes.substr(0, cut);
+      try {
+        const SonarLog log = readCrasMat(path);
+        ASSERT_GE(log.beams.size(), previous) << "cut at " << cut;  // more file, never fewer beams
+        // all of them when only a compressed stream's checksum is cut
+        ASSERT_LE(log.beams.size(), beams.size()) << "cut at " << cut;
+        previous = log.beams.size();
+        for (std::size_t i = 0; i < log.beams.size(); ++i) {
+          ASSERT_EQ(log.beams[i].intensities, whole.beams[i].intensities) << "cut at " << cut;
+          ASSERT_EQ(log.beams[i].bearing_rad, whole.beams[i].bearing_rad) << "cut at " << cut;
+          ASSERT_EQ(log.beams[i].time_s, whole.beams[i].time_s) << "cut at " << cut;
+        }
+        ASSERT_EQ(log.skip_reasons.size(), 1u);
+        EXPECT_NE(log.skip_reasons[0].find("(cut short): the first " + std::to_string(log.beams.size()) +
+                                           " of the 40 elements of 'parsedData' read, the rest skipped"),
+                  std::string::npos) << log.skip_reasons[0];
+      } catch (const FileError& error) {  // nothing whole yet: said so
+        ASSERT_EQ(previous, 0u) << "cut at " << cut << ": " << error.what();
+        EXPECT_NE(std::string(error.what()).find("cut short"), std::string::npos) << error.what();
+      }
+    }
+    EXPECT_GE(previous, beams.size() - 1) << "a cut in the last element keeps the others";
+  }
 }
 
 TEST(sonarMatReader, TruncatedFileDoesNotCrash) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -90,13 +91,21 @@ TEST(sonarMatSizeCheck, RejectsDimensionsTheBytesCannotHold) {
   EXPECT_NE(overlong.find("data element declares 4294967286 bytes"), std::string::npos) << overlong;
 }
 
-TEST(sonarMatSizeCheck, RejectsTruncationAndBrokenCompression) {
+TEST(sonarMatSizeCheck, ReturnsTheElementAFileIsCutInAndRejectsBrokenCompression) {
   Bytes ok = fileWithArray(6, {1, 16}, 16);
   EXPECT_EQ(errorOf(Bytes(ok.begin(), ok.begin() + 100)), "");  // no v5 header: left to the reader
   Bytes v73 = ok;
   v73[125] = 0x02;  // version 0x0200: HDF5 inside, not walked
   EXPECT_EQ(errorOf(Bytes(v73.begin(), v73.end() - 8)), "");
-  EXPECT_NE(errorOf(Bytes(ok.begin(), ok.end() - 8)).find("declares"), std::string::npos);
+  // A file cut short is no error here: the element it ends in is returned for the reader.
+  const Bytes cut(ok.begin(), ok.end() - 8);
+  EXPECT_EQ(errorOf(cut), "");
+  const std::optional<detail::MatCut> found = detail::checkMatSizes(cut, "t.mat");
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->at, 128u);
+  EXPECT_FALSE(found->compressed);
+  EXPECT_EQ(found->element.size(), cut.size() - 128);
+  EXPECT_NE(found->what.find("t.mat: byte 128: data element declares"), std::string::npos) << found->what;
   Bytes broken(ok.begin(), ok.begin() + 128);
   putU32(broken, 15), putU32(broken, 6);
   broken.insert(broken.end(), {0x78, 0x9C, 0xFF, 0xFF, 0xFF, 0xFF});  // zlib header, then garbage

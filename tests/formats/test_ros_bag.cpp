@@ -108,16 +108,6 @@ TEST(formatsRosBag, TheBearingsUnitAndDirectionCanBeTold) {
   EXPECT_THROW(parseBearingDirection("clockwise"), ValueError);
 }
 
-TEST(formatsRosBag, AFileThatIsNoBagOrIsCutShortIsAClearError) {
-  const test::TempDir dir;
-  std::ofstream(dir.file("text.bag")) << "not a bag\n";
-  EXPECT_THROW(readRosBag(dir.file("text.bag")), FileError);
-  EXPECT_THROW(readRosBag(dir.file("missing.bag")), FileError);
-  writeRosBag(dir.file("tank.bag"), simulatedTank(1));
-  std::filesystem::resize_file(dir.file("tank.bag"), std::filesystem::file_size(dir.file("tank.bag")) / 2);
-  EXPECT_THROW(readRosBag(dir.file("tank.bag")), FileError);
-}
-
 TEST(formatsRosBag, TheWriterRefusesBeamsItCannotStamp) {
   const test::TempDir dir;
   SonarLog log = simulatedTank(1);

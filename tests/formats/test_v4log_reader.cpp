@@ -193,28 +193,48 @@ TEST(sonarV4log, RejectsAWrongMagic) {
   EXPECT_TRUE(contains(fileErrorOf(dir, "time,angle\n"), "not a SeaNet V4 log"));
 }
 
-TEST(sonarV4log, RejectsTruncatedFilesAtEveryOffset) {
+TEST(sonarV4log, ReadsTheWholeRecordsBeforeACutAndRefusesACutThatLeavesNone) {
   TempDir dir;
   const std::string bytes = v4log({Record{}, Record{}});  // 80 + 2 × 49 bytes
   ASSERT_EQ(bytes.size(), 178u);
   for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
-    const std::string message = fileErrorOf(dir, bytes.substr(0, cut));
-    ASSERT_FALSE(message.empty()) << "no FileError for a file cut at " << cut;
-    ASSERT_TRUE(contains(message, "byte ")) << message;
+    const std::string path = writeFile(dir, "cut.V4LOG", bytes.substr(0, cut));
+    if (cut < 129) {  // before the end of record 0: nothing usable, a FileError naming the byte
+      const std::string message = fileErrorOf(dir, bytes.substr(0, cut));
+      ASSERT_TRUE(contains(message, "byte ")) << "cut at " << cut << ": " << message;
+      continue;
+    }
+    const SonarLog log = readSeaNetV4Log(path);  // record 0 whole, record 1 cut
+    ASSERT_EQ(log.beams.size(), 1u) << "cut at " << cut;
+    ASSERT_EQ(log.skipped_beams, 1u) << "cut at " << cut;
+    EXPECT_TRUE(contains(log.skip_reasons.at(0), "byte 129: ")) << log.skip_reasons.at(0);
+    EXPECT_TRUE(contains(log.skip_reasons.at(0), "(cut short); the last " + std::to_string(cut - 129) +
+                                                     " bytes and the 1 record(s) the header declares from there skipped"))
+        << log.skip_reasons.at(0);
   }
   EXPECT_TRUE(contains(fileErrorOf(dir, bytes.substr(0, 50)), "file ends, expected the 80-byte SeaNet V4 file header"));
-  const std::string in_header = fileErrorOf(dir, bytes.substr(0, 100));  // 20 bytes: too few for 2 records
-  EXPECT_TRUE(contains(in_header, "byte 44: record count is 2")) << in_header;
-  const std::string in_record = fileErrorOf(dir, bytes.substr(0, 170));
-  EXPECT_TRUE(contains(in_record, "byte 129: length of record 1 is 49 but the file ends 41 bytes")) << in_record;
+  const std::string in_record = fileErrorOf(dir, bytes.substr(0, 120));  // record 0 cut: no beam
+  EXPECT_TRUE(contains(in_record, "no beam in the 2 record(s)")) << in_record;
+  EXPECT_TRUE(contains(in_record, "byte 80: length of record 0 is 49 but the file ends 40 bytes after the record's start (cut short)"))
+      << in_record;
+  const SonarLog log = readSeaNetV4Log(writeFile(dir, "cut.V4LOG", bytes.substr(0, 170)));
+  EXPECT_TRUE(contains(log.skip_reasons.at(0), "byte 129: length of record 1 is 49 but the file ends 41 bytes")) << log.skip_reasons.at(0);
+  EXPECT_TRUE(contains(readSeaNetV4Log(writeFile(dir, "cut.V4LOG", bytes.substr(0, 130))).skip_reasons.at(0),
+                       "byte 129: the file ends 1 byte(s) into the length of record 1 (cut short)"));
 }
 
-TEST(sonarV4log, RejectsHugeDeclaredCounts) {
+TEST(sonarV4log, RejectsHugeDeclaredSizesThatFrameNothing) {
   TempDir dir;
   const std::string good = v4log({Record{}});
   std::string bytes = good;
+  // More records declared than the file holds reads as a cut file: its one record, and a warning.
   setU32(bytes, kRecordCountAt, 0xFFFFFFFFU);
-  EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 44: record count is 4294967295"));
+  const SonarLog log = readSeaNetV4Log(writeFile(dir, "count.V4LOG", bytes));
+  EXPECT_EQ(log.beams.size(), 1u);
+  ASSERT_EQ(log.skip_reasons.size(), 1u);
+  EXPECT_TRUE(contains(log.skip_reasons[0], "byte 129: the file ends 0 byte(s) into the length of record 1 (cut short); "
+                                            "the last 0 bytes and the 4294967294 record(s)"))
+      << log.skip_reasons[0];
   bytes = good;
   setU32(bytes, kDataOffsetAt, 0xFFFFFFF0U);
   EXPECT_TRUE(contains(fileErrorOf(dir, bytes), "byte 40: data offset is 4294967280"));

@@ -40,6 +40,13 @@ namespace sonarmap {
 /// HDF5 7.3) variable, zlib's largest expansion. So a header claiming 10^9 beams or bins is
 /// rejected without allocating for them.
 ///
+/// A file cut short (a full disk, a pulled cable: its last data element runs past the end) is read
+/// up to the cut, without libmatio: when that element is `parsedData` (stored plainly, or
+/// compressed: what inflates from the bytes there), its whole elements before the cut are read, and
+/// one skip reason names the byte, what the element declares and holds, and how many of its
+/// declared elements were read. An element is whole when each of its fields is a whole real
+/// numeric array.
+///
 /// libmatio's own log messages are captured (never printed) and appended to the exception text.
 ///
 /// @param path  MAT-file to read.
@@ -49,7 +56,9 @@ namespace sonarmap {
 ///   missing, not a struct array, empty, or lacks one of the four fields, when a declared size
 ///   cannot fit in the file (see above), when a valid beam's time is before the previous valid
 ///   beam's ("times must not go backwards", naming the element), or when no beam of the file is
-///   valid (the message then quotes the first beam's problem). The message names the file.
+///   valid (the message then quotes the first beam's problem); for a file cut short, when it is
+///   cut before `parsedData`'s first whole element or in another variable ("(cut short ...)"). The
+///   message names the file.
 SonarLog readCrasMat(const std::string& path);
 
 }  // namespace sonarmap

@@ -72,17 +72,22 @@ SonarLog readSeaNetV4Log(const std::string& path, const V4LogOptions& options = 
 /// are left out, counted in `skipped_beams` and described in `skip_reasons` (record index, byte
 /// offset, why).
 ///
+/// A log cut short (a full disk, a pulled cable: the header declares more records than follow) is
+/// read up to the damage: the whole records before it are read, and the first record whose length
+/// field is cut off, runs past the end of the file or is below 13 bytes (the records after it
+/// cannot be framed) ends the reading with one skip reason naming its byte, why, and how many
+/// bytes and declared records were left.
+///
 /// @param bytes   the whole file.
 /// @param source  name used in messages (the path).
 /// @return        beams in recording order.
 /// @throws FileError  naming `source`, the byte offset and the field, when: the file is shorter
-///   than its 80-byte header or a record; the magic is not `SeaNetV4 Log File V1`; the data offset
-///   lies outside the file; the record count cannot fit in the bytes after the data offset (at
-///   least 13 bytes per record, checked before allocating); a record length is below 13, or below
-///   46 for mtHeadData, or runs past the end of the file; a record date is not finite; the data byte
-///   count exceeds the record; ADInterval is 0 (no positive bin length); a bearing is ≥ 6,400; a
-///   beam's date is before the previous beam's (at the record's date: "times must not go
-///   backwards"); or the file holds no beam at all (no record, or none is mtHeadData with data).
+///   than its 80-byte header; the magic is not `SeaNetV4 Log File V1`; the data offset lies
+///   outside the file; a whole record's length is below 46 for mtHeadData; a record date is not
+///   finite; the data byte count exceeds the record; ADInterval is 0 (no positive bin length); a
+///   bearing is ≥ 6,400; a beam's date is before the previous beam's (at the record's date: "times
+///   must not go backwards"); or no beam is read at all (no record, none is mtHeadData with data,
+///   or the damage comes first: the message then gives its reason).
 /// @throws ValueError when `options.sound_speed_m_s` is not a positive finite number.
 SonarLog parseSeaNetV4Log(std::span<const unsigned char> bytes, const std::string& source,
                           const V4LogOptions& options = {});
