@@ -34,7 +34,7 @@ TEST_F(cliWarnings, MinimumRangeBeyondTheWallsIsNamed) {
   const ProgramRun result = run({"map", beams, "-o", (out_ / "MAP.bt").string(), "-q", "--min-range", "4.5"});
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.err.find("sonarmap: warning:"), std::string::npos) << result.err;
-  EXPECT_NE(result.err.find("minimum range (4.50 m)"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find(".. 4.50 m in their sweeps)"), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("--min-range"), std::string::npos) << result.err;
 }
 

@@ -291,9 +291,11 @@ TEST(mappingSensorModel, WarningsSayWhyTheMapIsEmpty) {
   EXPECT_NE(warnings[0].find("no obstacle in 200 beams"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("--false-alarm"), std::string::npos) << warnings[0];
   stats.detection.echoes_before_min_range = 150;  // walls nearer than the minimum range
+  stats.detection.hidden_from_m = 0.3;             // in sweeps whose band ended at 0.3 m
+  stats.detection.hidden_to_m = 1.0;               // and whose minimum range was 1 m
   warnings = mappingWarnings(stats, MapperOptions{}, 0.02);
   ASSERT_EQ(warnings.size(), 1U);
-  EXPECT_NE(warnings[0].find("minimum range (1.00 m)"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("minimum range (0.30 .. 1.00 m in their sweeps)"), std::string::npos) << warnings[0];
   stats.calibration.min_range_m = 6.0;  // beyond the reach
   warnings = mappingWarnings(stats, MapperOptions{}, 0.02);
   EXPECT_NE(warnings[0].find("beyond the log's reach"), std::string::npos) << warnings[0];
