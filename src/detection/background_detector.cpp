@@ -39,7 +39,6 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
   IntensityHistogram histogram;
   const cv::Mat columns = polar.intensities.t();  // row c: column c's values, contiguous
   const RowRingDown ring(polar, water);
-  const RowFloor floor(polar, context.min_bin, options.water_band_m, water.quiet_water_counts);
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const auto* column = columns.ptr<std::uint8_t>(c);
@@ -61,7 +60,7 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
     std::erase_if(in_water, [&](int r) {
       const auto row = static_cast<std::size_t>(r);
       if (c >= polar.valid_bins[row]) return true;
-      const float excess = static_cast<float>(column[r]) - std::max({water.background[i], ring.at(r, c), floor.at(r, c)});
+      const float excess = static_cast<float>(column[r]) - std::max({water.background[i], ring.at(r, c), context.floorAt(r, c)});
       length[row] = excess >= water.threshold[i] ? length[row] + 1 : 0;
       if (length[row] < run) return false;
       first[row] = c - run + 1;

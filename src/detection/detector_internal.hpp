@@ -14,51 +14,6 @@ namespace sonarmap::detail {
 /// multipath behind a wall) can only raise the edge's level, never move it behind the first rise.
 constexpr double kPeakWindow_m = 0.3;
 
-/// What every detector needs besides its own options: the first bin it may report and the image's
-/// intensity scale.
-struct DetectionContext {
-  int min_bin = 0;         ///< first bin whose centre is at or beyond the minimum range
-  double span_db = 45.0;   ///< dB span of the intensities 0…255
-  /// The background detector measures the background again over the rows still in water (a whole
-  /// sweep); false: it uses the given calibration's as it is (a few rows of a sweep in progress,
-  /// detectRows).
-  bool measure_background = true;
-  /// The beams' horizontal −3 dB width, radians (DetectorOptions::beam_width_rad).
-  double beam_width_rad = 0.0;
-};
-
-/// The detection of `bin` in `row`, with the image's intensity there and the bin's centre as range.
-BeamDetection detectionAt(const PolarImage& polar, int row, int bin);
-
-/// The detection of the echo found at `bin` in `row` at its leading edge: the echo is the run of
-/// bins above the threshold from `bin` on; back from its peak over the bins within `edge_db` of the
-/// peak (and at least half the threshold above the background), the first of them, its centre as
-/// the range (detectors.hpp, BackgroundOptions, step 3).
-BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
-                            const SweepCalibration& calibration, double edge_db);
-
-/// Each row's own ring-down (SweepCalibration::ring_down): every ping rings with the sweep's shape,
-/// louder or quieter by a level of its own (the shared Ping360 logs at 60 m and gain 0, over
-/// 0.40–0.50 m: a quarter of the pings under 11 counts, a tenth over 63; a louder ping rings
-/// longer). A row's offset is the median of its excess over the ring on the ring's unsaturated
-/// decline; its ring at a column is the ring's level there plus that offset. A return must rise
-/// out of the water at its range, and near the head a ping's water is its own ring.
-class RowRingDown {
- public:
-  /// `polar` and `calibration` must outlive this object.
-  RowRingDown(const PolarImage& polar, const SweepCalibration& calibration);
-  /// The level of row r's ring at column c, intensity counts (0 where the sweep has none).
-  float at(int r, int c) const {
-    if (c >= static_cast<int>(ring_.size())) return 0.0f;
-    const float ring = ring_[static_cast<std::size_t>(c)] + offset_[static_cast<std::size_t>(r)];
-    return ring > 0.0f ? ring : 0.0f;
-  }
-
- private:
-  const std::vector<float>& ring_;
-  std::vector<float> offset_;  ///< per row, counts
-};
-
 /// Each row's floor: the level a row is in where the minimum range cuts it, intensity counts, until
 /// it comes down to the water. A return is a rise: it must stand out of the level its own beam has
 /// come down to, as well as out of the water at its range. A beam still in an echo where the minimum
@@ -91,6 +46,55 @@ class RowFloor {
 
  private:
   cv::Mat floor_;  ///< CV_32FC1, rows × cols
+};
+
+/// What every detector needs besides its own options: the first bin it may report and the image's
+/// intensity scale.
+struct DetectionContext {
+  int min_bin = 0;         ///< first bin whose centre is at or beyond the minimum range
+  double span_db = 45.0;   ///< dB span of the intensities 0…255
+  /// The background detector measures the background again over the rows still in water (a whole
+  /// sweep); false: it uses the given calibration's as it is (a few rows of a sweep in progress,
+  /// detectRows).
+  bool measure_background = true;
+  /// The beams' horizontal −3 dB width, radians (DetectorOptions::beam_width_rad).
+  double beam_width_rad = 0.0;
+  /// Each row's floor from min_bin on, made once for the sweep (none: every floor 0).
+  const RowFloor* floor = nullptr;
+  /// Row r's floor at column c, intensity counts.
+  float floorAt(int r, int c) const { return floor ? floor->at(r, c) : 0.0f; }
+};
+
+/// The detection of `bin` in `row`, with the image's intensity there and the bin's centre as range.
+BeamDetection detectionAt(const PolarImage& polar, int row, int bin);
+
+/// The detection of the echo found at `bin` in `row` at its leading edge: the echo is the run of
+/// bins above the threshold from `bin` on; back from its peak over the bins within `edge_db` of the
+/// peak (and at least half the threshold above the background), the first of them, its centre as
+/// the range (detectors.hpp, BackgroundOptions, step 3).
+BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
+                            const SweepCalibration& calibration, double edge_db);
+
+/// Each row's own ring-down (SweepCalibration::ring_down): every ping rings with the sweep's shape,
+/// louder or quieter by a level of its own (the shared Ping360 logs at 60 m and gain 0, over
+/// 0.40–0.50 m: a quarter of the pings under 11 counts, a tenth over 63; a louder ping rings
+/// longer). A row's offset is the median of its excess over the ring on the ring's unsaturated
+/// decline; its ring at a column is the ring's level there plus that offset. A return must rise
+/// out of the water at its range, and near the head a ping's water is its own ring.
+class RowRingDown {
+ public:
+  /// `polar` and `calibration` must outlive this object.
+  RowRingDown(const PolarImage& polar, const SweepCalibration& calibration);
+  /// The level of row r's ring at column c, intensity counts (0 where the sweep has none).
+  float at(int r, int c) const {
+    if (c >= static_cast<int>(ring_.size())) return 0.0f;
+    const float ring = ring_[static_cast<std::size_t>(c)] + offset_[static_cast<std::size_t>(r)];
+    return ring > 0.0f ? ring : 0.0f;
+  }
+
+ private:
+  const std::vector<float>& ring_;
+  std::vector<float> offset_;  ///< per row, counts
 };
 
 /// Paper §8.2 threshold on the rise between consecutive bins; options already validated.

@@ -226,12 +226,10 @@ void setEchoOnsets(const PolarImage& polar, const DetectorOptions& options, cons
   }
 }
 
-void setWaterRanges(const PolarImage& polar, const DetectorOptions& options, const detail::DetectionContext& context,
+void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& context,
                     const SweepCalibration& calibration, std::vector<BeamDetection>& detections) {
   // An echo counts from the level its beam has come down to (RowFloor): a beam still in the near
   // field's reverberation where the minimum range cuts it proves no water there.
-  const detail::RowFloor floor(polar, context.min_bin, options.background.water_band_m,
-                               calibration.quiet_water_counts);
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     if (detection.hasObstacle()) {
@@ -241,7 +239,7 @@ void setWaterRanges(const PolarImage& polar, const DetectorOptions& options, con
     const auto* row = polar.intensities.ptr<std::uint8_t>(r);
     const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
     int c = context.min_bin;
-    while (c < end && static_cast<float>(row[c]) - std::max(calibration.background[static_cast<std::size_t>(c)], floor.at(r, c)) <
+    while (c < end && static_cast<float>(row[c]) - std::max(calibration.background[static_cast<std::size_t>(c)], context.floorAt(r, c)) <
                           calibration.threshold[static_cast<std::size_t>(c)]) {
       ++c;
     }
@@ -309,10 +307,11 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   }
   SweepDetection result;
   result.min_range_m = options.min_range_m.value_or(calibration.near_field_end_m);
-  const detail::DetectionContext context{firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols()),
-                                         calibration.span_db, measure_background, options.beam_width_rad};
+  const int min_bin = firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols());
+  const detail::RowFloor floor(polar, min_bin, options.background.water_band_m, calibration.quiet_water_counts);
+  const detail::DetectionContext context{min_bin, calibration.span_db, measure_background, options.beam_width_rad, &floor};
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
-  setWaterRanges(polar, options, context, result.calibration, result.detections);
+  setWaterRanges(polar, context, result.calibration, result.detections);
   setEchoOnsets(polar, options, context, result.calibration, result.detections);
   setEchoEnds(polar, result.calibration, binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols())),
               result.detections);

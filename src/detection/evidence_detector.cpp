@@ -222,7 +222,6 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
   }
   const WaterEvidence* judged_by = &evidence;  // the water this column's bins are judged against
   const RowRingDown own_ring(polar, water);
-  const RowFloor own_floor(polar, context.min_bin, options.water_band_m, water.quiet_water_counts);
   for (int c = context.min_bin; c < cols && !in_water.empty(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const auto* column = columns.ptr<std::uint8_t>(c);
@@ -272,7 +271,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       const auto row = static_cast<std::size_t>(r);
       if (c >= polar.valid_bins[row]) return true;
       // The water, or the row's own ring, or the level the row has come down to.
-      const float level = std::max({water.background[i], own_ring.at(r, c), own_floor.at(r, c)});
+      const float level = std::max({water.background[i], own_ring.at(r, c), context.floorAt(r, c)});
       const float excess = static_cast<float>(column[r]) - level;
       loud[row] = excess >= water.threshold[i] ? loud[row] + 1 : 0;
       const double next = sum[row] + weight * judged_by->logLikelihoodRatio(excessOf(column[r], level));

@@ -13,8 +13,7 @@ namespace sonarmap::detail {
 
 RowFloor::RowFloor(const PolarImage& polar, int min_bin, double water_band_m, float water_counts)
     : floor_(cv::Mat::zeros(polar.rows(), polar.cols(), CV_32FC1)) {
-  const double look_bins =
-      polar.pulse_length_m && *polar.pulse_length_m > 0.0 ? std::max(1.0, *polar.pulse_length_m / polar.bin_length_m) : 1.0;
+  const double look_bins = 1.0 / evidenceWeight(polar, 1.0);
   const int first_bins = binsForLength(water_band_m, polar.bin_length_m, 8, std::max(8, polar.cols()));
   const int band_bins = std::max(first_bins, static_cast<int>(std::ceil(kLooks * look_bins)));
   min_bin = std::max(0, min_bin);
