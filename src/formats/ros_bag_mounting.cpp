@@ -11,6 +11,7 @@
 
 #include "ros_bag_file.hpp"
 #include "ros_frames.hpp"
+#include "sonarmap/formats/ros_sonar_message.hpp"
 
 namespace sonarmap {
 namespace {
@@ -103,6 +104,15 @@ std::optional<StaticTransform> staticTransform(RosBagFile& bag, const std::strin
 
 }  // namespace detail
 
+Eigen::Isometry3d rosMountingToBody(const Eigen::Isometry3d& sonar_in_body, const std::string& body_frame,
+                                    const std::string& sonar_frame) {
+  Eigen::Isometry3d to_frd = Eigen::Isometry3d::Identity();
+  if (!namesFrd(detail::tfFrame(body_frame))) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
+  Eigen::Isometry3d sonar_from_frd = Eigen::Isometry3d::Identity();  // our sonar frame (FRD) in the tf frame
+  if (!namesFrd(detail::tfFrame(sonar_frame))) sonar_from_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  return to_frd * sonar_in_body * sonar_from_frd;
+}
+
 std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const std::string& sonar_frame,
                                                  const std::string& body_frame) {
   return detail::withBagErrors(path, [&]() -> std::optional<RosBagMounting> {
@@ -110,11 +120,7 @@ std::optional<RosBagMounting> readRosBagMounting(const std::string& path, const 
     const std::optional<detail::StaticTransform> found = detail::staticTransform(bag, body_frame, sonar_frame);
     if (!found) return std::nullopt;
     RosBagMounting mounting;
-    Eigen::Isometry3d to_frd = Eigen::Isometry3d::Identity();
-    if (!namesFrd(detail::tfFrame(body_frame))) to_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // FLU → FRD
-    Eigen::Isometry3d sonar_from_frd = Eigen::Isometry3d::Identity();  // our sonar frame (FRD) in the tf frame
-    if (!namesFrd(detail::tfFrame(sonar_frame))) sonar_from_frd.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-    mounting.sonar_to_body = to_frd * found->pose * sonar_from_frd;
+    mounting.sonar_to_body = rosMountingToBody(found->pose, body_frame, sonar_frame);
     mounting.chain = found->chain;
     return mounting;
   });
