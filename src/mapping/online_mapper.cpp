@@ -119,6 +119,23 @@ void OnlineMapper::finish() {
   mapper_.finish();
 }
 
+void OnlineMapper::commitHeld(bool navigation_ended) {
+  if (finished_) return;
+  if (const std::size_t last = grouper_.finish(); last > 0) emitGroup(last, true);
+  splitter_ = SweepSplitter{};  // the next beam starts a sweep of its own
+  navigation_ended_ = navigation_ended;
+  try {
+    processReady();
+    integrateInFlight();
+  } catch (...) {
+    navigation_ended_ = false;
+    throw;
+  }
+  navigation_ended_ = false;
+  std::unique_lock lock(map_mutex_);  // the inversion model's last window goes into the map
+  mapper_.finish();
+}
+
 void OnlineMapper::emitGroup(std::size_t beams, bool cut) {
   std::vector<Beam> group;
   group.reserve(beams);
@@ -130,7 +147,7 @@ void OnlineMapper::emitGroup(std::size_t beams, bool cut) {
 }
 
 bool OnlineMapper::navigationCovers(double time_s) const {
-  if (!sonar_to_body_ || finished_) return true;
+  if (!sonar_to_body_ || finished_ || navigation_ended_) return true;
   return !fixes_.empty() && fixes_.back().time_s >= time_s;
 }
 

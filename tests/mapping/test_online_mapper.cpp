@@ -69,6 +69,28 @@ TEST(mappingOnlineMapper, BeamByBeamGivesTheBatchMap) {
   }
 }
 
+// A live stream that falls silent (commitHeld) has the batch's map without finish(): the sweep
+// being received is committed as finish() would, and the mapper still takes beams afterwards.
+TEST(mappingOnlineMapper, CommittingHeldBeamsAtSilenceGivesTheBatchMap) {
+  const MsisSimulation run = movingRun(2);
+  const Eigen::Isometry3d mounting = defaultSonarToBody();
+  const SonarMapper batch = mapSonarLog(run.log, run.nav, mounting, atTwoCentimetres(false));
+  OnlineMapper online(atTwoCentimetres(false), mounting);
+  for (const NavSample& fix : run.nav) online.addNavFix(fix);
+  for (const Beam& beam : run.log.beams) online.addBeam(beam);
+  ASSERT_GT(online.beamsPending(), 0U);  // the last sweep waits for the next one
+  online.commitHeld(true);
+  EXPECT_EQ(online.beamsPending(), 0U);
+  EXPECT_EQ(online.sweepsIntegrated(), batch.stats().sweeps);
+  EXPECT_EQ(leavesOf(online.mapSnapshot()), leavesOf(batch.map()));
+  online.commitHeld(true);  // nothing held: nothing changes
+  EXPECT_EQ(online.sweepsIntegrated(), batch.stats().sweeps);
+  Beam again = run.log.beams.front();
+  again.time_s = run.nav.back().time_s;
+  EXPECT_NO_THROW(online.addBeam(again));  // unlike finish(), beams may follow
+  EXPECT_EQ(online.beamsPending(), 1U);
+}
+
 // With three sweeps detected ahead, a sweep waits for three more to be final, then is
 // integrated; none is detected ahead is refused.
 TEST(mappingOnlineMapper, SweepsDetectedAheadWaitForTheirTurn) {

@@ -115,6 +115,17 @@ class OnlineMapper {
   /// @throws ValueError  what detecting or integrating a sweep threw.
   void finish();
 
+  /// The sonar has stopped (a live stream silent for a while: the ROS node's `idle_commit_s`): the
+  /// beams held are final as finish() would make them (the sweep being received ends here, joined
+  /// to its group), and every final sweep is integrated, pipelined detections included; with
+  /// `navigation_ended`, a sweep still waiting for navigation too, with the fixes given so far (its
+  /// beams beyond the last fix counted without navigation, as at finish()), else it waits for its
+  /// fix. Unlike finish(), beams may follow: the next one starts a new sweep (so a stream that
+  /// resumes is mapped as two streams, not as mapSonarLog maps it whole). Called at the end of a
+  /// stream, the map is finish()'s, that is mapSonarLog's. Nothing held: nothing happens.
+  /// @throws ValueError  what detecting or integrating a sweep threw.
+  void commitHeld(bool navigation_ended);
+
   /// From now on each final sweep, once detected, goes to `sink` (on the feeding thread, in
   /// recording order) and is not integrated: the detection stage alone (detectSonarLog). The
   /// calibrations, the short groups' handling and MappingStats::beams_uncalibrated are as when
@@ -225,6 +236,7 @@ class OnlineMapper {
   std::size_t sweeps_ = 0;
   std::size_t beams_grouped_ = 0;  ///< beams handed to final groups so far
   bool finished_ = false;
+  bool navigation_ended_ = false;  ///< commitHeld(true) in progress: navigation taken as complete
   DetectedSweepSink detect_only_;  ///< set: detection alone (detectOnly)
   /// The calibration of the last whole sweep of each head setting seen (few: a range knob's stops).
   struct KeptCalibration {
