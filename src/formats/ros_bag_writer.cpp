@@ -343,16 +343,17 @@ std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav,
         const ros::Time stamp(first_s);
         bag.write("/tf_static", std::max(stamp, ros::TIME_MIN), tfStatic(options, stamp));
       }
-      // Both streams in time order, as a recorder writes them.
+      // Both streams in time order, as a recorder writes them. A time of 0 s is stamped 1 ns (ros::TIME_MIN),
+      // as it is recorded: a zero stamp says "none" in ROS, and a live subscriber has no record time to fall back on.
       std::size_t b = 0, f = 0;
       while (b < log.beams.size() || f < nav.size()) {
         if (f == nav.size() || (b < log.beams.size() && log.beams[b].time_s <= nav[f].time_s)) {
-          const ros::Time stamp(log.beams[b].time_s);
-          bag.write(options.sonar_topic, std::max(stamp, ros::TIME_MIN), scanLine(log.beams[b], static_cast<std::uint32_t>(b), stamp));
+          const ros::Time stamp = std::max(ros::Time(log.beams[b].time_s), ros::TIME_MIN);
+          bag.write(options.sonar_topic, stamp, scanLine(log.beams[b], static_cast<std::uint32_t>(b), stamp));
           ++b;
         } else {
-          const ros::Time stamp(nav[f].time_s);
-          const ros::Time recorded = std::max(stamp, ros::TIME_MIN);
+          const ros::Time stamp = std::max(ros::Time(nav[f].time_s), ros::TIME_MIN);
+          const ros::Time recorded = stamp;
           if (options.odometry) bag.write(options.nav_topic, recorded, odometry(nav[f], static_cast<std::uint32_t>(f), stamp, options.nav_frame));
           if (options.raw_sensors) {
             const RawSensors raw = rawSensors(nav, f, stamp, options);
