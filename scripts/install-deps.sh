@@ -13,11 +13,17 @@ packages=(build-essential cmake ninja-build pkg-config
   # sonarmap view: three.js, compiled into the tool and inlined into each page
   libjs-three
   # live --serve: the page's HTTP server
-  libcpp-httplib-dev)
+  libcpp-httplib-dev
+  # the ROS 1 node (ros/sonarmap_ros, SONARMAP_BUILD_ROS: on when roscpp is found): roscpp, tf2, topic_tools'
+  # ShapeShifter and the messages it publishes and subscribes
+  libroscpp-dev libtf2-ros-dev libtopic-tools-dev libsensor-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
+  libgeometry-msgs-dev libstd-srvs-dev libtf2-msgs-dev)
 if [ "${1:-}" = test ]; then
   # pytest, the notebook run by nbconvert, headless Chromium for the viewer's browser tests, and
   # ccache for the repeated builds of CI and the sanitizers (scripts/compiler-cache.sh)
   packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium ccache)
+  # the ROS node's test against a real master: roscore, rosbag play, rostopic, rospy (tests/ros)
+  packages+=(ros-core python3-roslaunch python3-rosmaster python3-rosbag python3-rospy python3-genpy librosbag-dev)
   # node and npm for the live page's browser test (tests/live/page_test.js), unless a node is there
   command -v node >/dev/null || packages+=(nodejs npm)
 fi

@@ -1,0 +1,221 @@
+/// @file mapping_core.cpp
+/// The node's sonarmap side (mapping_core.hpp).
+
+#include "mapping_core.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+
+#include "core_internal.hpp"
+#include "sonarmap/core/errors.hpp"
+#include "sonarmap/formats/log_reader.hpp"
+#include "sonarmap/formats/ros_sonar_message.hpp"
+#include "sonarmap/io/octomap_binary.hpp"
+#include "sonarmap/io/octomap_full.hpp"
+#include "sonarmap/mapping/online_mapper.hpp"
+
+namespace sonarmap_ros {
+
+struct MappingCore::Impl {
+  CoreParameters parameters;
+  MountingLookup mounting;
+  sonarmap::MapFrame frame = sonarmap::MapFrame::kEnu;
+  std::optional<sonarmap::RosSonarDecoder> decoder;
+  std::string sonar_frame;
+  std::optional<sonarmap::NominalBeam> nominal_beam;
+  struct Held {
+    sonarmap::RosSonarMessage message;
+    double receipt_wall_s = 0.0;
+  };
+  std::deque<Held> held;  ///< beams waiting for an automatic bearing unit
+  double largest_bearing = 0.0;
+  std::unique_ptr<sonarmap::OnlineMapper> mapper;
+  std::vector<sonarmap::NavSample> early_fixes;  ///< before the mapper starts
+  std::optional<sonarmap::NavSample> last_fix;
+  std::deque<double> receipts_wall_s;  ///< of the beams given to the mapper and not yet in its map
+  double newest_time_s = 0.0;          ///< the newest beam's time
+  double empty_resolution_m = 0.1;     ///< an empty map's after reset, before any sweep
+  std::optional<sonarmap::OcTree16> published;
+};
+
+MappingCore::MappingCore(const CoreParameters& parameters, MountingLookup mounting) : impl_(std::make_unique<Impl>()) {
+  impl_->parameters = parameters;
+  impl_->mounting = std::move(mounting);
+  body_frame_ = parameters.base_frame;
+  impl_->frame = sonarmap::rosFrameIsNed(parameters.frame_id) ? sonarmap::MapFrame::kNed : sonarmap::MapFrame::kEnu;
+  sonarmap::parseBearingUnit(parameters.bearing_unit);  // the options are checked now, not at the first beam
+  sonarmap::parseBearingDirection(parameters.bearing_direction);
+  coreMapperOptions(parameters, sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag));
+}
+
+MappingCore::~MappingCore() = default;
+
+namespace {
+
+/// Beams of `mapper` committed since the last call: their receipts leave `receipts`; returns the
+/// newest one's lag, or −1.
+double noteCommitted(const sonarmap::OnlineMapper& mapper, std::deque<double>& receipts, double now_wall_s) {
+  const std::size_t pending = mapper.beamsPending();
+  if (receipts.size() <= pending) return -1.0;
+  const std::size_t committed = receipts.size() - pending;
+  const double newest = receipts[committed - 1];
+  receipts.erase(receipts.begin(), receipts.begin() + static_cast<std::ptrdiff_t>(committed));
+  return now_wall_s - newest;
+}
+
+double wallNow_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void MappingCore::addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
+                                  std::size_t size, double receipt_s, double receipt_wall_s) {
+  Impl& d = *impl_;
+  if (!d.decoder) {
+    sonarmap::RosBagOptions options;
+    options.sonar_topic = d.parameters.sonar_topic;
+    options.bearing_unit = sonarmap::parseBearingUnit(d.parameters.bearing_unit);
+    options.bearing_direction = sonarmap::parseBearingDirection(d.parameters.bearing_direction);
+    d.decoder.emplace(type, definition, options);
+  }
+  sonarmap::RosSonarMessage message;
+  try {
+    message = d.decoder->decode(std::span<const std::uint8_t>(bytes, size), receipt_s);
+  } catch (const sonarmap::Error&) {
+    ++lag_.rejected_messages;
+    return;
+  }
+  if (lag_.beams == 0 && d.held.empty()) {
+    d.sonar_frame = message.frame_id;
+    d.nominal_beam = message.nominal_beam;
+  }
+  d.largest_bearing = std::max(d.largest_bearing, std::abs(message.bearing));
+  d.held.push_back({std::move(message), receipt_wall_s});
+  if (!d.decoder->unitDecided() && !sonarmap::RosSonarDecoder::beyondRadians(d.largest_bearing) &&
+      d.held.size() < d.parameters.bearing_decision_beams) {
+    return;  // the unit is not known yet: the beams wait (sonar_input's rule, as a bag's)
+  }
+  if (!d.decoder->unitDecided()) d.decoder->decideUnit(d.largest_bearing);
+  feedHeld();
+}
+
+void MappingCore::feedHeld() {
+  Impl& d = *impl_;
+  if (d.held.empty()) return;
+  if (!d.mapper) {
+    sonarmap::SonarLog header;
+    header.nominal_beam = d.nominal_beam;
+    const sonarmap::MapperOptions options =
+        coreMapperOptions(d.parameters, sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag, header));
+    if (!d.parameters.navigation) {
+      d.mapper = std::make_unique<sonarmap::OnlineMapper>(options);
+    } else {
+      const std::optional<Eigen::Isometry3d> sonar_in_body = d.mounting(d.sonar_frame);
+      // without TF's mounting: the sonar at the body's origin, its frame the body's (REP 103 FLU)
+      const Eigen::Isometry3d mounting =
+          sonar_in_body ? sonarmap::rosMountingToBody(*sonar_in_body, body_frame_, d.sonar_frame) : Eigen::Isometry3d::Identity();
+      d.mapper = std::make_unique<sonarmap::OnlineMapper>(options, mounting);
+      for (const sonarmap::NavSample& fix : d.early_fixes) d.mapper->addNavFix(fix);
+    }
+    d.early_fixes.clear();
+  }
+  const double now_s = wallNow_s();
+  while (!d.held.empty()) {
+    Impl::Held held = std::move(d.held.front());
+    d.held.pop_front();
+    held.message.beam.bearing_rad = d.decoder->bearingRad(held.message.bearing);
+    lag_.queue_delay_max_s = std::max(lag_.queue_delay_max_s, now_s - held.receipt_wall_s);
+    d.newest_time_s = held.message.beam.time_s;
+    d.receipts_wall_s.push_back(held.receipt_wall_s);
+    ++lag_.beams;
+    d.mapper->addBeam(std::move(held.message.beam));
+  }
+  noteLag();
+}
+
+void MappingCore::noteLag() {
+  Impl& d = *impl_;
+  if (const double lag_s = noteCommitted(*d.mapper, d.receipts_wall_s, wallNow_s()); lag_s >= 0.0) {
+    lag_.last_map_lag_s = lag_s;
+    lag_.map_lag_max_s = std::max(lag_.map_lag_max_s, lag_s);
+    changed_ = true;
+  }
+}
+
+void MappingCore::addPose(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
+                          const std::string& world_frame, const std::string& body_frame) {
+  Impl& d = *impl_;
+  const sonarmap::NavSample fix = sonarmap::rosPoseFix(time_s, position_m, orientation, world_frame);
+  if (d.last_fix && !(fix.time_s > d.last_fix->time_s)) return;  // skipped, as a bag's
+  if (!d.last_fix) body_frame_ = body_frame;
+  d.last_fix = fix;
+  if (!d.parameters.navigation) return;
+  if (!d.mapper) {
+    d.early_fixes.push_back(fix);
+    return;
+  }
+  d.mapper->addNavFix(fix);
+  noteLag();
+}
+
+bool MappingCore::commitAtSilence(bool navigation_ended) {
+  Impl& d = *impl_;
+  // The whole stream seen: an undecided unit is decided on every bearing, as a bag's.
+  if (d.decoder && !d.decoder->unitDecided() && !d.held.empty()) d.decoder->decideUnit(d.largest_bearing);
+  feedHeld();
+  if (!d.mapper) return false;
+  const std::size_t sweeps = d.mapper->sweepsIntegrated();
+  d.mapper->commitHeld(navigation_ended || !d.parameters.navigation);
+  noteLag();
+  const sonarmap::MappingStats stats = d.mapper->statsSnapshot();
+  lag_.sweeps = d.mapper->sweepsIntegrated();
+  lag_.beams_without_nav = stats.beams_without_nav;
+  if (lag_.sweeps != sweeps) changed_ = true;
+  return lag_.sweeps != sweeps;
+}
+
+void MappingCore::reset() {
+  Impl& d = *impl_;
+  if (d.mapper && d.mapper->optionsSnapshot().resolution_m) d.empty_resolution_m = *d.mapper->optionsSnapshot().resolution_m;
+  d.mapper.reset();
+  d.held.clear();
+  d.receipts_wall_s.clear();
+  d.early_fixes.clear();
+  if (d.last_fix) d.early_fixes.push_back(*d.last_fix);
+  changed_ = true;
+}
+
+std::optional<MapData> MappingCore::snapshot() {
+  Impl& d = *impl_;
+  changed_ = false;
+  if (d.mapper && !d.mapper->optionsSnapshot().resolution_m) return std::nullopt;  // auto: none before a sweep
+  sonarmap::OcTree16 map = d.mapper ? sonarmap::mapInFrame(d.mapper->mapSnapshot(), d.frame)
+                                    : sonarmap::OcTree16(d.empty_resolution_m, coreMapperOptions(d.parameters,
+                                          sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag)).octree);
+  double z_m = 0.0;  // the vehicle's height in frame_id (the sonar's plane without navigation)
+  if (d.last_fix && d.parameters.navigation) {
+    const Eigen::Vector3d& ned = d.last_fix->position_ned_m;
+    z_m = (sonarmap::nwuToMapFrame(d.frame) * Eigen::Vector3d(ned.x(), -ned.y(), -ned.z())).z();
+  }
+  MapData data = mapData(map, d.parameters, z_m);
+  data.stamp_s = d.newest_time_s;
+  d.published = std::move(map);
+  return data;
+}
+
+void MappingCore::save(const std::string& path) const {
+  const Impl& d = *impl_;
+  if (!d.published) throw sonarmap::ValueError("~save_map: no map published yet");
+  const std::vector<std::string> comments{sonarmap::mapFrameComment(d.frame)};
+  if (path.ends_with(".ot")) {
+    sonarmap::writeFullFile(*d.published, path, comments);
+  } else if (path.ends_with(".bt")) {
+    sonarmap::writeBinaryFile(*d.published, path, comments);
+  } else {
+    throw sonarmap::ValueError("~save_path " + path + ": .bt or .ot is needed");
+  }
+}
+
+}  // namespace sonarmap_ros

@@ -1,0 +1,121 @@
+#pragma once
+/// @file mapping_core.hpp
+/// The node's sonarmap side behind plain types, so that the ROS side compiles as C++17: Debian's
+/// generated ROS 1 message headers use std::allocator<void>::rebind, which C++20 removed, and the
+/// library's headers need C++20. This header uses the standard library and Eigen only.
+///
+/// MappingCore takes the sonar topic's serialized messages (decoded by their definition:
+/// RosSonarDecoder, the bag readers' rules), the vehicle's poses (rosPoseFix) and the mounting
+/// (rosMountingToBody), maps them beam by beam (OnlineMapper, `sonarmap map`'s one mapping path),
+/// commits the last sweep when the sonar falls silent (OnlineMapper::commitHeld), and gives the map
+/// as the data octomap_server's topics carry (MapData). All on one thread.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace sonarmap_ros {
+
+/// How a mapping option's value is given (mapping_option_table.hpp's link kinds).
+enum class OptionKind { kNumber, kWord, kBool, kCount };
+
+/// Every mapping option of `sonarmap map` by its Python keyword (optionKeyword: "false_alarm",
+/// "volume" for --3d, "beam_width_deg"; a ROS name allows no '-' and no leading digit) and kind.
+std::vector<std::pair<std::string, OptionKind>> mappingOptionNames();
+
+/// What the core is built with (node_parameters.hpp reads it from ROS).
+struct CoreParameters {
+  std::string sonar_topic;
+  std::string bearing_unit = "auto";       ///< auto, deg, rad, grad (RosBagOptions)
+  std::string bearing_direction = "cw";    ///< cw, ccw
+  bool navigation = true;                  ///< false: a fixed sonar at the map's origin
+  std::string base_frame = "base_link";    ///< the body frame until a pose names its own
+  std::string frame_id = "odom";           ///< the published frame: NED when its name says so, else ENU
+  /// Mapping options by keyword (mappingOptionNames), each value as text ("1e-4", "auto", "true", "3").
+  std::vector<std::pair<std::string, std::string>> mapping_options;
+  std::optional<double> prob_miss, clamp_min, clamp_max;  ///< octomap_server's sensor_model/*
+  double occupancy_min_z_m = -1e300, occupancy_max_z_m = 1e300;  ///< markers and cloud band, frame_id's z
+  std::size_t bearing_decision_beams = 2000;  ///< auto unit: beams held at most before radians
+};
+
+/// The map as octomap_server's topics carry it, in frame_id's axes (ENU or NED).
+struct MapData {
+  double resolution_m = 0.0;
+  std::vector<std::int8_t> binary_data, full_data;  ///< octomap_msgs/Octomap data (binary, full)
+  struct Cells {
+    double edge_m = 0.0;                  ///< the leaves' edge
+    std::vector<Eigen::Vector3f> centers; ///< occupied leaves' centres within the z band
+  };
+  std::vector<Cells> occupied;  ///< by leaf size, finest last
+  /// projected_map: the slice at the vehicle's height, row 0 at the lowest y, 100 occupied, 0 free,
+  /// −1 unknown; width 0 when the vehicle is outside the map.
+  std::uint32_t grid_width = 0, grid_height = 0;
+  double grid_x_m = 0.0, grid_y_m = 0.0, grid_z_m = 0.0;
+  std::vector<std::int8_t> grid;
+  double stamp_s = 0.0;  ///< the newest beam's time in the map (seconds since the epoch)
+};
+
+/// The lag figures (wall seconds).
+struct LagReport {
+  std::size_t beams = 0, sweeps = 0, beams_without_nav = 0, rejected_messages = 0;
+  double queue_delay_max_s = 0.0;  ///< receipt → decoded and given to the mapper
+  double map_lag_max_s = 0.0;      ///< receipt → in the committed map
+  double last_map_lag_s = -1.0;    ///< of the last beams committed (−1: none yet)
+};
+
+class MappingCore {
+ public:
+  /// The pose of the sonar's frame `sonar_frame` in the vehicle's body frame as TF gives it
+  /// (lookupTransform(body, sonar)), or nullopt; the core turns it into the mapper's sonar_to_body
+  /// (rosMountingToBody).
+  using MountingLookup = std::function<std::optional<Eigen::Isometry3d>(const std::string& sonar_frame)>;
+  /// @throws std::runtime_error (sonarmap::ValueError) naming an option that is out of range.
+  MappingCore(const CoreParameters& parameters, MountingLookup mounting);
+  ~MappingCore();
+
+  /// One message of the sonar topic: its type, definition and serialized bytes (ShapeShifter),
+  /// received at `receipt_s` (ROS time: a beam without a header is stamped so) and `receipt_wall_s`.
+  /// @throws std::runtime_error when the type has no sonar fields, or what mapping a sweep threw.
+  void addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
+                       std::size_t size, double receipt_s, double receipt_wall_s);
+  /// One pose of the vehicle (metres, body-to-world quaternion) in `world_frame` (ENU unless its name
+  /// says NED), of the body frame `body_frame`; a pose not after the previous one is skipped.
+  void addPose(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
+               const std::string& world_frame, const std::string& body_frame);
+  /// The sonar silent: held beams decided and mapped, the last sweep committed (commitHeld; with
+  /// `navigation_ended` a sweep waiting for a fix too). Returns whether the map changed.
+  bool commitAtSilence(bool navigation_ended);
+  /// Empties the map (the next beam starts a new mapper, placed from the last pose on).
+  void reset();
+  /// Whether the map changed since the last snapshot().
+  bool changed() const { return changed_; }
+  /// The map as published; nullopt while an automatic resolution is not set (no sweep yet).
+  std::optional<MapData> snapshot();
+  /// Writes the map last given by snapshot() as .bt or .ot (by the extension), atomically.
+  /// @throws std::runtime_error (sonarmap's FileError, ValueError) naming the path.
+  void save(const std::string& path) const;
+  const LagReport& lag() const { return lag_; }
+  /// The body frame of the poses (the last addPose's), for the mounting.
+  const std::string& bodyFrame() const { return body_frame_; }
+
+ private:
+  /// Gives the beams held to the mapper (started at the first: options, mounting), bearings set.
+  void feedHeld();
+  /// Notes the lag of the beams the mapper committed since the last call.
+  void noteLag();
+
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  LagReport lag_;
+  std::string body_frame_;
+  bool changed_ = false;
+};
+
+}  // namespace sonarmap_ros

@@ -1,0 +1,103 @@
+#pragma once
+/// @file octomap_message.hpp
+/// octomap_msgs/Octomap without the octomap_msgs package (Debian has none): a struct of the
+/// message's fields and roscpp's message traits for it (DataType, MD5Sum, Definition, Serializer:
+/// wiki.ros.org/roscpp/Overview/MessagesSerializationAndAdaptingTypes), so that a publisher of it
+/// announces the type, md5 and definition subscribers check (RViz's octomap plugin, octomap_server's
+/// tools, rospy with the real package). The definition is octomap_msgs' msg/Octomap.msg
+/// (OctoMap/octomap_msgs, melodic-devel) with std_msgs/Header as genmsg joins them; the md5 is
+/// genmsg's (compute_md5) of that text, checked by tests/ros/test_sonarmap_ros.py with
+/// /usr/bin/python3's genmsg.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <ros/message_traits.h>
+#include <ros/serialization.h>
+#include <std_msgs/Header.h>
+
+namespace sonarmap_ros {
+
+/// octomap_msgs/Octomap: `data` is an OctoMap tree's writeBinaryData (binary) or writeData (full)
+/// stream, the `.bt`/`.ot` file's bytes after its text header (octomap_msgs/conversions.h).
+struct OctomapMessage {
+  std_msgs::Header header;
+  bool binary = true;
+  std::string id = "OcTree";
+  double resolution = 0.0;  ///< metres
+  std::vector<std::int8_t> data;
+};
+
+}  // namespace sonarmap_ros
+
+namespace ros::message_traits {
+
+template <>
+struct MD5Sum<sonarmap_ros::OctomapMessage> {
+  static const char* value() { return "9a45536b45c5e409cd49f04bb2d9999f"; }
+  static const char* value(const sonarmap_ros::OctomapMessage&) { return value(); }
+};
+template <>
+struct DataType<sonarmap_ros::OctomapMessage> {
+  static const char* value() { return "octomap_msgs/Octomap"; }
+  static const char* value(const sonarmap_ros::OctomapMessage&) { return value(); }
+};
+template <>
+struct Definition<sonarmap_ros::OctomapMessage> {
+  static const char* value() {
+    return
+    "# A 3D map in binary format, as Octree\n"
+    "Header header\n"
+    "\n"
+    "# Flag to denote a binary (only free/occupied) or full occupancy octree (.bt/.ot file)\n"
+    "bool binary\n"
+    "\n"
+    "# Class id of the contained octree \n"
+    "string id\n"
+    "\n"
+    "# Resolution (in m) of the smallest octree nodes\n"
+    "float64 resolution\n"
+    "\n"
+    "# binary serialization of octree, use conversions.h to read and write octrees\n"
+    "int8[] data\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: std_msgs/Header\n"
+    "# Standard metadata for higher-level stamped data types.\n"
+    "# This is generally used to communicate timestamped data \n"
+    "# in a particular coordinate frame.\n"
+    "# \n"
+    "# sequence ID: consecutively increasing ID \n"
+    "uint32 seq\n"
+    "#Two-integer timestamp that is expressed as:\n"
+    "# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n"
+    "# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n"
+    "# time-handling sugar is provided by the client library\n"
+    "time stamp\n"
+    "#Frame this data is associated with\n"
+    "string frame_id\n";
+  }
+  static const char* value(const sonarmap_ros::OctomapMessage&) { return value(); }
+};
+template <>
+struct HasHeader<sonarmap_ros::OctomapMessage> : TrueType {};
+
+}  // namespace ros::message_traits
+
+namespace ros::serialization {
+
+template <>
+struct Serializer<sonarmap_ros::OctomapMessage> {
+  template <typename Stream, typename T>
+  inline static void allInOne(Stream& stream, T m) {
+    stream.next(m.header);
+    stream.next(m.binary);
+    stream.next(m.id);
+    stream.next(m.resolution);
+    stream.next(m.data);
+  }
+  ROS_DECLARE_ALLINONE_SERIALIZER
+};
+
+}  // namespace ros::serialization

@@ -1,0 +1,231 @@
+"""sonarmap_ros_node against a real ROS 1 master (Debian's roscore, started here on a free port):
+`rosbag play` of a bag at 10x its rate, the node's final octomap_binary decoded and compared with
+`sonarmap map` of the same bag (agreement over the known volume, bench/map_agreement.py's measure),
+~save_map writing what octomap_binary holds, ~reset emptying the map, and the message received by
+rospy with octomap_msgs' real definition (generated here by genpy from Octomap.msg, so its md5 is
+genmsg's). Run by ctest with /usr/bin/python3 (rospy, genpy):
+
+    /usr/bin/python3 tests/ros/test_sonarmap_ros.py NODE SONARMAP_CLI PYTHON_MODULE_DIR SHARED_DATA
+
+Exits 77 (ctest's skip) when roscore or rosbag is absent.
+"""
+
+import os
+import pathlib
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+SKIP = 77
+OCTOMAP_MSG = """Header header
+bool binary
+string id
+float64 resolution
+int8[] data
+================================================================================
+MSG: std_msgs/Header
+uint32 seq
+time stamp
+string frame_id
+"""
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def node_count(data):
+    """Nodes of an OctoMap binary stream (writeBinaryData: 2 bytes per inner node, 2 bits per child:
+    01 free leaf, 10 occupied leaf, 11 inner), as a .bt header's `size` counts them."""
+    pos = 0
+
+    def inner():
+        nonlocal pos
+        bits = data[pos] | (data[pos + 1] << 8)
+        pos += 2
+        count = 1
+        for child in range(8):
+            code = (bits >> (2 * child)) & 3
+            if code == 3:
+                count += inner()
+            elif code:
+                count += 1
+        return count
+
+    return inner() if data else 0
+
+
+def bt_bytes(message):
+    data = bytes(b & 0xFF for b in message.data)
+    header = f"# Octomap OcTree binary file\nid {message.id}\nsize {node_count(data)}\nres {message.resolution}\ndata\n"
+    return header.encode() + data
+
+
+def services(dynamic):
+    """std_srvs' Empty and Trigger for rospy's ServiceProxy (Debian has no python3 std_srvs):
+    request and response classes generated from the .srv texts, md5 as std_srvs' C++ headers say."""
+    classes = dynamic.generate_dynamic("std_srvs/TriggerResponse", "bool success\nstring message\n")
+    trigger_response = classes["std_srvs/TriggerResponse"]
+    empty = dynamic.generate_dynamic("std_srvs/EmptyRequest", "")["std_srvs/EmptyRequest"]
+
+    def service(name, md5, request, response):
+        return type(name, (), {"_type": "std_srvs/" + name, "_md5sum": md5, "_request_class": request,
+                               "_response_class": response})
+
+    class Srv:
+        Empty = service("Empty", "d41d8cd98f00b204e9800998ecf8427e", empty, empty)
+        Trigger = service("Trigger", "937c9679a518e3a18d831e57125ea522", empty, trigger_response)
+
+    class Module:
+        srv = Srv
+
+    return Module
+
+
+def main(node, cli, python_dir, shared):
+    if shutil.which("roscore") is None or shutil.which("rosbag") is None:
+        print("SKIP: roscore or rosbag is not installed (Debian: ros-core, python3-rosbag)")
+        return SKIP
+    sys.path.insert(0, python_dir)
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "bench"))
+    tmp = pathlib.Path(tempfile.mkdtemp(prefix="sonarmap_ros_"))
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(tmp), ROS_LOG_DIR=str(tmp / "log"),
+               ROS_HOSTNAME="127.0.0.1")
+    os.environ.update(env)
+    master = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    processes = [master]
+    try:
+        import rosgraph
+        deadline = time.time() + 20
+        while not rosgraph.is_master_online():
+            if time.time() > deadline:
+                raise AssertionError("roscore did not come up in 20 s")
+            time.sleep(0.2)
+        import genpy.dynamic
+        import rospy
+        std_srvs = services(genpy.dynamic)
+        Octomap = genpy.dynamic.generate_dynamic("octomap_msgs/Octomap", OCTOMAP_MSG)["octomap_msgs/Octomap"]
+        rospy.init_node("sonarmap_test", anonymous=True, disable_signals=True)
+        failures = []
+        cases = []
+        sim = tmp / "sim.bag"
+        subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "sim"), "--turns", "3", "--speed", "0.1", "--heading",
+                        "30", "--mounting", "0.3,0,0.2,0,20,0", "--bag", str(sim), "-q"], check=True)
+        cases.append(("simulated, navigation and a tilted mounting", sim, "/sonar/scan_line",
+                      ["_pose_source:=odometry", "_odom_topic:=/odometry"]))
+        pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
+        if pool.exists():
+            cases.append(("pool", pool, "/micron_driver/scan_line", ["_pose_source:=none"]))
+        else:
+            print(f"note: {pool} absent, the pool bag's case skipped")
+        for name, bag, topic, params in cases:
+            failures += run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, rospy, std_srvs)
+        if failures:
+            print("\n".join("FAIL: " + f for f in failures))
+            return 1
+        print("all cases passed")
+        return 0
+    finally:
+        for p in reversed(processes):
+            if p.poll() is None:
+                p.terminate()
+                try:
+                    p.wait(10)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, rospy, std_srvs):
+    import map_agreement
+    failures = []
+    resolution = "0.1"
+    saved = tmp / f"saved_{len(processes)}.bt"
+    log_path = tmp / f"node_{len(processes)}.log"
+    log = open(log_path, "w+")
+    node_process = subprocess.Popen([node, f"_sonar_topic:={topic}", f"_resolution:={resolution}", "_idle_commit_s:=1.0",
+                                     "_publish_period_s:=0.5", f"_save_path:={saved}", "__name:=sonarmap"] + params,
+                                    env=dict(env, ROSCONSOLE_STDOUT_LINE_BUFFERED="1"), stdout=log,
+                                    stderr=subprocess.STDOUT)
+    processes.append(node_process)
+    received, raw = [], []
+    subscriber = rospy.Subscriber("/octomap_binary", Octomap, lambda m: received.append((time.time(), m)))
+    # the connection as any subscriber sees it: type, md5 and definition the node announces
+    raw_subscriber = rospy.Subscriber("/octomap_binary", rospy.AnyMsg, lambda m: raw.append(m._connection_header))
+    rospy.wait_for_service("/sonarmap/reset", timeout=20)
+    started = time.time()
+    # -d: rosbag play waits after advertising, so that the node's subscriptions connect before the first message
+    subprocess.run(["rosbag", "play", "-q", "-d", "2", "-r", "10", str(bag)], env=env, check=True,
+                   stdout=subprocess.DEVNULL)
+    played = time.time()
+    # the final map: the one published after the node said the sonar fell silent (idle_commit_s)
+    deadline = played + 30
+    silent_at = None
+    while time.time() < deadline:
+        if silent_at is None and "the sonar is silent" in log_path.read_text(errors="replace"):
+            silent_at = time.time()
+        if silent_at is not None and received and received[-1][0] > silent_at - 0.2 and time.time() - silent_at > 1.0:
+            break
+        time.sleep(0.2)
+    if silent_at is None or not received:
+        subscriber.unregister()
+        return [f"{name}: no final octomap_binary received"]
+    final = received[-1][1]
+    raw_subscriber.unregister()
+    if not raw or raw[-1]["md5sum"] != Octomap._md5sum or raw[-1]["type"] != "octomap_msgs/Octomap":
+        failures.append(f"{name}: the connection says {raw[-1] if raw else None}, genmsg's md5 is {Octomap._md5sum}")
+    elif "int8[] data" not in raw[-1]["message_definition"]:
+        failures.append(f"{name}: the announced definition lacks octomap_msgs/Octomap's data field")
+    kind = subprocess.run(["rostopic", "type", "/octomap_binary"], env=env, capture_output=True, text=True).stdout.strip()
+    if kind != "octomap_msgs/Octomap":
+        failures.append(f"{name}: rostopic type says {kind!r}")
+    node_bt = tmp / "node.bt"
+    node_bt.write_bytes(bt_bytes(final))
+    ref_bt = tmp / "ref.bt"
+    subprocess.run([cli, "map", str(bag), "-o", str(ref_bt), "-q", "--resolution", resolution], check=True)
+    a, b = map_agreement.voxel_classes(str(node_bt)), map_agreement.voxel_classes(str(ref_bt))
+    known = set(a) | set(b)
+    same = sum(1 for key in known if key in a and key in b and a[key] == b[key])
+    agreement = same / len(known) if known else 0.0
+    print(f"{name}: bag played at 10x in {played - started - 2:.1f} s; node {len(a)} voxels, map {len(b)}; "
+          f"agreement {agreement:.6f} over {len(known)}")
+    if not known or agreement < 0.999:
+        failures.append(f"{name}: agreement {agreement:.6f} < 0.999")
+    save = rospy.ServiceProxy("/sonarmap/save_map", std_srvs.srv.Trigger)()
+    if not save.success:
+        failures.append(f"{name}: save_map failed: {save.message}")
+    else:
+        written = saved.read_bytes()
+        data = written[written.index(b"\ndata\n") + 6:]
+        if data != bytes(x & 0xFF for x in final.data):
+            failures.append(f"{name}: save_map's file holds other data than octomap_binary")
+    count = len(received)
+    rospy.ServiceProxy("/sonarmap/reset", std_srvs.srv.Empty)()
+    deadline = time.time() + 10
+    while len(received) == count and time.time() < deadline:
+        time.sleep(0.1)
+    if len(received) == count or len(received[-1][1].data) != 0:
+        failures.append(f"{name}: reset did not publish an empty map")
+    subscriber.unregister()
+    node_process.terminate()
+    node_process.wait(10)
+    log.close()
+    for line in log_path.read_text(errors="replace").splitlines():
+        if "silent" in line or "ERROR" in line or "WARN" in line:
+            print(f"{name}: node: {line.strip()}")
+        if "largest queue delay" in line:
+            # keeping up at 10x: no beam waited in the queue for as long as a second
+            delay = float(line.split("largest queue delay ")[1].split(" s")[0])
+            if delay >= 1.0:
+                failures.append(f"{name}: a beam waited {delay} s in the queue at 10x")
+    return failures
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:5]))
