@@ -77,7 +77,18 @@ def services(dynamic):
         return type(name, (), {"_type": "std_srvs/" + name, "_md5sum": md5, "_request_class": request,
                                "_response_class": response})
 
+    point = "================================================================================\nMSG: geometry_msgs/Point\n" \
+            "float64 x\nfloat64 y\nfloat64 z\n"
+    box = dynamic.generate_dynamic("octomap_msgs/BoundingBoxQueryRequest",
+                                   "geometry_msgs/Point min\ngeometry_msgs/Point max\n" + point)
+    box_request = box["octomap_msgs/BoundingBoxQueryRequest"]
+
     class Srv:
+        # the service's md5 is genmsg's of the request and response texts: the response is empty
+        BoundingBoxQuery = type("BoundingBoxQuery", (), {"_type": "octomap_msgs/BoundingBoxQuery",
+                                                         "_md5sum": box_request._md5sum, "_request_class": box_request,
+                                                         "_response_class": empty})
+        Point = box["geometry_msgs/Point"]
         Empty = service("Empty", "d41d8cd98f00b204e9800998ecf8427e", empty, empty)
         Trigger = service("Trigger", "937c9679a518e3a18d831e57125ea522", empty, trigger_response)
 
@@ -205,6 +216,20 @@ def run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, 
         data = written[written.index(b"\ndata\n") + 6:]
         if data != bytes(x & 0xFF for x in final.data):
             failures.append(f"{name}: save_map's file holds other data than octomap_binary")
+    # ~clear_bbx (octomap_server's service type): the voxels of x < 0 become unknown, the others stay
+    count = len(received)
+    srv = std_srvs.srv
+    rospy.ServiceProxy("/sonarmap/clear_bbx", srv.BoundingBoxQuery)(srv.Point(-1e4, -1e4, -1e4), srv.Point(0, 1e4, 1e4))
+    deadline = time.time() + 10
+    while len(received) == count and time.time() < deadline:
+        time.sleep(0.1)
+    cleared_bt = tmp / "cleared.bt"
+    cleared_bt.write_bytes(bt_bytes(received[-1][1]))
+    cleared = map_agreement.voxel_classes(str(cleared_bt))
+    resolution_m = float(resolution)
+    kept = {k: v for k, v in a.items() if (k[0] + 0.5) * resolution_m > 0}
+    if len(received) == count or cleared != kept or len(kept) == len(a):
+        failures.append(f"{name}: clear_bbx left {len(cleared)} voxels, expected the {len(kept)} of x > 0 of {len(a)}")
     count = len(received)
     rospy.ServiceProxy("/sonarmap/reset", std_srvs.srv.Empty)()
     deadline = time.time() + 10

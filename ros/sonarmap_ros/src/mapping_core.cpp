@@ -187,6 +187,54 @@ void MappingCore::reset() {
   changed_ = true;
 }
 
+namespace {
+
+/// Copies into `out` the part of the cube (`key`, `depth`) of log-odds `log_odds` whose finest voxels'
+/// centres lie outside [lo, hi] (metres, the map's frame), splitting the cube where the box cuts it.
+void copyOutside(sonarmap::OcTree16& out, const sonarmap::Key16& key, int depth, float log_odds, const Eigen::Vector3d& lo,
+                 const Eigen::Vector3d& hi) {
+  const double res = out.resolution_m(), offset = sonarmap::KeyCoder<16>::offset();
+  const long edge = 1L << (16 - depth);
+  bool disjoint = false, inside = true;
+  for (int axis = 0; axis < 3; ++axis) {
+    // the centres of the cube's voxels along the axis: first and last
+    const double first = (key[static_cast<std::size_t>(axis)] - offset + 0.5) * res;
+    const double last = first + static_cast<double>(edge - 1) * res;
+    if (last < lo[axis] || first > hi[axis]) disjoint = true;
+    if (first < lo[axis] || last > hi[axis]) inside = false;
+  }
+  if (disjoint) {
+    out.updateCube(key, depth, log_odds);
+    return;
+  }
+  if (inside) return;
+  const long half = edge / 2;  // depth < 16 here: a finest voxel is disjoint or inside
+  for (int child = 0; child < 8; ++child) {
+    sonarmap::Key16 sub = key;
+    for (int axis = 0; axis < 3; ++axis) {
+      if ((child >> axis) & 1) sub[static_cast<std::size_t>(axis)] = static_cast<sonarmap::Key16::Index>(sub[static_cast<std::size_t>(axis)] + half);
+    }
+    copyOutside(out, sub, depth + 1, log_odds, lo, hi);
+  }
+}
+
+}  // namespace
+
+bool MappingCore::clearBox(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m) {
+  Impl& d = *impl_;
+  if (!d.mapper || !d.mapper->optionsSnapshot().resolution_m) return false;
+  const Eigen::Matrix3d to_nwu = sonarmap::nwuToMapFrame(d.frame).transpose();
+  const Eigen::Vector3d a = to_nwu * min_m, b = to_nwu * max_m;
+  const Eigen::Vector3d lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+  sonarmap::OcTree16& map = d.mapper->mapper().map();  // the feeding thread: this one
+  sonarmap::OcTree16 out(map.resolution_m(), map.options());
+  map.forEachLeaf([&](const sonarmap::LeafView<16>& leaf) { copyOutside(out, leaf.key, leaf.depth, leaf.log_odds, lo, hi); });
+  out.updateInnerOccupancy();
+  map = std::move(out);
+  changed_ = true;
+  return true;
+}
+
 std::optional<MapData> MappingCore::snapshot() {
   Impl& d = *impl_;
   changed_ = false;

@@ -94,6 +94,9 @@ class MappingCore {
   bool commitAtSilence(bool navigation_ended);
   /// Empties the map (the next beam starts a new mapper, placed from the last pose on).
   void reset();
+  /// Makes the voxels whose centre lies in the box [min_m, max_m] (metres, frame_id's axes) unknown,
+  /// as octomap_server's ~clear_bbx; later beams map them again. Returns whether there was a map.
+  bool clearBox(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m);
   /// Whether the map changed since the last snapshot().
   bool changed() const { return changed_; }
   /// The map as published; nullopt while an automatic resolution is not set (no sweep yet).

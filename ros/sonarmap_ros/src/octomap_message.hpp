@@ -7,7 +7,9 @@
 /// tools, rospy with the real package). The definition is octomap_msgs' msg/Octomap.msg
 /// (OctoMap/octomap_msgs, melodic-devel) with std_msgs/Header as genmsg joins them; the md5 is
 /// genmsg's (compute_md5) of that text, checked by tests/ros/test_sonarmap_ros.py with
-/// /usr/bin/python3's genmsg.
+/// /usr/bin/python3's genmsg. The same for the service octomap_msgs/BoundingBoxQuery (srv/
+/// BoundingBoxQuery.srv: a request of two geometry_msgs/Point, an empty response), octomap_server's
+/// ~clear_bbx.
 
 #include <cstdint>
 #include <string>
@@ -15,6 +17,8 @@
 
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
+#include <geometry_msgs/Point.h>
+#include <ros/service_traits.h>
 #include <std_msgs/Header.h>
 
 namespace sonarmap_ros {
@@ -28,6 +32,13 @@ struct OctomapMessage {
   double resolution = 0.0;  ///< metres
   std::vector<std::int8_t> data;
 };
+
+/// octomap_msgs/BoundingBoxQuery's request: the box's corners, metres, in the map's frame.
+struct BoundingBoxQueryRequest {
+  geometry_msgs::Point min, max;
+};
+/// octomap_msgs/BoundingBoxQuery's response: empty.
+struct BoundingBoxQueryResponse {};
 
 }  // namespace sonarmap_ros
 
@@ -83,7 +94,83 @@ struct Definition<sonarmap_ros::OctomapMessage> {
 template <>
 struct HasHeader<sonarmap_ros::OctomapMessage> : TrueType {};
 
+template <>
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest> {
+  static const char* value() { return "93aa3d73b866f04880927745f4aab303"; }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
+};
+template <>
+struct DataType<sonarmap_ros::BoundingBoxQueryRequest> {
+  static const char* value() { return "octomap_msgs/BoundingBoxQueryRequest"; }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
+};
+template <>
+struct Definition<sonarmap_ros::BoundingBoxQueryRequest> {
+  static const char* value() {
+    return
+    "# Clear a region specified by a global axis-aligned bounding box in stored OctoMap\n"
+    "\n"
+    "# minimum corner point of axis-aligned bounding box in global frame\n"
+    "geometry_msgs/Point min\n"
+    "# maximum corner point of axis-aligned bounding box in global frame\n"
+    "geometry_msgs/Point max\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: geometry_msgs/Point\n"
+    "# This contains the position of a point in free space\n"
+    "float64 x\n"
+    "float64 y\n"
+    "float64 z\n";
+  }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
+};
+template <>
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse> {
+  static const char* value() { return "d41d8cd98f00b204e9800998ecf8427e"; }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
+};
+template <>
+struct DataType<sonarmap_ros::BoundingBoxQueryResponse> {
+  static const char* value() { return "octomap_msgs/BoundingBoxQueryResponse"; }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
+};
+template <>
+struct Definition<sonarmap_ros::BoundingBoxQueryResponse> {
+  static const char* value() { return "\n"; }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
+};
+
 }  // namespace ros::message_traits
+
+namespace ros::service_traits {
+
+template <class Part>
+struct BoundingBoxQueryTraits {
+  static const char* md5() { return "93aa3d73b866f04880927745f4aab303"; }
+  static const char* type() { return "octomap_msgs/BoundingBoxQuery"; }
+};
+template <>
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest> {
+  static const char* value() { return BoundingBoxQueryTraits<void>::md5(); }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
+};
+template <>
+struct DataType<sonarmap_ros::BoundingBoxQueryRequest> {
+  static const char* value() { return BoundingBoxQueryTraits<void>::type(); }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
+};
+template <>
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse> {
+  static const char* value() { return BoundingBoxQueryTraits<void>::md5(); }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
+};
+template <>
+struct DataType<sonarmap_ros::BoundingBoxQueryResponse> {
+  static const char* value() { return BoundingBoxQueryTraits<void>::type(); }
+  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
+};
+
+}  // namespace ros::service_traits
 
 namespace ros::serialization {
 
@@ -97,6 +184,23 @@ struct Serializer<sonarmap_ros::OctomapMessage> {
     stream.next(m.resolution);
     stream.next(m.data);
   }
+  ROS_DECLARE_ALLINONE_SERIALIZER
+};
+
+template <>
+struct Serializer<sonarmap_ros::BoundingBoxQueryRequest> {
+  template <typename Stream, typename T>
+  inline static void allInOne(Stream& stream, T m) {
+    stream.next(m.min);
+    stream.next(m.max);
+  }
+  ROS_DECLARE_ALLINONE_SERIALIZER
+};
+
+template <>
+struct Serializer<sonarmap_ros::BoundingBoxQueryResponse> {
+  template <typename Stream, typename T>
+  inline static void allInOne(Stream&, T) {}
   ROS_DECLARE_ALLINONE_SERIALIZER
 };
 

@@ -1,7 +1,7 @@
 /// @file sonarmap_node.cpp
 /// sonarmap_ros_node: the sonar topic of any driver (topic_tools::ShapeShifter: its definition and
 /// bytes) mapped beam by beam by MappingCore and published on octomap_server's topics, with the
-/// services ~reset and ~save_map, and the lag on ~queue_delay_s and ~map_lag_s. C++17 (the ROS
+/// services ~reset, ~clear_bbx and ~save_map, and the lag on ~queue_delay_s and ~map_lag_s. C++17 (the ROS
 /// side, mapping_core.hpp's comment). See ros/sonarmap_ros/README.md.
 
 #include <memory>
@@ -16,6 +16,7 @@
 #include "map_publisher.hpp"
 #include "mapping_core.hpp"
 #include "node_parameters.hpp"
+#include "octomap_message.hpp"
 #include "pose_input.hpp"
 
 namespace sonarmap_ros {
@@ -43,6 +44,7 @@ class SonarmapNode {
     map_lag_ = private_node.advertise<std_msgs::Float64>("map_lag_s", 10);
     reset_ = private_node.advertiseService("reset", &SonarmapNode::reset, this);
     save_ = private_node.advertiseService("save_map", &SonarmapNode::saveMap, this);
+    clear_box_ = private_node.advertiseService("clear_bbx", &SonarmapNode::clearBox, this);
     timer_ = node.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { guarded([&] { tick(); }); });
   }
 
@@ -107,6 +109,14 @@ class SonarmapNode {
     return true;
   }
 
+  bool clearBox(BoundingBoxQueryRequest& request, BoundingBoxQueryResponse&) {
+    guarded([&] {
+      const Eigen::Vector3d lo(request.min.x, request.min.y, request.min.z), hi(request.max.x, request.max.y, request.max.z);
+      if (core_.clearBox(lo, hi)) publish(ros::WallTime::now().toSec());
+    });
+    return true;
+  }
+
   bool saveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
     try {
       core_.save(parameters_.save_path);
@@ -128,7 +138,7 @@ class SonarmapNode {
   bool committed_ = false;
   ros::Subscriber sonar_;
   ros::Publisher queue_delay_, map_lag_;
-  ros::ServiceServer reset_, save_;
+  ros::ServiceServer reset_, save_, clear_box_;
   ros::WallTimer timer_;
 };
 
