@@ -95,7 +95,7 @@ void MappingCore::addSonarMessage(const std::string& type, const std::string& de
   d.held.push_back({std::move(message), receipt_wall_s});
   if (!d.decoder->unitDecided() && !sonarmap::RosSonarDecoder::beyondRadians(d.largest_bearing) &&
       d.held.size() < d.parameters.bearing_decision_beams) {
-    return;  // the unit is not known yet: the beams wait (sonar_input's rule, as a bag's)
+    return;  // the unit is not known yet: the beams wait (mapping_core.hpp; a bag's rule)
   }
   if (!d.decoder->unitDecided()) d.decoder->decideUnit(d.largest_bearing);
   feedHeld();
