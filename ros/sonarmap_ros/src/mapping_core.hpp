@@ -82,6 +82,9 @@ class MappingCore {
 
   /// One message of the sonar topic: its type, definition and serialized bytes (ShapeShifter),
   /// received at `receipt_s` (ROS time: a beam without a header is stamped so) and `receipt_wall_s`.
+  /// An automatic bearing unit the field's name does not say is decided as a bag's: degrees at the
+  /// first bearing beyond 2π, radians after bearing_decision_beams beams within it or at the
+  /// sonar's silence; the beams wait for it, in order.
   /// @throws std::runtime_error when the type has no sonar fields, or what mapping a sweep threw.
   void addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
                        std::size_t size, double receipt_s, double receipt_wall_s);
