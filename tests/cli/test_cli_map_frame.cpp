@@ -67,7 +67,7 @@ class cliMapFrame : public CliTest {
   }
 };
 
-// A pile 3 m north and 1 m east of the vehicle (scene files are NWU: x 3, y −1).
+// A pile 3 m north and 1 m east of the vehicle (a scene file without a frame line is NWU: x 3, y −1).
 constexpr const char* kPileNorthEast = "cylinder 3 -1 0.2 -2 2 0.8\n";
 
 TEST_F(cliMapFrame, EnuAndNedMapsPutTheEchoWhereTheFrameSaysAndNameIt) {
