@@ -4,8 +4,6 @@
 // frames were named) still gives the same run and the same scores as its rewrites.
 #include <gtest/gtest.h>
 
-#include <octomap/OcTree.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,20 +13,10 @@
 #include <Eigen/Core>
 
 #include "cli_fixture.hpp"
+#include "octomap_leaves.hpp"
 
 namespace sonarmap::test {
 namespace {
-
-/// Occupied leaf centres of the .bt at `path`, read by OctoMap (x, y, z in the file's frame).
-std::vector<Eigen::Vector3d> occupiedCentres(const fs::path& path) {
-  octomap::OcTree tree(0.1);
-  if (!tree.readBinary(path.string())) ADD_FAILURE() << "OctoMap cannot read " << path;
-  std::vector<Eigen::Vector3d> centres;
-  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    if (tree.isNodeOccupied(*it)) centres.emplace_back(it.getX(), it.getY(), it.getZ());
-  }
-  return centres;
-}
 
 /// Checks that the occupied voxels' coordinates across a wall at 5 m lie on it: the median on the
 /// voxel (0.1 m) that holds it, nine in ten within 0.25 m (far along the wall the beam meets it at
