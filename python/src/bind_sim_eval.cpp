@@ -419,8 +419,9 @@ bad file.)doc");
       py::arg("map"), py::arg("scene"), py::arg("tolerance") = 0.1, py::arg("z_min") = py::none(),
       py::arg("z_max") = py::none(), py::arg("max_range") = py::none(), py::arg("sensor") = py::none(),
       R"doc(Scores a map against a ground-truth scene, as ``sonarmap eval`` (eval/ground_truth.hpp).
-A map with a ``frame`` (ENU, NED) is turned back into the scenes' frame (NWU: x north, y west, z up)
-first; ``sensor`` positions, z_min and z_max are in the scenes' frame.
+A map with a ``frame`` (ENU, NED) is turned back into the internal frame of scenes (NWU: x north,
+y west, z up; a scene file's own frame is read by read_scene) first; ``sensor`` positions, z_min and
+z_max are in that internal NWU frame.
 
 map: sonarmap.OccupancyMap. scene: sonarmap.Scene, a scene file, or a built-in name (Micron-sized;
 an existing file of that name wins, as in the CLI).
