@@ -108,8 +108,8 @@ void sonarSeeds() {
     writeNavCsv(out, run.nav);
     out << "1e9,1,2,x,0,0,0\n0,0,0,0,0,0,0\r\n";  // a bad row, a time going back
   });
-  seed("scene", "tank.scene", [&](std::ostream& out) { writeScene(out, run.scene); });
-  seed("scene", "harbour.scene", [&](std::ostream& out) { writeScene(out, builtinScene("harbour")); });
+  seed("scene", "tank.scene", [&](std::ostream& out) { writeScene(out, run.scene, kDefaultMapFrame); });
+  seed("scene", "harbour.scene", [&](std::ostream& out) { writeScene(out, builtinScene("harbour"), MapFrame::kNed); });
   seed("v4log", "three.V4LOG", [](std::ostream& out) {
     test::V4Record other;
     other.type = 4;

@@ -157,11 +157,11 @@ void run(const DemoArgs& args) {
   FileTransaction outputs;
   stageMapOutputs(outputs, map_args, simulation.log, mapped.mapper.map(), mapped.mapper.map().resolution_m(), {},
                   {Eigen::Vector3d::Zero()});  // the static sonar at the map origin
-  stageSimulation(outputs, args.output_dir, simulation);
+  stageSimulation(outputs, args.output_dir, simulation, map_args.map_frame);
   stageMapOutputs(outputs, map_args_3d, simulation_3d.log, mapped_3d.mapper.map(),
                   mapped_3d.mapper.map().resolution_m(), side_png,
                   sonarTrack(simulation_3d.nav, mission.options.sonar_to_body, simulation_3d.log));
-  stageSimulation(outputs, folder_3d, simulation_3d);
+  stageSimulation(outputs, folder_3d, simulation_3d, map_args_3d.map_frame);
   const std::string scoring_json = dir_3d.file(kScoringFile);
   outputs.stage(scoring_json, [&](std::ostream& out) { writeScoringFile(out, scoringFile(mission)); });
   // The 3D viewer's pages (sonarmap view) beside each map, the 3D run's with the vehicle's path;

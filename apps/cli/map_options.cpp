@@ -43,6 +43,22 @@ CLI::Option* addMountingOption(CLI::App& cmd, std::vector<double>& mounting, con
       ->group(help_group::kNavigation);
 }
 
+CLI::Option* addMapFrameOption(CLI::App& cmd, MapFrame& frame, const std::string& lead) {
+  return cmd
+      .add_option_function<std::string>(
+          "--map-frame", [&frame](const std::string& text) { frame = parseMapFrame(text); }, lead + ": enu | ned")
+      ->default_str("enu")  // kDefaultMapFrame
+      ->group(help_group::kOutput)
+      ->check([](const std::string& text) {
+        try {
+          parseMapFrame(text);
+          return std::string();
+        } catch (const ValueError& error) {
+          return std::string(error.what());
+        }
+      });
+}
+
 void addMappingOptions(CLI::App& cmd, MapArgs& args) {
   addLogFormatOption(cmd, args.format);
   for (const MappingOption& option : mappingOptionTable()) {
@@ -69,19 +85,7 @@ void addMappingOptions(CLI::App& cmd, MapArgs& args) {
                     }},
         option.link);
   }
-  cmd.add_option_function<std::string>(
-         "--map-frame", [&args](const std::string& text) { args.map_frame = parseMapFrame(text); },
-         "Frame the map file is written in: enu | ned")
-      ->default_str("enu")
-      ->group(help_group::kOutput)
-      ->check([](const std::string& text) {
-        try {
-          parseMapFrame(text);
-          return std::string();
-        } catch (const ValueError& error) {
-          return std::string(error.what());
-        }
-      });
+  addMapFrameOption(cmd, args.map_frame, "Frame the map file is written in");
   cmd.add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   cmd.add_flag("--tank-report", args.tank_report, "Also print how well the map traces a rectangular tank")
       ->group(help_group::kOutput);

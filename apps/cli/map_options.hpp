@@ -53,6 +53,11 @@ std::string logInputHelp();
 /// but the input, outputs, --nav and --mounting.
 void addMappingOptions(CLI::App& cmd, MapArgs& args);
 
+/// Adds --map-frame enu|ned (help group Output; default enu, kDefaultMapFrame) to `cmd`, parsed
+/// into `frame` (parseMapFrame; a bad name is a usage error listing the choices). Its one-line
+/// help is `lead` (what is written in the frame) then the choices.
+CLI::Option* addMapFrameOption(CLI::App& cmd, MapFrame& frame, const std::string& lead);
+
 /// `mounting` as --mounting takes it, "X,Y,Z,ROLL,PITCH,YAW": each number in the shortest form that
 /// reads back exactly (0.3, not 0.29999999999999999), so a printed command rebuilds the same pose.
 std::string mountingText(const std::array<double, 6>& mounting);

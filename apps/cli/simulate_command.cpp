@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -47,12 +48,19 @@ std::string mapCommand(const SimulateArgs& args, const MsisHeadOptions& head) {
   const fs::path dir(args.output_dir);
   const std::vector<std::string> scenes_3d = builtinScene3dNames();
   const bool volume = std::find(scenes_3d.begin(), scenes_3d.end(), args.scene) != scenes_3d.end();
+  std::string frame_flag;  // the map in the frame of scene.txt
+  if (args.map_frame != kDefaultMapFrame) {
+    frame_flag = " --map-frame " + std::string(mapFrameName(args.map_frame));
+    std::transform(frame_flag.begin(), frame_flag.end(), frame_flag.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  }
   char text[1024];
   std::snprintf(text, sizeof text,
-                "sonarmap map %s --nav %s --mounting %s --beam-width %g --vertical-aperture %g%s -o %s",
+                "sonarmap map %s --nav %s --mounting %s --beam-width %g --vertical-aperture %g%s%s -o %s",
                 (dir / "beams.csv").string().c_str(), (dir / "nav.csv").string().c_str(), mountingText(mounting).c_str(),
                 head.horizontal_beam_width_rad * kDegPerRad, head.vertical_beam_width_rad * kDegPerRad,
-                volume ? " --3d" : "", (dir / "map.bt").string().c_str());
+                volume ? " --3d" : "", frame_flag.c_str(),
+                (dir / "map.bt").string().c_str());
   return text;
 }
 
@@ -76,7 +84,7 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   }();
   OutputDir dir(args.output_dir);
   FileTransaction outputs;
-  stageSimulation(outputs, args.output_dir, simulation);
+  stageSimulation(outputs, args.output_dir, simulation, args.map_frame);
   const NavTrack& believed = simulation.dead_reckoning.empty() ? simulation.nav : simulation.dead_reckoning;
   if (!args.mcap.empty()) outputs.stageBytes(args.mcap, mcapBytes(simulation.log, believed));
   if (!args.bag.empty()) {
@@ -142,9 +150,10 @@ std::string sonarPresetHelp(const std::string& lead) {
   return help;
 }
 
-void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run) {
+void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run,
+                     MapFrame scene_frame) {
   const fs::path folder(dir);
-  outputs.stage((folder / "scene.txt").string(), [&](std::ostream& out) { writeScene(out, run.scene); });
+  outputs.stage((folder / "scene.txt").string(), [&](std::ostream& out) { writeScene(out, run.scene, scene_frame); });
   outputs.stage((folder / "beams.csv").string(), [&](std::ostream& out) { writeBeamCsv(out, run.log); });
   if (!run.nav.empty()) {
     const NavTrack& believed = run.dead_reckoning.empty() ? run.nav : run.dead_reckoning;
@@ -194,6 +203,7 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->group(help_group::kNavigation);
   cmd->add_option("--bag", args.bag, "Also write the log as a ROS 1 bag (.bag)")->group(help_group::kOutput);
   cmd->add_option("--mcap", args.mcap, "Also write the log as a ROS 2 log in MCAP (.mcap)")->group(help_group::kOutput);
+  addMapFrameOption(*cmd, args.map_frame, "Frame scene.txt is written in (map it in the same)");
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);
   auto options = std::make_shared<MsisSimulationOptions>();
   return {cmd, [&args, options] { check(args, *options); }, [&args, options] { run(args, *options); }};

@@ -13,6 +13,7 @@
 #include "command.hpp"
 
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/nav/map_frame_axes.hpp"
 #include "sonarmap/sim/msis_simulator.hpp"
 #include "sonarmap/sim/simulation_arguments.hpp"
 
@@ -26,17 +27,20 @@ struct SimulateArgs : SimulationArguments {
   bool quiet = false;  ///< -q: no progress bar
   std::string bag;     ///< --bag: also the log and its believed navigation as a ROS 1 bag (empty: none)
   std::string mcap;    ///< --mcap: also as a ROS 2 log in MCAP (empty: none)
+  MapFrame map_frame = kDefaultMapFrame;  ///< --map-frame: the frame scene.txt is written in
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.
 Command addSimulateCommand(CLI::App& app, SimulateArgs& args);
 
 /// Stages the files of a simulated run in `outputs`, in this order: `dir`/scene.txt
-/// (scene_file.hpp), `dir`/beams.csv (beam CSV, docs/formats.md), and when `run.nav` is not empty
+/// (scene_file.hpp, its coordinates in `scene_frame`: the frame the run's map is written in),
+/// `dir`/beams.csv (beam CSV, docs/formats.md), and when `run.nav` is not empty
 /// `dir`/nav.csv (navigation CSV: the dead-reckoning track the vehicle believes,
 /// run.dead_reckoning, when the run has one, else the true track) and `dir`/truth_nav.csv
 /// (navigation CSV of the true track, run.nav). @throws FileError when a file cannot be staged.
-void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run);
+void stageSimulation(FileTransaction& outputs, const std::string& dir, const MsisSimulation& run,
+                     MapFrame scene_frame);
 
 /// A --sonar option's one-line help: `lead`, then every head preset's name (sonarPresetNames)
 /// joined by " | " (what each head is: docs/commands.md).

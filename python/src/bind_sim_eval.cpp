@@ -124,8 +124,9 @@ Scene sceneArgument(const py::object& scene, const MsisHeadOptions& head) {
 
 void bindSimEval(py::module_& m) {
   py::class_<Scene>(m, "Scene", R"doc(
-A ground-truth scene: planes, boxes and vertical cylinders in the map frame (metres; C++
-sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evaluate take it.
+A ground-truth scene: planes, boxes and vertical cylinders in the internal frame (NWU: x north,
+y west, z up; metres; C++ sonarmap::Scene), whatever frame its file was written in. Build one with
+builtin_scene or read_scene; simulate and evaluate take it; write saves it in ENU or NED.
 )doc")
       .def_property_readonly(
           "primitives",
@@ -134,7 +135,8 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
             for (const Primitive& p : scene.primitives) out.append(primitiveDict(p));
             return out;
           },
-          "The primitives as dicts (kind, geometry in metres/radians, reflectivity), in scene order.")
+          "The primitives as dicts (kind, geometry in metres/radians in the internal NWU frame, reflectivity), in "
+          "scene order.")
       .def_property_readonly(
           "reverberation_db", [](const Scene& scene) { return scene.reverberation_db; },
           "An enclosed basin's diffuse reverberation after the TVG, dB in the echo model's units, or None "
@@ -154,8 +156,14 @@ sonarmap::Scene). Build one with builtin_scene or read_scene; simulate and evalu
           py::arg("points"), "Distance of each point (N, 3) float64 m, map frame) to the nearest surface: float64 (N,), metres.")
       .def(
           "write",
-          [](const Scene& scene, const std::filesystem::path& path) { writeScene(path.string(), scene); }, py::arg("path"),
-          "Writes the scene file (scene_file.hpp format), atomically. Raises sonarmap.FileError, sonarmap.ValueError.")
+          [](const Scene& scene, const std::filesystem::path& path, const std::string& frame) {
+            writeScene(path.string(), scene, parseMapFrame(frame));
+          },
+          py::arg("path"), py::arg("frame") = "enu",
+          "Writes the scene file (scene_file.hpp format), atomically, its coordinates in ``frame``: \"enu\" (default, "
+          "x east, y north, z up) or \"ned\" (x north, y east, z down), named in its first line; write it in the frame "
+          "you map in (map_sonar_log's map_frame). Raises sonarmap.FileError, sonarmap.ValueError (also for another "
+          "frame).")
       .def("__len__", [](const Scene& scene) { return scene.primitives.size(); })
       .def("__repr__", [](const Scene& scene) { return "Scene(" + std::to_string(scene.primitives.size()) + " primitives)"; });
 
@@ -172,7 +180,9 @@ the names for an unknown one.)doc");
   m.def("sonar_preset_names", &sonarPresetNames, "Head presets simulate accepts (its sonar= argument).");
   m.def(
       "read_scene", [](const std::filesystem::path& path) { return readScene(path.string()); }, py::arg("path"),
-      "Reads a scene file. Raises sonarmap.FileError naming the line and field.");
+      "Reads a scene file in the frame its first line names (ENU, NED; NWU for files without one or with the "
+      "header written before frames were named). Raises sonarmap.FileError naming the line and field, or an "
+      "unknown frame.");
 
   py::class_<PySimulation>(m, "Simulation", "A simulated MSIS run: its log, navigation track and scene.")
       .def_readonly("log", &PySimulation::log, "sonarmap.SonarLog of the simulated beams (format \"simulated\").")
@@ -409,8 +419,9 @@ bad file.)doc");
       py::arg("map"), py::arg("scene"), py::arg("tolerance") = 0.1, py::arg("z_min") = py::none(),
       py::arg("z_max") = py::none(), py::arg("max_range") = py::none(), py::arg("sensor") = py::none(),
       R"doc(Scores a map against a ground-truth scene, as ``sonarmap eval`` (eval/ground_truth.hpp).
-A map with a ``frame`` (ENU, NED) is turned back into the scenes' frame (NWU: x north, y west, z up)
-first; ``sensor`` positions, z_min and z_max are in the scenes' frame.
+A map with a ``frame`` (ENU, NED) is turned back into the internal frame of scenes (NWU: x north,
+y west, z up; a scene file's own frame is read by read_scene) first; ``sensor`` positions, z_min and
+z_max are in that internal NWU frame.
 
 map: sonarmap.OccupancyMap. scene: sonarmap.Scene, a scene file, or a built-in name (Micron-sized;
 an existing file of that name wins, as in the CLI).

@@ -15,6 +15,7 @@
 #include "../io/message_text.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/sim/scene_frame.hpp"
 
 namespace sonarmap {
 namespace {
@@ -23,6 +24,10 @@ constexpr std::string_view kPlaneFields = "px py pz nx ny nz reflectivity";
 constexpr std::string_view kBoxFields = "cx cy cz size_x size_y size_z yaw_rad reflectivity";
 constexpr std::string_view kCylinderFields = "cx cy radius_m z_min_m z_max_m reflectivity";
 constexpr std::string_view kReverberationFields = "level_db";
+
+/// The header line's start; the frame follows: "ENU (x east, …)", or "(x north, …)" in files
+/// written before the frame was named, which were NWU.
+constexpr std::string_view kHeaderPrefix = "# sonarmap scene: map frame ";
 
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
@@ -80,6 +85,19 @@ class LineContext {
   std::size_t line_number_;
 };
 
+/// The frame a header line (starting kHeaderPrefix) names: "(" opens the axes of the old NWU
+/// header; else its first word, up to a space or "(", is the frame's name.
+MapFrame headerFrame(std::string_view line, const LineContext& context) {
+  const std::string_view rest = line.substr(kHeaderPrefix.size());
+  if (rest.starts_with("(")) return MapFrame::kNwu;
+  const std::string_view name = rest.substr(0, rest.find_first_of(" \t\r("));
+  for (const MapFrame frame : {MapFrame::kEnu, MapFrame::kNed, MapFrame::kNwu}) {
+    if (name == mapFrameName(frame)) return frame;
+  }
+  context.fail("scene frame " + detail::quotedForMessage(name) + " unknown, expected ENU, NED or NWU (" +
+               std::string(kHeaderPrefix) + "ENU ...)");
+}
+
 Primitive parsePrimitive(const std::vector<std::string_view>& tokens, const LineContext& context) {
   const std::string_view kind = tokens[0];
   if (kind == "plane") {
@@ -124,25 +142,36 @@ std::string formatPrimitive(const Primitive& primitive) {
 
 Scene readScene(std::istream& in, const std::string& source) {
   Scene scene;
+  MapFrame frame = MapFrame::kNwu;  // files without a header line were written in NWU
+  std::size_t header_line = 0;
+  bool data_seen = false;
   std::string line;
   std::size_t line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    const LineContext context(source, line_number);
+    if (line.starts_with(kHeaderPrefix)) {
+      if (header_line != 0) context.fail("scene frame named again (first on line " + std::to_string(header_line) + ")");
+      if (data_seen) context.fail("scene frame named after the first primitive; it must come before");
+      frame = headerFrame(line, context);
+      header_line = line_number;
+      continue;
+    }
     const std::vector<std::string_view> tokens = tokensOf(line);
     if (tokens.empty()) continue;
-    const LineContext context(source, line_number);
+    data_seen = true;
     if (tokens[0] == "reverberation") {
       if (scene.reverberation_db) context.fail("reverberation: given twice");
       scene.reverberation_db = context.numbers<1>(tokens, kReverberationFields)[0];
       continue;
     }
-    Primitive primitive = parsePrimitive(tokens, context);
+    const Primitive primitive = parsePrimitive(tokens, context);
     try {
-      validatePrimitive(primitive);
+      validatePrimitive(primitive);  // in the file's frame, so that a message quotes the file's numbers
     } catch (const ValueError& error) {
       context.fail(error.what());
     }
-    scene.primitives.push_back(std::move(primitive));
+    scene.primitives.push_back(primitiveFromFrame(primitive, frame));
   }
   if (in.bad()) throw FileError(source + ": reading failed after line " + std::to_string(line_number));
   if (scene.primitives.empty()) throw FileError(source + ": no primitive, expected lines 'plane|box|cylinder …'");
@@ -155,14 +184,14 @@ Scene readScene(const std::string& path) {
   return readScene(in, path);
 }
 
-void writeScene(std::ostream& out, const Scene& scene) {
+void writeScene(std::ostream& out, const Scene& scene, MapFrame frame) {
   if (scene.primitives.empty()) throw ValueError("scene not written: the scene has no primitive (reading it back would fail)");
   validateScene(scene);
-  out << "# sonarmap scene: map frame (x north, y west, z up), metres, radians; reflectivity in [0, 1]\n"
+  out << kHeaderPrefix << mapFrameDescription(frame) << ", metres, radians; reflectivity in [0, 1]\n"
       << "# plane    " << kPlaneFields << "\n"
       << "# box      " << kBoxFields << "\n"
       << "# cylinder " << kCylinderFields << "\n";
-  for (const Primitive& primitive : scene.primitives) out << formatPrimitive(primitive) << '\n';
+  for (const Primitive& primitive : scene.primitives) out << formatPrimitive(primitiveInFrame(primitive, frame)) << '\n';
   if (scene.reverberation_db) {
     std::string line = "reverberation";
     appendNumbers(line, {*scene.reverberation_db});
@@ -171,8 +200,8 @@ void writeScene(std::ostream& out, const Scene& scene) {
   }
 }
 
-void writeScene(const std::string& path, const Scene& scene) {
-  writeFileAtomically(path, [&](std::ostream& out) { writeScene(out, scene); });
+void writeScene(const std::string& path, const Scene& scene, MapFrame frame) {
+  writeFileAtomically(path, [&](std::ostream& out) { writeScene(out, scene, frame); });
 }
 
 }  // namespace sonarmap

@@ -5,8 +5,6 @@
 // band, and the summary says which).
 #include <gtest/gtest.h>
 
-#include <octomap/OcTree.h>
-
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -17,6 +15,7 @@
 
 #include "cli_fixture.hpp"
 #include "figure_checks.hpp"
+#include "octomap_leaves.hpp"
 #include "sonarmap/formats/ros_bag_reader.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
 #include "sonarmap/nav/navigation.hpp"
@@ -25,17 +24,6 @@ namespace sonarmap::test {
 namespace {
 
 const fs::path kPoolBag = fs::path(SONARMAP_SHARED_DATA) / "micron_pool_ros1.bag";
-
-/// Occupied leaf centres of the .bt at `path`, read by OctoMap (x, y, z in the file's frame).
-std::vector<Eigen::Vector3d> occupiedCentres(const fs::path& path) {
-  octomap::OcTree tree(0.1);
-  if (!tree.readBinary(path.string())) ADD_FAILURE() << "OctoMap cannot read " << path;
-  std::vector<Eigen::Vector3d> centres;
-  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    if (tree.isNodeOccupied(*it)) centres.emplace_back(it.getX(), it.getY(), it.getZ());
-  }
-  return centres;
-}
 
 Eigen::Vector3d meanOf(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -67,7 +55,7 @@ class cliMapFrame : public CliTest {
   }
 };
 
-// A pile 3 m north and 1 m east of the vehicle (scene files are NWU: x 3, y −1).
+// A pile 3 m north and 1 m east of the vehicle (a scene file without a frame line is NWU: x 3, y −1).
 constexpr const char* kPileNorthEast = "cylinder 3 -1 0.2 -2 2 0.8\n";
 
 TEST_F(cliMapFrame, EnuAndNedMapsPutTheEchoWhereTheFrameSaysAndNameIt) {

@@ -81,7 +81,7 @@ TEST_F(cliSim, DefaultRunIsTheMicronAndUnchanged) {
   // counter-clockwise, so its bearings are written decreasing.
   EXPECT_EQ(fnv1a(readFile(plain / "beams.csv")), 0x3355be1bedef9eb4ULL);
   EXPECT_EQ(fnv1a(readFile(plain / "nav.csv")), 0xe498463d125b3807ULL);
-  EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0x8fc3cc34d5377912ULL);
+  EXPECT_EQ(fnv1a(readFile(plain / "scene.txt")), 0x959b743603971cd6ULL);  // in ENU since scene files name their frame
   for (const std::string& file : kSimulationFiles) EXPECT_EQ(readFile(plain / file), readFile(micron / file)) << file;
 }
 
@@ -111,8 +111,8 @@ TEST_F(cliSim, SonarPresetScansASectorOfASceneBuiltForItsRange) {
     }
     previous_deg = bearing_deg;
   }
-  // The harbour built for 50 m: the quay's face at 35 m (its block's centre 60 m north).
-  EXPECT_NE(readFile(dir / "scene.txt").find("\nbox 60 0 "), std::string::npos) << readFile(dir / "scene.txt");
+  // The harbour built for 50 m: the quay's face at 35 m (its block's centre 60 m north: ENU y 60).
+  EXPECT_NE(readFile(dir / "scene.txt").find("\nbox 0 60 "), std::string::npos) << readFile(dir / "scene.txt");
 }
 
 TEST_F(cliSim, HelpListsPresetsScenesAndUnits) {

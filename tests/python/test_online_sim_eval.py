@@ -100,6 +100,35 @@ def test_simulation_outputs(simulated_tank, tmp_path):
         sonarmap.read_scene(str(bad))
 
 
+def test_scene_files_in_the_map_frame(tmp_path):
+    # A wall 5 m east, facing west: ENU x = 5, NED y = 5, NWU (the scenes' internal frame) y = -5.
+    header = "# sonarmap scene: map frame {} metres, radians; reflectivity in [0, 1]\n"
+    enu = tmp_path / "enu.txt"
+    enu.write_text(header.format("ENU (x east, y north, z up),") + "plane 5 0 0 -1 0 0 0.9\n")
+    ned = tmp_path / "ned.txt"
+    ned.write_text(header.format("NED (x north, y east, z down),") + "plane 0 5 0 0 -1 0 0.9\n")
+    old = tmp_path / "old.txt"  # written before scene files named their frame
+    old.write_text(header.format("(x north, y west, z up),") + "plane 0 -5 0 0 1 0 0.9\n")
+    nwu_points = np.array([[0.0, 0.0, 0.0], [2.0, -4.0, 1.0], [-3.0, -7.5, -2.0]])
+    for path in (enu, ned, old):
+        scene = sonarmap.read_scene(str(path))
+        assert np.allclose(scene.distance(nwu_points), [5.0, 1.0, 2.5], atol=1e-12), path
+    # write names its frame in the first line and reads back exactly; ENU unless told.
+    scene = sonarmap.read_scene(str(enu))
+    for frame, first in (("enu", "map frame ENU"), ("ned", "map frame NED"), (None, "map frame ENU")):
+        out = tmp_path / f"out_{frame}.txt"
+        scene.write(str(out)) if frame is None else scene.write(str(out), frame=frame)
+        assert first in out.read_text().splitlines()[0]
+        assert sonarmap.read_scene(str(out)).primitives == scene.primitives
+    assert "plane 5 0 0 -1 0 0 0.9" in (tmp_path / "out_enu.txt").read_text()
+    with pytest.raises(sonarmap.ValueError, match="enu"):
+        scene.write(str(tmp_path / "x.txt"), frame="nwu")
+    bad = tmp_path / "bad_frame.txt"
+    bad.write_text(header.format("ECEF") + "plane 0 -5 0 0 1 0 0.9\n")
+    with pytest.raises(sonarmap.FileError, match="line 1: scene frame 'ECEF' unknown"):
+        sonarmap.read_scene(str(bad))
+
+
 def test_3d_mission_maps_in_volume(tmp_path):
     run = sonarmap.simulate("quay3d", turns=2, speed=0.1)
     m = sonarmap.map_sonar_log(run.log, nav=run.nav, volume=True, resolution=0.1)

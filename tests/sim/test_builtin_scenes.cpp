@@ -323,7 +323,7 @@ TEST(simBuiltinScenes, Quay3dHasHeightStructureScaledWithTheReach) {
   // distance is the same.
   const Scene scene = builtinScene("quay3d");
   std::stringstream file;
-  writeScene(file, scene);
+  writeScene(file, scene, MapFrame::kNed);  // NED: every yaw negated, every z flipped
   const Scene read = readScene(file, "quay3d.scene");
   ASSERT_EQ(read.primitives.size(), scene.primitives.size());
   for (const Eigen::Vector3d& point : {Eigen::Vector3d(0.3, 2.9, -3.5), Eigen::Vector3d(-1.2, -0.8, -4.5),

@@ -1,8 +1,8 @@
 #pragma once
 /// @file map_frame.hpp
-/// The frame a map is written and drawn in, chosen by the user: ENU (ROS REP 103/105: x east,
-/// y north, z up; the default, so octovis shows it upright and it overlays a ROS `odom` frame) or
-/// NED (x north, y east, z down; the navigation's frame).
+/// The frame a map is written and drawn in (MapFrame, nav/map_frame_axes.hpp), chosen by the
+/// user: ENU (ROS REP 103/105: x east, y north, z up; the default, so octovis shows it upright and
+/// it overlays a ROS `odom` frame) or NED (x north, y east, z down; the navigation's frame).
 ///
 /// The mapper builds its octree in one internal frame, NWU (x north, y west, z up:
 /// navigation.hpp's nedToMap), and every public output is converted from it on the way out. Each
@@ -18,29 +18,10 @@
 
 #include <Eigen/Core>
 
+#include "sonarmap/nav/map_frame_axes.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
-
-/// A frame maps are written in. kNwu is the mapper's internal frame (and that of map files
-/// written without a frame line); users choose kEnu or kNed.
-enum class MapFrame { kEnu, kNed, kNwu };
-
-/// The frame maps are written in unless the user chooses another.
-inline constexpr MapFrame kDefaultMapFrame = MapFrame::kEnu;
-
-/// "ENU", "NED" or "NWU".
-std::string_view mapFrameName(MapFrame frame);
-
-/// The frame and its axes, e.g. "ENU (x east, y north, z up)".
-std::string mapFrameDescription(MapFrame frame);
-
-/// The frame a user names: "enu" or "ned", any case.
-/// @throws ValueError for any other text; the message lists the choices.
-MapFrame parseMapFrame(std::string_view text);
-
-/// Rotation taking internal (NWU) coordinates to `frame`'s: a signed permutation matrix.
-Eigen::Matrix3d nwuToMapFrame(MapFrame frame);
 
 /// `points_m` (NWU, metres) in `frame`, each multiplied by nwuToMapFrame(frame).
 std::vector<Eigen::Vector3d> pointsInMapFrame(const std::vector<Eigen::Vector3d>& points_m, MapFrame frame);

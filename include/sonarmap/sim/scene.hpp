@@ -4,7 +4,8 @@
 /// reflectivity, ray–surface intersection (range and surface normal, for the echo's incidence-angle
 /// falloff) and the distance from a point to the nearest surface (for map evaluation).
 ///
-/// Frame: everything is in the map frame (navigation.hpp): NWU, x north, y west, z up, metres.
+/// Frame: everything is in the internal map frame (navigation.hpp): NWU, x north, y west, z up,
+/// metres. Scene files are written in the map frame the user chose (ENU or NED, scene_file.hpp).
 /// Every primitive is a surface; a ray meets it from either side. A box seen from outside is a
 /// solid block (a floater, a quay block); seen from inside it is the walls of a water volume (a
 /// tank around the sonar). The file format is in scene_file.hpp.
