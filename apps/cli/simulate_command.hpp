@@ -26,6 +26,7 @@ struct SimulateArgs : SimulationArguments {
   bool quiet = false;  ///< -q: no progress bar
   std::string bag;     ///< --bag: also the log and its believed navigation as a ROS 1 bag (empty: none)
   std::string mcap;    ///< --mcap: also as a ROS 2 log in MCAP (empty: none)
+  std::string geo_origin;  ///< --geo-origin LAT,LON[,H]: with --bag, the NED zero on the Earth (NavSatFix written)
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.
