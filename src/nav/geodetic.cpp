@@ -146,7 +146,7 @@ std::string describeGeodetic(const GeodeticPoint& point) {
   char text[96];
   std::snprintf(text, sizeof text, "%.7f %s, %.7f %s, %.2f m", std::abs(point.latitude_deg),
                 point.latitude_deg < 0 ? "S" : "N", std::abs(point.longitude_deg), point.longitude_deg < 0 ? "W" : "E",
-                point.height_m);
+                std::abs(point.height_m) < 0.005 ? 0.0 : point.height_m);  // no "-0.00"
   return text;
 }
 
