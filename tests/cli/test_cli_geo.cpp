@@ -150,6 +150,23 @@ TEST_F(GeoTiffRun, WallsKnownInLatitudeAndLongitudeLandOnTheirPixels) {
   EXPECT_GT(loudest, 1);
 }
 
+TEST_F(cliGeo, LiveWritesTheGeoTiffMapWrites) {
+  const ProgramRun sim = run({"simulate", "tank", "-o", (root_ / "sim").string(), "--speed", "0.1", "--turns", "1",
+                              "--bag", (root_ / "run.bag").string(), "--geo-origin", "60.39,5.32", "-q"});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const ProgramRun map = run({"map", (root_ / "run.bag").string(), "-o", (out_ / "map.bt").string(), "--geotiff",
+                              (out_ / "map.tif").string(), "-q"});
+  ASSERT_EQ(map.exit_code, 0) << map.err;
+  EXPECT_NE(map.out.find("UTM zone 32N (EPSG:32632)"), std::string::npos) << map.out;  // Bergen: Norway's zone 32
+  // The replayed bag's own NavSatFix places live's map: the same files as map's, at its last write.
+  const ProgramRun live = run({"live", (root_ / "run.bag").string(), "-o", (out_ / "live.bt").string(), "--geotiff",
+                               (out_ / "live.tif").string(), "--rate", "0", "-q"});
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  EXPECT_EQ(readFile(out_ / "live.bt"), readFile(out_ / "map.bt"));
+  EXPECT_EQ(readFile(out_ / "live.tif"), readFile(out_ / "map.tif"));
+  EXPECT_NE(live.out.find("geodetic origin: the map's zero at 60.3900000 N, 5.3200000 E"), std::string::npos) << live.out;
+}
+
 TEST_F(cliGeo, GeoTiffWithoutAPlaceOnTheEarthIsAnError) {
   const ProgramRun sim = run({"simulate", "tank", "-o", (root_ / "sim").string(), "--turns", "1", "-q"});
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
