@@ -176,6 +176,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
   shown.map_origin_ned_m = origin.ned_m;
+  shown.mosaic_min_range_m = mapped.mapper.stats().calibration.min_range_highest_m;
   shown.map_geodetic_zero = mapGeodeticZero(navigation ? navigation->source.geodetic_origin : std::nullopt,
                                             args.geo_origin, origin);
   const std::string geo_from = !args.geo_origin.empty() ? "--geo-origin"

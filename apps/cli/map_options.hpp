@@ -45,6 +45,9 @@ struct MapArgs : MappingArguments {
   std::optional<GeodeticPoint> map_geodetic_zero;
   std::string geotiff;  ///< --geotiff: the 2D map as a GeoTIFF in the UTM zone of the map's zero (empty: none)
   bool mosaic = false;  ///< --mosaic: with --geotiff, the echo intensity as the GeoTIFF's second band
+  /// Set by the command: bins nearer than this left out of the mosaic (the detector's highest
+  /// minimum range over the sweeps: the transducer's ring-down), metres.
+  double mosaic_min_range_m = 0.0;
 };
 
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.

@@ -174,7 +174,9 @@ void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& 
     // The 2D map's heights: the --png picture's band (the occupied voxels'; the slice z = 0 when none is).
     const PictureBand band = pictureBand(map);
     const std::optional<MosaicGrid> mosaic =
-        args.mosaic ? std::optional(echoMosaic(source, pose_at ? pose_at : sonarPoseOn({}, {}), res)) : std::nullopt;
+        args.mosaic ? std::optional(echoMosaic(source, pose_at ? pose_at : sonarPoseOn({}, {}),
+                                               {res, args.beam_width_deg * std::numbers::pi / 180.0, args.mosaic_min_range_m}))
+                    : std::nullopt;
     outputs.stageBytes(args.geotiff,
                        encodeGeoTiff(utmRasterOfMap(map, band.z_min_m, band.z_max_m, *args.map_geodetic_zero,
                                                     mosaic ? &*mosaic : nullptr)));

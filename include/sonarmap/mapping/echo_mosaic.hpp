@@ -19,15 +19,24 @@ namespace sonarmap {
 /// navigation then) and is left out.
 using SonarPoseAt = std::function<std::optional<Eigen::Isometry3d>(double time_s)>;
 
-/// One pass over `source`: each bin k of each beam placed at its centre, range (k + 0.5) ×
-/// bin_length_m along the beam's bearing in the sonar's plane (x ahead, y starboard, z 0: the
-/// sonar frame of navigation.hpp), by `pose_at(beam.time_s)`, into the voxel column (map x, y) of
-/// edge `resolution_m` holding it (columns aligned on the map's voxels: multiples of resolution_m
-/// from its zero). A column's value is the highest intensity of its bins, raised to 1 so that a
-/// column heard as silent (0) differs from one never heard (0 in the grid: no data).
+/// What the mosaic takes of each beam.
+struct EchoMosaicOptions {
+  double resolution_m = 0.05;   ///< edge of a column: the map's resolution (> 0)
+  double beam_width_rad = 0.0;  ///< each bin spread over this arc about the bearing (the head's width); 0: a ray
+  double min_range_m = 0.0;     ///< bins nearer than this left out (the transducer's ring-down: the detector's minimum range)
+};
+
+/// One pass over `source`: each bin k of each beam at range (k + 0.5) × bin_length_m, spread over
+/// options.beam_width_rad about the beam's bearing in the sonar's plane (x ahead, y starboard, z 0:
+/// the sonar frame of navigation.hpp; points every half column along the arc), placed by
+/// `pose_at(beam.time_s)` into the voxel columns (map x, y) of edge options.resolution_m it meets
+/// (aligned on the map's voxels: multiples of the edge from its zero). A column's value is the
+/// highest intensity of its bins, raised to 1 so that a column heard as silent (0) differs from one
+/// never heard (0 in the grid: no data). Bins nearer than options.min_range_m are left out.
 /// The grid covers the heard columns; a log without beams gives a 1 × 1 grid of 0.
-/// Cost: one pass, O(bins); memory: the heard columns.
-/// @throws ValueError when resolution_m is not positive and finite; what the source throws.
-MosaicGrid echoMosaic(BeamSource& source, const SonarPoseAt& pose_at, double resolution_m);
+/// Cost: one pass, O(bins × arc points); memory: the heard columns.
+/// @throws ValueError when an option is negative, not finite, or the resolution not positive; what
+///         the source throws.
+MosaicGrid echoMosaic(BeamSource& source, const SonarPoseAt& pose_at, const EchoMosaicOptions& options);
 
 }  // namespace sonarmap
