@@ -185,28 +185,17 @@ std::string ardusubLog(bool with_ekf, bool with_gps) {
       test::putLittle(baro, 0.0f);
       log += test::dataflashRecord(132, baro);
     }
-    if (with_gps && i == 5) {  // boot 2.0 s = GPS week 2327, 123456.789 s of the week
+    // boot 2.0 s = GPS week 2327, 123456.789 s of the week, at 43.2961 N, 5.37 E (Lat, Lng in 1e-7
+    // degrees); at 2.4 s a receiver's garbage, latitude 95 degrees, skipped with a note
+    if (with_gps && (i == 5 || i == 7)) {
       std::string gps;
       test::putLittle(gps, time_us);
       test::putLittle(gps, std::uint8_t{0});
       test::putLittle(gps, std::uint8_t{3});
-      test::putLittle(gps, std::uint32_t{123456789});
+      test::putLittle(gps, std::uint32_t{i == 5 ? 123456789u : 123457189u});
       test::putLittle(gps, std::uint16_t{2327});
-      gps += std::string(1 + 2, '\0');           // NSats, HDop
-      test::putLittle(gps, std::int32_t{432961000});  // Lat, 1e-7 degrees: 43.2961 N
-      test::putLittle(gps, std::int32_t{53700000});   // Lng: 5.37 E
-      gps += std::string(4 + 16 + 1, '\0');
-      log += test::dataflashRecord(133, gps);
-    }
-    if (with_gps && i == 7) {  // a receiver's garbage: latitude 95 degrees, skipped with a note
-      std::string gps;
-      test::putLittle(gps, time_us);
-      test::putLittle(gps, std::uint8_t{0});
-      test::putLittle(gps, std::uint8_t{3});
-      test::putLittle(gps, std::uint32_t{123457189});
-      test::putLittle(gps, std::uint16_t{2327});
-      gps += std::string(1 + 2, '\0');
-      test::putLittle(gps, std::int32_t{950000000});
+      gps += std::string(1 + 2, '\0');  // NSats, HDop
+      test::putLittle(gps, std::int32_t{i == 5 ? 432961000 : 950000000});
       test::putLittle(gps, std::int32_t{53700000});
       gps += std::string(4 + 16 + 1, '\0');
       log += test::dataflashRecord(133, gps);
