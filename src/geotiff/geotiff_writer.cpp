@@ -29,16 +29,16 @@ void check(CPLErr status, const char* what) {
 }
 
 void checkRaster(const GeoRaster& r) {
-  if (r.width <= 0 || r.height <= 0) throw ValueError("encodeGeoTiff: the raster is empty");
+  if (r.width <= 0 || r.height <= 0) throw ValueError("GeoTIFF: the raster is empty");
   const auto pixels = static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height);
-  if (r.classes.size() != pixels) throw ValueError("encodeGeoTiff: band 1 holds " + std::to_string(r.classes.size()) +
+  if (r.classes.size() != pixels) throw ValueError("GeoTIFF: band 1 holds " + std::to_string(r.classes.size()) +
                                                     " values for " + std::to_string(pixels) + " pixels");
   if (!r.intensity.empty() && r.intensity.size() != pixels) {
-    throw ValueError("encodeGeoTiff: band 2 holds " + std::to_string(r.intensity.size()) + " values for " +
+    throw ValueError("GeoTIFF: band 2 holds " + std::to_string(r.intensity.size()) + " values for " +
                      std::to_string(pixels) + " pixels");
   }
   if (!(r.pixel_m > 0.0) || !std::isfinite(r.pixel_m) || !std::isfinite(r.west_m) || !std::isfinite(r.north_m)) {
-    throw ValueError("encodeGeoTiff: the pixel size and the corner must be finite, the pixel size positive");
+    throw ValueError("GeoTIFF: the pixel size and the corner must be finite, the pixel size positive");
   }
 }
 

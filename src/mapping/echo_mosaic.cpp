@@ -16,10 +16,10 @@ namespace sonarmap {
 
 MosaicGrid echoMosaic(BeamSource& source, const SonarPoseAt& pose_at, const EchoMosaicOptions& options) {
   const double resolution_m = options.resolution_m;
-  if (!(resolution_m > 0.0) || !std::isfinite(resolution_m)) throw ValueError("echoMosaic: resolution must be positive and finite");
+  if (!(resolution_m > 0.0) || !std::isfinite(resolution_m)) throw ValueError("the echo mosaic's resolution must be positive and finite");
   if (!(options.beam_width_rad >= 0.0) || !std::isfinite(options.beam_width_rad) || !(options.min_range_m >= 0.0) ||
       !std::isfinite(options.min_range_m)) {
-    throw ValueError("echoMosaic: the beam width and the minimum range must be finite and not negative");
+    throw ValueError("the echo mosaic's beam width and minimum range must be finite and not negative");
   }
   absl::flat_hash_map<std::int64_t, std::uint8_t> columns;  // key: (ix << 32) | iy as unsigned
   auto key = [](std::int64_t ix, std::int64_t iy) { return (ix << 32) ^ (iy & 0xffffffffLL); };

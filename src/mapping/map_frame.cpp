@@ -134,7 +134,7 @@ Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments) {
 }
 
 std::string mapGeodeticComment(const GeodeticPoint& map_zero) {
-  requireGeodetic(map_zero, "mapGeodeticComment");
+  requireGeodetic(map_zero, "the map's geodetic origin");
   char text[200];
   std::snprintf(text, sizeof text,
                 "%.15g %.15g %.6g (latitude, longitude in degrees, height in metres above the WGS84 ellipsoid of the "

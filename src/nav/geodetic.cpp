@@ -60,7 +60,7 @@ Eigen::Vector3d geodeticToNed(const GeodeticPoint& origin, const GeodeticPoint& 
 }
 
 GeodeticPoint nedToGeodetic(const GeodeticPoint& origin, const Eigen::Vector3d& ned_m) {
-  if (!ned_m.allFinite()) throw ValueError("nedToGeodetic: a position that is not finite");
+  if (!ned_m.allFinite()) throw ValueError("a position on the tangent plane that is not finite");
   return TangentPlane(origin).toGeodetic(ned_m);
 }
 
@@ -69,7 +69,7 @@ std::string UtmZone::describe() const {
 }
 
 UtmZone utmZoneOf(const GeodeticPoint& point) {
-  requireGeodetic(point, "utmZoneOf");
+  requireGeodetic(point, "the point whose UTM zone is asked");
   if (point.latitude_deg < -80.0 || point.latitude_deg >= 84.0) {
     throw ValueError("latitude " + std::to_string(point.latitude_deg) + " is beyond UTM's [-80, 84) degrees (polar: UPS)");
   }
@@ -80,14 +80,14 @@ UtmZone utmZoneOf(const GeodeticPoint& point) {
 }
 
 Eigen::Vector2d geodeticToUtm(const GeodeticPoint& point, const UtmZone& zone) {
-  requireGeodetic(point, "geodeticToUtm");
+  requireGeodetic(point, "the point to put on UTM");
   int got_zone = 0;
   bool north = false;
   double x = 0.0, y = 0.0;
   try {
     GeographicLib::UTMUPS::Forward(point.latitude_deg, point.longitude_deg, got_zone, north, x, y, zone.zone);
   } catch (const GeographicLib::GeographicErr& error) {
-    throw ValueError(std::string("geodeticToUtm: ") + error.what());
+    throw ValueError(std::string("UTM: ") + error.what());
   }
   // The hemisphere is the zone's (a point just south of the equator in a northern zone: negative northing).
   if (north != zone.north) y += north ? -GeographicLib::UTMUPS::UTMShift() : GeographicLib::UTMUPS::UTMShift();
@@ -100,7 +100,7 @@ GeodeticPoint utmToGeodetic(const Eigen::Vector2d& easting_northing_m, const Utm
     GeographicLib::UTMUPS::Reverse(zone.zone, zone.north, easting_northing_m.x(), easting_northing_m.y(),
                                    point.latitude_deg, point.longitude_deg);
   } catch (const GeographicLib::GeographicErr& error) {
-    throw ValueError(std::string("utmToGeodetic: ") + error.what());
+    throw ValueError(std::string("UTM: ") + error.what());
   }
   return point;
 }
