@@ -6,7 +6,9 @@
 # `apt-get install ./sonarmap_*.deb` pulls what it needs from Debian: the shared libraries the
 # CLI and the module link (dpkg-shlibdeps) and, since the library is static and its headers
 # include OpenCV and Eigen, the -dev packages a consumer's build links (sonarmapConfig.cmake's
-# find_dependency list). tests/consumer/run_package_test.sh checks the package.
+# find_dependency list; libgeographiclib-dev: the io component links libGeographicLib.so). GDAL is
+# linked by the shared libsonarmap_geotiff.so only, so its runtime library (libgdal32, found by
+# dpkg-shlibdeps) is all the package needs of it. scripts/test-package.sh checks the package.
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME sonarmap)
 set(CPACK_PACKAGE_VENDOR "sonarmap")
@@ -20,7 +22,7 @@ set(CPACK_DEBIAN_PACKAGE_MAINTAINER "sonarmap developers <sonarmap@localhost>")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-  "libopencv-dev, libpng-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, libicu-dev, libnanoflann-dev, libceres-dev, librosbag-storage-dev, libzstd-dev, liblz4-dev, libsqlite3-dev, libcpp-httplib-dev, pkg-config")
+  "libopencv-dev, libpng-dev, libeigen3-dev, libmatio-dev, libabsl-dev, zlib1g-dev, libicu-dev, libnanoflann-dev, libceres-dev, librosbag-storage-dev, libzstd-dev, liblz4-dev, libsqlite3-dev, libcpp-httplib-dev, libgeographiclib-dev, pkg-config")
 if(TARGET sonarmap_python)
   # the extension is built for one Python minor version (its ABI)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS

@@ -8,6 +8,8 @@ packages=(build-essential cmake ninja-build pkg-config
   # chunks: zstd and lz4 frames
   librosbag-storage-dev libzstd-dev liblz4-dev libsqlite3-dev
   libgtest-dev libbenchmark-dev liboctomap-dev
+  # positions on the Earth (src/nav/geodetic.cpp) and the GeoTIFF writer (src/geotiff)
+  libgeographiclib-dev libgdal-dev
   # the Python module and its examples (Debian's python3, not PyPI)
   python3-dev pybind11-dev python3-numpy python3-matplotlib
   # sonarmap view: three.js, compiled into the tool and inlined into each page
@@ -24,6 +26,9 @@ if [ "${1:-}" = test ]; then
   packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium ccache)
   # the ROS node's test against a real master: roscore, rosbag play, rostopic, rospy (tests/ros)
   packages+=(ros-core python3-roslaunch python3-rosmaster python3-rosbag python3-rospy python3-genpy librosbag-dev)
+  # gdalinfo and gdallocationinfo read the GeoTIFFs back (tests/cli/test_cli_geo.cpp); python3-gdal
+  # draws the chart of docs/geo.md (scripts/geotiff_chart.py)
+  packages+=(gdal-bin python3-gdal)
   # node and npm for the live page's browser test (tests/live/page_test.js), unless a node is there
   command -v node >/dev/null || packages+=(nodejs npm)
 fi

@@ -142,6 +142,16 @@ void printNav(const LogSummary& s, const InfoNavigation& info) {
   std::printf("navigation  %s: %zu fixes, %.1f .. %.1f s (%.1f s), %.2f m travelled\n", nav_source.c_str(), n.fixes, n.first_time_s, n.last_time_s, n.duration_s,
               n.distance_m);
   for (const std::string& note : info.navigation->source.notes) std::printf("            %s\n", note.c_str());
+  const NavigationSource& source = info.navigation->source;
+  if (source.geodetic_origin) {
+    std::printf("on Earth    %s: %zu fixes; the navigation's zero at %s, %s\n", source.geodetic_description.c_str(),
+                source.geodetic_fixes.size(), describeGeodetic(*source.geodetic_origin).c_str(),
+                utmZoneOf(*source.geodetic_origin).describe().c_str());
+  } else {
+    std::printf("on Earth    %s (map --geo-origin LAT,LON places the map)\n",
+                source.geodetic_fixes.empty() ? "no latitude and longitude in the navigation"
+                                              : "no latitude and longitude within the navigation's span");
+  }
   printClocks(s, info);
   if (n.coversBeams()) {
     std::printf("            covers every beam\n");
@@ -160,6 +170,7 @@ struct BagTopics {
 const char* topicUse(const BagTopics& bag, const RosBagTopic& topic) {
   if (topic.topic == bag.sonar_topic) return "sonar (a bearing, a bin length or range, intensities)";
   if (topic.topic == bag.nav_topic) return "navigation (a header and a pose)";
+  if (topic.type == "sensor_msgs/NavSatFix" || topic.type == "sensor_msgs/msg/NavSatFix") return "latitude and longitude";
   return "";
 }
 
@@ -244,6 +255,14 @@ nlohmann::json toJson(const LogSummary& s, const InfoArgs& args, LogFormat forma
            {"last_time_s", n.last_time_s}, {"duration_s", n.duration_s}, {"distance_m", n.distance_m},
            {"beams_before", n.beams_before}, {"beams_after", n.beams_after}, {"beams_outside", n.beams_outside},
            {"covers_beams", n.coversBeams()}};
+    nav["geodetic_fixes"] = a.source.geodetic_fixes.size();
+    nav["geodetic_source"] = a.source.geodetic_description.empty() ? nlohmann::json(nullptr)
+                                                                   : nlohmann::json(a.source.geodetic_description);
+    nav["geodetic_origin"] = nullptr;
+    if (const std::optional<GeodeticPoint>& g = a.source.geodetic_origin) {
+      nav["geodetic_origin"] = {{"latitude_deg", g->latitude_deg}, {"longitude_deg", g->longitude_deg},
+                                {"height_m", g->height_m}, {"utm_epsg", utmZoneOf(*g).epsg()}};
+    }
   }
   nlohmann::json topics = nlohmann::json::array();
   for (const RosBagTopic& t : bag.topics) {

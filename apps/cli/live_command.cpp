@@ -58,6 +58,9 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
       ->group(help_group::kLocalization);
   addOdometryOptions(*cmd, args.map.odometry);
   addOriginOption(*cmd, args.map.origin);
+  addGeoOriginOption(*cmd, args.map.geo_origin);
+  cmd->add_option("--geotiff", args.map.geotiff, "The 2D map on the Earth as a GeoTIFF, rewritten with the map")
+      ->group(help_group::kOutput);
   cmd->add_option("--trajectory", args.map.trajectory_out, "With --slam: write the corrected trajectory (.csv, .tum)")
       ->group(help_group::kOutput);
   struct Checked {
@@ -85,6 +88,7 @@ Command addLiveCommand(CLI::App& app, LiveArgs& args) {
     }
     if (!args.map.trajectory_out.empty() && !args.map.slam) throw ValueError("live --trajectory needs --slam");
     requireMapOutput(args.map.output_bt);
+    requireGeoTiffOutput(args.map.geotiff, false);
     requireTrajectoryOutput(args.map.trajectory_out);
     if (!args.record.empty() && !args.record.ends_with(".mcap")) {
       throw ValueError("--record writes an MCAP file: give a path ending in .mcap, got '" + args.record + "'");

@@ -23,6 +23,7 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/ping360_reader.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/live/live_map_files.hpp"
 #include "sonarmap/live/live_page.hpp"
 #include "sonarmap/live/live_session.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
@@ -129,7 +130,8 @@ void finishLive(const LiveArgs& args, LiveSession& session, const LiveResult& re
                           " as the range scale grew)";
   }
   run.mapper.stats().beams_skipped = result.skipped;
-  writeMapFileInFrame(run.mapper.map(), args.map.output_bt, args.map.map_frame, origin.ned_m);
+  const LiveOutputs& files = session.outputs();  // the map, and its GeoTIFF, as the periodic writes
+  live::writeLiveMapFiles(run.mapper.map(), files, origin);
   if (!args.map.trajectory_out.empty()) {
     FileTransaction outputs;
     stageTrajectory(outputs, args.map.trajectory_out, inNavigationFrame(trajectory, origin));
@@ -148,6 +150,7 @@ void finishLive(const LiveArgs& args, LiveSession& session, const LiveResult& re
                  result.fixes_dropped);
   }
   printOrigin(origin);
+  printGeodeticZero(live::liveGeodeticZero(files, origin), !args.map.geo_origin.empty() ? "--geo-origin" : "the log's navigation");
   printMapSummary(run, args.map, with_nav || args.map.slam, warnings.size());
   if (slam_report) printSlamSummary(*slam_report, with_nav);
   if (!result.recorded.empty()) {
@@ -182,6 +185,8 @@ LiveOutputs outputsOf(const LiveArgs& args) {
   outputs.map_path = args.map.output_bt;
   outputs.map_frame = args.map.map_frame;
   outputs.write_every_s = args.write_every_s;
+  outputs.geotiff_path = args.map.geotiff;
+  if (!args.map.geo_origin.empty()) outputs.geodetic_origin = parseGeodeticPoint(args.map.geo_origin);
   outputs.record_path = args.record;
   outputs.record_metadata = {{"program", "sonarmap " SONARMAP_VERSION " live"}, {"source", args.map.input},
                              {"format", args.map.format}, {"mounting", mountingText({})}};
@@ -191,6 +196,14 @@ LiveOutputs outputsOf(const LiveArgs& args) {
     outputs.record_metadata["mounting"] = mountingText(mounting);
   }
   return outputs;
+}
+
+/// --geotiff needs the map's place on the Earth: --geo-origin, or a replayed log's latitude and longitude.
+void requireGeoTiffPlace(const LiveArgs& args, const LiveOutputs& outputs) {
+  if (!args.map.geotiff.empty() && !outputs.geodetic_origin) {
+    throw ValueError("--geotiff needs the map's place on the Earth: give --geo-origin LAT,LON (a replayed log's own "
+                     "latitude and longitude are taken when it has them)");
+  }
 }
 
 /// Runs `session` to its end and finishes it, its page served with --serve.
@@ -232,6 +245,7 @@ void runOnHead(const LiveArgs& args, const MapperOptions& options, const Eigen::
   input.nav = args.nav_stream;
   input.idle_timeout_s = args.idle_timeout_s;
   ConsoleObserver console(args.map.quiet);
+  requireGeoTiffPlace(args, outputsOf(args));
   LiveSession session(std::move(input), outputsOf(args),
                       mappingOptions(args, sonar_options, sonar_to_body, with_nav, known_fixes, origin_resolution_m),
                       known_fixes, &console);
@@ -276,7 +290,10 @@ void runReplay(const LiveArgs& args, const MapperOptions& options, const Eigen::
   input.replay = std::move(source);
   input.rate = args.rate;
   ConsoleObserver console(args.map.quiet);
-  LiveSession session(std::move(input), outputsOf(args), std::move(mapping), known_fixes, &console);
+  LiveOutputs outputs = outputsOf(args);
+  if (!outputs.geodetic_origin && navigation) outputs.geodetic_origin = navigation->source.geodetic_origin;
+  requireGeoTiffPlace(args, outputs);
+  LiveSession session(std::move(input), std::move(outputs), std::move(mapping), known_fixes, &console);
   runSession(args, session, console, navigation.has_value());
 }
 

@@ -60,6 +60,10 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
       ->group(help_group::kLocalization);
   addOdometryOptions(*cmd, args.odometry);
   addOriginOption(*cmd, args.origin);
+  addGeoOriginOption(*cmd, args.geo_origin);
+  cmd->add_option("--geotiff", args.geotiff, "The 2D map on the Earth as a GeoTIFF (UTM; needs a geodetic origin)")
+      ->group(help_group::kOutput);
+  cmd->add_flag("--mosaic", args.mosaic, "With --geotiff: the echo intensity as its second band")->group(help_group::kOutput);
   cmd->add_option("--trajectory", args.trajectory_out, "Write the trajectory mapped with (.csv, or TUM .tum/.txt)")
       ->group(help_group::kOutput);
   auto check = [&args, checked] {
@@ -77,6 +81,7 @@ Command addMapCommand(CLI::App& app, MapArgs& args) {
     requirePngOutput(args.polar_png, "--polar-png");
     requirePngOutput(args.cartesian_png, "--cartesian-png");
     requireTrajectoryOutput(args.trajectory_out);
+    requireGeoTiffOutput(args.geotiff, args.mosaic);
     checked->options = toMapperOptions(args);
     checked->sonar_to_body = toSonarToBody(args.mounting);
   };
@@ -171,9 +176,20 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   MapArgs shown = args;  // the images spread each beam over the sonar's width (its default when not given)
   shown.beam_width_deg = sonar_options.beam_width_rad * 180.0 / std::numbers::pi;
   shown.map_origin_ned_m = origin.ned_m;
+  shown.mosaic_min_range_m = mapped.mapper.stats().calibration.min_range_highest_m;
+  shown.map_geodetic_zero = mapGeodeticZero(navigation ? navigation->source.geodetic_origin : std::nullopt,
+                                            args.geo_origin, origin);
+  const std::string geo_from = !args.geo_origin.empty() ? "--geo-origin"
+                               : navigation             ? navigation->source.geodetic_description
+                                                        : std::string();
+  if (!args.geotiff.empty() && !shown.map_geodetic_zero) {
+    throw ValueError("--geotiff needs the map's place on the Earth: the log holds no latitude and longitude "
+                     "(NavSatFix, GPS, GLOBAL_POSITION_INT) within its navigation's span; give --geo-origin LAT,LON");
+  }
   stageMapOutputs(outputs, shown, *source, survey, mapped.mapper.map(), mapped.mapper.map().resolution_m(), side_png,
                   trajectory.empty() ? std::vector<Eigen::Vector3d>{Eigen::Vector3d::Zero()}
-                                     : sonarTrack(trajectory, mounting, survey));
+                                     : sonarTrack(trajectory, mounting, survey),
+                  sonarPoseOn(trajectory, mounting));
   outputs.commit();
   std::vector<SkipReasonGroup> skip_reasons;
   addSkipReasons(skip_reasons, source->header().skip_reasons);
@@ -182,6 +198,7 @@ void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isom
   const std::vector<std::string> warnings =
       mappingWarnings(mapped.mapper.stats(), mapped.mapper.options(), mapped.mapper.map().resolution_m());
   printWarnings(warnings);
+  printGeodeticZero(shown.map_geodetic_zero, geo_from);
   printMapSummary(mapped, args, /*with_nav=*/!trajectory.empty(), warnings.size());
   if (args.slam) printSlamSummary(slam.report, !nav.empty());
   if (args.tank_report) printTankReport(mapped.mapper.map());

@@ -39,6 +39,15 @@ struct MapArgs : MappingArguments {
   /// Not an option: the local origin the navigation was mapped about (--origin's or the automatic
   /// one, NED m), named in the map file's header when not zero.
   Eigen::Vector3d map_origin_ned_m = Eigen::Vector3d::Zero();
+  std::string geo_origin;  ///< --geo-origin LAT,LON[,H]: the navigation's NED zero on the Earth (empty: the log's)
+  /// Set by the command (not an option): the map's zero on the Earth, named in the map file's
+  /// header and placing the GeoTIFF; nullopt when neither the log nor --geo-origin gives it.
+  std::optional<GeodeticPoint> map_geodetic_zero;
+  std::string geotiff;  ///< --geotiff: the 2D map as a GeoTIFF in the UTM zone of the map's zero (empty: none)
+  bool mosaic = false;  ///< --mosaic: with --geotiff, the echo intensity as the GeoTIFF's second band
+  /// Set by the command: bins nearer than this left out of the mosaic (the detector's highest
+  /// minimum range over the sweeps: the transducer's ring-down), metres.
+  double mosaic_min_range_m = 0.0;
 };
 
 /// Adds `--format` (the input log's format: auto, or parseLogFormat's names, for inputFormat) to `cmd`.

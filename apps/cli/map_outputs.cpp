@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/eval/tank_quality.hpp"
+#include "sonarmap/io/geotiff.hpp"
 #include "sonarmap/io/map_file.hpp"
+#include "sonarmap/mapping/geo_raster.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
 #include "sonarmap/mapping/map_slice.hpp"
 #include "sonarmap/render/map_figures.hpp"
@@ -141,20 +144,43 @@ std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isomet
   return sonarTrack(nav, sonar_to_body, surveyLog(passOver(log)));
 }
 
+SonarPoseAt sonarPoseOn(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body) {
+  if (nav.empty()) return [](double) { return std::optional<Eigen::Isometry3d>(staticSonarToMap()); };
+  auto interpolator = std::make_shared<NavInterpolator>(nav);
+  return [interpolator, sonar_to_body](double time_s) -> std::optional<Eigen::Isometry3d> {
+    const std::optional<Eigen::Isometry3d> body = interpolator->bodyToNedAt(time_s);
+    if (!body) return std::nullopt;
+    return nedToMap() * *body * sonar_to_body;
+  };
+}
+
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
-                     double pixel_m, const std::string& side_png, const std::vector<Eigen::Vector3d>& track_m) {
+                     double pixel_m, const std::string& side_png, const std::vector<Eigen::Vector3d>& track_m,
+                     const SonarPoseAt& pose_at) {
   LogBeamSource source(log);
-  stageMapOutputs(outputs, args, source, surveyLog(passOver(log)), map, pixel_m, side_png, track_m);
+  stageMapOutputs(outputs, args, source, surveyLog(passOver(log)), map, pixel_m, side_png, track_m, pose_at);
 }
 
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& source, const LogSurvey& survey,
                      const OcTree16& map, double pixel_m, const std::string& side_png,
-                     const std::vector<Eigen::Vector3d>& track_m) {
+                     const std::vector<Eigen::Vector3d>& track_m, const SonarPoseAt& pose_at) {
   outputs.stage(args.output_bt, [&](std::ostream& out) {
     const OcTree16& framed = args.map_frame == MapFrame::kNwu ? map : mapInFrame(map, args.map_frame);
-    writeMap(framed, out, mapFormatOf(args.output_bt), mapHeaderComments(args.map_frame, args.map_origin_ned_m));
+    writeMap(framed, out, mapFormatOf(args.output_bt),
+             mapHeaderComments(args.map_frame, args.map_origin_ned_m, args.map_geodetic_zero));
   });
   const double res = map.resolution_m();
+  if (!args.geotiff.empty() && args.map_geodetic_zero) {
+    // The 2D map's heights: the --png picture's band (the occupied voxels'; the slice z = 0 when none is).
+    const PictureBand band = pictureBand(map);
+    const std::optional<MosaicGrid> mosaic =
+        args.mosaic ? std::optional(echoMosaic(source, pose_at ? pose_at : sonarPoseOn({}, {}),
+                                               {res, args.beam_width_deg * std::numbers::pi / 180.0, args.mosaic_min_range_m}))
+                    : std::nullopt;
+    outputs.stageBytes(args.geotiff,
+                       encodeGeoTiff(utmRasterOfMap(map, band.z_min_m, band.z_max_m, *args.map_geodetic_zero,
+                                                    mosaic ? &*mosaic : nullptr)));
+  }
   if (!args.map_png.empty() || !side_png.empty()) {
     // The pictures are charts whatever the file's frame: east to the right, north up.
     const OcTree16 enu = mapInFrame(map, MapFrame::kEnu);

@@ -12,6 +12,7 @@
 
 #include "sonarmap/io/atomic_file.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/mapping/echo_mosaic.hpp"
 #include "sonarmap/mapping/sonar_mapper.hpp"
 #include "sonarmap/sonar/beam.hpp"
 #include "sonarmap/sonar/beam_source.hpp"
@@ -56,13 +57,21 @@ std::vector<Eigen::Vector3d> sonarTrack(const NavTrack& nav, const Eigen::Isomet
 /// Cartesian pixels of `pixel_m` metres, each beam spread over args.beam_width_deg, or 3° when 0).
 /// @throws FileError when a file cannot be staged; ValueError when images are wanted from a log
 ///         without beams.
+/// args.geotiff, when set with args.map_geodetic_zero: the 2D map (the band of --png) on the UTM grid
+/// of the map's zero (utmRasterOfMap), with args.mosaic the echo mosaic (echoMosaic) placed by
+/// `pose_at` (empty: the static sonar, staticSonarToMap) as band 2.
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, const SonarLog& log, const OcTree16& map,
-                     double pixel_m, const std::string& side_png = {}, const std::vector<Eigen::Vector3d>& track_m = {});
+                     double pixel_m, const std::string& side_png = {}, const std::vector<Eigen::Vector3d>& track_m = {},
+                     const SonarPoseAt& pose_at = {});
 /// The same for a log read beam by beam, surveyed as `survey`: the sweep to draw is found in one more
 /// pass over `source`, only when a polar or Cartesian image is asked for.
 void stageMapOutputs(FileTransaction& outputs, const MapArgs& args, BeamSource& source, const LogSurvey& survey,
                      const OcTree16& map, double pixel_m, const std::string& side_png = {},
-                     const std::vector<Eigen::Vector3d>& track_m = {});
+                     const std::vector<Eigen::Vector3d>& track_m = {}, const SonarPoseAt& pose_at = {});
+
+/// The sonar's pose in the map at a time on `nav` (local, moved to the map's origin) mounted by
+/// `sonar_to_body`: for --mosaic. `nav` must outlive it; an empty track: the static pose.
+SonarPoseAt sonarPoseOn(const NavTrack& nav, const Eigen::Isometry3d& sonar_to_body);
 
 /// Prints each warning as one line on stderr: "sonarmap: warning: ...".
 void printWarnings(const std::vector<std::string>& warnings);

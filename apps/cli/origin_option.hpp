@@ -2,11 +2,14 @@
 // --origin: the local origin a navigation in absolute coordinates (UTM, a national grid) is mapped
 // about (sonarmap/mapping/local_origin.hpp), for map, live and localize.
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "sonarmap/mapping/local_origin.hpp"
+#include "sonarmap/nav/geodetic.hpp"
 
 namespace sonarmap::cli {
 
@@ -24,6 +27,20 @@ LocalOrigin moveTrackToOrigin(NavTrack& track, const std::vector<double>& origin
 
 /// "origin: ..." on stdout when the map's zero is not the navigation's.
 void printOrigin(const LocalOrigin& origin);
+
+/// Adds --geo-origin LAT,LON[,H] (degrees, metres above the WGS84 ellipsoid) into `text`: the
+/// navigation's NED zero on the Earth where the log gives none (or in place of the log's).
+void addGeoOriginOption(CLI::App& cmd, std::string& text);
+
+/// The map's zero on the Earth: --geo-origin's point (`given`, when not empty) or else the log's
+/// (`from_log`: NavigationSource::geodetic_origin), moved by the local origin `origin` (the map's
+/// zero in the navigation's frame; nedToGeodetic); nullopt when neither is there.
+/// @throws ValueError as parseGeodeticPoint.
+std::optional<GeodeticPoint> mapGeodeticZero(const std::optional<GeodeticPoint>& from_log, const std::string& given,
+                                             const LocalOrigin& origin);
+
+/// "geodetic origin: 43.2961240 N, ... (from ...); UTM zone 31N (EPSG:32631)" on stdout, when there is one.
+void printGeodeticZero(const std::optional<GeodeticPoint>& map_zero, const std::string& from);
 
 /// `track` as written for the user: in the navigation's own coordinates (moved back by `origin`).
 NavTrack inNavigationFrame(NavTrack track, const LocalOrigin& origin);

@@ -38,4 +38,9 @@ void requirePngOutput(const std::string& path, std::string_view option) {
   requireOutputExtension(path, {".png"}, option, "the picture is a .png");
 }
 
+void requireGeoTiffOutput(const std::string& path, bool mosaic) {
+  requireOutputExtension(path, {".tif", ".tiff"}, "--geotiff", "a GeoTIFF is a .tif or .tiff");
+  if (mosaic && path.empty()) throw ValueError("--mosaic is the GeoTIFF's second band: give --geotiff FILE.tif");
+}
+
 }  // namespace sonarmap::cli

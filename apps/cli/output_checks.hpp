@@ -24,4 +24,7 @@ void requireTrajectoryOutput(const std::string& path, std::string_view option = 
 /// requireOutputExtension for a PNG picture.
 void requirePngOutput(const std::string& path, std::string_view option);
 
+/// requireOutputExtension for --geotiff (.tif or .tiff); ValueError for --mosaic without it.
+void requireGeoTiffOutput(const std::string& path, bool mosaic);
+
 }  // namespace sonarmap::cli

@@ -17,6 +17,7 @@
 #include "sonarmap/formats/ros_bag_writer.hpp"
 #include "progress.hpp"
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/nav/geodetic.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sim/builtin_scenes.hpp"
 #include "sonarmap/sim/missions.hpp"
@@ -66,6 +67,10 @@ std::string mapCommand(const SimulateArgs& args, const MsisHeadOptions& head) {
 
 void check(const SimulateArgs& args, MsisSimulationOptions& options) {
   checkScene(args.scene);
+  if (!args.geo_origin.empty()) {
+    parseGeodeticPoint(args.geo_origin);
+    if (args.bag.empty()) throw ValueError("--geo-origin writes NavSatFix messages into the bag: give --bag too");
+  }
   checkMissionScene(args, args.scene);
   if (fs::exists(args.output_dir) && !fs::is_directory(args.output_dir)) {
     throw ValueError("-o must name a folder, '" + args.output_dir + "' is a file");
@@ -92,6 +97,11 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
     RosBagWriteOptions bag;
     bag.raw_sensors = true;
     if (!believed.empty()) bag.sonar_to_body = options.sonar_to_body;
+    if (!args.geo_origin.empty()) {
+      // the written track's positions on the Earth, as a positioning system would give them
+      if (simulation.nav.empty()) throw ValueError("--geo-origin needs a moving vehicle (--speed or --mission): a static run has no fixes");
+      bag.geodetic_origin = parseGeodeticPoint(args.geo_origin);
+    }
     outputs.stageBytes(args.bag, rosBagBytes(simulation.log, believed, bag));
   }
   outputs.commit();
@@ -202,6 +212,10 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->capture_default_str()
       ->group(help_group::kNavigation);
   cmd->add_option("--bag", args.bag, "Also write the log as a ROS 1 bag (.bag)")->group(help_group::kOutput);
+  cmd->add_option("--geo-origin", args.geo_origin,
+                 "With --bag: the NED zero on the Earth, DEGREES; each fix also written as a NavSatFix on /gps/fix")
+      ->type_name("LAT,LON[,H]")
+      ->group(help_group::kOutput);
   cmd->add_option("--mcap", args.mcap, "Also write the log as a ROS 2 log in MCAP (.mcap)")->group(help_group::kOutput);
   addMapFrameOption(*cmd, args.map_frame, "Frame scene.txt is written in (map it in the same)");
   cmd->add_flag("-q,--quiet", args.quiet, "No progress bar")->group(help_group::kOutput);

@@ -28,6 +28,7 @@ struct SimulateArgs : SimulationArguments {
   std::string bag;     ///< --bag: also the log and its believed navigation as a ROS 1 bag (empty: none)
   std::string mcap;    ///< --mcap: also as a ROS 2 log in MCAP (empty: none)
   MapFrame map_frame = kDefaultMapFrame;  ///< --map-frame: the frame scene.txt is written in
+  std::string geo_origin;  ///< --geo-origin LAT,LON[,H]: with --bag, the NED zero on the Earth (NavSatFix written)
 };
 
 /// Adds the `simulate` subcommand to `app`; its options fill `args`.

@@ -119,7 +119,7 @@ Raises sonarmap.ValueError for a resolution that is not finite and > 0, or proba
             const Eigen::Vector3d origin_ned_m = mapOriginOfComments(comments);
             return OccupancyMap{readMapFile(path.string()), std::nullopt, std::nullopt, std::nullopt,
                                 origin_ned_m.isZero(0.0) ? std::nullopt : std::optional(origin_ned_m),
-                                mapFrameOfComments(comments)};
+                                mapFrameOfComments(comments), geodeticOriginOfComments(comments)};
           },
           py::arg("path"), R"doc(Reads a map file: ``.bt`` (OctoMap binary: free leaves get the lower, occupied the
 upper clamping log-odds) or ``.ot`` (OctoMap full tree, exact log-odds), chosen by the extension
@@ -132,13 +132,17 @@ sonarmap.ValueError for a resolution that is not finite and > 0.)doc")
           [](const OccupancyMap& map, const std::filesystem::path& path) {
             py::gil_scoped_release release;
             std::vector<std::string> comments;
-            if (map.frame) comments = mapHeaderComments(*map.frame, map.origin.value_or(Eigen::Vector3d::Zero()));
+            if (map.frame) {
+              comments = mapHeaderComments(*map.frame, map.origin.value_or(Eigen::Vector3d::Zero()), map.geodetic_origin);
+            } else if (map.geodetic_origin) {
+              comments.push_back(mapGeodeticComment(*map.geodetic_origin));
+            }
             writeMapFile(map.tree, path.string(), comments);
           },
           py::arg("path"), R"doc(Writes the map to ``path`` atomically in the format its extension names: ``.bt``
 (maximum likelihood, as OctoMap's writeBinary) or ``.ot`` (full log-odds). The map is not modified
 (no pruning or thresholding); a map with a ``frame`` names it in the header (a ``#`` comment line
-OctoMap skips). Raises sonarmap.FileError for an unknown extension or a file that
+OctoMap skips), and a ``geodetic_origin`` too. Raises sonarmap.FileError for an unknown extension or a file that
 cannot be written (an existing file is then left untouched).)doc")
       .def_property_readonly("resolution", [](const OccupancyMap& map) { return map.tree.resolution_m(); },
                              "Voxel edge in metres.")
@@ -170,6 +174,28 @@ cannot be written (an existing file is then left untouched).)doc")
           "map_sonar_log: the map's zero in nav's frame, (north_m, east_m, down_m), when nav was mapped about a "
           "local origin (the keyword origin, or nav's first fix when nav lies far from zero); read: the origin "
           "the file's header names; write names it. None otherwise.")
+      .def_property(
+          "geodetic_origin",
+          [](const OccupancyMap& map) -> py::object {
+            if (!map.geodetic_origin) return py::none();
+            const GeodeticPoint& g = *map.geodetic_origin;
+            return py::make_tuple(g.latitude_deg, g.longitude_deg, g.height_m);
+          },
+          [](OccupancyMap& map, const py::object& value) {
+            if (value.is_none()) {
+              map.geodetic_origin.reset();
+              return;
+            }
+            const auto t = value.cast<std::vector<double>>();
+            if (t.size() != 2 && t.size() != 3) throw ValueError("geodetic_origin: (latitude_deg, longitude_deg[, height_m])");
+            const GeodeticPoint point{t[0], t[1], t.size() == 3 ? t[2] : 0.0};
+            requireGeodetic(point, "geodetic_origin");
+            map.geodetic_origin = point;
+          },
+          "The map's zero on the Earth, (latitude_deg, longitude_deg, height_m) on WGS84, as the file's header "
+          "names it (`sonarmap map` writes it when the log carries latitude and longitude, or with --geo-origin); "
+          "None when unknown. Settable (a 2- or 3-sequence, or None); write names it. Raises sonarmap.ValueError "
+          "for a latitude outside [-90, 90], a longitude outside [-180, 180] or a value that is not finite.")
       .def_property_readonly(
           "slam",
           [](const OccupancyMap& map) -> py::object {

@@ -25,6 +25,8 @@ struct OccupancyMap {
   /// The frame of the tree's coordinates: map_sonar_log's map_frame, a read file's header; nullopt
   /// for a map built point by point (its points' frame).
   std::optional<MapFrame> frame = std::nullopt;
+  /// The map's zero on the Earth: a read file's header (geodeticOriginOfComments), or set by the user.
+  std::optional<GeodeticPoint> geodetic_origin = std::nullopt;
 };
 
 /// The tree of `map` in the frame scenes are given in (the mapper's internal NWU): converted back

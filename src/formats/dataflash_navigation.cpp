@@ -44,11 +44,25 @@ class DataflashNavigation {
       const auto pressure = r.value("Press");
       const int instance = name == "BARO" ? static_cast<int>(r.value("I").value_or(0.0)) : name[3] - '1';
       if (pressure) pressure_pa_[instance].push_back({t, Eigen::Vector3d(0.0, 0.0, *pressure)});
-    } else if (name == "GPS" && !clock_utc_s_) {
+    } else if (name == "GPS") {
       const auto status = r.value("Status"), week = r.value("GWk"), ms = r.value("GMS");
-      if (status && week && ms && *status >= kGpsFix3d && *week > 0.0) {
+      if (!clock_utc_s_ && status && week && ms && *status >= kGpsFix3d && *week > 0.0) {
         clock_utc_s_ = kGpsEpochUtc_s + *week * kSecondsPerWeek + *ms / 1000.0 - kGpsLeap_s - t;
       }
+      // The instance 0 receiver's 3D fixes: Lat, Lng (1e-7 degrees), Alt (metres above mean sea level).
+      if (const auto instance = r.value("I"); instance && *instance != 0.0) return;
+      const auto lat = r.value("Lat"), lon = r.value("Lng"), alt = r.value("Alt");
+      if (!status || *status < kGpsFix3d || !lat || !lon) return;
+      const GeodeticFix fix{t, {*lat, *lon, alt.value_or(0.0)}};
+      try {
+        requireGeodetic(fix.point, "GPS record at boot time " + std::to_string(t) + " s");
+      } catch (const ValueError& error) {
+        ++gps_rejected_;
+        if (gps_reason_.empty()) gps_reason_ = error.what();
+        return;
+      }
+      if (!gps_.empty() && !(t > gps_.back().time_s)) return;
+      gps_.push_back(fix);
     }
   }
 
@@ -66,6 +80,11 @@ class DataflashNavigation {
                                          std::move(depths));
     if (nav.track.empty()) throw FileError("'" + source + "': no ATT record within the span of its position or depth records");
     nav.clock_utc_s = clock_utc_s_;
+    nav.geodetic_fixes = std::move(gps_);
+    if (!nav.geodetic_fixes.empty()) nav.geodetic_description = "GPS records (Lat, Lng) of " + std::filesystem::path(source).filename().string();
+    if (gps_rejected_ > 0) {
+      nav.notes.push_back(std::to_string(gps_rejected_) + " GPS records skipped, the first: " + gps_reason_);
+    }
     if (!scan.stop_note.empty()) nav.notes.push_back(scan.stop_note);
     if (scan.skipped_bytes > 0) {
       nav.notes.push_back("'" + source + "': " + std::to_string(scan.skipped_bytes) +
@@ -108,6 +127,9 @@ class DataflashNavigation {
   std::map<std::string, std::vector<detail::PositionSample>> ekf_;
   std::map<int, std::vector<detail::PositionSample>> pressure_pa_;
   std::optional<double> clock_utc_s_;
+  std::vector<GeodeticFix> gps_;
+  std::size_t gps_rejected_ = 0;
+  std::string gps_reason_;
 };
 
 }  // namespace

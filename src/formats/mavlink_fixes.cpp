@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/core/errors.hpp"
 #include "sonarmap/formats/mavlink_messages.hpp"
 #include "vehicle_track.hpp"
 
@@ -164,6 +165,14 @@ void MavlinkFixMaker::takeVehicleFrame(const MavlinkFrame& frame, double arrival
     case MavlinkGlobalPositionInt::kId: {
       const MavlinkGlobalPositionInt g = *decodeMavlink<MavlinkGlobalPositionInt>(frame);
       series(NavSource::kGlobalPosition).add(time_s, Eigen::Vector3d(0.0, 0.0, -g.relative_alt_mm / 1000.0));
+      if (g.lat_degE7 == 0 && g.lon_degE7 == 0) break;  // no position
+      const GeodeticFix fix{time_s, {g.lat_degE7 / 1e7, g.lon_degE7 / 1e7, g.alt_mm / 1000.0}};
+      try {
+        requireGeodetic(fix.point, "GLOBAL_POSITION_INT at boot time " + seconds(time_s) + " s");
+        geodetic_.push_back({offsets_s_.size() - 1, fix});
+      } catch (const ValueError& error) {
+        if (geodetic_rejected_++ == 0) geodetic_reason_ = error.what();
+      }
       break;
     }
     default: {  // the three SCALED_PRESSUREs

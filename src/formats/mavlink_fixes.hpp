@@ -19,6 +19,7 @@
 
 #include "sonarmap/formats/mavlink.hpp"
 #include "sonarmap/formats/mavlink_navigation.hpp"
+#include "sonarmap/nav/geodetic.hpp"
 #include "sonarmap/nav/navigation.hpp"
 
 namespace sonarmap::detail {
@@ -81,6 +82,16 @@ class MavlinkFixMaker {
   /// "attitude ATTITUDE, position LOCAL_POSITION_NED": the sources of the fixes made so far.
   std::string description() const;
   std::vector<std::string> takeNotes() { return std::exchange(notes_, {}); }
+  /// GLOBAL_POSITION_INT's latitudes and longitudes so far (lat = lon = 0, ArduPilot's "no
+  /// position", left out), on boot `BootGeodeticFix::boot`'s clock; a NaN-free but out-of-range one
+  /// is left out and counted (geodeticRejected, with the first reason).
+  struct BootGeodeticFix {
+    std::size_t boot = 0;
+    GeodeticFix fix;
+  };
+  const std::vector<BootGeodeticFix>& geodeticFixes() const { return geodetic_; }
+  std::size_t geodeticRejected() const { return geodetic_rejected_; }
+  const std::string& geodeticReason() const { return geodetic_reason_; }
 
  private:
   struct Attitude {
@@ -123,6 +134,9 @@ class MavlinkFixMaker {
   Eigen::Vector3d vision_anchor_m_ = Eigen::Vector3d::Zero();
   std::optional<NavSource> last_horizontal_;  ///< the source of the last fix's north and east
   std::vector<double> offsets_s_;  ///< per boot
+  std::vector<BootGeodeticFix> geodetic_;
+  std::size_t geodetic_rejected_ = 0;
+  std::string geodetic_reason_;
   bool in_boot_ = false;
   double boot_first_s_ = 0.0;  ///< the boot's first frame's time
   double boot_now_s_ = 0.0;    ///< the boot's latest frame's time

@@ -104,6 +104,18 @@ class TlogNavigation {
     nav.track.erase(std::unique(nav.track.begin(), nav.track.end(),
                                 [](const NavSample& a, const NavSample& b) { return a.time_s == b.time_s; }),
                     nav.track.end());
+    for (const detail::MavlinkFixMaker::BootGeodeticFix& g : maker_.geodeticFixes()) {
+      GeodeticFix fix = g.fix;
+      fix.time_s = first_s + (fix.time_s + maker_.clockOffset_s(g.boot));
+      nav.geodetic_fixes.push_back(fix);
+    }
+    std::stable_sort(nav.geodetic_fixes.begin(), nav.geodetic_fixes.end(),
+                     [](const GeodeticFix& a, const GeodeticFix& b) { return a.time_s < b.time_s; });
+    if (!nav.geodetic_fixes.empty()) nav.geodetic_description = "GLOBAL_POSITION_INT (lat, lon)";
+    if (maker_.geodeticRejected() > 0) {
+      nav.notes.push_back(std::to_string(maker_.geodeticRejected()) + " GLOBAL_POSITION_INT positions skipped, the first: " +
+                          maker_.geodeticReason());
+    }
     nav.description = "MAVLink telemetry " + std::filesystem::path(source_).filename().string() + " (" +
                       maker_.description() + ")";
     if (nav.track.empty()) {

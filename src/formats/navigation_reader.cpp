@@ -26,6 +26,14 @@ NavigationSource fromBag(const std::string& path, RosBagNavigation nav) {
   source.clock_utc_s = 0.0;  // header stamps: seconds since 1970
   source.body_frame = nav.body_frame;
   source.description = nav.topic + " (" + nav.type + ", " + nav.frame + ") of " + std::filesystem::path(path).filename().string();
+  source.geodetic_fixes = std::move(nav.geodetic_fixes);
+  if (!nav.geodetic_topic.empty()) source.geodetic_description = nav.geodetic_topic + " (sensor_msgs/NavSatFix)";
+  return source;
+}
+
+/// `source` with its geodetic origin found from its fixes (geodeticOriginOf).
+NavigationSource withGeodeticOrigin(NavigationSource source) {
+  source.geodetic_origin = geodeticOriginOf(source.geodetic_fixes, source.track);
   return source;
 }
 
@@ -51,14 +59,14 @@ NavigationSource readNavigation(const std::string& path, const std::string& nav_
       throw FileError("'" + path + "': ROS bag: no topic holds a pose (nav_msgs/Odometry, geometry_msgs/PoseStamped or "
                       "PoseWithCovarianceStamped, or a message laid out as one)");
     }
-    return fromBag(path, std::move(*nav));
+    return withGeodeticOrigin(fromBag(path, std::move(*nav)));
   }
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".tlog") return readMavlinkTlogNavigation(path);
+  if (extension == ".tlog") return withGeodeticOrigin(readMavlinkTlogNavigation(path));
   // .BIN is ArduPilot's name for a dataflash log (a Ping Viewer .bin holds no navigation)
-  if (extension == ".bin" || startsAsDataflash(path)) return readDataflashNavigation(path);
+  if (extension == ".bin" || startsAsDataflash(path)) return withGeodeticOrigin(readDataflashNavigation(path));
   NavigationSource source;
   source.track = readNavCsv(path);
   source.description = std::filesystem::path(path).filename().string();
@@ -70,7 +78,7 @@ std::optional<NavigationSource> readLogNavigation(const std::string& log_path, L
   if (!isRosLog(format)) return std::nullopt;
   std::optional<RosBagNavigation> nav = readRosBagNavigation(log_path, RosBagNavOptions{.nav_topic = nav_topic, .msg_path = msg_path});
   if (!nav) return std::nullopt;
-  return fromBag(log_path, std::move(*nav));
+  return withGeodeticOrigin(fromBag(log_path, std::move(*nav)));
 }
 
 NavClockAlignment alignNavigationClock(NavigationSource& nav, const std::optional<double>& log_clock_utc_s,
@@ -91,6 +99,7 @@ NavClockAlignment alignNavigationClock(NavigationSource& nav, const std::optiona
   }
   if (nav_time_offset_s != 0.0) alignment.how += ", moved by --nav-time-offset " + secondsText(nav_time_offset_s);
   for (NavSample& fix : nav.track) fix.time_s += alignment.shift_s;
+  for (GeodeticFix& fix : nav.geodetic_fixes) fix.time_s += alignment.shift_s;
   nav.clock_utc_s = log_clock_utc_s;
   return alignment;
 }

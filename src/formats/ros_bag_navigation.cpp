@@ -60,6 +60,38 @@ NavSample fixOf(const RosValue& message, const std::vector<std::string>& path, d
   return detail::rosPoseToNed(detail::headerTime(message, record_time_s), p, q, ned);
 }
 
+/// The fixes of the bag's NavSatFix topic (the one with most messages), into `nav`.
+void readGeodeticFixes(detail::RosBagFile& bag, RosBagNavigation& nav) {
+  const RosBagTopic* chosen = nullptr;
+  for (const RosBagTopic& topic : bag.topics()) {
+    if (bag.definition(topic).empty()) continue;
+    const RosSchema schema = bag.schema(topic);
+    if (schema.typeAt({"header"}) != "std_msgs/Header" || !schema.holdsNumbers({}, {"latitude", "longitude", "altitude"}) ||
+        !schema.holdsNumbers({"status"}, {"status"})) {
+      continue;
+    }
+    if (chosen == nullptr || topic.messages > chosen->messages) chosen = &topic;
+  }
+  if (chosen == nullptr) return;
+  nav.geodetic_topic = chosen->topic;
+  const RosSchema schema = bag.schema(*chosen);
+  const detail::RosSkipped skipped = bag.forEachMessage(chosen->topic, schema, [&](const RosValue& message, double time_s) {
+    using detail::finiteNumber;
+    if (finiteNumber(message.field("status")->field("status"), "status.status") < 0.0) return;  // STATUS_NO_FIX
+    GeodeticFix fix;
+    fix.time_s = detail::headerTime(message, time_s);
+    fix.point = {finiteNumber(message.field("latitude"), "latitude"), finiteNumber(message.field("longitude"), "longitude"),
+                 finiteNumber(message.field("altitude"), "altitude")};
+    requireGeodetic(fix.point, "NavSatFix at " + std::to_string(fix.time_s) + " s");
+    if (!nav.geodetic_fixes.empty() && !(fix.time_s > nav.geodetic_fixes.back().time_s)) {
+      throw Error("its time " + std::to_string(fix.time_s) + " s is not after the previous fix's");
+    }
+    nav.geodetic_fixes.push_back(fix);
+  });
+  nav.geodetic_skipped = skipped.count;
+  for (const std::string& reason : skipped.reasons) nav.skip_reasons.push_back(reason);
+}
+
 }  // namespace
 
 std::vector<RosBagTopic> listRosBagTopics(const std::string& path, const std::string& msg_path) {
@@ -92,7 +124,11 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
                  "pose.orientation, or pose.pose.*: docs/formats.md)");
       }
     }
-    if (candidates.empty()) return detail::inertialNavigation(bag, options);
+    if (candidates.empty()) {
+      std::optional<RosBagNavigation> inertial = detail::inertialNavigation(bag, options);
+      if (inertial) readGeodeticFixes(bag, *inertial);
+      return inertial;
+    }
     std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
       auto odometry = [](const RosBagTopic* t) { return t->type == "nav_msgs/Odometry" || t->type == "nav_msgs/msg/Odometry"; };
       const bool a_odometry = odometry(a.topic), b_odometry = odometry(b.topic);
@@ -128,6 +164,7 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
     nav.frame = any_ned && any_enu ? "NED and ENU (REP 103) by each message's frame_id, turned into NED"
                 : any_ned          ? "NED"
                                    : "ENU (REP 103), turned into NED";
+    readGeodeticFixes(bag, nav);
     return nav;
   });
 }

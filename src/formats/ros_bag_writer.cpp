@@ -150,6 +150,21 @@ struct FluidPressureType {
   static const char* definition() { return kFluidPressureDefinition.c_str(); }
 };
 
+/// ROS's sensor_msgs/NavSatFix (its constants kept, its comments left out; the MD5 sum is ROS's).
+const std::string kNavSatFixDefinition = std::string(
+    "Header header\nNavSatStatus status\nfloat64 latitude\nfloat64 longitude\nfloat64 altitude\n"
+    "float64[9] position_covariance\nuint8 COVARIANCE_TYPE_UNKNOWN=0\nuint8 COVARIANCE_TYPE_APPROXIMATED=1\n"
+    "uint8 COVARIANCE_TYPE_DIAGONAL_KNOWN=2\nuint8 COVARIANCE_TYPE_KNOWN=3\nuint8 position_covariance_type\n\n") +
+    kRule + kHeaderSection + "\n" + kRule +
+    "MSG: sensor_msgs/NavSatStatus\nint8 STATUS_NO_FIX=-1\nint8 STATUS_FIX=0\nint8 STATUS_SBAS_FIX=1\n"
+    "int8 STATUS_GBAS_FIX=2\nint8 status\nuint16 SERVICE_GPS=1\nuint16 SERVICE_GLONASS=2\nuint16 SERVICE_COMPASS=4\n"
+    "uint16 SERVICE_GALILEO=8\nuint16 service\n";
+struct NavSatFixType {
+  static constexpr const char* kName = "sensor_msgs/NavSatFix";
+  static constexpr const char* kMd5 = "2d3a8cd499b9b4a0249fb98fd05cfa48";
+  static const char* definition() { return kNavSatFixDefinition.c_str(); }
+};
+
 /// A message already serialized, with what its connection records (as topic_tools' ShapeShifter
 /// hands a message it does not know to rosbag).
 template <class Type>
@@ -288,6 +303,21 @@ RawSensors rawSensors(const NavTrack& nav, std::size_t i, const ros::Time& stamp
   return out;
 }
 
+/// Fix `fix` as a sensor_msgs/NavSatFix about `origin` (RosBagWriteOptions::geodetic_origin).
+SerializedMessage<NavSatFixType> navSatFix(const NavSample& fix, std::uint32_t seq, const ros::Time& stamp,
+                                           const GeodeticPoint& origin) {
+  SerializedMessage<NavSatFixType> message;
+  std::vector<std::uint8_t>& out = message.bytes;
+  appendHeader(out, seq, stamp, "gps");
+  append<std::int8_t>(out, 0);     // STATUS_FIX
+  append<std::uint16_t>(out, 1);   // SERVICE_GPS
+  const GeodeticPoint point = nedToGeodetic(origin, fix.position_ned_m);
+  for (const double value : {point.latitude_deg, point.longitude_deg, point.height_m}) append<double>(out, value);
+  for (int i = 0; i < 9; ++i) append<double>(out, 0.0);
+  append<std::uint8_t>(out, 0);  // COVARIANCE_TYPE_UNKNOWN
+  return message;
+}
+
 }  // namespace
 }  // namespace sonarmap
 
@@ -355,6 +385,9 @@ std::vector<unsigned char> rosBagBytes(const SonarLog& log, const NavTrack& nav,
           const ros::Time stamp = std::max(ros::Time(nav[f].time_s), ros::TIME_MIN);
           const ros::Time recorded = stamp;
           if (options.odometry) bag.write(options.nav_topic, recorded, odometry(nav[f], static_cast<std::uint32_t>(f), stamp, options.nav_frame));
+          if (options.geodetic_origin) {
+            bag.write("/gps/fix", recorded, navSatFix(nav[f], static_cast<std::uint32_t>(f), stamp, *options.geodetic_origin));
+          }
           if (options.raw_sensors) {
             const RawSensors raw = rawSensors(nav, f, stamp, options);
             bag.write("/imu/data", recorded, raw.imu);

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "head_input.hpp"
+#include "sonarmap/live/live_map_files.hpp"
 #include "nav_input.hpp"
 #include "periodic_map_writer.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -137,8 +138,9 @@ void LiveSession::resetNow() {
 std::vector<std::pair<std::string, std::string>> LiveSession::saveNow() {
   std::vector<std::pair<std::string, std::string>> written;
   if (!outputs_.map_path.empty()) {
-    writeMapFileInFrame(mapping_->shownSnapshot(), outputs_.map_path, outputs_.map_frame, mapping_->origin().ned_m);
+    live::writeLiveMapFiles(mapping_->shownSnapshot(), outputs_, mapping_->origin());
     written.emplace_back("map", outputs_.map_path);
+    if (!outputs_.geotiff_path.empty() && outputs_.geodetic_origin) written.emplace_back("geotiff", outputs_.geotiff_path);
   }
   if (inputs_->recorder) {
     flush_requested_ = true;
@@ -215,7 +217,7 @@ bool LiveSession::replayStep(double now_s) {
 LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
   Inputs& in = *inputs_;
   LiveResult result;
-  live::PeriodicMapWriter writer(*mapping_, outputs_.map_path, outputs_.map_frame, outputs_.write_every_s);
+  live::PeriodicMapWriter writer(*mapping_, outputs_);
   running_ = true;
   if (in.head) in.head->start(secondsSinceStart());
   takeHeadNotes(result);

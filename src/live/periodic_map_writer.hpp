@@ -12,25 +12,28 @@
 #include <thread>
 
 #include "sonarmap/live/live_mapping.hpp"
+#include "sonarmap/live/live_map_files.hpp"
+#include "sonarmap/live/live_session.hpp"
 #include "sonarmap/mapping/map_frame.hpp"
 
 namespace sonarmap::live {
 
 class PeriodicMapWriter {
  public:
-  /// Writes `mapping`'s map as shown to `path` every `every_s` seconds once a sweep is integrated
-  /// (nothing when `path` is empty). A failed write keeps the last good map; the final write, the
+  /// Writes `mapping`'s map as shown to outputs.map_path (and its GeoTIFF: writeLiveMapFiles) every
+  /// outputs.write_every_s seconds once a sweep is integrated (nothing when map_path is empty). A failed write keeps the last good map; the final write, the
   /// caller's, reports for good.
-  PeriodicMapWriter(const LiveMapping& mapping, std::string path, MapFrame frame, double every_s) {
-    if (path.empty()) return;
-    thread_ = std::jthread([this, &mapping, path = std::move(path), frame, every_s](std::stop_token stop) {
+  PeriodicMapWriter(const LiveMapping& mapping, LiveOutputs outputs) {
+    if (outputs.map_path.empty()) return;
+    const double every_s = outputs.write_every_s;
+    thread_ = std::jthread([this, &mapping, outputs = std::move(outputs), every_s](std::stop_token stop) {
       std::mutex mutex;
       std::unique_lock lock(mutex);
       while (!wake_.wait_for(lock, stop, std::chrono::duration<double>(every_s), [] { return false; })) {
         if (stop.stop_requested()) return;
         if (mapping.sweepsIntegrated() == 0) continue;  // a map from the first sweep on
         try {
-          writeMapFileInFrame(mapping.shownSnapshot(), path, frame, mapping.origin().ned_m);
+          writeLiveMapFiles(mapping.shownSnapshot(), outputs, mapping.origin());
         } catch (const std::exception&) {  // the last good map stays
         }
       }

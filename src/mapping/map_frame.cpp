@@ -13,6 +13,7 @@ namespace {
 
 constexpr std::string_view kCommentPrefix = "sonarmap map frame: ";
 constexpr std::string_view kOriginPrefix = "sonarmap map origin: ";
+constexpr std::string_view kGeodeticPrefix = "sonarmap geodetic origin: ";
 
 /// Moves every leaf of `map` by the signed permutation `rotation` (entries 0, ±1).
 OcTree16 permuted(const OcTree16& map, const Eigen::Matrix3d& rotation) {
@@ -91,14 +92,42 @@ Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments) {
   return Eigen::Vector3d::Zero();
 }
 
-std::vector<std::string> mapHeaderComments(MapFrame frame, const Eigen::Vector3d& origin_ned_m) {
+std::string mapGeodeticComment(const GeodeticPoint& map_zero) {
+  requireGeodetic(map_zero, "the map's geodetic origin");
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "%.15g %.15g %.6g (latitude, longitude in degrees, height in metres above the WGS84 ellipsoid of the "
+                "map's zero)",
+                map_zero.latitude_deg, map_zero.longitude_deg, map_zero.height_m);
+  return std::string(kGeodeticPrefix) + text;
+}
+
+std::optional<GeodeticPoint> geodeticOriginOfComments(const std::vector<std::string>& comments) {
+  for (const std::string& comment : comments) {
+    if (!comment.starts_with(kGeodeticPrefix)) continue;
+    std::istringstream numbers(comment.substr(kGeodeticPrefix.size()));
+    GeodeticPoint point;
+    if (!(numbers >> point.latitude_deg >> point.longitude_deg >> point.height_m)) {
+      throw ValueError("map header line '" + comment + "': expected latitude, longitude (degrees) and height (metres)");
+    }
+    requireGeodetic(point, "map header line '" + comment + "'");
+    return point;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> mapHeaderComments(MapFrame frame, const Eigen::Vector3d& origin_ned_m,
+                                           const std::optional<GeodeticPoint>& map_zero) {
   std::vector<std::string> comments{mapFrameComment(frame)};
   if (!origin_ned_m.isZero(0.0)) comments.push_back(mapOriginComment(origin_ned_m));
+  if (map_zero) comments.push_back(mapGeodeticComment(*map_zero));
   return comments;
 }
 
-void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame, const Eigen::Vector3d& origin_ned_m) {
-  writeMapFile(frame == MapFrame::kNwu ? map : mapInFrame(map, frame), path, mapHeaderComments(frame, origin_ned_m));
+void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame, const Eigen::Vector3d& origin_ned_m,
+                         const std::optional<GeodeticPoint>& map_zero) {
+  writeMapFile(frame == MapFrame::kNwu ? map : mapInFrame(map, frame), path,
+               mapHeaderComments(frame, origin_ned_m, map_zero));
 }
 
 FramedMap readMapFileToNwu(const std::string& path, const OctreeOptions& options) {
@@ -106,9 +135,10 @@ FramedMap readMapFileToNwu(const std::string& path, const OctreeOptions& options
   const std::optional<MapFrame> named = mapFrameOfComments(comments);
   const MapFrame frame = named.value_or(MapFrame::kNwu);
   const Eigen::Vector3d origin_ned_m = mapOriginOfComments(comments);
+  const std::optional<GeodeticPoint> geodetic = geodeticOriginOfComments(comments);
   OcTree16 map = readMapFile(path, options);
-  if (frame == MapFrame::kNwu) return {std::move(map), frame, named.has_value(), origin_ned_m};
-  return {mapFromFrame(map, frame), frame, named.has_value(), origin_ned_m};
+  if (frame == MapFrame::kNwu) return {std::move(map), frame, named.has_value(), origin_ned_m, geodetic};
+  return {mapFromFrame(map, frame), frame, named.has_value(), origin_ned_m, geodetic};
 }
 
 }  // namespace sonarmap

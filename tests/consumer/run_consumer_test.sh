@@ -26,17 +26,20 @@ case "$mode" in
     (cd "$tmp" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$tmp/package" >/dev/null)
     deb=$(ls "$tmp"/package/sonarmap_*.deb)
     depends=$(dpkg-deb -f "$deb" Depends)
-    for needed in libopencv-dev libeigen3-dev libmatio-dev libopencv-core406; do
+    for needed in libopencv-dev libeigen3-dev libmatio-dev libopencv-core406 libgeographiclib-dev libgdal32; do
       [[ ",$depends," == *"$needed"* ]] || fail "Depends lacks $needed: $depends"
     done
     files=$(dpkg-deb -c "$deb" | awk '{print $6}')
     for needed in ./usr/bin/sonarmap ./usr/include/sonarmap/io/octomap_binary.hpp \
                   ./usr/lib/cmake/sonarmap/sonarmapConfig.cmake ./usr/lib/cmake/sonarmap/sonarmap_octreeTargets.cmake \
-                  ./usr/lib/libsonarmap_octree.a ./usr/lib/libsonarmap_mapping.a; do
+                  ./usr/lib/libsonarmap_octree.a ./usr/lib/libsonarmap_mapping.a ./usr/lib/libsonarmap_geotiff.so; do
       grep -qxF "$needed" <<<"$files" || fail "the package lacks $needed"
     done
     dpkg -x "$deb" "$tmp/root"
     prefix=$tmp/root/usr
+    # The unpacked root's /usr/lib stands for the system's, where the loader finds the package's
+    # shared library (libsonarmap_geotiff.so) once installed.
+    export LD_LIBRARY_PATH="$prefix/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
     "$prefix/bin/sonarmap" --version >/dev/null || fail "the packaged CLI does not run"
     if grep -q "^./usr/lib/python3/dist-packages/sonarmap/" <<<"$files"; then
       [[ ",$depends," == *"python3-numpy"* ]] || fail "Depends lacks python3-numpy: $depends"

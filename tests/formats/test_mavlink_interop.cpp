@@ -31,6 +31,7 @@
 #include "sonarmap/formats/mavlink.hpp"
 #include "sonarmap/formats/mavlink_messages.hpp"
 #include "sonarmap/formats/mavlink_navigation.hpp"
+#include "sonarmap/formats/navigation_reader.hpp"
 #include "sonarmap/formats/vehicle_log_navigation.hpp"
 
 namespace sonarmap {
@@ -184,6 +185,30 @@ TEST(formatsMavlinkInterop, WithoutLocalPositionTheDepthIsGlobalPositionsRelativ
   }
   EXPECT_TRUE(read.description.find("depth GLOBAL_POSITION_INT.relative_alt, no horizontal position") != std::string::npos)
       << read.description;
+  EXPECT_TRUE(read.geodetic_fixes.empty());  // lat, lon 0, 0: ArduSub's "no position"
+}
+
+TEST(formatsMavlinkInterop, GlobalPositionsLatitudeAndLongitudePlaceTheTrack) {
+  SKIP_WITHOUT_NODE_MAVLINK();
+  test::TempDir dir;
+  const Dive dive;
+  dive.write(dir.file("dive.csv"));
+  // A vehicle at the surface at one place, its GPS in GLOBAL_POSITION_INT as node-mavlink encodes it.
+  runNode("encode_navigation.js", "'" + dir.file("dive.csv") + "' --tlog '" + dir.file("gps.tlog") +
+                                      "' --without local --lat-lon 43.2961,5.37 --epoch-us " + std::to_string(kEpochUs),
+          dir.path());
+  const NavigationSource read = readNavigation(dir.file("gps.tlog"));
+  ASSERT_EQ(read.geodetic_fixes.size(), dive.rows.size());
+  for (const GeodeticFix& fix : read.geodetic_fixes) {
+    EXPECT_NEAR(fix.point.latitude_deg, 43.2961, 1e-12);
+    EXPECT_NEAR(fix.point.longitude_deg, 5.37, 1e-12);
+  }
+  EXPECT_NEAR(read.geodetic_fixes.front().time_s, read.track.front().time_s, 0.05);  // the same clock
+  EXPECT_EQ(read.geodetic_description, "GLOBAL_POSITION_INT (lat, lon)");
+  // No horizontal position (north, east 0): the navigation's zero is where the GPS is.
+  ASSERT_TRUE(read.geodetic_origin);
+  EXPECT_NEAR(read.geodetic_origin->latitude_deg, 43.2961, 1e-9);
+  EXPECT_NEAR(read.geodetic_origin->longitude_deg, 5.37, 1e-9);
 }
 
 /// A UDP socket on 127.0.0.1 at a free port.

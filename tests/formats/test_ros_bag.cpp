@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +161,47 @@ TEST(formatsRosBag, OdometryInEnuOrNedReadsBackAsTheNedTrack) {
   EXPECT_EQ(topics[1].messages, nav.size());
   EXPECT_NEAR(topics[1].first_s, nav.front().time_s, 1e-6);
   EXPECT_NEAR(topics[1].last_s, nav.back().time_s, 1e-6);
+}
+
+// NavSatFix messages read back as the fixes' latitudes and longitudes; a NaN latitude (bytes
+// patched in the written bag) skips its message with a reason naming the topic and the field.
+TEST(formatsRosBag, NavSatFixReadsBackAndABadLatitudeIsSkippedByName) {
+  const test::TempDir dir;
+  const MissionRun run = movingMission();
+  const NavTrack& nav = run.simulation.nav;
+  const GeodeticPoint origin{43.2961, 5.37, 0.0};
+  std::vector<unsigned char> bytes = rosBagBytes(run.simulation.log, nav, {.geodetic_origin = origin});
+  {
+    std::ofstream(dir.file("gps.bag"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                               static_cast<std::streamsize>(bytes.size()));
+  }
+  std::optional<RosBagNavigation> read = readRosBagNavigation(dir.file("gps.bag"));
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->geodetic_topic, "/gps/fix");
+  ASSERT_EQ(read->geodetic_fixes.size(), nav.size());
+  for (std::size_t i = 0; i < nav.size(); i += 97) {
+    EXPECT_NEAR(read->geodetic_fixes[i].time_s, nav[i].time_s, 1e-6);
+    EXPECT_LT((geodeticToNed(origin, read->geodetic_fixes[i].point) - nav[i].position_ned_m).norm(), 1e-6) << i;
+  }
+  // The third fix's latitude made NaN where the bag holds it.
+  const double latitude = nedToGeodetic(origin, nav[2].position_ned_m).latitude_deg;
+  const auto* pattern = reinterpret_cast<const unsigned char*>(&latitude);
+  const auto at = std::search(bytes.begin(), bytes.end(), pattern, pattern + sizeof latitude);
+  ASSERT_NE(at, bytes.end());
+  const double nan = std::nan("");
+  std::copy_n(reinterpret_cast<const unsigned char*>(&nan), sizeof nan, at);
+  {
+    std::ofstream(dir.file("nan.bag"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                               static_cast<std::streamsize>(bytes.size()));
+  }
+  read = readRosBagNavigation(dir.file("nan.bag"));
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->geodetic_fixes.size(), nav.size() - 1);
+  EXPECT_EQ(read->geodetic_skipped, 1u);
+  ASSERT_FALSE(read->skip_reasons.empty());
+  EXPECT_NE(read->skip_reasons.back().find("message 3 of /gps/fix: its latitude is not a finite number"), std::string::npos)
+      << read->skip_reasons.back();
+  EXPECT_EQ(read->track.size(), nav.size());  // the poses are untouched
 }
 
 // The sonar's mounting written on /tf_static (body FLU under an ENU world, FRD under a NED one)

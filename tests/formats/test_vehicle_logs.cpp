@@ -185,14 +185,19 @@ std::string ardusubLog(bool with_ekf, bool with_gps) {
       test::putLittle(baro, 0.0f);
       log += test::dataflashRecord(132, baro);
     }
-    if (with_gps && i == 5) {  // boot 2.0 s = GPS week 2327, 123456.789 s of the week
+    // boot 2.0 s = GPS week 2327, 123456.789 s of the week, at 43.2961 N, 5.37 E (Lat, Lng in 1e-7
+    // degrees); at 2.4 s a receiver's garbage, latitude 95 degrees, skipped with a note
+    if (with_gps && (i == 5 || i == 7)) {
       std::string gps;
       test::putLittle(gps, time_us);
       test::putLittle(gps, std::uint8_t{0});
       test::putLittle(gps, std::uint8_t{3});
-      test::putLittle(gps, std::uint32_t{123456789});
+      test::putLittle(gps, std::uint32_t{i == 5 ? 123456789u : 123457189u});
       test::putLittle(gps, std::uint16_t{2327});
-      gps += std::string(1 + 2 + 4 + 4 + 4 + 16 + 1, '\0');
+      gps += std::string(1 + 2, '\0');  // NSats, HDop
+      test::putLittle(gps, std::int32_t{i == 5 ? 432961000 : 950000000});
+      test::putLittle(gps, std::int32_t{53700000});
+      gps += std::string(4 + 16 + 1, '\0');
       log += test::dataflashRecord(133, gps);
     }
   }
@@ -216,9 +221,24 @@ TEST(formatsDataflash, ReadsAttAndTheEkfsCoreZeroOnBootTimeAndGpsUtc) {
   ASSERT_TRUE(nav.clock_utc_s);
   EXPECT_NEAR(*nav.clock_utc_s, 315964800.0 + 2327 * 604800.0 + 123456.789 - 18.0 - 2.0, 1e-6);
   EXPECT_EQ(utcText(*nav.clock_utc_s + 2.0), "2024-08-12 10:17:18.789 UTC");
-  ASSERT_EQ(nav.notes.size(), 1u);
-  EXPECT_TRUE(contains(nav.notes[0], "1 FMT records refused")) << nav.notes[0];
+  ASSERT_EQ(nav.notes.size(), 2u);
+  EXPECT_TRUE(contains(nav.notes[0], "1 GPS records skipped, the first: GPS record at boot time 2.400000 s: latitude 95 "
+                                     "degrees is not within [-90, 90]")) << nav.notes[0];
+  EXPECT_TRUE(contains(nav.notes[1], "1 FMT records refused")) << nav.notes[1];
   EXPECT_TRUE(contains(nav.description, "XKF1 (core 0)")) << nav.description;
+  // The GPS fix: Lat, Lng in 1e-7 degrees, on the boot clock.
+  ASSERT_EQ(nav.geodetic_fixes.size(), 1u);
+  EXPECT_NEAR(nav.geodetic_fixes[0].time_s, 2.0, 1e-9);
+  EXPECT_NEAR(nav.geodetic_fixes[0].point.latitude_deg, 43.2961, 1e-9);
+  EXPECT_NEAR(nav.geodetic_fixes[0].point.longitude_deg, 5.37, 1e-9);
+  EXPECT_TRUE(contains(nav.geodetic_description, "GPS records (Lat, Lng)")) << nav.geodetic_description;
+  // The EKF's zero on the Earth: the GPS fix less the EKF's position then (5 N, -2 E, 5.5 D at 2.0 s).
+  const std::optional<GeodeticPoint> zero = geodeticOriginOf(nav.geodetic_fixes, nav.track);
+  ASSERT_TRUE(zero);
+  const Eigen::Vector3d fix_ned = geodeticToNed(*zero, nav.geodetic_fixes[0].point);
+  EXPECT_NEAR(fix_ned.x(), 5.0, 1e-4);  // the two tangent planes differ by |p|² / R: µm
+  EXPECT_NEAR(fix_ned.y(), -2.0, 1e-4);
+  EXPECT_NEAR(fix_ned.z(), 5.5, 1e-4);
 }
 
 TEST(formatsDataflash, WithoutAnEkfTakesDepthFromTheBarometerInTheWater) {

@@ -4,6 +4,7 @@
 // a HEARTBEAT every tenth row, after one ground station HEARTBEAT (system 255).
 //
 //   node encode_navigation.js NAV.csv --version 1|2 --tlog OUT [--epoch-us N] [--without local,global,pressure]
+//       [--lat-lon LAT,LON]  (GLOBAL_POSITION_INT's lat, lon: that place, degrees; default 0, 0: none)
 //       writes a telemetry log: before each frame its reception time, a big-endian uint64 of µs
 //       (epoch + boot time + 20 ms, + 0..30 ms of jitter after the first row)
 //   node encode_navigation.js NAV.csv --version 1|2 --udp HOST:PORT
@@ -21,6 +22,7 @@ const option = (name, fallback) => {
 const rows = fs.readFileSync(args[0], 'utf8').trim().split('\n').slice(1).map(line => line.split(',').map(Number))
 const Protocol = option('--version', '2') === '1' ? MavLinkProtocolV1 : MavLinkProtocolV2
 const without = option('--without', '').split(',')
+const [latDeg, lonDeg] = option('--lat-lon', '0,0').split(',').map(Number)
 const vehicle = new Protocol(1, 1)
 const groundStation = new Protocol(255, 190)
 const sequences = new Map()  // per sender
@@ -55,7 +57,8 @@ function rowFrames([t, x, y, z, roll, pitch, yaw], index) {
   }
   if (!without.includes('global')) {
     const global = new common.GlobalPositionInt()
-    Object.assign(global, { timeBootMs, relativeAlt: Math.round(-z * 1000), hdg: 65535 })
+    Object.assign(global, { timeBootMs, relativeAlt: Math.round(-z * 1000), hdg: 65535,
+      lat: Math.round(latDeg * 1e7), lon: Math.round(lonDeg * 1e7) })
     frames.push(frame(vehicle, global))
   }
   if (!without.includes('pressure')) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sonarmap/nav/geodetic.hpp"
 #include "sonarmap/nav/navigation.hpp"
 
 namespace sonarmap {
@@ -26,6 +27,15 @@ struct NavigationSource {
   std::string body_frame;
   /// Lines for the user about the reading: where a file was cut and what was kept before it.
   std::vector<std::string> notes;
+  /// Latitudes and longitudes the file records (a bag's sensor_msgs/NavSatFix, a dataflash log's
+  /// GPS records with a 3D fix, a telemetry log's GLOBAL_POSITION_INT), on the track's clock, each
+  /// checked by requireGeodetic; empty when it records none.
+  std::vector<GeodeticFix> geodetic_fixes;
+  /// Where they came from, in words ("/gps/fix (sensor_msgs/NavSatFix)"); empty without them.
+  std::string geodetic_description;
+  /// The geodetic position of the track's NED zero (geodeticOriginOf(geodetic_fixes, track)),
+  /// set by readNavigation and readLogNavigation; nullopt when no fix lies within the track's span.
+  std::optional<GeodeticPoint> geodetic_origin;
 };
 
 }  // namespace sonarmap

@@ -25,12 +25,20 @@
 /// (sensor_msgs/Imu), a pressure sensor's depth (sensor_msgs/FluidPressure) and a DVL's velocity
 /// (TwistStamped, TwistWithCovarianceStamped, or a vendor message with a `velocity` vector); see
 /// src/formats/ros_inertial_navigation.hpp.
+///
+/// Positions on the Earth: a topic of sensor_msgs/NavSatFix (found by its fields: a
+/// std_msgs/Header, `status.status`, `latitude`, `longitude`, `altitude`; the one with most
+/// messages) gives the fixes' latitudes and longitudes (degrees, WGS84) and altitudes (metres above
+/// the ellipsoid, as REP 145 and the message's comments state); a message whose status is
+/// STATUS_NO_FIX (−1) is left out, one with a NaN or out-of-range latitude or longitude is skipped
+/// and counted with a reason naming the topic and the field.
 
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "sonarmap/nav/geodetic.hpp"
 #include "sonarmap/nav/navigation.hpp"
 
 namespace sonarmap {
@@ -76,6 +84,10 @@ struct RosBagNavigation {
   std::string body_frame;
   std::size_t skipped = 0;  ///< messages that did not decode or whose time did not increase
   std::vector<std::string> skip_reasons;
+  /// The NavSatFix topic's fixes with a fix (see the file's comment), header stamps; empty without one.
+  std::vector<GeodeticFix> geodetic_fixes;
+  std::string geodetic_topic;  ///< its name; empty without one
+  std::size_t geodetic_skipped = 0;  ///< its messages skipped (not decoded, not finite, out of range)
 };
 
 /// Reads the navigation of the ROS 1 bag at `path` (see the file's comment), in time order; a

@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sonarmap/nav/geodetic.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/sonar/beam.hpp"
 
@@ -56,6 +57,11 @@ struct RosBagWriteOptions {
   /// transform on /tf_static (tf2_msgs/TFMessage) from the body frame ("base_link", FLU; with a
   /// NED nav_frame "base_link_frd") to the sonar messages' frame "sonar" (ros_bag_mounting.hpp).
   std::optional<Eigen::Isometry3d> sonar_to_body{};
+  /// Where the fixes' NED zero lies on the Earth: when set, each fix is also written as a
+  /// sensor_msgs/NavSatFix on /gps/fix (frame "gps", status STATUS_FIX, service GPS, covariance
+  /// unknown), its latitude, longitude and altitude nedToGeodetic(geodetic_origin, position):
+  /// a vehicle with a positioning fix at every navigation fix.
+  std::optional<GeodeticPoint> geodetic_origin{};
   /// With raw_sensors: the DVL turned by this rotation in the IMU's frame (FLU, as tf records it):
   /// its velocities written in its own frame ("dvl_link") and the rotation on /tf_static
   /// (imu_link -> dvl_link), as a vehicle whose DVL is mounted turned records them.

@@ -100,6 +100,12 @@ struct LiveInput {
 struct LiveOutputs {
   std::string map_path;  ///< rewritten every write_every_s from the map as shown, and at the end
   MapFrame map_frame = MapFrame::kNwu;
+  /// Rewritten with the map (every write_every_s, on save): its GeoTIFF (geo_raster.hpp), when
+  /// geodetic_origin is known; empty: none.
+  std::string geotiff_path;
+  /// The navigation's NED zero on the Earth (--geo-origin, or the replayed log's latitude and
+  /// longitude); the map's zero is it moved by the local origin. nullopt: unknown.
+  std::optional<GeodeticPoint> geodetic_origin;
   double write_every_s = 10.0;
   std::string record_path;  ///< the received beams and fixes (dive_recorder.hpp); empty: none
   /// Metadata recorded with the dive (the command line, the program's version).
@@ -166,6 +172,8 @@ class LiveSession {
   std::string headDescription() const;
   /// The navigation link as opened ("udp://:14550"); empty without one.
   std::string navDescription() const;
+  /// Where the run writes (as constructed).
+  const LiveOutputs& outputs() const { return outputs_; }
 
  private:
   struct Inputs;

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 
 #include "sonarmap/nav/map_frame_axes.hpp"
+#include "sonarmap/nav/geodetic.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
@@ -51,16 +52,30 @@ std::string mapOriginComment(const Eigen::Vector3d& origin_ned_m);
 /// @throws ValueError for such a line whose three numbers do not read as finite numbers.
 Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments);
 
+/// The header comment line placing the map's zero on the Earth (geodetic.hpp): "sonarmap geodetic
+/// origin: 43.29612400000000 5.369952000000000 0 (latitude, longitude in degrees, height in metres
+/// above the WGS84 ellipsoid of the map's zero)". The map's frame is the local tangent plane there
+/// (x east, y north, z up in ENU; GeographicLib::LocalCartesian), so a point of the map is placed
+/// on the Earth by nedToGeodetic(origin, its NED coordinates).
+std::string mapGeodeticComment(const GeodeticPoint& map_zero);
+
+/// The point named by a mapGeodeticComment line among `comments`; nullopt when none is.
+/// @throws ValueError for such a line whose numbers do not read, or are out of range (requireGeodetic).
+std::optional<GeodeticPoint> geodeticOriginOfComments(const std::vector<std::string>& comments);
+
 /// The header comments of a map written in `frame` about `origin_ned_m`: the frame's line
-/// (mapFrameComment), then the origin's (mapOriginComment) when the origin is not zero.
-std::vector<std::string> mapHeaderComments(MapFrame frame, const Eigen::Vector3d& origin_ned_m);
+/// (mapFrameComment), then the origin's (mapOriginComment) when the origin is not zero, then the
+/// geodetic origin's (mapGeodeticComment) when `map_zero` is given.
+std::vector<std::string> mapHeaderComments(MapFrame frame, const Eigen::Vector3d& origin_ned_m,
+                                           const std::optional<GeodeticPoint>& map_zero = std::nullopt);
 
 /// Writes the internal (NWU) map `map` to `path` (map_file.hpp: .bt or .ot by extension) in
 /// `frame`, its header naming the frame and, when not zero, the local origin `origin_ned_m`
 /// (mapHeaderComments).
 /// @throws FileError as writeMapFile.
 void writeMapFileInFrame(const OcTree16& map, const std::string& path, MapFrame frame,
-                         const Eigen::Vector3d& origin_ned_m = Eigen::Vector3d::Zero());
+                         const Eigen::Vector3d& origin_ned_m = Eigen::Vector3d::Zero(),
+                         const std::optional<GeodeticPoint>& map_zero = std::nullopt);
 
 /// A map file read back into the internal NWU frame, converted from the frame its header names
 /// (NWU when it names none: files written before the frame was named, or by another tool).
@@ -69,6 +84,7 @@ struct FramedMap {
   MapFrame frame;   ///< the frame the file was written in
   bool frame_named = false;  ///< whether its header names `frame` (else NWU is assumed)
   Eigen::Vector3d origin_ned_m = Eigen::Vector3d::Zero();  ///< its local origin (mapOriginOfComments)
+  std::optional<GeodeticPoint> geodetic_origin;  ///< its zero on the Earth (geodeticOriginOfComments)
 };
 
 /// Reads the map file `path` (map_file.hpp) and converts it to the internal NWU frame.
