@@ -44,7 +44,10 @@ std::vector<std::pair<std::string, OptionKind>> mappingOptionNames() {
 
 sonarmap::MapperOptions coreMapperOptions(const CoreParameters& parameters, const sonarmap::NominalBeam& beam) {
   sonarmap::MappingArguments args;
-  for (const auto& [name, text] : parameters.mapping_options) {
+  for (const auto& entry : parameters.mapping_options) {
+    // named references, not a structured binding: clang 14 (the fuzz build's) cannot capture those
+    const std::string& name = entry.first;
+    const std::string& text = entry.second;
     const sonarmap::MappingOption* option = sonarmap::findMappingOption(name);
     if (option == nullptr) throw ValueError("~" + name + ": no such mapping option");
     std::visit(sonarmap::LinkVisitor{
