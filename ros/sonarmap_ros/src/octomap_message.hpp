@@ -42,22 +42,10 @@ struct BoundingBoxQueryResponse {};
 
 }  // namespace sonarmap_ros
 
-namespace ros::message_traits {
+namespace sonarmap_ros::definitions {
 
-template <>
-struct MD5Sum<sonarmap_ros::OctomapMessage> {
-  static const char* value() { return "9a45536b45c5e409cd49f04bb2d9999f"; }
-  static const char* value(const sonarmap_ros::OctomapMessage&) { return value(); }
-};
-template <>
-struct DataType<sonarmap_ros::OctomapMessage> {
-  static const char* value() { return "octomap_msgs/Octomap"; }
-  static const char* value(const sonarmap_ros::OctomapMessage&) { return value(); }
-};
-template <>
-struct Definition<sonarmap_ros::OctomapMessage> {
-  static const char* value() {
-    return
+inline constexpr char kOctomapMd5[] = "9a45536b45c5e409cd49f04bb2d9999f";
+inline constexpr char kOctomap[] =
     "# A 3D map in binary format, as Octree\n"
     "Header header\n"
     "\n"
@@ -88,26 +76,10 @@ struct Definition<sonarmap_ros::OctomapMessage> {
     "time stamp\n"
     "#Frame this data is associated with\n"
     "string frame_id\n";
-  }
-  static const char* value(const sonarmap_ros::OctomapMessage&) { return value(); }
-};
-template <>
-struct HasHeader<sonarmap_ros::OctomapMessage> : TrueType {};
 
-template <>
-struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest> {
-  static const char* value() { return "93aa3d73b866f04880927745f4aab303"; }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
-};
-template <>
-struct DataType<sonarmap_ros::BoundingBoxQueryRequest> {
-  static const char* value() { return "octomap_msgs/BoundingBoxQueryRequest"; }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
-};
-template <>
-struct Definition<sonarmap_ros::BoundingBoxQueryRequest> {
-  static const char* value() {
-    return
+/// genmsg's md5 of the service: of the request's text and the empty response's, so the request's own too.
+inline constexpr char kBoundingBoxQueryMd5[] = "93aa3d73b866f04880927745f4aab303";
+inline constexpr char kBoundingBoxQueryRequest[] =
     "# Clear a region specified by a global axis-aligned bounding box in stored OctoMap\n"
     "\n"
     "# minimum corner point of axis-aligned bounding box in global frame\n"
@@ -121,54 +93,44 @@ struct Definition<sonarmap_ros::BoundingBoxQueryRequest> {
     "float64 x\n"
     "float64 y\n"
     "float64 z\n";
-  }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
-};
-template <>
-struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse> {
-  static const char* value() { return "d41d8cd98f00b204e9800998ecf8427e"; }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
-};
-template <>
-struct DataType<sonarmap_ros::BoundingBoxQueryResponse> {
-  static const char* value() { return "octomap_msgs/BoundingBoxQueryResponse"; }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
-};
-template <>
-struct Definition<sonarmap_ros::BoundingBoxQueryResponse> {
-  static const char* value() { return "\n"; }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
-};
 
-}  // namespace ros::message_traits
+}  // namespace sonarmap_ros::definitions
+
+// roscpp's own macro for messages whose traits are written by hand (ros/message_traits.h).
+ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::OctomapMessage, sonarmap_ros::definitions::kOctomapMd5,
+                                  "octomap_msgs/Octomap", sonarmap_ros::definitions::kOctomap)
+ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::BoundingBoxQueryRequest,
+                                  sonarmap_ros::definitions::kBoundingBoxQueryMd5,
+                                  "octomap_msgs/BoundingBoxQueryRequest",
+                                  sonarmap_ros::definitions::kBoundingBoxQueryRequest)
+ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::BoundingBoxQueryResponse, "d41d8cd98f00b204e9800998ecf8427e",
+                                  "octomap_msgs/BoundingBoxQueryResponse", "\n")
+
+namespace ros {
+template <> struct message_traits::HasHeader<sonarmap_ros::OctomapMessage> : message_traits::TrueType {};
+}  // namespace ros
 
 namespace ros::service_traits {
 
+/// The service's md5 and type, which its request and response both carry (ros/service_traits.h).
 template <class Part>
-struct BoundingBoxQueryTraits {
-  static const char* md5() { return "93aa3d73b866f04880927745f4aab303"; }
-  static const char* type() { return "octomap_msgs/BoundingBoxQuery"; }
+struct BoundingBoxQueryPart {
+  static const char* value() { return sonarmap_ros::definitions::kBoundingBoxQueryMd5; }
+  static const char* value(const Part&) { return value(); }
+};
+template <class Part>
+struct BoundingBoxQueryType {
+  static const char* value() { return "octomap_msgs/BoundingBoxQuery"; }
+  static const char* value(const Part&) { return value(); }
 };
 template <>
-struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest> {
-  static const char* value() { return BoundingBoxQueryTraits<void>::md5(); }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
-};
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest> : BoundingBoxQueryPart<sonarmap_ros::BoundingBoxQueryRequest> {};
 template <>
-struct DataType<sonarmap_ros::BoundingBoxQueryRequest> {
-  static const char* value() { return BoundingBoxQueryTraits<void>::type(); }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryRequest&) { return value(); }
-};
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse> : BoundingBoxQueryPart<sonarmap_ros::BoundingBoxQueryResponse> {};
 template <>
-struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse> {
-  static const char* value() { return BoundingBoxQueryTraits<void>::md5(); }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
-};
+struct DataType<sonarmap_ros::BoundingBoxQueryRequest> : BoundingBoxQueryType<sonarmap_ros::BoundingBoxQueryRequest> {};
 template <>
-struct DataType<sonarmap_ros::BoundingBoxQueryResponse> {
-  static const char* value() { return BoundingBoxQueryTraits<void>::type(); }
-  static const char* value(const sonarmap_ros::BoundingBoxQueryResponse&) { return value(); }
-};
+struct DataType<sonarmap_ros::BoundingBoxQueryResponse> : BoundingBoxQueryType<sonarmap_ros::BoundingBoxQueryResponse> {};
 
 }  // namespace ros::service_traits
 
