@@ -94,12 +94,18 @@ Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments) {
 
 std::string mapGeodeticComment(const GeodeticPoint& map_zero) {
   requireGeodetic(map_zero, "the map's geodetic origin");
-  char text[200];
-  std::snprintf(text, sizeof text,
-                "%.15g %.15g %.6g (latitude, longitude in degrees, height in metres above the WGS84 ellipsoid of the "
-                "map's zero)",
-                map_zero.latitude_deg, map_zero.longitude_deg, map_zero.height_m);
-  return std::string(kGeodeticPrefix) + text;
+  // 1e-9° is 0.1 mm on the Earth, as is 1e-4 m: finer digits are the estimate's rounding noise.
+  const auto decimals = [](double value, int places) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", places, value);
+    std::string out(text);
+    out.erase(out.find_last_not_of('0') + 1);
+    if (out.back() == '.') out.pop_back();
+    return out == "-0" ? std::string("0") : out;
+  };
+  return std::string(kGeodeticPrefix) + decimals(map_zero.latitude_deg, 9) + " " +
+         decimals(map_zero.longitude_deg, 9) + " " + decimals(map_zero.height_m, 4) +
+         " (latitude, longitude in degrees, height in metres above the WGS84 ellipsoid of the map's zero)";
 }
 
 std::optional<GeodeticPoint> geodeticOriginOfComments(const std::vector<std::string>& comments) {

@@ -145,5 +145,24 @@ TEST(MapFrame, FileHeaderNamesTheLocalOriginAndReadsItBack) {
   std::filesystem::remove_all(dir);
 }
 
+// The line gives the origin to 0.1 mm on the Earth, without an estimate's rounding noise, and
+// reads back within that.
+TEST(MapFrame, GeodeticOriginLineIsRoundedToATenthOfAMillimetre) {
+  GeodeticPoint zero;
+  zero.latitude_deg = 43.29460000000012;
+  zero.longitude_deg = -5.3655;
+  zero.height_m = -0.00002;
+  const std::string line = mapGeodeticComment(zero);
+  EXPECT_TRUE(line.starts_with("sonarmap geodetic origin: 43.2946 -5.3655 0 (latitude")) << line;
+  const std::optional<GeodeticPoint> back = geodeticOriginOfComments({"other", line});
+  ASSERT_TRUE(back.has_value());
+  EXPECT_NEAR(back->latitude_deg, zero.latitude_deg, 1e-9);
+  EXPECT_NEAR(back->longitude_deg, zero.longitude_deg, 1e-9);
+  EXPECT_NEAR(back->height_m, zero.height_m, 1e-4);
+  zero.latitude_deg = -89.123456789;
+  zero.height_m = 12.34567;
+  EXPECT_TRUE(mapGeodeticComment(zero).starts_with("sonarmap geodetic origin: -89.123456789 -5.3655 12.3457 ("));
+}
+
 }  // namespace
 }  // namespace sonarmap

@@ -53,8 +53,8 @@ std::string mapOriginComment(const Eigen::Vector3d& origin_ned_m);
 Eigen::Vector3d mapOriginOfComments(const std::vector<std::string>& comments);
 
 /// The header comment line placing the map's zero on the Earth (geodetic.hpp): "sonarmap geodetic
-/// origin: 43.29612400000000 5.369952000000000 0 (latitude, longitude in degrees, height in metres
-/// above the WGS84 ellipsoid of the map's zero)". The map's frame is the local tangent plane there
+/// origin: 43.296124 5.369952 0 (latitude, longitude in degrees, height in metres above the WGS84
+/// ellipsoid of the map's zero)", to 1e-9° and 0.1 mm (0.1 mm on the Earth), trailing zeros dropped. The map's frame is the local tangent plane there
 /// (x east, y north, z up in ENU; GeographicLib::LocalCartesian), so a point of the map is placed
 /// on the Earth by nedToGeodetic(origin, its NED coordinates).
 std::string mapGeodeticComment(const GeodeticPoint& map_zero);
