@@ -1,0 +1,96 @@
+// sonarmap_cloud_phases IN.graph [RESOLUTION_M]: where the memory and the time of `sonarmap cloud`
+// go, phase by phase, in a process that links only the lean components (sonarmap::octree,
+// algorithms, io), as the lean `sonarmap` does. After each phase: wall ms, the resident set
+// (VmRSS) and its peak so far (VmHWM) from /proc/self/status, and the heap in use (mallinfo2's
+// uordblks + hblkhd). Per scan it also prints the size of the per-scan key sets the insertion
+// builds (src/algorithms/key_marks.hpp: one 64-bit word per 4 × 4 × 4 brick of the box holding the
+// origin and every ray's end key, one set for the crossed voxels and one for the hits, while
+// the box holds ≤ 2^27 voxels) and the rays prepared (32 B each). docs/performance.md,
+// "Where the memory and time go", shows its output.
+#include <malloc.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "sonarmap/algorithms/point_cloud_insertion.hpp"
+#include "sonarmap/io/map_file.hpp"
+#include "sonarmap/io/scan_graph.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double statusMiB(const std::string& field) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.starts_with(field + ":")) return std::atof(line.c_str() + field.size() + 1) / 1024.0;
+  }
+  return -1.0;
+}
+
+void phase(const char* name, Clock::time_point& since) {
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - since).count();
+  const struct mallinfo2 heap = mallinfo2();
+  std::printf("%-28s %9.2f ms   RSS %7.1f MiB   peak %7.1f MiB   heap %7.1f MiB\n", name, ms, statusMiB("VmRSS"),
+              statusMiB("VmHWM"), static_cast<double>(heap.uordblks + heap.hblkhd) / 1048576.0);
+  since = Clock::now();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || argc > 3) {
+    std::fprintf(stderr, "usage: sonarmap_cloud_phases IN.graph [RESOLUTION_M]\n");
+    return 2;
+  }
+  try {
+    auto since = Clock::now();
+    phase("start-up (before main)", since);
+    const std::vector<sonarmap::Scan> scans = sonarmap::readScanGraph(argv[1]);
+    phase("read the scan graph", since);
+    sonarmap::OcTree16 map(argc == 3 ? std::atof(argv[2]) : 0.05);
+    sonarmap::PointCloud world;
+    for (const sonarmap::Scan& scan : scans) {
+      world.clear();
+      for (const Eigen::Vector3d& p : scan.points_m) world.push_back(scan.sensor_to_world * p);
+      phase("scan to the world frame", since);
+      // The key box the insertion's sets cover (prepareScan): the origin and every end key.
+      const auto& coder = map.coder();
+      sonarmap::Key16 lo = *coder.keyOf(scan.sensor_to_world.translation()), hi = lo;
+      for (const Eigen::Vector3d& p : world) {
+        if (const auto key = coder.keyOf(p)) {
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], (*key)[a]);
+            hi[a] = std::max(hi[a], (*key)[a]);
+          }
+        }
+      }
+      double bricks = 1.0;
+      for (int a = 0; a < 3; ++a) bricks *= static_cast<double>(((hi[a] - (lo[a] & ~3)) >> 2) + 1);
+      std::printf("  key box %d × %d × %d voxels: two brick bitmaps of %.1f MiB each; %zu rays, %.1f MiB prepared\n",
+                  hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1, bricks * 8.0 / 1048576.0, world.size(),
+                  static_cast<double>(world.size()) * 32.0 / 1048576.0);
+      since = Clock::now();
+      sonarmap::insertPointCloud(map, world, scan.sensor_to_world.translation());
+      phase("insert (trace, sets, tree)", since);
+    }
+    std::printf("  tree: %.1f MiB in use (memoryBytes), %.1f MiB allocated\n",
+                static_cast<double>(map.memoryBytes()) / 1048576.0,
+                static_cast<double>(map.memoryBytesAllocated()) / 1048576.0);
+    const std::string out = (std::filesystem::temp_directory_path() / "sonarmap_cloud_phases.bt").string();
+    sonarmap::writeMapFile(map, out);
+    phase("write the .bt", since);
+    std::filesystem::remove(out);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sonarmap_cloud_phases: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
