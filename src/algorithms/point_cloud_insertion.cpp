@@ -25,11 +25,17 @@ struct ScanRay {
   bool hit;               ///< the end voxel is occupied (false for a ray clipped at the range limit)
 };
 
-/// A scan's rays with the keys they touch.
+/// A scan's rays with the keys they touch. When every point of the cloud is a ray that hits (none
+/// dropped, none clipped at the range limit: the usual case), the rays are the cloud's own points
+/// (`hit_points`), not a copy: 32 bytes a point less at the insertion's peak.
 struct PreparedScan {
+  const PointCloud* hit_points = nullptr;  ///< the rays' ends, every ray a hit; or nullptr: `rays`
   std::vector<ScanRay> rays;
   std::vector<Key16> hits;  ///< end keys of the rays that hit
   Key16 lo{}, hi{};         ///< box of every key the rays visit (DDA keys stay in the end keys' box)
+
+  std::size_t size() const { return hit_points ? hit_points->size() : rays.size(); }
+  ScanRay ray(std::size_t i) const { return hit_points ? ScanRay{(*hit_points)[i], true} : rays[i]; }
 };
 
 void checkRange(double max_range_m) {
@@ -73,40 +79,51 @@ PreparedScan prepareScan(const KeyCoder<16>& coder, const PointCloud& points, co
                          const Key16& origin_key, double max_range_m, InsertStats& stats) {
   PreparedScan scan;
   scan.lo = scan.hi = origin_key;
-  scan.rays.reserve(points.size());
-  for (const Eigen::Vector3d& point : points) {
+  scan.hit_points = &points;  // until a point is dropped or clipped
+  scan.hits.reserve(points.size());
+  const auto own_rays = [&](std::size_t kept) {  // the points so far were all kept as hits
+    scan.rays.reserve(points.size());
+    for (std::size_t i = 0; i < kept; ++i) scan.rays.push_back({points[i], true});
+    scan.hit_points = nullptr;
+  };
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d& point = points[i];
     if (!point.allFinite()) {
+      if (scan.hit_points) own_rays(i);
       ++stats.skipped_nonfinite;
       continue;
     }
     const ScanRay ray = clipRay(origin_m, point, max_range_m);
     const auto end_key = coder.keyOf(ray.end_m);
     if (!end_key) {
+      if (scan.hit_points) own_rays(i);
       ++stats.out_of_map;
       continue;
     }
     growKeyBox(scan.lo, scan.hi, *end_key);
-    scan.rays.push_back(ray);
+    if (!ray.hit && scan.hit_points) own_rays(i);
+    if (!scan.hit_points) scan.rays.push_back(ray);
     if (ray.hit) scan.hits.push_back(*end_key);
   }
-  stats.rays = scan.rays.size();
+  stats.rays = scan.size();
   return scan;
 }
 
 /// Marks every voxel the rays [first, last) cross, except each ray's end voxel (computeRayKeys).
 /// A hit ray marks its end voxel too: every hit voxel is erased from the set afterwards anyway
 /// (occupied wins), so only rays clipped at the range limit need to stop one voxel short.
-void traceRays(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const ScanRay* first,
-               const ScanRay* last, Marks& marks) {
+void traceRays(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const PreparedScan& scan,
+               std::size_t first, std::size_t last, Marks& marks) {
   marks.marking([&](auto mark) {
-    for (const ScanRay* ray = first; ray != last; ++ray) {
-      if (ray->hit) {
-        traverseDDASteps(coder, origin_m, ray->end_m, mark);
+    for (std::size_t i = first; i != last; ++i) {
+      const ScanRay ray = scan.ray(i);
+      if (ray.hit) {
+        traverseDDASteps(coder, origin_m, ray.end_m, mark);
         continue;
       }
       bool started = false;
       Key16 previous{};
-      traverseDDA(coder, origin_m, ray->end_m, [&](const Key16& key) {
+      traverseDDA(coder, origin_m, ray.end_m, [&](const Key16& key) {
         if (started) mark(previous);  // one key behind: the end voxel is never marked
         previous = key;
         started = true;
@@ -119,17 +136,16 @@ void traceRays(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const
 void traceScan(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const PreparedScan& scan,
                unsigned threads, Marks& crossed) {
   crossed.reset(scan.lo, scan.hi);
-  const std::size_t n = scan.rays.size();
+  const std::size_t n = scan.size();
   threads = static_cast<unsigned>(std::clamp<std::size_t>(n / 256, 1, threads));  // ≥ 256 rays per thread
   if (threads <= 1) {
-    traceRays(coder, origin_m, scan.rays.data(), scan.rays.data() + n, crossed);
+    traceRays(coder, origin_m, scan, 0, n, crossed);
     return;
   }
   std::vector<Marks> parts(threads - 1);
   for (Marks& part : parts) part.reset(scan.lo, scan.hi);
   runOnThreads(threads, [&](unsigned t) {
-    traceRays(coder, origin_m, scan.rays.data() + n * t / threads, scan.rays.data() + n * (t + 1) / threads,
-              t == 0 ? crossed : parts[t - 1]);
+    traceRays(coder, origin_m, scan, n * t / threads, n * (t + 1) / threads, t == 0 ? crossed : parts[t - 1]);
   });
   for (const Marks& part : parts) crossed.merge(part);
 }
