@@ -21,11 +21,12 @@
 #include "run_command.hpp"
 #include "simulate_command.hpp"
 #include "suggest.hpp"
+#include "version.hpp"
 #include "view_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"sonarmap: probabilistic 3D occupancy maps from mechanically scanned imaging sonar and point clouds"};
-  app.set_version_flag("--version", std::string("sonarmap ") + SONARMAP_VERSION);
+  app.set_version_flag("--version", sonarmap::cli::kVersionLine);
   app.require_subcommand(1);
   // Every option's help is one line (details: docs/commands.md); the widest option name fits the
   // column, so each option stays on one line. The subcommands share this formatter.
