@@ -1,7 +1,8 @@
 # The Debian package: `cpack -G DEB` in the build folder writes
 # sonarmap_<version>_<arch>.deb with everything `cmake --install` installs under /usr: the
 # library (static, one libsonarmap_<component>.a per component), its headers and CMake package
-# (find_package(sonarmap [COMPONENTS ...])), the `sonarmap` CLI
+# (find_package(sonarmap [COMPONENTS ...])), the `sonarmap` CLI (/usr/bin/sonarmap and the full
+# tool it hands every command but `cloud` to, /usr/libexec/sonarmap/sonarmap-full)
 # and, when built, the Python module (/usr/lib/python3/dist-packages/sonarmap).
 # `apt-get install ./sonarmap_*.deb` pulls what it needs from Debian: the shared libraries the
 # CLI and the module link (dpkg-shlibdeps) and, since the library is static and its headers

@@ -1,7 +1,6 @@
-// sonarmap: sonar logs and point clouds → probabilistic occupancy octrees.
+// The full sonarmap tool (sonarmap-full): every command. Users run `sonarmap` (lean_main.cpp), which
+// runs `cloud` itself and hands everything else to this executable with the same arguments.
 // Exit codes: 0 success, 1 bad data or failed output, 2 bad usage. Errors are one line on stderr.
-#include <cstdio>
-#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,23 +18,15 @@
 #include "live_command.hpp"
 #include "localize_command.hpp"
 #include "map_command.hpp"
+#include "run_command.hpp"
 #include "simulate_command.hpp"
 #include "suggest.hpp"
+#include "version.hpp"
 #include "view_command.hpp"
-#include "sonarmap/core/errors.hpp"
-
-namespace {
-
-int fail(int code, const char* message) {
-  std::fprintf(stderr, "sonarmap: error: %s\n", message);
-  return code;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"sonarmap: probabilistic 3D occupancy maps from mechanically scanned imaging sonar and point clouds"};
-  app.set_version_flag("--version", std::string("sonarmap ") + SONARMAP_VERSION);
+  app.set_version_flag("--version", sonarmap::cli::kVersionLine);
   app.require_subcommand(1);
   // Every option's help is one line (details: docs/commands.md); the widest option name fits the
   // column, so each option stays on one line. The subcommands share this formatter.
@@ -76,20 +67,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& version) {
     return app.exit(version);
   } catch (const CLI::ParseError& error) {
-    return fail(2, sonarmap::cli::parseErrorMessage(app, std::vector<std::string>(argv + 1, argv + argc), error).c_str());
+    return sonarmap::cli::fail(2, sonarmap::cli::parseErrorMessage(app, std::vector<std::string>(argv + 1, argv + argc), error).c_str());
   }
   for (const sonarmap::cli::Command& command : commands) {
-    if (!command.parser->parsed()) continue;
-    try {
-      command.check();
-    } catch (const sonarmap::Error& error) {
-      return fail(2, error.what());
-    }
-    try {
-      command.run();
-    } catch (const std::exception& error) {
-      return fail(1, error.what());
-    }
+    if (command.parser->parsed()) return sonarmap::cli::runCommand(command);
   }
   return 0;
 }

@@ -4,6 +4,7 @@
 
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -139,6 +140,39 @@ TEST_F(cliCloud, DataErrorsExitOneAndWriteNothing) {
     expectError(run({"cloud", (root_ / input).string(), "-o", (out_ / "map.ot").string()}), 1);
   }
   EXPECT_TRUE(listDir(out_).empty());
+}
+
+}  // namespace
+}  // namespace sonarmap::test
+
+namespace sonarmap::test {
+namespace {
+
+// `sonarmap` runs `cloud` and a bare `--version` with what it links itself and hands every other
+// command to the full tool next to it (build tree) or in ../libexec/sonarmap (installed): a copy of
+// it alone in a folder maps a cloud to the same bytes as the full tool, and names the full tool it
+// lacks for anything else.
+TEST_F(cliCloud, LeanToolMapsCloudsAloneAndHandsOtherCommandsToTheFullTool) {
+  writeFile(root_ / "cloud.txt", "1 0 0\n0 1.5 0\n0 0 2\n-1 -1 -1\n");
+  const fs::path alone = root_ / "alone";
+  fs::create_directory(alone);
+  fs::copy_file(SONARMAP_CLI, alone / "sonarmap");
+  const ProgramRun lean = runProgram((alone / "sonarmap").string(),
+                                     {"cloud", (root_ / "cloud.txt").string(), "-o", (out_ / "lean.bt").string(), "-q"}, root_);
+  ASSERT_EQ(lean.exit_code, 0) << lean.err;
+  const fs::path full_tool = fs::path(SONARMAP_CLI).parent_path() / "sonarmap-full";
+  const ProgramRun full = runProgram(full_tool.string(),
+                                     {"cloud", (root_ / "cloud.txt").string(), "-o", (out_ / "full.bt").string(), "-q"}, root_);
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  EXPECT_EQ(readFile(out_ / "lean.bt"), readFile(out_ / "full.bt"));
+  EXPECT_EQ(runProgram((alone / "sonarmap").string(), {"--version"}, root_).out,
+            runProgram(full_tool.string(), {"--version"}, root_).out);
+
+  const ProgramRun other = runProgram((alone / "sonarmap").string(), {"info", (out_ / "lean.bt").string()}, root_);
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_EQ(other.err.rfind("sonarmap: error: the full sonarmap tool is missing: tried " + (alone / "sonarmap-full").string(), 0), 0U)
+      << other.err;
+  EXPECT_EQ(std::count(other.err.begin(), other.err.end(), '\n'), 1) << other.err;
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ case "$mode" in
       [[ ",$depends," == *"$needed"* ]] || fail "Depends lacks $needed: $depends"
     done
     files=$(dpkg-deb -c "$deb" | awk '{print $6}')
-    for needed in ./usr/bin/sonarmap ./usr/include/sonarmap/io/octomap_binary.hpp \
+    for needed in ./usr/bin/sonarmap ./usr/libexec/sonarmap/sonarmap-full ./usr/include/sonarmap/io/octomap_binary.hpp \
                   ./usr/lib/cmake/sonarmap/sonarmapConfig.cmake ./usr/lib/cmake/sonarmap/sonarmap_octreeTargets.cmake \
                   ./usr/lib/libsonarmap_octree.a ./usr/lib/libsonarmap_mapping.a ./usr/lib/libsonarmap_geotiff.so; do
       grep -qxF "$needed" <<<"$files" || fail "the package lacks $needed"
@@ -41,6 +41,8 @@ case "$mode" in
     # shared library (libsonarmap_geotiff.so) once installed.
     export LD_LIBRARY_PATH="$prefix/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
     "$prefix/bin/sonarmap" --version >/dev/null || fail "the packaged CLI does not run"
+    # Every command but cloud is the full tool's, which the lean sonarmap finds in ../libexec/sonarmap.
+    "$prefix/bin/sonarmap" --help | grep -q "^  map " || fail "the packaged CLI does not reach the full tool"
     if grep -q "^./usr/lib/python3/dist-packages/sonarmap/" <<<"$files"; then
       [[ ",$depends," == *"python3-numpy"* ]] || fail "Depends lacks python3-numpy: $depends"
       PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" /usr/bin/python3 -c \
@@ -74,3 +76,16 @@ others=$(tr ' ' '\n' <<<"$link" | grep -E '\.(a|so)$|^-l' | grep -v 'libsonarmap
 [ -z "$others" ] || fail "the octree consumer links more than the octree: $others"
 cmake --build "$tmp/octree" >/dev/null
 "$tmp/octree/octree_consumer"
+
+# Point clouds (COMPONENTS octree algorithms io): the program loads none of the other components'
+# shared libraries, and neither does the installed `sonarmap` that runs `cloud`.
+cmake -S "$source_dir/tests/consumer/cloud" -B "$tmp/cloud" -G Ninja -DCMAKE_BUILD_TYPE="$(cached CMAKE_BUILD_TYPE)" \
+  -DCMAKE_CXX_FLAGS="$(cached CMAKE_CXX_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="$(cached CMAKE_EXE_LINKER_FLAGS)" \
+  -DCMAKE_PREFIX_PATH="$prefix" >/dev/null || fail "find_package(sonarmap COMPONENTS octree algorithms io) failed"
+cmake --build "$tmp/cloud" >/dev/null
+"$tmp/cloud/cloud_consumer" "$tmp/cloud.bt"
+heavy='opencv|matio|hdf5|boost|rosbag|roscpp|ceres|gdal|sonarmap_geotiff|png|icu|glog|gflags|httplib'
+for program in "$tmp/cloud/cloud_consumer" "$prefix/bin/sonarmap"; do
+  loaded=$(ldd "$program" | grep -Ei "$heavy" || true)
+  [ -z "$loaded" ] || fail "$program loads more than point clouds need: $loaded"
+done
