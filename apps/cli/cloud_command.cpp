@@ -60,7 +60,7 @@ std::vector<Scan> readScans(const CloudArgs& args) {
 
 void run(const CloudArgs& args) {
   using Clock = std::chrono::steady_clock;
-  const std::vector<Scan> scans = readScans(args);
+  std::vector<Scan> scans = readScans(args);
   const auto start = Clock::now();
   OcTree16 map(args.resolution_m);
   InsertOptions options;
@@ -69,10 +69,10 @@ void run(const CloudArgs& args) {
   InsertStats total;
   {
     ProgressBar bar("inserting");
-    PointCloud world;
     for (std::size_t i = 0; i < scans.size(); ++i) {
-      world.clear();
-      for (const Eigen::Vector3d& p : scans[i].points_m) world.push_back(scans[i].sensor_to_world * p);
+      // Into the world frame in place, and freed once inserted: no second copy of the points.
+      PointCloud world = std::move(scans[i].points_m);
+      for (Eigen::Vector3d& p : world) p = scans[i].sensor_to_world * p;
       total += insertPointCloudParallel(map, world, scans[i].sensor_to_world.translation(), options, args.threads);
       if (!args.quiet) bar.update(i + 1, scans.size());
     }
