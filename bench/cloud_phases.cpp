@@ -5,7 +5,7 @@
 // uordblks + hblkhd). Per scan it also prints the size of the per-scan key sets the insertion
 // builds (src/algorithms/key_marks.hpp: one 64-bit word per 4 × 4 × 4 brick of the box holding the
 // origin and every ray's end key, one set for the crossed voxels and one for the hits, while
-// the box holds ≤ 2^27 voxels) and the rays prepared (32 B each). docs/performance.md,
+// the box holds ≤ 2^27 voxels) and the hit keys kept (6 B a ray). docs/performance.md,
 // "Where the memory and time go", shows its output.
 #include <malloc.h>
 
@@ -52,14 +52,13 @@ int main(int argc, char** argv) {
   }
   try {
     auto since = Clock::now();
-    phase("start-up (before main)", since);
-    const std::vector<sonarmap::Scan> scans = sonarmap::readScanGraph(argv[1]);
+    phase("at main()", since);
+    std::vector<sonarmap::Scan> scans = sonarmap::readScanGraph(argv[1]);
     phase("read the scan graph", since);
     sonarmap::OcTree16 map(argc == 3 ? std::atof(argv[2]) : 0.05);
-    sonarmap::PointCloud world;
-    for (const sonarmap::Scan& scan : scans) {
-      world.clear();
-      for (const Eigen::Vector3d& p : scan.points_m) world.push_back(scan.sensor_to_world * p);
+    for (sonarmap::Scan& scan : scans) {
+      sonarmap::PointCloud world = std::move(scan.points_m);  // as `sonarmap cloud`: in place
+      for (Eigen::Vector3d& p : world) p = scan.sensor_to_world * p;
       phase("scan to the world frame", since);
       // The key box the insertion's sets cover (prepareScan): the origin and every end key.
       const auto& coder = map.coder();
@@ -74,9 +73,9 @@ int main(int argc, char** argv) {
       }
       double bricks = 1.0;
       for (int a = 0; a < 3; ++a) bricks *= static_cast<double>(((hi[a] - (lo[a] & ~3)) >> 2) + 1);
-      std::printf("  key box %d × %d × %d voxels: two brick bitmaps of %.1f MiB each; %zu rays, %.1f MiB prepared\n",
+      std::printf("  key box %d × %d × %d voxels: two brick bitmaps of %.1f MiB each; %zu rays, hit keys %.1f MiB\n",
                   hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1, bricks * 8.0 / 1048576.0, world.size(),
-                  static_cast<double>(world.size()) * 32.0 / 1048576.0);
+                  static_cast<double>(world.size()) * sizeof(sonarmap::Key16) / 1048576.0);
       since = Clock::now();
       sonarmap::insertPointCloud(map, world, scan.sensor_to_world.translation());
       phase("insert (trace, sets, tree)", since);
