@@ -8,7 +8,7 @@ SONARMAP is the `sonarmap` executable; PEERS_DIR/bin holds the drivers built by 
 the graphs written by `sonarmap_cloud_inputs` plus octomap_spherical_scan.graph (../shared/data).
 Each round runs every program once on the workload, in a rotated order (alternating runs); a
 figure is the median of the rounds: wall seconds (time.perf_counter around the whole process),
-peak RSS (os.wait4's ru_maxrss of that process), the insertion alone by the program's own clock,
+peak RSS (/usr/bin/time -f %M), the insertion alone by the program's own clock,
 and the finest voxels it knows free and occupied (sonarmap's are OctoMap's: the same traversal,
 agreement 1.0 in sonarmap_bench's BM_Cloud rows)."""
 import argparse
@@ -26,16 +26,18 @@ WORKLOADS = [("OctoMap's spherical scan graph", "octomap_spherical_scan.graph"),
 
 
 def run_once(command):
-    start = time.perf_counter()
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
-    _, status, usage = os.wait4(process.pid, 0)
-    wall_s = time.perf_counter() - start
-    out = process.stdout.read()
-    process.stdout.close()
-    process.returncode = os.waitstatus_to_exitcode(status)
-    if process.returncode != 0:
-        sys.exit(f"{' '.join(command)} failed with exit code {process.returncode}")
-    return wall_s, usage.ru_maxrss / 1024.0, out
+    """Wall seconds (perf_counter around the whole process, /usr/bin/time's fork included), peak RSS
+    in MB (/usr/bin/time -f %M: the program's own, not ru_maxrss of a child forked from this Python
+    process, which starts at Python's resident size) and the program's stdout."""
+    with tempfile.NamedTemporaryFile("r") as measured:
+        start = time.perf_counter()
+        process = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", measured.name] + command,
+                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        wall_s = time.perf_counter() - start
+        if process.returncode != 0:
+            sys.exit(f"{' '.join(command)} failed with exit code {process.returncode}")
+        peak_kb = int(measured.read().split()[-1])
+    return wall_s, peak_kb / 1024.0, process.stdout
 
 
 def main():

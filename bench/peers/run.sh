@@ -3,7 +3,7 @@
 # docs/performance.md ("Peers"). Writes the generated workloads with INPUTS_TOOL (default: this
 # worktree's build/bench/sonarmap_cloud_inputs) into PEERS_DIR/inputs, links OctoMap's spherical scan
 # graph from ../shared/data, and runs bench/peers/run.py: 5 alternating rounds of every program on
-# every workload, medians of wall seconds and peak RSS (ru_maxrss, what /usr/bin/time -f %M prints).
+# every workload, medians of wall seconds and peak RSS (/usr/bin/time -f %M).
 # SONARMAP is the `sonarmap` executable to measure; PEERS_DIR/bin holds the drivers of build.sh.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
