@@ -2,14 +2,12 @@
 // go, phase by phase, in a process that links only the lean components (sonarmap::octree,
 // algorithms, io), as the lean `sonarmap` does. After each phase: wall ms, the resident set
 // (VmRSS) and its peak so far (VmHWM) from /proc/self/status, and the heap in use (mallinfo2's
-// uordblks + hblkhd). Per scan it also prints the size of the per-scan key sets the insertion
-// builds (src/algorithms/key_marks.hpp: one 64-bit word per 4 × 4 × 4 brick of the box holding the
-// origin and every ray's end key, one set for the crossed voxels and one for the hits, while
-// the box holds ≤ 2^27 voxels) and the hit keys kept (6 B a ray). docs/performance.md,
+// uordblks + hblkhd). Per scan it also prints the bytes of the per-scan key sets the insertion
+// built (InsertStats::key_set_bytes: the crossed and the hit voxels) and of the end keys it kept
+// (6 B a ray that hits). docs/performance.md,
 // "Where the memory and time go", shows its output.
 #include <malloc.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -60,25 +58,11 @@ int main(int argc, char** argv) {
       sonarmap::PointCloud world = std::move(scan.points_m);  // as `sonarmap cloud`: in place
       for (Eigen::Vector3d& p : world) p = scan.sensor_to_world * p;
       phase("scan to the world frame", since);
-      // The key box the insertion's sets cover (prepareScan): the origin and every end key.
-      const auto& coder = map.coder();
-      sonarmap::Key16 lo = *coder.keyOf(scan.sensor_to_world.translation()), hi = lo;
-      for (const Eigen::Vector3d& p : world) {
-        if (const auto key = coder.keyOf(p)) {
-          for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], (*key)[a]);
-            hi[a] = std::max(hi[a], (*key)[a]);
-          }
-        }
-      }
-      double bricks = 1.0;
-      for (int a = 0; a < 3; ++a) bricks *= static_cast<double>(((hi[a] - (lo[a] & ~3)) >> 2) + 1);
-      std::printf("  key box %d × %d × %d voxels: two brick bitmaps of %.1f MiB each; %zu rays, hit keys %.1f MiB\n",
-                  hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1, bricks * 8.0 / 1048576.0, world.size(),
-                  static_cast<double>(world.size()) * sizeof(sonarmap::Key16) / 1048576.0);
-      since = Clock::now();
-      sonarmap::insertPointCloud(map, world, scan.sensor_to_world.translation());
+      const sonarmap::InsertStats stats = sonarmap::insertPointCloud(map, world, scan.sensor_to_world.translation());
       phase("insert (trace, sets, tree)", since);
+      std::printf("  %zu rays: key sets %.1f MiB, hit keys %.1f MiB\n", stats.rays,
+                  static_cast<double>(stats.key_set_bytes) / 1048576.0,
+                  static_cast<double>(stats.rays) * sizeof(sonarmap::Key16) / 1048576.0);
     }
     std::printf("  tree: %.1f MiB in use (memoryBytes), %.1f MiB allocated\n",
                 static_cast<double>(map.memoryBytes()) / 1048576.0,

@@ -60,6 +60,12 @@ class KeyMarks {
 
   bool dense() const { return dense_; }
 
+  /// Bytes the set holds: the bitmap's words, or the hash set's slots (a key and a control byte
+  /// each, Abseil's layout).
+  std::size_t memoryBytes() const {
+    return dense_ ? bits_.size() * sizeof(std::uint64_t) : sparse_.capacity() * (sizeof(KeyType) + 1);
+  }
+
   /// Calls `body(mark)` where `mark(key)` adds a key of the box, the concrete set's insert, so a
   /// traversal loop is compiled once per kind instead of branching per key. `mark(key,
   /// SteppedAxis<A>{})` (A = 0, 1, 2) adds a key that differs from the key marked just before

@@ -87,21 +87,15 @@ PreparedScan prepareScan(const KeyCoder<16>& coder, const PointCloud& points, co
     scan.hit_points = nullptr;
   };
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d& point = points[i];
-    if (!point.allFinite()) {
-      if (scan.hit_points) own_rays(i);
-      ++stats.skipped_nonfinite;
-      continue;
-    }
-    const ScanRay ray = clipRay(origin_m, point, max_range_m);
-    const auto end_key = coder.keyOf(ray.end_m);
+    const bool finite = points[i].allFinite();
+    const ScanRay ray = finite ? clipRay(origin_m, points[i], max_range_m) : ScanRay{points[i], false};
+    const std::optional<Key16> end_key = finite ? coder.keyOf(ray.end_m) : std::nullopt;
+    if (scan.hit_points && !(end_key && ray.hit)) own_rays(i);  // this ray is not the point as a hit
     if (!end_key) {
-      if (scan.hit_points) own_rays(i);
-      ++stats.out_of_map;
+      ++(finite ? stats.out_of_map : stats.skipped_nonfinite);
       continue;
     }
     growKeyBox(scan.lo, scan.hi, *end_key);
-    if (!ray.hit && scan.hit_points) own_rays(i);
     if (!scan.hit_points) scan.rays.push_back(ray);
     if (ray.hit) scan.hits.push_back(*end_key);
   }
@@ -174,6 +168,7 @@ InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const E
   hits.reset(scan.lo, scan.hi);
   for (const Key16& key : scan.hits) hits.insert(key);
   const std::size_t free_voxels = crossed.subtract(hits);
+  stats.key_set_bytes = crossed.memoryBytes() + hits.memoryBytes();
   map.reserve(free_voxels + scan.hits.size());  // one allocation instead of growth and copies
   const LogOddsModel& model = map.model();
   const auto update = [&map](float delta, std::size_t& count) {

@@ -58,6 +58,21 @@ TEST(algorithmsInsertion, SinglePointInTheSensorVoxelMakes17Nodes) {
   EXPECT_EQ(theirs.size(), 17U);
 }
 
+TEST(algorithmsInsertion, ReportsTheBytesOfItsPerScanKeySets) {
+  OcTree16 map(0.01);
+  // Keys 32768 .. 32777 along x, one along y and z: 3 bricks of 4 × 4 × 4 voxels, a word each, in
+  // the crossed set and in the hit set.
+  const InsertStats near = insertPointCloud(map, PointCloud{{0.095, 0.005, 0.005}}, Eigen::Vector3d(0.005, 0.005, 0.005));
+  EXPECT_EQ(near.key_set_bytes, 2 * 3 * sizeof(std::uint64_t));
+  // A box of 20,000^3 voxels is far over the bitmap's limit: hash sets, sized by the keys alone.
+  const InsertStats far = insertPointCloud(map, PointCloud{{200.0, 200.0, 200.0}}, Eigen::Vector3d(0.005, 0.005, 0.005));
+  EXPECT_GT(far.key_set_bytes, 60000 * sizeof(Key16));  // the ray's ~60,000 crossed keys
+  EXPECT_LT(far.key_set_bytes, std::size_t{16} << 20);
+  InsertStats total = near;
+  total += far;
+  EXPECT_EQ(total.key_set_bytes, far.key_set_bytes);  // the largest scan's, not a sum
+}
+
 TEST(algorithmsInsertion, EightSiblingHitsPruneTo16Nodes) {
   OcTree16 ours(0.01);
   octomap::OcTree theirs(0.01);

@@ -19,6 +19,7 @@
 /// merged in place. Leaves are updated first and the inner nodes above them fixed once at the end
 /// (the same tree as eager updates). See docs/performance.md, "Point-cloud workloads".
 
+#include <algorithm>
 #include <cstddef>
 
 #include <Eigen/Core>
@@ -51,6 +52,10 @@ struct InsertStats {
   std::size_t rays = 0;               ///< rays cast (after discretisation and the checks above)
   std::size_t free_updates = 0;       ///< voxels updated as misses (each once)
   std::size_t occupied_updates = 0;   ///< voxels updated as hits (each once)
+  /// Bytes the insertion's per-scan key sets held (the crossed and the hit voxels: a bitmap of one
+  /// bit per voxel of the key box spanned by the origin and the end keys, or a hash set when that
+  /// box is over 2^27 voxels); the largest of one scan's, not a sum, when totalled.
+  std::size_t key_set_bytes = 0;
 
   /// Adds another insertion's counts (totals over several scans).
   InsertStats& operator+=(const InsertStats& other) {
@@ -60,6 +65,7 @@ struct InsertStats {
     rays += other.rays;
     free_updates += other.free_updates;
     occupied_updates += other.occupied_updates;
+    key_set_bytes = std::max(key_set_bytes, other.key_set_bytes);
     return *this;
   }
 };
