@@ -71,6 +71,8 @@ void bindMap(py::module_& m) {
       .def_readonly("rays", &InsertStats::rays, "rays cast")
       .def_readonly("free_updates", &InsertStats::free_updates, "voxels updated as misses (each once)")
       .def_readonly("occupied_updates", &InsertStats::occupied_updates, "voxels updated as hits (each once)")
+      .def_readonly("key_set_bytes", &InsertStats::key_set_bytes,
+                    "bytes the insertion's per-scan key sets (crossed and hit voxels) held")
       .def("__repr__", [](const InsertStats& s) {
         return "InsertStats(points=" + std::to_string(s.points) + ", rays=" + std::to_string(s.rays) +
                ", free_updates=" + std::to_string(s.free_updates) +

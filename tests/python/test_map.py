@@ -76,6 +76,9 @@ def test_insert_stats_and_max_range():
     m = sonarmap.OccupancyMap(0.1)
     stats = m.insert_point_cloud(np.array([[1.0, 0.0, 0.0], [5.0, 0.0, 0.0]]), [0, 0, 0], max_range=2.0)
     assert stats.points == 2 and stats.rays == 2 and stats.occupied_updates == 1
+    # keys 32768 .. 32788 along x (the 5 m ray clipped at 2 m): 6 bricks of 4 voxels, 8 B each, in
+    # the crossed and the hit sets
+    assert stats.key_set_bytes == 2 * 6 * 8
     assert m.classify(np.array([[5.0, 0.0, 0.0], [1.5, 0.0, 0.0]])).tolist() == [-1, 0]
 
 
