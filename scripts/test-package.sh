@@ -4,8 +4,8 @@
 # (root, and Debian's mirror, needed), installs the package there with
 # `apt-get install ./sonarmap_*.deb` (pulling its dependencies from Debian), then, inside that root:
 # builds and runs the consumer projects (tests/consumer, find_package(sonarmap); tests/consumer/octree,
-# the octree component alone), runs the `sonarmap` tool, and imports the Python module with the
-# system's python3.
+# the octree component alone), runs the `sonarmap` tool (a map written as a GeoTIFF too: the GDAL
+# plugin), and imports the Python module with the system's python3.
 # Usage: bash scripts/test-package.sh [ROOT_DIR]   (default: a temporary folder, removed after; a
 #        ROOT_DIR given is kept and reused). BUILD_DIR=... names the build folder (default build).
 set -euo pipefail
@@ -39,6 +39,10 @@ chroot "$root" /bin/bash -euo pipefail -c '
   apt-get install -y -qq --no-install-recommends cmake g++ ninja-build >/dev/null
   apt-get install -y -qq --no-install-recommends /tmp/sonarmap/sonarmap_*.deb >/dev/null
   sonarmap --version
+  # --geotiff: the GDAL plugin found in /usr/lib/sonarmap and GDAL (libgdal32) installed with the package
+  sonarmap simulate tank -o /tmp/sonarmap/sim --turns 1 -q
+  sonarmap map /tmp/sonarmap/sim/beams.csv -o /tmp/sonarmap/geo.bt --geotiff /tmp/sonarmap/geo.tif --geo-origin 43.2961,5.37 -q
+  head -c 4 /tmp/sonarmap/geo.tif | od -An -tx1 | grep -q "49 49 2a 00"  # a little-endian TIFF
   cd /tmp/sonarmap
   cmake -S consumer -B consumer-build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build consumer-build >/dev/null

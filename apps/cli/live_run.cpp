@@ -23,6 +23,7 @@
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/formats/ping360_reader.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/io/geotiff.hpp"
 #include "sonarmap/live/live_map_files.hpp"
 #include "sonarmap/live/live_page.hpp"
 #include "sonarmap/live/live_session.hpp"
@@ -307,6 +308,8 @@ bool isReplay(const LiveArgs& args) {
 }
 
 void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
+  // GDAL's plugin, loaded before anything is read or driven: if it is missing, not at the first write
+  if (!args.map.geotiff.empty()) loadGeoTiffWriter();
   if (isReplay(args)) {
     runReplay(args, options, sonar_to_body);
   } else {

@@ -11,6 +11,7 @@
 
 #include "map_outputs.hpp"
 #include "sonarmap/io/atomic_file.hpp"
+#include "sonarmap/io/geotiff.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/formats/log_reader.hpp"
 #include "sonarmap/slam/slam_mapping.hpp"
@@ -132,6 +133,7 @@ std::string resolutionNote(const LogSurvey& survey, const MapperOptions& options
 
 void runMap(const MapArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body,
             const std::string& side_png) {
+  if (!args.geotiff.empty()) loadGeoTiffWriter();  // GDAL's plugin, loaded now: if it is missing, before the mapping
   const LogFormat format = inputFormat(args.input, args.format);
   // Read beam by beam, so that a log of hours maps in the memory of its map; --slam localizes on
   // the whole log (its scans are matched and the map rebuilt), so it holds it.

@@ -1,32 +1,21 @@
 /// @file geotiff_writer.cpp
-/// GeoTIFF through GDAL (see io/geotiff.hpp).
+/// encodeGeoTiff (io/geotiff.hpp): the raster checked here, the file written by the GDAL plugin
+/// (geotiff_plugin_abi.h) loaded at the first use.
 
 #include "sonarmap/io/geotiff.hpp"
 
-#include <atomic>
+#include <dlfcn.h>
+
 #include <cmath>
-#include <memory>
-#include <mutex>
+#include <cstddef>
+#include <filesystem>
+#include <new>
 
-#include <cpl_conv.h>
-#include <cpl_error.h>
-#include <cpl_vsi.h>
-#include <gdal_priv.h>
-#include <ogr_spatialref.h>
-
+#include "geotiff_plugin_abi.h"
 #include "sonarmap/core/errors.hpp"
 
 namespace sonarmap {
 namespace {
-
-std::string gdalMessage(const char* what) {
-  const char* message = CPLGetLastErrorMsg();
-  return std::string("GeoTIFF: ") + what + (message != nullptr && *message != '\0' ? std::string(": ") + message : "");
-}
-
-void check(CPLErr status, const char* what) {
-  if (status != CE_None) throw Error(gdalMessage(what));
-}
 
 void checkRaster(const GeoRaster& r) {
   if (r.width <= 0 || r.height <= 0) throw ValueError("GeoTIFF: the raster is empty");
@@ -42,67 +31,66 @@ void checkRaster(const GeoRaster& r) {
   }
 }
 
-void writeBand(GDALDataset& dataset, int index, const std::vector<std::uint8_t>& values, const GeoRaster& r) {
-  GDALRasterBand* band = dataset.GetRasterBand(index);
-  check(band->RasterIO(GF_Write, 0, 0, r.width, r.height, const_cast<std::uint8_t*>(values.data()), r.width, r.height,
-                       GDT_Byte, 0, 0),
-        "writing a band");
-  check(band->SetNoDataValue(0.0), "setting no-data");
+/// dlerror()'s message, or `otherwise` when it has none.
+std::string loaderMessage(const char* otherwise) {
+  const char* message = dlerror();
+  return message != nullptr ? message : otherwise;
+}
+
+/// The plugin's entry point, loaded once (never unloaded: GDAL keeps state until the process ends).
+sonarmap_geotiff_encode_v1_fn plugin() {
+  // A function-local static: loaded by the first caller while the others wait, and tried again at
+  // the next call when it threw.
+  static const sonarmap_geotiff_encode_v1_fn encode = [] {
+    const std::string path = geoTiffPluginPath();
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) {
+      throw Error("GeoTIFF: cannot load the GDAL plugin " + path + " (" + loaderMessage("no reason given") + ")");
+    }
+    void* symbol = dlsym(handle, SONARMAP_GEOTIFF_ENCODE_V1);
+    if (symbol == nullptr) {
+      const std::string message = loaderMessage("the symbol is null");
+      dlclose(handle);
+      throw Error("GeoTIFF: the GDAL plugin " + path + " is not this version's: no " SONARMAP_GEOTIFF_ENCODE_V1 " (" +
+                  message + ")");
+    }
+    return reinterpret_cast<sonarmap_geotiff_encode_v1_fn>(symbol);
+  }();
+  return encode;
+}
+
+/// The plugin's sink: copies the bytes into the std::vector `context` points to.
+int takeBytes(void* context, const unsigned char* bytes, std::size_t size) {
+  try {
+    static_cast<std::vector<unsigned char>*>(context)->assign(bytes, bytes + size);
+    return 0;
+  } catch (const std::bad_alloc&) {
+    return 1;
+  }
 }
 
 }  // namespace
 
+std::string geoTiffPluginPath() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&geoTiffPluginPath), &info) == 0 || info.dli_fname == nullptr) {
+    throw Error("GeoTIFF: cannot tell which file holds the GeoTIFF writer (dladdr failed), so not where its GDAL plugin is");
+  }
+  return (std::filesystem::absolute(info.dli_fname).parent_path() / SONARMAP_GEOTIFF_PLUGIN_SUBPATH).string();
+}
+
+void loadGeoTiffWriter() { plugin(); }
+
 std::vector<unsigned char> encodeGeoTiff(const GeoRaster& r) {
   checkRaster(r);
-  static std::once_flag registered;
-  std::call_once(registered, [] { GDALAllRegister(); });
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-  if (driver == nullptr) throw Error("GeoTIFF: GDAL has no GTiff driver");
-  static std::atomic<unsigned> count{0};
-  const std::string name = "/vsimem/sonarmap_" + std::to_string(reinterpret_cast<std::uintptr_t>(&r)) + "_" +
-                           std::to_string(count++) + ".tif";
-  char** options = nullptr;
-  options = CSLSetNameValue(options, "COMPRESS", "DEFLATE");
-  const int bands = r.intensity.empty() ? 1 : 2;
-  std::unique_ptr<GDALDataset> dataset(driver->Create(name.c_str(), r.width, r.height, bands, GDT_Byte, options));
-  CSLDestroy(options);
-  if (!dataset) throw Error(gdalMessage("cannot create the dataset"));
-  try {
-    OGRSpatialReference crs;
-    if (crs.importFromEPSG(r.epsg) != OGRERR_NONE) throw Error(gdalMessage(("unknown EPSG code " + std::to_string(r.epsg)).c_str()));
-    check(dataset->SetSpatialRef(&crs), "setting the CRS");
-    double transform[6] = {r.west_m, r.pixel_m, 0.0, r.north_m, 0.0, -r.pixel_m};
-    check(dataset->SetGeoTransform(transform), "setting the geotransform");
-    if (!r.description.empty()) dataset->SetMetadataItem("TIFFTAG_IMAGEDESCRIPTION", r.description.c_str());
-    dataset->SetMetadataItem("AREA_OR_POINT", "Area");
-    writeBand(*dataset, 1, r.classes, r);
-    GDALRasterBand* occupancy = dataset->GetRasterBand(1);
-    occupancy->SetDescription("occupancy");
-    GDALColorTable colours;
-    const GDALColorEntry unknown{128, 128, 128, 0}, free{255, 255, 255, 255}, occupied{0, 0, 0, 255};
-    colours.SetColorEntry(0, &unknown);
-    colours.SetColorEntry(1, &free);
-    colours.SetColorEntry(2, &occupied);
-    check(occupancy->SetColorTable(&colours), "setting the colour table");
-    const char* names[] = {"unknown", "free", "occupied", nullptr};
-    check(occupancy->SetCategoryNames(const_cast<char**>(names)), "setting the category names");
-    if (bands == 2) {
-      writeBand(*dataset, 2, r.intensity, r);
-      dataset->GetRasterBand(2)->SetDescription("echo intensity");
-      check(dataset->GetRasterBand(2)->SetColorInterpretation(GCI_GrayIndex), "setting band 2's interpretation");
-    }
-    dataset.reset();  // closes and flushes the file
-    vsi_l_offset length = 0;
-    GByte* data = VSIGetMemFileBuffer(name.c_str(), &length, FALSE);
-    if (data == nullptr) throw Error(gdalMessage("the written file is missing"));
-    std::vector<unsigned char> bytes(data, data + length);
-    VSIUnlink(name.c_str());
-    return bytes;
-  } catch (...) {
-    dataset.reset();
-    VSIUnlink(name.c_str());
-    throw;
-  }
+  const sonarmap_geotiff_encode_v1_fn encode = plugin();
+  const sonarmap_geotiff_raster_v1 raster{r.width,  r.height,  r.classes.data(), r.intensity.empty() ? nullptr : r.intensity.data(),
+                                          r.west_m, r.north_m, r.pixel_m,        r.epsg,
+                                          r.description.c_str()};
+  std::vector<unsigned char> bytes;
+  char message[512] = "";
+  if (encode(&raster, takeBytes, &bytes, message, sizeof message) != 0) throw Error(std::string("GeoTIFF: ") + message);
+  return bytes;
 }
 
 }  // namespace sonarmap

@@ -32,7 +32,8 @@ case "$mode" in
     files=$(dpkg-deb -c "$deb" | awk '{print $6}')
     for needed in ./usr/bin/sonarmap ./usr/libexec/sonarmap/sonarmap-full ./usr/include/sonarmap/io/octomap_binary.hpp \
                   ./usr/lib/cmake/sonarmap/sonarmapConfig.cmake ./usr/lib/cmake/sonarmap/sonarmap_octreeTargets.cmake \
-                  ./usr/lib/libsonarmap_octree.a ./usr/lib/libsonarmap_mapping.a ./usr/lib/libsonarmap_geotiff.so; do
+                  ./usr/lib/libsonarmap_octree.a ./usr/lib/libsonarmap_mapping.a ./usr/lib/libsonarmap_geotiff.so \
+                  ./usr/lib/sonarmap/sonarmap_geotiff_gdal.so; do
       grep -qxF "$needed" <<<"$files" || fail "the package lacks $needed"
     done
     dpkg -x "$deb" "$tmp/root"
@@ -43,6 +44,14 @@ case "$mode" in
     "$prefix/bin/sonarmap" --version >/dev/null || fail "the packaged CLI does not run"
     # Every command but cloud is the full tool's, which the lean sonarmap finds in ../libexec/sonarmap.
     "$prefix/bin/sonarmap" --help | grep -q "^  map " || fail "the packaged CLI does not reach the full tool"
+    # GDAL is the plugin's (/usr/lib/sonarmap/sonarmap_geotiff_gdal.so, loaded beside
+    # libsonarmap_geotiff.so), not the full tool's: --geotiff loads it, nothing else does.
+    gdal=$(ldd "$prefix/libexec/sonarmap/sonarmap-full" | grep -i gdal || true)
+    [ -z "$gdal" ] || fail "the packaged full tool loads GDAL at start-up: $gdal"
+    "$prefix/bin/sonarmap" simulate tank -o "$tmp/sim" --turns 1 -q
+    "$prefix/bin/sonarmap" map "$tmp/sim/beams.csv" -o "$tmp/geo.bt" --geotiff "$tmp/geo.tif" --geo-origin 43.2961,5.37 -q ||
+      fail "the packaged CLI does not write a GeoTIFF"
+    head -c 4 "$tmp/geo.tif" | od -An -tx1 | grep -q "49 49 2a 00" || fail "the packaged CLI's GeoTIFF is not a TIFF"
     if grep -q "^./usr/lib/python3/dist-packages/sonarmap/" <<<"$files"; then
       [[ ",$depends," == *"python3-numpy"* ]] || fail "Depends lacks python3-numpy: $depends"
       PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" /usr/bin/python3 -c \

@@ -5,8 +5,12 @@
 /// sonar's echo intensity (the mosaic) in band 2, georeferenced by an EPSG code and an affine
 /// geotransform, so that QGIS, Cockpit's map and gdalinfo place it on the Earth.
 ///
-/// Built as its own shared library (libsonarmap_geotiff.so) so that the static libraries' users
-/// need GDAL's runtime library only, not its development files.
+/// Built as its own shared library, libsonarmap_geotiff.so, which does not link GDAL: the GDAL code
+/// is a plugin, sonarmap_geotiff_gdal.so, that it loads (dlopen) at the first GeoTIFF encoded, so a
+/// program that writes none never loads GDAL and its ~115 shared objects. The plugin is looked for
+/// in the folder `sonarmap` beside the file that holds libsonarmap_geotiff.so (dladdr): in the build
+/// tree src/geotiff/sonarmap/, installed ${CMAKE_INSTALL_LIBDIR}/sonarmap/ (the Debian package's
+/// /usr/lib/sonarmap/).
 
 #include <cstdint>
 #include <string>
@@ -40,9 +44,21 @@ struct GeoRaster {
 /// (west_m, pixel_m, 0, north_m, 0, −pixel_m). Written in GDAL's memory file system (/vsimem),
 /// so a caller writes the bytes atomically (io/atomic_file.hpp's writeBytesAtomically or a
 /// FileTransaction) and no file is half-written.
+/// The raster is checked before the plugin is loaded.
 /// @throws ValueError for an empty or inconsistent raster (sizes, pixel_m ≤ 0 or not finite, an
 ///         intensity band of another size); Error when GDAL refuses (an unknown EPSG code, ...),
-///         with GDAL's message.
+///         with GDAL's message; Error as loadGeoTiffWriter when the plugin cannot be loaded.
 std::vector<unsigned char> encodeGeoTiff(const GeoRaster& raster);
+
+/// Loads the GDAL plugin now (once per process; later calls return at once), so that a command
+/// asked for a GeoTIFF fails before its work rather than at its end.
+/// @throws Error naming the plugin's path (geoTiffPluginPath) and the dynamic loader's message
+///         (dlerror) when it is missing, cannot be loaded (GDAL's runtime library missing...) or is
+///         of another version (its entry point sonarmap_geotiff_encode_v1 missing).
+void loadGeoTiffWriter();
+
+/// Where the GDAL plugin is looked for: `<folder of libsonarmap_geotiff.so>/sonarmap/sonarmap_geotiff_gdal.so`,
+/// absolute. @throws Error when the dynamic loader cannot say which file holds this function (dladdr).
+std::string geoTiffPluginPath();
 
 }  // namespace sonarmap
