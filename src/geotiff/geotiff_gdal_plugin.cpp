@@ -79,9 +79,8 @@ void encode(const sonarmap_geotiff_raster_v1& r, sonarmap_geotiff_sink_v1 sink, 
   std::call_once(registered, [] { GDALAllRegister(); });
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   if (driver == nullptr) throw GdalFailure("GDAL has no GTiff driver");
-  static std::atomic<unsigned> count{0};
-  const std::string name = "/vsimem/sonarmap_" + std::to_string(reinterpret_cast<std::uintptr_t>(&r)) + "_" +
-                           std::to_string(count++) + ".tif";
+  static std::atomic<unsigned> count{0};  // a name of its own per call, whatever the thread
+  const std::string name = "/vsimem/sonarmap_" + std::to_string(count++) + ".tif";
   char** options = nullptr;
   options = CSLSetNameValue(options, "COMPRESS", "DEFLATE");
   const int bands = r.intensity == nullptr ? 1 : 2;

@@ -7,7 +7,8 @@
 ///
 /// Built as its own shared library, libsonarmap_geotiff.so, which does not link GDAL: the GDAL code
 /// is a plugin, sonarmap_geotiff_gdal.so, that it loads (dlopen) at the first GeoTIFF encoded, so a
-/// program that writes none never loads GDAL and its ~115 shared objects. The plugin is looked for
+/// program that writes none never loads GDAL (63 of the full tool's 167 shared objects, about two
+/// thirds of its start-up: docs/performance.md, "Start-up"). The plugin is looked for
 /// in the folder `sonarmap` beside the file that holds libsonarmap_geotiff.so (dladdr): in the build
 /// tree src/geotiff/sonarmap/, installed ${CMAKE_INSTALL_LIBDIR}/sonarmap/ (the Debian package's
 /// /usr/lib/sonarmap/).
