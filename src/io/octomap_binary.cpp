@@ -1,5 +1,6 @@
 #include "sonarmap/io/octomap_binary.hpp"
 
+#include <bit>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -20,18 +21,32 @@ unsigned childCode(const OcTree16& tree, const OcTreeNode& child) {
   return tree.model().isOccupied(child.log_odds) ? kOccupiedLeaf : kFreeLeaf;
 }
 
-void writeNode(const OcTree16& tree, const OcTreeNode& node, std::string& out) {
-  unsigned codes[8];
-  unsigned char bytes[2] = {0, 0};
+/// Appends the 2-byte child codes of `node` (which has children) and of its inner descendants, in
+/// pre-order, and returns the number of nodes below it: the header's count, found on the way
+/// instead of by a walk of its own. A node's existing children are consecutive slots, in child
+/// order (NodePool), so they are read as a run.
+std::size_t writeNode(const OcTree16& tree, const OcTreeNode& node, std::string& out) {
+  const unsigned mask = tree.childMask(node);
+  const NodeRef first = tree.childRef(node, static_cast<unsigned>(std::countr_zero(mask)));
+  unsigned bits = 0;
+  unsigned inner = 0;  // bit i: child i is an inner node
+  std::size_t below = 0;
   for (unsigned i = 0; i < 8; ++i) {
-    codes[i] = childCode(tree, tree.node(tree.childRef(node, i)));
-    bytes[i / 4] = static_cast<unsigned char>(bytes[i / 4] | (codes[i] << (2 * (i % 4))));
+    if (((mask >> i) & 1U) == 0) continue;
+    const unsigned code = childCode(tree, tree.node(first + static_cast<NodeRef>(below)));
+    bits |= code << (2 * i);
+    inner |= code == kInner ? 1U << i : 0U;
+    ++below;
   }
-  out.push_back(static_cast<char>(bytes[0]));
-  out.push_back(static_cast<char>(bytes[1]));
+  out.push_back(static_cast<char>(bits & 0xFFU));
+  out.push_back(static_cast<char>(bits >> 8));
+  NodeRef child = first;
   for (unsigned i = 0; i < 8; ++i) {
-    if (codes[i] == kInner) writeNode(tree, tree.node(tree.childRef(node, i)), out);
+    if (((mask >> i) & 1U) == 0) continue;
+    if (((inner >> i) & 1U) != 0) below += writeNode(tree, tree.node(child), out);
+    ++child;
   }
+  return below;
 }
 
 /// Rebuilds the tree from the pre-order stream of 2-byte child codes.
@@ -84,12 +99,18 @@ class BinaryReader {
 }  // namespace
 
 void writeBinary(const OcTree16& tree, std::ostream& out, const std::vector<std::string>& comments) {
-  const NodeCounts counts = tree.counts();
-  writeOctomapHeader(out, kBinaryFileFirstLine, {"OcTree", counts.nodes, tree.resolution_m(), comments});
+  // The data first: it gives the node count the header needs.
   std::string data;
-  data.reserve(2 * counts.inner);
+  std::size_t nodes = 0;
   const OcTreeNode& root = tree.node(kRootRef);
-  if (root.hasChildren()) writeNode(tree, root, data);
+  if (root.exists()) {
+    nodes = 1;
+    if (root.hasChildren()) {
+      data.reserve(tree.memoryBytes() / 16);  // 8-byte nodes, 2 bytes per inner node of ≥ 1 child
+      nodes += writeNode(tree, root, data);
+    }
+  }
+  writeOctomapHeader(out, kBinaryFileFirstLine, {"OcTree", nodes, tree.resolution_m(), comments});
   out.write(data.data(), static_cast<std::streamsize>(data.size()));
   if (!out) throw FileError("writing the .bt stream failed");
 }

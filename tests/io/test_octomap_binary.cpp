@@ -61,6 +61,9 @@ TEST(ioOctomapBinary, OctoMapReadsOurFileAndFindsOurLeaves) {
   EXPECT_GT(leaves, 1000U);
   EXPECT_EQ(mismatches, 0U);
   EXPECT_EQ(theirs.getNumLeafNodes(), leaves);
+  const NodeCounts counts = tree.counts();
+  EXPECT_EQ(counts.leaves, leaves);
+  EXPECT_EQ(counts.inner + counts.leaves, counts.nodes);
 }
 
 TEST(ioOctomapBinary, WeReadOctoMapsFile) {
@@ -111,6 +114,21 @@ TEST(ioOctomapBinary, HeaderHasOctoMapsExactLines) {
   EXPECT_EQ(text.rfind("# Octomap OcTree binary file\n", 0), 0U);
   EXPECT_NE(text.find("\nid OcTree\nsize 17\nres 0.02\ndata\n"), std::string::npos);
   EXPECT_EQ(text.size() - (text.find("data\n") + 5), 2U * 16U);  // 16 inner nodes, 2 bytes each
+}
+
+TEST(ioOctomapBinary, AnEmptyTreeIsSizeZeroWithNoDataAndOctoMapReadsIt) {
+  const OcTree16 tree(0.05);
+  EXPECT_EQ(tree.counts().nodes, 0U);
+  std::stringstream stream;
+  writeBinary(tree, stream);
+  const std::string text = stream.str();
+  EXPECT_NE(text.find("\nsize 0\nres 0.05\ndata\n"), std::string::npos);
+  EXPECT_EQ(text.size(), text.find("data\n") + 5);
+  EXPECT_TRUE(readBinary(stream).empty());
+  std::istringstream theirs_in(text);
+  octomap::OcTree theirs(0.1);
+  ASSERT_TRUE(theirs.readBinary(theirs_in));
+  EXPECT_EQ(theirs.size(), 0U);
 }
 
 TEST(ioOctomapBinary, MalformedFilesThrowFileError) {

@@ -261,6 +261,7 @@ class OccupancyOctree {
   template <class Visitor>
   void visitLeavesInBox(NodeRef ref, const KeyType& key, int depth, const KeyType& lo, const KeyType& hi,
                         Visitor& visit) const;
+  /// Adds the nodes below `ref`, which has children, and `ref` itself as an inner node.
   void countSubtree(NodeRef ref, NodeCounts& counts) const;
 
   KeyCoder<Depth> coder_;

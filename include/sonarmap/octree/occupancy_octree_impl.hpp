@@ -438,22 +438,31 @@ void OccupancyOctree<Depth>::visitLeavesInBox(NodeRef ref, const KeyType& key, i
 template <int Depth>
 NodeCounts OccupancyOctree<Depth>::counts() const {
   NodeCounts result;
-  if (!empty()) countSubtree(kRootRef, result);
+  if (empty()) return result;
+  result.nodes = 1;
+  if (pool_.at(kRootRef).hasChildren()) {
+    countSubtree(kRootRef, result);
+  } else {
+    result.leaves = 1;
+  }
   return result;
 }
 
 template <int Depth>
 void OccupancyOctree<Depth>::countSubtree(NodeRef ref, NodeCounts& counts) const {
-  ++counts.nodes;
-  const OcTreeNode& node = pool_.at(ref);
-  if (!node.hasChildren()) {
-    ++counts.leaves;
-    return;
-  }
+  // `ref` has children: counted here, and their leaves without a call each (most nodes are leaves).
   ++counts.inner;
+  const OcTreeNode& node = pool_.at(ref);
   const NodeRef first = NodePool::firstChild(node);
   const unsigned count = pool_.childCount(node);
-  for (NodeRef child = first; child < first + count; ++child) countSubtree(child, counts);
+  counts.nodes += count;
+  for (NodeRef child = first; child < first + count; ++child) {
+    if (pool_.at(child).hasChildren()) {
+      countSubtree(child, counts);
+    } else {
+      ++counts.leaves;
+    }
+  }
 }
 
 }  // namespace sonarmap
