@@ -84,6 +84,7 @@ class KeyMarks {
     std::uint64_t pending = 0;
     unsigned row = 0;  // bit of the last key in its brick's word
     const std::size_t strides[3] = {1, stride_y_, stride_z_};
+    std::uint64_t* const bits = bits_.data();  // a local: not reloaded from the vector after each store
     body([&](const KeyType& key, auto... stepped) {
       if constexpr (sizeof...(stepped) == 1 && (decltype(stepped)::value + ... + 0) >= 0) {
         constexpr int kAxis = (decltype(stepped)::value + ...);
@@ -91,7 +92,7 @@ class KeyMarks {
         const unsigned low = key[kAxis] & 3U;
         row = (row & ~(3U << kShift)) | (low << kShift);
         if (((key[kAxis] ^ current_key[kAxis]) >> 2) != 0) {  // the next brick along this axis
-          bits_[current] |= pending;
+          bits[current] |= pending;
           pending = 0;
           current = low == 0 ? current + strides[kAxis] : current - strides[kAxis];
           current_key[kAxis] = key[kAxis];
@@ -99,7 +100,7 @@ class KeyMarks {
       } else {
         const auto differ = (key[0] ^ current_key[0]) | (key[1] ^ current_key[1]) | (key[2] ^ current_key[2]);
         if ((differ >> 2) != 0) {  // another brick
-          bits_[current] |= pending;
+          bits[current] |= pending;
           current = word(key);
           current_key = key;
           pending = 0;
@@ -108,7 +109,7 @@ class KeyMarks {
       }
       pending |= std::uint64_t{1} << row;
     });
-    if (pending != 0) bits_[current] |= pending;  // nothing marked: the box may even be empty
+    if (pending != 0) bits[current] |= pending;  // nothing marked: the box may even be empty
   }
 
   void insert(const KeyType& key) {
