@@ -58,7 +58,9 @@ int main(int argc, char** argv) {
       sonarmap::PointCloud world = std::move(scan.points_m);  // as `sonarmap cloud`: in place
       for (Eigen::Vector3d& p : world) p = scan.sensor_to_world * p;
       phase("scan to the world frame", since);
-      const sonarmap::InsertStats stats = sonarmap::insertPointCloud(map, world, scan.sensor_to_world.translation());
+      // As `sonarmap cloud`: one thread, the points handed over (freed once traced).
+      const sonarmap::InsertStats stats =
+          sonarmap::insertPointCloudParallel(map, std::move(world), scan.sensor_to_world.translation(), {}, 1);
       phase("insert (trace, sets, tree)", since);
       std::printf("  %zu rays: key sets %.1f MiB, hit keys %.1f MiB\n", stats.rays,
                   static_cast<double>(stats.key_set_bytes) / 1048576.0,

@@ -70,10 +70,12 @@ void run(const CloudArgs& args) {
   {
     ProgressBar bar("inserting");
     for (std::size_t i = 0; i < scans.size(); ++i) {
-      // Into the world frame in place, and freed once inserted: no second copy of the points.
+      // Into the world frame in place, and handed over: freed once its rays are traced, before
+      // the tree grows, so no second copy and no points beside the new nodes.
       PointCloud world = std::move(scans[i].points_m);
       for (Eigen::Vector3d& p : world) p = scans[i].sensor_to_world * p;
-      total += insertPointCloudParallel(map, world, scans[i].sensor_to_world.translation(), options, args.threads);
+      total += insertPointCloudParallel(map, std::move(world), scans[i].sensor_to_world.translation(), options,
+                                        args.threads);
       if (!args.quiet) bar.update(i + 1, scans.size());
     }
   }

@@ -144,8 +144,10 @@ void traceScan(const KeyCoder<16>& coder, const Eigen::Vector3d& origin_m, const
   for (const Marks& part : parts) crossed.merge(part);
 }
 
+/// `owned`, when not null, is `points_world_m` given up by the caller: freed once the rays are
+/// traced, before the tree grows, so the points and the new nodes are not resident together.
 InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const Eigen::Vector3d& sensor_origin_m,
-                        const InsertOptions& options, unsigned threads) {
+                        const InsertOptions& options, unsigned threads, PointCloud* owned = nullptr) {
   checkRange(options.max_range_m);
   const KeyCoder<16>& coder = map.coder();
   const Key16 origin_key = coder.keyOfChecked(sensor_origin_m);  // throws OutOfMapError
@@ -155,10 +157,16 @@ InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const E
   stats.points = points_world_m.size();
   std::optional<PointCloud> centres;
   if (options.discretize) centres = discretized(coder, points_world_m, stats);
-  const PreparedScan scan = prepareScan(coder, centres ? *centres : points_world_m, sensor_origin_m, origin_key,
-                                        options.max_range_m, stats);
+  PreparedScan scan = prepareScan(coder, centres ? *centres : points_world_m, sensor_origin_m, origin_key,
+                                  options.max_range_m, stats);
   Marks crossed;
   traceScan(coder, sensor_origin_m, scan, threads, crossed);
+  // The rays are traced: what held them goes before the tree grows (vectors this size are their
+  // own mappings, so freeing them lowers the peak resident set).
+  std::vector<ScanRay>().swap(scan.rays);
+  scan.hit_points = nullptr;
+  centres.reset();
+  if (owned != nullptr) PointCloud().swap(*owned);
 
   // Occupied wins over free (OctoMap's disjoint sets); then misses, then hits, each voxel once,
   // brick by brick. Leaves first and inner nodes once at the end: the same tree as eager updates
@@ -167,9 +175,11 @@ InsertStats insertCloud(OcTree16& map, const PointCloud& points_world_m, const E
   Marks hits;
   hits.reset(scan.lo, scan.hi);
   for (const Key16& key : scan.hits) hits.insert(key);
+  const std::size_t hit_keys = scan.hits.size();
+  std::vector<Key16>().swap(scan.hits);
   const std::size_t free_voxels = crossed.subtract(hits);
   stats.key_set_bytes = crossed.memoryBytes() + hits.memoryBytes();
-  map.reserve(free_voxels + scan.hits.size());  // one allocation instead of growth and copies
+  map.reserve(free_voxels + hit_keys);  // one allocation instead of growth and copies
   const LogOddsModel& model = map.model();
   const auto update = [&map](float delta, std::size_t& count) {
     return [&map, delta, &count](const Key16& corner, std::uint64_t voxels) {
@@ -194,6 +204,12 @@ InsertStats insertPointCloudParallel(OcTree16& map, const PointCloud& points_wor
                                      const Eigen::Vector3d& sensor_origin_m, const InsertOptions& options,
                                      unsigned threads) {
   return insertCloud(map, points_world_m, sensor_origin_m, options, threads);
+}
+
+InsertStats insertPointCloudParallel(OcTree16& map, PointCloud&& points_world_m, const Eigen::Vector3d& sensor_origin_m,
+                                     const InsertOptions& options, unsigned threads) {
+  PointCloud points = std::move(points_world_m);
+  return insertCloud(map, points, sensor_origin_m, options, threads, &points);
 }
 
 InsertStats insertScan(OcTree16& map, const Scan& scan, const InsertOptions& options) {

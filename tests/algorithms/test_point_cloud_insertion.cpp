@@ -220,6 +220,25 @@ TEST(algorithmsInsertion, ParallelInsertionGivesTheIdenticalMap) {
   }
 }
 
+TEST(algorithmsInsertion, HandedOverPointsGiveTheSameMapAndAreFreed) {
+  // With a range limit (copied, clipped rays), without (the points as the rays), discretized.
+  for (const InsertOptions options : {InsertOptions{-1.0}, InsertOptions{1.5}, InsertOptions{-1.0, true}}) {
+    for (const unsigned threads : {1U, 2U}) {
+      OcTree16 borrowed(0.02), handed(0.02);
+      const PointCloud cloud = denseBoxCloud();
+      const InsertStats expected = insertPointCloudParallel(borrowed, cloud, {0.01, 0.02, 0.03}, options, threads);
+      PointCloud given = cloud;
+      const InsertStats stats = insertPointCloudParallel(handed, std::move(given), {0.01, 0.02, 0.03}, options, threads);
+      EXPECT_TRUE(given.empty());
+      EXPECT_EQ(given.capacity(), 0U);
+      EXPECT_EQ(leavesOf(handed), leavesOf(borrowed)) << options.max_range_m << " " << threads;
+      EXPECT_EQ(stats.rays, expected.rays);
+      EXPECT_EQ(stats.free_updates, expected.free_updates);
+      EXPECT_EQ(stats.occupied_updates, expected.occupied_updates);
+    }
+  }
+}
+
 TEST(algorithmsInsertion, LazyEvaluationEndsInTheSameMap) {
   const PointCloud cloud = denseBoxCloud();
   OcTree16 eager(0.05), lazy_call(0.05);

@@ -92,6 +92,14 @@ InsertStats insertPointCloudParallel(OcTree16& map, const PointCloud& points_wor
                                      const Eigen::Vector3d& sensor_origin_m, const InsertOptions& options = {},
                                      unsigned threads = 2);
 
+/// insertPointCloudParallel on points the caller gives up: they are freed as soon as the rays are
+/// traced, before the tree grows, so a scan's points and its new nodes are never resident
+/// together (the peak resident set of a large scan drops by the points' size, 24 bytes a point).
+/// `points_world_m` is left empty, also when an exception is thrown after the move. Same map,
+/// results and exceptions as the overload that borrows the points.
+InsertStats insertPointCloudParallel(OcTree16& map, PointCloud&& points_world_m, const Eigen::Vector3d& sensor_origin_m,
+                                     const InsertOptions& options = {}, unsigned threads = 2);
+
 /// Integrates a scan taken at a pose: its points (sensor frame) are transformed by
 /// `scan.sensor_to_world`, the origin is the pose's translation (OctoMap's
 /// `insertPointCloud(const ScanNode&, …)`). Same results and exceptions as insertPointCloud.
