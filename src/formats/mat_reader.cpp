@@ -4,6 +4,8 @@
 #include "sonarmap/formats/mat_reader.hpp"
 
 #include <matio.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,6 +36,11 @@ constexpr std::uintmax_t kMinFieldBytes = 8;
 /// zlib cannot expand data more than about 1032:1, so a compressed variable holds at most this
 /// many times the file's size once inflated; declared sizes above that are not believed.
 constexpr std::uintmax_t kMaxInflation = 1032;
+/// A numeric array may store its values in a narrower type than its class (MAT-File Format,
+/// "Numeric Arrays": a double array of whole counts stored as miUINT8, as the CRAS log's
+/// intensities are); libmatio allocates the class: at most 8 bytes a byte stored (double or
+/// 64-bit from 8-bit, complex from twice as many stored bytes).
+constexpr std::uintmax_t kMaxWidening = 8;
 
 // ---- libmatio plumbing: RAII handles and a quiet logger ----------------------------------------
 
@@ -225,18 +232,49 @@ std::vector<unsigned char> fileBytes(const std::string& path) {
 /// Checks the file before libmatio sees it: it takes any file without a level-5 header for a
 /// version 4 file (which cannot hold structs), and it allocates from declared sizes unchecked.
 /// @return the element the file ends in when it is cut short (then libmatio must not read it).
-std::optional<detail::MatCut> checkMat(const std::string& path) {
+/// @param uncompressed  the file with its compressed variables inflated, when it has any
+///                      (detail::checkMatSizes); empty otherwise.
+std::optional<detail::MatCut> checkMat(const std::string& path, std::vector<unsigned char>& uncompressed) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throwFileError(path, "no such file (or not a regular file)");
   const std::vector<unsigned char> bytes = fileBytes(path);
   if (!detail::hasMat5Header(bytes)) {
     throwFileError(path, "has no 128-byte MATLAB 5 header, expected a MATLAB 5 (or 7.3) MAT-file");
   }
-  return detail::checkMatSizes(bytes, path);
+  return detail::checkMatSizes(bytes, path, &uncompressed);
 }
 
-MatFile openMat(const std::string& path) {
-  MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
+/// The uncompressed copy of a file as a file libmatio can open by name (it opens by path only): an
+/// anonymous in-memory file (memfd_create(2)) reached as /proc/self/fd/N, closed with this object.
+/// `name()` is empty when the system offers none; the caller then reads the original.
+class MemoryMatFile {
+ public:
+  explicit MemoryMatFile(const std::vector<unsigned char>& bytes) : fd_(::memfd_create("sonarmap-mat", MFD_CLOEXEC)) {
+    if (fd_ < 0) return;
+    std::size_t written = 0;
+    while (written < bytes.size()) {
+      const ssize_t n = ::write(fd_, bytes.data() + written, bytes.size() - written);
+      if (n <= 0) return;
+      written += static_cast<std::size_t>(n);
+    }
+    const std::string name = "/proc/self/fd/" + std::to_string(fd_);
+    if (::access(name.c_str(), R_OK) == 0) name_ = name;
+  }
+  ~MemoryMatFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  MemoryMatFile(const MemoryMatFile&) = delete;
+  MemoryMatFile& operator=(const MemoryMatFile&) = delete;
+  const std::string& name() const { return name_; }
+
+ private:
+  int fd_;
+  std::string name_;
+};
+
+/// Opens `file` with libmatio; messages name `path`, the log the user gave.
+MatFile openMat(const std::string& file, const std::string& path) {
+  MatFile mat(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
   if (!mat) throwFileError(path, "cannot be opened as a MATLAB MAT-file");
   return mat;
 }
@@ -251,8 +289,8 @@ bool structIsComplete(const matvar_t& var) {
 }
 
 /// Rejects declared sizes that the file cannot hold, from the variable's header alone (before any
-/// data is read): the struct's elements × fields × 8 bytes, and the sum over its fields of
-/// elements × element size, must fit in `budget` bytes.
+/// data is read): the struct's elements × fields × 8 bytes must fit in the `budget` bytes the file
+/// can store, and the sum over its fields of elements × their class's size in kMaxWidening times it.
 void checkDeclaredSizes(matvar_t& info, std::uintmax_t budget, const std::string& path) {
   const std::size_t fields = Mat_VarGetNumberOfFields(&info);
   const std::size_t elements = elementCount(info);
@@ -262,7 +300,7 @@ void checkDeclaredSizes(matvar_t& info, std::uintmax_t budget, const std::string
                              " bytes each) but the file can hold at most " + std::to_string(budget) + " bytes");
   }
   if (!structIsComplete(info)) throwFileError(path, std::string("the fields of '") + kVariable + "' cannot be read");
-  std::uintmax_t left = budget;  // declared bytes still believable
+  std::uintmax_t left = budget * kMaxWidening;  // declared bytes of the classes still believable
   for (std::size_t i = 0; i < elements; ++i) {
     for (std::size_t f = 0; f < fields; ++f) {
       const matvar_t* field = Mat_VarGetStructFieldByIndex(&info, f, i);
@@ -272,15 +310,15 @@ void checkDeclaredSizes(matvar_t& info, std::uintmax_t budget, const std::string
       if (count > left / size) {
         throwFileError(path, elementName(i) + ": field '" + (field->name != nullptr ? field->name : "?") +
                                  "' declares " + dimsText(*field) + " elements of " + std::to_string(size) +
-                                 " bytes, more than the " + std::to_string(budget) +
-                                 " bytes the file can hold for all fields");
+                                 " bytes, more than the " + std::to_string(budget * kMaxWidening) +
+                                 " bytes the file's " + std::to_string(budget) + " can hold for all fields");
       }
       left -= count * size;
     }
   }
 }
 
-/// The most bytes the variables of a file of `file_bytes` can hold: the file's size, or
+/// The most bytes the variables of a file of `file_bytes` can store: the file's size, or
 /// kMaxInflation times it for a compressed (zlib, or HDF5 7.3) variable.
 std::uintmax_t byteBudget(const mat_t& mat, const matvar_t& info, std::uintmax_t file_bytes) {
   const bool compressed =
@@ -291,7 +329,7 @@ std::uintmax_t byteBudget(const mat_t& mat, const matvar_t& info, std::uintmax_t
 /// Reads the header of `parsedData` and checks its class and declared sizes. For an uncompressed
 /// variable libmatio reads no field data yet; for a zlib-compressed one it has inflated the fields'
 /// data with their headers (it cannot skip through a compressed stream).
-MatVar checkedParsedDataInfo(mat_t* mat, const std::string& path) {
+MatVar checkedParsedDataInfo(mat_t* mat, const std::string& path, std::uintmax_t file_bytes) {
   MatVar info(Mat_VarReadInfo(mat, kVariable));
   if (!info) throwFileError(path, std::string("no readable variable '") + kVariable + "'");
   if (info->class_type != MAT_C_STRUCT) {
@@ -299,21 +337,19 @@ MatVar checkedParsedDataInfo(mat_t* mat, const std::string& path) {
                              ", expected a struct array");
   }
   if (elementCount(*info) == 0) throwFileError(path, std::string("'") + kVariable + "' is empty");
-  std::error_code ec;
-  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
-  if (ec) throwFileError(path, "its size cannot be read");
   checkDeclaredSizes(*info, byteBudget(*mat, *info, file_bytes), path);
   return info;
 }
 
 void requireFields(matvar_t& data, const std::string& path);
 
-MatVar readParsedData(mat_t* mat, const std::string& path) {
+/// @param file_bytes  the size of the file libmatio reads (the original or its uncompressed copy).
+MatVar readParsedData(mat_t* mat, const std::string& path, std::uintmax_t file_bytes) {
   // The checked header, its field data read in place: Mat_VarRead would read the header again
   // (a second pass through the inflated variable, half the reading time of the CRAS log).
   // checkedParsedDataInfo has checked that it is a complete struct array; reading its fields'
   // data does not change that.
-  MatVar data = checkedParsedDataInfo(mat, path);
+  MatVar data = checkedParsedDataInfo(mat, path, file_bytes);
   if (Mat_VarReadDataAll(mat, data.get()) != MATIO_E_NO_ERROR) {
     throwFileError(path, std::string("variable '") + kVariable + "' cannot be read");
   }
@@ -414,9 +450,20 @@ SonarLog readCutMat(const detail::MatCut& cut, const std::string& path) {
 SonarLog readCrasMat(const std::string& path) {
   installQuietMatioLog();
   g_last_matio_message.clear();
-  if (const std::optional<detail::MatCut> cut = checkMat(path)) return readCutMat(*cut, path);
-  MatFile mat = openMat(path);
-  MatVar data = readParsedData(mat.get(), path);
+  std::vector<unsigned char> uncompressed;
+  if (const std::optional<detail::MatCut> cut = checkMat(path, uncompressed)) return readCutMat(*cut, path);
+  std::optional<MemoryMatFile> copy;
+  if (!uncompressed.empty()) copy.emplace(uncompressed);
+  std::uintmax_t file_bytes = uncompressed.size();
+  std::vector<unsigned char>().swap(uncompressed);  // the copy holds it now
+  const bool from_copy = copy && !copy->name().empty();
+  if (!from_copy) {
+    std::error_code ec;
+    file_bytes = std::filesystem::file_size(path, ec);
+    if (ec) throwFileError(path, "its size cannot be read");
+  }
+  MatFile mat = openMat(from_copy ? copy->name() : path, path);
+  MatVar data = readParsedData(mat.get(), path, file_bytes);
   return beamsOf(*data, path);
 }
 

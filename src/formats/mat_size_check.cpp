@@ -143,17 +143,28 @@ bool hasMat5Header(std::span<const unsigned char> file) {
          ((file[126] == 'I' && file[127] == 'M') || (file[126] == 'M' && file[127] == 'I'));
 }
 
-std::optional<MatCut> checkMatSizes(std::span<const unsigned char> file, const std::string& path) {
+std::optional<MatCut> checkMatSizes(std::span<const unsigned char> file, const std::string& path,
+                                    std::vector<unsigned char>* uncompressed) {
+  if (uncompressed != nullptr) uncompressed->clear();
   if (!hasMat5Header(file)) return std::nullopt;  // not this format: the caller says so
   const bool swap = file[126] == 'M' && file[127] == 'I';  // written big-endian: "MI" read byte by byte
   const unsigned version = swap ? (file[124] << 8U) | file[125] : (file[125] << 8U) | file[124];
   if (version != 0x0100) return std::nullopt;  // 7.3 (HDF5) or unknown: not walked
   ElementReader top(file.subspan(kMatHeaderBytes), kMatHeaderBytes, swap, path);
+  std::vector<unsigned char> copy(file.begin(), file.begin() + static_cast<std::ptrdiff_t>(kMatHeaderBytes));
+  bool compressed = false;
   while (!top.atEnd()) {
-    if (top.cutShort()) return cutElement(top, swap);
+    if (top.cutShort()) {
+      if (uncompressed != nullptr) uncompressed->clear();
+      return cutElement(top, swap);
+    }
+    const std::size_t begin = top.offset();
     const Element e = top.next();
     if (e.type == kMiMatrix) checkArray(e, swap, path, 0);
-    if (e.type != kMiCompressed) continue;
+    if (e.type != kMiCompressed) {
+      if (uncompressed != nullptr) copy.insert(copy.end(), file.begin() + static_cast<std::ptrdiff_t>(begin), file.begin() + static_cast<std::ptrdiff_t>(top.offset()));
+      continue;
+    }
     const std::vector<unsigned char> inflated = inflateElement(e, top);
     const std::string where = path + " (variable compressed at byte " + std::to_string(e.offset) + ", inflated)";
     ElementReader inner(inflated, 0, swap, where);
@@ -161,7 +172,10 @@ std::optional<MatCut> checkMatSizes(std::span<const unsigned char> file, const s
       const Element variable = inner.next();
       if (variable.type == kMiMatrix) checkArray(variable, swap, where, 0);
     }
+    compressed = true;
+    if (uncompressed != nullptr) copy.insert(copy.end(), inflated.begin(), inflated.end());
   }
+  if (uncompressed != nullptr && compressed) *uncompressed = std::move(copy);
   return std::nullopt;
 }
 

@@ -46,13 +46,21 @@ struct MatCut {
 /// by a small multiple of the (inflated) file size.
 /// A top-level element that runs past the end of the file (a file cut short) ends the walk: it is
 /// returned, the elements before it checked; libmatio must not read it.
-/// @param file   the whole file.
-/// @param path   the file's name, for messages.
-/// @return       the element the file ends in, or nothing when the file ends after a whole one.
+/// @param file          the whole file.
+/// @param path          the file's name, for messages.
+/// @param uncompressed  when not null and the file is walked whole with at least one compressed
+///                      element: the same file with each miCOMPRESSED element replaced by the
+///                      element(s) it inflates to (MAT-File Format, "Compressed Data Elements");
+///                      otherwise left empty. libmatio reads a compressed struct array's fields
+///                      by copying zlib's state, its 32 KB window, once per field of every element
+///                      (inflateCopy): the CRAS log's 5,604 × 4 fields cost a third of `map`'s
+///                      instructions, which the uncompressed copy does not.
+/// @return              the element the file ends in, or nothing when the file ends after a whole one.
 /// @throws FileError naming `path`, the byte offset (inside the inflated variable, with the
 ///         variable's own offset, for compressed ones) and what was expected, when an element
 ///         runs past its container (but the file), a compressed variable does not inflate or
 ///         inflates beyond the limit, or an array's sizes do not fit.
-std::optional<MatCut> checkMatSizes(std::span<const unsigned char> file, const std::string& path);
+std::optional<MatCut> checkMatSizes(std::span<const unsigned char> file, const std::string& path,
+                                    std::vector<unsigned char>* uncompressed = nullptr);
 
 }  // namespace sonarmap::detail

@@ -19,6 +19,8 @@ struct MatBeam {
   std::vector<double> intensities = std::vector<double>(10, 0.0);
   matio_classes scalar_class = MAT_C_SINGLE;     ///< class of time, angle and step_dist
   matio_classes intensity_class = MAT_C_UINT8;   ///< class of intensities
+  /// Stored as whole bytes whatever the class (MATLAB's narrower storage of a double array), when set.
+  bool intensities_stored_as_bytes = false;
 };
 
 inline matvar_t* makeMatVector(matio_classes cls, const std::vector<double>& values) {
@@ -45,6 +47,14 @@ inline matvar_t* makeMatVector(matio_classes cls, const std::vector<double>& val
   }
 }
 
+/// A 1×n array of class `cls` whose values are stored as miUINT8 (libmatio writes the data type it
+/// is given and reads it back into the class).
+inline matvar_t* makeByteStoredVector(matio_classes cls, const std::vector<double>& values) {
+  size_t dims[2] = {1, values.size()};
+  std::vector<std::uint8_t> data(values.begin(), values.end());
+  return Mat_VarCreate(nullptr, cls, MAT_T_UINT8, 2, dims, data.data(), 0);
+}
+
 /// Writes `beams` as the struct array `variable` with the given fields (a subset of time, angle,
 /// step_dist, intensities, to make a field go missing).
 inline void writeCrasMat(const std::string& path, const std::vector<MatBeam>& beams,
@@ -60,7 +70,8 @@ inline void writeCrasMat(const std::string& path, const std::vector<MatBeam>& be
     const MatBeam& b = beams[i];
     for (const char* f : fields) {
       const std::string field(f);
-      matvar_t* value = field == "intensities" ? makeMatVector(b.intensity_class, b.intensities)
+      matvar_t* value = field == "intensities" && b.intensities_stored_as_bytes ? makeByteStoredVector(b.intensity_class, b.intensities)
+                        : field == "intensities" ? makeMatVector(b.intensity_class, b.intensities)
                         : field == "time"      ? makeMatVector(b.scalar_class, {b.time})
                         : field == "angle"     ? makeMatVector(b.scalar_class, {b.angle})
                                                : makeMatVector(b.scalar_class, {b.step_dist});

@@ -95,6 +95,55 @@ TEST(sonarMatReader, SkipsMalformedBeamsWithReasons) {
   EXPECT_NE(log.skip_reasons[4].find("[0, 255]"), std::string::npos) << log.skip_reasons[4];
 }
 
+TEST(sonarMatReader, ACompressedLogReadsAsItsUncompressedTwin) {
+  // Compressed variables are read from their inflated copy: the beams and the skip reasons must be
+  // those of the same log written uncompressed.
+  TempDir dir;
+  auto beams = threeGoodBeams();
+  for (int i = 0; i < 3; ++i) beams.push_back(threeGoodBeams()[1]);
+  beams[3].intensities.resize(4);
+  beams[4].scalar_class = MAT_C_INT16;
+  beams[5].intensities[2] = 300.0;
+  beams[5].intensity_class = MAT_C_DOUBLE;
+  const std::vector<const char*> fields = {"time", "angle", "step_dist", "intensities"};
+  test::writeCrasMat(dir.file("log.mat"), beams, fields, "parsedData", MAT_COMPRESSION_NONE);
+  test::writeCrasMat(dir.file("log_z.mat"), beams, fields, "parsedData", MAT_COMPRESSION_ZLIB);
+  ASSERT_LT(std::filesystem::file_size(dir.file("log_z.mat")), std::filesystem::file_size(dir.file("log.mat")));
+  const SonarLog plain = readCrasMat(dir.file("log.mat"));
+  const SonarLog packed = readCrasMat(dir.file("log_z.mat"));
+  ASSERT_EQ(packed.beams.size(), plain.beams.size());
+  EXPECT_EQ(plain.beams.size(), 3u);
+  for (std::size_t i = 0; i < plain.beams.size(); ++i) {
+    EXPECT_EQ(packed.beams[i].time_s, plain.beams[i].time_s);
+    EXPECT_EQ(packed.beams[i].bearing_rad, plain.beams[i].bearing_rad);
+    EXPECT_EQ(packed.beams[i].bin_length_m, plain.beams[i].bin_length_m);
+    EXPECT_EQ(packed.beams[i].intensities, plain.beams[i].intensities);
+  }
+  ASSERT_EQ(packed.skip_reasons.size(), 3u);
+  for (std::size_t i = 0; i < packed.skip_reasons.size(); ++i) {
+    std::string reason = plain.skip_reasons[i];
+    reason.replace(reason.find("log.mat"), 7, "log_z.mat");
+    EXPECT_EQ(packed.skip_reasons[i], reason);
+  }
+}
+
+TEST(sonarMatReader, DoublesStoredAsBytesReadFromAnUncompressedFile) {
+  // MATLAB stores a double array of whole counts as bytes: the declared doubles take 8 times the
+  // bytes the file holds for them, which the size check must believe.
+  TempDir dir;
+  auto beams = threeGoodBeams();
+  for (MatBeam& beam : beams) {
+    beam.intensities = std::vector<double>(400, 7.0);
+    beam.intensity_class = MAT_C_DOUBLE;
+    beam.intensities_stored_as_bytes = true;
+  }
+  test::writeCrasMat(dir.file("bytes.mat"), beams);
+  ASSERT_LT(std::filesystem::file_size(dir.file("bytes.mat")), 3u * 400u * 8u);
+  const SonarLog log = readCrasMat(dir.file("bytes.mat"));
+  ASSERT_EQ(log.beams.size(), 3u);
+  EXPECT_EQ(log.beams[2].intensities, std::vector<std::uint8_t>(400, 7));
+}
+
 TEST(sonarMatReader, NonExistentFileIsFileError) {
   TempDir dir;
   const std::string path = dir.file("missing.mat");

@@ -127,5 +127,23 @@ TEST(sonarMatSizeCheck, ChecksInsideCompressedVariables) {
   EXPECT_NE(message.find("elements"), std::string::npos) << message;
 }
 
+TEST(sonarMatSizeCheck, GivesACompressedFileAsTheSameFileUncompressed) {
+  test::TempDir dir;
+  const std::vector<const char*> fields = {"time", "angle", "step_dist", "intensities"};
+  test::writeCrasMat(dir.file("z.mat"), std::vector<test::MatBeam>(5), fields, "parsedData", MAT_COMPRESSION_ZLIB);
+  test::writeCrasMat(dir.file("plain.mat"), std::vector<test::MatBeam>(5), fields, "parsedData", MAT_COMPRESSION_NONE);
+  Bytes copy{1, 2, 3};
+  EXPECT_FALSE(detail::checkMatSizes(readAll(dir.file("plain.mat")), "plain.mat", &copy));
+  EXPECT_TRUE(copy.empty());  // nothing compressed: the original is read
+  EXPECT_FALSE(detail::checkMatSizes(readAll(dir.file("z.mat")), "z.mat", &copy));
+  ASSERT_GT(copy.size(), 128u);
+  // The inflated copy is the uncompressed file libmatio writes, header aside (its text has a date).
+  const Bytes plain = readAll(dir.file("plain.mat"));
+  EXPECT_EQ(Bytes(copy.begin() + 128, copy.end()), Bytes(plain.begin() + 128, plain.end()));
+  Bytes again{1};
+  EXPECT_FALSE(detail::checkMatSizes(copy, "copy", &again));
+  EXPECT_TRUE(again.empty());
+}
+
 }  // namespace
 }  // namespace sonarmap
