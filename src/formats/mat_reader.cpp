@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -154,8 +153,10 @@ bool toBytes(const T* values, std::size_t count, std::vector<std::uint8_t>& out)
   out.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
     const double v = static_cast<double>(values[i]);
-    if (!(v >= 0.0 && v <= 255.0) || v != std::floor(v)) return false;
-    out[i] = static_cast<std::uint8_t>(v);
+    if (!(v >= 0.0 && v <= 255.0)) return false;
+    const auto byte = static_cast<std::uint8_t>(v);  // in range: truncation is floor
+    if (static_cast<double>(byte) != v) return false;
+    out[i] = byte;
   }
   return true;
 }
@@ -223,9 +224,13 @@ BeamOrReason readBeam(matvar_t* data, std::size_t index) {
 
 /// The whole file, for detail::checkMatSizes.
 std::vector<unsigned char> fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throwFileError(path, "cannot be read");
+  std::ifstream in(path, std::ios::binary | std::ios::ate);  // at the end: its position is the size
+  const std::streamoff size = in.tellg();
+  if (!in || size < 0) throwFileError(path, "cannot be read");
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), size);
+  if (in.gcount() != size) throwFileError(path, "cannot be read");
   return bytes;
 }
 
