@@ -34,24 +34,31 @@ WaterEvidence::WaterEvidence(std::span<const std::uint32_t> histogram, double mi
   }
   if (std::isnan(min_tail_scale_counts)) throw ValueError("WaterEvidence: the least tail scale is NaN");
   const double least_scale = std::max(1.0, min_tail_scale_counts);
-  for (const std::uint32_t count : histogram) samples_ += count;
+  // The evidence is rebuilt at every range bin of every sweep: whole-count sums in integers (exact,
+  // and equal to summing them in double, exact below 2⁵³), the tail's from the histogram's moment
+  // Σ count × i instead of a pass over the tail.
+  std::uint64_t moment = 0;
+  for (std::size_t i = 0; i < histogram.size(); ++i) {
+    samples_ += histogram[i];
+    moment += static_cast<std::uint64_t>(histogram[i]) * i;
+  }
   if (samples_ == 0) return;
   const auto total = static_cast<double>(samples_);
+  while (histogram[static_cast<std::size_t>(lowest_index_)] == 0) ++lowest_index_;  // samples_ > 0: one is not
   // The body's end: the 90th percentile (nearest rank).
   const auto rank = static_cast<std::uint64_t>(std::llround(0.9 * (total - 1.0)));
   std::uint64_t seen = 0;
-  int q = 0;
+  std::uint64_t seen_moment = 0;
+  int q = lowest_index_;
   for (; q < kExcessValues; ++q) {
-    seen += histogram[static_cast<std::size_t>(q)];
+    const std::uint64_t count = histogram[static_cast<std::size_t>(q)];
+    seen += count;
+    seen_moment += count * static_cast<std::uint64_t>(q);
     if (seen > rank) break;
   }
-  // The tail beyond it: its share and mean excess.
-  std::uint64_t tail_samples = 0;
-  double tail_excess = 0.0;
-  for (int i = q + 1; i < kExcessValues; ++i) {
-    tail_samples += histogram[static_cast<std::size_t>(i)];
-    tail_excess += static_cast<double>(histogram[static_cast<std::size_t>(i)]) * (i - q);
-  }
+  // The tail beyond it: its share and mean excess, Σ count × (i − q) over i > q.
+  const std::uint64_t tail_samples = samples_ - seen;
+  const auto tail_excess = static_cast<double>(moment - seen_moment - static_cast<std::uint64_t>(q) * tail_samples);
   body_end_ = q - 255;
   body_index_ = q;
   tail_scale_ = tail_samples > 0 ? std::max(least_scale, tail_excess / static_cast<double>(tail_samples)) : least_scale;
@@ -63,8 +70,6 @@ WaterEvidence::WaterEvidence(std::span<const std::uint32_t> histogram, double mi
   // λ = ln(1/256) − ln p rising by 1/m a count up to ln(1/256) − ln p_min (logLikelihoodRatio).
   max_llr_ = ln_uniform - ln_min;
   tail_first_llr_ = ln_uniform - (std::log(tail_share) + std::log1p(-std::exp(-1.0 / tail_scale_)));
-  lowest_index_ = 0;
-  while (histogram[static_cast<std::size_t>(lowest_index_)] == 0) ++lowest_index_;  // samples_ > 0: one is not
   // The body, non-decreasing in the excess: a gap in the histogram takes the next louder value's
   // evidence, the body's end at most the tail's first.
   float next = static_cast<float>(std::min(tail_first_llr_, max_llr_));

@@ -124,6 +124,36 @@ TEST(detectionWaterEvidence, ALeastTailScaleBoundsTheEvidenceOfWaterSeenClipped)
   EXPECT_THROW(WaterEvidence(std::span<const std::uint32_t>(wide), std::nan("")), ValueError);
 }
 
+TEST(detectionWaterEvidence, TheBodyAndTailAreThoseOfTheSamplesCountedOneByOne) {
+  // Random bands, sparse and dense, against the 90th percentile and the tail's mean excess found
+  // by listing every sample.
+  std::mt19937 rng(11);
+  for (int band = 0; band < 200; ++band) {
+    std::array<std::uint32_t, WaterEvidence::kExcessValues> counts{};
+    std::vector<int> samples;
+    const int centre = std::uniform_int_distribution<int>(0, 510)(rng);
+    const int spread = std::uniform_int_distribution<int>(0, 120)(rng);
+    const int n = std::uniform_int_distribution<int>(1, 3000)(rng);
+    std::normal_distribution<double> excess(centre, spread + 0.5);
+    for (int k = 0; k < n; ++k) {
+      const int i = std::clamp(static_cast<int>(std::lround(excess(rng))), 0, 510);
+      ++counts[static_cast<std::size_t>(i)];
+      samples.push_back(i);
+    }
+    std::sort(samples.begin(), samples.end());
+    const int q = samples[static_cast<std::size_t>(std::llround(0.9 * (n - 1)))];
+    double tail = 0.0;
+    int beyond = 0;
+    for (const int i : samples) {
+      if (i > q) tail += i - q, ++beyond;
+    }
+    const WaterEvidence evidence{std::span<const std::uint32_t>(counts), 1.0};
+    EXPECT_EQ(evidence.samples(), static_cast<std::uint64_t>(n));
+    EXPECT_EQ(evidence.bodyEnd(), q - 255);
+    EXPECT_EQ(evidence.tailScale(), beyond > 0 ? std::max(1.0, tail / beyond) : 1.0) << "band " << band;
+  }
+}
+
 TEST(detectionWaterEvidence, AnEmptyBandGivesNoEvidenceAndAWrongSizeThrows) {
   const auto histogram = emptyHistogram();
   const WaterEvidence evidence{std::span<const std::uint32_t>(histogram)};
