@@ -3,6 +3,7 @@
 #include <bit>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <vector>
 
 #include "message_text.hpp"
@@ -21,30 +22,28 @@ unsigned childCode(const OcTree16& tree, const OcTreeNode& child) {
   return tree.model().isOccupied(child.log_odds) ? kOccupiedLeaf : kFreeLeaf;
 }
 
-/// Appends the 2-byte child codes of `node` (which has children) and of its inner descendants, in
-/// pre-order, and returns the number of nodes below it: the header's count, found on the way
-/// instead of by a walk of its own. A node's existing children are consecutive slots, in child
-/// order (NodePool), so they are read as a run.
-std::size_t writeNode(const OcTree16& tree, const OcTreeNode& node, std::string& out) {
+/// Writes at `out` the 2-byte child codes of `node` (which has children) and of its inner
+/// descendants, in pre-order, and returns the number of nodes below it: the header's count, found on
+/// the way instead of by a walk of its own. A node's existing children are consecutive slots, in
+/// child order (NodePool), so only they are visited. `out` has room for 2 bytes per inner node.
+std::size_t writeNode(const OcTree16& tree, const OcTreeNode& node, unsigned char*& out) {
   const unsigned mask = tree.childMask(node);
   const NodeRef first = tree.childRef(node, static_cast<unsigned>(std::countr_zero(mask)));
   unsigned bits = 0;
   unsigned inner = 0;  // bit i: child i is an inner node
-  std::size_t below = 0;
-  for (unsigned i = 0; i < 8; ++i) {
-    if (((mask >> i) & 1U) == 0) continue;
-    const unsigned code = childCode(tree, tree.node(first + static_cast<NodeRef>(below)));
+  NodeRef child = first;
+  for (unsigned rest = mask; rest != 0; rest &= rest - 1, ++child) {
+    const auto i = static_cast<unsigned>(std::countr_zero(rest));
+    const unsigned code = childCode(tree, tree.node(child));
     bits |= code << (2 * i);
     inner |= code == kInner ? 1U << i : 0U;
-    ++below;
   }
-  out.push_back(static_cast<char>(bits & 0xFFU));
-  out.push_back(static_cast<char>(bits >> 8));
-  NodeRef child = first;
-  for (unsigned i = 0; i < 8; ++i) {
-    if (((mask >> i) & 1U) == 0) continue;
-    if (((inner >> i) & 1U) != 0) below += writeNode(tree, tree.node(child), out);
-    ++child;
+  std::size_t below = child - first;
+  *out++ = static_cast<unsigned char>(bits & 0xFFU);
+  *out++ = static_cast<unsigned char>(bits >> 8);
+  child = first;
+  for (unsigned rest = mask; rest != 0; rest &= rest - 1, ++child) {
+    if (((inner >> std::countr_zero(rest)) & 1U) != 0) below += writeNode(tree, tree.node(child), out);
   }
   return below;
 }
@@ -99,19 +98,16 @@ class BinaryReader {
 }  // namespace
 
 void writeBinary(const OcTree16& tree, std::ostream& out, const std::vector<std::string>& comments) {
-  // The data first: it gives the node count the header needs.
-  std::string data;
+  // The data first: it gives the node count the header needs. Every node is an 8-byte slot, so
+  // memoryBytes() / 4 bounds the 2 bytes of each inner node; the buffer is not filled beforehand,
+  // so only what is written becomes resident.
+  const std::unique_ptr<unsigned char[]> data(new unsigned char[tree.memoryBytes() / 4 + 2]);
+  unsigned char* end = data.get();
   std::size_t nodes = 0;
   const OcTreeNode& root = tree.node(kRootRef);
-  if (root.exists()) {
-    nodes = 1;
-    if (root.hasChildren()) {
-      data.reserve(tree.memoryBytes() / 16);  // 8-byte nodes, 2 bytes per inner node of ≥ 1 child
-      nodes += writeNode(tree, root, data);
-    }
-  }
+  if (root.exists()) nodes = 1 + (root.hasChildren() ? writeNode(tree, root, end) : 0);
   writeOctomapHeader(out, kBinaryFileFirstLine, {"OcTree", nodes, tree.resolution_m(), comments});
-  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+  out.write(reinterpret_cast<const char*>(data.get()), end - data.get());
   if (!out) throw FileError("writing the .bt stream failed");
 }
 
