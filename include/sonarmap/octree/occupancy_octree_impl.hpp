@@ -188,14 +188,24 @@ bool OccupancyOctree<Depth>::mergeOctet(NodeRef node, unsigned bits, float delta
     pool_.at(node).link |= OcTreeNode::kDirtyBit;
   }
   bool changed = false;
-  for (unsigned rest = bits; rest != 0; rest &= rest - 1) {
-    const auto i = static_cast<unsigned>(std::countr_zero(rest));
-    const NodeRef leaf = pool_.childRef(pool_.at(node), i);
-    if (leaf == kNoNodeRef) {
-      pool_.addChild(node, i, fresh);
-      changed = true;
-    } else {
-      changed = updateLeaf(leaf, delta_log_odds) || changed;
+  const unsigned mask = pool_.childMask(pool_.at(node));
+  if ((bits & ~mask) == 0) {
+    // Every voxel has its leaf (the usual case once known): none is added, so the children stay
+    // where they are, consecutive slots in child order.
+    NodeRef leaf = NodePool::firstChild(pool_.at(node));
+    for (unsigned rest = mask; rest != 0; rest &= rest - 1, ++leaf) {
+      if (((bits >> std::countr_zero(rest)) & 1U) != 0) changed = updateLeaf(leaf, delta_log_odds) || changed;
+    }
+  } else {
+    for (unsigned rest = bits; rest != 0; rest &= rest - 1) {
+      const auto i = static_cast<unsigned>(std::countr_zero(rest));
+      const NodeRef leaf = pool_.childRef(pool_.at(node), i);  // again after each addChild: arrays move
+      if (leaf == kNoNodeRef) {
+        pool_.addChild(node, i, fresh);
+        changed = true;
+      } else {
+        changed = updateLeaf(leaf, delta_log_odds) || changed;
+      }
     }
   }
   if (changed) pool_.at(node).link |= OcTreeNode::kDirtyBit;
