@@ -113,19 +113,20 @@ float waterLevel(const PolarImage& polar, const ColumnProfile& profile, double c
 /// row covers it).
 std::vector<double> echoPersistence(const PolarImage& polar, float level) {
   const auto cols = static_cast<std::size_t>(polar.cols());
-  std::vector<double> persistence(cols, 0.0);
-  std::vector<int> rows_covering(cols, 0);
+  // Whole counts per column (the rows above the level, the rows covering it), divided at the end.
+  std::vector<int> rows_above(cols, 0), rows_covering(cols, 0);
   for (int r = 0; r < polar.rows(); ++r) {
     const auto* row = polar.intensities.ptr<std::uint8_t>(r);
     const int valid = std::min(polar.cols(), polar.valid_bins[static_cast<std::size_t>(r)]);
     for (int c = 0; c < valid; ++c) {
       const auto i = static_cast<std::size_t>(c);
       ++rows_covering[i];
-      if (static_cast<float>(row[c]) > level) persistence[i] += 1.0;
+      rows_above[i] += static_cast<float>(row[c]) > level ? 1 : 0;
     }
   }
+  std::vector<double> persistence(cols, 0.0);
   for (std::size_t c = 0; c < cols; ++c) {
-    if (rows_covering[c] > 0) persistence[c] /= rows_covering[c];
+    if (rows_covering[c] > 0) persistence[c] = static_cast<double>(rows_above[c]) / rows_covering[c];
   }
   return persistence;
 }

@@ -19,7 +19,7 @@ class IntensityHistogram {
     counts_.fill(0);
     total_ = 0;
   }
-  std::uint32_t total() const { return total_; }
+  std::uint32_t total() const { return static_cast<std::uint32_t>(total_); }
 
   /// Several percentiles (0…100, ascending) in one scan: out[i] for percentiles[i]; total() > 0.
   template <std::size_t N>
@@ -50,11 +50,13 @@ class IntensityHistogram {
 
  private:
   std::uint32_t rankOf(double percentile) const {
-    return static_cast<std::uint32_t>(std::lround(percentile / 100.0 * (total_ - 1)));
+    return static_cast<std::uint32_t>(std::lround(percentile / 100.0 * (total() - 1)));
   }
 
   std::array<std::uint32_t, 256> counts_{};
-  std::uint32_t total_ = 0;
+  /// Values added. Of another type than the counts: the compiler then knows that a count's store
+  /// leaves it unchanged and keeps it in a register over a loop of add().
+  std::uint64_t total_ = 0;
 };
 
 }  // namespace sonarmap::detail
