@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 #include <span>
 #include <string>
@@ -22,6 +23,21 @@ namespace sonarmap::detail {
 /// both are there).
 inline std::uint16_t u16At(std::span<const unsigned char> bytes, std::size_t at) {
   return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8));
+}
+
+/// The little-endian 32- and 64-bit numbers starting at `bytes` (the caller has checked that they
+/// are there): one unaligned load on a little-endian host, the bytes reversed on a big-endian one.
+inline std::uint32_t u32At(const unsigned char* bytes) {
+  std::uint32_t value = 0;
+  std::memcpy(&value, bytes, sizeof value);
+  if constexpr (std::endian::native == std::endian::big) value = __builtin_bswap32(value);
+  return value;
+}
+inline std::uint64_t u64At(const unsigned char* bytes) {
+  std::uint64_t value = 0;
+  std::memcpy(&value, bytes, sizeof value);
+  if constexpr (std::endian::native == std::endian::big) value = __builtin_bswap64(value);
+  return value;
 }
 
 /// Sequential reader over bytes already in memory. Offsets in messages are `base + position`, so
@@ -64,21 +80,27 @@ class ByteCursor {
   }
   std::uint32_t u32(std::string_view what) {
     require(4, what);
-    std::uint32_t value = 0;
-    for (int i = 3; i >= 0; --i) value = (value << 8) | data_[position_ + static_cast<std::size_t>(i)];
+    const std::uint32_t value = u32At(data_.data() + position_);
     position_ += 4;
     return value;
   }
   std::int32_t i32(std::string_view what) { return static_cast<std::int32_t>(u32(what)); }
   std::uint64_t u64(std::string_view what) {
     require(8, what);
-    std::uint64_t value = 0;
-    for (int i = 7; i >= 0; --i) value = (value << 8) | data_[position_ + static_cast<std::size_t>(i)];
+    const std::uint64_t value = u64At(data_.data() + position_);
     position_ += 8;
     return value;
   }
 
   double f64(std::string_view what) { return std::bit_cast<double>(u64(what)); }
+
+  /// The next `bytes` bytes, stepped over. @throws FileError as require().
+  std::span<const unsigned char> take(std::size_t bytes, std::string_view what) {
+    require(bytes, what);
+    const std::span<const unsigned char> taken = data_.subspan(position_, bytes);
+    position_ += bytes;
+    return taken;
+  }
 
   /// A float32 that must be finite (NaN and ±inf throw, at the value's offset).
   float finiteF32(std::string_view what) {

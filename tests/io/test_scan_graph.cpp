@@ -8,9 +8,13 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <random>
 #include <sstream>
+#include <thread>
+
+#include <sys/stat.h>
 
 #include "common/temp_dir.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -80,13 +84,20 @@ std::string smallGraph(const std::vector<std::string>& edges = {}) {
   return bytes;
 }
 
+/// `bytes` fail with `message_part` both from a stream and from a file read by its path (a
+/// regular file is parsed through a mapping, readScanGraph(const std::string&)).
 void expectFileError(const std::string& bytes, const std::string& message_part) {
-  try {
-    parse(bytes);
-    ADD_FAILURE() << "no FileError; expected one mentioning '" << message_part << "'";
-  } catch (const FileError& error) {
-    EXPECT_NE(std::string(error.what()).find(message_part), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("test.graph: byte "), std::string::npos) << error.what();
+  const TempDir dir;
+  const std::string path = dir.file("test.graph");
+  std::ofstream(path, std::ios::binary) << bytes;
+  for (const bool by_path : {false, true}) {
+    try {
+      by_path ? readScanGraph(path) : parse(bytes);
+      ADD_FAILURE() << "no FileError; expected one mentioning '" << message_part << "'" << (by_path ? " (by path)" : "");
+    } catch (const FileError& error) {
+      EXPECT_NE(std::string(error.what()).find(message_part), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("test.graph: byte "), std::string::npos) << error.what();
+    }
   }
 }
 
@@ -123,6 +134,24 @@ TEST(ioScanGraph, RoundTripKeepsPointsAndPoses) {
     EXPECT_EQ(back[n].points_m, scans[n].points_m);  // float64 both ways: exact
     EXPECT_TRUE(back[n].sensor_to_world.isApprox(scans[n].sensor_to_world, 1e-12));
   }
+}
+
+TEST(ioScanGraph, APipeReadsAsTheFileDoes) {
+  const TempDir dir;
+  const std::string bytes = graphBytes(sampleScans());
+  const std::string fifo = dir.file("scans.graph");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] { std::ofstream(fifo, std::ios::binary) << bytes; });
+  const std::vector<Scan> piped = readScanGraph(fifo);  // not a regular file: read as a stream
+  writer.join();
+  std::ofstream(dir.file("file.graph"), std::ios::binary) << bytes;
+  const std::vector<Scan> mapped = readScanGraph(dir.file("file.graph"));
+  ASSERT_EQ(piped.size(), mapped.size());
+  for (std::size_t n = 0; n < mapped.size(); ++n) {
+    EXPECT_EQ(piped[n].points_m, mapped[n].points_m);
+    EXPECT_TRUE(piped[n].sensor_to_world.isApprox(mapped[n].sensor_to_world, 0.0));
+  }
+  EXPECT_EQ(mapped.size(), 3U);
 }
 
 TEST(ioScanGraph, OctoMapReadsOurGraph) {

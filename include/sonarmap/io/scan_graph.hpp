@@ -31,7 +31,9 @@ inline constexpr double kScanGraphQuaternionTolerance = 1e-3;
 /// and the sensor pose in the world (`Scan::sensor_to_world`: rotation from the quaternion,
 /// normalised, then the translation in metres), in the file's node order.
 /// Every count is checked against the bytes left before anything is allocated, so a corrupt
-/// count cannot make the reader allocate more than the file's size.
+/// count cannot make the reader allocate more than the file's size. A regular file is parsed
+/// through a read-only mapping (POSIX mmap), others (a pipe) as readScanGraph(std::istream&);
+/// as with any mapped file, a file truncated by another process while it is parsed raises SIGBUS.
 /// @throws FileError (naming the file, the byte offset and what was expected there) when the file
 ///         cannot be opened, ends early, a size marker is not 3 (vectors) or 4 (quaternions), a
 ///         number is NaN or infinite, a quaternion's norm is not within
