@@ -38,15 +38,21 @@ def _longest_pause_during(work):
     return pause, seconds
 
 
+# A call that holds the GIL stops the other thread for all of its length but Python's switch
+# interval (5 ms). The bound leaves room for the scheduler too: on a loaded two-core machine a
+# thread that may run can still wait tens of milliseconds for a core.
+PAUSE_SHARE = 0.8
+
+
 def test_mapping_and_queries_release_the_gil(simulated_tank):
     pause, seconds = _longest_pause_during(lambda: sonarmap.map_sonar_log(simulated_tank.log, resolution=0.002))
     assert seconds > 0.1, "the mapping must take long enough to tell"
-    assert pause < 0.5 * seconds, f"a Python thread stood still {pause:.3f} s of {seconds:.3f} s of mapping"
+    assert pause < PAUSE_SHARE * seconds, f"a Python thread stood still {pause:.3f} s of {seconds:.3f} s of mapping"
     m = sonarmap.map_sonar_log(simulated_tank.log)
     points = np.random.default_rng(0).uniform(-2, 2, size=(4_000_000, 3))
     pause, seconds = _longest_pause_during(lambda: m.classify(points))
     assert seconds > 0.1, "the queries must take long enough to tell"
-    assert pause < 0.5 * seconds, f"a Python thread stood still {pause:.3f} s of {seconds:.3f} s of queries"
+    assert pause < PAUSE_SHARE * seconds, f"a Python thread stood still {pause:.3f} s of {seconds:.3f} s of queries"
 
 
 def test_help_shows_shapes_dtypes_units_and_frames():
