@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <memory>
 #include <span>
 
 #include <fcntl.h>
@@ -161,9 +160,10 @@ std::vector<Scan> readScanGraph(std::istream& in, const std::string& source) {
 
 std::vector<Scan> readScanGraph(const std::string& path) {
   // A regular file is parsed where the system keeps it (mmap of the page cache, mapped at once):
-  // copying it into a buffer was a third of reading a 2.5 MB graph, as each page of the copy is a
-  // page fault. Anything else (a pipe, a system without the mapping) is read as a stream. As with
-  // any mapped file, another process truncating the file while it is parsed ends this one (SIGBUS).
+  // a copy in a buffer costs a page fault for each of its pages, and those faults made reading a
+  // 2.5 MB graph take 4 times as long (docs/performance.md). Anything else (a pipe, a system
+  // without the mapping) is read as a stream. As with any mapped file, another process truncating
+  // the file while it is parsed ends this one (SIGBUS).
   std::error_code error;
   if (std::filesystem::is_regular_file(path, error)) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
