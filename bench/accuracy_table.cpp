@@ -8,7 +8,7 @@
 //     Every shared real log against its own strong echoes (real_log_table.hpp).
 //  4. With --analysis, where the errors come from (accuracy_analysis.hpp).
 //
-// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails] [--head PRESET]... [--detector NAME]
+// Usage: sonarmap_accuracy_table [DATA_DIR] [--analysis] [--real-only] [--noise-tails] [--head PRESET]... [--detector NAME] [--local-reverberation]
 //        (DATA_DIR holds the shared logs;
 //        default: the SONARMAP_DATA environment variable, else the configured shared data folder;
 //        --head: only the simulated rows of the named presets, e.g. --head ping360-2m --head ping360-5m;
@@ -147,6 +147,7 @@ int main(int argc, char** argv) {
   bool noise_tails_only = false;  // the noise-tail table only
   std::vector<std::string> heads;  // --head NAME: the simulated table's rows of those presets only (no real logs)
   std::string detector;  // --detector NAME: instead of the default
+  bool local_reverberation = false;  // --local-reverberation: the evidence detector over the local level
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--analysis") {
       analysis = true;
@@ -158,6 +159,8 @@ int main(int argc, char** argv) {
       heads.emplace_back(argv[++i]);
     } else if (std::string(argv[i]) == "--detector" && i + 1 < argc) {
       detector = argv[++i];
+    } else if (std::string(argv[i]) == "--local-reverberation") {
+      local_reverberation = true;
     } else {
       data = argv[i];
     }
@@ -169,6 +172,7 @@ int main(int argc, char** argv) {
     }
     MapperOptions options;
     if (!detector.empty()) selectDetector(options.detector, detector);
+    options.detector.reverberation.enabled = local_reverberation;
     if (!real_only) printSimulatedTable(heads, options);
     if (!heads.empty()) return 0;
     printCrasTable(data + "/cras_micron_tank_static.mat");

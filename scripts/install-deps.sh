@@ -11,7 +11,7 @@ packages=(build-essential cmake ninja-build pkg-config
   # positions on the Earth (src/nav/geodetic.cpp) and the GeoTIFF writer (src/geotiff)
   libgeographiclib-dev libgdal-dev
   # the Python module and its examples (Debian's python3, not PyPI)
-  python3-dev pybind11-dev python3-numpy python3-matplotlib
+  python3-dev pybind11-dev python3-numpy python3-matplotlib python3-scipy
   # sonarmap view: three.js, compiled into the tool and inlined into each page
   libjs-three
   # live --serve: the page's HTTP server

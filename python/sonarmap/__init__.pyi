@@ -23,6 +23,7 @@ class _MappingOptions(TypedDict, total=False):
     min_range: _NumberOrAuto
     max_near_field: float
     intensity_span: _NumberOrAuto
+    local_reverberation: bool
     smoothing: str
     smoothing_range: float
     smoothing_bearing_deg: float

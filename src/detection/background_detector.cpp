@@ -73,27 +73,8 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
 BeamDetection leadingEdgeAt(const PolarImage& polar, int row, int bin, const DetectionContext& context,
                             const SweepCalibration& calibration, double edge_db) {
   const auto* values = polar.intensities.ptr<std::uint8_t>(row);
-  const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
-  auto excess = [&](int c) { return residual(values, calibration, c); };
-  const float half_threshold = 0.5f * calibration.threshold[static_cast<std::size_t>(bin)];
-  // The foot of the rise: back from the run while the echo stays above half the threshold.
-  int foot = bin;
-  while (foot > context.min_bin && excess(foot - 1) >= half_threshold) --foot;
-  // The echo's peak, within a pulse or two of the run's start (what lies farther is another echo,
-  // reverberation or multipath, and must not pull the edge to itself).
-  const int window_end = std::min(end, bin + binsForLength(kPeakWindow_m, polar.bin_length_m, 2, std::max(2, end)));
-  int peak = bin;
-  for (int c = bin; c < window_end; ++c) {
-    if (excess(c) > excess(peak)) peak = c;
-  }
-  // The leading edge: the first bin from the foot that comes within edge_db of the peak.
-  const float edge = std::max(excess(peak) - static_cast<float>(countsForDb(edge_db, context.span_db)), half_threshold);
-  int first = foot;
-  while (first < peak && excess(first) < edge) ++first;
-  BeamDetection detection = detectionAt(polar, row, first);
-  detection.range_m = (first + 0.5) * polar.bin_length_m;  // the surface lies within the first bin of the rise
-  detection.rise_m = (peak - first) * polar.bin_length_m;
-  return detection;
+  return leadingEdgeOf(polar, row, bin, context, [&](int c) { return residual(values, calibration, c); },
+                       calibration.threshold[static_cast<std::size_t>(bin)], edge_db);
 }
 
 std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,

@@ -229,6 +229,13 @@ double thresholdDb(const CalibrationOptions& options) {
   return std::max(options.min_contrast_db, speckle_db);
 }
 
+double thresholdDb(const CalibrationOptions& options, double percentile) {
+  CalibrationOptions at = options;
+  at.background_percentile = percentile;
+  if (!(percentile > 0.0 && percentile < 100.0)) throwOption("the level's percentile must be in (0, 100)");
+  return thresholdDb(at);
+}
+
 SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOptions& options, double span_db) {
   if (polar.intensities.type() != CV_8UC1) throwOption("the polar image must be CV_8UC1");
   if (!(polar.bin_length_m > 0.0) || !std::isfinite(polar.bin_length_m)) throwOption("bin_length_m must be > 0 m");

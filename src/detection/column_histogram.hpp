@@ -15,6 +15,11 @@ class IntensityHistogram {
     ++counts_[value];
     ++total_;
   }
+  /// Removes a value added before.
+  void remove(std::uint8_t value) {
+    --counts_[value];
+    --total_;
+  }
   void clear() {
     counts_.fill(0);
     total_ = 0;

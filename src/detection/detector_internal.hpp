@@ -2,9 +2,13 @@
 /// @file detector_internal.hpp
 /// Shared helpers and the per-detector entry points behind detectObstacles (not installed).
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "sonarmap/detection/detectors.hpp"
+#include "sonarmap/detection/reverberation.hpp"
+#include "sonarmap/sonar/polar_units.hpp"
 
 namespace sonarmap::detail {
 
@@ -63,10 +67,52 @@ struct DetectionContext {
   const RowFloor* floor = nullptr;
   /// Row r's floor at column c, intensity counts.
   float floorAt(int r, int c) const { return floor ? floor->at(r, c) : 0.0f; }
+  /// The sweep's local reverberation level (reverberation.hpp), with the threshold above it in
+  /// intensity counts; none: each range is judged by the sweep's background B(c) (calibration.hpp).
+  const LocalLevel* local = nullptr;
+  float local_threshold = 0.0f;
+  double local_threshold_db = 0.0;
+  /// Bins per independent look along range (≥ 1): the pulse's length in bins or the water's own
+  /// runs, whichever is longer (waterBinsPerLook); the reach of a run into its neighbour's.
+  double look_bins = 1.0;
+  /// Fewest beams an echo must span; 0: measured on the sweep (requiredEchoBeams). Rows of a sweep
+  /// in progress cannot measure it and use the whole sweep's.
+  int echo_beams = 0;
+  /// Row r's level at column c under the reverberation model, intensity counts: the larger of the
+  /// local level and the row's floor (0 without a local level).
+  float localLevelAt(int r, int c) const { return local ? std::max(local->at(r, c), floorAt(r, c)) : 0.0f; }
 };
 
 /// The detection of `bin` in `row`, with the image's intensity there and the bin's centre as range.
 BeamDetection detectionAt(const PolarImage& polar, int row, int bin);
+
+/// The leading edge of the echo whose run above `threshold` starts at `bin` in `row`, the excess of
+/// bin c over its level given by `excess(c)` (intensity counts): back from `bin` while the echo
+/// stays above half the threshold (its foot, not before `context.min_bin`), the echo's peak within
+/// kPeakWindow_m of `bin`, then the first bin from the foot within `edge_db` of the peak and at
+/// least half the threshold over the level; its centre is the range (detectors.hpp,
+/// BackgroundOptions, step 3), the distance to the peak the rise.
+template <class Excess>
+BeamDetection leadingEdgeOf(const PolarImage& polar, int row, int bin, const DetectionContext& context, Excess&& excess,
+                            float threshold, double edge_db) {
+  const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
+  const float half_threshold = 0.5f * threshold;
+  int foot = bin;
+  while (foot > context.min_bin && excess(foot - 1) >= half_threshold) --foot;
+  // The echo's peak, within a pulse or two of the run's start (what lies farther is another echo,
+  // reverberation or multipath, and must not pull the edge to itself).
+  const int window_end = std::min(end, bin + binsForLength(kPeakWindow_m, polar.bin_length_m, 2, std::max(2, end)));
+  int peak = bin;
+  for (int c = bin; c < window_end; ++c) {
+    if (excess(c) > excess(peak)) peak = c;
+  }
+  const float edge = std::max(excess(peak) - static_cast<float>(countsForDb(edge_db, context.span_db)), half_threshold);
+  int first = foot;
+  while (first < peak && excess(first) < edge) ++first;
+  BeamDetection detection = detectionAt(polar, row, first);
+  detection.rise_m = (peak - first) * polar.bin_length_m;
+  return detection;
+}
 
 /// The detection of the echo found at `bin` in `row` at its leading edge: the echo is the run of
 /// bins above the threshold from `bin` on; back from its peak over the bins within `edge_db` of the
@@ -114,6 +160,55 @@ std::vector<BeamDetection> detectCanny(const PolarImage& polar, const DetectionC
 std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& context, const BackgroundOptions& options,
                              SweepCalibration& water);
 
+/// The reverberation model's loud returns (reverberation.hpp): each row's runs of at least
+/// min_echo_length_m whose excess over the row's level (the local level, the floor, the row's own
+/// ring-down) reaches context.local_threshold; a run is an obstacle when it belongs to a chain of
+/// overlapping runs (within a look) over at least requiredEchoBeams() consecutive beams in bearing
+/// order; each row's nearest such run, at its leading edge. Needs context.local. `calibration`
+/// supplies the ring-down. Options validated.
+/// The fewest consecutive beams an echo must span (reverberation.hpp, requiredEchoBeams): the
+/// sweep's, from the density of its chance runs (those no neighbour's run overlaps), and more where
+/// those runs are denser within the local level's window around the echo.
+class EchoSpanRule {
+ public:
+  EchoSpanRule() = default;
+  /// A rule asking `beams` everywhere (rows of a sweep in progress: the whole sweep's).
+  explicit EchoSpanRule(int beams) : needed_(std::max(1, beams)) {}
+  /// The sweep's span: never fewer are asked anywhere.
+  int sweepBeams() const { return needed_; }
+  /// The span asked of an echo of row `row` starting at column `bin`.
+  int beamsAt(int row, int bin) const;
+
+ private:
+  friend std::vector<BeamDetection> detectExtendedEchoes(const PolarImage&, const DetectionContext&, const BackgroundOptions&,
+                                                         const SweepCalibration&, EchoSpanRule&);
+  int needed_ = 1;
+  double overlap_bins_ = 0.0;
+  double false_alarm_probability_ = 1e-6;
+  const LocalLevel* local_ = nullptr;
+  cv::Mat chance_, searched_;  ///< integral images over (bearing position, column): chance runs, bins searched
+};
+
+/// `rule` receives the span rule the echoes were judged by (context.echo_beams everywhere, when set).
+std::vector<BeamDetection> detectExtendedEchoes(const PolarImage& polar, const DetectionContext& context,
+                                                const BackgroundOptions& options, const SweepCalibration& calibration,
+                                                EchoSpanRule& rule);
+
+/// Whether the echo of row `row` over bins [begin, loud_end), which falls back at `echo_end`, stands
+/// out of what follows it (reverberation.hpp): behind it the level falls at least half-way back from
+/// the echo's median to the level in front (its shadow, or the water or seabed it stands in), where
+/// a step into the seabed's or the surface's reverberation goes on at the level it rose to. Both
+/// levels are medians over twice the local level's half window (LocalLevel::halfWindowBins) of the
+/// row and its two neighbours in bearing, `slack` bins (a look) away from the echo; before
+/// `min_bin` nothing counts, and with nothing in front `front_level` stands for it. True when less
+/// than a look lies behind (the beam's end).
+bool standsOut(const PolarImage& polar, const LocalLevel& local, int row, int begin, int loud_end, int echo_end, int min_bin,
+               int slack, float front_level);
+
+/// The span of each row's echo [first, second) (bins; first < 0: none) in consecutive beams of
+/// `local`'s bearing order whose echoes overlap it within `slack` bins, chained (0 without one).
+std::vector<int> echoSpans(const std::vector<std::pair<int, int>>& echoes, const LocalLevel& local, int slack);
+
 /// Background-subtracted detector: the outward pass, then each echo's leading edge. `water` enters
 /// as the all-rows calibration and leaves as the calibration on the water. Options validated.
 std::vector<BeamDetection> detectBackgroundSubtracted(const PolarImage& polar, const DetectionContext& context,
@@ -142,6 +237,12 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
 /// water the receiver clips at its floor (a Ping360 at gain 0) shows its noise in blobs several
 /// pulses long, each one look, not a look per pulse length. Where the log records no pulse, 1.
 double evidenceWeight(const PolarImage& polar, double water_bins_per_look);
+
+/// The water's bins per look along range, measured on the runs of its loudest bins (see
+/// evidenceWeight): each row's bins from `min_bin` to a peak window short of its obstacle in `loud`
+/// (or its end), their excess over `background` (counts); 1 with too few bins.
+double waterBinsPerLook(const PolarImage& polar, int min_bin, const std::vector<BeamDetection>& loud,
+                        const std::vector<float>& background);
 
 /// Evidence detector: the evidence pass, then each return's leading edge. `water` as for
 /// detectBackgroundSubtracted. Options validated.

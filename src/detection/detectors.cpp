@@ -99,6 +99,7 @@ void DetectorOptions::validate() const {
     case Detector::kBackgroundSubtracted:
     case Detector::kEvidence:
       checkBackground(background);
+      reverberation.validate();
       break;
     case Detector::kCfar:
       background.calibration.validate();
@@ -203,23 +204,63 @@ void setEchoOnsets(const PolarImage& polar, const DetectorOptions& options, cons
   const double level_db =
       kSpeckleMeanDb + std::max(0.0, calibration.threshold_db - kSpeckleMeanDb) / std::sqrt(static_cast<double>(window));
   const double level = level_db * 255.0 / context.span_db * window;  // on the window's sum
+  const int look = std::max(1, static_cast<int>(std::lround(context.look_bins)));
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     const auto* row = polar.intensities.ptr<std::uint8_t>(r);
     const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
     const int last = std::min(end, static_cast<int>(std::ceil(detection.water_range_m / polar.bin_length_m)));
-    auto residual = [&](int c) { return static_cast<double>(row[c]) - calibration.background[static_cast<std::size_t>(c)]; };
+    // Under the reverberation model an echo counts from the level its beam has come down to as well
+    // (RowFloor: the cut's edge is no return).
+    auto residual = [&](int c) {
+      const float background = calibration.background[static_cast<std::size_t>(c)];
+      return static_cast<double>(row[c]) - (context.local ? std::max(background, context.floorAt(r, c)) : background);
+    };
     double sum = 0.0;
-    int onset = -1;
-    for (int c = context.min_bin; c < end; ++c) {
+    int onset = -1, c = context.min_bin;
+    for (; c < end; ++c) {
       sum += residual(c);
       if (c - window >= context.min_bin) sum -= residual(c - window);
       const int start = c - window + 1;
-      if (start >= context.min_bin && sum >= level) {
+      if (start >= last) break;
+      if (start < context.min_bin || sum < level) continue;
+      // Under the reverberation model an echo that goes on with no shadow behind it (standsOut) is
+      // the seabed's or the surface's reverberation entering the beam, not a surface at the sonar's
+      // level: the beam still proves water through it, and the next echo is sought where it ends.
+      int echo_end = c + 1;
+      while (echo_end < end && sum >= level) {
+        sum += residual(echo_end) - residual(echo_end - window);
+        ++echo_end;
+      }
+      if (context.local == nullptr ||
+          (echo_end - start <= 2 * context.local->halfWindowBins(start) && detail::standsOut(polar, *context.local, r, start, echo_end, echo_end, context.min_bin, look,
+                            calibration.background[static_cast<std::size_t>(start)]))) {
         onset = start;
         break;
       }
-      if (start >= last) break;
+      c = echo_end - 1;
+    }
+    // Under the reverberation model the echo also starts where it first rises above the local level
+    // of the diffuse echo (reverberation.hpp; one-look speckle's mean lies 0.9 dB under its median,
+    // and the window holds window / look_bins independent looks): a surface the background across
+    // bearings hides, or one whose shadow cannot be told. The beam clears to the nearer of the two.
+    if (context.local != nullptr) {
+      const double median_mean_db = -0.5772156649015329 * 10.0 * std::log10(std::exp(1.0)) - 10.0 * std::log10(std::log(2.0));
+      const double looks = std::max(1.0, window / context.look_bins);
+      const double local_level = (median_mean_db + std::max(0.0, context.local_threshold_db - median_mean_db) / std::sqrt(looks)) *
+                                 255.0 / context.span_db * window;
+      const int stop = onset >= 0 ? onset : last;
+      double local_sum = 0.0;
+      for (int k = context.min_bin; k < end; ++k) {
+        local_sum += static_cast<double>(row[k]) - context.localLevelAt(r, k);
+        if (k - window >= context.min_bin) local_sum -= static_cast<double>(row[k - window]) - context.localLevelAt(r, k - window);
+        const int start = k - window + 1;
+        if (start >= stop) break;
+        if (start >= context.min_bin && local_sum >= local_level) {
+          onset = start;
+          break;
+        }
+      }
     }
     detection.echo_onset_m = onset >= 0 ? std::min(onset * polar.bin_length_m, detection.water_range_m)
                                         : detection.water_range_m;
@@ -236,13 +277,18 @@ void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& con
       detection.water_range_m = detection.range_m;
       continue;
     }
+    // Under the reverberation model the loud pass measured it (detectExtendedEchoes); a weak return
+    // found since ends it there.
+    if (context.local) continue;
     const auto* row = polar.intensities.ptr<std::uint8_t>(r);
     const int end = std::min(polar.valid_bins[static_cast<std::size_t>(r)], polar.cols());
+    auto below = [&](int c) {
+      if (context.local) return static_cast<float>(row[c]) - context.localLevelAt(r, c) < context.local_threshold;
+      return static_cast<float>(row[c]) - std::max(calibration.background[static_cast<std::size_t>(c)], context.floorAt(r, c)) <
+             calibration.threshold[static_cast<std::size_t>(c)];
+    };
     int c = context.min_bin;
-    while (c < end && static_cast<float>(row[c]) - std::max(calibration.background[static_cast<std::size_t>(c)], context.floorAt(r, c)) <
-                          calibration.threshold[static_cast<std::size_t>(c)]) {
-      ++c;
-    }
+    while (c < end && below(c)) ++c;
     // A beam that shows nothing beyond the minimum range proves no water (its bins may be zeroed).
     detection.water_range_m = c > context.min_bin ? c * polar.bin_length_m : 0.0;
   }
@@ -250,8 +296,8 @@ void setWaterRanges(const PolarImage& polar, const detail::DetectionContext& con
 
 /// BeamDetection::echo_end_m of every beam with an obstacle: forward from the obstacle's bin while
 /// the echo does not stay below half the threshold for `quiet_bins` bins in a row.
-void setEchoEnds(const PolarImage& polar, const SweepCalibration& calibration, int quiet_bins,
-                 std::vector<BeamDetection>& detections) {
+void setEchoEnds(const PolarImage& polar, const detail::DetectionContext& context, const SweepCalibration& calibration,
+                 int quiet_bins, std::vector<BeamDetection>& detections) {
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     if (!detection.hasObstacle()) continue;
@@ -260,7 +306,9 @@ void setEchoEnds(const PolarImage& polar, const SweepCalibration& calibration, i
     int last = detection.obstacle_bin;
     for (int c = detection.obstacle_bin, quiet = 0; c < end && quiet < quiet_bins; ++c) {
       const auto column = static_cast<std::size_t>(c);
-      if (static_cast<float>(row[c]) - calibration.background[column] >= 0.5f * calibration.threshold[column]) {
+      const bool loud = context.local ? static_cast<float>(row[c]) - context.localLevelAt(r, c) >= 0.5f * context.local_threshold
+                                      : static_cast<float>(row[c]) - calibration.background[column] >= 0.5f * calibration.threshold[column];
+      if (loud) {
         last = c;
         quiet = 0;
       } else {
@@ -309,12 +357,37 @@ SweepDetection detectWith(const PolarImage& polar, const DetectorOptions& reques
   result.min_range_m = options.min_range_m.value_or(calibration.near_field_end_m);
   const int min_bin = firstBinAtOrBeyond(result.min_range_m, polar.bin_length_m, polar.cols());
   const detail::RowFloor floor(polar, min_bin, options.background.water_band_m, calibration.quiet_water_counts);
-  const detail::DetectionContext context{min_bin, calibration.span_db, measure_background, options.beam_width_rad, &floor};
+  detail::DetectionContext context{min_bin, calibration.span_db, measure_background, options.beam_width_rad, &floor};
+  // The evidence detector's local reverberation level (reverberation.hpp): measured on a whole
+  // sweep, or for rows of a sweep in progress the whole sweep's at their bearings.
+  LocalLevel local;
+  if (options.kind == Detector::kEvidence && options.reverberation.enabled) {
+    const double pulse_bins = polar.pulse_length_m ? *polar.pulse_length_m / polar.bin_length_m : 1.0;
+    context.look_bins = std::max(1.0, pulse_bins);
+    if (measure_background) {
+      const std::vector<BeamDetection> none(static_cast<std::size_t>(polar.rows()));
+      context.look_bins = std::max(context.look_bins, detail::waterBinsPerLook(polar, min_bin, none, calibration.background));
+      local = LocalLevel(polar, min_bin, context.look_bins, options.beam_width_rad, options.reverberation);
+    } else if (!calibration.local_level.empty()) {
+      local = LocalLevel::atBearingsOf(calibration.local_level, polar);
+      context.echo_beams = std::max(1, calibration.echo_beams);
+    }
+    if (!local.empty()) {
+      context.local = &local;
+      context.local_threshold_db = thresholdDb(options.background.calibration, kLocalLevelPercentile);
+      context.local_threshold = static_cast<float>(countsForDb(context.local_threshold_db, calibration.span_db));
+    }
+  }
   result.detections = runDetector(polar, options, context, calibration, result.calibration);
   setWaterRanges(polar, context, result.calibration, result.detections);
   setEchoOnsets(polar, options, context, result.calibration, result.detections);
-  setEchoEnds(polar, result.calibration, binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols())),
+  setEchoEnds(polar, context, result.calibration,
+              binsForLength(options.background.min_echo_length_m, polar.bin_length_m, 1, std::max(1, polar.cols())),
               result.detections);
+  if (context.local) {
+    result.calibration.local_threshold_db = context.local_threshold_db;
+    result.calibration.local_level = measure_background ? std::move(local) : calibration.local_level;
+  }
   result.diagnostics = diagnose(polar, context, result.calibration, result.detections);
   return result;
 }

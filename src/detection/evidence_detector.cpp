@@ -40,15 +40,16 @@ int excessOf(std::uint8_t value, float level) { return static_cast<int>(static_c
 /// Replaces the band's oldest column (`oldest`: its samples' histogram indices) in `band_counts` by
 /// column `c`'s excess over `level` on the rows in water outside any return (their evidence sum at
 /// 0); `band_samples` follows the band's total.
+template <class Level>
 void addToBand(std::vector<std::uint16_t>& oldest, ExcessHistogram& band_counts, std::uint64_t& band_samples,
                const std::vector<int>& in_water, const std::vector<double>& sum, const PolarImage& polar,
-               const std::uint8_t* column, int c, float level) {
+               const std::uint8_t* column, int c, Level&& level) {
   for (const std::uint16_t e : oldest) --band_counts[e];
   band_samples -= oldest.size();
   oldest.clear();
   for (const int r : in_water) {
     const auto row = static_cast<std::size_t>(r);
-    if (c < polar.valid_bins[row] && sum[row] == 0.0) oldest.push_back(static_cast<std::uint16_t>(excessOf(column[r], level) + 255));
+    if (c < polar.valid_bins[row] && sum[row] == 0.0) oldest.push_back(static_cast<std::uint16_t>(excessOf(column[r], level(r)) + 255));
   }
   for (const std::uint16_t e : oldest) ++band_counts[e];
   band_samples += oldest.size();
@@ -133,6 +134,40 @@ bool heardInTheSkirt(const PolarImage& polar, int row, double range_m, const std
   return false;
 }
 
+/// Whether the weak return `found` of `row` stands out of what follows it (standsOut): its echo runs
+/// from where its evidence started to where the mean excess over the row's level (the water's, its
+/// floor), over a look, falls below half the echo's median excess up to where it became certain.
+bool weakReturnStands(const PolarImage& polar, int row, const EvidenceReturn& found, const DetectionContext& context,
+                      const SweepCalibration& water) {
+  const auto* values = polar.intensities.ptr<std::uint8_t>(row);
+  const int end = std::min(polar.valid_bins[static_cast<std::size_t>(row)], polar.cols());
+  auto excess = [&](int c) {
+    return static_cast<float>(values[c]) - std::max(water.background[static_cast<std::size_t>(c)], context.floorAt(row, c));
+  };
+  std::vector<float> echo;
+  for (int c = found.start_bin; c <= found.certain_bin; ++c) echo.push_back(excess(c));
+  std::nth_element(echo.begin(), echo.begin() + static_cast<std::ptrdiff_t>(echo.size() / 2), echo.end());
+  const float half = 0.5f * std::max(0.0f, echo[echo.size() / 2]);
+  const int look = std::max(1, static_cast<int>(std::lround(context.look_bins)));
+  int echo_end = found.certain_bin + 1;
+  double sum = 0.0;
+  for (int c = found.certain_bin + 1; c < end; ++c) {
+    sum += excess(c);
+    if (c - look > found.certain_bin) sum -= excess(c - look);
+    echo_end = c + 1;
+    if (c - found.certain_bin >= look && sum / look < half) break;
+  }
+  // An echo that lasts longer than the local level's window is the diffuse echo that level is
+  // measured over (reverberation.hpp), not a surface's.
+  if (echo_end - found.start_bin > 2 * context.local->halfWindowBins(found.start_bin)) return false;
+  // A weak echo is a surface only where its shadow can be seen: half the level's window behind it.
+  if (end - echo_end < look + context.local->halfWindowBins(echo_end)) return false;
+  return standsOut(polar, *context.local, row, found.start_bin, found.certain_bin + 1, echo_end, context.min_bin, look,
+                   std::max(water.background[static_cast<std::size_t>(found.start_bin)], context.floorAt(row, found.start_bin)));
+}
+
+}  // namespace
+
 /// The water's bins per look along range, measured on the runs of its loudest bins (see
 /// evidenceWeight): each row's bins from the minimum range to a peak window short of its loud return
 /// (or its end), their excess over `background` (counts); a bin is lit beyond the (1 − kLitShare)
@@ -176,8 +211,6 @@ double waterBinsPerLook(const PolarImage& polar, int min_bin, const std::vector<
   }
   return binsPerLookFromRuns(lit, runs, static_cast<double>(lit) / static_cast<double>(samples));
 }
-
-}  // namespace
 
 double evidenceWeight(const PolarImage& polar, double water_bins_per_look) {
   // Bins closer than a pulse length share their speckle: each adds only its share of a look.
@@ -261,7 +294,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       // meet them, as a CFAR's leading window does: measured, it hid a third of the shared pool
       // log's first returns; docs/accuracy.md).
       addToBand(ring[static_cast<std::size_t>((c - context.min_bin) % band)], band_counts, band_samples, in_water, sum,
-                polar, column, c, water.background[i]);
+                polar, column, c, [&](int) { return water.background[i]; });
       if (band_samples >= kMinBandSamples) evidence = WaterEvidence{std::span<const std::uint32_t>(band_counts), least_tail_counts};
     }
     if (context.measure_background) water.water_evidence.push_back(evidence);
@@ -299,7 +332,10 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
   // (a surface met by the cone's edge, the CRAS tank's water surface at 1.5 m, a floater above the
   // plane); `water` leaves with the calibration they were found with.
   SweepCalibration measured = water;
-  std::vector<BeamDetection> detections = detectBackgroundSubtracted(polar, context, options, water);
+  EchoSpanRule span_rule;
+  std::vector<BeamDetection> detections = context.local ? detectExtendedEchoes(polar, context, options, water, span_rule)
+                                                        : detectBackgroundSubtracted(polar, context, options, water);
+  water.echo_beams = context.local ? span_rule.sweepBeams() : 0;
   if ((context.measure_background && polar.rows() < options.min_beams) || polar.cols() == 0) return detections;
   // The water's looks: measured on a whole sweep, in front of its loud returns; a sweep in progress
   // keeps the whole sweep's.
@@ -312,10 +348,29 @@ std::vector<BeamDetection> detectEvidence(const PolarImage& polar, const Detecti
   water.water_evidence = std::move(measured.water_evidence);  // kept with the calibration returned
   if (context.measure_background) water.water_level = measured.background;  // still used below
   const std::vector<BeamDetection> loud_returns = detections;
+  // Under the reverberation model a weak return, as a loud one, must span the beams the sweep asks
+  // of an echo (reverberation.hpp): its evidence run [start, certain] chained with the other beams'
+  // weak returns and loud echoes.
+  std::vector<int> spans;
+  if (context.local != nullptr) {
+    std::vector<std::pair<int, int>> echoes(static_cast<std::size_t>(polar.rows()), {-1, -1});
+    for (int r = 0; r < polar.rows(); ++r) {
+      const BeamDetection& loud = detections[static_cast<std::size_t>(r)];
+      const EvidenceReturn& found = first[static_cast<std::size_t>(r)];
+      if (loud.hasObstacle()) {
+        echoes[static_cast<std::size_t>(r)] = {loud.obstacle_bin, loud.obstacle_bin + 1 + static_cast<int>(std::lround(loud.rise_m / polar.bin_length_m))};
+      } else if (found.start_bin >= 0) {
+        echoes[static_cast<std::size_t>(r)] = {found.start_bin, found.certain_bin + 1};
+      }
+    }
+    spans = echoSpans(echoes, *context.local, std::max(1, static_cast<int>(std::lround(context.look_bins))));
+  }
   for (int r = 0; r < polar.rows(); ++r) {
     BeamDetection& detection = detections[static_cast<std::size_t>(r)];
     const EvidenceReturn& found = first[static_cast<std::size_t>(r)];
     if (detection.hasObstacle() || found.start_bin < 0) continue;
+    if (!spans.empty() && spans[static_cast<std::size_t>(r)] < span_rule.beamsAt(r, found.start_bin)) continue;
+    if (context.local != nullptr && !weakReturnStands(polar, r, found, context, measured)) continue;
     // Its range: the leading edge of its loud part if it has one (a slowly rising echo), else the
     // leading edge of its echo's level (a step into reverberation, a weak face).
     const int loud = loudPartOf(polar, r, found, measured);

@@ -72,6 +72,7 @@
 
 #include <vector>
 
+#include "sonarmap/detection/reverberation.hpp"
 #include "sonarmap/detection/water_evidence.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
 
@@ -133,6 +134,16 @@ struct SweepCalibration {
   std::vector<float> ring_down;
   int ring_fit_begin = 0;  ///< first column of the ring's unsaturated decline
   int ring_fit_end = 0;    ///< one past its last
+  /// The local level of the sweep's diffuse echo (reverberation.hpp), when the evidence detector
+  /// measured it (ReverberationOptions::enabled); empty otherwise. Rows of a sweep in progress
+  /// (detectRows) are judged by it at their bearing. One byte per bin.
+  LocalLevel local_level;
+  /// The threshold over the local level, dB: thresholdDb() at its percentile (the median), 13.0 dB at
+  /// 10⁻⁶; 0 without a local level.
+  double local_threshold_db = 0.0;
+  /// The fewest consecutive beams a loud echo had to span (requiredEchoBeams), with local_level; 0
+  /// otherwise.
+  int echo_beams = 0;
 };
 
 /// The level above the background percentile that makes a range near-field clutter when the
@@ -153,5 +164,10 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
 /// 10 log10(ln(Pfa) / ln(1 − p))) (see the file's comment).
 /// @throws ValueError when the options are invalid.
 double thresholdDb(const CalibrationOptions& options);
+
+/// The threshold in dB above the `percentile` (0…100) of one-look speckle that it exceeds with
+/// `options.false_alarm_probability`: max(min_contrast_db, 10 log10(ln(Pfa) / ln(1 − p/100))).
+/// @throws ValueError when the options are invalid or the percentile is not in (0, 100).
+double thresholdDb(const CalibrationOptions& options, double percentile);
 
 }  // namespace sonarmap

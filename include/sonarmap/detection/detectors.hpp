@@ -19,6 +19,7 @@
 #include "sonarmap/detection/calibration.hpp"
 #include "sonarmap/detection/cfar.hpp"
 #include "sonarmap/detection/detection.hpp"
+#include "sonarmap/detection/reverberation.hpp"
 #include "sonarmap/sonar/polar_image.hpp"
 
 namespace sonarmap {
@@ -105,6 +106,8 @@ struct DetectorOptions {
   ThresholdOptions threshold;
   CannyOptions canny;
   BackgroundOptions background;
+  /// The evidence detector's local reverberation level and echo span (reverberation.hpp).
+  ReverberationOptions reverberation;
   CfarOptions cfar;
   /// Echo onset (BeamDetection::echo_onset_m), whatever the detector: the first window of
   /// max(onset_length_m, 8 bins) at or beyond the minimum range whose mean rise above the sweep's

@@ -33,6 +33,7 @@ struct MappingArguments {
   std::string min_range;
   double max_near_field_m = 0.0;
   std::string intensity_span;
+  bool local_reverberation = false;  ///< `--local-reverberation`
   std::string smoothing;
   double smoothing_range_m = 0.0;
   double smoothing_bearing_deg = 0.0;
