@@ -52,7 +52,7 @@ std::vector<int> outwardPass(const PolarImage& polar, const DetectionContext& co
     if (!context.measure_background) {
       // The given calibration's background, as measured on an earlier sweep.
     } else if (histogram.total() >= min_water) {
-      water.background[i] = histogram.percentile(calibration.background_percentile);
+      water.background[i] = std::min(histogram.percentile(calibration.background_percentile), water.backgroundCap(c));
     } else if (c > context.min_bin) {
       water.background[i] = water.background[i - 1];
     }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,64 @@ ColumnProfile profileColumns(const PolarImage& polar, const CalibrationOptions& 
     profile.clutter[c] = by_wanted[2];
   }
   return profile;
+}
+
+/// Whether most rows of `polar` hear an echo behind columns [begin, end): a run of `look` bins, from
+/// `end` plus the ring's own length on, standing `threshold` over `background` (the ring left out).
+bool heardThrough(const PolarImage& polar, const std::vector<float>& background, int begin, int end, int look,
+                  float threshold) {
+  const int from = end + (end - begin);
+  int hearing = 0;
+  for (int r = 0; r < polar.rows(); ++r) {
+    const auto* values = polar.intensities.ptr<std::uint8_t>(r);
+    const int valid = std::min(polar.valid_bins[static_cast<std::size_t>(r)], static_cast<int>(background.size()));
+    for (int c = from, run = 0; c < valid; ++c) {
+      run = static_cast<float>(values[c]) - background[static_cast<std::size_t>(c)] >= threshold ? run + 1 : 0;
+      if (run >= look) {
+        ++hearing;
+        break;
+      }
+    }
+  }
+  return 2 * hearing > polar.rows();
+}
+
+/// The background beyond the near field without the walls around the head: the columns c ≥ `first`
+/// where B(c) stands `threshold` or more over the median of B within `half_window` columns of c
+/// (the window shrunk symmetrically at the edges and at `first`, so that a profile that rises or
+/// falls monotonically, as the ring-down's tail and the seabed entering the aperture do, is kept as
+/// it is) form rings. A ring that most beams hear through (an echo behind it: the water surface or
+/// the seabed entering the aperture, which blocks nothing) stays the background; one that blocks the
+/// beams (a round tank's wall at every bearing) is a structure, and B there is that median.
+void removeWalls(const PolarImage& polar, std::vector<float>& background, int first, int half_window, int look,
+                 float threshold) {
+  const auto cols = static_cast<int>(background.size());
+  std::vector<float> around(background.size(), -1.0f);  // the median where the column is a ring's
+  std::vector<float> window;
+  for (int c = std::max(0, first); c < cols; ++c) {
+    const int half = std::min({half_window, c - first, cols - 1 - c});
+    if (half < 1) continue;
+    window.assign(background.begin() + (c - half), background.begin() + (c + half + 1));
+    std::nth_element(window.begin(), window.begin() + half, window.end());
+    const float median = window[static_cast<std::size_t>(half)];
+    if (background[static_cast<std::size_t>(c)] - median >= threshold) around[static_cast<std::size_t>(c)] = median;
+  }
+  std::vector<float> without_rings = background;
+  for (int c = 0; c < cols; ++c) {
+    if (around[static_cast<std::size_t>(c)] >= 0.0f) without_rings[static_cast<std::size_t>(c)] = around[static_cast<std::size_t>(c)];
+  }
+  for (int begin = 0; begin < cols;) {
+    if (around[static_cast<std::size_t>(begin)] < 0.0f) {
+      ++begin;
+      continue;
+    }
+    int end = begin;
+    while (end < cols && around[static_cast<std::size_t>(end)] >= 0.0f) ++end;
+    if (!heardThrough(polar, without_rings, begin, end, look, threshold)) {
+      std::copy(without_rings.begin() + begin, without_rings.begin() + end, background.begin() + begin);
+    }
+    begin = end;
+  }
 }
 
 /// First column after the median profile's near peak where it falls half-way to the far level; 0
@@ -205,6 +264,7 @@ void CalibrationOptions::validate() const {
   if (!(clutter_share > 0.0 && clutter_share <= 0.5)) throwOption("the clutter share must be in (0, 0.5]");
   if (!(std::isfinite(max_gap_m) && max_gap_m >= 0.0)) throwOption("the near-field gap must be >= 0 m");
   if (!(max_near_field_m >= 0.0)) throwOption("the near field's largest extent must be >= 0 m");
+  if (!(std::isfinite(ring_window_pulses) && ring_window_pulses >= 1.0)) throwOption("the ring window must be >= 1 pulse length");
 }
 
 namespace {
@@ -267,6 +327,16 @@ SweepCalibration calibrateSweep(const PolarImage& polar, const CalibrationOption
   calibration.band_end_m = std::min(band, max_near_field) * polar.bin_length_m;
   calibration.housing_end_m = housing * polar.bin_length_m;
   calibration.near_field_end_m = near_field * polar.bin_length_m;
+  // Beyond the near field, a ring in B(c) that blocks the beams is a wall around the head.
+  const double look_m = polar.pulse_length_m ? std::max(*polar.pulse_length_m, polar.bin_length_m) : polar.bin_length_m;
+  const int ring_window = binsForLength(options.ring_window_pulses * look_m, polar.bin_length_m, 1, std::max(1, polar.cols()));
+  const std::vector<float> with_rings = calibration.background;
+  const int look_bins = binsForLength(look_m, polar.bin_length_m, 1, std::max(1, polar.cols()));
+  removeWalls(polar, calibration.background, near_field, ring_window, look_bins, threshold);
+  calibration.background_cap.assign(with_rings.size(), std::numeric_limits<float>::infinity());
+  for (std::size_t c = 0; c < with_rings.size(); ++c) {
+    if (calibration.background[c] < with_rings[c]) calibration.background_cap[c] = calibration.background[c];
+  }
   return calibration;
 }
 

@@ -274,7 +274,7 @@ std::vector<EvidenceReturn> evidencePass(const PolarImage& polar, const Detectio
       upcoming.push_back(levels.total() >= 3 ? levels.percentile(calibration.background_percentile) : -1.0f);
       upcoming_rows.push_back(levels.total());
     }
-    const float measured = *std::max_element(upcoming.begin(), upcoming.end());
+    const float measured = std::min(*std::max_element(upcoming.begin(), upcoming.end()), water.backgroundCap(c));
     const std::uint32_t rows_in_water = upcoming_rows.front();
     upcoming.pop_front();
     upcoming_rows.pop_front();

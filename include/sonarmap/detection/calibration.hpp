@@ -60,6 +60,15 @@
 ///    run from 0.27 m (a harbour log's 60 m scale) to the 2 m bound (the basin's 10 and 20 m
 ///    sweeps, saturated to about 2 m in every beam; their median band rule reaches 4.3 m, bounded
 ///    to 2 m).
+///  - Rings: beyond the near field, the columns where B(c) stands T or more over its own median
+///    within ±ring_window_pulses pulse lengths in range form rings (the window shrunk symmetrically
+///    at its ends, so that a background rising or falling monotonically — the ring-down's tail, the
+///    seabed entering the aperture — makes none; a rise under T, the percentile's own scatter from
+///    range to range, makes none). A ring that most beams hear through (an echo a pulse long
+///    standing T over the background behind it: the water surface entering the aperture blocks
+///    nothing) stays the background. A ring that blocks the beams — a wall at one range at every
+///    bearing, a head centred in a round tank — is a structure: B there is that median, and the
+///    detector measures the wall over the water's level around it in range.
 ///  - Ring-down: the transducer's ring is a level in dB falling with range, alike in every beam but
 ///    louder or quieter from ping to ping (the shared Ping360 logs at 60 m and gain 0: a 5–6 dB
 ///    spread beyond speckle's), so the near field, which ends where most beams have come down,
@@ -70,6 +79,8 @@
 ///    Both outward passes measure a beam's excess over the larger of the water's level and its own
 ///    ring.
 
+#include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "sonarmap/detection/reverberation.hpp"
@@ -95,6 +106,11 @@ struct CalibrationOptions {
   /// of the bearings from 2 to 9 m, made near fields of 7–10 m on a 10 m scale and an empty map);
   /// the self-reflection band, measured on the median, is bounded by it too.
   double max_near_field_m = 2.0;
+  /// Half-width, in pulse lengths (c·τ/2, or bins when the log does not record the pulse), of the
+  /// window in range of the background's own median beyond the near field: a ring that returns in
+  /// most bearings over less than this, stands T over that median and blocks the beams (a round
+  /// tank's wall around the head) is a structure, not the water's level (see "Rings" above). ≥ 1.
+  double ring_window_pulses = 12.0;
 
   /// @throws ValueError naming the option when it is outside its range or not finite.
   void validate() const;
@@ -104,6 +120,15 @@ struct CalibrationOptions {
 struct SweepCalibration {
   std::vector<float> background;  ///< B(c), intensity counts
   std::vector<float> threshold;   ///< T at each column, intensity counts above B(c)
+  /// The most B(c) may be where a ring at every bearing was removed from it (see "Rings"), +∞
+  /// elsewhere; the detectors' outward passes, which measure B again over the beams still in water,
+  /// cap it by this. Empty: no cap.
+  std::vector<float> background_cap;
+  /// background_cap at column `c`, +∞ outside it.
+  float backgroundCap(int c) const {
+    return c >= 0 && static_cast<std::size_t>(c) < background_cap.size() ? background_cap[static_cast<std::size_t>(c)]
+                                                                          : std::numeric_limits<float>::infinity();
+  }
   double span_db = 0.0;           ///< dB span of the intensity scale used
   double threshold_db = 0.0;      ///< T in dB
   double band_end_m = 0.0;        ///< end of the self-reflection band, metres
