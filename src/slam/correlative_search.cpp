@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include <opencv2/imgproc.hpp>
 
 #include "sonarmap/slam/scan_matcher.hpp"
@@ -15,8 +17,14 @@
 namespace sonarmap {
 namespace {
 
+/// The likelihood a point that fits no target point keeps in the posterior's mixture (a target
+/// seen from elsewhere, clutter): a tenth of one that fits exactly (Thrun et al. 2005,
+/// "Probabilistic Robotics" §6.4, the likelihood field's z_rand).
+constexpr double kOutlierLikelihood = 0.1;
+
 /// The target's likelihood field: exp(−d²/2σ²) of the distance to the nearest target point, on a
-/// grid of `cell_m` whose cell (0, 0) has its corner at `origin`.
+/// grid of `cell_m` whose cell (0, 0) has its corner at `origin`. A cell no target scan heard
+/// (outside every coverage disc) holds −1: a point there says nothing about the pose.
 struct LikelihoodField {
   cv::Mat likelihood;  ///< CV_32F, rows along y, columns along x
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
@@ -25,18 +33,33 @@ struct LikelihoodField {
   float at(const Eigen::Vector2d& point) const {
     const double cx = std::floor((point.x() - origin.x()) / cell_m);
     const double cy = std::floor((point.y() - origin.y()) / cell_m);
-    if (cx < 0 || cy < 0 || cx >= likelihood.cols || cy >= likelihood.rows) return 0.0F;
+    if (cx < 0 || cy < 0 || cx >= likelihood.cols || cy >= likelihood.rows) return outside;
     return likelihood.at<float>(static_cast<int>(cy), static_cast<int>(cx));
+  }
+  float outside = 0.0F;  ///< beyond the grid: 0 (heard, nothing there), or −1 with coverage
+  /// log((kOutlierLikelihood + L) / kOutlierLikelihood) of a likelihood L in [0, 1], tabulated
+  /// at steps of 1/1023.
+  static double logAt(float likelihood) {
+    static const std::vector<double> table = [] {
+      std::vector<double> values(1024);
+      for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::log1p(static_cast<double>(i) / 1023.0 / kOutlierLikelihood);
+      return values;
+    }();
+    return table[static_cast<std::size_t>(likelihood * 1023.0F + 0.5F)];
   }
 };
 
 LikelihoodField likelihoodField(const std::vector<ScanPoint>& target, double cell_m, double sigma_m, double margin_m,
-                                const std::vector<SurfaceSegment>& surfaces) {
+                                const std::vector<SurfaceSegment>& surfaces, const std::vector<CoverageDisc>& coverage = {}) {
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d high = -low;
   for (const ScanPoint& point : target) {
     low = low.cwiseMin(point.xy_m);
     high = high.cwiseMax(point.xy_m);
+  }
+  for (const CoverageDisc& disc : coverage) {  // a point a target scan heard, with nothing there, scores 0
+    low = low.cwiseMin(disc.centre_m - Eigen::Vector2d::Constant(disc.radius_m));
+    high = high.cwiseMax(disc.centre_m + Eigen::Vector2d::Constant(disc.radius_m));
   }
   LikelihoodField field;
   // Never more than 4096 cells across: the cell grows for a target that spans kilometres.
@@ -60,20 +83,68 @@ LikelihoodField likelihoodField(const std::vector<ScanPoint>& target, double cel
   const double scale = field.cell_m * field.cell_m / (2.0 * sigma_m * sigma_m);
   cv::Mat exponent = distance_cells.mul(distance_cells) * (-scale);
   cv::exp(exponent, field.likelihood);
+  if (!coverage.empty()) {
+    cv::Mat heard(rows, cols, CV_8U, cv::Scalar(0));
+    for (const CoverageDisc& disc : coverage) {
+      cv::circle(heard, cellOf(disc.centre_m), static_cast<int>(std::ceil(disc.radius_m / field.cell_m)), cv::Scalar(255), cv::FILLED);
+    }
+    field.likelihood.setTo(cv::Scalar(-1.0F), heard == 0);
+    field.outside = -1.0F;
+  }
   return field;
+}
+
+/// The posterior of the pose over the search's grid: each candidate's log-likelihood (every point
+/// a mixture of the field's likelihood and kOutlierLikelihood, the points a target scan did not
+/// hear standing in at the mean of those it did) plus the prior's log-density; its mean and
+/// covariance (Olson 2009, §IV-C: the covariance of the score distribution), and the information
+/// the scans add to the prior's, Σ_post⁻¹ − Σ_prior⁻¹, its negative directions clamped to 0.
+struct GridPosterior {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();  ///< (dx, dy, dyaw) from the initial pose
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+};
+
+GridPosterior gridPosterior(const std::vector<Eigen::Vector3d>& offsets, const std::vector<double>& log_likelihoods,
+                            const Eigen::Matrix3d& prior_covariance) {
+  GridPosterior posterior;
+  const Eigen::Matrix3d prior_information = (prior_covariance + 1e-12 * Eigen::Matrix3d::Identity()).inverse();
+  std::vector<double> log_weights(offsets.size());
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < offsets.size(); ++c) {
+    log_weights[c] = log_likelihoods[c] - 0.5 * offsets[c].dot(prior_information * offsets[c]);
+    top = std::max(top, log_weights[c]);
+  }
+  if (!std::isfinite(top)) return posterior;
+  double total = 0.0;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  for (std::size_t c = 0; c < offsets.size(); ++c) {
+    const double w = std::exp(log_weights[c] - top);
+    total += w;
+    first += w * offsets[c];
+    second += w * offsets[c] * offsets[c].transpose();
+  }
+  posterior.mean = first / total;
+  const Eigen::Matrix3d covariance = second / total - posterior.mean * posterior.mean.transpose();
+  const Eigen::Matrix3d gained = (covariance + 1e-12 * Eigen::Matrix3d::Identity()).inverse() - prior_information;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (gained + gained.transpose()));
+  posterior.information = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+  return posterior;
 }
 
 }  // namespace
 
 CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
-                                    const Pose2& initial, double half_window_m, double half_window_rad,
-                                    double sigma_m, int max_steps, const std::vector<SurfaceSegment>& surfaces) {
+                                    const Pose2& initial, const Eigen::Matrix3d& prior_covariance, double sigma_m, int max_steps,
+                                    const std::vector<SurfaceSegment>& surfaces, const std::vector<CoverageDisc>& coverage) {
   CorrelativeResult result;
   result.pose = initial;
   if (target.empty() || source.empty()) return result;
+  const double half_window_m = std::min(3.0 * std::sqrt(prior_covariance.topLeftCorner<2, 2>().eigenvalues().real().maxCoeff()), 1e4);
+  const double half_window_rad = std::min(3.0 * std::sqrt(prior_covariance(2, 2)), 20.0 * 3.14159265358979323846 / 180.0);
   max_steps = std::max(3, max_steps);
   const double cell_m = std::max(sigma_m / 2.0, 2.0 * half_window_m / (max_steps - 1));
-  const LikelihoodField field = likelihoodField(target, cell_m, sigma_m, half_window_m + 3.0 * sigma_m, surfaces);
+  const LikelihoodField field = likelihoodField(target, cell_m, sigma_m, half_window_m + 3.0 * sigma_m, surfaces, coverage);
   double reach_m = 0.0;
   for (const ScanPoint& point : source) reach_m = std::max(reach_m, point.xy_m.norm());
   // A heading step moves the farthest point by about one cell.
@@ -87,18 +158,34 @@ CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const 
     int yaw, x, y;
   };
   std::vector<Candidate> candidates;
-  candidates.reserve(static_cast<std::size_t>(2 * yaw_steps + 1) * side * side);
+  const std::size_t count = static_cast<std::size_t>(2 * yaw_steps + 1) * side * side;
+  candidates.reserve(count);
+  std::vector<Eigen::Vector3d> offsets;
+  std::vector<double> log_likelihoods;
+  offsets.reserve(count);
+  log_likelihoods.reserve(count);
   std::vector<Eigen::Vector2d> rotated(source.size());
-  const double inverse_points = 1.0 / static_cast<double>(source.size());
+  const double points = static_cast<double>(source.size());
   for (int iy = -yaw_steps; iy <= yaw_steps; ++iy) {
     const Pose2 turned{initial.x_m, initial.y_m, initial.yaw_rad + iy * yaw_step_rad};
     for (std::size_t i = 0; i < source.size(); ++i) rotated[i] = turned * source[i].xy_m;
     for (int ix = -xy_steps; ix <= xy_steps; ++ix) {
       for (int jy = -xy_steps; jy <= xy_steps; ++jy) {
         const Eigen::Vector2d shift(ix * field.cell_m, jy * field.cell_m);
-        double sum = 0.0;
-        for (const Eigen::Vector2d& point : rotated) sum += field.at(point + shift);
-        candidates.push_back({static_cast<float>(sum * inverse_points), iy, ix, jy});
+        double sum = 0.0, log_sum = 0.0, heard = 0.0;
+        for (const Eigen::Vector2d& point : rotated) {
+          const float likelihood = field.at(point + shift);
+          if (likelihood < 0.0F) continue;  // no target scan heard there
+          sum += likelihood;
+          log_sum += LikelihoodField::logAt(likelihood);
+          heard += 1.0;
+        }
+        // The points no target scan heard stand in at the mean of those it did: they neither
+        // reward nor cost a pose. A pose that leaves most of the scan unheard is not scored.
+        const bool scored = heard >= 0.5 * points;
+        candidates.push_back({scored ? static_cast<float>(sum / heard) : 0.0F, iy, ix, jy});
+        offsets.emplace_back(ix * field.cell_m, jy * field.cell_m, iy * yaw_step_rad);
+        log_likelihoods.push_back(scored ? log_sum * points / heard : -std::numeric_limits<double>::infinity());
       }
     }
   }
@@ -108,6 +195,10 @@ CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const 
   result.score = best->score;
   result.pose = {initial.x_m + best->x * field.cell_m, initial.y_m + best->y * field.cell_m,
                  wrapAngle_rad(initial.yaw_rad + best->yaw * yaw_step_rad)};
+  const GridPosterior posterior = gridPosterior(offsets, log_likelihoods, prior_covariance);
+  result.posterior_pose = {initial.x_m + posterior.mean.x(), initial.y_m + posterior.mean.y(),
+                           wrapAngle_rad(initial.yaw_rad + posterior.mean.z())};
+  result.information = posterior.information;
   // A second peak: a local maximum (over the headings) of the translation grid farther than
   // max(3 cells, 2σ) from the best, with a valley between them (the score on the straight line
   // between drops below 90 % of the lower peak). A ridge along a wall is one peak, not several.

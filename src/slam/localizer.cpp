@@ -77,6 +77,18 @@ std::vector<ScanPoint> Localizer::placedPoints(std::size_t first, std::size_t la
   return points;
 }
 
+ScanMatch Localizer::matchAgainst(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, std::size_t first,
+                                  std::size_t last, const Pose2& initial, const Eigen::Matrix3d& prior_ned, bool search) const {
+  if (!headingOnly()) return matchScans(target, source, initial, prior_ned, search, options_.matching, SearchField::kSamples);
+  // With the heading alone the search places every match (here and in the loop closures): its
+  // walls drawn between their samples (SearchField::kSurfaces: each turn samples a straight wall at
+  // the same offsets from the vehicle), the points the target scans did not hear left out, and the
+  // information no more than its score surface shows (two parallel walls: none along them).
+  std::vector<CoverageDisc> heard;
+  for (std::size_t k = first; k < last; ++k) heard.push_back({graph_.pose(k).translation(), scans_[k].reach_m});
+  return matchScans(target, source, initial, prior_ned, true, options_.matching, SearchField::kSurfaces, heard, true);
+}
+
 void Localizer::addScan(SonarScan scan) {
   const std::size_t k = scans_.size();
   ++report_.scans;
@@ -171,12 +183,7 @@ std::optional<Eigen::Matrix3d> Localizer::matchToSubmap(std::size_t k) {
   const Eigen::Vector2d g(std::cos(to_rad) - std::cos(from_rad), std::sin(to_rad) - std::sin(from_rad));
   prior(2, 2) += g.dot(deviationCovariance() * g);
   const Eigen::Matrix3d prior_ned = rotate * prior * rotate.transpose();
-  // With the heading alone the search places every match (here and in the loop closures), and its
-  // walls are drawn between their samples (SearchField::kSurfaces: each turn samples a straight
-  // wall at the same offsets from the vehicle). Elsewhere ICP from the prediction places them; the
-  // search with the surfaces measured worse there (docs/localization.md).
-  const ScanMatch match = matchScans(target, scans_[k].points, predicted, prior_ned, headingOnly(), options_.matching,
-                                     headingOnly() ? SearchField::kSurfaces : SearchField::kSamples);
+  const ScanMatch match = matchAgainst(target, scans_[k].points, first, k, predicted, prior_ned, headingOnly());
   ScanMatch kept = match;
   if (!match.accepted) {
     // A match along one wall still fixes the offset across it and the heading: keep that part.
@@ -207,8 +214,7 @@ ScanMatch Localizer::acrossWallOnly(const ScanMatch& match, const Pose2& predict
   // position along it is where the search and the pairs happened to stop (a wall's samples repeat
   // at no motion), so it is the prediction's there, and its information there none.
   ScanMatch across = match;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(match.information.topLeftCorner<2, 2>());
-  const Eigen::Vector2d along = translation.eigenvectors().col(0);
+  const Eigen::Vector2d along = match.along_m;
   const Eigen::Vector2d offset(match.pose.x_m - predicted.x_m, match.pose.y_m - predicted.y_m);
   const Eigen::Vector2d kept = offset - along.dot(offset) * along;
   across.pose.x_m = predicted.x_m + kept.x();

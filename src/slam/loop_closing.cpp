@@ -78,8 +78,7 @@ void Localizer::closeLoop(std::size_t k) {
   // match along one wall or one row of piles is told from a true fix more often).
   const std::size_t source_first = k + 1 > options_.submap_scans ? k + 1 - options_.submap_scans : 0;
   const std::vector<ScanPoint> source = placedPoints(std::max(source_first, last), k + 1, graph_.pose(k).inverse());
-  const ScanMatch match = matchScans(target, source, graph_.pose(k), prior_ned, true, options_.matching,
-                                     headingOnly() ? SearchField::kSurfaces : SearchField::kSamples);
+  const ScanMatch match = matchAgainst(target, source, first, last, graph_.pose(k), prior_ned, true);
   LoopClosure loop;
   loop.from = j;
   loop.to = k;

@@ -166,6 +166,21 @@ ScanMatch icp(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>
   return match;
 }
 
+/// The information no greater, in any direction, than either `pairs` (the ICP's Hessian: the
+/// curvature at its solution) or `surface` (the search's score surface over the whole window): in
+/// the basis that whitens `pairs` and diagonalises `surface` (the generalised eigenproblem
+/// surface v = μ pairs v), each μ above 1 is cut to 1. A direction the surface leaves flat keeps
+/// the surface's (about none) however sharp the pairs' local fit; elsewhere the pairs' finer value.
+Eigen::Matrix3d withinSurface(const Eigen::Matrix3d& pairs, const Eigen::Matrix3d& surface) {
+  const Eigen::Matrix3d regular = pairs + 1e-9 * Eigen::Matrix3d::Identity();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> eigen(surface, regular);
+  if (eigen.info() != Eigen::Success) return pairs;
+  // Vᵀ regular V = I, so regular = V⁻ᵀ V⁻¹ and surface = V⁻ᵀ diag(μ) V⁻¹.
+  const Eigen::Matrix3d back = eigen.eigenvectors().inverse();
+  const Eigen::Matrix3d bounded = back.transpose() * eigen.eigenvalues().cwiseMin(1.0).asDiagonal() * back;
+  return 0.5 * (bounded + bounded.transpose());
+}
+
 /// Accepts or refuses `match`, saying why.
 void judge(ScanMatch& match, std::size_t source_points, const ScanMatchOptions& options) {
   if (match.pairs < options.min_pairs || match.overlap < options.min_overlap) {
@@ -178,6 +193,7 @@ void judge(ScanMatch& match, std::size_t source_points, const ScanMatchOptions& 
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> translation(match.information.topLeftCorner<2, 2>());
   const double weakest = translation.eigenvalues()(0), strongest = translation.eigenvalues()(1);
+  match.along_m = translation.eigenvectors().col(0);
   if (!(weakest > 0.0) || strongest > options.max_information_ratio * weakest) {
     match.reason = "ambiguous: constrained along one direction only (a long straight wall)";
     return;
@@ -227,7 +243,8 @@ void ScanMatchOptions::validate() const {
 
 ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
-                     const ScanMatchOptions& options, SearchField field) {
+                     const ScanMatchOptions& options, SearchField field, const std::vector<CoverageDisc>& coverage,
+                     bool bound_by_surface) {
   options.validate();
   if (!prior_covariance.allFinite()) throw ValueError("scan matching: the prior covariance must be finite");
   if (std::optional<ScanMatch> refused = tooFewPoints(target, source, initial, options)) return *refused;
@@ -239,8 +256,6 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
   const Eigen::Matrix3d prior_information =
       (prior_covariance + 1e-12 * Eigen::Matrix3d::Identity()).ldlt().solve(Eigen::Matrix3d::Identity());
   auto searchFirst = [&] {
-    const double half_window_m = std::min(3.0 * std::sqrt(prior_covariance.topLeftCorner<2, 2>().eigenvalues().real().maxCoeff()), 1e4);
-    const double half_window_rad = std::min(3.0 * std::sqrt(prior_covariance(2, 2)), 20.0 * 3.14159265358979323846 / 180.0);
     const double sigma_m = typicalPointSigma(source);
     // Each wall drawn between its samples, as far as its neighbours reach either side of each.
     std::vector<SurfaceSegment> surfaces;
@@ -249,10 +264,12 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
       surfaces.push_back({target[i].xy_m - shapes[i].behind_m * shapes[i].tangent, target[i].xy_m + shapes[i].ahead_m * shapes[i].tangent});
     }
     const CorrelativeResult found =
-        correlativeSearch(target, source, initial, half_window_m, half_window_rad, sigma_m, options.max_search_steps, surfaces);
+        correlativeSearch(target, source, initial, prior_covariance, sigma_m, options.max_search_steps, surfaces, coverage);
     ScanMatch refined = icp(target, source, tree, shapes, found.pose, initial, prior_information, options);
     refined.searched = true;
     refined.peak_ratio = found.distinct_score > 0.0 ? found.score / found.distinct_score : 1e9;
+    refined.surface_information = found.information;
+    if (bound_by_surface) refined.information = withinSurface(refined.information, found.information);
     return refined;
   };
 

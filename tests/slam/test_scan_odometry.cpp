@@ -85,6 +85,28 @@ TEST(slamScanOdometry, AlongACorridorTheMotionModelCarriesThePosition) {
   for (const Pose2& pose : result.scan_poses) EXPECT_NEAR(pose.y_m, 0.0, 0.3);
 }
 
+TEST(slamScanOdometry, AChannelTravelledWithACompassKeepsItsSpeed) {
+  // Three piles, then a channel 12 m wide and 300 m long that the 25 m head never sees the end of
+  // (a BlueROV2 at 0.3 m/s, 87 m):
+  // the piles give the first scans' motion, then each scan sees the walls farther ahead than the
+  // scans before it did, and two parallel walls look alike wherever they are along them. The
+  // score surface is flat along the channel, so the match measures only across it and the motion
+  // model holds the speed; no scan is taken for an older one.
+  const std::vector<Wall> walls{{{12.0, -6.0}, {320.0, -6.0}}, {{12.0, 6.0}, {320.0, 6.0}}, {{2.0, -4.0}, {2.3, -4.0}},
+                                {{5.0, 3.5}, {5.3, 3.5}},      {{8.0, -2.5}, {8.3, -2.5}}};
+  const double speed_mps = 0.3;
+  const int scans = 30;
+  const std::vector<BodyPoint> points = pointScans(walls, scans, speed_mps, 0.05, 3);
+  SlamOptions options;
+  options.forming.odometry = odometryNoiseOf("ahrs");
+  const SlamResult result = localizePointScans(points, compassOnly(10.0 * scans), PointScanOptions{}, options);
+  ASSERT_EQ(result.scan_poses.size(), static_cast<std::size_t>(scans));
+  const double travelled_m = speed_mps * (result.scan_times_s.back() - result.scan_times_s.front());
+  EXPECT_NEAR(result.scan_poses.back().x_m - result.scan_poses.front().x_m, travelled_m, 0.05 * travelled_m);
+  EXPECT_EQ(result.report.loopClosuresAccepted(), 0U);
+  for (const Pose2& pose : result.scan_poses) EXPECT_NEAR(pose.y_m, 0.0, 0.5);
+}
+
 TEST(slamScanOdometry, AStillHeadStaysStill) {
   // A head on a tripod in a pool with two posts, no navigation, the ranges noisy: the scans never
   // prove a motion, so the track stays at the start.

@@ -205,6 +205,16 @@ class Localizer {
   /// Points of scans [first, last) placed with their current poses, in NED moved by `ned_to_frame`
   /// (identity: in NED).
   std::vector<ScanPoint> placedPoints(std::size_t first, std::size_t last, const Pose2& ned_to_frame = {}) const;
+  /// Matches `source` against `target` (scans [first, last) placed in NED) from `initial` with the
+  /// prior `prior_ned`. With a position measured, or none, ICP from `initial` (the search first with
+  /// `search`, or where ICP fails), the search on the samples. With the heading only the search
+  /// places it: on the surfaces, the source's points outside the target scans' reach left out of
+  /// its score (CoverageDisc), and the information bounded by its score surface (matchScans'
+  /// bound_by_surface). Measured on the St. Pere survey with its DVL, the surface's bound and the
+  /// reach cost 1.89 / 1.14 → 3.04 / 2.17 m (docs/localization.md): where the DVL's prior holds a
+  /// direction the pairs leave free, the ICP's MAP pose already stays at the prediction there.
+  ScanMatch matchAgainst(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, std::size_t first,
+                         std::size_t last, const Pose2& initial, const Eigen::Matrix3d& prior_ned, bool search) const;
   /// The navigation measures the heading only (OdometryNoise::position_measured false).
   bool headingOnly() const { return navigation_known_ && !options_.forming.odometry.position_measured; }
   /// A match constrained along one direction only (a wall: ScanMatch's "ambiguous: constrained")

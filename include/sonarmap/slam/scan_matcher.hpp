@@ -65,6 +65,11 @@ struct ScanMatch {
   double mean_chi2 = 0.0;      ///< mean squared Mahalanobis residual per degree of freedom
   bool searched = false;       ///< the correlative search ran
   double peak_ratio = 0.0;     ///< its best score over the best distinct one (0: not run)
+  /// The search's score surface's information (CorrelativeResult::information; zero: not run).
+  Eigen::Matrix3d surface_information = Eigen::Matrix3d::Zero();
+  /// The translation's least measured direction (unit, the target's frame): the weakest of the
+  /// pairs' information, or of the surface's where that decided the match ambiguous.
+  Eigen::Vector2d along_m = Eigen::Vector2d::UnitX();
 };
 
 /// What the correlative search scores a source point by: the distance to the nearest target point
@@ -73,6 +78,14 @@ struct ScanMatch {
 /// turns of a head moving along a straight wall sample it at the same offsets from the vehicle, so
 /// to its samples the likelihood peaks at no motion; to the wall it does not.
 enum class SearchField { kSamples, kSurfaces };
+
+/// A disc a target scan's beams heard (its sonar's position, the target's frame, and its reach,
+/// metres): a source point outside every disc falls where the target has no observation, and
+/// says nothing about the pose (a scan sees farther ahead than the scans before it did).
+struct CoverageDisc {
+  Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+};
 
 /// Matches `source` (points in its own frame) against `target` (points in the target frame),
 /// starting from `initial` (the source frame in the target frame) whose uncertainty is
@@ -83,7 +96,8 @@ enum class SearchField { kSamples, kSurfaces };
 /// @throws ValueError for invalid options or a prior covariance that is not finite.
 ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
-                     const ScanMatchOptions& options = {}, SearchField field = SearchField::kSamples);
+                     const ScanMatchOptions& options = {}, SearchField field = SearchField::kSamples,
+                     const std::vector<CoverageDisc>& coverage = {}, bool bound_by_surface = false);
 
 /// ICP from `initial` (the source frame in the target frame) with no prior: the pose the pairs alone
 /// give, judged as matchScans judges; no correlative search. What a match measures independently of
@@ -92,13 +106,23 @@ ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<Sca
 ScanMatch matchScansFrom(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source, const Pose2& initial,
                          const ScanMatchOptions& options = {});
 
-/// The best pose of a correlative search (Olson 2009) and how distinct its peak is.
+/// The best pose of a correlative search (Olson 2009), how distinct its peak is, and what the whole
+/// score surface says of the pose.
 struct CorrelativeResult {
   Pose2 pose;
-  double score = 0.0;          ///< mean likelihood of the source's points, [0, 1]
+  double score = 0.0;          ///< mean likelihood of the source's points a target scan heard, [0, 1]
   /// Score of the best second peak: a local maximum of the translations (best heading each) farther
   /// than max(3 cells, 2σ) from `pose`'s, with a valley below 90 % of it between the two; 0: none.
   double distinct_score = 0.0;
+  /// The posterior's mean over the grid (the scans' likelihood times the prior's density).
+  Pose2 posterior_pose;
+  /// The information (x, y, yaw; 1/m², 1/rad², the target's frame) the score surface adds to the
+  /// prior's: Σ_post⁻¹ − Σ_prior⁻¹ of the posterior over the grid, its negative directions 0 (Olson
+  /// 2009, §IV-C, the covariance from the score distribution). Along a direction the surface is
+  /// flat (one straight wall, two parallel walls) it is about 0, whatever the pairs' Hessian says;
+  /// across several equal peaks it is as weak as their spread. Within the grid's cell it says
+  /// nothing finer (a peak one cell wide gives a very large value).
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
 };
 
 /// A stretch of surface the target's points lie on (the target's frame, metres), drawn into the
@@ -110,14 +134,18 @@ struct SurfaceSegment {
   Eigen::Vector2d b = Eigen::Vector2d::Zero();
 };
 
-/// Exhaustive search of poses initial ⊕ (dx, dy, dyaw), |dx|, |dy| ≤ half_window_m and
-/// |dyaw| ≤ half_window_rad, on a grid of at most `max_steps` cells per axis (cells no finer than
-/// sigma_m / 2), scoring each by the mean over the source's points of exp(−d²/2σ²), d the distance
-/// to the nearest target point or `surfaces` segment (a likelihood field from OpenCV's distance
-/// transform).
+/// Exhaustive search of poses initial ⊕ (dx, dy, dyaw) over ±3σ of `prior_covariance` (x, y, yaw;
+/// m², rad²; the translation's window square, at most 10 km, the heading's at most ±20°), on a grid
+/// of at most `max_steps` cells per axis (cells no finer than sigma_m / 2), scoring each by the
+/// mean over the source's points of exp(−d²/2σ²), d the distance to the nearest target point or
+/// `surfaces` segment (a likelihood field from OpenCV's distance transform). With `coverage`, a
+/// source point outside every disc is left out of a pose's score (and of its posterior's
+/// likelihood, where it stands in at the mean of the heard ones); a pose that leaves most of the
+/// source unheard scores 0. Without, every point is heard.
 CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
-                                    const Pose2& initial, double half_window_m, double half_window_rad,
-                                    double sigma_m, int max_steps, const std::vector<SurfaceSegment>& surfaces = {});
+                                    const Pose2& initial, const Eigen::Matrix3d& prior_covariance, double sigma_m,
+                                    int max_steps, const std::vector<SurfaceSegment>& surfaces = {},
+                                    const std::vector<CoverageDisc>& coverage = {});
 
 /// The points' typical σ, metres: the median of √trace of their covariances (at least 1 mm); what
 /// the correlative search's likelihood field is smoothed by. 1 mm for no points.
