@@ -92,7 +92,12 @@ struct CoverageDisc {
 /// `prior_covariance` (x, y, yaw; m², rad²). With `search`, a correlative search over
 /// ±3σ of the prior (at most ±20° and max_search_steps cells per axis) finds the start of the ICP;
 /// without, the ICP starts at `initial` and the search runs only when the ICP does not converge
-/// to enough pairs. Deterministic.
+/// to enough pairs. `coverage` (the target scans' reach, the target's frame; empty: everywhere)
+/// leaves the source's points no target scan heard out of the search's score (correlativeSearch).
+/// With `bound_by_surface`, a searched match's information is no more, in any direction, than the
+/// search's score surface gives (CorrelativeResult::information; the generalised eigenbasis of the
+/// two, each eigenvalue above the pairs' cut to it), so a direction the surface leaves flat (two
+/// parallel walls) is reported "constrained along one direction only". Deterministic.
 /// @throws ValueError for invalid options or a prior covariance that is not finite.
 ScanMatch matchScans(const std::vector<ScanPoint>& target, const std::vector<ScanPoint>& source,
                      const Pose2& initial, const Eigen::Matrix3d& prior_covariance, bool search,
