@@ -166,6 +166,7 @@ CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const 
   log_likelihoods.reserve(count);
   std::vector<Eigen::Vector2d> rotated(source.size());
   const double points = static_cast<double>(source.size());
+  const double inverse_points = 1.0 / points;
   for (int iy = -yaw_steps; iy <= yaw_steps; ++iy) {
     const Pose2 turned{initial.x_m, initial.y_m, initial.yaw_rad + iy * yaw_step_rad};
     for (std::size_t i = 0; i < source.size(); ++i) rotated[i] = turned * source[i].xy_m;
@@ -183,7 +184,7 @@ CorrelativeResult correlativeSearch(const std::vector<ScanPoint>& target, const 
         // The points no target scan heard stand in at the mean of those it did: they neither
         // reward nor cost a pose. A pose that leaves most of the scan unheard is not scored.
         const bool scored = heard >= 0.5 * points;
-        candidates.push_back({scored ? static_cast<float>(sum / heard) : 0.0F, iy, ix, jy});
+        candidates.push_back({scored ? static_cast<float>(heard == points ? sum * inverse_points : sum / heard) : 0.0F, iy, ix, jy});
         offsets.emplace_back(ix * field.cell_m, jy * field.cell_m, iy * yaw_step_rad);
         log_likelihoods.push_back(scored ? log_sum * points / heard : -std::numeric_limits<double>::infinity());
       }
