@@ -12,6 +12,7 @@ LogBeamSource::LogBeamSource(const SonarLog& log) : log_(log) {
   header_.notes = log.notes;
   header_.clock_utc_s = log.clock_utc_s;
   header_.frame_id = log.frame_id;
+  header_.nominal_beam = log.nominal_beam;
 }
 
 std::optional<Beam> LogBeamSource::next() {

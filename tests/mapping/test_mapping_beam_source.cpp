@@ -56,6 +56,33 @@ TEST(mappingBeamSource, AMovingLogMapsFromASourceAsWhole) {
   EXPECT_EQ(bytesOf(static_streamed.map()), bytesOf(static_whole.map()));
 }
 
+TEST(mappingBeamSource, ALogHeldWholeKeepsEveryHeaderFieldButItsBeams) {
+  // `map --slam` holds the log whole and reads its header from a LogBeamSource: the sonar's beam a
+  // recording states (SonarLog::nominal_beam) must reach the mapping options as the streamed
+  // source's header gives it.
+  SonarLog log;
+  log.beams.resize(3);
+  log.skipped_beams = 2;
+  log.skip_reasons = {"a", "b"};
+  log.sonar = "Ping360";
+  log.notes = {"note"};
+  log.clock_utc_s = 1.5e9;
+  log.frame_id = "sonar";
+  log.nominal_beam = NominalBeam{0.0349, 0.4363};
+  const LogBeamSource source(log);
+  const SonarLog& header = source.header();
+  EXPECT_TRUE(header.beams.empty());
+  EXPECT_EQ(header.skipped_beams, 2U);
+  EXPECT_EQ(header.skip_reasons, log.skip_reasons);
+  EXPECT_EQ(header.sonar, "Ping360");
+  EXPECT_EQ(header.notes, log.notes);
+  EXPECT_EQ(header.clock_utc_s, log.clock_utc_s);
+  EXPECT_EQ(header.frame_id, "sonar");
+  ASSERT_TRUE(header.nominal_beam.has_value());
+  EXPECT_EQ(header.nominal_beam->width_rad, 0.0349);
+  EXPECT_EQ(header.nominal_beam->vertical_aperture_rad, 0.4363);
+}
+
 TEST(mappingBeamSource, TheSurveySumsTheLogUp) {
   SonarLog log = movingRun("micron").log;
   log.beams[10].intensities.resize(500);  // a longer beam
