@@ -176,6 +176,14 @@ LiveMappingOptions mappingOptions(const LiveArgs& args, const MapperOptions& son
   // The odometry's reading period from the fixes known at the start, as `map --slam` takes it from
   // its whole track (the default period without them).
   if (args.map.slam) mapping.slam = withNavigationPeriod(toSlamOptions(args.map.odometry, known_fixes), known_fixes);
+  // A stream's navigation is known only as it comes: its class (a vehicle without a DVL sends north
+  // and east 0) and its period are decided at the first sweep, from the fixes received by then.
+  if (args.map.slam && navigation && known_fixes.empty()) {
+    const OdometryArgs odometry = args.map.odometry;
+    mapping.slam_from_fixes = [odometry](const NavTrack& fixes) {
+      return withNavigationPeriod(toSlamOptions(odometry, fixes), fixes);
+    };
+  }
   mapping.given_origin = givenOrigin(args.map.origin);
   mapping.origin_resolution_m = origin_resolution_m;
   return mapping;

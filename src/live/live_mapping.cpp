@@ -29,7 +29,10 @@ void LiveMapping::build() {
   const std::lock_guard lock(replacing_);
   slam_.reset();
   mapper_.reset();
-  if (options_.slam) {
+  if (options_.slam_from_fixes && options_.navigation) {
+    slam_ = std::make_unique<OnlineSlam>(options_.mapper, options_.sonar_to_body, options_.slam_from_fixes, options_.integration);
+    for (const NavSample& fix : fixes_) slam_->addNavFix(fix);
+  } else if (options_.slam) {
     slam_ = std::make_unique<OnlineSlam>(options_.mapper, options_.sonar_to_body, options_.navigation, *options_.slam,
                                          options_.integration);
     for (const NavSample& fix : fixes_) slam_->addNavFix(fix);

@@ -35,6 +35,13 @@ OnlineSlam::OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& so
   detector_->detectOnly([this](DetectedSweep&& sweep) { addSweep(std::move(sweep)); });
 }
 
+OnlineSlam::OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, SlamOptionsFromFixes decide,
+                       OnlineIntegration integration)
+    : OnlineSlam(options, sonar_to_body, true, SlamOptions{}, integration) {
+  if (!decide) throw ValueError("live slam: no rule to decide the localization's options by");
+  decide_ = std::move(decide);
+}
+
 NavSample OnlineSlam::corrected(const NavSample& fix) const {
   const Pose2 pose = correction_ * Pose2{fix.position_ned_m.x(), fix.position_ned_m.y(), fix.yaw_rad};
   NavSample out = fix;
@@ -81,6 +88,10 @@ void OnlineSlam::addSweep(DetectedSweep&& sweep) {
       kept.detection.calibration.water_evidence = {};
       kept.detection.calibration.water_level = {};
     }
+  }
+  if (decide_ && sweeps_.empty()) {
+    slam_ = decide_(dead_reckoning_);
+    localizer_ = Localizer(slam_, navigation_);
   }
   DetectedLog one;
   one.options = options_;

@@ -171,6 +171,35 @@ TEST_F(CliLiveHeads, MavlinkNavigationPlacesTheBeamsAndTheRecordingMapsToTheLive
   EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
 }
 
+// A BlueROV2 without a DVL: ArduSub's MAVLink gives attitude and depth, no position (the
+// emulator's --no-position). live --slam decides at its first sweep that the navigation gives the
+// heading only, as `map --slam` decides on the recording, and its map is that of the recording.
+TEST_F(CliLiveHeads, SlamWithAutopilotHeadingOnlyMapsAsTheRecording) {
+  const int nav_port = freeUdpPort();
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--speed", "0.1",
+                  "--heading", "45", "--mavlink", "udp://127.0.0.1:" + std::to_string(nav_port), "--no-position",
+                  "--time-scale", "4", "--duration", "200"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  const fs::path recording = out_ / "dive.mcap";
+  const ProgramRun run = liveFor({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range",
+                                  "4", "--nav-stream", "udp://:" + std::to_string(nav_port), "--resolution", "0.05",
+                                  "--slam", "--record", recording.string(), "-o", (out_ / "live.bt").string()},
+                                 8.0);
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("--nav gives the heading only"), std::string::npos) << run.out;
+  EXPECT_GE(numberBefore(run.out, "matched to the scans before them"), 1U) << run.out;
+  const ProgramRun batch = this->run(
+      {"map", recording.string(), "--slam", "--resolution", "0.05", "-q", "-o", (root_ / "batch.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  EXPECT_NE(batch.out.find("--nav gives the heading only"), std::string::npos) << batch.out;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
+}
+
 // The navigation sent by node-mavlink (npm), a MAVLink implementation other than ours, from rows a
 // CSV also gives: the fixes live took are those rows (to float32), and the recording maps to the live map.
 TEST_F(CliLiveHeads, NodeMavlinkNavigationIsTakenAsSent) {

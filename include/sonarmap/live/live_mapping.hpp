@@ -40,6 +40,10 @@ struct LiveMappingOptions {
   bool navigation = false;
   /// Set: the navigation is corrected by scan matching as sweeps complete (OnlineSlam).
   std::optional<SlamOptions> slam;
+  /// Set (with `navigation`): as `slam`, its options decided at the first sweep from the fixes
+  /// received by then (OnlineSlam::SlamOptionsFromFixes: a stream's navigation class and period);
+  /// takes the place of `slam`.
+  OnlineSlam::SlamOptionsFromFixes slam_from_fixes;
   /// The map's zero in the navigation's frame when the caller chose it (a replayed log's, from its
   /// whole track and reach); unset: chosen from the fixes known at the start, else at the first
   /// fix (chooseLocalOrigin at origin_resolution_m, given_origin when set).

@@ -18,6 +18,7 @@
 /// fixes, in either integration.
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <shared_mutex>
@@ -37,6 +38,15 @@ class OnlineSlam {
   /// @throws ValueError for invalid options or mounting.
   OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, bool navigation,
              const SlamOptions& slam = {},
+             OnlineIntegration integration = OnlineIntegration::kProvisionalBeams);
+  /// The localization's options from the navigation received so far (a class stated as `auto`:
+  /// odometry_noise.hpp's navigationClassOf, and the fixes' period: withNavigationPeriod).
+  using SlamOptionsFromFixes = std::function<SlamOptions(const NavTrack& fixes)>;
+  /// As above, the options decided when the first sweep completes, from the fixes received by then
+  /// (a stream's navigation is not known at the start: a vehicle without a DVL sends north and
+  /// east 0, which `map --slam` of the recording takes as heading only).
+  /// @throws ValueError as above, and when `decide` is empty.
+  OnlineSlam(const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body, SlamOptionsFromFixes decide,
              OnlineIntegration integration = OnlineIntegration::kProvisionalBeams);
 
   /// The next dead-reckoning fix (NED, on the beams' clock), strictly after the previous one.
@@ -93,6 +103,7 @@ class OnlineSlam {
   Eigen::Isometry3d sonar_to_body_;
   bool navigation_ = true;
   SlamOptions slam_;
+  SlamOptionsFromFixes decide_;  ///< set: slam_ decided at the first sweep
   OnlineIntegration integration_;
   Localizer localizer_;
   SonarLog beams_;        ///< every beam so far
