@@ -78,15 +78,27 @@ void check(const SimulateArgs& args, MsisSimulationOptions& options) {
   options = toSimulationOptions(args, args.scene);
 }
 
+/// A vehicle without a DVL as ArduSub reports it (LOCAL_POSITION_NED absent, the bridges' pose at
+/// north and east 0): the believed track keeps its heading, attitude and depth, its north and east
+/// are 0. The truth stays in truth_nav.csv.
+void withoutPosition(MsisSimulation& simulation) {
+  if (simulation.dead_reckoning.empty()) simulation.dead_reckoning = simulation.nav;
+  for (NavSample& fix : simulation.dead_reckoning) fix.position_ned_m.head<2>().setZero();
+}
+
 void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
   const MsisHeadOptions& head = options.head;
   const Scene scene = sceneOf(args.scene, head);
-  const MsisSimulation simulation = [&] {
+  MsisSimulation simulation = [&] {
     ProgressBar bar("simulating");
     return simulateMsis(scene, options, [&](std::size_t done, std::size_t total) {
       if (!args.quiet) bar.update(done, total);
     });
   }();
+  if (args.no_position) {
+    if (simulation.nav.empty()) throw ValueError("--no-position needs a moving vehicle (--speed or --mission): a static run has no fixes");
+    withoutPosition(simulation);
+  }
   OutputDir dir(args.output_dir);
   FileTransaction outputs;
   stageSimulation(outputs, args.output_dir, simulation, args.map_frame);
@@ -210,6 +222,9 @@ Command addSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->group(help_group::kNavigation);
   cmd->add_option("--nav-rate", args.nav_rate_hz, "Navigation fixes per second in nav.csv (Hz; 0: none)")
       ->capture_default_str()
+      ->group(help_group::kNavigation);
+  cmd->add_flag("--no-position", args.no_position,
+                "Dead reckoning without a DVL: nav.csv and --bag/--mcap hold heading, attitude and depth, north and east 0")
       ->group(help_group::kNavigation);
   cmd->add_option("--bag", args.bag, "Also write the log as a ROS 1 bag (.bag)")->group(help_group::kOutput);
   cmd->add_option("--geo-origin", args.geo_origin,

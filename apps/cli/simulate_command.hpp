@@ -24,6 +24,7 @@ namespace sonarmap::cli {
 struct SimulateArgs : SimulationArguments {
   std::string scene;  ///< a built-in scene name or a scene file (sceneOf)
   std::string output_dir;
+  bool no_position = false;  ///< --no-position: nav.csv and the logs hold no north and east (a vehicle without a DVL)
   bool quiet = false;  ///< -q: no progress bar
   std::string bag;     ///< --bag: also the log and its believed navigation as a ROS 1 bag (empty: none)
   std::string mcap;    ///< --mcap: also as a ROS 2 log in MCAP (empty: none)

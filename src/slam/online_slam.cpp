@@ -183,6 +183,10 @@ void OnlineSlam::finish() {
   if (finished_) return;
   detector_->finish();  // the last sweeps' scans
   localizer_.optimize();
+  if (!localizer_.scans().empty()) {
+    const std::size_t last = localizer_.scans().size() - 1;
+    correction_ = localizer_.graph().pose(last) * localizer_.scans()[last].dead_reckoning.inverse();
+  }
   finished_ = true;
   rebuild();  // the map with the final trajectory: what the batch path makes
 }

@@ -1,6 +1,7 @@
 """sonarmap_ros_node against a real ROS 1 master (Debian's roscore, started here on a free port):
 `rosbag play` of a bag at 10x its rate, the node's final octomap_binary decoded and compared with
-`sonarmap map` of the same bag (agreement over the known volume, bench/map_agreement.py's measure),
+`sonarmap map` of the same bag (agreement over the known volume, bench/map_agreement.py's measure;
+with ~slam, `map --slam` of a compass-only bag, and map → odom on /tf),
 ~save_map writing what octomap_binary holds, ~reset emptying the map, and the message received by
 rospy with octomap_msgs' real definition (generated here by genpy from Octomap.msg, so its md5 is
 genmsg's). Run by ctest with /usr/bin/python3 (rospy, genpy):
@@ -10,6 +11,7 @@ genmsg's). Run by ctest with /usr/bin/python3 (rospy, genpy):
 Exits 77 (ctest's skip) when roscore or rosbag is absent.
 """
 
+import math
 import os
 import pathlib
 import shutil
@@ -30,6 +32,34 @@ MSG: std_msgs/Header
 uint32 seq
 time stamp
 string frame_id
+"""
+
+TF_MSG = """geometry_msgs/TransformStamped[] transforms
+================================================================================
+MSG: geometry_msgs/TransformStamped
+Header header
+string child_frame_id
+Transform transform
+================================================================================
+MSG: std_msgs/Header
+uint32 seq
+time stamp
+string frame_id
+================================================================================
+MSG: geometry_msgs/Transform
+Vector3 translation
+Quaternion rotation
+================================================================================
+MSG: geometry_msgs/Vector3
+float64 x
+float64 y
+float64 z
+================================================================================
+MSG: geometry_msgs/Quaternion
+float64 x
+float64 y
+float64 z
+float64 w
 """
 
 
@@ -129,14 +159,22 @@ def main(node, cli, python_dir, shared):
         subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "sim"), "--turns", "3", "--speed", "0.1", "--heading",
                         "30", "--mounting", "0.3,0,0.2,0,20,0", "--bag", str(sim), "-q"], check=True)
         cases.append(("simulated, navigation and a tilted mounting", sim, "/sonar/scan_line",
-                      ["_pose_source:=odometry", "_odom_topic:=/odometry"]))
+                      ["_pose_source:=odometry", "_odom_topic:=/odometry"], []))
+        # A vehicle without a DVL (heading only, north and east 0), localized by the scans (~slam)
+        compass = tmp / "compass.bag"
+        subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "compass"), "--turns", "8", "--speed", "0.1",
+                        "--heading", "30", "--heading-bias", "2", "--no-position", "--bag", str(compass), "-q"], check=True)
+        cases.append(("simulated, compass only, ~slam", compass, "/sonar/scan_line",
+                      ["_pose_source:=odometry", "_odom_topic:=/odometry", "_slam:=true"], ["--slam"]))
         pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
         if pool.exists():
-            cases.append(("pool", pool, "/micron_driver/scan_line", ["_pose_source:=none"]))
+            cases.append(("pool", pool, "/micron_driver/scan_line", ["_pose_source:=none"], []))
         else:
             print(f"note: {pool} absent, the pool bag's case skipped")
-        for name, bag, topic, params in cases:
-            failures += run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, rospy, std_srvs)
+        TFMessage = genpy.dynamic.generate_dynamic("tf2_msgs/TFMessage", TF_MSG)["tf2_msgs/TFMessage"]
+        for name, bag, topic, params, map_args in cases:
+            failures += run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes, Octomap, TFMessage,
+                                 rospy, std_srvs)
         if failures:
             print("\n".join("FAIL: " + f for f in failures))
             return 1
@@ -153,13 +191,15 @@ def main(node, cli, python_dir, shared):
         shutil.rmtree(tmp, ignore_errors=True)
 
 
-def run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, rospy, std_srvs):
+def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes, Octomap, TFMessage, rospy, std_srvs):
     import map_agreement
     failures = []
     resolution = "0.1"
     saved = tmp / f"saved_{len(processes)}.bt"
     log_path = tmp / f"node_{len(processes)}.log"
     log = open(log_path, "w+")
+    # a node's _name:=value parameters stay on the master after it ends: the previous case's are removed
+    subprocess.run(["rosparam", "delete", "/sonarmap"], env=env, capture_output=True)
     node_process = subprocess.Popen([node, f"_sonar_topic:={topic}", f"_resolution:={resolution}", "_idle_commit_s:=1.0",
                                      "_publish_period_s:=0.5", f"_save_path:={saved}", "__name:=sonarmap"] + params,
                                     env=dict(env, ROSCONSOLE_STDOUT_LINE_BUFFERED="1"), stdout=log,
@@ -167,6 +207,9 @@ def run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, 
     processes.append(node_process)
     received, raw = [], []
     subscriber = rospy.Subscriber("/octomap_binary", Octomap, lambda m: received.append((time.time(), m)))
+    corrections = []  # map → odom, as any TF listener receives it
+    tf_subscriber = rospy.Subscriber("/tf", TFMessage, lambda m: corrections.extend(
+        t for t in m.transforms if t.header.frame_id == "map" and t.child_frame_id == "odom"))
     # the connection as any subscriber sees it: type, md5 and definition the node announces
     raw_subscriber = rospy.Subscriber("/octomap_binary", rospy.AnyMsg, lambda m: raw.append(m._connection_header))
     rospy.wait_for_service("/sonarmap/reset", timeout=20)
@@ -199,7 +242,7 @@ def run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, 
     node_bt = tmp / "node.bt"
     node_bt.write_bytes(bt_bytes(final))
     ref_bt = tmp / "ref.bt"
-    subprocess.run([cli, "map", str(bag), "-o", str(ref_bt), "-q", "--resolution", resolution], check=True)
+    subprocess.run([cli, "map", str(bag), "-o", str(ref_bt), "-q", "--resolution", resolution] + map_args, check=True)
     a, b = map_agreement.voxel_classes(str(node_bt)), map_agreement.voxel_classes(str(ref_bt))
     known = set(a) | set(b)
     same = sum(1 for key in known if key in a and key in b and a[key] == b[key])
@@ -208,6 +251,24 @@ def run_case(name, bag, topic, params, node, cli, tmp, env, processes, Octomap, 
           f"agreement {agreement:.6f} over {len(known)}")
     if not known or agreement < 0.999:
         failures.append(f"{name}: agreement {agreement:.6f} < 0.999")
+    tf_subscriber.unregister()
+    if "--slam" in map_args:
+        # the scans moved the compass-only track (north and east 0): map → odom is not the identity
+        moved = [math.hypot(t.transform.translation.x, t.transform.translation.y) for t in corrections]
+        # the last is the final correction: the odom frame's origin (where the compass-only poses
+        # stay) at the corrected track's end, which `map --slam --trajectory` writes (NED)
+        track = tmp / "slam_track.csv"
+        subprocess.run([cli, "map", str(bag), "-o", str(tmp / "slam.bt"), "-q", "--resolution", resolution, "--trajectory",
+                        str(track)] + map_args, check=True)
+        north, east = (float(v) for v in track.read_text().strip().splitlines()[-1].split(",")[1:3])
+        print(f"{name}: {len(corrections)} map → odom transforms on /tf, the last {moved[-1] if moved else 0:.2f} m; "
+              f"the track ends {math.hypot(north, east):.2f} m from its start")
+        last = corrections[-1].transform.translation if corrections else None
+        if not moved or moved[-1] < 1.0 or math.hypot(last.x - east, last.y - north) > 0.01:
+            failures.append(f"{name}: map → odom on /tf: {len(moved)} transforms, the last at {last}, the track's "
+                            f"end at east {east:.3f} north {north:.3f} m")
+    elif corrections:
+        failures.append(f"{name}: map → odom published without ~slam")
     save = rospy.ServiceProxy("/sonarmap/save_map", std_srvs.srv.Trigger)()
     if not save.success:
         failures.append(f"{name}: save_map failed: {save.message}")

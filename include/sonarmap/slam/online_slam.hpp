@@ -77,6 +77,10 @@ class OnlineSlam {
   /// The trajectory the localizer currently believes (Localizer::correctedTrack of the fixes so
   /// far, or of none).
   NavTrack trajectory() const;
+  /// The latest scan's correction of the dead reckoning (NED, metres and radians): the pose the
+  /// localizer gives it ∘ its dead-reckoning pose⁻¹, so that corrected = correction ∘ dead reckoning
+  /// (ROS's map → odom, REP 105). Identity before the first scan (feeding thread only).
+  const Pose2& correction() const { return correction_; }
   std::size_t rebuilds() const { return rebuilds_; }
   /// Sweeps integrated again by the rebuilds so far: at most twice the sweeps detected before the
   /// last one, and all of them once more at finish().

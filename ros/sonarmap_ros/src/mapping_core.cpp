@@ -14,6 +14,8 @@
 #include "sonarmap/io/octomap_binary.hpp"
 #include "sonarmap/io/octomap_full.hpp"
 #include "sonarmap/mapping/online_mapper.hpp"
+#include "sonarmap/slam/odometry_noise.hpp"
+#include "sonarmap/slam/online_slam.hpp"
 
 namespace sonarmap_ros {
 
@@ -30,9 +32,24 @@ struct MappingCore::Impl {
   };
   std::deque<Held> held;  ///< beams waiting for an automatic bearing unit
   double largest_bearing = 0.0;
-  std::unique_ptr<sonarmap::OnlineMapper> mapper;
+  std::unique_ptr<sonarmap::OnlineMapper> mapper;  ///< without slam
+  std::unique_ptr<sonarmap::OnlineSlam> slam;      ///< with slam
+  bool slam_finished = false;                      ///< slam's session ended at a silence
   std::vector<sonarmap::NavSample> early_fixes;  ///< before the mapper starts
   std::optional<sonarmap::NavSample> last_fix;
+  std::string world_frame;  ///< the poses' world frame (the last addPose's)
+
+  bool started() const { return mapper || slam; }
+  /// The mapper whose map is published (slam's current one; not kept: a rebuild swaps it).
+  sonarmap::OnlineMapper& active() { return slam ? slam->mapper() : *mapper; }
+  std::size_t beamsPending() const { return slam ? slam->beamsPending() : mapper->beamsPending(); }
+  void addNavFix(const sonarmap::NavSample& fix) {
+    if (slam) {
+      slam->addNavFix(fix);
+    } else {
+      mapper->addNavFix(fix);
+    }
+  }
   std::deque<double> receipts_wall_s;  ///< of the beams given to the mapper and not yet in its map
   double newest_time_s = 0.0;          ///< the newest beam's time
   double empty_resolution_m = 0.1;     ///< an empty map's after reset, before any sweep
@@ -47,16 +64,16 @@ MappingCore::MappingCore(const CoreParameters& parameters, MountingLookup mounti
   sonarmap::parseBearingUnit(parameters.bearing_unit);  // the options are checked now, not at the first beam
   sonarmap::parseBearingDirection(parameters.bearing_direction);
   coreMapperOptions(parameters, sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag));
+  if (parameters.nav_class != "auto") sonarmap::odometryNoiseOf(parameters.nav_class);  // throws naming the classes
 }
 
 MappingCore::~MappingCore() = default;
 
 namespace {
 
-/// Beams of `mapper` committed since the last call: their receipts leave `receipts`; returns the
-/// newest one's lag, or −1.
-double noteCommitted(const sonarmap::OnlineMapper& mapper, std::deque<double>& receipts, double now_wall_s) {
-  const std::size_t pending = mapper.beamsPending();
+/// Beams committed since the last call (all but `pending` of those received): their receipts
+/// leave `receipts`; returns the newest one's lag, or −1.
+double noteCommitted(std::size_t pending, std::deque<double>& receipts, double now_wall_s) {
   if (receipts.size() <= pending) return -1.0;
   const std::size_t committed = receipts.size() - pending;
   const double newest = receipts[committed - 1];
@@ -104,23 +121,13 @@ void MappingCore::addSonarMessage(const std::string& type, const std::string& de
 void MappingCore::feedHeld() {
   Impl& d = *impl_;
   if (d.held.empty()) return;
-  if (!d.mapper) {
-    sonarmap::SonarLog header;
-    header.nominal_beam = d.nominal_beam;
-    const sonarmap::MapperOptions options =
-        coreMapperOptions(d.parameters, sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag, header));
-    if (!d.parameters.navigation) {
-      d.mapper = std::make_unique<sonarmap::OnlineMapper>(options);
-    } else {
-      const std::optional<Eigen::Isometry3d> sonar_in_body = d.mounting(d.sonar_frame);
-      // without TF's mounting: the sonar at the body's origin, its frame the body's (REP 103 FLU)
-      const Eigen::Isometry3d mounting =
-          sonar_in_body ? sonarmap::rosMountingToBody(*sonar_in_body, body_frame_, d.sonar_frame) : Eigen::Isometry3d::Identity();
-      d.mapper = std::make_unique<sonarmap::OnlineMapper>(options, mounting);
-      for (const sonarmap::NavSample& fix : d.early_fixes) d.mapper->addNavFix(fix);
-    }
-    d.early_fixes.clear();
+  if (d.slam_finished) {
+    // A beam after the session ended (a bag played again, a new dive): a new session, a new map.
+    d.slam.reset();
+    d.slam_finished = false;
+    if (d.last_fix) d.early_fixes.push_back(*d.last_fix);
   }
+  if (!d.started()) start();
   const double now_s = wallNow_s();
   while (!d.held.empty()) {
     Impl::Held held = std::move(d.held.front());
@@ -130,14 +137,57 @@ void MappingCore::feedHeld() {
     d.newest_time_s = held.message.beam.time_s;
     d.receipts_wall_s.push_back(held.receipt_wall_s);
     ++lag_.beams;
-    d.mapper->addBeam(std::move(held.message.beam));
+    if (d.slam) {
+      d.slam->addBeam(std::move(held.message.beam));
+    } else {
+      d.mapper->addBeam(std::move(held.message.beam));
+    }
   }
   noteLag();
 }
 
+void MappingCore::start() {
+  Impl& d = *impl_;
+  sonarmap::SonarLog header;
+  header.nominal_beam = d.nominal_beam;
+  const sonarmap::MapperOptions options =
+      coreMapperOptions(d.parameters, sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag, header));
+  Eigen::Isometry3d mounting = Eigen::Isometry3d::Identity();
+  if (d.parameters.navigation) {
+    const std::optional<Eigen::Isometry3d> sonar_in_body = d.mounting(d.sonar_frame);
+    // without TF's mounting: the sonar at the body's origin, its frame the body's (REP 103 FLU)
+    if (sonar_in_body) mounting = sonarmap::rosMountingToBody(*sonar_in_body, body_frame_, d.sonar_frame);
+  }
+  if (!d.parameters.slam) {
+    d.mapper = d.parameters.navigation ? std::make_unique<sonarmap::OnlineMapper>(options, mounting)
+                                       : std::make_unique<sonarmap::OnlineMapper>(options);
+  } else if (!d.parameters.navigation) {
+    d.slam = std::make_unique<sonarmap::OnlineSlam>(options, mounting, false);
+  } else {
+    // The localization's options decided at the first sweep from the poses received by then, as
+    // `live --slam` decides them from a stream (`map --slam` from the whole log's).
+    const std::string nav_class = d.parameters.nav_class;
+    d.slam = std::make_unique<sonarmap::OnlineSlam>(options, mounting, [nav_class](const sonarmap::NavTrack& fixes) {
+      sonarmap::SlamOptions slam;
+      slam.forming.odometry =
+          sonarmap::odometryNoiseOf(nav_class == "auto" ? sonarmap::navigationClassOf(fixes) : nav_class);
+      return sonarmap::withNavigationPeriod(slam, fixes);
+    });
+  }
+  if (d.slam) ++lag_.slam_sessions;
+  if (d.parameters.navigation) {
+    for (const sonarmap::NavSample& fix : d.early_fixes) d.addNavFix(fix);
+  }
+  d.early_fixes.clear();
+}
+
 void MappingCore::noteLag() {
   Impl& d = *impl_;
-  if (const double lag_s = noteCommitted(*d.mapper, d.receipts_wall_s, wallNow_s()); lag_s >= 0.0) {
+  if (d.slam) {
+    lag_.slam_scans = d.slam->localizer().report().scans;
+    lag_.slam_matched = d.slam->localizer().report().matches_accepted;
+  }
+  if (const double lag_s = noteCommitted(d.beamsPending(), d.receipts_wall_s, wallNow_s()); lag_s >= 0.0) {
     lag_.last_map_lag_s = lag_s;
     lag_.map_lag_max_s = std::max(lag_.map_lag_max_s, lag_s);
     changed_ = true;
@@ -151,12 +201,13 @@ void MappingCore::addPose(double time_s, const Eigen::Vector3d& position_m, cons
   if (d.last_fix && !(fix.time_s > d.last_fix->time_s)) return;  // skipped, as a bag's
   if (!d.last_fix) body_frame_ = body_frame;
   d.last_fix = fix;
+  d.world_frame = world_frame;
   if (!d.parameters.navigation) return;
-  if (!d.mapper) {
+  if (!d.started() || d.slam_finished) {
     d.early_fixes.push_back(fix);
     return;
   }
-  d.mapper->addNavFix(fix);
+  d.addNavFix(fix);
   noteLag();
 }
 
@@ -165,12 +216,20 @@ bool MappingCore::commitAtSilence(bool navigation_ended) {
   // The whole stream seen: an undecided unit is decided on every bearing, as a bag's.
   if (d.decoder && !d.decoder->unitDecided() && !d.held.empty()) d.decoder->decideUnit(d.largest_bearing);
   feedHeld();
-  if (!d.mapper) return false;
-  const std::size_t sweeps = d.mapper->sweepsIntegrated();
-  d.mapper->commitHeld(navigation_ended || !d.parameters.navigation);
+  if (!d.started()) return false;
+  const std::size_t sweeps = d.active().sweepsIntegrated();
+  const bool ended = navigation_ended || !d.parameters.navigation;
+  if (!d.slam) {
+    d.mapper->commitHeld(ended);
+  } else if (ended && !d.slam_finished) {
+    // slam's last sweep is its last scan: the session ends (the final optimisation, the map
+    // rebuilt on it: `map --slam`'s map of the same beams and poses).
+    d.slam->finish();
+    d.slam_finished = true;
+  }
   noteLag();
-  const sonarmap::MappingStats stats = d.mapper->statsSnapshot();
-  lag_.sweeps = d.mapper->sweepsIntegrated();
+  const sonarmap::MappingStats stats = d.active().statsSnapshot();
+  lag_.sweeps = d.active().sweepsIntegrated();
   lag_.beams_without_nav = stats.beams_without_nav;
   if (lag_.sweeps != sweeps) changed_ = true;
   return lag_.sweeps != sweeps;
@@ -179,7 +238,12 @@ bool MappingCore::commitAtSilence(bool navigation_ended) {
 void MappingCore::reset() {
   Impl& d = *impl_;
   if (d.mapper && d.mapper->optionsSnapshot().resolution_m) d.empty_resolution_m = *d.mapper->optionsSnapshot().resolution_m;
+  if (d.slam && d.slam->mapper().optionsSnapshot().resolution_m) {
+    d.empty_resolution_m = *d.slam->mapper().optionsSnapshot().resolution_m;
+  }
   d.mapper.reset();
+  d.slam.reset();
+  d.slam_finished = false;
   d.held.clear();
   d.receipts_wall_s.clear();
   d.early_fixes.clear();
@@ -222,11 +286,12 @@ void copyOutside(sonarmap::OcTree16& out, const sonarmap::Key16& key, int depth,
 
 bool MappingCore::clearBox(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m) {
   Impl& d = *impl_;
-  if (!d.mapper || !d.mapper->optionsSnapshot().resolution_m) return false;
+  if (!d.started() || !d.active().optionsSnapshot().resolution_m) return false;
   const Eigen::Matrix3d to_nwu = sonarmap::nwuToMapFrame(d.frame).transpose();
   const Eigen::Vector3d a = to_nwu * min_m, b = to_nwu * max_m;
   const Eigen::Vector3d lo = a.cwiseMin(b), hi = a.cwiseMax(b);
-  sonarmap::OcTree16& map = d.mapper->mapper().map();  // the feeding thread: this one
+  // the feeding thread: this one (with slam, a later rebuild maps the cleared sweeps again)
+  sonarmap::OcTree16& map = d.active().mapper().map();
   sonarmap::OcTree16 out(map.resolution_m(), map.options());
   map.forEachLeaf([&](const sonarmap::LeafView<16>& leaf) { copyOutside(out, leaf.key, leaf.depth, leaf.log_odds, lo, hi); });
   out.updateInnerOccupancy();
@@ -238,8 +303,8 @@ bool MappingCore::clearBox(const Eigen::Vector3d& min_m, const Eigen::Vector3d& 
 std::optional<MapData> MappingCore::snapshot() {
   Impl& d = *impl_;
   changed_ = false;
-  if (d.mapper && !d.mapper->optionsSnapshot().resolution_m) return std::nullopt;  // auto: none before a sweep
-  sonarmap::OcTree16 map = d.mapper ? sonarmap::mapInFrame(d.mapper->mapSnapshot(), d.frame)
+  if (d.started() && !d.active().optionsSnapshot().resolution_m) return std::nullopt;  // auto: none before a sweep
+  sonarmap::OcTree16 map = d.started() ? sonarmap::mapInFrame(d.active().mapSnapshot(), d.frame)
                                     : sonarmap::OcTree16(d.empty_resolution_m, coreMapperOptions(d.parameters,
                                           sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag)).octree);
   double z_m = 0.0;  // the vehicle's height in frame_id (the sonar's plane without navigation)
@@ -264,6 +329,24 @@ void MappingCore::save(const std::string& path) const {
   } else {
     throw sonarmap::ValueError("~save_path " + path + ": .bt or .ot is needed");
   }
+}
+
+std::optional<MappingCore::MapToOdom> MappingCore::mapToOdom() const {
+  const Impl& d = *impl_;
+  if (!d.slam || !d.parameters.navigation || !d.last_fix || d.slam->localizer().scans().empty()) return std::nullopt;
+  // NED's axes in a frame's: NED → NWU, then NWU → the frame's (ENU, or NED when its name says so)
+  const Eigen::Matrix3d ned_to_nwu = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  const Eigen::Matrix3d to_map = sonarmap::nwuToMapFrame(d.frame) * ned_to_nwu;
+  const sonarmap::MapFrame odom_kind = sonarmap::rosFrameIsNed(d.world_frame) ? sonarmap::MapFrame::kNed : sonarmap::MapFrame::kEnu;
+  const Eigen::Matrix3d to_odom = sonarmap::nwuToMapFrame(odom_kind) * ned_to_nwu;
+  const sonarmap::Pose2& correction = d.slam->correction();  // NED: corrected = correction ∘ dead reckoning
+  const Eigen::Matrix3d rotation_ned = Eigen::AngleAxisd(correction.yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  MapToOdom out;
+  out.transform.linear() = to_map * rotation_ned * to_odom.transpose();
+  out.transform.translation() = to_map * Eigen::Vector3d(correction.x_m, correction.y_m, 0.0);
+  out.odom_frame = d.world_frame;
+  out.stamp_s = d.last_fix->time_s;
+  return out;
 }
 
 }  // namespace sonarmap_ros

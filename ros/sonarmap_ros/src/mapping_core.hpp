@@ -8,7 +8,10 @@
 /// RosSonarDecoder, the bag readers' rules), the vehicle's poses (rosPoseFix) and the mounting
 /// (rosMountingToBody), maps them beam by beam (OnlineMapper, `sonarmap map`'s one mapping path),
 /// commits the last sweep when the sonar falls silent (OnlineMapper::commitHeld), and gives the map
-/// as the data octomap_server's topics carry (MapData). All on one thread.
+/// as the data octomap_server's topics carry (MapData). With `slam` the beams and poses go to an
+/// OnlineSlam instead (`sonarmap live --slam`'s path: the localizer corrects the poses, the map is
+/// built on the corrected track), which gives the correction as ROS's map → odom (mapToOdom). All
+/// on one thread.
 
 #include <cstddef>
 #include <cstdint>
@@ -36,6 +39,13 @@ struct CoreParameters {
   std::string bearing_unit = "auto";       ///< auto, deg, rad, grad (RosBagOptions)
   std::string bearing_direction = "cw";    ///< cw, ccw
   bool navigation = true;                  ///< false: a fixed sonar at the map's origin
+  /// Localization (`map --slam`): the poses are dead reckoning the scans correct, the published map
+  /// is in the corrected frame (frame_id, `map`), and the sonar's and the poses' silence ends the
+  /// session (OnlineSlam::finish: the final optimisation, the map rebuilt on it).
+  bool slam = false;
+  /// With slam: how far the poses are trusted (odometry_noise.hpp's classes; `auto` decides from
+  /// the poses received by the first sweep, as `live --slam --nav-class auto`).
+  std::string nav_class = "auto";
   std::string base_frame = "base_link";    ///< the body frame until a pose names its own
   std::string frame_id = "odom";           ///< the published frame: NED when its name says so, else ENU
   /// Mapping options by keyword (mappingOptionNames), each value as text ("1e-4", "auto", "true", "3").
@@ -65,6 +75,8 @@ struct MapData {
 /// The lag figures (wall seconds).
 struct LagReport {
   std::size_t beams = 0, sweeps = 0, beams_without_nav = 0, rejected_messages = 0;
+  std::size_t slam_sessions = 0;    ///< with slam: sessions started (a beam after a finished one starts a new map)
+  std::size_t slam_scans = 0, slam_matched = 0;  ///< with slam: the localizer's scans and scan matches accepted
   double queue_delay_max_s = 0.0;  ///< receipt → decoded and given to the mapper
   double map_lag_max_s = 0.0;      ///< receipt → in the committed map
   double last_map_lag_s = -1.0;    ///< of the last beams committed (−1: none yet)
@@ -108,10 +120,22 @@ class MappingCore {
   /// @throws std::runtime_error (sonarmap's FileError, ValueError) naming the path.
   void save(const std::string& path) const;
   const LagReport& lag() const { return lag_; }
+  /// ROS's map → odom (REP 105) from slam's latest correction: the pose of the poses' world frame
+  /// (odom; its axes ENU unless its name says NED) in frame_id's axes, metres; stamped with the
+  /// newest pose's time (seconds). nullopt without slam, without navigation or before the first scan.
+  struct MapToOdom {
+    Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+    std::string odom_frame;
+    double stamp_s = 0.0;
+  };
+  std::optional<MapToOdom> mapToOdom() const;
   /// The body frame of the poses (the last addPose's), for the mounting.
   const std::string& bodyFrame() const { return body_frame_; }
 
  private:
+  /// Starts the mapper (or with slam the OnlineSlam) at the first beam: options, mounting, the
+  /// poses received before it.
+  void start();
   /// Gives the beams held to the mapper (started at the first: options, mounting), bearings set.
   void feedHeld();
   /// Notes the lag of the beams the mapper committed since the last call.

@@ -2,6 +2,7 @@
 /// The node's ROS parameters (node_parameters.hpp).
 
 #include "node_parameters.hpp"
+#include "pose_input.hpp"
 
 #include <sstream>
 #include <stdexcept>
@@ -59,7 +60,13 @@ NodeParameters readNodeParameters(const ros::NodeHandle& node) {
   node.param<std::string>("odom_topic", p.odom_topic, p.odom_topic);
   node.param<std::string>("odom_frame", p.odom_frame, p.odom_frame);
   node.param<std::string>("base_frame", p.base_frame, p.base_frame);
-  node.param<std::string>("frame_id", core.frame_id, p.odom_frame);
+  node.param<bool>("slam", core.slam, core.slam);
+  node.param<std::string>("nav_class", core.nav_class, core.nav_class);
+  // With slam the map is in the corrected frame, REP 105's map, of which odom is a child (map → odom).
+  node.param<std::string>("frame_id", core.frame_id, core.slam ? "map" : p.odom_frame);
+  if (core.slam && core.navigation && tfName(core.frame_id) == tfName(p.odom_frame)) {
+    throw std::runtime_error("~frame_id: with ~slam the map's frame is the corrected one (map), not ~odom_frame " + p.odom_frame);
+  }
   core.base_frame = p.base_frame;
   // every mapping option by its Python keyword (octomap_server's `resolution` among them), then
   // octomap_server's sensor model

@@ -1,8 +1,9 @@
 /// @file sonarmap_node.cpp
 /// sonarmap_ros_node: the sonar topic of any driver (topic_tools::ShapeShifter: its definition and
 /// bytes) mapped beam by beam by MappingCore and published on octomap_server's topics, with the
-/// services ~reset, ~clear_bbx and ~save_map, and the lag on ~queue_delay_s and ~map_lag_s. C++17 (the ROS
-/// side, mapping_core.hpp's comment). See ros/sonarmap_ros/README.md.
+/// services ~reset, ~clear_bbx and ~save_map, and the lag on ~queue_delay_s and ~map_lag_s; with ~slam
+/// the correction of the poses as TF's map → odom (REP 105). C++17 (the ROS side, mapping_core.hpp's
+/// comment). See ros/sonarmap_ros/README.md.
 
 #include <memory>
 #include <vector>
@@ -10,7 +11,9 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/Empty.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
 #include <topic_tools/shape_shifter.h>
 
 #include "map_publisher.hpp"
@@ -83,6 +86,10 @@ class SonarmapNode {
       ROS_INFO("sonarmap: the sonar is silent: %zu beams, %zu sweeps in the map (%zu beams without navigation, %zu "
                "messages skipped); largest queue delay %.3f s, largest lag of a beam into the map %.3f s",
                lag.beams, lag.sweeps, lag.beams_without_nav, lag.rejected_messages, lag.queue_delay_max_s, lag.map_lag_max_s);
+      if (parameters_.core.slam) {
+        ROS_INFO("sonarmap: slam session %zu: %zu scans, %zu matched to the scans before them", lag.slam_sessions,
+                 lag.slam_scans, lag.slam_matched);
+      }
     }
     if (now_s - last_report_s_ >= 1.0 && core_.lag().beams > 0) {
       last_report_s_ = now_s;
@@ -93,6 +100,33 @@ class SonarmapNode {
       map_lag_.publish(value);
     }
     if (core_.changed() && now_s - last_publish_s_ >= parameters_.publish_period_s) publish(now_s);
+    publishMapToOdom();
+  }
+
+  /// map → odom at each newer pose, and when the correction changes without one (the session's
+  /// final optimisation after the last pose): then 1 ms after the last stamp, as tf2's buffers keep
+  /// one transform per stamp and refuse a second.
+  void publishMapToOdom() {
+    const std::optional<MappingCore::MapToOdom> correction = core_.mapToOdom();
+    if (!correction) return;
+    const bool newer = correction->stamp_s > last_tf_stamp_s_;
+    if (!newer && correction->transform.isApprox(last_tf_.transform)) return;
+    last_tf_stamp_s_ = newer ? correction->stamp_s : last_tf_stamp_s_ + 1e-3;
+    last_tf_ = *correction;
+    geometry_msgs::TransformStamped message;
+    message.header.stamp = ros::Time(last_tf_stamp_s_);
+    message.header.frame_id = tfName(parameters_.core.frame_id);
+    message.child_frame_id = tfName(correction->odom_frame);
+    const Eigen::Vector3d& t = correction->transform.translation();
+    const Eigen::Quaterniond q(correction->transform.linear());
+    message.transform.translation.x = t.x();
+    message.transform.translation.y = t.y();
+    message.transform.translation.z = t.z();
+    message.transform.rotation.x = q.x();
+    message.transform.rotation.y = q.y();
+    message.transform.rotation.z = q.z();
+    message.transform.rotation.w = q.w();
+    broadcaster_.sendTransform(message);
   }
 
   void publish(double now_s) {
@@ -135,6 +169,9 @@ class SonarmapNode {
   MapPublisher publisher_;
   std::vector<std::uint8_t> bytes_;
   double last_beam_wall_s_ = 0.0, last_pose_wall_s_ = 0.0, last_publish_s_ = 0.0, last_report_s_ = 0.0;
+  double last_tf_stamp_s_ = -1.0;
+  MappingCore::MapToOdom last_tf_;  ///< the last map → odom sent
+  tf2_ros::TransformBroadcaster broadcaster_;
   bool committed_ = false;
   ros::Subscriber sonar_;
   ros::Publisher queue_delay_, map_lag_;
