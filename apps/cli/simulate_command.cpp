@@ -96,7 +96,7 @@ void run(const SimulateArgs& args, const MsisSimulationOptions& options) {
     });
   }();
   if (args.no_position) {
-    if (simulation.nav.empty()) throw ValueError("--no-position needs a moving vehicle (--speed or --mission): a static run has no fixes");
+    if (simulation.nav.empty()) throw ValueError("--no-position shapes the navigation, and --nav-rate 0 writes none");
     withoutPosition(simulation);
   }
   OutputDir dir(args.output_dir);

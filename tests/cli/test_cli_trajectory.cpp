@@ -85,6 +85,43 @@ TEST_F(cliTrajectory, MissionWithDeadReckoningErrorsAndItsEvaluation) {
   EXPECT_EQ(m["final_drift_m"], "0.0000");
 }
 
+// A vehicle without a DVL (--no-position): the believed track is the dead reckoning's heading,
+// attitude and depth at north and east 0, the truth and the beams are the run's, and `map --slam`
+// takes it as heading only. Without navigation (--nav-rate 0) there is nothing to strip: refused.
+TEST_F(cliTrajectory, NoPositionKeepsTheHeadingAtNorthAndEastZero) {
+  const fs::path dir = out_ / "compass", full = out_ / "full";
+  const std::vector<std::string> common{"simulate", "harbour", "--speed", "0.2", "--heading", "30", "--turns", "3",
+                                        "--heading-bias", "1", "-q"};
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--no-position", "-o", dir.string()});
+  ASSERT_EQ(run(args).exit_code, 0);
+  args = common;
+  args.insert(args.end(), {"-o", full.string()});
+  ASSERT_EQ(run(args).exit_code, 0);
+  EXPECT_EQ(readFile(dir / "beams.csv"), readFile(full / "beams.csv"));
+  EXPECT_EQ(readFile(dir / "truth_nav.csv"), readFile(full / "truth_nav.csv"));
+  const NavTrack compass = readNavCsv((dir / "nav.csv").string()), believed = readNavCsv((full / "nav.csv").string());
+  ASSERT_EQ(compass.size(), believed.size());
+  ASSERT_GT(compass.size(), 100U);
+  double moved_m = 0.0;
+  for (std::size_t i = 0; i < compass.size(); ++i) {
+    EXPECT_EQ(compass[i].position_ned_m.head<2>(), Eigen::Vector2d::Zero()) << i;
+    EXPECT_EQ(compass[i].position_ned_m.z(), believed[i].position_ned_m.z()) << i;
+    EXPECT_EQ(compass[i].yaw_rad, believed[i].yaw_rad) << i;
+    moved_m = std::max(moved_m, believed[i].position_ned_m.head<2>().norm());
+  }
+  EXPECT_GT(moved_m, 2.0);
+  const ProgramRun slam = run({"map", (dir / "beams.csv").string(), "--nav", (dir / "nav.csv").string(), "--slam", "-o",
+                               (dir / "map.bt").string()});
+  ASSERT_EQ(slam.exit_code, 0) << slam.err;
+  EXPECT_NE(slam.out.find("--nav gives the heading only"), std::string::npos) << slam.out;
+  const ProgramRun none = run({"simulate", "harbour", "--no-position", "--nav-rate", "0", "-o", (out_ / "none").string(), "-q"});
+  EXPECT_NE(none.exit_code, 0);
+  EXPECT_EQ(linesOf(none.err).size(), 1U) << none.err;
+  EXPECT_NE(none.err.find("--no-position shapes the navigation"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(out_ / "none" / "beams.csv"));
+}
+
 TEST_F(cliTrajectory, EvalTrajectoryReadsTumToo) {
   writeFile(root_ / "truth.csv", "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,0,0,0,0,0,0\n1,1,0,0,0,0,0\n"
                                  "2,2,0,0,0,0,0\n3,3,0,0,0,0,0\n");
