@@ -122,6 +122,26 @@ TEST_F(cliTrajectory, NoPositionKeepsTheHeadingAtNorthAndEastZero) {
   EXPECT_FALSE(fs::exists(out_ / "none" / "beams.csv"));
 }
 
+// A head on a tripod scanning a 90° sector back and forth (each pass a scan), no navigation: the
+// passes see the same quay, so nothing proves a motion and the track stays at its start.
+TEST_F(cliTrajectory, ASectorScanningStillHeadStaysStill) {
+  const fs::path dir = out_ / "sector";
+  ASSERT_EQ(run({"simulate", "harbour", "--sonar", "ping360-5m", "--sector", "90", "--turns", "16", "-o", dir.string(), "-q"})
+                .exit_code,
+            0);
+  const ProgramRun slam = run({"map", (dir / "beams.csv").string(), "--slam", "--trajectory", (dir / "t.csv").string(),
+                               "-o", (dir / "map.bt").string()});
+  ASSERT_EQ(slam.exit_code, 0) << slam.err;
+  EXPECT_NE(slam.out.find("slam: 16 scans"), std::string::npos) << slam.out;
+  EXPECT_NE(slam.out.find("15 matched to the scans before them"), std::string::npos) << slam.out;
+  const NavTrack track = readNavCsv((dir / "t.csv").string());
+  ASSERT_GE(track.size(), 16U);
+  for (const NavSample& fix : track) {
+    EXPECT_LT(fix.position_ned_m.head<2>().norm(), 0.05) << fix.time_s;
+    EXPECT_LT(std::abs(fix.yaw_rad), 0.01) << fix.time_s;
+  }
+}
+
 TEST_F(cliTrajectory, EvalTrajectoryReadsTumToo) {
   writeFile(root_ / "truth.csv", "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n0,0,0,0,0,0,0\n1,1,0,0,0,0,0\n"
                                  "2,2,0,0,0,0,0\n3,3,0,0,0,0,0\n");
