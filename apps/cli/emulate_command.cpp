@@ -93,12 +93,14 @@ void check(const EmulateArgs& args, MsisSimulationOptions& run) {
 
 /// The vehicle's navigation sent as ArduSub sends it: every 1 / rate of the emulated time, the pose
 /// of the trajectory then; its boot clock is the wall clock, as the receiving end times arrivals.
+/// On a listening link (udp://:PORT) it is served as BlueOS's MAVLink "UDP Server" endpoints serve
+/// it: to the clients that have sent a datagram (ByteLink), whose datagrams are read and counted.
 struct ServedAutopilot {
   ServedAutopilot(const std::string& spec, const AutopilotEmulatorOptions& options) : link(spec, 115200), autopilot(options) {}
   ByteLink link;
   AutopilotEmulator autopilot;
   double next_s = 0.0;   ///< emulated time of the next update
-  std::size_t updates = 0, dropped = 0;
+  std::size_t updates = 0, dropped = 0, heard = 0;
 };
 
 void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
@@ -147,6 +149,7 @@ void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
     if (autopilot) wait_s = std::min(wait_s, std::max(0.0, autopilot->next_s - now_s()));
     std::vector<pollfd> waiting;
     for (const auto& served : heads) waiting.push_back({served->link.fd(), POLLIN, 0});
+    if (autopilot) waiting.push_back({autopilot->link.fd(), POLLIN, 0});
     const int ready =
         ::poll(waiting.data(), waiting.size(), static_cast<int>(std::ceil(wait_s / args.time_scale * 1000.0)));
     const double now = now_s();
@@ -158,6 +161,9 @@ void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
       }
       served.queue(served.head->poll(now));
       served.send(now);
+    }
+    if (autopilot && ready > 0 && (waiting.back().revents & POLLIN) != 0 && autopilot->link.read(buffer) > 0) {
+      ++autopilot->heard;
     }
     if (autopilot && now >= autopilot->next_s) {
       NavSample fix = options.trajectory(now);
@@ -174,8 +180,9 @@ void run(const EmulateArgs& args, const MsisSimulationOptions& options) {
                  served->head->settingsText().c_str());
   }
   if (autopilot) {
-    std::fprintf(stderr, "sonarmap: emulate: %s: %zu navigation updates sent\n", autopilot->link.description().c_str(),
-                 autopilot->updates);
+    std::fprintf(stderr, "sonarmap: emulate: %s: %zu navigation updates sent, %zu with no client to take them, %zu "
+                 "datagrams received\n", autopilot->link.description().c_str(), autopilot->updates, autopilot->dropped,
+                 autopilot->heard);
   }
 }
 
@@ -200,7 +207,9 @@ Command addEmulateCommand(CLI::App& app, EmulateArgs& args) {
   cmd->add_option("--baud", args.baud, "Serial rate the replies take to cross (bits/s; UDP: no delay)")
       ->capture_default_str()
       ->group(help_group::kOutput);
-  cmd->add_option("--mavlink", args.mavlink, "Send the vehicle's navigation as ArduSub does to this link (udp://HOST:PORT)")
+  cmd->add_option("--mavlink", args.mavlink,
+                  "Send the vehicle's navigation as ArduSub does to this link (udp://HOST:PORT), or serve it as BlueOS's "
+                  "endpoints do (udp://:PORT: to the clients that sent a datagram)")
       ->group(help_group::kOutput);
   cmd->add_option("--nav-rate", args.nav_rate_hz, "HZ: navigation updates a second")
       ->capture_default_str()

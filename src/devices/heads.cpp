@@ -8,6 +8,8 @@
 #include "sonarmap/devices/ping360_emulator.hpp"
 #include "sonarmap/devices/seanet_driver.hpp"
 #include "sonarmap/devices/seanet_emulator.hpp"
+#include "sonarmap/formats/ping_protocol.hpp"
+#include "sonarmap/formats/seanet_protocol.hpp"
 #include "sonarmap/sim/beam_simulator.hpp"
 #include "sonarmap/sim/sonar_presets.hpp"
 
@@ -17,6 +19,12 @@ std::unique_ptr<HeadDriver> makeHeadDriver(LogFormat format, const HeadSettings&
   if (format == LogFormat::kSeaNet) return std::make_unique<SeaNetDriver>(SeaNetDriverOptions{.settings = settings});
   if (format == LogFormat::kPing360) return std::make_unique<Ping360Driver>(settings, Ping360DriverOptions{link_baud});
   throw ValueError("a head is driven in the ping360 or seanet protocol");
+}
+
+std::vector<std::uint8_t> listenerRegistration(LogFormat format) {
+  if (format == LogFormat::kPing360) return ping_protocol::encode(ping_protocol::GeneralRequest{ping_protocol::kProtocolVersion});
+  if (format == LogFormat::kSeaNet) return seanet::encodeSimpleCommand(seanet::MessageType::kSendVersion);
+  throw ValueError("a head is listened to in the ping360 or seanet protocol");
 }
 
 std::vector<std::string> emulatedHeadNames() {

@@ -3,7 +3,9 @@
 
 #include "sonarmap/live/byte_link.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -24,6 +26,10 @@ namespace {
 static_assert(sizeof(sockaddr_storage) <= 128, "ByteLink keeps a peer's address in 128 bytes");
 
 std::string systemError() { return std::strerror(errno); }
+
+double steadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 /// The termios constant of `baud` bits/s. @throws ValueError when there is none.
 speed_t baudConstant(unsigned baud) {
@@ -214,6 +220,30 @@ ByteLink::~ByteLink() {
   }
 }
 
+void ByteLink::notePeer(const void* address, unsigned length) {
+  const double now_s = steadySeconds();
+  for (Peer& peer : peers_) {
+    if (peer.length == length && std::memcmp(peer.address, address, length) == 0) {
+      peer.heard_s = now_s;
+      return;
+    }
+  }
+  Peer peer;
+  std::memcpy(peer.address, address, length);
+  peer.length = length;
+  peer.heard_s = now_s;
+  peers_.push_back(peer);
+  forgetSilentPeers();
+}
+
+void ByteLink::forgetSilentPeers() {
+  const double now_s = steadySeconds();
+  std::erase_if(peers_, [&](const Peer& peer) { return now_s - peer.heard_s > kUdpPeerTimeout_s; });
+  if (peers_.size() <= kUdpMaxPeers) return;
+  std::stable_sort(peers_.begin(), peers_.end(), [](const Peer& a, const Peer& b) { return a.heard_s > b.heard_s; });
+  peers_.resize(kUdpMaxPeers);
+}
+
 long ByteLink::acceptClient() {
   const int client = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
   if (client < 0) {
@@ -231,10 +261,7 @@ long ByteLink::read(std::span<std::uint8_t> buffer) {
     sockaddr_storage from{};
     socklen_t size = sizeof from;
     got = ::recvfrom(fd_, buffer.data(), buffer.size(), 0, reinterpret_cast<sockaddr*>(&from), &size);
-    if (got >= 0) {
-      std::memcpy(peer_address_, &from, size);
-      peer_length_ = size;
-    }
+    if (got > 0) notePeer(&from, size);  // an empty datagram registers no one (bridges: a line break)
   } else if (datagrams_) {
     got = ::recv(fd_, buffer.data(), buffer.size(), 0);
   } else {
@@ -269,9 +296,17 @@ bool ByteLink::write(std::span<const std::uint8_t> bytes) {
   if (datagrams_) {
     ssize_t sent = 0;
     if (listening_) {
-      if (peer_length_ == 0) return false;
-      sent = ::sendto(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL, reinterpret_cast<const sockaddr*>(peer_address_),
-                      peer_length_);
+      forgetSilentPeers();
+      bool reached = false;
+      for (const Peer& peer : peers_) {
+        if (::sendto(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL, reinterpret_cast<const sockaddr*>(peer.address),
+                     peer.length) >= 0) {
+          reached = true;
+        } else if (errno != ECONNREFUSED && errno != EINTR && errno != EAGAIN) {
+          throw FileError("sending to a peer of " + description_ + ": " + systemError());
+        }
+      }
+      return reached;
     } else {
       sent = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
     }

@@ -12,6 +12,9 @@ namespace sonarmap::live {
 HeadInput::HeadInput(const std::string& spec, unsigned baud, LogFormat format, bool drive, const HeadSettings& settings)
     : link_(spec, baud), decoder_(format, {settings.sound_speed_m_s, 0.0}, spec), buffer_(65536) {
   if (drive && link_.speaksFirst()) driver_ = makeHeadDriver(format, settings, link_.serial() ? baud : 0);
+  if (!driver_ && link_.networkClient() && (format == LogFormat::kPing360 || format == LogFormat::kSeaNet)) {
+    registration_ = listenerRegistration(format);
+  }
 }
 
 void HeadInput::send(const std::vector<std::uint8_t>& bytes) {
@@ -51,7 +54,13 @@ HeadRead HeadInput::read(double now_s) {
 }
 
 void HeadInput::poll(double now_s) {
-  if (!driver_) return;
+  if (!driver_) {
+    if (!registration_.empty() && now_s - last_registration_s_ >= kRegistrationPeriod_s) {
+      last_registration_s_ = now_s;
+      send(registration_);
+    }
+    return;
+  }
   DriverOutput out = driver_->poll(now_s);
   send(out.send);
   for (std::string& note : out.notes) notes_.push_back(std::move(note));

@@ -2,6 +2,9 @@
 /// @file head_input.hpp
 /// Private to src/live: a head's link and its protocol: a driver (devices/heads.hpp) that commands
 /// the head, or a decoder of what the head is made to send by another program (wire_stream.hpp).
+/// Listening over a link to a server (BlueOS's ping proxy, `bridges`, at udp://HOST:9092), it
+/// registers with a harmless request every kRegistrationPeriod_s (listenerRegistration): the
+/// server sends the head's bytes only to clients it heard from in the last 10 s.
 
 #include <cstddef>
 #include <cstdint>
@@ -38,8 +41,10 @@ class HeadInput {
   /// Reads what the link has and hands it to the driver or decoder; sends the driver's replies.
   /// @throws FileError on a link error; ValueError when the link sends a Ping Viewer log.
   HeadRead read(double now_s);
-  /// The driver's repeats of overdue commands.
+  /// The driver's repeats of overdue commands; listening to a server, the registration when due
+  /// (the first at once).
   void poll(double now_s);
+  static constexpr double kRegistrationPeriod_s = 5.0;
   /// Tells the head to stop, where its protocol has a way (a write error is ignored: the run ends).
   void stop();
   /// The end of the stream: the decoder's last beams.
@@ -63,6 +68,8 @@ class HeadInput {
   std::vector<std::string> notes_;
   std::size_t bytes_ = 0;
   std::vector<std::uint8_t> buffer_;
+  std::vector<std::uint8_t> registration_;  ///< listening to a server: sent every kRegistrationPeriod_s
+  double last_registration_s_ = -1e300;
 };
 
 }  // namespace sonarmap::live

@@ -245,6 +245,7 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
         }
         if (ended) in.nav.reset();  // the navigation ended: beams beyond its last fix wait, then count
       }
+      if (in.nav) in.nav->poll(now_s);
       if (ready > 0 && (waiting[0].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
         const std::size_t bytes_before = in.head->bytes();
         live::HeadRead read = in.head->read(now_s);

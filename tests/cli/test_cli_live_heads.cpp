@@ -206,6 +206,59 @@ TEST_F(CliLiveHeads, SlamWithAutopilotHeadingOnlyMapsAsTheRecording) {
   EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
 }
 
+// BlueOS's MAVLink endpoints ("UDP Server", 14550 and 14660) send only to clients that have sent
+// them a datagram, as the emulator's `--mavlink udp://:PORT` does: live's client --nav-stream
+// sends HEARTBEATs and is served; the emulator heard them.
+TEST_F(CliLiveHeads, ANavStreamToAServerEndpointIsServedAfterItsHeartbeats) {
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--speed", "0.2",
+                  "--heading", "45", "--mavlink", "udp://:0", "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  const int nav_port = printedPort(emulator, "MAVLink at 10 Hz to ");
+  ASSERT_GT(port, 0);
+  ASSERT_GT(nav_port, 0);
+  const ProgramRun run = liveFor({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range",
+                                  "4", "--nav-stream", "udp://127.0.0.1:" + std::to_string(nav_port), "--resolution",
+                                  "0.05", "-o", (out_ / "live.bt").string()},
+                                 4.0);
+  ::kill(emulator.pid(), SIGTERM);
+  const ProgramRun emulated = emulator.wait();
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::size_t used = numberBefore(run.out, "beams used");
+  EXPECT_GT(used, 20U) << run.out;
+  EXPECT_LT(numberBefore(run.out, "without navigation"), used / 4) << run.out;
+  // one HEARTBEAT a second over the 4 s
+  EXPECT_GE(numberBefore(emulated.err, "datagrams received"), 3U) << emulated.err;
+}
+
+// BlueOS's ping proxy (`bridges -u 0.0.0.0:9092`) sends the head's bytes to every client it heard
+// from in the last 10 s, as the emulator's UDP head does: a `--listen-only` live beside the live
+// that drives the head registers by a request and maps the same pings.
+TEST_F(CliLiveHeads, ListeningThroughAProxyBesideTheDriverReceivesThePings) {
+  fs::create_directories(root_ / "emu");
+  fs::create_directories(root_ / "driver");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  Child driver({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range", "4", "-o",
+                (root_ / "driver" / "driver.bt").string()},
+               root_ / "driver", -1);
+  std::this_thread::sleep_for(500ms);
+  const ProgramRun listener = liveFor({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360",
+                                       "--listen-only", "-o", (out_ / "listener.bt").string()},
+                                      4.0);
+  ::kill(driver.pid(), SIGINT);
+  const ProgramRun driven = driver.wait();
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(driven.exit_code, 0) << driven.err;
+  ASSERT_EQ(listener.exit_code, 0) << listener.err;
+  EXPECT_NE(listener.err.find("(listening)"), std::string::npos) << listener.err;
+  EXPECT_GT(numberBefore(listener.out, "beams used"), 100U) << listener.out << listener.err;
+}
+
 // The navigation sent by node-mavlink (npm), a MAVLink implementation other than ours, from rows a
 // CSV also gives: the fixes live took are those rows (to float32), and the recording maps to the live map.
 TEST_F(CliLiveHeads, NodeMavlinkNavigationIsTakenAsSent) {

@@ -25,6 +25,16 @@ namespace sonarmap {
 ///         what it can take).
 std::unique_ptr<HeadDriver> makeHeadDriver(LogFormat format, const HeadSettings& settings, unsigned link_baud);
 
+/// What a program that only listens to a head sends to the UDP server relaying it, so that the
+/// server sends it the head's bytes: BlueOS's `bridges` (the ping proxy on 9092) serves only the
+/// clients a datagram came from in the last 10 s, and writes their bytes to the head
+/// (patrickelectric/bridges, src/socket.rs and src/main.rs; an empty datagram makes it send the
+/// head a line break, so it is never empty). A request the head answers without changing any
+/// setting: Ping360, general_request(protocol_version) (ping-python's first message); SeaNet,
+/// mtSendVersion (the drivers' first question).
+/// @throws ValueError for another format.
+std::vector<std::uint8_t> listenerRegistration(LogFormat format);
+
 /// The heads `sonarmap emulate` emulates, by their simulator preset (sim/sonar_presets.hpp):
 /// "ping360", "ping360-2m", "ping360-5m" (ping360_emulator.hpp: one Ping360, the preset choosing
 /// the scene's size), "micron", "seaking-30", "seaking-50" (seanet_emulator.hpp).
