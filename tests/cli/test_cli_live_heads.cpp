@@ -232,6 +232,48 @@ TEST_F(CliLiveHeads, ANavStreamToAServerEndpointIsServedAfterItsHeartbeats) {
   EXPECT_GE(numberBefore(emulated.err, "datagrams received"), 3U) << emulated.err;
 }
 
+// The same against an endpoint written with node-mavlink (npm), a MAVLink implementation other than
+// ours: it serves only a client whose datagram parses as a HEARTBEAT, and says whose it was.
+TEST_F(CliLiveHeads, ANodeMavlinkServerEndpointParsesTheHeartbeatAndServesLive) {
+  const fs::path interop(SONARMAP_INTEROP_DIR);
+  if (!fs::exists(interop / "node_modules" / "node-mavlink") || std::system("node --version > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "needs node and node-mavlink: `npm ci` in tests/interop (scripts/install-deps.sh test does it)";
+  }
+  std::ofstream csv(root_ / "nav.csv");
+  csv << "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
+  for (int i = 0; i < 30; ++i) csv << 100.0 + 0.1 * i << "," << 0.01 * i << ",0,1.5,0,0,0.3\n";
+  csv.close();
+  const int nav_port = freeUdpPort();
+  const std::string serve = "node " + (interop / "encode_navigation.js").string() + " " + (root_ / "nav.csv").string() +
+                            " --version 2 --serve " + std::to_string(nav_port) + " > " + (root_ / "endpoint.out").string();
+  int served = -1;
+  std::thread endpoint([&] { served = std::system(serve.c_str()); });
+  std::this_thread::sleep_for(300ms);
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  fs::create_directories(root_ / "live");
+  const fs::path recording = out_ / "dive.mcap";
+  Child live({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range", "4", "--nav-stream",
+              "udp://127.0.0.1:" + std::to_string(nav_port), "--record", recording.string(), "-o",
+              (out_ / "live.bt").string()},
+             root_ / "live", -1);
+  endpoint.join();
+  ::kill(live.pid(), SIGINT);
+  const ProgramRun run = live.wait();
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  ASSERT_EQ(served, 0) << readFile(root_ / "endpoint.out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // a companion computer's heartbeat: system 1, component 191, MAV_TYPE_ONBOARD_CONTROLLER, MAV_AUTOPILOT_INVALID
+  EXPECT_NE(readFile(root_ / "endpoint.out").find(R"({"sysid":1,"compid":191,"type":18,"autopilot":8})"), std::string::npos)
+      << readFile(root_ / "endpoint.out");
+  const std::optional<RosBagNavigation> nav = readRosBagNavigation(recording.string());
+  ASSERT_TRUE(nav.has_value());
+  EXPECT_GE(nav->track.size(), 20U);  // UDP on loopback: all or nearly all of the 30 rows
+}
+
 // BlueOS's ping proxy (`bridges -u 0.0.0.0:9092`) sends the head's bytes to every client it heard
 // from in the last 10 s, as the emulator's UDP head does: a `--listen-only` live beside the live
 // that drives the head registers by a request and maps the same pings.

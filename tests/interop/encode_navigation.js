@@ -9,6 +9,11 @@
 //       (epoch + boot time + 20 ms, + 0..30 ms of jitter after the first row)
 //   node encode_navigation.js NAV.csv --version 1|2 --udp HOST:PORT
 //       sends each row's frames as one datagram, in real time (the rows' time differences)
+//   node encode_navigation.js NAV.csv --version 1|2 --serve PORT
+//       a BlueOS "UDP Server" MAVLink endpoint on 127.0.0.1:PORT: sends nothing until a client's
+//       datagram parses (node-mavlink's splitter and parser) as a HEARTBEAT; prints a JSON line per
+//       HEARTBEAT heard ({sysid, compid, type, autopilot}); sends the rows, in real time, to every
+//       client so heard; exits 0 after the rows, 1 when no HEARTBEAT came in 10 s
 'use strict'
 const fs = require('fs')
 const dgram = require('dgram')
@@ -83,6 +88,46 @@ if (tlog) {
     }
   })
   fs.writeFileSync(tlog, Buffer.concat(records))
+} else if (option('--serve')) {
+  const { MavLinkPacketSplitter, MavLinkPacketParser } = require('node-mavlink')
+  const { PassThrough } = require('stream')
+  const socket = dgram.createSocket('udp4')
+  const clients = new Map()  // "address:port" → {address, port}
+  const timeout = setTimeout(() => { console.error('no HEARTBEAT in 10 s'); process.exit(1) }, 10000)
+  let started = false
+  const sendRows = () => {
+    const start = Date.now()
+    let index = 0
+    const next = () => {
+      if (index === rows.length) {
+        socket.close()
+        return
+      }
+      const datagram = Buffer.concat(rowFrames(rows[index], index))
+      index += 1
+      for (const client of clients.values()) socket.send(datagram, client.port, client.address)
+      if (index < rows.length) setTimeout(next, Math.max(0, start + (rows[index][0] - rows[0][0]) * 1000 - Date.now()))
+      else setTimeout(next, 50)
+    }
+    next()
+  }
+  socket.on('message', (datagram, from) => {
+    const input = new PassThrough()
+    input.pipe(new MavLinkPacketSplitter()).pipe(new MavLinkPacketParser()).on('data', packet => {
+      if (packet.header.msgid !== minimal.Heartbeat.MSG_ID) return
+      const beat = packet.protocol.data(packet.payload, minimal.Heartbeat)
+      process.stdout.write(JSON.stringify({ sysid: packet.header.sysid, compid: packet.header.compid, type: beat.type,
+        autopilot: beat.autopilot }) + '\n')
+      clients.set(`${from.address}:${from.port}`, { address: from.address, port: from.port })
+      if (!started) {
+        started = true
+        clearTimeout(timeout)
+        sendRows()
+      }
+    })
+    input.end(datagram)
+  })
+  socket.bind(Number(option('--serve')), '127.0.0.1')
 } else {
   const [host, port] = option('--udp').split(':')
   const socket = dgram.createSocket('udp4')
