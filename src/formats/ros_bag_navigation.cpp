@@ -101,7 +101,9 @@ std::vector<RosBagTopic> listRosBagTopics(const std::string& path, const std::st
 std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, const RosBagNavOptions& options) {
   return detail::withBagErrors(path, [&]() -> std::optional<RosBagNavigation> {
     detail::RosBagFile bag(path, options.msg_path);
-    // The candidates: every topic with a pose, nav_msgs/Odometry first, then by message count.
+    // The candidates: every topic with a pose, nav_msgs/Odometry first, then by message count. A
+    // topic without a message is no navigation unless named (a recording made without one still
+    // declares its channel).
     struct Candidate {
       const RosBagTopic* topic;
       std::vector<std::string> path;
@@ -111,6 +113,7 @@ std::optional<RosBagNavigation> readRosBagNavigation(const std::string& path, co
     for (const RosBagTopic& topic : bag.topics()) {
       if (!options.nav_topic.empty() && topic.topic != options.nav_topic) continue;
       named = true;
+      if (options.nav_topic.empty() && topic.messages == 0) continue;
       const std::string& definition = bag.definition(topic);
       if (definition.empty()) continue;
       const RosSchema schema = bag.schema(topic);

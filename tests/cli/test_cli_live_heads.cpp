@@ -111,6 +111,13 @@ TEST_F(CliLiveHeads, DrivesAPing360AtAnUdpAddress) {
   EXPECT_NE(emulated.err.find("pings sent"), std::string::npos) << emulated.err;
   EXPECT_GE(numberBefore(emulated.err, "pings sent"), log.beams.size());
   ASSERT_TRUE(fs::exists(out_ / "live.bt"));
+  // Recorded without navigation (a head on a stand): the recording maps and is described, as the
+  // summary line tells the user, and its map is the live one.
+  const ProgramRun info = this->run({"info", recording.string()});
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  const ProgramRun batch = this->run({"map", recording.string(), "-q", "-o", (root_ / "batch.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs";
 }
 
 // A Tritech Micron on a serial line (a pseudo-terminal): rebooted, asked its version, configured,
