@@ -35,11 +35,12 @@
 namespace sonarmap::cli {
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;  // set by SIGINT / SIGTERM: finish and write the map
+volatile std::sig_atomic_t g_stop = 0;  // set by SIGINT / SIGTERM / SIGHUP: finish and write the map
 
 extern "C" void onStopSignal(int) { g_stop = 1; }
 
-/// SIGINT and SIGTERM set g_stop and interrupt poll() (no SA_RESTART).
+/// SIGINT, SIGTERM and SIGHUP set g_stop and interrupt poll() (no SA_RESTART). SIGHUP is what a
+/// closed SSH session or terminal sends: the dive ends as at Ctrl-C, its map and recording whole.
 void catchStopSignals() {
   struct sigaction action {};
   action.sa_handler = onStopSignal;
@@ -47,6 +48,7 @@ void catchStopSignals() {
   action.sa_flags = 0;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);
 }
 
 /// "12.3 ms", or "-" for none (NaN: no beam reached the stage in the period).

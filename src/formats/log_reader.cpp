@@ -125,6 +125,9 @@ std::optional<LogFormat> logFormatOfPath(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) return LogFormat::kRosbag2;  // a rosbag2 folder
   std::filesystem::path name(path);
+  // A recording cut short (`live --record`'s NAME.mcap.part after a crash or a power cut): the
+  // extension before ".part".
+  if (lowerCase(name.extension().string()) == ".part") name = name.stem();
   std::string extension = lowerCase(name.extension().string());
   // A gzip-compressed beam CSV (io/text_input.hpp reads it): the extension before ".gz".
   if (extension == ".gz" && lowerCase(name.stem().extension().string()) == ".csv") extension = ".csv";

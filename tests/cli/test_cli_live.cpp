@@ -247,7 +247,11 @@ TEST_F(CliLive, AReplayedRosBagGivesTheBatchMapWithItsNavigation) {
   EXPECT_TRUE(readFile(out_ / "live.csv") == readFile(root_ / "batch.csv")) << "live --slam trajectory differs";
 }
 
-TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {
+// SIGTERM (a service stopped) and SIGHUP (the SSH session or terminal closed) end the run as Ctrl-C.
+class CliLiveStopped : public CliLive, public ::testing::WithParamInterface<int> {};
+
+TEST_P(CliLiveStopped, MidStreamWritesTheMapAndExitsZero) {
+  const int signal = GetParam();
   int pipe_fds[2];
   ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);  // the child inherits only its stdin
   Names args = liveArgs("-");
@@ -259,13 +263,16 @@ TEST_F(CliLive, SigtermMidStreamWritesTheMapAndExitsZero) {
   for (int i = 0; i < 1000 && !fs::exists(out_ / "live.bt"); ++i) std::this_thread::sleep_for(5ms);
   ASSERT_TRUE(fs::exists(out_ / "live.bt")) << "no periodic write: " << child.err();
   EXPECT_FALSE(readMapFile((out_ / "live.bt").string()).empty());  // a whole map between writes
-  ::kill(child.pid(), SIGTERM);
+  ::kill(child.pid(), signal);
   const ProgramRun run = child.wait();
   ::close(pipe_fds[1]);
   expectFinished(run);
   EXPECT_FALSE(readMapFile((out_ / "live.bt").string()).empty());
   EXPECT_EQ(listDir(out_), Names{"live.bt"});  // no temporary file left
 }
+
+INSTANTIATE_TEST_SUITE_P(Signals, CliLiveStopped, ::testing::Values(SIGTERM, SIGHUP),
+                         [](const ::testing::TestParamInfo<int>& info) { return info.param == SIGHUP ? "sighup" : "sigterm"; });
 
 TEST_F(CliLive, RejectsAFileFormatAndNoBeamIsAnError) {
   expectError(run({"live", "-", "--format", "mat", "-o", (out_ / "m.bt").string()}), 2);

@@ -52,6 +52,31 @@ TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
   EXPECT_NE(readFile(out_ / "live.bt"), batchMap()) << "the navigation did not move the beams";
 }
 
+// A run killed mid-dive (SIGKILL: a crash, a power cut) leaves NAME.mcap.part, flushed each second;
+// `map` reads it as it reads NAME.mcap, with no --format.
+TEST_F(CliLiveRecord, ARecordingCutShortMapsWithoutFlags) {
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);
+  Names args = liveArgs("-");
+  args.insert(args.end(), {"--record", (out_ / "dive.mcap").string()});
+  Child child(args, root_, pipe_fds[0]);
+  ::close(pipe_fds[0]);
+  const std::string& capture = tankCapture();
+  writeAll(pipe_fds[1], capture.substr(0, capture.size() / 2));
+  const fs::path partial = out_ / "dive.mcap.part";
+  for (int i = 0; i < 600 && !(fs::exists(partial) && fs::file_size(partial) > 4096); ++i) std::this_thread::sleep_for(5ms);
+  std::this_thread::sleep_for(1500ms);  // past the next flush
+  ::kill(child.pid(), SIGKILL);
+  child.wait();
+  ::close(pipe_fds[1]);
+  ASSERT_TRUE(fs::exists(partial));
+  const ProgramRun batch = run({"map", partial.string(), "-o", (root_ / "cut.bt").string()});
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  std::smatch used;
+  ASSERT_TRUE(std::regex_search(batch.out, used, std::regex("([0-9]+) beams used"))) << batch.out;
+  EXPECT_GT(std::stoul(used[1].str()), 100U) << batch.out;
+}
+
 // A log replayed with --rate 1 takes as long as it lasted; --rate 4 a quarter; no rate, no wait.
 TEST_F(CliLiveRecord, AReplayedLogRunsAtItsOwnPace) {
   MsisSimulationOptions options;

@@ -276,6 +276,8 @@ TEST(formatsLogFormat, NamesAndExtensions) {
   EXPECT_EQ(logFormatOfPath("2014-07-18-20-59-31.BAG"), LogFormat::kRosBag);
   EXPECT_EQ(logFormatOfPath("rosbag2_2024_05_01/rosbag2_0.mcap"), LogFormat::kMcap);
   EXPECT_EQ(logFormatOfPath("x.txt"), std::nullopt);
+  EXPECT_EQ(logFormatOfPath("dive.mcap.part"), LogFormat::kMcap);  // a recording cut short
+  EXPECT_EQ(logFormatOfPath("x.part"), std::nullopt);
   try {
     parseLogFormat("micron");
     ADD_FAILURE() << "no ValueError for an unknown format name";

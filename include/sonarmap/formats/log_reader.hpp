@@ -65,7 +65,9 @@ std::string unknownLogTypeMessage(const std::string& path);
 std::string_view logFormatName(LogFormat format);
 
 /// The format of a file by its extension, case-insensitive: `.mat`, `.csv` (and `.csv.gz`), `.v4log`, `.seanet`,
-/// `.bin`, `.bag`, `.mcap`, `.db3`, and a folder (a rosbag2 log); std::nullopt for any other.
+/// `.bin`, `.bag`, `.mcap`, `.db3`, and a folder (a rosbag2 log); a name ending in `.part` (a
+/// recording cut short: `live --record`'s file before it is whole) by the extension before it;
+/// std::nullopt for any other.
 std::optional<LogFormat> logFormatOfPath(const std::string& path);
 
 /// The nominal beam of the sonar that writes `format`: Blue Robotics Ping360 (ping360) 2° × 25°
