@@ -320,6 +320,11 @@ bool isReplay(const LiveArgs& args) {
 void runLive(const LiveArgs& args, const MapperOptions& options, const Eigen::Isometry3d& sonar_to_body) {
   // GDAL's plugin, loaded before anything is read or driven: if it is missing, not at the first write
   if (!args.map.geotiff.empty()) loadGeoTiffWriter();
+  // The outputs are written at the dive's end (and -o periodically): a folder that is missing or
+  // cannot be written is said now, as --record's is, not when the dive is over.
+  for (const std::string* output : {&args.map.output_bt, &args.map.geotiff, &args.map.trajectory_out}) {
+    if (!output->empty()) checkWritable(*output);
+  }
   if (isReplay(args)) {
     runReplay(args, options, sonar_to_body);
   } else {

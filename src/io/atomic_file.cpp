@@ -172,6 +172,12 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
   transaction.commit();
 }
 
+void checkWritable(const std::string& path) {
+  const fs::path target(path);
+  if (target.filename().empty()) throw FileError(cannotWrite(target, "not a file name"));
+  removeQuietly(createTemporary(target));
+}
+
 void writeBytesAtomically(const std::string& path, std::span<const unsigned char> bytes) {
   FileTransaction transaction;
   transaction.stageBytes(path, bytes);

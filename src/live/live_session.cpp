@@ -259,6 +259,7 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
       if (in.idle_timeout_s > 0.0 && now_s - last_byte_s >= in.idle_timeout_s) break;
     }
     report(now_s, result);
+    if (std::string line = writer.takeNote(); !line.empty()) observer_->note(line);
   }
   result.stopped = stop_requested();
   {

@@ -274,6 +274,52 @@ TEST_P(CliLiveStopped, MidStreamWritesTheMapAndExitsZero) {
 INSTANTIATE_TEST_SUITE_P(Signals, CliLiveStopped, ::testing::Values(SIGTERM, SIGHUP),
                          [](const ::testing::TestParamInfo<int>& info) { return info.param == SIGHUP ? "sighup" : "sigterm"; });
 
+// A periodic write that fails (the folder removed mid-dive) is said once, as is its recovery; the
+// run goes on and its final write succeeds.
+TEST_F(CliLive, AFailingPeriodicWriteIsSaidOnceAndItsRecovery) {
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);
+  const fs::path folder = out_ / "maps";
+  fs::create_directories(folder);
+  Names args{"live", "-", "--format", "seanet", "--write-every", "0.1", "-o", (folder / "live.bt").string()};
+  Child child(args, root_, pipe_fds[0]);
+  ::close(pipe_fds[0]);
+  const std::string& capture = tankCapture();
+  writeAll(pipe_fds[1], capture.substr(0, capture.size() / 2));
+  for (int i = 0; i < 1000 && !fs::exists(folder / "live.bt"); ++i) std::this_thread::sleep_for(5ms);
+  ASSERT_TRUE(fs::exists(folder / "live.bt")) << "no periodic write: " << child.err();
+  fs::remove_all(folder);
+  std::this_thread::sleep_for(600ms);  // several failed writes
+  fs::create_directories(folder);
+  std::this_thread::sleep_for(600ms);
+  ::kill(child.pid(), SIGTERM);
+  const ProgramRun run = child.wait();
+  ::close(pipe_fds[1]);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = run.err.find(what); at != std::string::npos; at = run.err.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("the periodic map write failed (the last good map stays): cannot write"), 1U) << run.err;
+  EXPECT_EQ(count("the periodic map writes work again"), 1U) << run.err;
+  EXPECT_FALSE(readMapFile((folder / "live.bt").string()).empty());
+}
+
+// An output that cannot be written is said before the head is read or driven (a dive's map is
+// written at its end), in one line, as --record's is.
+TEST_F(CliLive, AnUnwritableOutputIsRefusedBeforeAnyBeam) {
+  const std::string missing = (out_ / "no such folder" / "dive.bt").string();
+  const ProgramRun run = this->run({"live", "-", "--format", "seanet", "-o", missing});
+  expectError(run, 1);
+  EXPECT_NE(run.err.find("cannot write '" + missing + "': cannot create a temporary file in its folder"), std::string::npos)
+      << run.err;
+  const ProgramRun trajectory = this->run({"live", "-", "--format", "seanet", "--slam", "--trajectory",
+                                           (out_ / "gone" / "t.csv").string(), "-o", (out_ / "x.bt").string()});
+  expectError(trajectory, 1);
+  EXPECT_TRUE(listDir(out_).empty());
+}
+
 TEST_F(CliLive, RejectsAFileFormatAndNoBeamIsAnError) {
   expectError(run({"live", "-", "--format", "mat", "-o", (out_ / "m.bt").string()}), 2);
   expectError(run({"live", "-", "--format", "seanet", "--show", "turn", "-o", (out_ / "m.bt").string()}), 2);

@@ -73,4 +73,11 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
 /// Writes `bytes` to `path` atomically. @throws FileError as writeFileAtomically.
 void writeBytesAtomically(const std::string& path, std::span<const unsigned char> bytes);
 
+/// Checks now that `path` could be written later: a temporary file is created beside it and
+/// removed, as FileTransaction::stage() creates one (for a run that writes its output only at the
+/// end, so that a folder that does not exist or cannot be written is said before any work).
+/// `path` itself is not touched.
+/// @throws FileError as FileTransaction::stage() when the temporary file cannot be created.
+void checkWritable(const std::string& path);
+
 }  // namespace sonarmap
