@@ -161,6 +161,15 @@ void finishLive(const LiveArgs& args, LiveSession& session, const LiveResult& re
                  result.beams, result.fixes, result.recorded.c_str(), result.recorded.c_str());
   }
   if (result.resets > 0) std::fprintf(stderr, "sonarmap: live: the map was reset %zu times from the page\n", result.resets);
+  // A dive whose map holds no obstacle did not map what it was run for (the navigation lost, the
+  // head out of the water, a gain too low): the map is written, and the run fails.
+  if (run.mapper.stats().obstacles == 0) {
+    const std::string why = run.mapper.stats().sweeps == 0
+                                ? "no sweep completed: a sweep is mapped once its turn or sector pass ends"
+                                : std::to_string(run.mapper.stats().beams_without_nav) + " without navigation";
+    throw FileError("the map is empty: no obstacle in " + std::to_string(result.beams) + " beams (" + why +
+                    "); written to " + args.map.output_bt + " all the same");
+  }
 }
 
 /// The mapping options of a run: the sonar's beam, the integration, the navigation and SLAM.

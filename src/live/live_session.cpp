@@ -16,6 +16,7 @@
 #include "head_input.hpp"
 #include "sonarmap/live/live_map_files.hpp"
 #include "nav_input.hpp"
+#include "silence_watch.hpp"
 #include "periodic_map_writer.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/core/statistics.hpp"
@@ -48,6 +49,7 @@ struct LiveSession::Inputs {
   std::optional<double> replay_zero_s;  ///< the replayed log's time at the run's start
   std::unique_ptr<DiveRecorder> recorder;
   std::vector<SkipReasonGroup> skip_reasons;  ///< grouped as they come: a stream may run for days
+  live::SilenceWatch nav_watch{"the navigation"};  ///< a --nav-stream that falls silent, said
 };
 
 LiveSession::LiveSession(LiveInput input, LiveOutputs outputs, LiveMappingOptions mapping, NavTrack known_fixes,
@@ -233,10 +235,15 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
       now_s = secondsSinceStart();
       if (ready > 0 && in.nav && (waiting[1].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
         bool ended = false;
-        for (NavSample& fix : in.nav->read(now_s, ended)) {
+        std::vector<NavSample> fixes = in.nav->read(now_s, ended);
+        if (!fixes.empty()) {
+          if (std::optional<std::string> back = in.nav_watch.heard(now_s)) observer_->note(*back);
+        }
+        for (NavSample& fix : fixes) {
           fix.time_s = beamClock(fix.time_s);
           feedFix(std::move(fix), now_s);
         }
+        if (ended) observer_->note("the navigation stream ended (" + in.nav->description() + ")");
         result.nav_skipped = in.nav->skipped();
         result.nav_protocol = in.nav->protocol();
         for (const std::string& line : in.nav->takeNotes()) {
@@ -246,6 +253,9 @@ LiveResult LiveSession::run(const std::function<bool()>& stop_requested) {
         if (ended) in.nav.reset();  // the navigation ended: beams beyond its last fix wait, then count
       }
       if (in.nav) in.nav->poll(now_s);
+      if (std::optional<std::string> lost = in.nav_watch.check(now_s, "the beams after its last fix wait for it")) {
+        observer_->note(*lost);
+      }
       if (ready > 0 && (waiting[0].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
         const std::size_t bytes_before = in.head->bytes();
         live::HeadRead read = in.head->read(now_s);

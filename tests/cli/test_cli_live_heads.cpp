@@ -281,6 +281,25 @@ TEST_F(CliLiveHeads, ANodeMavlinkServerEndpointParsesTheHeartbeatAndServesLive) 
   EXPECT_GE(nav->track.size(), 20U);  // UDP on loopback: all or nearly all of the 30 rows
 }
 
+// A dive whose map holds no obstacle (the head 1.5 m down in the tank, below its walls) did not map
+// what it was run for: the map is written all the same, and the run fails saying so.
+TEST_F(CliLiveHeads, AnEmptyMapIsWrittenAndFailsTheRun) {
+  fs::create_directories(root_ / "emu");
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--depth", "1.5",
+                  "--duration", "60"},
+                 root_ / "emu", -1);
+  const int port = printedPort(emulator, "on ");
+  ASSERT_GT(port, 0);
+  const ProgramRun run = liveFor({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range",
+                                  "4", "--sector", "90", "-o", (out_ / "live.bt").string()},
+                                 3.0);
+  ::kill(emulator.pid(), SIGTERM);
+  emulator.wait();
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("sonarmap: error: the map is empty: no obstacle in "), std::string::npos) << run.err;
+  EXPECT_TRUE(fs::exists(out_ / "live.bt"));
+}
+
 // BlueOS's ping proxy (`bridges -u 0.0.0.0:9092`) sends the head's bytes to every client it heard
 // from in the last 10 s, as the emulator's UDP head does: a `--listen-only` live beside the live
 // that drives the head registers by a request and maps the same pings.
@@ -319,21 +338,22 @@ TEST_F(CliLiveHeads, NodeMavlinkNavigationIsTakenAsSent) {
   csv << "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
   for (int i = 0; i < 40; ++i) {
     const double t = 0.1 * i;
-    csv << 100.0 + t << "," << 0.1 * t << "," << -0.05 * t << ",1.5," << 0.01 << "," << -0.02 << "," << 0.3 + 0.05 * t << "\n";
+    csv << 100.0 + t << "," << 0.1 * t << "," << -0.05 * t << ",0.5," << 0.01 << "," << -0.02 << "," << 0.3 + 0.05 * t << "\n";
   }
   csv.close();
   const int nav_port = freeUdpPort();
   fs::create_directories(root_ / "emu");
-  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--depth", "1.5",
+  Child emulator({"emulate", "--sonar", "ping360-5m", "--scene", "tank", "--udp", "udp://:0", "--depth", "0.5",
                   "--duration", "60"},
                  root_ / "emu", -1);
   const int port = printedPort(emulator, "on ");
   ASSERT_GT(port, 0);
   fs::create_directories(root_ / "live");
   const fs::path recording = out_ / "dive.mcap";
-  Child live({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range", "4", "--nav-stream",
-              "udp://:" + std::to_string(nav_port), "--resolution", "0.05", "--record", recording.string(), "-o",
-              (out_ / "live.bt").string()},
+  // a 180° sector: passes end within the 4 s the rows take, so the map is not empty
+  Child live({"live", "udp://127.0.0.1:" + std::to_string(port), "--format", "ping360", "--range", "4", "--sector", "180",
+              "--nav-stream", "udp://:" + std::to_string(nav_port), "--resolution", "0.05", "--record", recording.string(),
+              "-o", (out_ / "live.bt").string()},
              root_ / "live", -1);
   std::this_thread::sleep_for(300ms);
   const std::string send = "node " + (interop / "encode_navigation.js").string() + " " + (root_ / "nav.csv").string() +
@@ -354,7 +374,7 @@ TEST_F(CliLiveHeads, NodeMavlinkNavigationIsTakenAsSent) {
     ASSERT_LT(row, 40U) << "a fix that is no row: " << fix.position_ned_m.transpose();
     const double t = 0.1 * static_cast<double>(row);
     EXPECT_EQ(fix.position_ned_m.y(), static_cast<double>(static_cast<float>(-0.05 * t)));
-    EXPECT_EQ(fix.position_ned_m.z(), static_cast<double>(1.5f));
+    EXPECT_EQ(fix.position_ned_m.z(), static_cast<double>(0.5f));
     EXPECT_EQ(fix.roll_rad, static_cast<double>(0.01f));
     EXPECT_EQ(fix.pitch_rad, static_cast<double>(-0.02f));
     EXPECT_EQ(fix.yaw_rad, static_cast<double>(static_cast<float>(0.3 + 0.05 * t)));
@@ -410,7 +430,7 @@ TEST_F(CliLiveHeads, ServesThePageWhileItMaps) {
   const httplib::Result reset = page.Post("/reset", acting, "", "text/plain");
   ASSERT_TRUE(reset);
   EXPECT_EQ(reset->status, 200) << reset->body;
-  std::this_thread::sleep_for(300ms);
+  std::this_thread::sleep_for(1500ms);  // a sector pass after the reset: the map is not empty
   ::kill(live.pid(), SIGINT);
   const ProgramRun run = live.wait();
   ::kill(emulator.pid(), SIGTERM);

@@ -5,6 +5,8 @@
 
 #include <sys/wait.h>
 
+#include <atomic>
+
 #include "live_fixture.hpp"
 #include "sonarmap/formats/ros_bag_writer.hpp"
 
@@ -50,6 +52,44 @@ TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
   EXPECT_NE(batch.out.find("navigation /navigation/fix"), std::string::npos) << batch.out;
   EXPECT_TRUE(readFile(out_ / "live.bt") == readFile(root_ / "batch.bt")) << "the recording's map differs from live's";
   EXPECT_NE(readFile(out_ / "live.bt"), batchMap()) << "the navigation did not move the beams";
+}
+
+// The navigation stream stops for 3 s mid-dive (10 Hz fixes: lost after 2 s) and comes back: the
+// loss is said when it happens, once, and the return; the run goes on and ends well.
+TEST_F(CliLiveRecord, ANavigationLostMidDiveIsSaidWhenItHappens) {
+  const Names args = liveWithNavStreamArgs({});
+  Child child(args, root_, -1);
+  const auto [sonar_port, nav_port] = boundPorts(child);
+  ASSERT_TRUE(sonar_port > 0 && nav_port > 0);
+  std::atomic<bool> done{false};
+  std::thread navigation([&] {
+    std::string rows = kNavHeader;
+    for (int i = 0; i < 70 && !done; ++i) {
+      const bool lost = i >= 10 && i < 40;  // 1 s of fixes, 3 s of silence, then fixes again
+      if (!lost) {
+        rows += std::to_string(0.1 * i) + ",0,0,0,0,0,0\n";
+        sendUdp(nav_port, rows);
+        rows.clear();
+      }
+      std::this_thread::sleep_for(100ms);
+    }
+  });
+  const std::string& capture = tankCapture();
+  for (int burst = 0; burst < 32; ++burst) {  // the head goes on throughout (~6.4 s)
+    sendUdp(sonar_port, capture.substr((burst % 8) * (capture.size() / 8), capture.size() / 8));
+    std::this_thread::sleep_for(200ms);
+  }
+  done = true;
+  navigation.join();
+  const ProgramRun live = child.wait();
+  EXPECT_EQ(live.exit_code, 0) << live.err;
+  const auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = live.err.find(what); at != std::string::npos; at = live.err.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("the navigation lost: nothing for "), 1U) << live.err;  // at 2 s; 3 s is not yet twice that
+  EXPECT_EQ(count("the navigation is back after "), 1U) << live.err;
 }
 
 // A run killed mid-dive (SIGKILL: a crash, a power cut) leaves NAME.mcap.part, flushed each second;
