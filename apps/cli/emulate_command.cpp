@@ -208,8 +208,7 @@ Command addEmulateCommand(CLI::App& app, EmulateArgs& args) {
       ->capture_default_str()
       ->group(help_group::kOutput);
   cmd->add_option("--mavlink", args.mavlink,
-                  "Send the vehicle's navigation as ArduSub does to this link (udp://HOST:PORT), or serve it as BlueOS's "
-                  "endpoints do (udp://:PORT: to the clients that sent a datagram)")
+                  "The vehicle's navigation as ArduSub sends it: to udp://HOST:PORT, or served at udp://:PORT as BlueOS does")
       ->group(help_group::kOutput);
   cmd->add_option("--nav-rate", args.nav_rate_hz, "HZ: navigation updates a second")
       ->capture_default_str()

@@ -4,6 +4,7 @@
 #include "sonarmap/devices/ping360_driver.hpp"
 
 #include <algorithm>
+#include <deque>
 #include <cstdio>
 #include <limits>
 #include <optional>
@@ -53,6 +54,12 @@ struct Ping360Driver::State {
   std::size_t identity_requests = 0;
   double identity_deadline_s = 0.0;
   std::size_t repeats = 0;
+  std::size_t unanswered = 0;    ///< transducer commands sent again since the last reply
+  double last_reply_s = -1.0;    ///< the last device_data that answered a command (−1: none yet)
+  std::size_t foreign = 0;       ///< device_data at an angle no command of ours asked for
+  std::size_t late = 0;          ///< device_data answering an earlier command of ours (sent again)
+  static constexpr std::size_t kCommandedKept = 8;
+  std::deque<int> commanded;     ///< the angles of our last kCommandedKept transducer commands
   std::optional<pp::DeviceData> reported;  ///< the last reply's settings (its data dropped)
 
   double last_motor_off_s = -std::numeric_limits<double>::infinity();
@@ -94,6 +101,8 @@ struct Ping360Driver::State {
     pending_angle = settings.angleOf(index);
     const int travel = head_angle ? ping360AngleDistance(*head_angle, pending_angle) : kPing360GradiansPerTurn / 2;
     pending = true;
+    commanded.push_back(pending_angle);
+    if (commanded.size() > kCommandedKept) commanded.pop_front();
     timeout_used_s = timeout_s(travel);
     deadline_s = now_s + timeout_used_s;
     append(out.send, transducer(pending_angle));
@@ -150,18 +159,32 @@ struct Ping360Driver::State {
     checkReported(out, ping);
     reported = ping;
     reported->data.clear();
-    if (!pending) {
-      out.notes.push_back("Ping360 device_data at " + std::to_string(ping.angle_grad) +
-                          " grad without a command waiting for it: dropped");
-      return;
-    }
-    if (ping.angle_grad != pending_angle) {
-      out.notes.push_back("Ping360 device_data at " + std::to_string(ping.angle_grad) + " grad while waiting for " +
-                          std::to_string(pending_angle) + " grad (the reply to a repeated command): dropped");
+    if (!pending || ping.angle_grad != pending_angle) {
+      if (std::find(commanded.begin(), commanded.end(), ping.angle_grad) != commanded.end()) {
+        // the reply to a command of ours that was sent again: said at the 1st, 2nd, 4th... such reply
+        ++late;
+        if ((late & (late - 1)) == 0) {
+          out.notes.push_back("Ping360 device_data at " + std::to_string(ping.angle_grad) + " grad while waiting for " +
+                              std::to_string(pending_angle) + " grad (the reply to a command sent again; " +
+                              std::to_string(late) + " so far): dropped");
+        }
+        return;
+      }
+      // A reply no command of ours asked for: another program (Ping Viewer, a second live) commands
+      // the head through the same proxy, and the two take turns. Said at the 1st, 2nd, 4th... such reply.
+      ++foreign;
+      if ((foreign & (foreign - 1)) == 0) {
+        out.notes.push_back("Ping360 device_data at " + std::to_string(ping.angle_grad) + " grad, " +
+                            (pending ? "not the " + std::to_string(pending_angle) + " grad commanded" : "with no command waiting") +
+                            ": another program is commanding the head (" + std::to_string(foreign) +
+                            (foreign == 1 ? " such reply" : " such replies") + " so far, dropped); stop it or run with --listen-only");
+      }
       return;
     }
     out.beams.push_back(std::move(*beam));
     pending = false;
+    unanswered = 0;
+    last_reply_s = now_s;
     ++index;
     if (phase == Phase::kScanning) sendPing(out, now_s);
   }
@@ -270,9 +293,13 @@ DriverOutput Ping360Driver::poll(double now_s) {
     s.requestIdentity(out, now_s);
   } else if (s.phase == State::Phase::kScanning && s.pending && now_s >= s.deadline_s) {
     ++s.repeats;
-    out.notes.push_back("no device_data for " + std::to_string(s.pending_angle) + " grad from the Ping360 in time (" +
-                        seconds(s.timeout_used_s) + " s): command sent again (" +
-                        std::to_string(s.repeats) + " so far)");
+    ++s.unanswered;
+    if ((s.unanswered & (s.unanswered - 1)) == 0) {  // said at the 1st, 2nd, 4th... unanswered command
+      const std::string since = s.last_reply_s < 0.0 ? "no reply yet" : "head silent for " + seconds(now_s - s.last_reply_s) + " s";
+      out.notes.push_back("no device_data for " + std::to_string(s.pending_angle) + " grad from the Ping360 in time (" +
+                          seconds(s.timeout_used_s) + " s; " + since + "): command sent again (" +
+                          std::to_string(s.unanswered) + " in a row, " + std::to_string(s.repeats) + " in all)");
+    }
     s.sendPing(out, now_s);
   }
   s.noteSkips(out, now_s);

@@ -68,6 +68,10 @@ class Ping360Bench {
   /// The driver's stop bytes sent to the head.
   void stop() { toHead(driver_.stop()); }
 
+  /// Bytes another program sends the head through the same proxy (BlueOS's bridges): the head's
+  /// replies reach the driver too.
+  void fromAnotherProgram(const std::vector<std::uint8_t>& bytes) { queue(emulator_.receive(bytes, now_)); }
+
  private:
   void step() {
     double next = now_ + 0.05;

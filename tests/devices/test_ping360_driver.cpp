@@ -120,11 +120,56 @@ TEST(devicesPing360Driver, ALostReplyIsAskedForAgain) {
   ASSERT_EQ(bench.beams().size(), 10u);
   for (std::size_t i = 0; i < 10; ++i) EXPECT_EQ(gradiansOf(bench.beams()[i]), static_cast<int>(i));
   EXPECT_EQ(bench.driver().repeats(), 1u);
-  EXPECT_TRUE(hasNote(bench.notes(), "no device_data for 2 grad from the Ping360 in time (0.34 s): command sent again (1 so far)"));
+  EXPECT_TRUE(hasNote(bench.notes(), "no device_data for 2 grad from the Ping360 in time (0.34 s; head silent for "));
+  EXPECT_TRUE(hasNote(bench.notes(), "): command sent again (1 in a row, 1 in all)"));
   // The wait was the command's timeout: travel, listening, transfer and 200 ms.
   EXPECT_NEAR(bench.driver().replyTimeout_s(1), 0.01 + 0.02664 + 107e-6 + 1224 * 10.0 / 115200 + 0.2, 1e-9);
   EXPECT_NEAR(bench.driver().replyTimeout_s(200), 2.0 + 0.02664 + 107e-6 + 1224 * 10.0 / 115200 + 0.2, 1e-9);
   EXPECT_EQ(bench.emulator().beamsSent(), 12u);  // the lost one twice, and the next under way
+}
+
+// A head that stops answering: every command is sent again at its timeout, and said at the 1st,
+// 2nd, 4th, 8th... unanswered one, with how long the head has been silent (not at every repeat).
+TEST(devicesPing360Driver, ASilentHeadIsSaidAtDoublingRepeats) {
+  Ping360Bench bench(HeadSettings{}, test::tankPing360());
+  bool silent = false;
+  bench.drop = [&](const pp::Message& message) { return silent && message.id == pp::kDeviceData; };
+  bench.start();
+  bench.runUntilBeams(5, 10.0);
+  silent = true;
+  bench.runFor(12.0);
+  std::size_t said = 0;
+  for (const std::string& note : bench.notes()) said += note.find("command sent again") != std::string::npos ? 1 : 0;
+  const std::size_t repeats = bench.driver().repeats();
+  EXPECT_GT(repeats, 20U);  // every 0.34 s for 12 s
+  EXPECT_EQ(said, static_cast<std::size_t>(std::floor(std::log2(static_cast<double>(repeats)))) + 1);
+  EXPECT_TRUE(hasNote(bench.notes(), "head silent for "));
+  EXPECT_TRUE(hasNote(bench.notes(), "command sent again (16 in a row, 16 in all)"));
+}
+
+// Another program commanding the same head through the proxy: its replies reach the driver, which
+// says so (at the 1st, 2nd, 4th... such reply), drops them, and keeps its own scan.
+TEST(devicesPing360Driver, AnotherProgramOnTheHeadIsSaid) {
+  Ping360Bench bench(HeadSettings{}, test::tankPing360());
+  bench.start();
+  bench.runUntilBeams(3, 10.0);
+  for (int i = 0; i < 5; ++i) {
+    pp::Transducer other;
+    other.angle_grad = 300;
+    other.sample_period_ticks = 80;
+    other.number_of_samples = 1200;
+    other.transmit_duration_us = 20;
+    other.transmit_frequency_khz = 750;
+    bench.fromAnotherProgram(pp::encode(other));
+    bench.runFor(0.5);
+  }
+  std::size_t said = 0;
+  for (const std::string& note : bench.notes()) said += note.find("another program is commanding the head") != std::string::npos;
+  // at the 1st, 2nd and 4th such reply: the other program's commands that the head answered (a
+  // command the head gets while busy replaces the one under way)
+  EXPECT_GE(said, 2U);
+  EXPECT_LE(said, 3U);
+  for (const Beam& beam : bench.beams()) EXPECT_NE(gradiansOf(beam), 300);
 }
 
 TEST(devicesPing360Driver, StopSendsMotorOffAndThenNothing) {
@@ -152,10 +197,10 @@ TEST(devicesPing360Driver, NacksAndStrangeRepliesBecomeNotes) {
   out = driver.poll(1.2);  // retried a second after the nack
   EXPECT_EQ(out.send.size(), 24u);
   EXPECT_EQ(driver.repeats(), 1u);
-  // A reply at another angle answers an earlier command: dropped, noted.
+  // A reply at an angle no command of ours asked for: another program commands the head; dropped, noted.
   out = driver.receive(pp::encode(pp::DeviceData{1, 1, 7, 107, 888, 750, 3, {1, 2, 3}}, 2, 0), 1.3);
   EXPECT_TRUE(out.beams.empty());
-  EXPECT_TRUE(hasNote(out.notes, "device_data at 7 grad while waiting for 0 grad"));
+  EXPECT_TRUE(hasNote(out.notes, "device_data at 7 grad, not the 0 grad commanded: another program is commanding the head"));
   // Settings the head changed are noted and shown in applied().
   out = driver.receive(pp::encode(pp::DeviceData{1, 1, 0, 100, 888, 750, 3, {1, 2, 3}}, 2, 0), 1.4);
   ASSERT_EQ(out.beams.size(), 1u);
