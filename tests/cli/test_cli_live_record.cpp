@@ -62,9 +62,9 @@ TEST_F(CliLiveRecord, ANavigationLostMidDiveIsSaidWhenItHappens) {
   const auto [sonar_port, nav_port] = boundPorts(child);
   ASSERT_TRUE(sonar_port > 0 && nav_port > 0);
   std::atomic<bool> done{false};
-  std::thread navigation([&] {
+  std::thread navigation([&] {  // on until live has ended: the only silence is the one below
     std::string rows = kNavHeader;
-    for (int i = 0; i < 70 && !done; ++i) {
+    for (int i = 0; !done; ++i) {
       const bool lost = i >= 10 && i < 40;  // 1 s of fixes, 3 s of silence, then fixes again
       if (!lost) {
         rows += std::to_string(0.1 * i) + ",0,0,0,0,0,0\n";
@@ -79,9 +79,9 @@ TEST_F(CliLiveRecord, ANavigationLostMidDiveIsSaidWhenItHappens) {
     sendUdp(sonar_port, capture.substr((burst % 8) * (capture.size() / 8), capture.size() / 8));
     std::this_thread::sleep_for(200ms);
   }
+  const ProgramRun live = child.wait();
   done = true;
   navigation.join();
-  const ProgramRun live = child.wait();
   EXPECT_EQ(live.exit_code, 0) << live.err;
   const auto count = [&](const std::string& what) {
     std::size_t n = 0;
