@@ -23,10 +23,11 @@ namespace pp = ping_protocol;
 /// Ping Viewer's "firmware defaults at boot".
 pp::DeviceData bootSettings() { return {1, 0, 0, 32, 80, 740, 1024, {}}; }
 
-/// Why `value` of `field` is outside [low, high], or empty.
+/// Why `value` of `field` is outside [low, high], or empty. ASCII: it goes on the wire as a nack's
+/// nack_message, which hosts decode as ASCII.
 std::string outside(const char* field, long value, long low, long high) {
   if (value >= low && value <= high) return {};
-  return std::string(field) + " " + std::to_string(value) + " is outside " + std::to_string(low) + "–" +
+  return std::string(field) + " " + std::to_string(value) + " is outside " + std::to_string(low) + ".." +
          std::to_string(high);
 }
 
@@ -97,6 +98,7 @@ struct Ping360Emulator::State {
     return reply(pp::encode(body, device_id, 0), now_s);
   }
 
+  /// A nack of message `id` saying `why` (ASCII: nack_message is an ASCII char array).
   TimedBytes nack(std::uint16_t id, const std::string& why, double now_s) {
     return replyWith(pp::Nack{id, pp::messageName(id) + ": " + why}, now_s);
   }

@@ -116,9 +116,9 @@ TEST(devicesPing360Emulator, RefusalsAreNacks) {
   const std::optional<pp::Nack> samples = pp::decode<pp::Nack>(only(head.receive(pp::encode(command(0, 1, 888, 1500)), 0.0)));
   ASSERT_TRUE(samples);
   EXPECT_EQ(samples->nacked_id, pp::kTransducer);
-  EXPECT_EQ(samples->text, "transducer (2601): number_of_samples 1500 is outside 200–1200");
+  EXPECT_EQ(samples->text, "transducer (2601): number_of_samples 1500 is outside 200..1200");
   EXPECT_EQ(pp::decode<pp::Nack>(only(head.receive(pp::encode(command(400)), 0.0)))->text,
-            "transducer (2601): angle 400 is outside 0–399");
+            "transducer (2601): angle 400 is outside 0..399");
   pp::Message unknown{1234, 0, 0, {1, 2}};
   EXPECT_EQ(pp::decode<pp::Nack>(only(head.receive(pp::encode(unknown), 0.0)))->text, "message 1234: not a command of this head");
   pp::Message short_transducer{pp::kTransducer, 0, 0, {1, 2, 3}};
@@ -126,6 +126,85 @@ TEST(devicesPing360Emulator, RefusalsAreNacks) {
             "transducer (2601): payload of 3 bytes, expected 14");
   EXPECT_EQ(pp::decode<pp::Nack>(only(head.receive(pp::encode(pp::GeneralRequest{pp::kTransducer}), 0.0)))->text,
             "general_request (6): transducer (2601) cannot be requested");
+  EXPECT_EQ(head.beamsSent(), 0u);
+}
+
+// nack_message is a char array hosts decode as ASCII (ping-python, Ping Viewer): every nack the
+// head can send, for every refusal it makes, carries printable 7-bit ASCII.
+TEST(devicesPing360Emulator, EveryNackTextIsAscii) {
+  Ping360Emulator head = test::tankPing360(0);
+  std::vector<pp::Message> asked;
+  // Each field of a transducer command outside its range, at both ends where it has two.
+  const pp::Transducer good = command(0);
+  for (int i = 0; i < 11; ++i) {
+    pp::Transducer t = good;
+    switch (i) {
+      case 0: t.gain_setting = 3; break;
+      case 1: t.transmit_duration_us = 0; break;
+      case 2: t.transmit_duration_us = 1001; break;
+      case 3: t.sample_period_ticks = 79; break;
+      case 4: t.sample_period_ticks = 40001; break;
+      case 5: t.transmit_frequency_khz = 499; break;
+      case 6: t.transmit_frequency_khz = 1001; break;
+      case 7: t.number_of_samples = 199; break;
+      case 8: t.number_of_samples = 1201; break;
+      case 9: t.angle_grad = 400; break;
+      default: t.angle_grad = 65535; break;
+    }
+    asked.push_back({pp::kTransducer, 0, 0, t.payload()});
+  }
+  // The same of auto_transmit, and its own fields.
+  const pp::AutoTransmit scan{1, 1, 27, 222, 750, 1200, 390, 10, 5, 0};
+  for (int i = 0; i < 13; ++i) {
+    pp::AutoTransmit a = scan;
+    switch (i) {
+      case 0: a.gain_setting = 3; break;
+      case 1: a.transmit_duration_us = 0; break;
+      case 2: a.sample_period_ticks = 40001; break;
+      case 3: a.transmit_frequency_khz = 1001; break;
+      case 4: a.number_of_samples = 1201; break;
+      case 5: a.start_angle_grad = 400; break;
+      case 6: a.stop_angle_grad = 400; break;
+      case 7: a.num_steps = 0; break;
+      case 8: a.num_steps = 11; break;
+      case 9: a.delay_ms = 101; break;
+      case 10: a.transmit_frequency_khz = 499; break;
+      case 11: a.number_of_samples = 199; break;
+      default: a.sample_period_ticks = 79; break;
+    }
+    asked.push_back({pp::kAutoTransmit, 0, 0, a.payload()});
+  }
+  // Every command the head reads, with payloads of every wrong length up to 24 bytes.
+  for (const std::uint16_t id : {pp::kGeneralRequest, pp::kTransducer, pp::kAutoTransmit, pp::kMotorOff, pp::kSetDeviceId,
+                                 pp::kReset}) {
+    for (std::size_t length = 0; length <= 24; ++length) asked.push_back({id, 0, 0, std::vector<std::uint8_t>(length, 0xFF)});
+  }
+  // Requests of every message id, reserved device ids, messages the head does not take.
+  for (int id = 0; id <= 65535; id += (id < 3000 ? 1 : 97)) {
+    asked.push_back({pp::kGeneralRequest, 0, 0, pp::GeneralRequest{static_cast<std::uint16_t>(id)}.payload()});
+  }
+  asked.push_back({pp::kSetDeviceId, 0, 0, pp::SetDeviceId{0, 0}.payload()});
+  asked.push_back({pp::kSetDeviceId, 0, 0, pp::SetDeviceId{255, 0}.payload()});
+  for (const std::uint16_t id : {0, 1, 2, 3, 4, 5, 100, 1234, 2300, 65535}) asked.push_back({id, 0, 0, {1, 2}});
+
+  std::size_t nacks = 0;
+  for (const pp::Message& message : asked) {
+    for (const TimedBytes& reply : head.receive(pp::encode(message), 0.0)) {
+      pp::MessageParser parser;
+      for (const pp::Message& answer : parser.feed(reply.bytes)) {
+        const std::optional<pp::Nack> nack = pp::decode<pp::Nack>(answer);
+        if (!nack) continue;
+        ++nacks;
+        EXPECT_FALSE(nack->text.empty()) << "a nack of " << nack->nacked_id << " without text";
+        for (const char c : nack->text) {
+          const auto byte = static_cast<unsigned char>(c);
+          EXPECT_TRUE(byte >= 0x20 && byte < 0x7F) << "byte " << static_cast<int>(byte) << " in \"" << nack->text << '"';
+        }
+      }
+    }
+  }
+  // Every command above but the three requests the head answers, motor_off and reset: a nack.
+  EXPECT_GT(nacks, 3000u);
   EXPECT_EQ(head.beamsSent(), 0u);
 }
 

@@ -17,7 +17,8 @@
 ///    duration is held within [5 µs, min(500 µs, 64 sample periods)] as Ping Viewer says the
 ///    firmware does, and the device_data reports it so. Fields outside the json's ranges (gain
 ///    0–2, angle 0–399, transmit duration 1–1000 µs, sample period 80–40000 ticks, frequency
-///    500–1000 kHz, samples 200–1200) get a nack naming the field [A]. The mode is not checked
+///    500–1000 kHz, samples 200–1200) get a nack naming the field [A]. Every nack's text is 7-bit
+///    ASCII ("angle 400 is outside 0..399"): hosts decode nack_message as ASCII. The mode is not checked
 ///    (ping-python's transmitAngle sends 0) and device_data says 1.
 ///  - auto_transmit: auto_device_data pings by themselves across the sector until motor_off, reset
 ///    or any other command but general_request: clockwise turns by num_steps when the sector is
