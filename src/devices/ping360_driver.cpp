@@ -266,6 +266,7 @@ DriverOutput Ping360Driver::start(double now_s) {
   State& s = *state_;
   if (s.phase != State::Phase::kIdle) return out;
   s.phase = State::Phase::kIdentifying;
+  out.notes = s.settings.notes;  // what the settings rounded to the head's units
   s.requestIdentity(out, now_s);
   return out;
 }

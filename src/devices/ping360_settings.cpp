@@ -35,14 +35,21 @@ int wrapGradians(long value) {
   return static_cast<int>((value % turn + turn) % turn);
 }
 
-int stepGradians(const std::optional<double>& step_rad) {
+/// The step in whole gradians: `step_rad` rounded to the nearest, at least 1 (the head's finest);
+/// a step that is not whole adds a note of its rounding to `notes`.
+int stepGradians(const std::optional<double>& step_rad, std::vector<std::string>& notes) {
   if (!step_rad) return 1;
   const double steps = *step_rad / kRadiansPerGradian;
-  const double whole = std::round(steps);
-  if (!std::isfinite(steps) || std::abs(steps - whole) > 1e-6 || whole < 1.0 || whole > kPing360MaxStepGradians) {
+  const double whole = std::max(1.0, std::round(steps));
+  if (!std::isfinite(steps) || !(steps > 0.0) || whole > kPing360MaxStepGradians) {
     throw ValueError("--step " + degrees(*step_rad) +
-                     " degrees is not a whole number of the Ping360's 0.9-degree steps (gradians) from 1 to 10: "
-                     "expected 0.9, 1.8, 2.7, 3.6, 4.5, 5.4, 6.3, 7.2, 8.1 or 9 degrees");
+                     " degrees is not a step of the Ping360: expected above 0 and up to 9 degrees (10 gradians; "
+                     "the head steps in whole gradians of 0.9 degrees)");
+  }
+  if (std::abs(steps - whole) > 1e-6) {
+    notes.push_back("--step " + degrees(*step_rad) + " degrees rounded to " + number(whole) + " gradian" +
+                    (whole == 1.0 ? "" : "s") + " = " + number(whole * kDegreesPerGradian) +
+                    " degrees (the Ping360 steps in whole gradians of 0.9 degrees)");
   }
   return static_cast<int>(whole);
 }
@@ -159,7 +166,7 @@ Ping360Settings ping360Settings(const HeadSettings& asked) {
     throw ValueError("--frequency " + number(frequency) + " kHz is outside the Ping360's 500–1000 kHz");
   }
   settings.transmit_frequency_khz = static_cast<std::uint16_t>(std::lround(frequency));
-  settings.step_grad = stepGradians(asked.step_rad);
+  settings.step_grad = stepGradians(asked.step_rad, settings.notes);
 
   if (!std::isfinite(asked.sector_center_rad)) {
     throw ValueError("--sector-center " + degrees(asked.sector_center_rad) + " degrees is not a finite bearing");

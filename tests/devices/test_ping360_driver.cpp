@@ -225,8 +225,19 @@ TEST(devicesPing360Driver, BadSettingsAreRefusedAtConstruction) {
   settings.gain = "max";
   EXPECT_THROW(Ping360Driver{settings}, ValueError);
   settings = HeadSettings{};
-  settings.step_rad = 0.01;
+  settings.step_rad = 0.2;  // 11.5 degrees, coarser than the head's 10 gradians
   EXPECT_THROW(Ping360Driver{settings}, ValueError);
+}
+
+TEST(devicesPing360Driver, TheSettingsRoundingIsSaidAtTheStart) {
+  HeadSettings settings;
+  settings.step_rad = 1.0 * std::numbers::pi / 180.0;
+  Ping360Driver driver(settings);
+  const DriverOutput out = driver.start(0.0);
+  ASSERT_EQ(out.notes.size(), 1u);
+  EXPECT_NE(out.notes[0].find("--step 1 degrees rounded to 1 gradian = 0.9 degrees"), std::string::npos) << out.notes[0];
+  EXPECT_FALSE(out.send.empty());
+  EXPECT_EQ(driver.applied().value("step_deg"), "0.9");
 }
 
 }  // namespace

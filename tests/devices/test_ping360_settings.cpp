@@ -137,6 +137,34 @@ TEST(devicesPing360Settings, AppliedNamesEachSettingWithItsUnit) {
   EXPECT_EQ(ping360GainWord(2), "high");
 }
 
+// docs/commands.md: a step is rounded to the head's unit (1 gradian, 0.9 degrees) and said.
+TEST(devicesPing360Settings, AStepBetweenGradiansIsRoundedAndSaid) {
+  const auto stepOf = [](double step_deg) {
+    HeadSettings asked;
+    asked.step_rad = step_deg * kDegree;
+    return ping360Settings(asked);
+  };
+  const Ping360Settings one = stepOf(1.0);
+  EXPECT_EQ(one.step_grad, 1);
+  EXPECT_EQ(one.applied().value("step_deg"), "0.9");
+  ASSERT_EQ(one.notes.size(), 1u);
+  EXPECT_EQ(one.notes[0],
+            "--step 1 degrees rounded to 1 gradian = 0.9 degrees (the Ping360 steps in whole gradians of 0.9 degrees)");
+  EXPECT_EQ(stepOf(1.5).step_grad, 2);    // 1.67 gradians
+  EXPECT_EQ(stepOf(0.1).step_grad, 1);    // finer than the head: its finest
+  EXPECT_EQ(stepOf(9.4).step_grad, 10);   // 10.44 gradians: its coarsest
+  EXPECT_EQ(stepOf(5.0).notes.size(), 1u);
+  // A whole number of gradians is taken as it is, without a note.
+  EXPECT_EQ(stepOf(2.7).step_grad, 3);
+  EXPECT_TRUE(stepOf(2.7).notes.empty());
+  EXPECT_TRUE(ping360Settings(HeadSettings{}).notes.empty());
+  // A sector is counted in the rounded steps: 90 degrees at 1 degree is 100 steps of 0.9.
+  HeadSettings sector;
+  sector.step_rad = 1.0 * kDegree;
+  sector.sector_width_rad = 90.0 * kDegree;
+  EXPECT_EQ(ping360Settings(sector).sector_steps, 100);
+}
+
 TEST(devicesPing360Settings, SettingsTheHeadCannotTakeAreRefused) {
   const auto refused = [](const HeadSettings& settings, const std::string& words) {
     try {
@@ -153,12 +181,14 @@ TEST(devicesPing360Settings, SettingsTheHeadCannotTakeAreRefused) {
   gain.gain = "loud";
   refused(gain, "--gain 'loud' is not a Ping360 gain setting: expected low, normal, high (or 0, 1, 2)");
   HeadSettings step;
-  step.step_rad = 1.5 * kDegree;
-  refused(step, "--step 1.5 degrees is not a whole number of the Ping360's 0.9-degree steps");
   step.step_rad = 11 * kGradian;
-  refused(step, "expected 0.9, 1.8, 2.7");
+  refused(step, "--step 9.9 degrees is not a step of the Ping360: expected above 0 and up to 9 degrees");
+  step.step_rad = 9.5 * kDegree;
+  refused(step, "--step 9.5 degrees");
   step.step_rad = 0.0;
   refused(step, "--step 0 degrees");
+  step.step_rad = -1.0 * kDegree;
+  refused(step, "--step -1 degrees");
   HeadSettings frequency;
   frequency.frequency_khz = 1001.0;
   refused(frequency, "--frequency 1001 kHz is outside the Ping360's 500–1000 kHz");

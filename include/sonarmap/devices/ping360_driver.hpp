@@ -6,7 +6,8 @@
 /// defaults, their rounding to the head's units and the settings refused: ping360_settings.hpp.
 ///
 /// The conversation:
-///  1. start(): general_request(protocol_version) and general_request(device_information) (the
+///  1. start(): the settings' rounding notes (Ping360Settings::notes), then
+///     general_request(protocol_version) and general_request(device_information) (the
 ///     protocol's discovery, docs/index.md; Ping Viewer asks for device_information). Repeated
 ///     every 0.5 s (ping-python's request timeout) until device_information arrives; a nack of the
 ///     request also ends the wait (the head is there).

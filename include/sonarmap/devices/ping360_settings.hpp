@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "sonarmap/devices/head_settings.hpp"
 
@@ -110,6 +111,9 @@ struct Ping360Settings {
   int first_grad = 0;
   int sector_steps = 0;  ///< sector: steps from one limit to the other (≥ 1)
   int center_grad = 0;   ///< the sector's centre as asked, rounded to a gradian
+  /// What was rounded to the head's units and how, a line each for the user ("--step 1 degrees
+  /// rounded to 1 gradian = 0.9 degrees ..."); Ping360Driver says them when it starts.
+  std::vector<std::string> notes;
 
   double range_m() const { return sampling.range_m(sound_speed_m_s); }
   /// The angle of the scan's ping `index` (0 the first), gradians 0–399. Full turns: first + index
@@ -123,12 +127,14 @@ struct Ping360Settings {
 };
 
 /// The Ping360 settings of `settings`: defaults for unset fields (the file's comment), the range
-/// by ping360Sampling, the transmit duration by ping360TransmitDuration_us, the step in whole
-/// gradians, a sector's limits centre ± its whole steps (first = centre − ⌊steps · step / 2⌋).
+/// by ping360Sampling, the transmit duration by ping360TransmitDuration_us, the step rounded to the
+/// nearest whole gradian, at least 1 (a step that is not whole is said in `notes`: 1° gives
+/// 1 gradian, 0.9°), a sector's limits centre ± its whole steps (first = centre − ⌊steps · step / 2⌋).
 /// @throws ValueError naming the option (as `sonarmap live` spells it) and the allowed values: a
-///         range outside 0.75–60 m; an unknown gain word; a step that is not 1–10 whole gradians
-///         (0.9°–9°); a frequency outside 500–1000 kHz; a sound speed outside 1400–1600 m/s; a
-///         sector that is not finite, narrower than one step or wider than 360°; a centre that is
+///         range outside 0.75–60 m; an unknown gain word; a step that is not above 0 or rounds to
+///         more than 10 gradians (9.45° and up; 10 is Ping Viewer's coarsest and auto_transmit's
+///         largest num_steps); a frequency outside 500–1000 kHz; a sound speed outside 1400–1600
+///         m/s; a sector that is not finite, narrower than one step or wider than 360°; a centre that is
 ///         not finite.
 Ping360Settings ping360Settings(const HeadSettings& settings);
 
