@@ -26,8 +26,9 @@ std::uint16_t crcOfText(std::string_view text, std::uint16_t crc) {
 // CRC_EXTRA of each message as mavlinkCrcExtra computes it from the XML definitions (the tests
 // recompute them from the field lists; node-mavlink's MAGIC_NUMBERs agree). Lengths: the fields'
 // sizes, extensions counted in max_length only.
-constexpr std::array<MavlinkMessageInfo, 8> kMessages{{
+constexpr std::array<MavlinkMessageInfo, 9> kMessages{{
     {0, "HEARTBEAT", 50, 9, 9},
+    {22, "PARAM_VALUE", 220, 25, 25},
     {29, "SCALED_PRESSURE", 115, 14, 16},
     {30, "ATTITUDE", 39, 28, 28},
     {32, "LOCAL_POSITION_NED", 185, 28, 28},

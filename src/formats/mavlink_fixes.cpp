@@ -24,20 +24,10 @@ constexpr std::size_t kEarlyFrames = 64;
 constexpr std::size_t kNotesPerBoot = 20;
 
 constexpr std::array<NavSource, 2> kHorizontalChain{NavSource::kLocalPosition, NavSource::kVisionDelta};
-constexpr std::array<NavSource, 5> kDepthChain{NavSource::kLocalPosition, NavSource::kGlobalPosition,
-                                               NavSource::kPressure2, NavSource::kPressure3, NavSource::kPressure1};
-
-const char* sourceName(NavSource s) {
-  switch (s) {
-    case NavSource::kLocalPosition: return "LOCAL_POSITION_NED";
-    case NavSource::kVisionDelta: return "VISION_POSITION_DELTA";
-    case NavSource::kGlobalPosition: return "GLOBAL_POSITION_INT.relative_alt";
-    case NavSource::kPressure2: return "SCALED_PRESSURE2";
-    case NavSource::kPressure3: return "SCALED_PRESSURE3";
-    case NavSource::kPressure1: return "SCALED_PRESSURE";
-  }
-  return "?";
-}
+constexpr std::size_t kIntervalsKept = 15;
+/// How long a source that has sent one sample is followed while its second tells its rhythm:
+/// 3 intervals of a 0.5 Hz stream.
+constexpr double kFirstSilence_s = 6.0;
 
 std::span<const NavSource> chainSources(int chain) {
   if (chain == 0) return kHorizontalChain;
@@ -70,11 +60,46 @@ std::string seconds(double s) {
 
 }  // namespace
 
+const char* navSourceName(NavSource s) {
+  switch (s) {
+    case NavSource::kLocalPosition: return "LOCAL_POSITION_NED";
+    case NavSource::kVisionDelta: return "VISION_POSITION_DELTA";
+    case NavSource::kGlobalPosition: return "GLOBAL_POSITION_INT.relative_alt";
+    case NavSource::kPressure2: return "SCALED_PRESSURE2";
+    case NavSource::kPressure3: return "SCALED_PRESSURE3";
+    case NavSource::kPressure1: return "SCALED_PRESSURE";
+  }
+  return "?";
+}
+
 bool SourceSeries::add(double time_s, const Eigen::Vector3d& value) {
   if (!std::isfinite(time_s) || !value.allFinite()) return false;
   if (!samples_.empty() && time_s <= samples_.back().time_s) return false;
+  if (samples_.empty()) {
+    run_start_s_ = time_s;
+  } else {
+    const double interval_s = time_s - samples_.back().time_s;
+    if (interval_s > silence_s()) run_start_s_ = time_s;  // judged by the rhythm before this sample
+    intervals_s_.push_back(interval_s);
+    if (intervals_s_.size() > kIntervalsKept) intervals_s_.pop_front();
+  }
   samples_.push_back({time_s, value});
   return true;
+}
+
+double SourceSeries::silence_s() const {
+  if (intervals_s_.empty()) return std::max(min_silence_s_, kFirstSilence_s);
+  std::vector<double> sorted(intervals_s_.begin(), intervals_s_.end());
+  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), middle, sorted.end());
+  return std::max(min_silence_s_, 3.0 * *middle);
+}
+
+std::optional<double> SourceSeries::lastTimeAtOrBefore(double time_s) const {
+  const auto after = std::upper_bound(samples_.begin(), samples_.end(), time_s,
+                                      [](double t, const Sample& s) { return t < s.time_s; });
+  if (after == samples_.begin()) return std::nullopt;
+  return (after - 1)->time_s;
 }
 
 std::optional<Eigen::Vector3d> SourceSeries::at(double time_s) const {
@@ -91,7 +116,9 @@ void SourceSeries::forgetBefore(double time_s) {
   while (samples_.size() > 1 && samples_[1].time_s <= time_s) samples_.pop_front();
 }
 
-MavlinkFixMaker::MavlinkFixMaker(const MavlinkNavigationOptions& options) : options_(options) {}
+MavlinkFixMaker::MavlinkFixMaker(const MavlinkNavigationOptions& options) : options_(options) {
+  for (SourceSeries& s : series_) s.setMinSilence_s(options.max_hold_s);
+}
 
 void MavlinkFixMaker::take(const MavlinkFrame& frame, double arrival_s, std::vector<BootFix>& out) {
   if (!frame.checked) return;
@@ -100,7 +127,8 @@ void MavlinkFixMaker::take(const MavlinkFrame& frame, double arrival_s, std::vec
     makeFixes(out, false);
     return;
   }
-  if (!isVehicleMessage(frame.message_id)) return;
+  const bool parameter = frame.message_id == MavlinkParamValue::kId;
+  if (!parameter && !isVehicleMessage(frame.message_id)) return;
   if (!vehicle_) {
     if (frame.message_id != MavlinkAttitude::kId) {
       early_.emplace_back(frame, arrival_s);
@@ -109,10 +137,20 @@ void MavlinkFixMaker::take(const MavlinkFrame& frame, double arrival_s, std::vec
     }
     vehicle_ = MavlinkSender{frame.system, frame.component};
     for (const auto& [early, early_arrival_s] : std::exchange(early_, {})) {
-      if (sameSender(early, *vehicle_)) takeVehicleFrame(early, early_arrival_s, out);
+      if (!sameSender(early, *vehicle_)) continue;
+      if (early.message_id == MavlinkParamValue::kId) {
+        takeParameter(early);
+      } else {
+        takeVehicleFrame(early, early_arrival_s, out);
+      }
     }
   }
-  if (sameSender(frame, *vehicle_)) takeVehicleFrame(frame, arrival_s, out);
+  if (!sameSender(frame, *vehicle_)) return;
+  if (parameter) {
+    takeParameter(frame);
+  } else {
+    takeVehicleFrame(frame, arrival_s, out);
+  }
 }
 
 void MavlinkFixMaker::startBoot(double time_s) {
@@ -129,6 +167,9 @@ void MavlinkFixMaker::startBoot(double time_s) {
   chain_words_ = {};
   sourced_ = {};
   last_horizontal_.reset();
+  depth_source_.reset();
+  unpaired_.clear();
+  for (auto& pairs : depth_pairs_) pairs.clear();
   boot_notes_ = 0;
 }
 
@@ -159,12 +200,16 @@ void MavlinkFixMaker::takeVehicleFrame(const MavlinkFrame& frame, double arrival
     }
     case MavlinkLocalPositionNed::kId: {
       const MavlinkLocalPositionNed p = *decodeMavlink<MavlinkLocalPositionNed>(frame);
-      series(NavSource::kLocalPosition).add(time_s, Eigen::Vector3d(p.x_m, p.y_m, p.z_m));
+      if (series(NavSource::kLocalPosition).add(time_s, Eigen::Vector3d(p.x_m, p.y_m, p.z_m))) {
+        addAutopilotDepth(NavSource::kLocalPosition, time_s, p.z_m);
+      }
       break;
     }
     case MavlinkGlobalPositionInt::kId: {
       const MavlinkGlobalPositionInt g = *decodeMavlink<MavlinkGlobalPositionInt>(frame);
-      series(NavSource::kGlobalPosition).add(time_s, Eigen::Vector3d(0.0, 0.0, -g.relative_alt_mm / 1000.0));
+      if (series(NavSource::kGlobalPosition).add(time_s, Eigen::Vector3d(0.0, 0.0, -g.relative_alt_mm / 1000.0))) {
+        addAutopilotDepth(NavSource::kGlobalPosition, time_s, -g.relative_alt_mm / 1000.0);
+      }
       if (g.lat_degE7 == 0 && g.lon_degE7 == 0) break;  // no position
       const GeodeticFix fix{time_s, {g.lat_degE7 / 1e7, g.lon_degE7 / 1e7, g.alt_mm / 1000.0}};
       try {
@@ -181,8 +226,7 @@ void MavlinkFixMaker::takeVehicleFrame(const MavlinkFrame& frame, double arrival
       const NavSource s = p.message_id == 137 ? NavSource::kPressure2
                           : p.message_id == 143 ? NavSource::kPressure3
                                                 : NavSource::kPressure1;
-      const double depth_m = depthOfPressure_m(p.press_abs_hpa * 100.0, options_.pressure);
-      series(s).add(time_s, Eigen::Vector3d(0.0, 0.0, depth_m));
+      addPressure(s, time_s, p.press_abs_hpa * 100.0);
       break;
     }
   }
@@ -237,16 +281,17 @@ MavlinkFixMaker::Choice MavlinkFixMaker::choose(Chain chain, double time_s, bool
 void MavlinkFixMaker::noteChoice(Chain chain, const Choice& choice, double time_s) {
   if (choice.source) {
     chain_value_[chain] = choice.value;
-    const std::string name = sourceName(*choice.source);
+    const std::string name = navSourceName(*choice.source);
     if (std::find(used_[chain].begin(), used_[chain].end(), name) == used_[chain].end()) used_[chain].push_back(name);
   }
   std::string words;
   if (choice.source) {
     sourced_[chain] = true;
-    words = std::string(sourceName(*choice.source)) + (choice.stale ? " (its last sample: the message stopped)" : "");
+    words = std::string(navSourceName(*choice.source)) + (choice.stale ? " (its last sample: the message stopped)" : "") +
+            (choice.calibration.empty() ? "" : " (" + choice.calibration + ")");
   } else {
     std::string names;
-    for (const NavSource s : chainSources(chain)) names += (names.empty() ? "" : ", ") + std::string(sourceName(s));
+    for (const NavSource s : chainSources(chain)) names += (names.empty() ? "" : ", ") + std::string(navSourceName(s));
     words = sourced_[chain] ? "held at its last value (" + names + " silent)" : "held at 0 (no " + names + ")";
   }
   if (words == chain_words_[chain]) return;
@@ -265,7 +310,7 @@ void MavlinkFixMaker::makeFixes(std::vector<BootFix>& out, bool final) {
     const Attitude& a = waiting_.front();
     const Choice horizontal = choose(kHorizontal, a.time_s, final);
     if (horizontal.kind == Choice::Kind::kWait) break;
-    const Choice depth = choose(kDepth, a.time_s, final);
+    const Choice depth = chooseDepth(a.time_s, final);
     if (depth.kind == Choice::Kind::kWait) break;
     if (horizontal.kind == Choice::Kind::kDrop || depth.kind == Choice::Kind::kDrop) {
       ++without_fix_;

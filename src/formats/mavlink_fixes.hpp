@@ -32,15 +32,27 @@ struct BootFix {
 };
 
 /// Samples of one source on the boot clock, strictly increasing in time: a position (NED) or, for
-/// a depth source, a depth in z.
+/// a depth source, a depth in z (metres) or, for a pressure source, the absolute pressure in z
+/// (pascals); and the source's rhythm: its recent intervals and the start of its current run.
 class SourceSeries {
  public:
   struct Sample {
     double time_s;
     Eigen::Vector3d value;
   };
-  /// Adds a sample; one not after the last is ignored (false).
+  /// The shortest silence_s() (seconds, > 0): MavlinkNavigationOptions::max_hold_s.
+  void setMinSilence_s(double seconds) { min_silence_s_ = seconds; }
+  /// Adds a sample; one not after the last is ignored (false). A sample after a silence longer
+  /// than silence_s() starts a new run.
   bool add(double time_s, const Eigen::Vector3d& value);
+  /// How long the source may be silent and still be followed, seconds: 3 × the median of its last
+  /// 15 intervals, at least the minimum silence; before its second sample, 6 s (3 intervals of a
+  /// 0.5 Hz stream), at least the minimum.
+  double silence_s() const;
+  /// The time of the first sample of the current run (after the last silence longer than silence_s()).
+  double runStart_s() const { return run_start_s_; }
+  /// The time of the last sample at or before `time_s`; nullopt when none is kept.
+  std::optional<double> lastTimeAtOrBefore(double time_s) const;
   /// Sets the last sample's value (a sample for the same time, already taken).
   void setLast(const Eigen::Vector3d& value) { samples_.back().value = value; }
   /// The value at `time_s`, linear between the samples around it; nullopt outside them.
@@ -52,15 +64,27 @@ class SourceSeries {
   const Eigen::Vector3d& lastValue() const { return samples_.back().value; }
   /// Forgets the samples before the last one at or before `time_s` (no later time is asked for).
   void forgetBefore(double time_s);
-  void clear() { samples_.clear(); }
+  void clear() {
+    samples_.clear();
+    intervals_s_.clear();
+    run_start_s_ = 0.0;
+  }
 
  private:
   std::deque<Sample> samples_;
+  std::deque<double> intervals_s_;  ///< the last 15 intervals between samples, seconds
+  double min_silence_s_ = 1.0;
+  double run_start_s_ = 0.0;
 };
 
 /// The sources of a fix's position, in order of preference within each chain.
 enum class NavSource { kLocalPosition, kVisionDelta, kGlobalPosition, kPressure2, kPressure3, kPressure1 };
 inline constexpr std::size_t kNavSources = 6;
+/// The sources of depth, most preferred first: the autopilot's own depths, then its barometers.
+inline constexpr std::array<NavSource, 5> kDepthChain{NavSource::kLocalPosition, NavSource::kGlobalPosition,
+                                                      NavSource::kPressure2, NavSource::kPressure3, NavSource::kPressure1};
+/// The message (and field) a source is read from: "GLOBAL_POSITION_INT.relative_alt".
+const char* navSourceName(NavSource source);
 
 class MavlinkFixMaker {
  public:
@@ -104,11 +128,32 @@ class MavlinkFixMaker {
     Eigen::Vector3d value = Eigen::Vector3d::Zero();
     std::optional<NavSource> source;  ///< unset: the chain's last value held
     bool stale = false;               ///< the source's last sample, the source having stopped
+    std::string calibration;          ///< a pressure's: how it was made a depth ("" for the others)
     static Choice wait() { return Choice{}; }
-    static Choice drop() { return Choice{Kind::kDrop, Eigen::Vector3d::Zero(), std::nullopt, false}; }
-    static Choice of(const Eigen::Vector3d& value, std::optional<NavSource> source, bool stale = false) {
-      return Choice{Kind::kValue, value, source, stale};
+    static Choice drop() { return Choice{Kind::kDrop, Eigen::Vector3d::Zero(), std::nullopt, false, {}}; }
+    static Choice of(const Eigen::Vector3d& value, std::optional<NavSource> source, bool stale = false,
+                     std::string calibration = {}) {
+      return Choice{Kind::kValue, value, source, stale, std::move(calibration)};
     }
+  };
+  /// A depth of the autopilot's own: LOCAL_POSITION_NED z or −GLOBAL_POSITION_INT.relative_alt.
+  struct AutopilotDepth {
+    NavSource source;
+    double time_s;
+    double depth_m;
+  };
+  /// An autopilot depth beside a pressure at its time: what calibrates that pressure.
+  struct DepthPair {
+    NavSource autopilot;
+    double depth_m;
+    double pressure_pa;
+  };
+  /// How a pressure becomes a depth: (p − surface) / pascals_per_metre + offset.
+  struct PressureCalibration {
+    double surface_pa = 0.0;
+    double pascals_per_metre = 1.0;
+    double offset_m = 0.0;
+    std::string words;
   };
   enum Chain { kHorizontal = 0, kDepth = 1 };
 
@@ -117,6 +162,14 @@ class MavlinkFixMaker {
   void startBoot(double time_s);
   void makeFixes(std::vector<BootFix>& out, bool final);
   Choice choose(Chain chain, double time_s, bool final) const;
+  // Depth (mavlink_depth_choice.cpp).
+  void takeParameter(const MavlinkFrame& frame);
+  void addAutopilotDepth(NavSource source, double time_s, double depth_m);
+  void addPressure(NavSource source, double time_s, double pressure_pa);
+  void pairDepths();
+  bool depthAlive(NavSource source, double time_s) const;
+  PressureCalibration pressureCalibration(NavSource source) const;
+  Choice chooseDepth(double time_s, bool final);
   void noteChoice(Chain chain, const Choice& choice, double time_s);
   SourceSeries& series(NavSource s) { return series_[static_cast<std::size_t>(s)]; }
   const SourceSeries& series(NavSource s) const { return series_[static_cast<std::size_t>(s)]; }
@@ -145,6 +198,13 @@ class MavlinkFixMaker {
   std::array<std::string, 2> chain_words_;  ///< the last fix's source words, per chain
   std::array<bool, 2> sourced_{};  ///< whether a fix of this boot had a source, per chain
   std::array<std::vector<std::string>, 2> used_;  ///< source names the fixes used, per chain
+  std::optional<NavSource> depth_source_;  ///< the source of the last fix's depth, this boot
+  PressureCalibration depth_calibration_;  ///< fixed when a pressure became depth_source_
+  std::deque<AutopilotDepth> unpaired_;  ///< autopilot depths awaiting a pressure at their time
+  std::array<std::deque<DepthPair>, 3> depth_pairs_;  ///< per barometer (SCALED_PRESSURE, 2, 3): the last 15
+  std::array<std::optional<double>, 3> ground_pressure_pa_;  ///< BARO1..3_GND_PRESS (or GND_ABS_PRESS, 2, 3)
+  std::optional<double> specific_gravity_;                   ///< BARO_SPEC_GRAV (or GND_SPEC_GRAV)
+  std::vector<std::string> parameters_said_;
   std::size_t without_fix_ = 0;
   std::size_t boot_notes_ = 0;
   std::vector<std::string> notes_;

@@ -51,6 +51,13 @@ MavlinkPayload toMavlinkPayload(const MavlinkHeartbeat& m) {
       .done();
 }
 
+MavlinkPayload toMavlinkPayload(const MavlinkParamValue& m) {
+  Writer w(MavlinkParamValue::kId);
+  w.put(m.param_value).put(m.param_count).put(m.param_index);
+  for (std::size_t i = 0; i < 16; ++i) w.put(i < m.param_id.size() ? m.param_id[i] : '\0');
+  return w.put(m.param_type).done();
+}
+
 MavlinkPayload toMavlinkPayload(const MavlinkAttitude& m) {
   return Writer(MavlinkAttitude::kId)
       .put(m.time_boot_ms)
@@ -115,6 +122,14 @@ template <>
 std::optional<MavlinkHeartbeat> decodeMavlink(const MavlinkFrame& f) {
   if (f.message_id != MavlinkHeartbeat::kId) return std::nullopt;
   return MavlinkHeartbeat{at<std::uint32_t>(f, 0), f.payload[4], f.payload[5], f.payload[6], f.payload[7], f.payload[8]};
+}
+
+template <>
+std::optional<MavlinkParamValue> decodeMavlink(const MavlinkFrame& f) {
+  if (f.message_id != MavlinkParamValue::kId) return std::nullopt;
+  MavlinkParamValue m{at<float>(f, 0), at<std::uint16_t>(f, 4), at<std::uint16_t>(f, 6), {}, f.payload[24]};
+  for (std::size_t i = 8; i < 24 && f.payload[i] != 0; ++i) m.param_id.push_back(static_cast<char>(f.payload[i]));
+  return m;
 }
 
 template <>

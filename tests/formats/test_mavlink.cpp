@@ -47,6 +47,9 @@ TEST(formatsMavlink, EachKnownMessagesCrcExtraAndLengthsFollowFromItsDefinition)
        {"uint32_t custom_mode", "uint8_t type", "uint8_t autopilot", "uint8_t base_mode", "uint8_t system_status",
         "uint8_t_mavlink_version mavlink_version"},
        9, 9},
+      {22, "PARAM_VALUE",
+       {"float param_value", "uint16_t param_count", "uint16_t param_index", "char[16] param_id", "uint8_t param_type"},
+       25, 25},
       {29, "SCALED_PRESSURE", {"uint32_t time_boot_ms", "float press_abs", "float press_diff", "int16_t temperature"}, 14, 16},
       {30, "ATTITUDE",
        {"uint32_t time_boot_ms", "float roll", "float pitch", "float yaw", "float rollspeed", "float pitchspeed",
@@ -76,6 +79,7 @@ TEST(formatsMavlink, EachKnownMessagesCrcExtraAndLengthsFollowFromItsDefinition)
   }
   // the values every MAVLink library carries (c_library_v2's MAVLINK_MESSAGE_CRCS)
   EXPECT_EQ(findMavlinkMessage(0)->crc_extra, 50);
+  EXPECT_EQ(findMavlinkMessage(22)->crc_extra, 220);
   EXPECT_EQ(findMavlinkMessage(30)->crc_extra, 39);
   EXPECT_EQ(findMavlinkMessage(137)->crc_extra, 195);
   EXPECT_EQ(findMavlinkMessage(11011)->crc_extra, 106);
@@ -266,6 +270,15 @@ TEST(formatsMavlink, EveryMessageComesBackFieldByField) {
   EXPECT_EQ(h.base_mode, 81);
   EXPECT_EQ(h.system_status, 4);
   EXPECT_EQ(h.mavlink_version, 3);
+  const MavlinkParamValue q =
+      *decodeMavlink<MavlinkParamValue>(roundTrip(toMavlinkPayload(MavlinkParamValue{1.024f, 900, 65535, "BARO_SPEC_GRAV", 9})));
+  EXPECT_EQ(q.param_value, 1.024f);
+  EXPECT_EQ(q.param_count, 900);
+  EXPECT_EQ(q.param_index, 65535);
+  EXPECT_EQ(q.param_id, "BARO_SPEC_GRAV");
+  EXPECT_EQ(q.param_type, 9);
+  EXPECT_EQ(decodeMavlink<MavlinkParamValue>(roundTrip(toMavlinkPayload(MavlinkParamValue{0, 1, 0, "SIXTEEN_LETTERS_", 9})))->param_id,
+            "SIXTEEN_LETTERS_");  // no NUL after a name of 16
   const MavlinkLocalPositionNed l =
       *decodeMavlink<MavlinkLocalPositionNed>(roundTrip(toMavlinkPayload(MavlinkLocalPositionNed{9, 1.5f, -2.5f, 3.5f, 0.1f, 0.2f, -0.3f})));
   EXPECT_EQ(l.time_boot_ms, 9u);

@@ -4,7 +4,7 @@
 /// protocol's own units (named in each field), decoded from a MavlinkFrame and encoded into a
 /// payload for MavlinkEncoder (mavlink.hpp).
 ///
-/// Sources: common.xml (ATTITUDE, LOCAL_POSITION_NED, SCALED_PRESSURE, SCALED_PRESSURE2,
+/// Sources: common.xml (PARAM_VALUE, ATTITUDE, LOCAL_POSITION_NED, SCALED_PRESSURE, SCALED_PRESSURE2,
 /// SCALED_PRESSURE3), minimal.xml (HEARTBEAT), standard.xml (GLOBAL_POSITION_INT),
 /// ardupilotmega.xml (VISION_POSITION_DELTA), in mavlink/mavlink's message_definitions/v1.0; the
 /// wire order of the fields is by type size, largest first (serialization spec). Frames: ATTITUDE's
@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "sonarmap/formats/mavlink.hpp"
@@ -31,6 +32,17 @@ struct MavlinkHeartbeat {
   std::uint8_t base_mode = 0;     ///< MAV_MODE_FLAG bits
   std::uint8_t system_status = 0; ///< MAV_STATE
   std::uint8_t mavlink_version = 3;
+};
+
+/// PARAM_VALUE (#22): one of the sender's parameters, sent when a ground station asks for them
+/// (QGroundControl reads them all on connecting) and when the autopilot changes one.
+struct MavlinkParamValue {
+  static constexpr std::uint32_t kId = 22;
+  float param_value = 0;           ///< the value, a float whatever param_type says (ArduPilot sends them so)
+  std::uint16_t param_count = 0;   ///< the sender's number of parameters
+  std::uint16_t param_index = 0;   ///< this one's index; 65535 when sent unasked
+  std::string param_id;            ///< its name, up to 16 ASCII characters ("BARO_SPEC_GRAV")
+  std::uint8_t param_type = 9;     ///< MAV_PARAM_TYPE: 9 REAL32
 };
 
 /// ATTITUDE (#30).
@@ -89,6 +101,8 @@ struct MavlinkPayload {
 };
 
 MavlinkPayload toMavlinkPayload(const MavlinkHeartbeat& message);
+/// param_id is cut to its first 16 characters (a name of 16 has no NUL on the wire).
+MavlinkPayload toMavlinkPayload(const MavlinkParamValue& message);
 MavlinkPayload toMavlinkPayload(const MavlinkAttitude& message);
 MavlinkPayload toMavlinkPayload(const MavlinkLocalPositionNed& message);
 MavlinkPayload toMavlinkPayload(const MavlinkGlobalPositionInt& message);
@@ -103,6 +117,8 @@ template <class Message>
 std::optional<Message> decodeMavlink(const MavlinkFrame& frame);
 
 template <> std::optional<MavlinkHeartbeat> decodeMavlink(const MavlinkFrame& frame);
+/// param_id: the characters before the first NUL, at most 16.
+template <> std::optional<MavlinkParamValue> decodeMavlink(const MavlinkFrame& frame);
 template <> std::optional<MavlinkAttitude> decodeMavlink(const MavlinkFrame& frame);
 template <> std::optional<MavlinkLocalPositionNed> decodeMavlink(const MavlinkFrame& frame);
 template <> std::optional<MavlinkGlobalPositionInt> decodeMavlink(const MavlinkFrame& frame);

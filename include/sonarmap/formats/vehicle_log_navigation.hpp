@@ -22,7 +22,8 @@
 namespace sonarmap {
 
 /// What turns a pressure into a depth where a log gives only pressure (depth = (p − surface) /
-/// (ρ g), g = 9.80665 m/s²).
+/// (ρ g), g = 9.80665 m/s²). MAVLink streams and `.tlog`s use them only where the autopilot gave
+/// no calibration of its own (mavlink_navigation.hpp, "Depth").
 struct VehicleLogOptions {
   double water_density_kg_m3 = 1025.0;  ///< sea water; fresh water is about 997 (ArduSub's FRESH)
   double surface_pressure_pa = 101325.0;  ///< the atmosphere at the surface, pascals
@@ -37,8 +38,9 @@ struct VehicleLogOptions {
 /// into fixes as the live decoder makes them from the same stream (MavlinkNavigation,
 /// mavlink_navigation.hpp: the vehicle is the sender of the first ATTITUDE; a fix per ATTITUDE,
 /// roll, pitch, yaw in radians; north, east from LOCAL_POSITION_NED, else VISION_POSITION_DELTA,
-/// else 0; depth from LOCAL_POSITION_NED, else GLOBAL_POSITION_INT.relative_alt, else
-/// SCALED_PRESSURE2, 3, 1; each interpolated between the samples around the fix), except the
+/// else 0; depth from one of LOCAL_POSITION_NED, GLOBAL_POSITION_INT.relative_alt, SCALED_PRESSURE2,
+/// 3, 1 at a time, with hysteresis, the pressures in the autopilot's calibration (its PARAM_VALUEs,
+/// its own depth beside them); each interpolated between the samples around the fix), except the
 /// clock: each message's time_boot_ms is put on the log's UTC clock by the smallest difference
 /// between a frame's reception and its boot time over the whole boot (the least-delayed frame;
 /// again after each reboot), so reception jitter does not move the fixes; `clock_utc_s` = 0.
