@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# sonarmap for arm64 (aarch64: a Raspberry Pi 4 or 5 running BlueOS, or any 64-bit Arm Debian 12),
+# sonarmap for arm64 (aarch64: a Raspberry Pi running a 64-bit BlueOS, or any 64-bit Arm Debian 12),
 # cross-built on an amd64 Debian 12 and tested there under qemu-user. Not run by CI (it takes
-# about an hour on two cores); docs/blueos.md has its figures. As root (or through sudo):
+# 20 to 40 minutes on two cores); docs/blueos.md has its figures. As root (or through sudo):
 #   1. installs the host's amd64 tools with apt-get: the cross compiler (crossbuild-essential-arm64),
 #      mmdebstrap, qemu-user, cmake, ninja, pkg-config. The host's dpkg architectures are left as
 #      they are: no `dpkg --add-architecture arm64`, no :arm64 package on the host;
