@@ -28,8 +28,10 @@ std::string beam(const LiveBeam& b) {
 }
 
 std::string raster(const RasterInfo& r) {
-  return "{\"v\":" + integer(r.version) + ",\"north\":" + jsonNumber(r.north_m) + ",\"west\":" + jsonNumber(r.west_m) +
-         ",\"cell\":" + jsonNumber(r.cell_m) + ",\"cols\":" + std::to_string(r.cols) + ",\"rows\":" + std::to_string(r.rows) +
+  const std::string tiles = "[" + std::to_string(r.i0) + "," + std::to_string(r.i1) + "," + std::to_string(r.j0) + "," +
+                            std::to_string(r.j1) + "]";
+  return "{\"v\":" + integer(r.version) + ",\"cell\":" + jsonNumber(r.cell_m) + ",\"tp\":" + std::to_string(r.tile_px) +
+         ",\"tiles\":" + tiles + ",\"drawn\":" + integer(r.tiles_drawn) + ",\"changed\":" + integer(r.tiles_changed) +
          ",\"z\":" + jsonNumber(r.z_m) + ",\"beams\":" + integer(r.beams) + ",\"occupied\":" + integer(r.occupied_px) +
          ",\"free\":" + integer(r.free_px) + ",\"made_s\":" + jsonNumber(r.made_s) + ",\"render_ms\":" +
          jsonNumber(1000.0 * r.render_s) + ",\"copy_ms\":" + jsonNumber(1000.0 * r.copy_s) + ",\"bytes\":" +
@@ -86,7 +88,15 @@ std::string update(const ViewUpdate& u) {
   out += "]";
   if (u.vehicle) out += ",\"vehicle\":" + point(*u.vehicle);
   if (u.settings) out += ",\"settings\":" + settings(*u.settings);
-  if (u.raster) out += ",\"raster\":" + raster(*u.raster);
+  if (u.raster) {
+    out += ",\"raster\":" + raster(*u.raster) + ",\"tile_data\":[";
+    for (std::size_t k = 0; k < u.tiles.size(); ++k) {
+      const MapTile& t = *u.tiles[k];
+      if (k > 0) out += ',';
+      out += "[" + std::to_string(t.i) + "," + std::to_string(t.j) + "," + integer(t.version) + ",\"" + t.png_base64 + "\"]";
+    }
+    out += "]";
+  }
   out += ",\"status\":" + status(u.status) + "}";
   return out;
 }

@@ -102,6 +102,11 @@ OcTree16 LiveMapping::shownSnapshot() const {
   return slam_ ? slam_->shownSnapshot() : mapper_->shownSnapshot();
 }
 
+void LiveMapping::visitShown(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) const {
+  const std::lock_guard lock(replacing_);
+  slam_ ? slam_->visitShown(box_m, visit) : mapper_->visitShown(box_m, visit);
+}
+
 std::size_t LiveMapping::sweepsIntegrated() const {
   const std::lock_guard lock(replacing_);
   return slam_ ? slam_->sweepsIntegrated() : mapper_->sweepsIntegrated();

@@ -11,7 +11,9 @@ namespace sonarmap {
 
 LivePage::LivePage(LiveSession& session, WebServerOptions options, LiveObserver* next, LiveViewOptions view)
     : session_(session), next_(next), view_(session.start(), view) {
-  view_.setMapSource([&session] { return session.mapping().shownSnapshot(); });
+  view_.setMapSource([&session](const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) {
+    session.mapping().visitShown(box_m, visit);
+  });
   WebHandlers handlers;
   handlers.save = [&session] {
     std::vector<std::pair<std::string, std::string>> written;

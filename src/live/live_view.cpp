@@ -5,8 +5,10 @@
 #include <limits>
 #include <numbers>
 
+#include "map_tiles.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/live/map_raster.hpp"
+#include "sonarmap/octree/box_copy.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
 
 namespace sonarmap {
@@ -39,6 +41,32 @@ void pushBounded(std::deque<double>& samples, double value, std::size_t cap) {
 }
 
 double wrappedAngle(double radians) { return std::remainder(radians, 2.0 * std::numbers::pi); }
+
+/// How far the mapper may place a beam from where it arrived: a beam after the last fix is shown at
+/// that fix's pose, held for up to 1 s (OnlineIntegration::kProvisionalBeams), and a small vehicle
+/// moves under 1 m/s; metres.
+constexpr double kPoseSlack_m = 1.0;
+
+/// Half the angle around a beam's bearing that its map update may reach, radians: wider than any
+/// MSIS's horizontal beam (Ping360 2°, Micron 3°, Imagenex 881 2.4°: their makers' −3 dB widths).
+constexpr double kFootprintHalfAngle_rad = 0.1;
+
+/// Beams' footprints kept for the next picture; beyond, it draws every tile.
+constexpr std::size_t kFootprintsKept = 256;
+
+/// The part of the map (x, y) a beam may change: the segment from its sonar to its reach, widened
+/// by kFootprintHalfAngle_rad at that reach and by the pose slack.
+live::BeamFootprint footprintOf(const LiveBeam& beam) {
+  const double alpha = beam.sonar.yaw_rad + (beam.sonar.clockwise ? -beam.bearing_rad : beam.bearing_rad);
+  live::BeamFootprint footprint;
+  footprint.from_m = {beam.sonar.x_m, beam.sonar.y_m};
+  footprint.to_m = footprint.from_m + beam.range_m * Eigen::Vector2d(std::cos(alpha), std::sin(alpha));
+  footprint.margin_m = beam.range_m * std::sin(kFootprintHalfAngle_rad) + kPoseSlack_m;
+  return footprint;
+}
+
+/// The map source has been removed (LiveView::setMapSource({})): no picture.
+struct NoMapSource {};
 
 }  // namespace
 
@@ -84,10 +112,19 @@ struct LiveView::State {
   std::size_t last_warning_repeats = 0;
   // Map pictures.
   RasterInfo raster;
-  std::shared_ptr<const std::vector<unsigned char>> png;
+  std::vector<std::shared_ptr<const MapTile>> tiles;  ///< the latest picture's, by (i, j)
   std::deque<std::pair<std::uint64_t, std::uint64_t>> raster_beams;  ///< (version, beams), newest last
   std::uint64_t reset_epoch = 0;
   bool map_dirty = false;
+  bool redraw_all = true;                    ///< the next picture draws every tile
+  bool forget_tiles = false;                 ///< the map was reset: the raster thread's tiles are stale
+  std::vector<live::BeamFootprint> changed;  ///< the beams shown since the last picture
+  double last_full_s = -std::numeric_limits<double>::infinity();
+  live::MapTiles map_tiles;             ///< the raster thread's own (outside the lock)
+  // The tiles put together for rasterPng, made at its first call after each picture.
+  std::uint64_t composed_version = 0;
+  RasterInfo composed_info;
+  std::shared_ptr<const std::vector<unsigned char>> composed_png;
   bool has_source = false;  ///< setMapSource was given a source
   std::optional<OcTree16> offered;
   std::uint64_t offered_beams = 0;
@@ -116,27 +153,30 @@ struct LiveView::State {
     ++changes;
   }
 
-  /// Publishes a picture, made for `beams` beams, as the next version.
-  void publish(const MapRaster& made, std::vector<unsigned char> bytes, std::uint64_t made_beams, double now_s,
-               double render_s, double copy_s) {
+  /// Publishes a picture, made for `beams` beams, as version `version`.
+  void publish(const live::TilePicture& made, std::uint64_t version, std::uint64_t made_beams, double now_s,
+               double render_s) {
     RasterInfo info;
-    info.version = raster.version + 1;
-    info.north_m = made.north_m;
-    info.west_m = made.west_m;
-    info.cell_m = made.cell_m;
-    info.cols = made.image.cols;
-    info.rows = made.image.rows;
+    info.version = version;
+    info.cell_m = made.grid.cell_m();
+    info.tile_px = made.grid.tile_px;
+    info.i0 = made.i0, info.i1 = made.i1, info.j0 = made.j0, info.j1 = made.j1;
     info.z_m = made.z_m;
     info.beams = made_beams;
-    info.occupied_px = made.occupied_px;
-    info.free_px = made.free_px;
+    for (const auto& tile : made.tiles) {
+      info.tiles.push_back({tile->i, tile->j, tile->version});
+      info.occupied_px += tile->occupied_px;
+      info.free_px += tile->free_px;
+    }
     info.made_s = now_s;
     info.render_s = render_s;
-    info.copy_s = copy_s;
-    info.png_bytes = bytes.size();
-    raster = info;
-    png = std::make_shared<const std::vector<unsigned char>>(std::move(bytes));
-    raster_beams.emplace_back(info.version, made_beams);
+    info.copy_s = made.copy_s;
+    info.tiles_drawn = made.drawn;
+    info.tiles_changed = made.changed;
+    info.png_bytes = made.png_bytes;
+    raster = std::move(info);
+    tiles = made.tiles;
+    raster_beams.emplace_back(version, made_beams);
     while (raster_beams.size() > kRastersKept) raster_beams.pop_front();
     ++changes;
   }
@@ -156,6 +196,9 @@ LiveView::LiveView(Clock::time_point epoch, LiveViewOptions options)
   if (options_.raster_max_side_px < 16) throw ValueError("live view: raster_max_side_px must be >= 16");
   options_.track_max_points = std::max<std::size_t>(options_.track_max_points, 2);
   options_.latency_samples = std::max<std::size_t>(options_.latency_samples, 1);
+  if (options_.tile_px < 16) throw ValueError("live view: tile_px must be >= 16");
+  if (!(options_.full_redraw_interval_s >= 0.0)) throw ValueError("live view: full_redraw_interval_s must be >= 0");
+  state_->map_tiles = live::MapTiles(options_.tile_px);
 }
 
 LiveView::~LiveView() {
@@ -178,6 +221,7 @@ std::uint64_t LiveView::addBeam(const Beam& beam, double arrival_s, const SonarP
   pooled->arrival_s = arrival_s;
   pooled->bearing_rad = beam.bearing_rad;
   pooled->bin_length_m = beam.bin_length_m * static_cast<double>(per_bin);
+  pooled->range_m = beam.bin_length_m * static_cast<double>(bins);
   pooled->sonar = sonar;
   std::lock_guard lock(mutex_);
   State& s = *state_;
@@ -200,8 +244,15 @@ void LiveView::mapShows(std::uint64_t beams_shown) {
   beams_shown = std::min(beams_shown, s.beams);
   if (beams_shown <= s.shown) return;
   const double now = now_s();
+  const std::uint64_t first_in_fan = s.fan.empty() ? s.beams : s.fan.front()->seq;
   for (std::uint64_t seq = s.shown; seq < beams_shown; ++seq) {
     if (const std::optional<double> arrival = s.arrivalOf(seq)) s.shown_lags.emplace_back(now, now - *arrival);
+    if (seq < first_in_fan || s.changed.size() >= kFootprintsKept) {
+      s.redraw_all = true;  // its footprint is no longer known, or too many to test
+      s.changed.clear();
+    } else if (!s.redraw_all) {
+      s.changed.push_back(footprintOf(*s.fan[seq - first_in_fan]));
+    }
   }
   while (!s.shown_lags.empty() && s.shown_lags.front().first < now - kRateWindow_s) s.shown_lags.pop_front();
   if (!s.shown_lags.empty()) s.last_lag_s = s.shown_lags.back().second;
@@ -216,7 +267,8 @@ void LiveView::setSweeps(std::size_t sweeps) {
   std::lock_guard lock(mutex_);
   if (state_->sweeps == sweeps) return;
   state_->sweeps = sweeps;
-  state_->map_dirty = true;  // a committed sweep replaces its provisional beams
+  state_->map_dirty = true;  // a committed sweep replaces its provisional beams: every tile is drawn again
+  state_->redraw_all = true;
   ++state_->changes;
   raster_wake_.notify_all();
   changed_.notify_all();
@@ -280,6 +332,7 @@ void LiveView::setMapSource(MapSource source) {
   std::lock_guard lock(mutex_);
   state_->has_source = has_source;
   state_->map_dirty = true;
+  state_->redraw_all = true;
   startRasterThread();
   raster_wake_.notify_all();
 }
@@ -289,6 +342,7 @@ void LiveView::offerMap(OcTree16 map, std::uint64_t beams_shown) {
   state_->offered.emplace(std::move(map));
   state_->offered_beams = std::min(beams_shown, state_->beams);
   state_->map_dirty = true;
+  state_->redraw_all = true;
   startRasterThread();
   raster_wake_.notify_all();
 }
@@ -299,13 +353,14 @@ void LiveView::mapReset() {
   ++s.reset_epoch;
   s.offered.reset();
   s.map_drawn_beams = std::max(s.map_drawn_beams, s.beams);  // the beams before are in no map now
-  MapRaster empty;
-  empty.image = cv::Mat(1, 1, CV_8U, cv::Scalar(128));
-  empty.cell_m = s.raster.cell_m > 0.0 ? s.raster.cell_m : 0.1;
-  empty.north_m = (s.sonar ? s.sonar->x_m : 0.0) + empty.cell_m / 2.0;
-  empty.west_m = (s.sonar ? s.sonar->y_m : 0.0) + empty.cell_m / 2.0;
+  live::TilePicture empty;  // no tile: the page drops every tile it has
+  empty.grid.resolution_m = s.raster.cell_m > 0.0 ? s.raster.cell_m : 0.1;
+  empty.grid.tile_px = options_.tile_px;
   empty.z_m = s.sonar ? s.sonar->z_m : 0.0;
-  s.publish(empty, encodePng(empty.image), s.beams, now_s(), 0.0, 0.0);
+  s.publish(empty, s.raster.version + 1, s.beams, now_s(), 0.0);
+  s.forget_tiles = true;
+  s.redraw_all = true;
+  s.changed.clear();
   s.map_dirty = true;
   raster_wake_.notify_all();
   changed_.notify_all();
@@ -336,44 +391,58 @@ void LiveView::rasterLoop(std::stop_token stop) {
     std::optional<OcTree16> offered = std::move(s.offered);
     s.offered.reset();
     const std::uint64_t beams = offered ? s.offered_beams : s.shown;
-    RasterWindow window;
-    window.centre_m = {s.sonar->x_m, s.sonar->y_m};
-    window.z_m = s.sonar->z_m;
-    window.half_width_m = options_.raster_half_width_m > 0.0 ? options_.raster_half_width_m : std::max(10.0, 1.25 * s.range_m);
-    window.max_side_px = options_.raster_max_side_px;
     const double start_s = now_s();
+    live::TileRequest request;
+    request.centre_m = {s.sonar->x_m, s.sonar->y_m};
+    request.z_m = s.sonar->z_m;
+    request.half_width_m = options_.raster_half_width_m > 0.0 ? options_.raster_half_width_m : std::max(10.0, 1.25 * s.range_m);
+    request.max_side_px = options_.raster_max_side_px;
+    request.full = s.redraw_all || offered || start_s - s.last_full_s >= options_.full_redraw_interval_s;
+    request.changed = std::move(s.changed);
+    const bool forget = s.forget_tiles;
+    const std::uint64_t version = s.raster.version + 1;
+    s.redraw_all = false;
+    s.forget_tiles = false;
+    s.changed.clear();
+    if (request.full) s.last_full_s = start_s;
     s.last_raster_start_s = start_s;
     lock.unlock();
-    std::optional<MapRaster> made;
-    std::vector<unsigned char> bytes;
+    std::optional<live::TilePicture> made;
     std::string error;
-    double copied_s = start_s;
     try {
-      std::optional<OcTree16> map = std::move(offered);
-      if (!map) {
-        std::lock_guard source_lock(source_mutex_);
-        if (source_) map.emplace(source_());
-        copied_s = now_s();
+      if (forget) s.map_tiles.clear();
+      live::MapTiles::Source source;
+      if (offered) {
+        source = [&offered](const Eigen::AlignedBox3d&, const ShownMapVisitor& visit) { visit(*offered, {}); };
+      } else {
+        source = [this](const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) {
+          std::lock_guard source_lock(source_mutex_);
+          if (!source_) throw NoMapSource{};
+          source_(box_m, visit);
+        };
       }
-      if (map) {
-        made = rasterizeMap(*map, window);
-        bytes = encodePng(made->image);
-      }
+      made = s.map_tiles.draw(request, source, version);
+    } catch (const NoMapSource&) {
     } catch (const std::exception& caught) {
       error = caught.what();
     }
     const double done_s = now_s();
     lock.lock();
     s.last_render_s = done_s - start_s;
+    if (!made) s.redraw_all = true;  // the tiles may be part drawn
     if (!error.empty()) {
       s.warn("map picture: " + error, options_.max_warnings);
       changed_.notify_all();
       continue;
     }
-    if (!made || epoch != s.reset_epoch) continue;  // no source any more, or a picture of the map before a reset
-    s.publish(*made, std::move(bytes), beams, done_s, done_s - start_s, copied_s - start_s);
+    if (!made) continue;  // no source any more
+    if (epoch != s.reset_epoch) {  // a picture of the map before a reset
+      s.forget_tiles = true;
+      continue;
+    }
+    s.publish(*made, version, beams, done_s, done_s - start_s);
     pushBounded(s.render_times, done_s - start_s, options_.latency_samples);
-    pushBounded(s.copy_times, copied_s - start_s, options_.latency_samples);
+    pushBounded(s.copy_times, made->copy_s, options_.latency_samples);
     changed_.notify_all();
   }
 }
@@ -394,7 +463,15 @@ ViewUpdate LiveView::updateSince(const ViewCursor& cursor) const {
     update.track.assign(s.track.begin() + static_cast<std::ptrdiff_t>(track_from), s.track.end());
     update.vehicle = s.vehicle;
     if (update.full || cursor.settings_version != s.settings_version) update.settings = s.settings;
-    if (s.raster.version != 0 && (update.full || cursor.raster_version != s.raster.version)) update.raster = s.raster;
+    if (s.raster.version != 0 && (update.full || cursor.raster_version != s.raster.version)) {
+      update.raster = s.raster;
+      // A cursor of a newer picture (a reader of another view) gets every tile.
+      const bool all = update.full || cursor.raster_version > s.raster.version;
+      for (const auto& tile : s.tiles) {
+        if (all || tile->version > cursor.raster_version) update.tiles.push_back(tile);
+      }
+      std::sort(update.tiles.begin(), update.tiles.end(), [](const auto& a, const auto& b) { return a->version < b->version; });
+    }
     update.fan_beams = options_.fan_beams;
     update.cursor = {true, s.beams, s.track_epoch, s.track.size(), s.settings_version, s.raster.version, s.reset_epoch, s.changes, id_};
   }
@@ -414,8 +491,35 @@ std::uint64_t LiveView::waitForChange(std::uint64_t seen, std::chrono::milliseco
 }
 
 std::pair<RasterInfo, std::shared_ptr<const std::vector<unsigned char>>> LiveView::rasterPng() const {
+  RasterInfo info;
+  std::vector<std::shared_ptr<const MapTile>> tiles;
+  Eigen::Vector2d centre(0.0, 0.0);  // of an empty picture: the sonar
+  {
+    std::lock_guard lock(mutex_);
+    const State& s = *state_;
+    if (s.raster.version == 0) return {s.raster, nullptr};
+    if (s.composed_version == s.raster.version) return {s.composed_info, s.composed_png};
+    info = s.raster;
+    tiles = s.tiles;
+    if (s.sonar) centre = {s.sonar->x_m, s.sonar->y_m};
+  }
+  TileGrid grid;
+  grid.resolution_m = info.cell_m;  // a pixel per cell: the composition needs cell and tile size only
+  grid.tile_px = info.tile_px;
+  const MapRaster composed = live::composeTiles(grid, info.z_m, tiles, centre);
+  info.north_m = composed.north_m;
+  info.west_m = composed.west_m;
+  info.cols = composed.image.cols;
+  info.rows = composed.image.rows;
+  auto png = std::make_shared<const std::vector<unsigned char>>(encodePng(composed.image));
   std::lock_guard lock(mutex_);
-  return {state_->raster, state_->png};
+  State& s = *state_;
+  if (s.raster.version == info.version) {
+    s.composed_version = info.version;
+    s.composed_info = info;
+    s.composed_png = png;
+  }
+  return {info, png};
 }
 
 LiveStatus LiveView::status() const {

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/octree/box_copy.hpp"
 #include "sonarmap/sonar/polar.hpp"
 
 namespace sonarmap {
@@ -380,6 +381,14 @@ OcTree16 OnlineMapper::shownSnapshot() const {
   OcTree16 map = mapper_.map();
   if (provisional_) provisional_->overlay(map);
   return map;
+}
+
+void OnlineMapper::visitShown(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) const {
+  const std::shared_lock lock(map_mutex_);
+  const OcTree16& committed = mapper_.map();
+  if (!provisional_ || box_m.isEmpty()) return visit(committed, {});
+  const auto [min_key, max_key] = keyBoxOf(committed.coder(), box_m);
+  visit(committed, provisional_->shownVoxels(committed, min_key, max_key));
 }
 
 MappingStats OnlineMapper::statsSnapshot() const {

@@ -3,6 +3,9 @@
 
 #include "sonarmap/mapping/provisional_beams.hpp"
 
+#include <algorithm>
+#include <unordered_map>
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -71,13 +74,18 @@ std::size_t ProvisionalBeams::size() const {
 }
 
 void ProvisionalBeams::overlay(OcTree16& map) const {
+  const auto all = static_cast<OcTree16::KeyType::Index>(~OcTree16::KeyType::Index{0});
+  overlay(map, OcTree16::KeyType{}, OcTree16::KeyType{{all, all, all}});
+}
+
+void ProvisionalBeams::overlay(OcTree16& map, const OcTree16::KeyType& min_key, const OcTree16::KeyType& max_key) const {
   if (size() == 0) return;
   if (map.resolution_m() != *resolution_m_) {
     throw ValueError("provisional beams: a map at " + std::to_string(map.resolution_m()) + " m, the layer at " +
                      std::to_string(*resolution_m_) + " m");
   }
   for (const Sweep& sweep : sweeps_) {
-    sweep.mapper.map().forEachLeaf([&map](const LeafView<16>& leaf) {
+    sweep.mapper.map().forEachLeafInBox(min_key, max_key, [&map](const LeafView<16>& leaf) {
       if (leaf.depth == OcTree16::kDepth) {
         map.updateNode(leaf.key, leaf.log_odds, true);
       } else {
@@ -86,6 +94,42 @@ void ProvisionalBeams::overlay(OcTree16& map) const {
     });
   }
   map.updateDirtyInnerOccupancy();
+}
+
+std::vector<ShownVoxel> ProvisionalBeams::shownVoxels(const OcTree16& map, const OcTree16::KeyType& min_key,
+                                                      const OcTree16::KeyType& max_key) const {
+  std::vector<ShownVoxel> shown;
+  if (size() == 0) return shown;
+  if (map.resolution_m() != *resolution_m_) {
+    throw ValueError("provisional beams: a map at " + std::to_string(map.resolution_m()) + " m, the layer at " +
+                     std::to_string(*resolution_m_) + " m");
+  }
+  const LogOddsModel& model = map.model();
+  std::unordered_map<OcTree16::KeyType, std::size_t, KeyHash<16>> index;  // key → its place in `shown`
+  for (const Sweep& sweep : sweeps_) {
+    sweep.mapper.map().forEachLeafInBox(min_key, max_key, [&](const LeafView<16>& leaf) {
+      // The leaf's voxels inside the box.
+      const auto edge = static_cast<unsigned>(leaf.edgeVoxels());
+      unsigned lo[3], hi[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        lo[axis] = std::max<unsigned>(leaf.key[axis], min_key[axis]);
+        hi[axis] = std::min<unsigned>(leaf.key[axis] + edge - 1, max_key[axis]);
+      }
+      for (unsigned z = lo[2]; z <= hi[2]; ++z) {
+        for (unsigned y = lo[1]; y <= hi[1]; ++y) {
+          for (unsigned x = lo[0]; x <= hi[0]; ++x) {
+            const OcTree16::KeyType key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y),
+                                         static_cast<std::uint16_t>(z)}};
+            const auto [at, fresh] = index.try_emplace(key, shown.size());
+            if (fresh) shown.push_back({key, map.search(key).value_or(0.0F)});
+            ShownVoxel& voxel = shown[at->second];
+            voxel.log_odds = model.update(voxel.log_odds, leaf.log_odds);
+          }
+        }
+      }
+    });
+  }
+  return shown;
 }
 
 }  // namespace sonarmap

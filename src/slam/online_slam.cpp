@@ -210,6 +210,11 @@ OcTree16 OnlineSlam::shownSnapshot() const {
   return mapper_->shownSnapshot();
 }
 
+void OnlineSlam::visitShown(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) const {
+  std::shared_lock lock(swap_mutex_);
+  mapper_->visitShown(box_m, visit);
+}
+
 void OnlineSlam::showUnmappedBeams(OnlineMapper& mapper) const {
   // The newest sweep of each head setting calibrates it (the older ones' water was dropped).
   std::vector<HeadSetting> calibrated;

@@ -220,7 +220,9 @@ int main(int argc, char** argv) {
                                       {"step_deg", std::to_string(preset.head.step_rad * 180.0 / std::numbers::pi).substr(0, 4)},
                                       {"scene", args.scene}}});
     view.setRecordingPath((args.out / "recording.txt").string());
-    view.setMapSource([&session] { return session.mapper()->shownSnapshot(); });
+    view.setMapSource([&session](const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) {
+      session.mapper()->visitShown(box_m, visit);
+    });
     // The view's raster thread stops calling into the session before the session goes.
     struct SourceGuard {
       LiveView& view;

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <mutex>
 #include <numbers>
 #include <thread>
 
@@ -14,6 +15,7 @@
 #include "sonarmap/live/live_view.hpp"
 #include "sonarmap/live/map_raster.hpp"
 #include "sonarmap/nav/navigation.hpp"
+#include "sonarmap/octree/box_copy.hpp"
 
 namespace sonarmap {
 namespace {
@@ -167,13 +169,17 @@ TEST(LiveView, TimesTheLagToTheMapAsShown) {
 TEST(LiveView, MakesTheMapPictureOnItsOwnThreadThrottled) {
   LiveViewOptions options;
   options.raster_interval_s = 0.1;
+  options.raster_half_width_m = 20.0;  // 7 × 7 tiles of 6.4 m
+  options.tile_px = 64;
   LiveView view(Clock::now(), options);
   std::atomic<int> copies{0};
   const OcTree16 map = wallMap();
-  view.setMapSource([&] {
-    ++copies;
-    std::this_thread::sleep_for(50ms);  // a slow copy: the session must not wait for it
-    return map;
+  view.setMapSource([&](const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) {
+    if (!box_m.isEmpty()) {  // not only the resolution asked for
+      ++copies;
+      std::this_thread::sleep_for(2ms);  // a slow read (about 0.1 s a picture): the session must not wait for it
+    }
+    visit(map, {});
   });
   EXPECT_EQ(view.rasterPng().second, nullptr);
   const auto start = Clock::now();
@@ -187,24 +193,26 @@ TEST(LiveView, MakesTheMapPictureOnItsOwnThreadThrottled) {
   }
   EXPECT_LT(slowest_s, 0.02);  // never the 50 ms of a copy
   ASSERT_TRUE(eventually([&] { return view.rasterPng().first.beams == 50; }));
-  // At most one picture per 0.1 s, each started after a change: about 0.5 s / (0.1 + 0.05) s.
-  EXPECT_LE(copies.load(), 8);
-  EXPECT_GE(copies.load(), 2);
+  // At most one picture per 0.1 s, each started after a change: about 0.5 s / (0.1 + 0.1) s.
+  EXPECT_LE(view.rasterPng().first.version, 8U);
+  EXPECT_GE(view.rasterPng().first.version, 2U);
   const auto [info, png] = view.rasterPng();
   ASSERT_NE(png, nullptr);
   const cv::Mat decoded = cv::imdecode(*png, cv::IMREAD_GRAYSCALE);
   RasterWindow window;
-  window.half_width_m = 62.5;  // 1.25 × the beams' 50 m
+  window.half_width_m = 20.0;
   const MapRaster expected = rasterizeMap(map, window);
   ASSERT_EQ(decoded.size(), expected.image.size());
   EXPECT_EQ(cv::countNonZero(decoded != expected.image), 0);
   EXPECT_EQ(info.cols, expected.image.cols);
   EXPECT_DOUBLE_EQ(info.north_m, expected.north_m);
   EXPECT_EQ(info.occupied_px, 60U);
-  EXPECT_EQ(info.png_bytes, png->size());
+  for (const auto& tile : view.updateSince({}).tiles) EXPECT_GT(tile->png_bytes, 0U);
+  EXPECT_EQ(info.tile_px, 64);
   EXPECT_GE(info.copy_s, 0.05);  // the source's 50 ms, timed apart
   EXPECT_GE(info.render_s, info.copy_s);
   EXPECT_GE(view.latencies().copy.median_s, 0.05);
+  EXPECT_GE(copies.load(), 49);  // each tile drawn from its own part of the map, all 49 in the first picture
   const int settled = copies.load();
   std::this_thread::sleep_for(300ms);
   EXPECT_EQ(copies.load(), settled);  // no change, no picture
@@ -218,11 +226,11 @@ TEST(LiveView, AResetDropsThePictureInTheMaking) {
   std::atomic<bool> release{false}, copying{false};
   std::atomic<int> copies{0};
   const OcTree16 map = wallMap();
-  view.setMapSource([&] {
+  view.setMapSource([&](const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) {
     copying = true;
     while (!release) std::this_thread::sleep_for(1ms);
-    ++copies;
-    return map;
+    if (!box_m.isEmpty()) ++copies;
+    visit(map, {});
   });
   view.addBeam(beamOf(100, 0.0), view.now_s(), {});
   view.mapShows(1);
@@ -236,6 +244,80 @@ TEST(LiveView, AResetDropsThePictureInTheMaking) {
   ASSERT_TRUE(eventually([&] { return view.rasterPng().first.version > after_reset.version; }));
   EXPECT_EQ(view.rasterPng().first.version, after_reset.version + 1);  // not two: the stale one was not published
   EXPECT_TRUE(view.updateSince(before).full);  // a reset starts the readers over
+  view.setMapSource({});
+}
+
+TEST(LiveView, RedrawsOnlyTheTilesItsBeamsReached) {
+  LiveViewOptions options;
+  options.raster_interval_s = 0.0;
+  options.full_redraw_interval_s = 3600.0;  // only what the beams reached
+  options.raster_half_width_m = 60.0;       // 0.1 m voxels, 6.4 m tiles of 64 px: tiles −10 … 9 each way
+  options.tile_px = 64;
+  LiveView view(Clock::now(), options);
+  std::mutex map_mutex;
+  OcTree16 map = wallMap();
+  std::atomic<int> copies{0};
+  view.setMapSource([&](const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) {
+    const std::lock_guard lock(map_mutex);
+    if (!box_m.isEmpty()) ++copies;
+    visit(map, {});
+  });
+  const auto shows = [&](std::uint64_t version) {
+    return eventually([&] { return view.rasterPng().first.version >= version; });
+  };
+  const auto mark = [&](double x, double y, bool occupied) {
+    const std::lock_guard lock(map_mutex);
+    for (int i = 0; i < 3; ++i) map.integrate(map.coder().keyOfChecked({x, y, 0.05}), occupied);
+    map.updateInnerOccupancy();
+  };
+  view.addBeam(beamOf(100, 0.0), view.now_s(), placementOf(staticSonarToMap()));  // 50 m north
+  view.mapShows(1);
+  ASSERT_TRUE(shows(1));
+  const RasterInfo first = view.rasterPng().first;
+  EXPECT_EQ(first.tiles.size(), 400U);
+  EXPECT_EQ(first.tiles_drawn, 400U);
+  EXPECT_EQ(first.occupied_px, 60U);
+
+  // A beam east (bearing π/2 clockwise: map −y) and a wall it reached, and one it did not reach (west).
+  mark(0.05, -20.05, true);
+  mark(0.05, 20.05, true);
+  view.addBeam(beamOf(100, std::numbers::pi / 2), view.now_s(), placementOf(staticSonarToMap()));
+  view.mapShows(2);
+  ASSERT_TRUE(shows(2));
+  const RasterInfo second = view.rasterPng().first;
+  EXPECT_LE(second.tiles_drawn, 50U);  // the tiles within 6 m of the beam (50 m · sin 0.1 + 1 m), not 400
+  EXPECT_GE(second.tiles_drawn, 9U);
+  EXPECT_EQ(second.tiles_changed, 1U);  // the tile holding (0, −20)
+  EXPECT_EQ(second.occupied_px, 61U);   // the west voxel is not redrawn until a full redraw
+  const ViewUpdate update = view.updateSince(view.updateSince({}).cursor);
+  EXPECT_FALSE(update.raster);  // nothing newer
+
+  // A committed sweep draws every tile again: the west voxel shows, the tiles that did not change keep their version.
+  view.setSweeps(1);
+  ASSERT_TRUE(shows(3));
+  const auto [third, png] = view.rasterPng();
+  EXPECT_EQ(third.tiles_drawn, 400U);
+  EXPECT_EQ(third.tiles_changed, 1U);
+  EXPECT_EQ(third.occupied_px, 62U);
+  RasterWindow window;
+  window.half_width_m = 60.0;
+  const MapRaster expected = rasterizeMap(map, window);
+  const cv::Mat decoded = cv::imdecode(*png, cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(decoded.size(), expected.image.size());
+  EXPECT_EQ(cv::countNonZero(decoded != expected.image), 0);
+  EXPECT_DOUBLE_EQ(third.north_m, expected.north_m);
+  EXPECT_DOUBLE_EQ(third.west_m, expected.west_m);
+  // A reader that saw the second picture gets the one tile that changed since.
+  ViewCursor at_second;
+  at_second.started = true;
+  at_second.raster_version = second.version;
+  at_second.view_id = view.updateSince({}).cursor.view_id;
+  at_second.next_beam = 2;
+  const ViewUpdate since_second = view.updateSince(at_second);
+  ASSERT_TRUE(since_second.raster);
+  ASSERT_EQ(since_second.tiles.size(), 1U);
+  EXPECT_EQ(since_second.tiles[0]->version, third.version);
+  EXPECT_EQ(view.updateSince({}).tiles.size(), 400U);  // a new reader gets every tile
   view.setMapSource({});
 }
 

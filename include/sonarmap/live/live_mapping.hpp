@@ -83,6 +83,8 @@ class LiveMapping {
   const Eigen::Isometry3d& sonarToBody() const { return options_.sonar_to_body; }
   /// A copy of the map as shown (the provisional beams over the committed map); any thread.
   OcTree16 shownSnapshot() const;
+  /// OnlineMapper::visitShown of the map as shown; safe from any thread.
+  void visitShown(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) const;
   /// Sweeps integrated so far (since the last reset); any thread.
   std::size_t sweepsIntegrated() const;
   /// Beams given since the start, and those shown in the map (since the last reset); any thread.

@@ -2,8 +2,10 @@
 /// @file live_view.hpp
 /// What the page of `sonarmap live --serve` shows, kept by the live session and read by the web
 /// server (web_server.hpp): the latest beams (the fan of the current sweep), the map at the
-/// vehicle's depth as a picture (map_raster.hpp, made on the view's own thread: the voxel layer
-/// holding the latest beam's transducer, in a window centred on it), the track, the head's settings
+/// vehicle's depth as tiles (map_raster.hpp's TileGrid, drawn on the view's own thread: the voxel
+/// layer holding the latest beam's transducer, in a window centred on it; a picture draws again
+/// only the tiles the beams shown since the last one may have changed, each PNG-encoded once for
+/// every page), the track, the head's settings
 /// and the run's status; and how long beams took from their arrival to the page's pixels, from the
 /// page's acknowledgements.
 ///
@@ -15,7 +17,8 @@
 /// Threads: every member function is safe from any thread. The session calls the writers (addBeam,
 /// mapShows, ...) from the thread that reads the sonar; each costs a lock and a copy of the beam's
 /// pooled bins (≤ max_bins), never a map copy: the map's picture is made on the view's raster
-/// thread, at most every raster_interval_s and only after the map changed.
+/// thread, at most every raster_interval_s and only after the map changed, reading the map in
+/// place through the map source (the mapper's shared lock, one tile at a time).
 /// Nothing is thrown but what the functions state.
 
 #include <chrono>
@@ -37,6 +40,7 @@
 #include <Eigen/Geometry>
 
 #include "sonarmap/devices/head_settings.hpp"
+#include "sonarmap/live/map_raster.hpp"
 #include "sonarmap/nav/navigation.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 #include "sonarmap/sonar/beam.hpp"
@@ -63,6 +67,7 @@ struct LiveBeam {
   double arrival_s = 0.0;      ///< session clock, seconds
   double bearing_rad = 0.0;    ///< sonar frame
   double bin_length_m = 0.0;   ///< of the bins below: the beam's bin length × the bins pooled into one
+  double range_m = 0.0;        ///< the beam's reach: its bin length × its bins, metres
   std::vector<std::uint8_t> intensities;  ///< the beam's bins max-pooled to ≤ LiveViewOptions::max_bins
   SonarPlacement sonar;
 };
@@ -74,18 +79,33 @@ struct TrackPoint {
   double heading_rad = 0.0;               ///< clockwise from north seen from above (NED yaw), radians
 };
 
-/// The latest map picture's place and history (its bytes: LiveView::rasterPng).
+/// A tile of the latest map picture and the picture that last changed it.
+struct TileVersion {
+  long i = 0, j = 0;
+  std::uint64_t version = 0;
+};
+
+/// The latest map picture: tiles of a TileGrid (map_raster.hpp) meeting the window around the
+/// sonar, at the layer holding it; each picture draws again only the tiles the map changed in.
 struct RasterInfo {
   std::uint64_t version = 0;  ///< 1, 2, ...; 0: none yet
-  double north_m = 0.0, west_m = 0.0, cell_m = 0.0;  ///< MapRaster's
+  double cell_m = 0.0;        ///< a pixel's edge, metres (TileGrid::cell_m)
+  int tile_px = 0;            ///< pixels along a tile's edge
+  std::vector<TileVersion> tiles;  ///< every tile of the picture: those of i0 … i1 × j0 … j1
+  long i0 = 0, i1 = -1, j0 = 0, j1 = -1;
+  /// The tiles put together (rasterPng, MapRaster's north_m, west_m; cols, rows of its image);
+  /// filled by rasterPng only.
+  double north_m = 0.0, west_m = 0.0;
   int cols = 0, rows = 0;
   double z_m = 0.0;            ///< map z of the layer cut, metres
   std::uint64_t beams = 0;     ///< beams 0 … beams − 1 were in the map as shown when it was copied
-  std::size_t occupied_px = 0, free_px = 0;
+  std::size_t occupied_px = 0, free_px = 0;  ///< over its tiles
   double made_s = 0.0;         ///< session clock when it was published
   double render_s = 0.0;       ///< copying, drawing and encoding it, seconds
-  double copy_s = 0.0;         ///< of which copying the map (the map source's call), seconds
-  std::size_t png_bytes = 0;
+  double copy_s = 0.0;         ///< of which in the map source's calls (reading and drawing under the mapper's lock), seconds
+  std::size_t tiles_drawn = 0;    ///< tiles drawn for it
+  std::size_t tiles_changed = 0;  ///< of which changed (encoded, and sent to the pages)
+  std::size_t png_bytes = 0;      ///< of the changed tiles' PNGs
 };
 
 /// The run as the page's status panel shows it.
@@ -148,6 +168,9 @@ struct ViewUpdate {
   std::optional<TrackPoint> vehicle;       ///< the latest fix, when any
   std::optional<LiveSettings> settings;    ///< when changed
   std::optional<RasterInfo> raster;        ///< when a newer picture exists
+  /// With `raster`: its tiles changed since the cursor's picture (all of them when `full` or the
+  /// grid changed), oldest version first.
+  std::vector<std::shared_ptr<const MapTile>> tiles;
   LiveStatus status;
   std::size_t fan_beams = 0;  ///< LiveViewOptions::fan_beams
   ViewCursor cursor;          ///< where the reader is after this update
@@ -157,8 +180,17 @@ struct LiveViewOptions {
   std::size_t fan_beams = 800;  ///< beams kept for the fan (two turns of a Ping360 at 1 gradian)
   std::size_t max_bins = 512;   ///< bins per beam sent to the page (max-pooled), ≥ 16
   /// Least time between the starts of two map pictures, seconds; and at least twice the last
-  /// picture's cost, so that the raster thread takes at most half a core.
-  double raster_interval_s = 0.05;
+  /// picture's cost, so that the raster thread takes at most half a core. The fan shows each beam
+  /// at once; a picture every 0.5 s draws the tiles of a Ping360's 6 to 10 neighbouring beams
+  /// together, which cross nearly the same tiles as one (docs/performance.md, "Live on a vehicle").
+  double raster_interval_s = 0.5;
+  /// Every tile of the window is drawn again at least this often, seconds (and at every sweep
+  /// integrated, reset or new layer): what a beam changed is drawn at once from its footprint at
+  /// the pose it arrived with, and a pose the mapper corrected later is caught up here.
+  double full_redraw_interval_s = 5.0;
+  /// Pixels along a map tile's edge (TileGrid::tile_px), ≥ 16: 6.4 m at 0.2 m voxels, a few
+  /// tiles along a beam's footprint.
+  int tile_px = 32;
   /// Half the edge of the map window drawn, metres; 0: 1.25 × the longest range of the fan's
   /// beams, at least 10 m.
   double raster_half_width_m = 0.0;
@@ -173,8 +205,10 @@ struct LiveViewOptions {
 class LiveView {
  public:
   using Clock = std::chrono::steady_clock;
-  /// The map as shown, copied (OnlineMapper::shownSnapshot); called on the raster thread.
-  using MapSource = std::function<OcTree16()>;
+  /// Reads the map as shown in a box (map frame, metres) in place (OnlineMapper::visitShown: the
+  /// visitor runs under the mapper's lock); called on the raster thread, once per tile drawn. An
+  /// empty box: the visitor only needs the map's resolution.
+  using MapSource = std::function<void(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit)>;
 
   /// @param epoch  the session clock's zero.
   /// @throws ValueError for options out of range (max_bins < 16, fan_beams 0, intervals < 0).
@@ -226,7 +260,8 @@ class LiveView {
   std::uint64_t changes() const;
   /// Waits until changes() exceeds `seen`, `timeout` passes or `stop` is requested; returns changes().
   std::uint64_t waitForChange(std::uint64_t seen, std::chrono::milliseconds timeout, std::stop_token stop) const;
-  /// The latest picture and its PNG bytes (null before the first).
+  /// The latest picture's tiles put together (composeTiles: cropped to the known pixels plus one)
+  /// and its PNG bytes (null before the first); made at the first call after each picture.
   std::pair<RasterInfo, std::shared_ptr<const std::vector<unsigned char>>> rasterPng() const;
   LiveStatus status() const;
 

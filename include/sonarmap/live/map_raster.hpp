@@ -9,11 +9,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "sonarmap/mapping/provisional_beams.hpp"
 #include "sonarmap/octree/occupancy_octree.hpp"
 
 namespace sonarmap {
@@ -51,6 +54,46 @@ struct MapRaster {
 /// @throws OutOfMapError when z_m lies outside the map; ValueError when the window's values are not
 ///         finite, half_width_m ≤ 0 or max_side_px < 16.
 MapRaster rasterizeMap(const OcTree16& map, const RasterWindow& window);
+
+/// The page's map tiles: a fixed grid of square pictures in the map frame, so that a beam redraws
+/// the few tiles it touched and the page fetches only those. Pixels are blocks of
+/// voxels_per_pixel × voxels_per_pixel voxels counted from the map's origin (as rasterizeMap's);
+/// tile (i, j) holds map x in [i·edge_m, (i+1)·edge_m) and y in [j·edge_m, (j+1)·edge_m), edge_m =
+/// tile_px · voxels_per_pixel · resolution_m; its row 0 is its north edge, column 0 its west edge.
+struct TileGrid {
+  double resolution_m = 0.1;  ///< the map's voxel edge, metres (> 0)
+  int voxels_per_pixel = 1;   ///< ≥ 1
+  int tile_px = 128;          ///< pixels along a tile's edge, ≥ 1
+  double cell_m() const { return resolution_m * voxels_per_pixel; }
+  double edge_m() const { return cell_m() * tile_px; }
+  /// The tile holding map coordinate `coord_m` (x for i, y for j), metres.
+  long tileOf(double coord_m) const;
+  friend bool operator==(const TileGrid&, const TileGrid&) = default;
+};
+
+/// One tile of the page's map as it is sent, immutable once made (LiveView's raster thread).
+struct MapTile {
+  long i = 0, j = 0;          ///< its place in the grid (TileGrid)
+  std::uint64_t version = 0;  ///< the map picture (RasterInfo::version) that last changed it
+  cv::Mat image;              ///< TileRaster::image
+  std::size_t occupied_px = 0, free_px = 0;
+  std::string png_base64;     ///< its PNG (encodePng), base64 (RFC 4648)
+  std::size_t png_bytes = 0;
+};
+
+/// One tile of the layer holding `z_m`.
+struct TileRaster {
+  cv::Mat image;  ///< CV_8U tile_px × tile_px: occupied 0, free 255, unknown 128 (MapRaster's classes)
+  std::size_t occupied_px = 0, free_px = 0;
+};
+
+/// Tile (i, j) of `grid` in the voxel layer of `map` holding `z_m`: the cells rasterizeMap draws
+/// there (the part outside the map's extent unknown), with the voxels `shown` in place of map's
+/// (ShownMapVisitor: the map as shown during a live run, read without copying it).
+/// @throws ValueError when map's resolution differs from grid.resolution_m, voxels_per_pixel or
+///         tile_px < 1, or z_m is not finite; OutOfMapError when z_m lies outside the map.
+TileRaster rasterizeTile(const OcTree16& map, std::span<const ShownVoxel> shown, const TileGrid& grid, long i, long j,
+                         double z_m);
 
 /// The centres (x, y), map frame, metres, of the pixels of `raster` showing `value` (0 occupied,
 /// 255 free): what the page draws, for comparing with cellsInSlice (map_slice.hpp) in tests.

@@ -13,7 +13,8 @@
 ///  - GET  /updates?cursor=C&wait_ms=N: the same updates by long polling (the page's fallback when
 ///         event streams are refused or cut by a proxy): waits up to N ms (≤ 25000) for a change
 ///         after cursor C (empty: everything).
-///  - GET  /map.png: the latest map picture (LiveView::rasterPng), its place in headers
+///  - GET  /map.png: the latest map picture's tiles put together (LiveView::rasterPng; the page
+///         itself gets the tiles that changed inline in its updates), its place in headers
 ///         X-Raster-Version, -North, -West, -Cell, -Z, -Beams (metres, map frame); 404 before one.
 ///  - GET  /latency: beam arrival → pixels, fan and map (LiveView::latencies) as JSON.
 ///  - GET  /state: one full update as JSON.

@@ -170,6 +170,11 @@ class OnlineMapper {
   /// A copy of the map as shown: the committed map with the provisional beams' log-odds added
   /// (ProvisionalBeams::overlay); kSweep: mapSnapshot(). Safe from any thread.
   OcTree16 shownSnapshot() const;
+  /// The map as shown in `box_m` (map frame, metres; clipped to the map's extent), read in place:
+  /// calls visit(committed map, the box's voxels the provisional layer changes: ProvisionalBeams::
+  /// shownVoxels) under the shared lock, without copying the map. Safe from any thread; `visit`
+  /// must not call the mapper, and holds back the feeding thread while it runs.
+  void visitShown(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) const;
   /// A copy of the counts as of the last integrated sweep; safe from any thread.
   MappingStats statsSnapshot() const;
   /// A copy of the options mapped with; safe from any thread. With the resolution on "auto" its

@@ -8,7 +8,9 @@
 
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -19,6 +21,18 @@
 #include "sonarmap/sonar/polar_image.hpp"
 
 namespace sonarmap {
+
+/// A finest voxel of the map as shown (the committed map with the provisional layer: overlay)
+/// where the layer changes it, and its log-odds there.
+struct ShownVoxel {
+  OcTree16::KeyType key;
+  float log_odds = 0.0F;
+};
+
+/// Reads the map as shown in a box without copying it: `map` holds the committed leaves, and
+/// `shown` the voxels of the box the provisional layer changes, with their shown log-odds (which
+/// replace `map`'s there). Called under the mapper's lock: it must not call the mapper.
+using ShownMapVisitor = std::function<void(const OcTree16& map, std::span<const ShownVoxel> shown)>;
 
 class ProvisionalBeams {
  public:
@@ -57,6 +71,16 @@ class ProvisionalBeams {
   /// changes nothing).
   /// @throws ValueError when the resolutions differ and the layer is not empty.
   void overlay(OcTree16& map) const;
+  /// overlay() of the layer's leaves that meet the key box [min_key, max_key] only (inclusive).
+  /// @throws ValueError as overlay().
+  void overlay(OcTree16& map, const OcTree16::KeyType& min_key, const OcTree16::KeyType& max_key) const;
+  /// The voxels of the key box [min_key, max_key] the layer changes, with the log-odds overlay()
+  /// would give them on `map` (each voxel's value in `map`, 0 where unknown, updated sweep after
+  /// sweep with the model's clamping), in no particular order. Cost: the layer's voxels in the box
+  /// and one search of `map` each.
+  /// @throws ValueError as overlay().
+  std::vector<ShownVoxel> shownVoxels(const OcTree16& map, const OcTree16::KeyType& min_key,
+                                      const OcTree16::KeyType& max_key) const;
 
  private:
   struct ShownBeam {

@@ -65,6 +65,8 @@ class OnlineSlam {
   OcTree16 mapSnapshot() const;
   /// A copy of the current map as shown (OnlineMapper::shownSnapshot); safe from any thread.
   OcTree16 shownSnapshot() const;
+  /// OnlineMapper::visitShown of the current map; safe from any thread.
+  void visitShown(const Eigen::AlignedBox3d& box_m, const ShownMapVisitor& visit) const;
   /// Sweeps integrated into the current map; safe from any thread.
   std::size_t sweepsIntegrated() const;
   /// Beams received and not yet in the committed map (feeding thread only).

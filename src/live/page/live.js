@@ -15,7 +15,7 @@ const page = {
   updates: 0,
   lastDrawnSeq: -1,     // the newest beam whose fan was drawn
   drawnBeams: 0,
-  rasterInfo: null,     // the map picture drawn last
+  rasterInfo: null,     // the map picture drawn last (all its tiles decoded)
   status: null,
   settings: null,
   saved: null,          // the last "Save map" answer
@@ -24,7 +24,6 @@ const page = {
   unacknowledged: new Set(),  // seqs and versions that came while the page was hidden: not timed
   frameRequested: false,
   rasterWanted: 0,      // the newest picture version announced
-  rasterFetching: false,
 };
 window.sonarmapPage = page;
 
@@ -55,38 +54,31 @@ function apply(update) {
   if (update.track.length || update.track_full) view.setTrack(update.track, update.track_full);
   if (update.vehicle) view.vehicle = update.vehicle;
   if (update.settings) showSettings(update.settings);
-  if (update.raster && update.raster.v > page.rasterWanted) {
-    page.rasterWanted = update.raster.v;
-    fetchRaster();
-  }
+  if (update.raster && update.raster.v > page.rasterWanted) applyRaster(update.raster, update.tile_data || []);
   showStatus(update.status, update.clock_s);
   requestFrame();
 }
 
-// The newest map picture; one request at a time, the latest announced version wins.
-async function fetchRaster() {
-  if (page.rasterFetching) return;
-  page.rasterFetching = true;
-  try {
-    while (!page.rasterInfo || page.rasterInfo.v < page.rasterWanted) {
-      const response = await fetch('map.png', { cache: 'no-store' });
-      if (!response.ok) break;
-      const header = (name) => Number(response.headers.get(`X-Raster-${name}`));
-      const info = { v: header('Version'), north: header('North'), west: header('West'), cell: header('Cell'),
-                     z: header('Z'), beams: header('Beams') };
-      const bitmap = await createImageBitmap(await response.blob());
-      view.setRaster(bitmap, info);
-      page.rasterInfo = info;
-      page.pendingRasters.push(info.v);
-      if (document.hidden) page.unacknowledged.add(`r${info.v}`);
-      requestFrame();
-      if (info.v >= page.rasterWanted) break;
-    }
-  } catch (error) {
-    console.warn('map picture:', error);
-  } finally {
-    page.rasterFetching = false;
+// A map picture: its tiles, i0 … i1 × j0 … j1 (info.tiles), of which those in `data` changed
+// ([i, j, version, base64 PNG]). Tiles outside are dropped; a picture counts as drawn once its
+// changed tiles are decoded (the newest picture wins: an older one finishing later is not shown).
+function applyRaster(info, data) {
+  page.rasterWanted = info.v;
+  if (!view.tileGrid || view.tileGrid.cell !== info.cell || view.tileGrid.tp !== info.tp) {
+    view.clearTiles();
+    view.tileGrid = { cell: info.cell, tp: info.tp };
   }
+  const [i0, i1, j0, j1] = info.tiles;
+  view.keepTiles((i, j) => i >= i0 && i <= i1 && j >= j0 && j <= j1);
+  const decoded = data.map(([i, j, v, png]) => createImageBitmap(new Blob([decodeBins(png)], { type: 'image/png' }))
+    .then((bitmap) => view.setTile(i, j, v, bitmap)));
+  Promise.all(decoded).then(() => {
+    if (info.v !== page.rasterWanted) return;
+    page.rasterInfo = info;
+    page.pendingRasters.push(info.v);
+    if (document.hidden) page.unacknowledged.add(`r${info.v}`);
+    requestFrame();
+  }).catch((error) => console.warn('map tile:', error));
 }
 
 function connect() {

@@ -36,7 +36,8 @@ class MapView {
     this.userZoom = false;   // a zoom of the user's replaces the fit to the range
     this.showFan = true;
     this.showTrack = true;
-    this.raster = null;      // {bitmap, info}
+    this.tiles = new Map();  // "i,j" → {i, j, v, bitmap}: the map at the vehicle's depth
+    this.tileGrid = null;    // {cell: a pixel's edge in metres, tp: pixels along a tile's edge}
     this.beams = new Map();  // bearing bucket → beam (the newest at that bearing)
     this.newestBeam = null;
     this.fanLimit = 800;
@@ -74,11 +75,27 @@ class MapView {
 
   setTrack(points, replace) { this.track = replace ? points.slice() : this.track.concat(points); }
 
-  // bitmap: an ImageBitmap of the grey PNG; info: {v, north, west, cell, z, beams}
-  setRaster(bitmap, info) {
-    if (this.raster && this.raster.bitmap.close) this.raster.bitmap.close();
-    this.raster = { bitmap, info };
+  // Map tiles (the server's TileGrid): tile (i, j) spans map x [i, i + 1) × edge and y [j, j + 1) ×
+  // edge, edge = tp × cell metres, its picture north up (row 0 at x = (i + 1) × edge, column 0 at
+  // y = (j + 1) × edge). bitmap: an ImageBitmap of its grey PNG; a tile older than the one held is ignored.
+  setTile(i, j, v, bitmap) {
+    const key = `${i},${j}`;
+    const old = this.tiles.get(key);
+    if (old && old.v > v) { if (bitmap.close) bitmap.close(); return; }
+    if (old && old.bitmap.close) old.bitmap.close();
+    this.tiles.set(key, { i, j, v, bitmap });
   }
+
+  // Drops the tiles for which keep(i, j) is false.
+  keepTiles(keep) {
+    for (const [key, tile] of this.tiles) {
+      if (keep(tile.i, tile.j)) continue;
+      if (tile.bitmap.close) tile.bitmap.close();
+      this.tiles.delete(key);
+    }
+  }
+
+  clearTiles() { this.keepTiles(() => false); }
 
   // The vehicle's place: the latest fix, else the latest beam's sonar.
   anchor() {
@@ -151,12 +168,16 @@ class MapView {
   }
 
   drawRaster() {
-    if (!this.raster) return;
-    const { bitmap, info } = this.raster;
-    const [left, top] = this.mapToScreen(info.north, info.west);
+    if (!this.tileGrid) return;
+    const edge = this.tileGrid.tp * this.tileGrid.cell;
+    const side = edge * this.scale;
     const ctx = this.ctx;
     ctx.imageSmoothingEnabled = false;
-    ctx.drawImage(bitmap, left, top, bitmap.width * info.cell * this.scale, bitmap.height * info.cell * this.scale);
+    for (const tile of this.tiles.values()) {
+      const [left, top] = this.mapToScreen((tile.i + 1) * edge, (tile.j + 1) * edge);
+      if (left > this.width || top > this.height || left + side < 0 || top + side < 0) continue;
+      ctx.drawImage(tile.bitmap, left, top, side, side);
+    }
   }
 
   // Screen angle (radians, clockwise from screen +x, y down) of a beam's direction.
@@ -282,20 +303,22 @@ class MapView {
   // Centres [x, y] (map frame, metres) of the map picture's cells whose grey level is below 64
   // (occupied) or, with free = true, above 192.
   rasterCells(free = false) {
-    if (!this.raster) return [];
-    const { bitmap, info } = this.raster;
+    if (!this.tileGrid) return [];
+    const { cell, tp } = this.tileGrid;
     const scratch = document.createElement('canvas');
-    scratch.width = bitmap.width;
-    scratch.height = bitmap.height;
+    scratch.width = tp;
+    scratch.height = tp;
     const ctx = scratch.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(bitmap, 0, 0);
-    const data = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
     const cells = [];
-    for (let row = 0; row < bitmap.height; row++) {
-      for (let col = 0; col < bitmap.width; col++) {
-        const grey = data[(row * bitmap.width + col) * 4];
-        if (free ? grey > 192 : grey < 64) {
-          cells.push([info.north - (row + 0.5) * info.cell, info.west - (col + 0.5) * info.cell]);
+    for (const tile of this.tiles.values()) {
+      ctx.clearRect(0, 0, tp, tp);
+      ctx.drawImage(tile.bitmap, 0, 0);
+      const data = ctx.getImageData(0, 0, tp, tp).data;
+      const north = (tile.i + 1) * tp * cell, west = (tile.j + 1) * tp * cell;
+      for (let row = 0; row < tp; row++) {
+        for (let col = 0; col < tp; col++) {
+          const grey = data[(row * tp + col) * 4];
+          if (free ? grey > 192 : grey < 64) cells.push([north - (row + 0.5) * cell, west - (col + 0.5) * cell]);
         }
       }
     }
