@@ -16,7 +16,8 @@
 #      packaging/blueos/Dockerfile installs.
 #   6. checks the BlueOS extension's content without Docker: an arm64 root with what
 #      packaging/blueos/Dockerfile installs, and packaging/blueos/check.sh on it under qemu.
-# Usage: bash scripts/build-arm64.sh [all|sysroot|build|test|deb|image]   (default all)
+#   gtest (not in all): each GoogleTest executable run directly under qemu, one line each.
+# Usage: bash scripts/build-arm64.sh [all|sysroot|build|test|deb|image|gtest]   (default all)
 # Environment: SYSROOT (default /var/tmp/sonarmap-arm64-sysroot), BUILD_DIR (default
 #   /var/tmp/sonarmap-build-arm64), JOBS (default 2), CTEST_ARGS (extra ctest arguments, e.g.
 #   "-R octree"), BUILD_TARGET (the targets built, default all: e.g. "sonarmap_cli test_octree"),
@@ -279,12 +280,38 @@ image_root() {
     tee "$build/arm64-image-check.log" >&2
 }
 
+# Each GoogleTest executable run directly under qemu, two at a time (GTEST_TARGETS: which ones,
+# default every one built), one line each: its passed and failed counts, its time. ctest's
+# alternative when a build holds many executables: no per-test start-up, a time limit per
+# executable (GTEST_TIMEOUT, 600 s). Logs in $BUILD_DIR/arm64-gtest/.
+gtest_arm64() {
+  local targets=${GTEST_TARGETS:-}
+  mkdir -p "$build/arm64-gtest"
+  if [ -z "$targets" ]; then
+    targets=$(find "$build/tests" -type f -perm -u+x \( -name 'test_*' -o -name sonarmap_live_tests \) \
+      -not -path '*/CMakeFiles/*' -printf '%f\n' | sort)
+  fi
+  export build sysroot
+  export GTEST_TIMEOUT=${GTEST_TIMEOUT:-600}
+  # shellcheck disable=SC2016
+  tr ' ' '\n' <<<"$targets" | grep . | xargs -P "$jobs" -I{} bash -c '
+    t={}; p=$(find "$build/tests" -type f -name "$t" -perm -u+x | head -1); out="$build/arm64-gtest/$t.log"; s=$SECONDS
+    timeout "$GTEST_TIMEOUT" nice -n 10 qemu-aarch64 -L "$sysroot" "$p" --gtest_brief=1 >"$out" 2>&1; rc=$?
+    pass=$(sed -nE "s/^\[  PASSED  \] ([0-9]+) tests?.*/\1/p" "$out" | tail -1)
+    fail=$(sed -nE "s/^\[  FAILED  \] ([0-9]+) tests?, listed below.*/\1/p" "$out" | tail -1)
+    echo "$t rc=$rc passed=${pass:-0} failed=${fail:-0} $((SECONDS - s))s"' | tee "$build/arm64-gtest.log" >&2
+  awk '{split($3, p, "="); split($4, f, "="); P += p[2]; F += f[2]; if ($2 != "rc=0") bad++}
+       END {print "gtest under qemu: " NR " executables, " P " tests passed, " F " failed, " bad+0 " executables not rc 0"}' \
+    "$build/arm64-gtest.log" | tee -a "$build/arm64-figures.log" >&2
+}
+
 case $stage in
   sysroot) host_tools; make_sysroot ;;
   build) build_arm64 ;;
   test) test_arm64 ;;
   deb) make_deb ;;
   image) image_root ;;
+  gtest) gtest_arm64 ;;
   all) host_tools; make_sysroot; build_arm64; test_arm64; make_deb; image_root ;;
-  *) echo "usage: bash scripts/build-arm64.sh [all|sysroot|build|test|deb|image]" >&2; exit 2 ;;
+  *) echo "usage: bash scripts/build-arm64.sh [all|sysroot|build|test|deb|image|gtest]" >&2; exit 2 ;;
 esac
