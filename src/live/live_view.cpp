@@ -8,7 +8,6 @@
 #include "map_tiles.hpp"
 #include "sonarmap/core/errors.hpp"
 #include "sonarmap/live/map_raster.hpp"
-#include "sonarmap/octree/box_copy.hpp"
 #include "sonarmap/sonar/png_writer.hpp"
 
 namespace sonarmap {

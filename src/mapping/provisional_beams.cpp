@@ -104,29 +104,64 @@ std::vector<ShownVoxel> ProvisionalBeams::shownVoxels(const OcTree16& map, const
     throw ValueError("provisional beams: a map at " + std::to_string(map.resolution_m()) + " m, the layer at " +
                      std::to_string(*resolution_m_) + " m");
   }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (min_key[axis] > max_key[axis]) return shown;
+  }
   const LogOddsModel& model = map.model();
+  // Calls at(x, y, z) for each voxel of `leaf` inside the box.
+  const auto forEachVoxelInBox = [&](const LeafView<16>& leaf, auto&& at) {
+    const auto edge = static_cast<unsigned>(leaf.edgeVoxels());
+    unsigned lo[3], hi[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      lo[axis] = std::max<unsigned>(leaf.key[axis], min_key[axis]);
+      hi[axis] = std::min<unsigned>(leaf.key[axis] + edge - 1, max_key[axis]);
+    }
+    for (unsigned z = lo[2]; z <= hi[2]; ++z) {
+      for (unsigned y = lo[1]; y <= hi[1]; ++y) {
+        for (unsigned x = lo[0]; x <= hi[0]; ++x) at(x, y, z);
+      }
+    }
+  };
+  const std::size_t nx = max_key[0] - min_key[0] + 1U, ny = max_key[1] - min_key[1] + 1U, nz = max_key[2] - min_key[2] + 1U;
+  constexpr std::size_t kDenseVoxels = std::size_t{1} << 20;
+  if (nx * ny * nz <= kDenseVoxels) {
+    // A small box (a map tile): the map's values and the layer's sums in arrays over the box.
+    const auto at = [&](unsigned x, unsigned y, unsigned z) {
+      return ((z - min_key[2]) * ny + (y - min_key[1])) * nx + (x - min_key[0]);
+    };
+    std::vector<float> value(nx * ny * nz, 0.0F);  // unknown: 0, as an update of a new voxel starts
+    std::vector<std::uint8_t> changed(value.size(), 0);
+    map.forEachLeafInBox(min_key, max_key, [&](const LeafView<16>& leaf) {
+      forEachVoxelInBox(leaf, [&](unsigned x, unsigned y, unsigned z) { value[at(x, y, z)] = leaf.log_odds; });
+    });
+    for (const Sweep& sweep : sweeps_) {
+      sweep.mapper.map().forEachLeafInBox(min_key, max_key, [&](const LeafView<16>& leaf) {
+        forEachVoxelInBox(leaf, [&](unsigned x, unsigned y, unsigned z) {
+          const std::size_t i = at(x, y, z);
+          value[i] = model.update(value[i], leaf.log_odds);
+          changed[i] = 1;
+        });
+      });
+    }
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      if (!changed[i]) continue;
+      const auto x = static_cast<std::uint16_t>(min_key[0] + i % nx);
+      const auto y = static_cast<std::uint16_t>(min_key[1] + (i / nx) % ny);
+      const auto z = static_cast<std::uint16_t>(min_key[2] + i / (nx * ny));
+      shown.push_back({OcTree16::KeyType{{x, y, z}}, value[i]});
+    }
+    return shown;
+  }
   std::unordered_map<OcTree16::KeyType, std::size_t, KeyHash<16>> index;  // key → its place in `shown`
   for (const Sweep& sweep : sweeps_) {
     sweep.mapper.map().forEachLeafInBox(min_key, max_key, [&](const LeafView<16>& leaf) {
-      // The leaf's voxels inside the box.
-      const auto edge = static_cast<unsigned>(leaf.edgeVoxels());
-      unsigned lo[3], hi[3];
-      for (int axis = 0; axis < 3; ++axis) {
-        lo[axis] = std::max<unsigned>(leaf.key[axis], min_key[axis]);
-        hi[axis] = std::min<unsigned>(leaf.key[axis] + edge - 1, max_key[axis]);
-      }
-      for (unsigned z = lo[2]; z <= hi[2]; ++z) {
-        for (unsigned y = lo[1]; y <= hi[1]; ++y) {
-          for (unsigned x = lo[0]; x <= hi[0]; ++x) {
-            const OcTree16::KeyType key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y),
-                                         static_cast<std::uint16_t>(z)}};
-            const auto [at, fresh] = index.try_emplace(key, shown.size());
-            if (fresh) shown.push_back({key, map.search(key).value_or(0.0F)});
-            ShownVoxel& voxel = shown[at->second];
-            voxel.log_odds = model.update(voxel.log_odds, leaf.log_odds);
-          }
-        }
-      }
+      forEachVoxelInBox(leaf, [&](unsigned x, unsigned y, unsigned z) {
+        const OcTree16::KeyType key{{static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(z)}};
+        const auto [it, fresh] = index.try_emplace(key, shown.size());
+        if (fresh) shown.push_back({key, map.search(key).value_or(0.0F)});
+        ShownVoxel& voxel = shown[it->second];
+        voxel.log_odds = model.update(voxel.log_odds, leaf.log_odds);
+      });
     });
   }
   return shown;

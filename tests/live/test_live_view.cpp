@@ -15,7 +15,6 @@
 #include "sonarmap/live/live_view.hpp"
 #include "sonarmap/live/map_raster.hpp"
 #include "sonarmap/nav/navigation.hpp"
-#include "sonarmap/octree/box_copy.hpp"
 
 namespace sonarmap {
 namespace {

@@ -95,6 +95,33 @@ TEST(MapRaster, CropsToTheWindowAndCapsItsPixels) {
   }
 }
 
+TEST(MapRaster, ATileShowsTheShownVoxelsInPlaceOfTheMaps) {
+  const double res = 0.1;
+  const OcTree16 map = smallMap(res);
+  // A wall voxel shown free, a free one shown occupied, an unknown one shown occupied.
+  const auto key = [&](double x, double y) { return map.coder().keyOfChecked({x, y, res / 2}); };
+  const std::vector<ShownVoxel> shown = {{key(3.05, 0.05), -2.0F}, {key(0.05, 0.05), 2.0F}, {key(-4.05, -4.05), 2.0F}};
+  OcTree16 overlaid = map;
+  for (const ShownVoxel& voxel : shown) overlaid.updateNode(voxel.key, voxel.log_odds - overlaid.search(voxel.key).value_or(0.0F));
+  for (const int per_px : {1, 2}) {
+    TileGrid grid;
+    grid.resolution_m = res;
+    grid.voxels_per_pixel = per_px;
+    grid.tile_px = 32;
+    for (long i = -2; i <= 1; ++i) {
+      for (long j = -2; j <= 1; ++j) {
+        const TileRaster in_place = rasterizeTile(map, shown, grid, i, j, 0.0);
+        const TileRaster copied = rasterizeTile(overlaid, {}, grid, i, j, 0.0);
+        EXPECT_EQ(cv::countNonZero(in_place.image != copied.image), 0) << per_px << " voxels a pixel, tile " << i << ", " << j;
+        EXPECT_EQ(in_place.occupied_px, copied.occupied_px);
+      }
+    }
+  }
+  TileGrid grid;
+  grid.resolution_m = 0.2;
+  EXPECT_THROW(rasterizeTile(map, {}, grid, 0, 0, 0.0), ValueError);
+}
+
 TEST(MapRaster, EmptyWindowsAndBadArguments) {
   const OcTree16 map(0.1);
   RasterWindow window;

@@ -59,11 +59,4 @@ std::pair<Key<Depth>, Key<Depth>> keyBoxOf(const KeyCoder<Depth>& coder, const E
   return {min_key, max_key};
 }
 
-/// copyLeavesInBox of the voxels meeting `box_m` (metres; keyBoxOf).
-template <int Depth>
-OccupancyOctree<Depth> copyLeavesInBox(const OccupancyOctree<Depth>& map, const Eigen::AlignedBox3d& box_m) {
-  const auto [min_key, max_key] = keyBoxOf(map.coder(), box_m);
-  return copyLeavesInBox(map, min_key, max_key);
-}
-
 }  // namespace sonarmap

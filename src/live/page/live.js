@@ -24,6 +24,7 @@ const page = {
   unacknowledged: new Set(),  // seqs and versions that came while the page was hidden: not timed
   frameRequested: false,
   rasterWanted: 0,      // the newest picture version announced
+  tileRange: [0, -1, 0, -1],  // the newest picture's tiles: i0, i1, j0, j1
 };
 window.sonarmapPage = page;
 
@@ -61,19 +62,27 @@ function apply(update) {
 
 // A map picture: its tiles, i0 … i1 × j0 … j1 (info.tiles), of which those in `data` changed
 // ([i, j, version, base64 PNG]). Tiles outside are dropped; a picture counts as drawn once its
-// changed tiles are decoded (the newest picture wins: an older one finishing later is not shown).
+// changed tiles are decoded (a tile older than the one held, or outside the newest picture's
+// range when decoded, is not kept).
 function applyRaster(info, data) {
   page.rasterWanted = info.v;
   if (!view.tileGrid || view.tileGrid.cell !== info.cell || view.tileGrid.tp !== info.tp) {
     view.clearTiles();
     view.tileGrid = { cell: info.cell, tp: info.tp };
   }
-  const [i0, i1, j0, j1] = info.tiles;
-  view.keepTiles((i, j) => i >= i0 && i <= i1 && j >= j0 && j <= j1);
+  page.tileRange = info.tiles;
+  const inRange = (i, j) => {
+    const [i0, i1, j0, j1] = page.tileRange;
+    return i >= i0 && i <= i1 && j >= j0 && j <= j1;
+  };
+  view.keepTiles(inRange);
   const decoded = data.map(([i, j, v, png]) => createImageBitmap(new Blob([decodeBins(png)], { type: 'image/png' }))
-    .then((bitmap) => view.setTile(i, j, v, bitmap)));
+    .then((bitmap) => {
+      if (inRange(i, j)) view.setTile(i, j, v, bitmap);
+      else if (bitmap.close) bitmap.close();
+    }));
   Promise.all(decoded).then(() => {
-    if (info.v !== page.rasterWanted) return;
+    if (page.rasterInfo && page.rasterInfo.v >= info.v) return;  // a newer picture was drawn first
     page.rasterInfo = info;
     page.pendingRasters.push(info.v);
     if (document.hidden) page.unacknowledged.add(`r${info.v}`);
