@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 
 #include "map_tiles.hpp"
@@ -132,6 +133,14 @@ struct LiveView::State {
   // Latencies.
   std::deque<double> fan_latencies, map_latencies, render_times, copy_times;
   std::uint64_t map_drawn_beams = 0;  ///< beams below it were counted in map_latencies
+  /// One page's own: the beams it drew, each counted once by it.
+  struct PageLatencies {
+    std::deque<double> fan, map;
+    std::uint64_t fan_drawn_from = 0;   ///< its acknowledged beams are counted from here on
+    std::uint64_t map_drawn_beams = 0;
+    double heard_s = 0.0;
+  };
+  std::map<std::string, PageLatencies> pages;
   std::uint64_t timed_from = 0;       ///< beams below it are not timed (resetLatencies)
 
   std::optional<double> arrivalOf(std::uint64_t seq) const {
@@ -352,6 +361,7 @@ void LiveView::mapReset() {
   ++s.reset_epoch;
   s.offered.reset();
   s.map_drawn_beams = std::max(s.map_drawn_beams, s.beams);  // the beams before are in no map now
+  for (auto& [id, page] : s.pages) page.map_drawn_beams = std::max(page.map_drawn_beams, s.beams);
   live::TilePicture empty;  // no tile: the page drops every tile it has
   empty.grid.resolution_m = s.raster.cell_m > 0.0 ? s.raster.cell_m : 0.1;
   empty.grid.tile_px = options_.tile_px;
@@ -554,14 +564,29 @@ LiveStatus LiveView::status() const {
 }
 
 void LiveView::acknowledge(std::span<const std::uint64_t> beam_seqs, std::span<const std::uint64_t> raster_versions,
-                           double held_s) {
+                           double held_s, const std::string& page) {
+  constexpr std::size_t kPagesKept = 16;
   const double drawn_s = now_s() - std::max(held_s, 0.0);
   std::lock_guard lock(mutex_);
   State& s = *state_;
   const std::uint64_t first = s.beams - s.arrivals.size();
+  State::PageLatencies* own = nullptr;
+  if (!page.empty()) {
+    if (!s.pages.contains(page) && s.pages.size() >= kPagesKept) {
+      s.pages.erase(std::min_element(s.pages.begin(), s.pages.end(), [](const auto& a, const auto& b) {
+        return a.second.heard_s < b.second.heard_s;
+      }));
+    }
+    own = &s.pages[page];
+    own->heard_s = drawn_s;
+  }
   for (const std::uint64_t seq : beam_seqs) {
     if (seq < std::max(first, s.timed_from) || seq >= s.beams) continue;
     State::Arrival& arrival = s.arrivals[seq - first];
+    if (own && seq >= own->fan_drawn_from) {
+      pushBounded(own->fan, drawn_s - arrival.arrival_s, options_.latency_samples);
+      own->fan_drawn_from = seq + 1;
+    }
     if (arrival.fan_drawn) continue;
     arrival.fan_drawn = true;
     pushBounded(s.fan_latencies, drawn_s - arrival.arrival_s, options_.latency_samples);
@@ -569,19 +594,30 @@ void LiveView::acknowledge(std::span<const std::uint64_t> beam_seqs, std::span<c
   for (const std::uint64_t version : raster_versions) {
     const auto it = std::find_if(s.raster_beams.begin(), s.raster_beams.end(),
                                  [&](const auto& entry) { return entry.first == version; });
-    if (it == s.raster_beams.end() || it->second <= s.map_drawn_beams) continue;
-    for (std::uint64_t seq = std::max({s.map_drawn_beams, first, s.timed_from}); seq < it->second; ++seq) {
-      pushBounded(s.map_latencies, drawn_s - s.arrivals[seq - first].arrival_s, options_.latency_samples);
-    }
-    s.map_drawn_beams = it->second;
+    if (it == s.raster_beams.end()) continue;
+    const auto count = [&](std::deque<double>& latencies, std::uint64_t& drawn_beams) {
+      if (it->second <= drawn_beams) return;
+      for (std::uint64_t seq = std::max({drawn_beams, first, s.timed_from}); seq < it->second; ++seq) {
+        pushBounded(latencies, drawn_s - s.arrivals[seq - first].arrival_s, options_.latency_samples);
+      }
+      drawn_beams = it->second;
+    };
+    if (own) count(own->map, own->map_drawn_beams);
+    count(s.map_latencies, s.map_drawn_beams);
   }
 }
 
-LiveLatencies LiveView::latencies() const {
+LiveLatencies LiveView::latencies(const std::string& page) const {
   std::lock_guard lock(mutex_);
   const State& s = *state_;
-  return {statsOf(s.fan_latencies), statsOf(s.map_latencies), statsOf(s.render_times), statsOf(s.copy_times),
-          s.raster.png_bytes};
+  LiveLatencies latencies{statsOf(s.fan_latencies), statsOf(s.map_latencies), statsOf(s.render_times),
+                          statsOf(s.copy_times), s.raster.png_bytes};
+  if (!page.empty()) {
+    const auto it = s.pages.find(page);
+    latencies.fan = it == s.pages.end() ? LatencyStats{} : statsOf(it->second.fan);
+    latencies.map = it == s.pages.end() ? LatencyStats{} : statsOf(it->second.map);
+  }
+  return latencies;
 }
 
 void LiveView::resetLatencies() {
@@ -593,6 +629,7 @@ void LiveView::resetLatencies() {
   s.copy_times.clear();
   s.timed_from = s.beams;
   s.map_drawn_beams = std::max(s.map_drawn_beams, s.beams);
+  s.pages.clear();
 }
 
 }  // namespace sonarmap

@@ -122,8 +122,8 @@ void WebServer::Impl::routes() {
     sendJson(res, live_json::update(view.updateSince({})));
   });
   server.Get("/map.png", [this](const httplib::Request&, httplib::Response& res) { serveMap(res); });
-  server.Get("/latency", [this](const httplib::Request&, httplib::Response& res) {
-    sendJson(res, live_json::latencies(view.latencies()));
+  server.Get("/latency", [this](const httplib::Request& req, httplib::Response& res) {
+    sendJson(res, live_json::latencies(view.latencies(req.get_param_value("page"))));
   });
   server.Get("/register_service", [this](const httplib::Request&, httplib::Response& res) {
     sendJson(res, "{\"name\":" + jsonString(options.title) +
@@ -135,14 +135,16 @@ void WebServer::Impl::routes() {
   server.Post("/ack", [this](const httplib::Request& req, httplib::Response& res) {
     std::vector<std::uint64_t> beams, rasters;
     double held_ms = 0.0;
+    std::string page;
     std::istringstream lines(req.body);
     for (std::string line; std::getline(lines, line);) {
       const std::string_view view_line(line);
       if (view_line.starts_with("beams ")) beams = integers(view_line.substr(6));
       if (view_line.starts_with("rasters ")) rasters = integers(view_line.substr(8));
       if (view_line.starts_with("held_ms ")) std::from_chars(line.data() + 8, line.data() + line.size(), held_ms);
+      if (view_line.starts_with("page ")) page = line.substr(5, 64);
     }
-    view.acknowledge(beams, rasters, std::clamp(held_ms, 0.0, 60000.0) / 1000.0);
+    view.acknowledge(beams, rasters, std::clamp(held_ms, 0.0, 60000.0) / 1000.0, page);
     res.status = 204;
   });
   server.Post("/save", [this](const httplib::Request& req, httplib::Response& res) { runAction(req, res, true); });

@@ -104,7 +104,7 @@ class Session {
       mapper->addBeam(std::move(beam));
       ++given_;
       view_.mapShows(before_mapper_ + given_ - mapper->beamsUnshown());
-      view_.setSweeps(sweeps_before_ + mapper->sweepsIntegrated());
+      view_.setSweeps(mapper->sweepsIntegrated());  // as LiveSession: the sweeps of the map since its reset
       if (i == 0) {
         first = seq;
         bearing_from = bearing;

@@ -165,6 +165,9 @@ async function main() {
   const errors = [];
   page.on('pageerror', (error) => errors.push(String(error)));
   page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
+  // Requests the browser gave up on (Chromium aborts a fetch whose response is left unread).
+  const aborted = [];
+  context.on('requestfailed', (request) => aborted.push(`${new URL(request.url()).pathname}: ${request.failure().errorText}`));
   // Screenshots are decoded in a page of their own context: using another page of the main page's
   // context leaves the main page's animation frames throttled to about one a second in headless
   // Chromium (while it reports itself visible), which the latencies would show.
@@ -284,6 +287,9 @@ async function main() {
   await until(page, (last) => sonarmapPage.lastDrawnSeq === last, after.last, 'the fan goes on after a reset');
   check((await page.evaluate(() => sonarmapPage.view.rasterCells().length)) === 0,
         'the new map stays empty until its first sweep is calibrated');
+  await until(page, () => document.getElementById('lag').textContent === 'calibrating on the first sweep' &&
+                document.getElementById('waiting').textContent.endsWith('(first sweep)'), null,
+              'the page says the new map is calibrating on its first sweep, not lagging');
 
   // 6. 400 px wide in an iframe under BlueOS's prefix, and by long polling.
   const proxy = new Proxy(base, '/extensionv2/sonarmap/');
@@ -296,14 +302,23 @@ async function main() {
   const fedFramed = await session.command('feed 6');
   await until(framed, (last) => window.sonarmapPage && sonarmapPage.lastDrawnSeq === last, fedFramed.last,
               'the framed page under the prefix draws the beams');
-  const layout = await framed.evaluate(() => ({
-    scrollWidth: document.documentElement.scrollWidth,
-    canvas: document.getElementById('map').getBoundingClientRect().width,
-    save: document.getElementById('save').getBoundingClientRect().right,
-    transport: sonarmapPage.transport,
-  }));
-  check(layout.scrollWidth <= 400 && layout.canvas >= 380 && layout.save <= 400,
-        `it fits 400 px (scroll width ${layout.scrollWidth}, canvas ${layout.canvas}, Save's right edge ${layout.save})`);
+  const layout = await framed.evaluate(() => {
+    const box = (id) => document.getElementById(id).getBoundingClientRect();
+    const inView = (id) => box(id).bottom <= window.innerHeight && box(id).right <= window.innerWidth && box(id).top >= 0;
+    return {
+      scrollWidth: document.documentElement.scrollWidth,
+      canvas: [box('map').width, box('map').height],
+      save: box('save').right,
+      inView: ['rate', 'lag', 'waiting', 'save', 'reset', 'warnings'].filter(inView),
+      toolbar: document.querySelector('.tools').getBoundingClientRect().height,
+      transport: sonarmapPage.transport,
+    };
+  });
+  check(layout.scrollWidth <= 400 && layout.canvas[0] >= 380 && layout.save <= 400,
+        `it fits 400 px (scroll width ${layout.scrollWidth}, canvas ${layout.canvas[0]}, Save's right edge ${layout.save})`);
+  check(layout.inView.length === 6 && layout.canvas[1] >= 120 && layout.toolbar <= 34,
+        `in a 400 × 300 px frame the rate, lag, waiting beams, Save, Reset and warnings are in view ` +
+        `(${layout.inView}), over a map ${layout.canvas[1]} px tall, a toolbar ${layout.toolbar} px tall`);
   check(layout.transport === 'events', `its event stream passes the proxy (${layout.transport})`);
   check(proxy.outsidePrefix.length === 0, `every request stayed under the prefix (${proxy.outsidePrefix})`);
   await host.screenshot({ path: path.join(work, 'iframe.png') });
@@ -317,6 +332,8 @@ async function main() {
               'without EventSource the page polls and draws the beams');
 
   check(errors.length === 0, `no script errors (${errors.join(' | ')})`);
+  const acks = aborted.filter((entry) => entry.includes('/ack'));
+  check(acks.length === 0, `no acknowledgement aborted by the browser (${acks.length}: ${acks.slice(0, 3)})`);
   const bye = await session.command('quit');
   console.log(`     the server stopped in ${bye.stop_ms.toFixed(1)} ms with 3 pages open`);
   check(bye.stop_ms < 1000, 'the server stops promptly with pages connected');

@@ -23,7 +23,7 @@ class Proxy {
     if (request.url === '/') {
       response.writeHead(200, { 'Content-Type': 'text/html' });
       response.end(`<!doctype html><title>Cockpit</title><body style="margin:0">
-        <iframe src="${this.prefix}" width="400" height="760" style="border:0"></iframe></body>`);
+        <iframe src="${this.prefix}" width="400" height="300" style="border:0"></iframe></body>`);
       return;
     }
     if (!request.url.startsWith(this.prefix)) {

@@ -263,6 +263,23 @@ TEST(WebServer, AcknowledgementsGiveTheLatencies) {
   EXPECT_EQ(json::parse(client.Get("/latency")->body)["fan"]["count"], 0);
 }
 
+TEST(WebServer, EachPageHasItsOwnLatencies) {
+  LiveView view(Clock::now());
+  WebServer server(view, localOptions());
+  for (int i = 0; i < 3; ++i) view.addBeam(beamOf(0.0), view.now_s() - 0.2, {});
+  httplib::Client client("127.0.0.1", server.port());
+  // Two pages draw the same beams: one as its acknowledgement leaves, one 150 ms before.
+  EXPECT_EQ(client.Post("/ack", "beams 0 1 2\nrasters \nheld_ms 0\npage slow\n", "text/plain")->status, 204);
+  EXPECT_EQ(client.Post("/ack", "beams 0 1 2\nrasters \nheld_ms 150\npage quick\n", "text/plain")->status, 204);
+  const auto fan = [&](const std::string& query) { return json::parse(client.Get("/latency" + query)->body)["fan"]; };
+  const json slow = fan("?page=slow"), quick = fan("?page=quick"), all = fan("");
+  EXPECT_EQ(slow["count"], 3);
+  EXPECT_EQ(quick["count"], 3);
+  EXPECT_GT(slow["median_s"].get<double>(), quick["median_s"].get<double>() + 0.1);
+  EXPECT_EQ(all["count"], 3);  // of all pages: each beam once, at the first page that drew it
+  EXPECT_EQ(fan("?page=never")["count"], 0);
+}
+
 // Event stream vs long polling, from LiveView::addBeam to the client holding the beam, on this
 // machine: both deliver within a few milliseconds; the stream needs no request per update.
 TEST(WebServer, EventsAndLongPollsDeliverBeamsAtOnce) {

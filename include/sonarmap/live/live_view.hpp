@@ -134,8 +134,9 @@ struct LatencyStats {
   double median_s = 0.0, p95_s = 0.0, max_s = 0.0;
 };
 
-/// Beam arrival → pixels on a page, from the pages' acknowledgements (acknowledge), each beam
-/// counted once, at the first page that drew it; and what the map pictures cost.
+/// Beam arrival → pixels on a page, from the pages' acknowledgements (acknowledge): of all pages,
+/// each beam counted once, at the first page that drew it, or of one page; and what the map
+/// pictures cost.
 struct LiveLatencies {
   LatencyStats fan;     ///< arrival → its fan drawn
   LatencyStats map;     ///< arrival → the first map picture including it drawn
@@ -268,10 +269,12 @@ class LiveView {
   /// A page drew the fans of beams `beam_seqs` and the map pictures `raster_versions`, `held_s`
   /// seconds before this call (its acknowledgement waited that long): each beam's latency is
   /// now_s() − held_s − its arrival, counted at its first acknowledgement. Unknown seqs and
-  /// versions (too old, or never made) are ignored.
+  /// versions (too old, or never made) are ignored. A non-empty `page` (the page's own id) also
+  /// counts them for that page alone (latencies(page)); the 16 pages heard from last are kept.
   void acknowledge(std::span<const std::uint64_t> beam_seqs, std::span<const std::uint64_t> raster_versions,
-                   double held_s = 0.0);
-  LiveLatencies latencies() const;
+                   double held_s = 0.0, const std::string& page = {});
+  /// Of all pages (empty `page`), or of the page `page` alone (zero counts for a page never heard).
+  LiveLatencies latencies(const std::string& page = {}) const;
   /// Forgets the latencies measured so far (a measurement starting now).
   void resetLatencies();
 

@@ -16,11 +16,12 @@
 ///  - GET  /map.png: the latest map picture's tiles put together (LiveView::rasterPng; the page
 ///         itself gets the tiles that changed inline in its updates), its place in headers
 ///         X-Raster-Version, -North, -West, -Cell, -Z, -Beams (metres, map frame); 404 before one.
-///  - GET  /latency: beam arrival → pixels, fan and map (LiveView::latencies) as JSON.
+///  - GET  /latency[?page=ID]: beam arrival → pixels, fan and map (LiveView::latencies) as JSON:
+///         of all pages, or of the page that sent `page ID` in its acknowledgements.
 ///  - GET  /state: one full update as JSON.
 ///  - GET  /register_service: BlueOS's extension metadata.
-///  - POST /ack: the page drew beams and pictures: form fields `beams` and `rasters` (comma-separated
-///         seqs and versions) and `held_ms` (LiveView::acknowledge).
+///  - POST /ack: the page drew beams and pictures: lines `beams`, `rasters` (seqs and versions),
+///         `held_ms` and `page` (its own id, at most 64 characters) (LiveView::acknowledge).
 ///  - POST /save, /reset, /latency/reset: the session's handlers (WebHandlers) and
 ///         LiveView::resetLatencies; JSON `{"ok":true,...}` or `{"ok":false,"error":...}`. They
 ///         need the header `X-Sonarmap: 1`, which a page of another site cannot send without a

@@ -25,6 +25,7 @@ const page = {
   frameRequested: false,
   rasterWanted: 0,      // the newest picture version announced
   tileRange: [0, -1, 0, -1],  // the newest picture's tiles: i0, i1, j0, j1
+  id: Math.random().toString(36).slice(2, 10),  // this page's own latencies: GET latency?page=ID
 };
 window.sonarmapPage = page;
 
@@ -154,8 +155,11 @@ function frame() {
 }
 
 function acknowledge(beams, rasters, drawnAt) {
-  const body = `beams ${beams.join(' ')}\nrasters ${rasters.join(' ')}\nheld_ms ${(performance.now() - drawnAt).toFixed(2)}\n`;
-  fetch('ack', { method: 'POST', body, headers: { 'Content-Type': 'text/plain' } }).catch(() => {});
+  const body = `beams ${beams.join(' ')}\nrasters ${rasters.join(' ')}\nheld_ms ${(performance.now() - drawnAt).toFixed(2)}\n` +
+               `page ${page.id}\n`;
+  // The answer's body is read (empty): Chromium aborts a request whose response is left unread.
+  fetch('ack', { method: 'POST', body, headers: { 'Content-Type': 'text/plain' } })
+    .then((response) => response.arrayBuffer()).catch(() => {});
 }
 
 // --- panel ---------------------------------------------------------------------------------
@@ -172,9 +176,13 @@ function fixed(value, digits) { return value === null || value === undefined ? '
 function showStatus(status, clock) {
   page.status = status;
   $('rate').textContent = fixed(status.rate, 1);
-  $('lag').textContent = status.lag === null ? '–' : `${fixed(status.lag, 2)} s`;
+  // Before its first sweep the mapper has no water background to detect against: the beams wait
+  // for it, which is not lag.
+  const calibrating = status.sweeps === 0 && status.waiting > 0;
+  $('lag').textContent = calibrating ? 'calibrating on the first sweep'
+    : status.lag === null ? '–' : `${fixed(status.lag, 2)} s`;
   $('beams').textContent = String(status.beams);
-  $('waiting').textContent = String(status.waiting);
+  $('waiting').textContent = calibrating ? `${status.waiting} (first sweep)` : String(status.waiting);
   $('sweeps').textContent = String(status.sweeps);
   const info = page.rasterInfo;
   $('slice').textContent = info ? `z ${fixed(info.z, 2)} m, ${fixed(info.cell * 100, 0)} cm cells` : '–';
