@@ -4,6 +4,7 @@
 #include "sonarmap/devices/ping360_driver.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <deque>
 #include <cstdio>
 #include <limits>
@@ -16,6 +17,10 @@ namespace sonarmap {
 namespace {
 
 namespace pp = ping_protocol;
+
+/// Whether a repeated condition seen `count` times is said now: at the 1st, 2nd, 4th, 8th… time,
+/// so that a lasting fault is said a few times, less and less often.
+bool saidAt(std::size_t count) { return std::has_single_bit(count); }
 
 constexpr double kIdentityRetry_s = 0.5;  ///< ping-python's request timeout
 constexpr double kNackRetry_s = 1.0;
@@ -163,7 +168,7 @@ struct Ping360Driver::State {
       if (std::find(commanded.begin(), commanded.end(), ping.angle_grad) != commanded.end()) {
         // the reply to a command of ours that was sent again: said at the 1st, 2nd, 4th... such reply
         ++late;
-        if ((late & (late - 1)) == 0) {
+        if (saidAt(late)) {
           out.notes.push_back("Ping360 device_data at " + std::to_string(ping.angle_grad) + " grad while waiting for " +
                               std::to_string(pending_angle) + " grad (the reply to a command sent again; " +
                               std::to_string(late) + " so far): dropped");
@@ -173,7 +178,7 @@ struct Ping360Driver::State {
       // A reply no command of ours asked for: another program (Ping Viewer, a second live) commands
       // the head through the same proxy, and the two take turns. Said at the 1st, 2nd, 4th... such reply.
       ++foreign;
-      if ((foreign & (foreign - 1)) == 0) {
+      if (saidAt(foreign)) {
         out.notes.push_back("Ping360 device_data at " + std::to_string(ping.angle_grad) + " grad, " +
                             (pending ? "not the " + std::to_string(pending_angle) + " grad commanded" : "with no command waiting") +
                             ": another program is commanding the head (" + std::to_string(foreign) +
@@ -287,7 +292,7 @@ DriverOutput Ping360Driver::poll(double now_s) {
   State& s = *state_;
   if (s.phase == State::Phase::kIdentifying && now_s >= s.identity_deadline_s) {
     const std::size_t asked = s.identity_requests;
-    if ((asked & (asked - 1)) == 0) {  // after 1, 2, 4, 8... unanswered requests
+    if (saidAt(asked)) {  // after 1, 2, 4, 8... unanswered requests
       out.notes.push_back("no device_information from the Ping360 after " + std::to_string(asked) +
                           (asked == 1 ? " request" : " requests") + ": asking again");
     }
@@ -295,7 +300,7 @@ DriverOutput Ping360Driver::poll(double now_s) {
   } else if (s.phase == State::Phase::kScanning && s.pending && now_s >= s.deadline_s) {
     ++s.repeats;
     ++s.unanswered;
-    if ((s.unanswered & (s.unanswered - 1)) == 0) {  // said at the 1st, 2nd, 4th... unanswered command
+    if (saidAt(s.unanswered)) {
       const std::string since = s.last_reply_s < 0.0 ? "no reply yet" : "head silent for " + seconds(now_s - s.last_reply_s) + " s";
       out.notes.push_back("no device_data for " + std::to_string(s.pending_angle) + " grad from the Ping360 in time (" +
                           seconds(s.timeout_used_s) + " s; " + since + "): command sent again (" +
