@@ -74,18 +74,13 @@ std::size_t ProvisionalBeams::size() const {
 }
 
 void ProvisionalBeams::overlay(OcTree16& map) const {
-  const auto all = static_cast<OcTree16::KeyType::Index>(~OcTree16::KeyType::Index{0});
-  overlay(map, OcTree16::KeyType{}, OcTree16::KeyType{{all, all, all}});
-}
-
-void ProvisionalBeams::overlay(OcTree16& map, const OcTree16::KeyType& min_key, const OcTree16::KeyType& max_key) const {
   if (size() == 0) return;
   if (map.resolution_m() != *resolution_m_) {
     throw ValueError("provisional beams: a map at " + std::to_string(map.resolution_m()) + " m, the layer at " +
                      std::to_string(*resolution_m_) + " m");
   }
   for (const Sweep& sweep : sweeps_) {
-    sweep.mapper.map().forEachLeafInBox(min_key, max_key, [&map](const LeafView<16>& leaf) {
+    sweep.mapper.map().forEachLeaf([&map](const LeafView<16>& leaf) {
       if (leaf.depth == OcTree16::kDepth) {
         map.updateNode(leaf.key, leaf.log_odds, true);
       } else {

@@ -71,9 +71,6 @@ class ProvisionalBeams {
   /// changes nothing).
   /// @throws ValueError when the resolutions differ and the layer is not empty.
   void overlay(OcTree16& map) const;
-  /// overlay() of the layer's leaves that meet the key box [min_key, max_key] only (inclusive).
-  /// @throws ValueError as overlay().
-  void overlay(OcTree16& map, const OcTree16::KeyType& min_key, const OcTree16::KeyType& max_key) const;
   /// The voxels of the key box [min_key, max_key] the layer changes, with the log-odds overlay()
   /// would give them on `map` (each voxel's value in `map`, 0 where unknown, updated sweep after
   /// sweep with the model's clamping), in no particular order. Cost: the layer's voxels in the box
