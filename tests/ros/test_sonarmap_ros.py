@@ -12,199 +12,55 @@ Exits 77 (ctest's skip) when roscore or rosbag is absent.
 """
 
 import math
-import os
 import pathlib
-import shutil
-import socket
 import subprocess
 import sys
-import tempfile
 import time
 
-SKIP = 77
-OCTOMAP_MSG = """Header header
-bool binary
-string id
-float64 resolution
-int8[] data
-================================================================================
-MSG: std_msgs/Header
-uint32 seq
-time stamp
-string frame_id
-"""
-
-TF_MSG = """geometry_msgs/TransformStamped[] transforms
-================================================================================
-MSG: geometry_msgs/TransformStamped
-Header header
-string child_frame_id
-Transform transform
-================================================================================
-MSG: std_msgs/Header
-uint32 seq
-time stamp
-string frame_id
-================================================================================
-MSG: geometry_msgs/Transform
-Vector3 translation
-Quaternion rotation
-================================================================================
-MSG: geometry_msgs/Vector3
-float64 x
-float64 y
-float64 z
-================================================================================
-MSG: geometry_msgs/Quaternion
-float64 x
-float64 y
-float64 z
-float64 w
-"""
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def node_count(data):
-    """Nodes of an OctoMap binary stream (writeBinaryData: 2 bytes per inner node, 2 bits per child:
-    01 free leaf, 10 occupied leaf, 11 inner), as a .bt header's `size` counts them."""
-    pos = 0
-
-    def inner():
-        nonlocal pos
-        bits = data[pos] | (data[pos + 1] << 8)
-        pos += 2
-        count = 1
-        for child in range(8):
-            code = (bits >> (2 * child)) & 3
-            if code == 3:
-                count += inner()
-            elif code:
-                count += 1
-        return count
-
-    return inner() if data else 0
-
-
-def bt_bytes(message):
-    data = bytes(b & 0xFF for b in message.data)
-    header = f"# Octomap OcTree binary file\nid {message.id}\nsize {node_count(data)}\nres {message.resolution}\ndata\n"
-    return header.encode() + data
-
-
-def services(dynamic):
-    """std_srvs' Empty and Trigger for rospy's ServiceProxy (Debian has no python3 std_srvs):
-    request and response classes generated from the .srv texts, md5 as std_srvs' C++ headers say."""
-    classes = dynamic.generate_dynamic("std_srvs/TriggerResponse", "bool success\nstring message\n")
-    trigger_response = classes["std_srvs/TriggerResponse"]
-    empty = dynamic.generate_dynamic("std_srvs/EmptyRequest", "")["std_srvs/EmptyRequest"]
-
-    def service(name, md5, request, response):
-        return type(name, (), {"_type": "std_srvs/" + name, "_md5sum": md5, "_request_class": request,
-                               "_response_class": response})
-
-    point = "================================================================================\nMSG: geometry_msgs/Point\n" \
-            "float64 x\nfloat64 y\nfloat64 z\n"
-    box = dynamic.generate_dynamic("octomap_msgs/BoundingBoxQueryRequest",
-                                   "geometry_msgs/Point min\ngeometry_msgs/Point max\n" + point)
-    box_request = box["octomap_msgs/BoundingBoxQueryRequest"]
-
-    class Srv:
-        # the service's md5 is genmsg's of the request and response texts: the response is empty
-        BoundingBoxQuery = type("BoundingBoxQuery", (), {"_type": "octomap_msgs/BoundingBoxQuery",
-                                                         "_md5sum": box_request._md5sum, "_request_class": box_request,
-                                                         "_response_class": empty})
-        Point = box["geometry_msgs/Point"]
-        Empty = service("Empty", "d41d8cd98f00b204e9800998ecf8427e", empty, empty)
-        Trigger = service("Trigger", "937c9679a518e3a18d831e57125ea522", empty, trigger_response)
-
-    class Module:
-        srv = Srv
-
-    return Module
+from ros_harness import SKIP, Master, agreement, bt_bytes, voxel_classes
 
 
 def main(node, cli, python_dir, shared):
-    if shutil.which("roscore") is None or shutil.which("rosbag") is None:
+    if not Master.available():
         print("SKIP: roscore or rosbag is not installed (Debian: ros-core, python3-rosbag)")
         return SKIP
-    sys.path.insert(0, python_dir)
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "bench"))
-    tmp = pathlib.Path(tempfile.mkdtemp(prefix="sonarmap_ros_"))
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(tmp), ROS_LOG_DIR=str(tmp / "log"),
-               ROS_HOSTNAME="127.0.0.1")
-    os.environ.update(env)
-    master = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
-    processes = [master]
-    try:
-        import rosgraph
-        deadline = time.time() + 20
-        while not rosgraph.is_master_online():
-            if time.time() > deadline:
-                raise AssertionError("roscore did not come up in 20 s")
-            time.sleep(0.2)
-        import genpy.dynamic
-        import rospy
-        std_srvs = services(genpy.dynamic)
-        Octomap = genpy.dynamic.generate_dynamic("octomap_msgs/Octomap", OCTOMAP_MSG)["octomap_msgs/Octomap"]
-        rospy.init_node("sonarmap_test", anonymous=True, disable_signals=True)
-        failures = []
+    with Master(python_dir) as master:
+        tmp = master.tmp
         cases = []
         sim = tmp / "sim.bag"
         subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "sim"), "--turns", "3", "--speed", "0.1", "--heading",
                         "30", "--mounting", "0.3,0,0.2,0,20,0", "--bag", str(sim), "-q"], check=True)
         cases.append(("simulated, navigation and a tilted mounting", sim, "/sonar/scan_line",
-                      ["_pose_source:=odometry", "_odom_topic:=/odometry"], []))
+                      {"pose_source": "odometry", "odom_topic": "/odometry"}, []))
         # A vehicle without a DVL (heading only, north and east 0), localized by the scans (~slam)
         compass = tmp / "compass.bag"
         subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "compass"), "--turns", "8", "--speed", "0.1",
                         "--heading", "30", "--heading-bias", "2", "--no-position", "--bag", str(compass), "-q"], check=True)
         cases.append(("simulated, compass only, ~slam", compass, "/sonar/scan_line",
-                      ["_pose_source:=odometry", "_odom_topic:=/odometry", "_slam:=true"], ["--slam"]))
+                      {"pose_source": "odometry", "odom_topic": "/odometry", "slam": "true"}, ["--slam"]))
         pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
         if pool.exists():
-            cases.append(("pool", pool, "/micron_driver/scan_line", ["_pose_source:=none"], []))
+            cases.append(("pool", pool, "/micron_driver/scan_line", {"pose_source": "none"}, []))
         else:
             print(f"note: {pool} absent, the pool bag's case skipped")
-        TFMessage = genpy.dynamic.generate_dynamic("tf2_msgs/TFMessage", TF_MSG)["tf2_msgs/TFMessage"]
+        failures = []
         for name, bag, topic, params, map_args in cases:
-            failures += run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes, Octomap, TFMessage,
-                                 rospy, std_srvs)
+            failures += run_case(master, name, bag, topic, params, map_args, node, cli)
         if failures:
             print("\n".join("FAIL: " + f for f in failures))
             return 1
         print("all cases passed")
         return 0
-    finally:
-        for p in reversed(processes):
-            if p.poll() is None:
-                p.terminate()
-                try:
-                    p.wait(10)
-                except subprocess.TimeoutExpired:
-                    p.kill()
-        shutil.rmtree(tmp, ignore_errors=True)
 
 
-def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes, Octomap, TFMessage, rospy, std_srvs):
-    import map_agreement
+def run_case(master, name, bag, topic, params, map_args, node, cli):
+    tmp, env, rospy, Octomap, TFMessage = master.tmp, master.env, master.rospy, master.Octomap, master.TFMessage
     failures = []
     resolution = "0.1"
-    saved = tmp / f"saved_{len(processes)}.bt"
-    log_path = tmp / f"node_{len(processes)}.log"
-    log = open(log_path, "w+")
-    # a node's _name:=value parameters stay on the master after it ends: the previous case's are removed
-    subprocess.run(["rosparam", "delete", "/sonarmap"], env=env, capture_output=True)
-    node_process = subprocess.Popen([node, f"_sonar_topic:={topic}", f"_resolution:={resolution}", "_idle_commit_s:=1.0",
-                                     "_publish_period_s:=0.5", f"_save_path:={saved}", "__name:=sonarmap"] + params,
-                                    env=dict(env, ROSCONSOLE_STDOUT_LINE_BUFFERED="1"), stdout=log,
-                                    stderr=subprocess.STDOUT)
-    processes.append(node_process)
+    saved = tmp / f"saved_{len(master.processes)}.bt"
+    node_process, log_path = master.start_node(node, dict({"sonar_topic": topic, "resolution": resolution,
+                                                           "idle_commit_s": 1.0, "publish_period_s": 0.5,
+                                                           "save_path": saved}, **params))
     received, raw = [], []
     subscriber = rospy.Subscriber("/octomap_binary", Octomap, lambda m: received.append((time.time(), m)))
     corrections = []  # map → odom, as any TF listener receives it
@@ -215,8 +71,7 @@ def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes,
     rospy.wait_for_service("/sonarmap/reset", timeout=20)
     started = time.time()
     # -d: rosbag play waits after advertising, so that the node's subscriptions connect before the first message
-    subprocess.run(["rosbag", "play", "-q", "-d", "2", "-r", "10", str(bag)], env=env, check=True,
-                   stdout=subprocess.DEVNULL)
+    master.play(bag)
     played = time.time()
     # the final map: the one published after the node said the sonar fell silent (idle_commit_s)
     deadline = played + 30
@@ -243,14 +98,11 @@ def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes,
     node_bt.write_bytes(bt_bytes(final))
     ref_bt = tmp / "ref.bt"
     subprocess.run([cli, "map", str(bag), "-o", str(ref_bt), "-q", "--resolution", resolution] + map_args, check=True)
-    a, b = map_agreement.voxel_classes(str(node_bt)), map_agreement.voxel_classes(str(ref_bt))
-    known = set(a) | set(b)
-    same = sum(1 for key in known if key in a and key in b and a[key] == b[key])
-    agreement = same / len(known) if known else 0.0
-    print(f"{name}: bag played at 10x in {played - started - 2:.1f} s; node {len(a)} voxels, map {len(b)}; "
-          f"agreement {agreement:.6f} over {len(known)}")
-    if not known or agreement < 0.999:
-        failures.append(f"{name}: agreement {agreement:.6f} < 0.999")
+    same, node_voxels, map_voxels, known = agreement(node_bt, ref_bt)
+    print(f"{name}: bag played at 10x in {played - started - 2:.1f} s; node {node_voxels} voxels, map {map_voxels}; "
+          f"agreement {same:.6f} over {known}")
+    if not known or same < 0.999:
+        failures.append(f"{name}: agreement {same:.6f} < 0.999")
     tf_subscriber.unregister()
     if "--slam" in map_args:
         # the scans moved the compass-only track (north and east 0): map → odom is not the identity
@@ -269,7 +121,7 @@ def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes,
                             f"end at east {east:.3f} north {north:.3f} m")
     elif corrections:
         failures.append(f"{name}: map → odom published without ~slam")
-    save = rospy.ServiceProxy("/sonarmap/save_map", std_srvs.srv.Trigger)()
+    save = rospy.ServiceProxy("/sonarmap/save_map", master.srv.Trigger)()
     if not save.success:
         failures.append(f"{name}: save_map failed: {save.message}")
     else:
@@ -279,20 +131,21 @@ def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes,
             failures.append(f"{name}: save_map's file holds other data than octomap_binary")
     # ~clear_bbx (octomap_server's service type): the voxels of x < 0 become unknown, the others stay
     count = len(received)
-    srv = std_srvs.srv
+    srv = master.srv
     rospy.ServiceProxy("/sonarmap/clear_bbx", srv.BoundingBoxQuery)(srv.Point(-1e4, -1e4, -1e4), srv.Point(0, 1e4, 1e4))
     deadline = time.time() + 10
     while len(received) == count and time.time() < deadline:
         time.sleep(0.1)
     cleared_bt = tmp / "cleared.bt"
     cleared_bt.write_bytes(bt_bytes(received[-1][1]))
-    cleared = map_agreement.voxel_classes(str(cleared_bt))
+    cleared = voxel_classes(cleared_bt)
     resolution_m = float(resolution)
+    a = voxel_classes(node_bt)
     kept = {k: v for k, v in a.items() if (k[0] + 0.5) * resolution_m > 0}
     if len(received) == count or cleared != kept or len(kept) == len(a):
         failures.append(f"{name}: clear_bbx left {len(cleared)} voxels, expected the {len(kept)} of x > 0 of {len(a)}")
     count = len(received)
-    rospy.ServiceProxy("/sonarmap/reset", std_srvs.srv.Empty)()
+    rospy.ServiceProxy("/sonarmap/reset", master.srv.Empty)()
     deadline = time.time() + 10
     while len(received) == count and time.time() < deadline:
         time.sleep(0.1)
@@ -301,7 +154,6 @@ def run_case(name, bag, topic, params, map_args, node, cli, tmp, env, processes,
     subscriber.unregister()
     node_process.terminate()
     node_process.wait(10)
-    log.close()
     for line in log_path.read_text(errors="replace").splitlines():
         if "silent" in line or "ERROR" in line or "WARN" in line:
             print(f"{name}: node: {line.strip()}")
