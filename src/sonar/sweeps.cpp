@@ -116,10 +116,19 @@ std::size_t SweepGrouper::add(bool starts_sweep, const HeadSetting& setting) {
   if (starts_sweep || new_setting) closeCurrent();
   if (new_setting) {  // nothing of another setting joins the group: it is final, however short
     ++current_;
+    pending_sweeps_ = 0;
+    return std::exchange(pending_, 0);
+  }
+  // Sweeps joined until they hold min_beams beams are a whole group: a short sweep after them
+  // joins the next group (a narrow sector's passes commit a group every few passes).
+  if (starts_sweep && pending_sweeps_ >= 2 && pending_ >= min_beams_) {
+    ++current_;
+    pending_sweeps_ = 0;
     return std::exchange(pending_, 0);
   }
   ++current_;
   if (pending_ >= min_beams_ && current_ >= min_beams_) {  // current will not join pending: it is final
+    pending_sweeps_ = 0;
     return std::exchange(pending_, 0);
   }
   return 0;
@@ -127,12 +136,15 @@ std::size_t SweepGrouper::add(bool starts_sweep, const HeadSetting& setting) {
 
 std::size_t SweepGrouper::finish() {
   closeCurrent();
+  pending_sweeps_ = 0;
   return std::exchange(pending_, 0);
 }
 
 void SweepGrouper::closeCurrent() {
   // A sweep joins the group before it when either is short (both long: the group left in add()).
+  if (current_ == 0) return;
   pending_ += std::exchange(current_, 0);
+  ++pending_sweeps_;
 }
 
 std::vector<SweepRange> mergeShortSweeps(const std::vector<Beam>& beams, const std::vector<SweepRange>& sweeps,

@@ -223,6 +223,24 @@ TEST(mappingSweeps, ShortFragmentsJoinTheirNeighbourOfTheSameHeadSetting) {
   EXPECT_EQ(mergeShortSweeps(beams, sweeps, 20), sweeps);
 }
 
+TEST(mappingSweeps, ANarrowSectorsShortPassesAreGroupedAFewAtATime) {
+  // Passes of 8 beams (a narrow sector): joined until a group holds 20 beams, then the next passes
+  // start a group of their own, so the map takes them as the head goes, not all at the stream's end.
+  std::vector<Beam> beams(56);
+  for (Beam& beam : beams) beam.bin_length_m = 0.01;
+  std::vector<SweepRange> passes;
+  for (std::size_t first = 0; first < beams.size(); first += 8) passes.push_back({first, first + 8});
+  EXPECT_EQ(mergeShortSweeps(beams, passes, 20), (std::vector<SweepRange>{{0, 24}, {24, 48}, {48, 56}}));
+  // one beam at a time: the first group is final when the fourth pass begins
+  SweepGrouper grouper(20);
+  std::vector<std::size_t> final_at;
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    if (grouper.add(i > 0 && i % 8 == 0, headSettingOf(beams[i])) > 0) final_at.push_back(i);
+  }
+  EXPECT_EQ(final_at, (std::vector<std::size_t>{24, 48}));
+  EXPECT_EQ(grouper.finish(), 8u);
+}
+
 }  // namespace
 }  // namespace sonarmap
 

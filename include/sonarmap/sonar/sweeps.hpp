@@ -91,10 +91,14 @@ class SweepSplitter {
 
 /// mergeShortSweeps one beam at a time: says when the oldest beams held form a final group, a sweep
 /// (or sweeps joined) that no later beam can join. A sweep joins the group before it when either
-/// has fewer than `min_beams` beams and both have the same head setting, so a group is final once
-/// the sweep after it has `min_beams` beams, once the head setting changes, or at the end of the
-/// stream. A group may therefore hold fewer than `min_beams` beams: a range scale or gain used
-/// for fewer beams than that (a user turning the range knob through several scales).
+/// has fewer than `min_beams` beams and both have the same head setting, except that sweeps joined
+/// until they hold `min_beams` beams are a group of their own: a group is final once the sweep after
+/// it has `min_beams` beams, once it is of two sweeps or more and holds `min_beams` beams when the
+/// next sweep begins (a narrow sector's short passes are committed a few at a time, not all at the
+/// stream's end), once the head setting changes, or at the end of the stream. A group may
+/// therefore hold fewer than `min_beams` beams: a range scale or gain used for fewer beams than
+/// that (a user turning the range knob through several scales), or the short last sweep of a
+/// stream after such a group.
 class SweepGrouper {
  public:
   explicit SweepGrouper(std::size_t min_beams);
@@ -109,6 +113,7 @@ class SweepGrouper {
   void closeCurrent();
   std::size_t min_beams_;
   std::size_t pending_ = 0;  ///< beams of the group before the current sweep, not yet final
+  std::size_t pending_sweeps_ = 0;  ///< sweeps in the pending group
   std::size_t current_ = 0;  ///< beams of the sweep being received
   std::optional<HeadSetting> setting_;  ///< the last beam's
 };
