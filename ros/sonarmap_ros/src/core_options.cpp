@@ -24,6 +24,19 @@ double numberOf(const std::string& name, const std::string& text) {
   throw ValueError("~" + name + ": a number is needed, got '" + text + "'");
 }
 
+/// The library's message about a mapping option, which names it by its command-line flag
+/// ("--false-alarm expects a probability in (0, 0.5), got 0.7"), with the node's parameter instead
+/// ("~false_alarm: expects …"); a message naming no option given is kept.
+std::string rosNamed(const std::string& message, const CoreParameters& parameters) {
+  for (const auto& entry : parameters.mapping_options) {
+    const sonarmap::MappingOption* option = sonarmap::findMappingOption(entry.first);
+    if (option == nullptr) continue;
+    const std::string flag = sonarmap::optionFlag(*option);
+    if (message.compare(0, flag.size() + 1, flag + " ") == 0) return "~" + entry.first + ":" + message.substr(flag.size());
+  }
+  return message;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, OptionKind>> mappingOptionNames() {
@@ -72,7 +85,12 @@ sonarmap::MapperOptions coreMapperOptions(const CoreParameters& parameters, cons
                },
                option->link);
   }
-  sonarmap::MapperOptions options = sonarmap::withSonarBeam(sonarmap::toMapperOptions(args), args, beam);
+  sonarmap::MapperOptions options;
+  try {
+    options = sonarmap::withSonarBeam(sonarmap::toMapperOptions(args), args, beam);
+  } catch (const ValueError& error) {
+    throw ValueError(rosNamed(error.what(), parameters));
+  }
   sonarmap::OccupancyParams& occupancy = options.octree.occupancy;
   if (parameters.prob_miss) occupancy.prob_miss = *parameters.prob_miss;
   if (parameters.clamp_min) occupancy.clamp_min = *parameters.clamp_min;
