@@ -9,7 +9,9 @@
 /// genmsg's (compute_md5) of that text, checked by tests/ros/test_sonarmap_ros.py with
 /// /usr/bin/python3's genmsg. The same for the service octomap_msgs/BoundingBoxQuery (srv/
 /// BoundingBoxQuery.srv: a request of two geometry_msgs/Point, an empty response), octomap_server's
-/// ~clear_bbx.
+/// ~clear_bbx, and octomap_msgs/GetOctomap (srv/GetOctomap.srv: an empty request, a response of one
+/// octomap_msgs/Octomap), octomap_server's services octomap_binary and octomap_full, which
+/// octomap_saver calls; its md5 is checked by tests/ros/test_ros_octomap_server_interface.py.
 
 #include <cstdint>
 #include <string>
@@ -40,42 +42,51 @@ struct BoundingBoxQueryRequest {
 /// octomap_msgs/BoundingBoxQuery's response: empty.
 struct BoundingBoxQueryResponse {};
 
+/// octomap_msgs/GetOctomap's request: empty.
+struct GetOctomapRequest {};
+/// octomap_msgs/GetOctomap's response: the map.
+struct GetOctomapResponse {
+  OctomapMessage map;
+};
+
 }  // namespace sonarmap_ros
 
 namespace sonarmap_ros::definitions {
 
 inline constexpr char kOctomapMd5[] = "9a45536b45c5e409cd49f04bb2d9999f";
-inline constexpr char kOctomap[] =
-    "# A 3D map in binary format, as Octree\n"
-    "Header header\n"
-    "\n"
-    "# Flag to denote a binary (only free/occupied) or full occupancy octree (.bt/.ot file)\n"
-    "bool binary\n"
-    "\n"
-    "# Class id of the contained octree \n"
-    "string id\n"
-    "\n"
-    "# Resolution (in m) of the smallest octree nodes\n"
-    "float64 resolution\n"
-    "\n"
-    "# binary serialization of octree, use conversions.h to read and write octrees\n"
-    "int8[] data\n"
-    "\n"
-    "================================================================================\n"
-    "MSG: std_msgs/Header\n"
-    "# Standard metadata for higher-level stamped data types.\n"
-    "# This is generally used to communicate timestamped data \n"
-    "# in a particular coordinate frame.\n"
-    "# \n"
-    "# sequence ID: consecutively increasing ID \n"
-    "uint32 seq\n"
-    "#Two-integer timestamp that is expressed as:\n"
-    "# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n"
-    "# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n"
-    "# time-handling sugar is provided by the client library\n"
-    "time stamp\n"
-    "#Frame this data is associated with\n"
-    "string frame_id\n";
+// a macro, so that GetOctomap's response definition can contain it (string literals join)
+#define SONARMAP_ROS_OCTOMAP_DEFINITION \
+    "# A 3D map in binary format, as Octree\n" \
+    "Header header\n" \
+    "\n" \
+    "# Flag to denote a binary (only free/occupied) or full occupancy octree (.bt/.ot file)\n" \
+    "bool binary\n" \
+    "\n" \
+    "# Class id of the contained octree \n" \
+    "string id\n" \
+    "\n" \
+    "# Resolution (in m) of the smallest octree nodes\n" \
+    "float64 resolution\n" \
+    "\n" \
+    "# binary serialization of octree, use conversions.h to read and write octrees\n" \
+    "int8[] data\n" \
+    "\n" \
+    "================================================================================\n" \
+    "MSG: std_msgs/Header\n" \
+    "# Standard metadata for higher-level stamped data types.\n" \
+    "# This is generally used to communicate timestamped data \n" \
+    "# in a particular coordinate frame.\n" \
+    "# \n" \
+    "# sequence ID: consecutively increasing ID \n" \
+    "uint32 seq\n" \
+    "#Two-integer timestamp that is expressed as:\n" \
+    "# * stamp.sec: seconds (stamp_secs) since epoch (in Python the variable is called 'secs')\n" \
+    "# * stamp.nsec: nanoseconds since stamp_secs (in Python the variable is called 'nsecs')\n" \
+    "# time-handling sugar is provided by the client library\n" \
+    "time stamp\n" \
+    "#Frame this data is associated with\n" \
+    "string frame_id\n"
+inline constexpr char kOctomap[] = SONARMAP_ROS_OCTOMAP_DEFINITION;
 
 /// genmsg's md5 of the service: of the request's text and the empty response's, so the request's own too.
 inline constexpr char kBoundingBoxQueryMd5[] = "93aa3d73b866f04880927745f4aab303";
@@ -94,6 +105,18 @@ inline constexpr char kBoundingBoxQueryRequest[] =
     "float64 y\n"
     "float64 z\n";
 
+/// genmsg's md5 of GetOctomap.srv: of its empty request's text and its response's ("<Octomap's md5>
+/// map"), which is the response's own md5 too; the request's own is the empty text's.
+inline constexpr char kGetOctomapMd5[] = "be9d2869d24fe40d6bc21ac21f6bb2c5";
+inline constexpr char kEmptyMd5[] = "d41d8cd98f00b204e9800998ecf8427e";
+inline constexpr char kGetOctomapResponse[] =
+    "octomap_msgs/Octomap map\n"
+    "\n"
+    "================================================================================\n"
+    "MSG: octomap_msgs/Octomap\n" SONARMAP_ROS_OCTOMAP_DEFINITION;
+inline constexpr char kBoundingBoxQueryType[] = "octomap_msgs/BoundingBoxQuery";
+inline constexpr char kGetOctomapType[] = "octomap_msgs/GetOctomap";
+
 }  // namespace sonarmap_ros::definitions
 
 // roscpp's own macro for messages whose traits are written by hand (ros/message_traits.h).
@@ -103,8 +126,12 @@ ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::BoundingBoxQueryRequest,
                                   sonarmap_ros::definitions::kBoundingBoxQueryMd5,
                                   "octomap_msgs/BoundingBoxQueryRequest",
                                   sonarmap_ros::definitions::kBoundingBoxQueryRequest)
-ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::BoundingBoxQueryResponse, "d41d8cd98f00b204e9800998ecf8427e",
+ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::BoundingBoxQueryResponse, sonarmap_ros::definitions::kEmptyMd5,
                                   "octomap_msgs/BoundingBoxQueryResponse", "\n")
+ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::GetOctomapRequest, sonarmap_ros::definitions::kEmptyMd5,
+                                  "octomap_msgs/GetOctomapRequest", "# Get the map as a octomap\n")
+ROS_IMPLEMENT_SIMPLE_TOPIC_TRAITS(sonarmap_ros::GetOctomapResponse, sonarmap_ros::definitions::kGetOctomapMd5,
+                                  "octomap_msgs/GetOctomapResponse", sonarmap_ros::definitions::kGetOctomapResponse)
 
 namespace ros {
 template <> struct message_traits::HasHeader<sonarmap_ros::OctomapMessage> : message_traits::TrueType {};
@@ -112,25 +139,39 @@ template <> struct message_traits::HasHeader<sonarmap_ros::OctomapMessage> : mes
 
 namespace ros::service_traits {
 
-/// The service's md5 and type, which its request and response both carry (ros/service_traits.h).
-template <class Part>
-struct BoundingBoxQueryPart {
-  static const char* value() { return sonarmap_ros::definitions::kBoundingBoxQueryMd5; }
-  static const char* value(const Part&) { return value(); }
-};
-template <class Part>
-struct BoundingBoxQueryType {
-  static const char* value() { return "octomap_msgs/BoundingBoxQuery"; }
-  static const char* value(const Part&) { return value(); }
+/// A service's md5 or type, which its request and response both carry (ros/service_traits.h).
+template <const char* Text>
+struct ServiceText {
+  static const char* value() { return Text; }
+  template <class Part>
+  static const char* value(const Part&) {
+    return Text;
+  }
 };
 template <>
-struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest> : BoundingBoxQueryPart<sonarmap_ros::BoundingBoxQueryRequest> {};
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryRequest>
+    : ServiceText<sonarmap_ros::definitions::kBoundingBoxQueryMd5> {};
 template <>
-struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse> : BoundingBoxQueryPart<sonarmap_ros::BoundingBoxQueryResponse> {};
+struct MD5Sum<sonarmap_ros::BoundingBoxQueryResponse>
+    : ServiceText<sonarmap_ros::definitions::kBoundingBoxQueryMd5> {};
 template <>
-struct DataType<sonarmap_ros::BoundingBoxQueryRequest> : BoundingBoxQueryType<sonarmap_ros::BoundingBoxQueryRequest> {};
+struct DataType<sonarmap_ros::BoundingBoxQueryRequest>
+    : ServiceText<sonarmap_ros::definitions::kBoundingBoxQueryType> {};
 template <>
-struct DataType<sonarmap_ros::BoundingBoxQueryResponse> : BoundingBoxQueryType<sonarmap_ros::BoundingBoxQueryResponse> {};
+struct DataType<sonarmap_ros::BoundingBoxQueryResponse>
+    : ServiceText<sonarmap_ros::definitions::kBoundingBoxQueryType> {};
+template <>
+struct MD5Sum<sonarmap_ros::GetOctomapRequest>
+    : ServiceText<sonarmap_ros::definitions::kGetOctomapMd5> {};
+template <>
+struct MD5Sum<sonarmap_ros::GetOctomapResponse>
+    : ServiceText<sonarmap_ros::definitions::kGetOctomapMd5> {};
+template <>
+struct DataType<sonarmap_ros::GetOctomapRequest>
+    : ServiceText<sonarmap_ros::definitions::kGetOctomapType> {};
+template <>
+struct DataType<sonarmap_ros::GetOctomapResponse>
+    : ServiceText<sonarmap_ros::definitions::kGetOctomapType> {};
 
 }  // namespace ros::service_traits
 
@@ -163,6 +204,22 @@ template <>
 struct Serializer<sonarmap_ros::BoundingBoxQueryResponse> {
   template <typename Stream, typename T>
   inline static void allInOne(Stream&, T) {}
+  ROS_DECLARE_ALLINONE_SERIALIZER
+};
+
+template <>
+struct Serializer<sonarmap_ros::GetOctomapRequest> {
+  template <typename Stream, typename T>
+  inline static void allInOne(Stream&, T) {}
+  ROS_DECLARE_ALLINONE_SERIALIZER
+};
+
+template <>
+struct Serializer<sonarmap_ros::GetOctomapResponse> {
+  template <typename Stream, typename T>
+  inline static void allInOne(Stream& stream, T m) {
+    stream.next(m.map);
+  }
   ROS_DECLARE_ALLINONE_SERIALIZER
 };
 
