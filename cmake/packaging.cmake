@@ -3,7 +3,9 @@
 # library (static, one libsonarmap_<component>.a per component), its headers and CMake package
 # (find_package(sonarmap [COMPONENTS ...])), the `sonarmap` CLI (/usr/bin/sonarmap and the full
 # tool it hands every command but `cloud` to, /usr/libexec/sonarmap/sonarmap-full)
-# and, when built, the Python module (/usr/lib/python3/dist-packages/sonarmap).
+# and, when built, the Python module (/usr/lib/python3/dist-packages/sonarmap) and the ROS 1 node
+# (/usr/lib/sonarmap_ros, /usr/share/sonarmap_ros: found by rosrun and roslaunch, docs/ros.md; its ROS
+# libraries, libroscpp4d and the others, then among the dependencies dpkg-shlibdeps finds).
 # `apt-get install ./sonarmap_*.deb` pulls what it needs from Debian: the shared libraries the
 # CLI and the module link (dpkg-shlibdeps) and, since the library is static and its headers
 # include OpenCV and Eigen, the -dev packages a consumer's build links (sonarmapConfig.cmake's

@@ -24,8 +24,10 @@ if [ "${1:-}" = test ]; then
   # pytest, the notebook run by nbconvert, headless Chromium for the viewer's browser tests, and
   # ccache for the repeated builds of CI and the sanitizers (scripts/compiler-cache.sh)
   packages+=(python3-pytest jupyter-nbconvert python3-ipykernel chromium ccache)
-  # the ROS node's test against a real master: roscore, rosbag play, rostopic, rospy (tests/ros)
-  packages+=(ros-core python3-roslaunch python3-rosmaster python3-rosbag python3-rospy python3-genpy librosbag-dev)
+  # the ROS node's test against a real master: roscore, rosbag play, rostopic, rospy (tests/ros); rosrun
+  # and rospack, which find the installed node (tests/ros/test_ros_install.py; ros-core only recommends them)
+  packages+=(ros-core python3-roslaunch python3-rosmaster python3-rosbag python3-rospy python3-genpy librosbag-dev
+    rosbash rospack-tools)
   # gdalinfo and gdallocationinfo read the GeoTIFFs back (tests/cli/test_cli_geo.cpp); python3-gdal
   # draws the chart of docs/geo.md (scripts/geotiff_chart.py)
   packages+=(gdal-bin python3-gdal)
