@@ -36,20 +36,24 @@ MapData mapData(const sonarmap::OcTree16& map, const CoreParameters& parameters,
   data.resolution_m = map.resolution_m();
   data.binary_data = octomapData(map, true);
   data.full_data = octomapData(map, false);
-  // Occupied leaves (log-odds > 0: OctoMap's isNodeOccupied at 0.5) by size, coarsest first.
-  std::map<int, MapData::Cells> by_depth;
+  // Occupied leaves (log-odds > 0: OctoMap's isNodeOccupied at 0.5) and, when asked, free ones by size,
+  // coarsest first; a leaf is in the z band when it reaches into it, as octomap_server's publishAll
+  // takes occupancy_min_z/max_z (z + edge/2 > min and z - edge/2 < max).
+  std::map<int, MapData::Cells> occupied, free;
   const double res = map.resolution_m(), offset = sonarmap::KeyCoder<16>::offset();
   map.forEachLeaf([&](const sonarmap::LeafView<16>& leaf) {
-    if (!(leaf.log_odds > 0.0f)) return;
-    const double edge_m = leaf.edgeVoxels() * res;
-    const Eigen::Vector3d center((leaf.key[0] - offset) * res + 0.5 * edge_m, (leaf.key[1] - offset) * res + 0.5 * edge_m,
-                                 (leaf.key[2] - offset) * res + 0.5 * edge_m);
-    if (center.z() < parameters.occupancy_min_z_m || center.z() > parameters.occupancy_max_z_m) return;
-    MapData::Cells& cells = by_depth[leaf.depth];
+    const bool is_occupied = leaf.log_odds > 0.0f;
+    if (!is_occupied && !parameters.free_cells) return;
+    const double edge_m = leaf.edgeVoxels() * res, half_m = 0.5 * edge_m;
+    const Eigen::Vector3d center((leaf.key[0] - offset) * res + half_m, (leaf.key[1] - offset) * res + half_m,
+                                 (leaf.key[2] - offset) * res + half_m);
+    if (center.z() + half_m <= parameters.occupancy_min_z_m || center.z() - half_m >= parameters.occupancy_max_z_m) return;
+    MapData::Cells& cells = (is_occupied ? occupied : free)[leaf.depth];
     cells.edge_m = edge_m;
     cells.centers.push_back(center.cast<float>());
   });
-  for (auto& [depth, cells] : by_depth) data.occupied.push_back(std::move(cells));
+  for (auto& [depth, cells] : occupied) data.occupied.push_back(std::move(cells));
+  for (auto& [depth, cells] : free) data.free.push_back(std::move(cells));
   // projected_map: the slice at the vehicle's height (map_slice.hpp), as an OccupancyGrid's rows.
   sonarmap::SliceView slice;
   try {

@@ -52,6 +52,7 @@ struct CoreParameters {
   std::vector<std::pair<std::string, std::string>> mapping_options;
   std::optional<double> prob_miss, clamp_min, clamp_max;  ///< octomap_server's sensor_model/*
   double occupancy_min_z_m = -1e300, occupancy_max_z_m = 1e300;  ///< markers and cloud band, frame_id's z
+  bool free_cells = false;  ///< MapData::free filled (octomap_server's publish_free_space)
   std::size_t bearing_decision_beams = 2000;  ///< auto unit: beams held at most before radians
 };
 
@@ -61,9 +62,11 @@ struct MapData {
   std::vector<std::int8_t> binary_data, full_data;  ///< octomap_msgs/Octomap data (binary, full)
   struct Cells {
     double edge_m = 0.0;                  ///< the leaves' edge
-    std::vector<Eigen::Vector3f> centers; ///< occupied leaves' centres within the z band
+    std::vector<Eigen::Vector3f> centers; ///< the leaves' centres
   };
-  std::vector<Cells> occupied;  ///< by leaf size, finest last
+  /// The occupied leaves, and with CoreParameters::free_cells the free ones, that reach into the z band
+  /// (occupancy_min_z_m … occupancy_max_z_m, as octomap_server takes it), by leaf size, finest last.
+  std::vector<Cells> occupied, free;
   /// projected_map: the slice at the vehicle's height, row 0 at the lowest y, 100 occupied, 0 free,
   /// −1 unknown; width 0 when the vehicle is outside the map.
   std::uint32_t grid_width = 0, grid_height = 0;

@@ -31,7 +31,7 @@ class SonarmapNode {
       : parameters_(readNodeParameters(private_node)),
         core_(parameters_.core,
               [this](const std::string& sonar_frame) { return pose_->sonarInBody(core_.bodyFrame(), sonar_frame, 2.0); }),
-        publisher_(node, parameters_.core.frame_id) {
+        publisher_(node, parameters_) {
     pose_ = std::make_unique<PoseInput>(
         node, parameters_,
         [this](double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
