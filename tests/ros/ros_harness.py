@@ -173,7 +173,8 @@ class Master:
         self.rospy = rospy
         self.srv = services(genpy.dynamic).srv
         self.Octomap = genpy.dynamic.generate_dynamic("octomap_msgs/Octomap", OCTOMAP_MSG)["octomap_msgs/Octomap"]
-        self.TFMessage = genpy.dynamic.generate_dynamic("tf2_msgs/TFMessage", TF_MSG)["tf2_msgs/TFMessage"]
+        self.tf_classes = genpy.dynamic.generate_dynamic("tf2_msgs/TFMessage", TF_MSG)
+        self.TFMessage = self.tf_classes["tf2_msgs/TFMessage"]
         rospy.init_node("sonarmap_test", anonymous=True, disable_signals=True)
         return self
 
@@ -185,8 +186,23 @@ class Master:
                     p.wait(10)
                 except subprocess.TimeoutExpired:
                     p.kill()
-        shutil.rmtree(self.tmp, ignore_errors=True)
+        if not os.environ.get("SONARMAP_KEEP_TMP"):  # kept for a look at the nodes' logs
+            shutil.rmtree(self.tmp, ignore_errors=True)
         return False
+
+    def dynamic(self, type_name, text):
+        """rospy's class of message `type_name` from its .msg text (genpy; md5 genmsg's)."""
+        import genpy.dynamic
+        return genpy.dynamic.generate_dynamic(type_name, text)[type_name]
+
+    def transform(self, parent, child, stamp, translation, rotation):
+        """A geometry_msgs/TransformStamped: `translation` (x, y, z) m, `rotation` (x, y, z, w)."""
+        c = self.tf_classes
+        t = c["geometry_msgs/TransformStamped"]()
+        t.header.frame_id, t.header.stamp, t.child_frame_id = parent, stamp, child
+        t.transform.translation = c["geometry_msgs/Vector3"](*translation)
+        t.transform.rotation = c["geometry_msgs/Quaternion"](*rotation)
+        return t
 
     def start(self, command, log_name=None):
         """A process beside the master (stopped at the end); its output to tmp/log_name when given."""

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 #include "core_internal.hpp"
 #include "sonarmap/core/errors.hpp"
@@ -24,6 +25,7 @@ struct MappingCore::Impl {
   MountingLookup mounting;
   sonarmap::MapFrame frame = sonarmap::MapFrame::kEnu;
   std::optional<sonarmap::RosSonarDecoder> decoder;
+  std::string decoder_type;  ///< the message type the decoder reads
   std::string sonar_frame;
   std::optional<sonarmap::NominalBeam> nominal_beam;
   struct Held {
@@ -52,6 +54,12 @@ struct MappingCore::Impl {
   }
   std::deque<double> receipts_wall_s;  ///< of the beams given to the mapper and not yet in its map
   double newest_time_s = 0.0;          ///< the newest beam's time
+  /// The run's clocks: the newest stamp of a beam [0] and of a pose [1] (a stamp jump_back_s before
+  /// its stream's: a new run). Each stream by itself: TF's poses may come late, from its history.
+  double run_clock_s[2] = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  std::optional<Eigen::Isometry3d> mounting_found;  ///< TF's sonar-in-body once found
+  bool mounting_given_up = false;                    ///< mounting_wait_s passed without it
+  double first_beam_wall_s = -1.0;                   ///< the first beam's receipt (the mounting's wait)
   double empty_resolution_m = 0.1;     ///< an empty map's after reset, before any sweep
   std::optional<sonarmap::OcTree16> published;
 };
@@ -87,23 +95,31 @@ double wallNow_s() {
 
 }  // namespace
 
-void MappingCore::addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
+bool MappingCore::addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
                                   std::size_t size, double receipt_s, double receipt_wall_s) {
   Impl& d = *impl_;
-  if (!d.decoder) {
+  if (!d.decoder || type != d.decoder_type) {
+    // a publisher of another type: its decoder replaces the sonar's only when it reads a beam
     sonarmap::RosBagOptions options;
     options.sonar_topic = d.parameters.sonar_topic;
     options.bearing_unit = sonarmap::parseBearingUnit(d.parameters.bearing_unit);
     options.bearing_direction = sonarmap::parseBearingDirection(d.parameters.bearing_direction);
-    d.decoder.emplace(type, definition, options);
+    try {
+      d.decoder.emplace(type, definition, options);
+    } catch (const sonarmap::ValueError& error) {
+      throw NotASonarType(error.what());
+    }
+    d.decoder_type = type;
   }
   sonarmap::RosSonarMessage message;
   try {
     message = d.decoder->decode(std::span<const std::uint8_t>(bytes, size), receipt_s);
   } catch (const sonarmap::Error&) {
     ++lag_.rejected_messages;
-    return;
+    return false;
   }
+  const bool new_run = noteStamp(message.beam.time_s, false);
+  if (d.first_beam_wall_s < 0.0) d.first_beam_wall_s = receipt_wall_s;
   if (lag_.beams == 0 && d.held.empty()) {
     d.sonar_frame = message.frame_id;
     d.nominal_beam = message.nominal_beam;
@@ -112,11 +128,68 @@ void MappingCore::addSonarMessage(const std::string& type, const std::string& de
   d.held.push_back({std::move(message), receipt_wall_s});
   if (!d.decoder->unitDecided() && !sonarmap::RosSonarDecoder::beyondRadians(d.largest_bearing) &&
       d.held.size() < d.parameters.bearing_decision_beams) {
-    return;  // the unit is not known yet: the beams wait (mapping_core.hpp; a bag's rule)
+    lag_.beams_held = d.held.size();
+    return new_run;  // the unit is not known yet: the beams wait (mapping_core.hpp; a bag's rule)
   }
   if (!d.decoder->unitDecided()) d.decoder->decideUnit(d.largest_bearing);
   feedHeld();
+  return new_run;
 }
+
+bool MappingCore::noteStamp(double time_s, bool pose) {
+  Impl& d = *impl_;
+  double& clock = d.run_clock_s[pose ? 1 : 0];
+  if (time_s < clock - d.parameters.jump_back_s) {
+    newRun();
+    d.run_clock_s[0] = d.run_clock_s[1] = -std::numeric_limits<double>::infinity();
+    clock = time_s;
+    ++lag_.runs;
+    return true;
+  }
+  clock = std::max(clock, time_s);
+  return false;
+}
+
+void MappingCore::newRun() {
+  reset();
+  Impl& d = *impl_;
+  d.early_fixes.clear();
+  d.last_fix.reset();
+  d.newest_time_s = 0.0;
+  lag_.beams_held = 0;
+  // a new bag may mount the sonar otherwise: looked up again (its /tf_static came with it)
+  d.mounting_found.reset();
+  d.mounting_given_up = false;
+  d.first_beam_wall_s = -1.0;
+}
+
+bool MappingCore::mountingSettled(double now_wall_s) {
+  Impl& d = *impl_;
+  if (!d.parameters.navigation || d.mounting_found || d.mounting_given_up) return true;
+  if (!d.sonar_frame.empty()) d.mounting_found = d.mounting(d.sonar_frame);
+  // no frame to look up, or TF has not joined the frames in mounting_wait_s: the body's origin
+  if (!d.mounting_found && (d.sonar_frame.empty() || now_wall_s - d.first_beam_wall_s >= d.parameters.mounting_wait_s)) {
+    d.mounting_given_up = true;
+  }
+  return d.mounting_found || d.mounting_given_up;
+}
+
+double MappingCore::oldestWait_s(double now_wall_s) const {
+  const Impl& d = *impl_;
+  double oldest = std::numeric_limits<double>::infinity();
+  if (!d.held.empty()) oldest = d.held.front().receipt_wall_s;
+  if (!d.receipts_wall_s.empty()) oldest = std::min(oldest, d.receipts_wall_s.front());
+  return std::isfinite(oldest) ? std::max(0.0, now_wall_s - oldest) : 0.0;
+}
+
+bool MappingCore::waitingForMounting() const {
+  const Impl& d = *impl_;
+  return d.parameters.navigation && !d.started() && !d.held.empty() && !d.mounting_found && !d.mounting_given_up;
+}
+
+bool MappingCore::mountingMissing() const { return impl_->mounting_given_up; }
+
+const std::string& MappingCore::sonarFrame() const { return impl_->sonar_frame; }
 
 void MappingCore::feedHeld() {
   Impl& d = *impl_;
@@ -127,8 +200,14 @@ void MappingCore::feedHeld() {
     d.slam_finished = false;
     if (d.last_fix) d.early_fixes.push_back(*d.last_fix);
   }
-  if (!d.started()) start();
   const double now_s = wallNow_s();
+  if (!d.started()) {
+    if (!mountingSettled(now_s)) {
+      lag_.beams_held = d.held.size();
+      return;  // the beams wait for TF's mounting (a late /tf_static)
+    }
+    start();
+  }
   while (!d.held.empty()) {
     Impl::Held held = std::move(d.held.front());
     d.held.pop_front();
@@ -143,6 +222,7 @@ void MappingCore::feedHeld() {
       d.mapper->addBeam(std::move(held.message.beam));
     }
   }
+  lag_.beams_held = 0;
   noteLag();
 }
 
@@ -154,9 +234,8 @@ void MappingCore::start() {
       coreMapperOptions(d.parameters, sonarmap::nominalBeam(sonarmap::LogFormat::kRosBag, header));
   Eigen::Isometry3d mounting = Eigen::Isometry3d::Identity();
   if (d.parameters.navigation) {
-    const std::optional<Eigen::Isometry3d> sonar_in_body = d.mounting(d.sonar_frame);
     // without TF's mounting: the sonar at the body's origin, its frame the body's (REP 103 FLU)
-    if (sonar_in_body) mounting = sonarmap::rosMountingToBody(*sonar_in_body, body_frame_, d.sonar_frame);
+    if (d.mounting_found) mounting = sonarmap::rosMountingToBody(*d.mounting_found, body_frame_, d.sonar_frame);
   }
   if (!d.parameters.slam) {
     d.mapper = d.parameters.navigation ? std::make_unique<sonarmap::OnlineMapper>(options, mounting)
@@ -194,27 +273,31 @@ void MappingCore::noteLag() {
   }
 }
 
-void MappingCore::addPose(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
+bool MappingCore::addPose(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
                           const std::string& world_frame, const std::string& body_frame) {
   Impl& d = *impl_;
+  const bool new_run = noteStamp(time_s, true);
   const sonarmap::NavSample fix = sonarmap::rosPoseFix(time_s, position_m, orientation, world_frame);
-  if (d.last_fix && !(fix.time_s > d.last_fix->time_s)) return;  // skipped, as a bag's
+  if (d.last_fix && !(fix.time_s > d.last_fix->time_s)) return new_run;  // skipped, as a bag's
   if (!d.last_fix) body_frame_ = body_frame;
   d.last_fix = fix;
   d.world_frame = world_frame;
-  if (!d.parameters.navigation) return;
+  if (!d.parameters.navigation) return new_run;
   if (!d.started() || d.slam_finished) {
     d.early_fixes.push_back(fix);
-    return;
+    return new_run;
   }
   d.addNavFix(fix);
   noteLag();
+  return new_run;
 }
 
 bool MappingCore::commitAtSilence(bool navigation_ended) {
   Impl& d = *impl_;
   // The whole stream seen: an undecided unit is decided on every bearing, as a bag's.
   if (d.decoder && !d.decoder->unitDecided() && !d.held.empty()) d.decoder->decideUnit(d.largest_bearing);
+  // and the mounting's wait ends: TF had the time it had
+  if (!d.held.empty() && !mountingSettled(wallNow_s())) d.mounting_given_up = true;
   feedHeld();
   if (!d.started()) return false;
   const std::size_t sweeps = d.active().sweepsIntegrated();
@@ -321,6 +404,11 @@ std::optional<MapData> MappingCore::snapshot() {
 void MappingCore::save(const std::string& path) const {
   const Impl& d = *impl_;
   if (!d.published) throw sonarmap::ValueError("~save_map: no map published yet");
+  if (d.published->empty()) {
+    throw sonarmap::ValueError("~save_map: the map is empty (" + std::to_string(lag_.beams) + " beams mapped, " +
+                               std::to_string(lag_.beams_without_nav) + " of them without navigation): " + path +
+                               " not written");
+  }
   const std::vector<std::string> comments{sonarmap::mapFrameComment(d.frame)};
   if (path.ends_with(".ot")) {
     sonarmap::writeFullFile(*d.published, path, comments);

@@ -18,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +55,18 @@ struct CoreParameters {
   double occupancy_min_z_m = -1e300, occupancy_max_z_m = 1e300;  ///< markers and cloud band, frame_id's z
   bool free_cells = false;  ///< MapData::free filled (octomap_server's publish_free_space)
   std::size_t bearing_decision_beams = 2000;  ///< auto unit: beams held at most before radians
+  /// A beam (a pose) stamped this many seconds before the newest beam (pose) starts a new run (a bag
+  /// looped or played again, a new bag): the map and the pose history are cleared.
+  double jump_back_s = 1.0;
+  /// How long (wall seconds from the first beam) the beams wait for TF to join the sonar's frame to
+  /// the body's (a late /tf_static) before the sonar is taken at the body's origin.
+  double mounting_wait_s = 10.0;
+};
+
+/// A message on the sonar topic whose type has no sonar beam's fields (a publisher of another type).
+class NotASonarType : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// The map as octomap_server's topics carry it, in frame_id's axes (ENU or NED).
@@ -80,6 +93,8 @@ struct LagReport {
   std::size_t beams = 0, sweeps = 0, beams_without_nav = 0, rejected_messages = 0;
   std::size_t slam_sessions = 0;    ///< with slam: sessions started (a beam after a finished one starts a new map)
   std::size_t slam_scans = 0, slam_matched = 0;  ///< with slam: the localizer's scans and scan matches accepted
+  std::size_t runs = 1;            ///< runs begun (a jump back in time starts one: CoreParameters::jump_back_s)
+  std::size_t beams_held = 0;      ///< beams received and not yet given to the mapper (bearing unit, mounting)
   double queue_delay_max_s = 0.0;  ///< receipt → decoded and given to the mapper
   double map_lag_max_s = 0.0;      ///< receipt → in the committed map
   double last_map_lag_s = -1.0;    ///< of the last beams committed (−1: none yet)
@@ -100,18 +115,34 @@ class MappingCore {
   /// An automatic bearing unit the field's name does not say is decided as a bag's: degrees at the
   /// first bearing beyond 2π, radians after bearing_decision_beams beams within it or at the
   /// sonar's silence; the beams wait for it, in order.
-  /// @throws std::runtime_error when the type has no sonar fields, or what mapping a sweep threw.
-  void addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
+  /// A message of another type than the sonar's so far replaces its decoder when it has a sonar
+  /// beam's fields. The beams also wait, at the start, for TF's mounting (mounting_wait_s).
+  /// Returns true when the beam started a new run (its stamp jump_back_s before the newest time seen:
+  /// the map and the poses were cleared first).
+  /// @throws NotASonarType when the type has no sonar beam's fields (nothing changes); std::runtime_error
+  ///         for what mapping a sweep threw.
+  bool addSonarMessage(const std::string& type, const std::string& definition, const std::uint8_t* bytes,
                        std::size_t size, double receipt_s, double receipt_wall_s);
   /// One pose of the vehicle (metres, body-to-world quaternion) in `world_frame` (ENU unless its name
-  /// says NED), of the body frame `body_frame`; a pose not after the previous one is skipped.
-  void addPose(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
+  /// says NED), of the body frame `body_frame`; a pose not after the previous one is skipped. Returns
+  /// true when it started a new run (as addSonarMessage).
+  bool addPose(double time_s, const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
                const std::string& world_frame, const std::string& body_frame);
   /// The sonar silent: held beams decided and mapped, the last sweep committed (commitHeld; with
   /// `navigation_ended` a sweep waiting for a fix too). Returns whether the map changed.
   bool commitAtSilence(bool navigation_ended);
-  /// Empties the map (the next beam starts a new mapper, placed from the last pose on).
+  /// Empties the map (the next beam starts a new mapper, placed from the last pose on; a replay of
+  /// the same bag starts a new run by its stamps).
   void reset();
+  /// How long the oldest beam received and not yet in the map has waited (wall seconds since its
+  /// receipt at `now_wall_s`): for a sweep's end, the bearing unit, the mounting; 0 when none waits.
+  double oldestWait_s(double now_wall_s) const;
+  /// Whether the first beams wait for TF's mounting (no transform joins the sonar's frame to the
+  /// body's yet), and whether the wait ended without one (the sonar at the body's origin).
+  bool waitingForMounting() const;
+  bool mountingMissing() const;
+  /// The sonar's frame (the first beam's header.frame_id).
+  const std::string& sonarFrame() const;
   /// Makes the voxels whose centre lies in the box [min_m, max_m] (metres, frame_id's axes) unknown,
   /// as octomap_server's ~clear_bbx; later beams map them again. Returns whether there was a map.
   bool clearBox(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m);
@@ -120,7 +151,8 @@ class MappingCore {
   /// The map as published; nullopt while an automatic resolution is not set (no sweep yet).
   std::optional<MapData> snapshot();
   /// Writes the map last given by snapshot() as .bt or .ot (by the extension), atomically.
-  /// @throws std::runtime_error (sonarmap's FileError, ValueError) naming the path.
+  /// @throws std::runtime_error (sonarmap's FileError, ValueError) naming the path, or saying that the
+  ///         map is empty (no voxel known: nothing is written).
   void save(const std::string& path) const;
   const LagReport& lag() const { return lag_; }
   /// ROS's map → odom (REP 105) from slam's latest correction: the pose of the poses' world frame
@@ -143,6 +175,14 @@ class MappingCore {
   void feedHeld();
   /// Notes the lag of the beams the mapper committed since the last call.
   void noteLag();
+  /// A stamp of a beam or a `pose`: a new run (newRun) when it is jump_back_s before the newest of
+  /// its stream (beams, poses).
+  bool noteStamp(double time_s, bool pose);
+  /// Clears the map, the beams held, the pose history and the mounting (looked up again): what came
+  /// before a jump back in time.
+  void newRun();
+  /// Whether the mounting is known or given up (looked up again while mounting_wait_s lasts).
+  bool mountingSettled(double now_wall_s);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -10,12 +10,22 @@ namespace sonarmap_ros {
 std::string tfName(const std::string& frame) { return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame; }
 
 PoseInput::PoseInput(ros::NodeHandle& node, const NodeParameters& parameters, PoseSink sink)
-    : parameters_(parameters), sink_(std::move(sink)), listener_(buffer_) {
+    : parameters_(parameters), sink_(std::move(sink)), listener_(buffer_, node, false) {
   if (parameters.pose_source == PoseSource::kOdometry) {
     subscriber_ = node.subscribe(parameters.odom_topic, 10000, &PoseInput::receiveOdometry, this);
   } else if (parameters.pose_source == PoseSource::kTf) {
     subscriber_ = node.subscribe("/tf", 10000, &PoseInput::receiveTf, this);
   }
+  static_subscriber_ = node.subscribe("/tf_static", 100, &PoseInput::receiveStatic, this);
+}
+
+void PoseInput::receiveStatic(const tf2_msgs::TFMessage::ConstPtr& message) {
+  for (const geometry_msgs::TransformStamped& transform : message->transforms) statics_[tfName(transform.child_frame_id)] = transform;
+}
+
+std::string PoseInput::describe() const {
+  if (parameters_.pose_source == PoseSource::kOdometry) return "nav_msgs/Odometry on " + parameters_.odom_topic;
+  return "TF " + tfName(parameters_.odom_frame) + " → " + tfName(parameters_.base_frame);
 }
 
 void PoseInput::receiveOdometry(const nav_msgs::Odometry::ConstPtr& odometry) {
@@ -27,31 +37,56 @@ void PoseInput::receiveOdometry(const nav_msgs::Odometry::ConstPtr& odometry) {
 }
 
 void PoseInput::receiveTf(const tf2_msgs::TFMessage::ConstPtr& message) {
-  const std::string odom = tfName(parameters_.odom_frame), base = tfName(parameters_.base_frame);
+  // odom → base through any chain (REP 105's odom → base_footprint → base_link as well as a direct
+  // transform), looked up at each stamp /tf brings once TF holds every link there: a chain whose
+  // static link comes late gets its poses from tf2's history (its cache: 10 s).
   for (const geometry_msgs::TransformStamped& transform : message->transforms) {
-    if (tfName(transform.header.frame_id) != odom || tfName(transform.child_frame_id) != base) continue;
-    const auto& t = transform.transform.translation;
-    const auto& q = transform.transform.rotation;
-    sink_(transform.header.stamp.toSec(), Eigen::Vector3d(t.x, t.y, t.z), Eigen::Quaterniond(q.w, q.x, q.y, q.z), odom, base);
+    if (transform.header.stamp.toSec() > last_tf_stamp_s_) pending_stamps_.insert(transform.header.stamp);
+  }
+  const std::string odom = tfName(parameters_.odom_frame), base = tfName(parameters_.base_frame);
+  while (!pending_stamps_.empty()) {
+    const ros::Time stamp = *pending_stamps_.begin();
+    geometry_msgs::TransformStamped found;
+    try {
+      // tf2 reads time 0 as "the latest": a pose stamped 0 (a bag from 0 s) is looked up 1 ns later
+      found = buffer_.lookupTransform(odom, base, stamp.isZero() ? ros::Time(0, 1) : stamp);
+    } catch (const tf2::TransformException& error) {
+      tf_error_ = error.what();
+      // not there yet: kept while tf2 keeps that time, the newest stamp minus its cache
+      const ros::Time newest = *pending_stamps_.rbegin();
+      const ros::Duration kept = std::min(buffer_.getCacheLength(), ros::Duration(newest.toSec()));
+      pending_stamps_.erase(pending_stamps_.begin(), pending_stamps_.lower_bound(newest - kept));
+      return;
+    }
+    tf_error_.clear();
+    pending_stamps_.erase(pending_stamps_.begin());
+    last_tf_stamp_s_ = stamp.toSec();
+    const auto& t = found.transform.translation;
+    const auto& q = found.transform.rotation;
+    sink_(stamp.toSec(), Eigen::Vector3d(t.x, t.y, t.z), Eigen::Quaterniond(q.w, q.x, q.y, q.z), odom, base);
   }
 }
 
-std::optional<Eigen::Isometry3d> PoseInput::sonarInBody(const std::string& body_frame, const std::string& sonar_frame,
-                                                        double timeout_s) const {
+void PoseInput::clear() {
+  buffer_.clear();
+  pending_stamps_.clear();
+  for (const auto& entry : statics_) buffer_.setTransform(entry.second, "sonarmap", true);
+  last_tf_stamp_s_ = -1.0;
+}
+
+std::optional<Eigen::Isometry3d> PoseInput::sonarInBody(const std::string& body_frame, const std::string& sonar_frame) const {
   const std::string body = tfName(body_frame), sonar = tfName(sonar_frame);
   if (sonar.empty() || body.empty()) return std::nullopt;
   if (sonar == body) return Eigen::Isometry3d::Identity();
   try {
-    const geometry_msgs::TransformStamped found = buffer_.lookupTransform(body, sonar, ros::Time(0), ros::Duration(timeout_s));
+    const geometry_msgs::TransformStamped found = buffer_.lookupTransform(body, sonar, ros::Time(0));
     const auto& t = found.transform.translation;
     const auto& q = found.transform.rotation;
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
     pose.translation() = Eigen::Vector3d(t.x, t.y, t.z);
     return pose;
-  } catch (const tf2::TransformException& error) {
-    ROS_WARN_STREAM("sonarmap: no mounting of " << sonar << " on " << body << " in TF (" << error.what()
-                    << "): the sonar taken at the body's origin, facing forward");
+  } catch (const tf2::TransformException&) {
     return std::nullopt;
   }
 }

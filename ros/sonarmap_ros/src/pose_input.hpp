@@ -1,12 +1,15 @@
 #pragma once
 /// @file pose_input.hpp
-/// The vehicle's poses from /tf (the transforms odom_frame → base_frame) or a nav_msgs/Odometry
-/// topic, each stamped by its header, handed on as ROS gives them (the core turns them into fixes:
-/// rosPoseFix, the bag readers' conversion); and the sonar's frame in the body frame from TF (tf2's
-/// buffer: /tf_static), as `map RUN.bag` reads the mounting. C++17 (the ROS side).
+/// The vehicle's poses from TF (odom_frame → base_frame through any chain of frames, tf2's buffer)
+/// or a nav_msgs/Odometry topic, each stamped by its header, handed on as ROS gives them (the core
+/// turns them into fixes: rosPoseFix, the bag readers' conversion); and the sonar's frame in the
+/// body frame from TF (/tf_static, taken whenever it arrives), as `map RUN.bag` reads the mounting.
+/// C++17 (the ROS side).
 
 #include <functional>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -29,20 +32,33 @@ class PoseInput {
   /// Subscribes as `parameters.pose_source` says; nothing for PoseSource::kNone.
   PoseInput(ros::NodeHandle& node, const NodeParameters& parameters, PoseSink sink);
 
-  /// The pose of `sonar_frame` in `body_frame` from TF, waiting up to `timeout_s`; nullopt when TF
-  /// joins no such frames (said in the log).
-  std::optional<Eigen::Isometry3d> sonarInBody(const std::string& body_frame, const std::string& sonar_frame,
-                                               double timeout_s) const;
+  /// The pose of `sonar_frame` in `body_frame` from TF's latest transforms, without waiting
+  /// (the identity when they are the same frame); nullopt when TF joins no such frames yet.
+  std::optional<Eigen::Isometry3d> sonarInBody(const std::string& body_frame, const std::string& sonar_frame) const;
+  /// Forgets every transform received but the static ones (a jump back in time: a new run).
+  void clear();
+  /// What the poses come from, for the log: "TF odom → base_link", "nav_msgs/Odometry on /odom".
+  std::string describe() const;
+  /// With kTf: why the last lookup of odom → base failed (tf2's error), empty when it succeeded.
+  const std::string& lastTfError() const { return tf_error_; }
 
  private:
   void receiveOdometry(const nav_msgs::Odometry::ConstPtr& odometry);
   void receiveTf(const tf2_msgs::TFMessage::ConstPtr& message);
+  void receiveStatic(const tf2_msgs::TFMessage::ConstPtr& message);
 
   NodeParameters parameters_;
   PoseSink sink_;
   ros::Subscriber subscriber_;
   tf2_ros::Buffer buffer_;
+  /// On the node's callback queue (no thread of its own), made before subscriber_: a /tf message is
+  /// in the buffer when receiveTf looks the chain up (roscpp calls a topic's callbacks in order).
   tf2_ros::TransformListener listener_;
+  ros::Subscriber static_subscriber_;
+  std::map<std::string, geometry_msgs::TransformStamped> statics_;  ///< /tf_static's, by child frame (kept by clear())
+  std::set<ros::Time> pending_stamps_;  ///< /tf's stamps not yet looked up (a link of the chain missing there)
+  double last_tf_stamp_s_ = -1.0;  ///< the newest pose handed on from TF
+  std::string tf_error_;
 };
 
 /// tf2's name of a frame: without a leading '/'.
