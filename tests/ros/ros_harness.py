@@ -223,7 +223,7 @@ class Master:
 
     def play(self, bag, rate=10, extra=()):
         """`rosbag play` of `bag` at `rate`×, waiting 2 s after advertising (the subscriptions connect)."""
-        subprocess.run(["rosbag", "play", "-q", "-d", "2", "-r", str(rate), *extra, str(bag)], env=self.env, check=True,
+        subprocess.run(["rosbag", "play", "-q", "-d", "2", "-r", str(rate), str(bag), *extra], env=self.env, check=True,
                        stdout=subprocess.DEVNULL)
 
 

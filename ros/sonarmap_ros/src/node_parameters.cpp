@@ -239,6 +239,10 @@ NodeParameters readNodeParameters(const ros::NodeHandle& node) {
   numberParam(node, "publish_period_s", p.publish_period_s);
   if (!(p.idle_commit_s > 0.0)) throw std::runtime_error("~idle_commit_s: seconds > 0 are needed");
   if (!(p.publish_period_s >= 0.0)) throw std::runtime_error("~publish_period_s: seconds >= 0 are needed");
+  numberParam(node, "jump_back_s", core.jump_back_s);
+  numberParam(node, "mounting_wait_s", core.mounting_wait_s);
+  if (!(core.jump_back_s > 0.0)) throw std::runtime_error("~jump_back_s: seconds > 0 are needed");
+  if (!(core.mounting_wait_s >= 0.0)) throw std::runtime_error("~mounting_wait_s: seconds >= 0 are needed");
   if (numberParam(node, "bearing_decision_beams", number)) {
     if (!(number >= 1.0)) throw std::runtime_error("~bearing_decision_beams: a count >= 1 is needed");
     core.bearing_decision_beams = static_cast<std::size_t>(number);

@@ -70,7 +70,21 @@ void PoseInput::receiveTf(const tf2_msgs::TFMessage::ConstPtr& message) {
 void PoseInput::clear() {
   buffer_.clear();
   pending_stamps_.clear();
-  for (const auto& entry : statics_) buffer_.setTransform(entry.second, "sonarmap", true);
+  // A new bag sends its own /tf_static as it starts, on another connection than its first beams:
+  // the last run's are taken back only if none came for their frames in half the mounting's wait.
+  for (const auto& entry : statics_) kept_statics_[entry.first] = entry.second;
+  statics_.clear();
+  cleared_wall_s_ = ros::WallTime::now().toSec();
+}
+
+void PoseInput::poll(double now_wall_s) {
+  if (kept_statics_.empty() || now_wall_s - cleared_wall_s_ < 0.5 * parameters_.core.mounting_wait_s) return;
+  for (const auto& entry : kept_statics_) {
+    if (statics_.count(entry.first) != 0) continue;
+    buffer_.setTransform(entry.second, "sonarmap", true);
+    statics_[entry.first] = entry.second;
+  }
+  kept_statics_.clear();
   last_tf_stamp_s_ = -1.0;
 }
 

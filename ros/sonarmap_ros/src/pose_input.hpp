@@ -35,8 +35,12 @@ class PoseInput {
   /// The pose of `sonar_frame` in `body_frame` from TF's latest transforms, without waiting
   /// (the identity when they are the same frame); nullopt when TF joins no such frames yet.
   std::optional<Eigen::Isometry3d> sonarInBody(const std::string& body_frame, const std::string& sonar_frame) const;
-  /// Forgets every transform received but the static ones (a jump back in time: a new run).
+  /// Forgets every transform received (a jump back in time: a new run). The static ones are taken
+  /// back by poll() after half of mounting_wait_s for the frames no new /tf_static has named by then
+  /// (a robot's static transforms, sent once, stay; a new bag's replace the last bag's).
   void clear();
+  /// Each tick of the node (wall seconds): the static transforms kept by clear() taken back when due.
+  void poll(double now_wall_s);
   /// What the poses come from, for the log: "TF odom → base_link", "nav_msgs/Odometry on /odom".
   std::string describe() const;
   /// With kTf: why the last lookup of odom → base failed (tf2's error), empty when it succeeded.
@@ -55,7 +59,9 @@ class PoseInput {
   /// in the buffer when receiveTf looks the chain up (roscpp calls a topic's callbacks in order).
   tf2_ros::TransformListener listener_;
   ros::Subscriber static_subscriber_;
-  std::map<std::string, geometry_msgs::TransformStamped> statics_;  ///< /tf_static's, by child frame (kept by clear())
+  std::map<std::string, geometry_msgs::TransformStamped> statics_;  ///< /tf_static's of this run, by child frame
+  std::map<std::string, geometry_msgs::TransformStamped> kept_statics_;  ///< the last run's, until poll() takes them back
+  double cleared_wall_s_ = 0.0;
   std::set<ros::Time> pending_stamps_;  ///< /tf's stamps not yet looked up (a link of the chain missing there)
   double last_tf_stamp_s_ = -1.0;  ///< the newest pose handed on from TF
   std::string tf_error_;

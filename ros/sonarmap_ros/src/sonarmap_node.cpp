@@ -94,7 +94,8 @@ class SonarmapNode {
   /// What keeps the beams out of the map, said at most every 10 s: no pose, no mounting yet.
   void sayWaits(double now_s) {
     if (last_beam_wall_s_ == 0.0 || now_s - last_beam_wall_s_ > parameters_.idle_commit_s) return;
-    if (parameters_.pose_source != PoseSource::kNone && now_s - first_beam_wall_s_ >= 5.0 &&
+    // poses come at 1 Hz or more: 2 s of beams without one is a missing source, not a pause
+    if (parameters_.pose_source != PoseSource::kNone && now_s - first_beam_wall_s_ >= 2.0 &&
         (last_pose_wall_s_ == 0.0 || now_s - last_pose_wall_s_ >= 5.0)) {
       const std::string why = pose_->lastTfError().empty() ? "" : " (TF: " + pose_->lastTfError() + ")";
       ROS_WARN_THROTTLE(10.0, "sonarmap: %zu beams and no pose from %s %s%s: beams are not mapped without one "
@@ -120,6 +121,10 @@ class SonarmapNode {
       committed_ = true;
       core_.commitAtSilence(now_s - last_pose_wall_s_ >= parameters_.idle_commit_s);
       const LagReport& lag = core_.lag();
+      if (parameters_.pose_source != PoseSource::kNone && last_pose_wall_s_ == 0.0) {
+        ROS_WARN("sonarmap: no pose from %s in the whole run: its beams are not mapped (pose_source:=none for a "
+                 "sonar fixed in a tank)", pose_->describe().c_str());
+      }
       // WARN when beams were left out: without navigation, unreadable, lost before the node
       const bool lost = lag.beams_without_nav > 0 || lag.rejected_messages > 0 || sonar_->lost() > 0;
       const char* format = "sonarmap: the sonar is silent: %zu beams, %zu sweeps in the map (%zu beams without "
@@ -138,6 +143,7 @@ class SonarmapNode {
       }
     }
     sonar_->poll(now_s);
+    pose_->poll(now_s);
     sayWaits(now_s);
     if (now_s - last_report_s_ >= 1.0 && last_beam_wall_s_ > 0.0) {
       last_report_s_ = now_s;
