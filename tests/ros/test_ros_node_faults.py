@@ -138,7 +138,7 @@ def no_tf(master, node, cli, bag_a, failures):
     run = Run(master, node, {"sonar_topic": "/sonar/scan_line", "save_path": saved})
     master.play(bag_a, rate=10)
     run.final_map(1)
-    expect_log(run, "no TF", "no pose from TF odom → base_link", failures)
+    expect_log(run, "no TF", "no pose from TF odom -> base_link", failures)
     answer = master.rospy.ServiceProxy("/sonarmap/save_map", master.srv.Trigger)()
     print(f"no TF: ~save_map answers success {answer.success}: {answer.message}")
     if answer.success or saved.exists() or "empty" not in answer.message:
@@ -256,6 +256,7 @@ def main(node, cli, python_dir, shared):
             for case in only:
                 {"wrong": lambda: wrong_type_first(master, node, cli, bag_a, failures),
                  "back": lambda: time_goes_back(master, node, cli, bag_a, bag_b, failures),
+                 "notf": lambda: no_tf(master, node, cli, bag_a, failures),
                  "chain": lambda: tf_chain(master, node, cli, bag_a, failures),
                  "sector": lambda: sector(master, node, cli, failures),
                  "lost": lambda: lost_and_silent(master, node, cli, bag_a, failures)}[case]()

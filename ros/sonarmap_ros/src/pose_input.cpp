@@ -25,7 +25,7 @@ void PoseInput::receiveStatic(const tf2_msgs::TFMessage::ConstPtr& message) {
 
 std::string PoseInput::describe() const {
   if (parameters_.pose_source == PoseSource::kOdometry) return "nav_msgs/Odometry on " + parameters_.odom_topic;
-  return "TF " + tfName(parameters_.odom_frame) + " → " + tfName(parameters_.base_frame);
+  return "TF " + tfName(parameters_.odom_frame) + " -> " + tfName(parameters_.base_frame);  // ASCII: rosconsole's locale
 }
 
 void PoseInput::receiveOdometry(const nav_msgs::Odometry::ConstPtr& odometry) {

@@ -102,7 +102,7 @@ class SonarmapNode {
                         "(pose_source:=none for a sonar fixed in a tank)", core_.lag().beams + core_.lag().beams_held,
                         pose_->describe().c_str(), last_pose_wall_s_ == 0.0 ? "yet" : "in the last 5 s", why.c_str());
     }
-    if (core_.waitingForMounting()) {
+    if (core_.waitingForMounting() && now_s - first_beam_wall_s_ >= 1.0) {  // a /tf_static is often a moment late
       ROS_WARN_THROTTLE(10.0, "sonarmap: %zu beams wait for TF to join the sonar's frame %s to the body's %s (a "
                         "/tf_static): up to %.0f s, then the sonar is taken at the body's origin",
                         core_.lag().beams_held, core_.sonarFrame().c_str(), core_.bodyFrame().c_str(),
