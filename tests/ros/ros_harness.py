@@ -227,6 +227,21 @@ class Master:
                        stdout=subprocess.DEVNULL)
 
 
+def run_test(python_dir, body):
+    """A test's exit code: `body(master)` returns its failures, run against a fresh roscore; 77
+    (ctest's skip) when roscore or rosbag is absent, 1 with the failures printed, else 0."""
+    if not Master.available():
+        print("SKIP: roscore or rosbag is not installed (Debian: ros-core, python3-rosbag)")
+        return SKIP
+    with Master(python_dir) as master:
+        failures = body(master)
+    if failures:
+        print("\n".join("FAIL: " + f for f in failures))
+        return 1
+    print("all cases passed")
+    return 0
+
+
 def wait_for(condition, timeout_s, step_s=0.1):
     """Polls `condition` until it is true or `timeout_s` passes; returns its last value."""
     deadline = time.time() + timeout_s

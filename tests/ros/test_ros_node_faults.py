@@ -15,7 +15,7 @@ import subprocess
 import sys
 import time
 
-from ros_harness import SKIP, Master, agreement, bt_bytes, wait_for
+from ros_harness import agreement, bt_bytes, run_test, wait_for
 
 STRING_MSG = "string data\n"
 
@@ -241,44 +241,39 @@ def lost_and_silent(master, node, cli, bag_a, failures):
     quiet.stop()
 
 
-def main(node, cli, python_dir, shared):
-    if not Master.available():
-        print("SKIP: roscore or rosbag is not installed (Debian: ros-core, python3-rosbag)")
-        return SKIP
-    with Master(python_dir) as master:
-        tmp = master.tmp
-        bag_a = simulate(cli, tmp, "a", "--turns", "3", "--speed", "0.1", "--heading", "30", "--mounting",
-                         "0.3,0,0.2,0,20,0")
-        bag_b = simulate(cli, tmp, "b", "--turns", "3", "--speed", "0.15", "--heading", "120")
-        failures = []
-        only = sys.argv[5:]  # case names to run (all when none)
-        if only:
-            for case in only:
-                {"wrong": lambda: wrong_type_first(master, node, cli, bag_a, failures),
-                 "back": lambda: time_goes_back(master, node, cli, bag_a, bag_b, failures),
-                 "notf": lambda: no_tf(master, node, cli, bag_a, failures),
-                 "chain": lambda: tf_chain(master, node, cli, bag_a, failures),
-                 "sector": lambda: sector(master, node, cli, failures),
-                 "lost": lambda: lost_and_silent(master, node, cli, bag_a, failures)}[case]()
-            print("\n".join("FAIL: " + f for f in failures) or "passed")
-            return 1 if failures else 0
-        wrong_type_first(master, node, cli, bag_a, failures)
-        time_goes_back(master, node, cli, bag_a, bag_b, failures)
-        pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
-        if pool.exists():
-            pool_again(master, node, cli, pool, failures)
-        else:
-            print(f"note: {pool} absent, the pool bag's case skipped")
-        no_tf(master, node, cli, bag_a, failures)
-        tf_chain(master, node, cli, bag_a, failures)
-        sector(master, node, cli, failures)
-        lost_and_silent(master, node, cli, bag_a, failures)
-        if failures:
-            print("\n".join("FAIL: " + f for f in failures))
-            return 1
-        print("all cases passed")
-        return 0
+def main(node, cli, python_dir, shared, *only):
+    """`only`: the names of the cases to run (wrong, back, notf, chain, sector, lost), all when none."""
+    return run_test(python_dir, lambda master: all_cases(master, node, cli, shared, only))
+
+
+def all_cases(master, node, cli, shared, only):
+    tmp = master.tmp
+    bag_a = simulate(cli, tmp, "a", "--turns", "3", "--speed", "0.1", "--heading", "30", "--mounting",
+                     "0.3,0,0.2,0,20,0")
+    bag_b = simulate(cli, tmp, "b", "--turns", "3", "--speed", "0.15", "--heading", "120")
+    failures = []
+    if only:
+        for case in only:
+            {"wrong": lambda: wrong_type_first(master, node, cli, bag_a, failures),
+             "back": lambda: time_goes_back(master, node, cli, bag_a, bag_b, failures),
+             "notf": lambda: no_tf(master, node, cli, bag_a, failures),
+             "chain": lambda: tf_chain(master, node, cli, bag_a, failures),
+             "sector": lambda: sector(master, node, cli, failures),
+             "lost": lambda: lost_and_silent(master, node, cli, bag_a, failures)}[case]()
+        return failures
+    wrong_type_first(master, node, cli, bag_a, failures)
+    time_goes_back(master, node, cli, bag_a, bag_b, failures)
+    pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
+    if pool.exists():
+        pool_again(master, node, cli, pool, failures)
+    else:
+        print(f"note: {pool} absent, the pool bag's case skipped")
+    no_tf(master, node, cli, bag_a, failures)
+    tf_chain(master, node, cli, bag_a, failures)
+    sector(master, node, cli, failures)
+    lost_and_silent(master, node, cli, bag_a, failures)
+    return failures
 
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:5]))
+    sys.exit(main(*sys.argv[1:]))

@@ -27,7 +27,7 @@ import subprocess
 import sys
 import time
 
-from ros_harness import OCTOMAP_MSG, SKIP, Master, agreement, bt_bytes, wait_for
+from ros_harness import OCTOMAP_MSG, agreement, bt_bytes, run_test, wait_for
 
 TOPIC = "/sonar/scan_line"
 RESOLUTION = 0.1
@@ -54,17 +54,7 @@ def plain(line):
 
 
 def main(node, cli, python_dir, shared):
-    if not Master.available():
-        print("SKIP: roscore or rosbag is not installed (Debian: ros-core, python3-rosbag)")
-        return SKIP
-    with Master(python_dir) as master:
-        failures = bad_values(master, node)
-        failures += mapped(master, node, cli)
-        if failures:
-            print("\n".join("FAIL: " + f for f in failures))
-            return 1
-        print("all cases passed")
-        return 0
+    return run_test(python_dir, lambda master: bad_values(master, node) + mapped(master, node, cli))
 
 
 def bad_values(master, node):

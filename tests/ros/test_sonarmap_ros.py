@@ -17,40 +17,37 @@ import subprocess
 import sys
 import time
 
-from ros_harness import SKIP, Master, agreement, bt_bytes, voxel_classes
+from ros_harness import agreement, bt_bytes, run_test, voxel_classes
 
 
 def main(node, cli, python_dir, shared):
-    if not Master.available():
-        print("SKIP: roscore or rosbag is not installed (Debian: ros-core, python3-rosbag)")
-        return SKIP
-    with Master(python_dir) as master:
-        tmp = master.tmp
-        cases = []
-        sim = tmp / "sim.bag"
-        subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "sim"), "--turns", "3", "--speed", "0.1", "--heading",
-                        "30", "--mounting", "0.3,0,0.2,0,20,0", "--bag", str(sim), "-q"], check=True)
-        cases.append(("simulated, navigation and a tilted mounting", sim, "/sonar/scan_line",
-                      {"pose_source": "odometry", "odom_topic": "/odometry"}, []))
-        # A vehicle without a DVL (heading only, north and east 0), localized by the scans (~slam)
-        compass = tmp / "compass.bag"
-        subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "compass"), "--turns", "8", "--speed", "0.1",
-                        "--heading", "30", "--heading-bias", "2", "--no-position", "--bag", str(compass), "-q"], check=True)
-        cases.append(("simulated, compass only, ~slam", compass, "/sonar/scan_line",
-                      {"pose_source": "odometry", "odom_topic": "/odometry", "slam": "true"}, ["--slam"]))
-        pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
-        if pool.exists():
-            cases.append(("pool", pool, "/micron_driver/scan_line", {"pose_source": "none"}, []))
-        else:
-            print(f"note: {pool} absent, the pool bag's case skipped")
-        failures = []
-        for name, bag, topic, params, map_args in cases:
-            failures += run_case(master, name, bag, topic, params, map_args, node, cli)
-        if failures:
-            print("\n".join("FAIL: " + f for f in failures))
-            return 1
-        print("all cases passed")
-        return 0
+    return run_test(python_dir, lambda master: all_cases(master, node, cli, shared))
+
+
+def all_cases(master, node, cli, shared):
+    """Each bag's case against the master; returns the failures."""
+    tmp = master.tmp
+    cases = []
+    sim = tmp / "sim.bag"
+    subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "sim"), "--turns", "3", "--speed", "0.1", "--heading",
+                    "30", "--mounting", "0.3,0,0.2,0,20,0", "--bag", str(sim), "-q"], check=True)
+    cases.append(("simulated, navigation and a tilted mounting", sim, "/sonar/scan_line",
+                  {"pose_source": "odometry", "odom_topic": "/odometry"}, []))
+    # A vehicle without a DVL (heading only, north and east 0), localized by the scans (~slam)
+    compass = tmp / "compass.bag"
+    subprocess.run([cli, "simulate", "harbour", "-o", str(tmp / "compass"), "--turns", "8", "--speed", "0.1",
+                    "--heading", "30", "--heading-bias", "2", "--no-position", "--bag", str(compass), "-q"], check=True)
+    cases.append(("simulated, compass only, ~slam", compass, "/sonar/scan_line",
+                  {"pose_source": "odometry", "odom_topic": "/odometry", "slam": "true"}, ["--slam"]))
+    pool = pathlib.Path(shared) / "micron_pool_ros1.bag"
+    if pool.exists():
+        cases.append(("pool", pool, "/micron_driver/scan_line", {"pose_source": "none"}, []))
+    else:
+        print(f"note: {pool} absent, the pool bag's case skipped")
+    failures = []
+    for name, bag, topic, params, map_args in cases:
+        failures += run_case(master, name, bag, topic, params, map_args, node, cli)
+    return failures
 
 
 def run_case(master, name, bag, topic, params, map_args, node, cli):
