@@ -128,7 +128,6 @@ bool MappingCore::addSonarMessage(const std::string& type, const std::string& de
   d.held.push_back({std::move(message), receipt_wall_s});
   if (!d.decoder->unitDecided() && !sonarmap::RosSonarDecoder::beyondRadians(d.largest_bearing) &&
       d.held.size() < d.parameters.bearing_decision_beams) {
-    lag_.beams_held = d.held.size();
     return new_run;  // the unit is not known yet: the beams wait (mapping_core.hpp; a bag's rule)
   }
   if (!d.decoder->unitDecided()) d.decoder->decideUnit(d.largest_bearing);
@@ -156,7 +155,6 @@ void MappingCore::newRun() {
   d.early_fixes.clear();
   d.last_fix.reset();
   d.newest_time_s = 0.0;
-  lag_.beams_held = 0;
   // a new bag may mount the sonar otherwise: looked up again (its /tf_static came with it)
   d.mounting_found.reset();
   d.mounting_given_up = false;
@@ -191,6 +189,8 @@ bool MappingCore::mountingMissing() const { return impl_->mounting_given_up; }
 
 const std::string& MappingCore::sonarFrame() const { return impl_->sonar_frame; }
 
+std::size_t MappingCore::beamsHeld() const { return impl_->held.size(); }
+
 void MappingCore::feedHeld() {
   Impl& d = *impl_;
   if (d.held.empty()) return;
@@ -203,7 +203,6 @@ void MappingCore::feedHeld() {
   const double now_s = wallNow_s();
   if (!d.started()) {
     if (!mountingSettled(now_s)) {
-      lag_.beams_held = d.held.size();
       return;  // the beams wait for TF's mounting (a late /tf_static)
     }
     start();
@@ -222,7 +221,6 @@ void MappingCore::feedHeld() {
       d.mapper->addBeam(std::move(held.message.beam));
     }
   }
-  lag_.beams_held = 0;
   noteLag();
 }
 

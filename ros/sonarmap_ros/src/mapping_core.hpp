@@ -94,7 +94,6 @@ struct LagReport {
   std::size_t slam_sessions = 0;    ///< with slam: sessions started (a beam after a finished one starts a new map)
   std::size_t slam_scans = 0, slam_matched = 0;  ///< with slam: the localizer's scans and scan matches accepted
   std::size_t runs = 1;            ///< runs begun (a jump back in time starts one: CoreParameters::jump_back_s)
-  std::size_t beams_held = 0;      ///< beams received and not yet given to the mapper (bearing unit, mounting)
   double queue_delay_max_s = 0.0;  ///< receipt → decoded and given to the mapper
   double map_lag_max_s = 0.0;      ///< receipt → in the committed map
   double last_map_lag_s = -1.0;    ///< of the last beams committed (−1: none yet)
@@ -143,6 +142,8 @@ class MappingCore {
   bool mountingMissing() const;
   /// The sonar's frame (the first beam's header.frame_id).
   const std::string& sonarFrame() const;
+  /// Beams received and not yet given to the mapper (waiting for the bearing unit or the mounting).
+  std::size_t beamsHeld() const;
   /// Makes the voxels whose centre lies in the box [min_m, max_m] (metres, frame_id's axes) unknown,
   /// as octomap_server's ~clear_bbx; later beams map them again. Returns whether there was a map.
   bool clearBox(const Eigen::Vector3d& min_m, const Eigen::Vector3d& max_m);

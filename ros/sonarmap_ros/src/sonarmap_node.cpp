@@ -99,13 +99,13 @@ class SonarmapNode {
         (last_pose_wall_s_ == 0.0 || now_s - last_pose_wall_s_ >= 5.0)) {
       const std::string why = pose_->lastTfError().empty() ? "" : " (TF: " + pose_->lastTfError() + ")";
       ROS_WARN_THROTTLE(10.0, "sonarmap: %zu beams and no pose from %s %s%s: beams are not mapped without one "
-                        "(pose_source:=none for a sonar fixed in a tank)", core_.lag().beams + core_.lag().beams_held,
+                        "(pose_source:=none for a sonar fixed in a tank)", core_.lag().beams + core_.beamsHeld(),
                         pose_->describe().c_str(), last_pose_wall_s_ == 0.0 ? "yet" : "in the last 5 s", why.c_str());
     }
     if (core_.waitingForMounting() && now_s - first_beam_wall_s_ >= 1.0) {  // a /tf_static is often a moment late
       ROS_WARN_THROTTLE(10.0, "sonarmap: %zu beams wait for TF to join the sonar's frame %s to the body's %s (a "
                         "/tf_static): up to %.0f s, then the sonar is taken at the body's origin",
-                        core_.lag().beams_held, core_.sonarFrame().c_str(), core_.bodyFrame().c_str(),
+                        core_.beamsHeld(), core_.sonarFrame().c_str(), core_.bodyFrame().c_str(),
                         parameters_.core.mounting_wait_s);
     } else if (core_.mountingMissing() && !mounting_said_) {
       mounting_said_ = true;
