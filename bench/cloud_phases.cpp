@@ -51,10 +51,10 @@ int main(int argc, char** argv) {
   try {
     auto since = Clock::now();
     phase("at main()", since);
-    std::vector<sonarmap::Scan> scans = sonarmap::readScanGraph(argv[1]);
-    phase("read the scan graph", since);
     sonarmap::OcTree16 map(argc == 3 ? std::atof(argv[2]) : 0.05);
-    for (sonarmap::Scan& scan : scans) {
+    // As `sonarmap cloud`: each scan inserted as soon as it is read.
+    sonarmap::readScanGraph(argv[1], [&](sonarmap::Scan&& scan, std::size_t, std::size_t) {
+      phase("read a scan", since);
       sonarmap::PointCloud world = std::move(scan.points_m);  // as `sonarmap cloud`: in place
       for (Eigen::Vector3d& p : world) p = scan.sensor_to_world * p;
       phase("scan to the world frame", since);
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
       std::printf("  %zu rays: key sets %.1f MiB, hit keys %.1f MiB\n", stats.rays,
                   static_cast<double>(stats.key_set_bytes) / 1048576.0,
                   static_cast<double>(stats.rays) * sizeof(sonarmap::Key16) / 1048576.0);
-    }
+    });
     std::printf("  tree: %.1f MiB in use (memoryBytes), %.1f MiB allocated\n",
                 static_cast<double>(map.memoryBytes()) / 1048576.0,
                 static_cast<double>(map.memoryBytesAllocated()) / 1048576.0);

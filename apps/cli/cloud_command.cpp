@@ -46,44 +46,47 @@ void check(const CloudArgs& args) {
   if (extension != ".bt" && extension != ".ot") throw ValueError("-o must name a .bt or .ot file, got '" + args.output + "'");
 }
 
-/// The scans to insert: every node of a scan graph (sensor-frame points and poses), or one text
-/// cloud of world-frame points seen from the given origin (the pose then only places the sensor).
-std::vector<Scan> readScans(const CloudArgs& args) {
-  if (isScanGraph(args.input)) return readScanGraph(args.input);
+/// Calls `visit` with each scan to insert: every node of a scan graph (sensor-frame points and
+/// poses) as it is read, or one text cloud of world-frame points seen from the given origin (the
+/// pose then only places the sensor).
+void readScans(const CloudArgs& args, const ScanVisitor& visit) {
+  if (isScanGraph(args.input)) return readScanGraph(args.input, visit);
   const Eigen::Vector3d origin = args.origin.empty() ? Eigen::Vector3d::Zero() : parseOrigin(args.origin);
   Scan scan;
   scan.points_m = readPointText(args.input);
   for (Eigen::Vector3d& point : scan.points_m) point -= origin;  // into the sensor frame of a pure translation
   scan.sensor_to_world.translation() = origin;
-  return {scan};
+  visit(std::move(scan), 0, 1);
 }
 
 void run(const CloudArgs& args) {
   using Clock = std::chrono::steady_clock;
-  std::vector<Scan> scans = readScans(args);
   const auto start = Clock::now();
   OcTree16 map(args.resolution_m);
   InsertOptions options;
   options.max_range_m = args.max_range_m;
   options.discretize = args.discretize;
   InsertStats total;
+  std::size_t scans = 0;
   {
     ProgressBar bar("inserting");
-    for (std::size_t i = 0; i < scans.size(); ++i) {
-      // Into the world frame in place, and handed over: freed once its rays are traced, before
-      // the tree grows, so no second copy and no points beside the new nodes.
-      PointCloud world = std::move(scans[i].points_m);
-      for (Eigen::Vector3d& p : world) p = scans[i].sensor_to_world * p;
-      total += insertPointCloudParallel(map, std::move(world), scans[i].sensor_to_world.translation(), options,
+    // Each scan is inserted as soon as it is read, into the world frame in place, and handed
+    // over: freed once its rays are traced, before the tree grows. One scan's points are in
+    // memory at a time, never the whole file's.
+    readScans(args, [&](Scan&& scan, std::size_t index, std::size_t count) {
+      PointCloud world = std::move(scan.points_m);
+      for (Eigen::Vector3d& p : world) p = scan.sensor_to_world * p;
+      total += insertPointCloudParallel(map, std::move(world), scan.sensor_to_world.translation(), options,
                                         args.threads);
-      if (!args.quiet) bar.update(i + 1, scans.size());
-    }
+      scans = count;
+      if (!args.quiet) bar.update(index + 1, count);
+    });
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   writeMapFile(map, args.output);
   const NodeCounts counts = map.counts();
   std::printf("%zu points in %zu scans, %zu skipped (non-finite), %zu out of map, %zu map nodes (%zu leaves), %.1f KiB, %.3f s -> %s\n",
-              total.points, scans.size(), total.skipped_nonfinite, total.out_of_map, counts.nodes, counts.leaves,
+              total.points, scans, total.skipped_nonfinite, total.out_of_map, counts.nodes, counts.leaves,
               static_cast<double>(map.memoryBytes()) / 1024.0, seconds, args.output.c_str());
 }
 

@@ -28,6 +28,11 @@ constexpr std::uint64_t kNodeFixedBytes = 4 + kPoseBytes + 4;   // point count, 
 constexpr std::uint64_t kEdgeBytes = 4 + 4 + kPoseBytes + 8;    // two ids, pose, weight
 constexpr std::int32_t kVectorMarker = 3;
 constexpr std::int32_t kQuaternionMarker = 4;
+#ifdef MADV_POPULATE_READ
+constexpr int kPopulateRead = MADV_POPULATE_READ;
+#else
+constexpr int kPopulateRead = 22;  // Linux 5.14's value; an older kernel answers EINVAL
+#endif
 
 void expectMarker(detail::ByteCursor& in, std::int32_t expected, const std::string& what) {
   const std::size_t at = in.offset();
@@ -100,27 +105,32 @@ void requireCount(const detail::ByteCursor& in, std::uint64_t count, std::uint64
   }
 }
 
-std::vector<Scan> parseScanGraph(std::span<const unsigned char> data, const std::string& source) {
+/// Parses `data` node by node, handing each scan to `visit` as soon as it is read, then checks
+/// the edges. `consumed(offset)` is called after each node with the offset of its last byte + 1
+/// and `upcoming(offset, bytes)` before a node's points are read, so that a mapped file's pages
+/// can be brought in and dropped around the cursor.
+template <class Upcoming, class Consumed>
+void parseScanGraph(std::span<const unsigned char> data, const std::string& source, const ScanVisitor& visit,
+                    Upcoming&& upcoming, Consumed&& consumed) {
   detail::ByteCursor in(data, source);
   const std::uint32_t node_count = in.u32("node count");
   // Each node takes at least kNodeFixedBytes; the edge count follows the nodes.
   requireCount(in, node_count, kNodeFixedBytes, 4, "node count");
-  std::vector<Scan> scans;
-  scans.reserve(node_count);
   std::vector<std::uint32_t> ids;
   ids.reserve(node_count);
   for (std::uint32_t n = 0; n < node_count; ++n) {
     const std::string node = "node " + std::to_string(n);
     const std::uint32_t point_count = in.u32("point count of " + node);
     requireCount(in, point_count, kPointBytes, kPoseBytes + 4, "point count of " + node);
+    upcoming(in.offset(), point_count * kPointBytes + kPoseBytes + 4);
     Scan scan;
     readPoints(in, point_count, node, scan.points_m);
     scan.sensor_to_world = readPose(in, "pose of " + node);
     ids.push_back(in.u32("id of " + node));
-    scans.push_back(std::move(scan));
+    consumed(in.offset());
+    visit(std::move(scan), n, node_count);
   }
-  std::vector<std::uint32_t> sorted_ids = ids;
-  std::sort(sorted_ids.begin(), sorted_ids.end());
+  std::sort(ids.begin(), ids.end());
   const std::uint32_t edge_count = in.u32("edge count");
   requireCount(in, edge_count, kEdgeBytes, 0, "edge count");
   for (std::uint32_t e = 0; e < edge_count; ++e) {
@@ -128,7 +138,7 @@ std::vector<Scan> parseScanGraph(std::span<const unsigned char> data, const std:
     for (const char* end : {"first", "second"}) {
       const std::size_t at = in.offset();
       const std::uint32_t id = in.u32(std::string(end) + " node id of " + edge);
-      if (!std::binary_search(sorted_ids.begin(), sorted_ids.end(), id)) {
+      if (!std::binary_search(ids.begin(), ids.end(), id)) {
         in.failAt(at, std::string(end) + " node id of " + edge + " is " + std::to_string(id) + ", not the id of a node in the file");
       }
     }
@@ -136,8 +146,16 @@ std::vector<Scan> parseScanGraph(std::span<const unsigned char> data, const std:
     in.finiteF64("weight of " + edge);
   }
   if (in.remaining() != 0) in.fail(std::to_string(in.remaining()) + " unexpected bytes after the last edge, expected the end of the file");
-  return scans;
 }
+
+/// Collects every scan in a vector.
+struct Collect {
+  std::vector<Scan>* scans;
+  void operator()(Scan&& scan, std::size_t index, std::size_t count) const {
+    if (index == 0) scans->reserve(count);
+    scans->push_back(std::move(scan));
+  }
+};
 
 void checkFinite(const Eigen::Vector3d& v, const std::string& what) {
   if (!v.allFinite()) throw ValueError("scan graph not written: " + what + " is not finite");
@@ -145,7 +163,7 @@ void checkFinite(const Eigen::Vector3d& v, const std::string& what) {
 
 }  // namespace
 
-std::vector<Scan> readScanGraph(std::istream& in, const std::string& source) {
+void readScanGraph(std::istream& in, const ScanVisitor& visit, const std::string& source) {
   std::vector<unsigned char> data;
   constexpr std::size_t kChunk = std::size_t{1} << 20;
   while (in) {  // in chunks: only what the stream holds is allocated
@@ -155,15 +173,24 @@ std::vector<Scan> readScanGraph(std::istream& in, const std::string& source) {
     data.resize(before + static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw FileError(source + ": reading failed");
-  return parseScanGraph(data, source);
+  parseScanGraph(data, source, visit, [](std::size_t, std::size_t) {}, [](std::size_t) {});
 }
 
-std::vector<Scan> readScanGraph(const std::string& path) {
-  // A regular file is parsed where the system keeps it (mmap of the page cache, mapped at once):
-  // a copy in a buffer costs a page fault for each of its pages, and those faults made reading a
-  // 2.5 MB graph take 4 times as long (docs/performance.md). Anything else (a pipe, a system
-  // without the mapping) is read as a stream. As with any mapped file, another process truncating
-  // the file while it is parsed ends this one (SIGBUS).
+std::vector<Scan> readScanGraph(std::istream& in, const std::string& source) {
+  std::vector<Scan> scans;
+  readScanGraph(in, ScanVisitor(Collect{&scans}), source);
+  return scans;
+}
+
+void readScanGraph(const std::string& path, const ScanVisitor& visit) {
+  // A regular file is parsed where the system keeps it (mmap of the page cache): a copy in a
+  // buffer costs a page fault for each of its pages, and those faults made reading a 2.5 MB graph
+  // take 4 times as long. Each node's pages are mapped in one call before it is parsed
+  // (MADV_POPULATE_READ, Linux 5.14; without it they fault in one by one) and dropped from the
+  // process once it is (MADV_DONTNEED: a clean file page is only unmapped), so the file's share of
+  // the resident set is one node, not the whole file. Anything else (a pipe, a system without the
+  // mapping) is read as a stream. As with any mapped file, another process truncating the file
+  // while it is parsed ends this one (SIGBUS).
   std::error_code error;
   if (std::filesystem::is_regular_file(path, error)) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -173,7 +200,7 @@ std::vector<Scan> readScanGraph(const std::string& path) {
     std::size_t size = 0;
     if (::fstat(fd, &status) == 0 && status.st_size > 0) {
       size = static_cast<std::size_t>(status.st_size);
-      mapped = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      mapped = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
     }
     ::close(fd);
     if (mapped != MAP_FAILED) {
@@ -182,12 +209,31 @@ std::vector<Scan> readScanGraph(const std::string& path) {
         std::size_t bytes;
         ~Unmap() { ::munmap(at, bytes); }
       } const unmap{mapped, size};
-      return parseScanGraph(std::span<const unsigned char>(static_cast<const unsigned char*>(mapped), size), path);
+      auto* const base = static_cast<unsigned char*>(mapped);
+      const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+      std::size_t dropped = 0;  // bytes before this offset are no longer mapped in
+      const auto upcoming = [&](std::size_t offset, std::size_t bytes) {
+        const std::size_t from = offset / page * page;
+        (void)::madvise(base + from, std::min(size, offset + bytes) - from, kPopulateRead);  // a hint: may fail
+      };
+      const auto consumed = [&](std::size_t offset) {
+        const std::size_t until = offset / page * page;
+        if (until > dropped) (void)::madvise(base + dropped, until - dropped, MADV_DONTNEED);
+        dropped = std::max(dropped, until);
+      };
+      parseScanGraph(std::span<const unsigned char>(base, size), path, visit, upcoming, consumed);
+      return;
     }
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError("cannot open '" + path + "' for reading");
-  return readScanGraph(in, path);
+  readScanGraph(in, visit, path);
+}
+
+std::vector<Scan> readScanGraph(const std::string& path) {
+  std::vector<Scan> scans;
+  readScanGraph(path, ScanVisitor(Collect{&scans}));
+  return scans;
 }
 
 void writeScanGraph(std::ostream& out, const std::vector<Scan>& scans) {

@@ -154,6 +154,49 @@ TEST(ioScanGraph, APipeReadsAsTheFileDoes) {
   EXPECT_EQ(mapped.size(), 3U);
 }
 
+TEST(ioScanGraph, ScanByScanVisitsEachScanInOrderBeforeTheNext) {
+  const TempDir dir;
+  const std::vector<Scan> scans = sampleScans();
+  writeScanGraph(dir.file("scans.graph"), scans);
+  for (const bool by_path : {true, false}) {
+    std::vector<std::size_t> visited;
+    std::vector<Scan> got;
+    const ScanVisitor visit = [&](Scan&& scan, std::size_t index, std::size_t count) {
+      EXPECT_EQ(count, scans.size());
+      visited.push_back(index);
+      got.push_back(std::move(scan));
+    };
+    if (by_path) {
+      readScanGraph(dir.file("scans.graph"), visit);
+    } else {
+      std::istringstream in(graphBytes(scans));
+      readScanGraph(in, visit, "test.graph");
+    }
+    EXPECT_EQ(visited, (std::vector<std::size_t>{0, 1, 2})) << (by_path ? "by path" : "stream");
+    ASSERT_EQ(got.size(), scans.size());
+    for (std::size_t n = 0; n < scans.size(); ++n) EXPECT_EQ(got[n].points_m, scans[n].points_m);
+  }
+}
+
+TEST(ioScanGraph, ScanByScanThrowsForABadEdgeAfterTheScans) {
+  const TempDir dir;
+  const std::string path = dir.file("test.graph");
+  std::ofstream(path, std::ios::binary) << smallGraph({edgeBytes(0, 7)});
+  std::size_t visited = 0;
+  EXPECT_THROW(readScanGraph(path, [&](Scan&&, std::size_t, std::size_t) { ++visited; }), FileError);
+  EXPECT_EQ(visited, 1U);  // the scan came first; the caller has written nothing yet
+  // What the visitor throws reaches the caller, and no later scan is read.
+  writeScanGraph(dir.file("three.graph"), sampleScans());
+  visited = 0;
+  EXPECT_THROW(readScanGraph(dir.file("three.graph"),
+                             [&](Scan&&, std::size_t, std::size_t) {
+                               ++visited;
+                               throw ValueError("stop");
+                             }),
+               ValueError);
+  EXPECT_EQ(visited, 1U);
+}
+
 TEST(ioScanGraph, OctoMapReadsOurGraph) {
   const TempDir dir;
   const std::vector<Scan> scans = sampleScans();

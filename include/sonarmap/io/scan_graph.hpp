@@ -17,6 +17,8 @@
 #include <istream>
 #include <ostream>
 #include <string>
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "sonarmap/core/point_cloud.hpp"
@@ -26,6 +28,10 @@ namespace sonarmap {
 /// Largest deviation of a stored quaternion's norm from 1 that is accepted (and normalised away).
 /// OctoMap keeps quaternions as float32, so its files deviate by about 1e-7.
 inline constexpr double kScanGraphQuaternionTolerance = 1e-3;
+
+/// Called with each scan of a `.graph` as it is read: the scan, its index (0 … count − 1) and the
+/// file's node count.
+using ScanVisitor = std::function<void(Scan&& scan, std::size_t index, std::size_t count)>;
 
 /// Reads every scan of a `.graph` file: points in metres in the sensor frame (`Scan::points_m`)
 /// and the sensor pose in the world (`Scan::sensor_to_world`: rotation from the quaternion,
@@ -40,6 +46,16 @@ inline constexpr double kScanGraphQuaternionTolerance = 1e-3;
 ///         kScanGraphQuaternionTolerance of 1 (a zero quaternion included), an edge names a node
 ///         id that is not in the file, or bytes follow the last edge.
 std::vector<Scan> readScanGraph(const std::string& path);
+
+/// Reads a `.graph` file scan by scan, calling `visit` with each scan once it is read, before the
+/// next is read: one scan's points are in memory at a time, and of a mapped file only the node
+/// being read is resident. The edges are checked after the last scan, so an invalid edge throws
+/// after every scan was visited (a caller writes its output only once this returns).
+/// @throws FileError as readScanGraph(path); what `visit` throws propagates.
+void readScanGraph(const std::string& path, const ScanVisitor& visit);
+
+/// As readScanGraph(path, visit), from the rest of `in`. @param source name used in messages.
+void readScanGraph(std::istream& in, const ScanVisitor& visit, const std::string& source = "<stream>");
 
 /// Reads a `.graph` from the rest of `in` (to its end). @param source name used in messages.
 /// @throws FileError as readScanGraph(path).
