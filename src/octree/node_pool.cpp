@@ -88,7 +88,7 @@ std::size_t NodePool::bytesAllocated() const {
 }
 
 void NodePool::compact() {
-  std::vector<OcTreeNode> old;
+  SlotBuffer old;
   old.swap(slots_);
   slots_.reserve(used_slots_);
   slots_.assign(2, OcTreeNode{});
@@ -97,7 +97,7 @@ void NodePool::compact() {
   used_slots_ = slots_.size();
 }
 
-void NodePool::copySubtree(const std::vector<OcTreeNode>& old, NodeRef from, NodeRef to) {
+void NodePool::copySubtree(const SlotBuffer& old, NodeRef from, NodeRef to) {
   const OcTreeNode node = old[from];
   if (!node.hasChildren()) {
     slots_[to] = node;

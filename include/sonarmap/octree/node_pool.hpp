@@ -11,7 +11,7 @@
 /// OctoMap's 80, a full set of 8 children 72 bytes instead of 192. An array grows to the next
 /// capacity when a child is added to a full one; freed arrays are reused by capacity.
 ///
-/// All nodes live in one vector of slots addressed by 32-bit references. Slot 0 is the root;
+/// All nodes live in one array of slots (SlotBuffer) addressed by 32-bit references. Slot 0 is the root;
 /// slot 1 is a permanent "no node" (NaN log-odds) that `childRef` returns for a missing child.
 
 #include <array>
@@ -22,28 +22,9 @@
 #include <vector>
 
 #include "sonarmap/core/errors.hpp"
+#include "sonarmap/octree/slot_buffer.hpp"
 
 namespace sonarmap {
-
-/// Log-odds value that marks a node as not existing (unknown).
-inline constexpr float kUnknownLogOdds = std::numeric_limits<float>::quiet_NaN();
-
-/// One octree node: its log-odds and the slot of its children's array (0 = none). The top bit of
-/// `link` marks an inner node whose subtree changed since the last lazy synchronisation.
-struct OcTreeNode {
-  static constexpr std::uint32_t kDirtyBit = 1U << 31;
-  static constexpr std::uint32_t kArrayMask = kDirtyBit - 1;
-
-  float log_odds = kUnknownLogOdds;
-  std::uint32_t link = 0;
-
-  bool exists() const { return !std::isnan(log_odds); }
-  bool hasChildren() const { return (link & kArrayMask) != 0; }
-  /// Slot of the children's array header, 0 when there are none.
-  std::uint32_t array() const { return link & kArrayMask; }
-  bool dirty() const { return (link & kDirtyBit) != 0; }
-};
-static_assert(sizeof(OcTreeNode) == 8, "a node is one float and one 32-bit index");
 
 /// Reference to a node: its slot. The root is reference 0.
 using NodeRef = std::uint32_t;
@@ -132,9 +113,9 @@ class NodePool {
   std::uint32_t allocate(unsigned cls);
   void release(std::uint32_t array);
   /// Copies the subtree at `from` (in `old`) to `to`, appending its arrays (compact()).
-  void copySubtree(const std::vector<OcTreeNode>& old, NodeRef from, NodeRef to);
+  void copySubtree(const SlotBuffer& old, NodeRef from, NodeRef to);
 
-  std::vector<OcTreeNode> slots_;
+  SlotBuffer slots_;  ///< grows without copying (mremap): no second copy while the tree grows
   std::array<std::vector<std::uint32_t>, kClasses> free_;
   std::size_t used_slots_ = 0;
 };
