@@ -2,7 +2,7 @@
 """The peers' table (docs/performance.md, "Peers"): whole-process point-cloud insertion by
 `sonarmap cloud`, OctoMap, Bonxai and UFOMap on the same scan graphs at 5 cm.
 
-    bench/peers/run.py SONARMAP PEERS_DIR INPUTS_DIR [--rounds 5] [--resolution 0.05]
+    bench/peers/run.py SONARMAP PEERS_DIR INPUTS_DIR [--rounds 5] [--resolution 0.05] [--only GRAPH ...]
 
 SONARMAP is the `sonarmap` executable; PEERS_DIR/bin holds the drivers built by build.sh; INPUTS_DIR
 the graphs written by `sonarmap_cloud_inputs` plus octomap_spherical_scan.graph (../shared/data).
@@ -22,7 +22,8 @@ import time
 
 WORKLOADS = [("OctoMap's spherical scan graph", "octomap_spherical_scan.graph"),
              ("sphere, 129,600 rays to 5 m", "sphere_5m.graph"),
-             ("corridor scan, 88,200 points", "corridor.graph")]
+             ("corridor scan, 88,200 points", "corridor.graph"),
+             ("building, 66 scans, 5,821,200 points (FR-079's size)", "building.graph")]
 
 
 def run_once(command):
@@ -47,6 +48,7 @@ def main():
     parser.add_argument("inputs_dir")
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--resolution", type=float, default=0.05)
+    parser.add_argument("--only", nargs="+", metavar="GRAPH", help="only these workloads (e.g. building.graph)")
     args = parser.parse_args()
     bin_dir = os.path.join(args.peers_dir, "bin")
     res = str(args.resolution)
@@ -62,6 +64,8 @@ def main():
         print("|---|" + "---|" * len(programs('x')))
         details = []
         for title, name in WORKLOADS:
+            if args.only and name not in args.only:
+                continue
             graph = os.path.join(args.inputs_dir, name)
             if not os.path.exists(graph):
                 print(f"| {title} | absent: {graph} |")
