@@ -190,8 +190,11 @@ TEST(Octree, NodesAreEightBytesAndMemoryFollowsCompactArrays) {
   // A sibling fills the one-child array of the depth-15 node: it grows to capacity 2 (3 slots).
   tree.integrate(key16(1, 0, 0), true);
   EXPECT_EQ(tree.memoryBytes(), (2U + 15U * 2U + 3U) * 8U + sizeof(OcTree16));
+  // A third: an array holds exactly its children, capacity 3 (4 slots), none spare.
+  tree.integrate(key16(0, 1, 0), true);
+  EXPECT_EQ(tree.memoryBytes(), (2U + 15U * 2U + 4U) * 8U + sizeof(OcTree16));
   // Eight siblings: capacity 8 (9 slots) until they prune into their parent.
-  for (unsigned i = 2; i < 8; ++i) tree.integrate(key16(i & 1U, (i >> 1) & 1U, i >> 2), true);
+  for (unsigned i = 3; i < 8; ++i) tree.integrate(key16(i & 1U, (i >> 1) & 1U, i >> 2), true);
   EXPECT_EQ(tree.counts().leaves, 1U);
   EXPECT_EQ(tree.memoryBytes(), (2U + 15U * 2U) * 8U + sizeof(OcTree16));
   EXPECT_GE(tree.memoryBytesAllocated(), tree.memoryBytes());

@@ -7,9 +7,11 @@
 /// instead of a pointer, so a node is 8 bytes where OctoMap's is 16 plus a 64-byte array of 8
 /// pointers per inner node. An array is one header slot followed by the existing children in child
 /// order (0…7); the header records which children exist (an 8-bit mask) and the array's capacity
-/// (1, 2, 4 or 8 children). A path through sparse space thus costs 16 bytes per level instead of
-/// OctoMap's 80, a full set of 8 children 72 bytes instead of 192. An array grows to the next
-/// capacity when a child is added to a full one; freed arrays are reused by capacity.
+/// (1 to 8 children: exactly the children it holds, so no slot is spare). A path through sparse
+/// space thus costs 16 bytes per level instead of OctoMap's 80, a full set of 8 children 72 bytes
+/// instead of 192. Adding a child moves the array to the next capacity; freed arrays are reused by
+/// capacity. Capacities of 1, 2, 4 and 8 left 9 % of a large multi-scan map's slots spare
+/// (docs/performance.md, "Where the memory and time go") for no gain in insertion time.
 ///
 /// All nodes live in one array of slots (SlotBuffer) addressed by 32-bit references. Slot 0 is the root;
 /// slot 1 is a permanent "no node" (NaN log-odds) that `childRef` returns for a missing child.
@@ -95,8 +97,8 @@ class NodePool {
   std::size_t bytesAllocated() const;
 
  private:
-  static constexpr unsigned kClasses = 4;
-  static constexpr std::array<unsigned, kClasses> kCapacity = {1, 2, 4, 8};
+  static constexpr unsigned kClasses = 8;
+  static constexpr std::array<unsigned, kClasses> kCapacity = {1, 2, 3, 4, 5, 6, 7, 8};
   static constexpr std::uint32_t kMaxSlots = OcTreeNode::kArrayMask;
   static constexpr std::array<std::uint8_t, 256> kBitCount = [] {
     std::array<std::uint8_t, 256> counts{};
@@ -104,10 +106,10 @@ class NodePool {
     return counts;
   }();
 
-  /// Smallest capacity class holding `children` (1…8) children.
-  static unsigned classFor(unsigned children) { return children <= 1 ? 0 : children <= 2 ? 1 : children <= 4 ? 2 : 3; }
+  /// Capacity class of an array of `children` (1…8) children: one class per count.
+  static unsigned classFor(unsigned children) { return children <= 1 ? 0 : children - 1; }
   unsigned maskOf(std::uint32_t array) const { return slots_[array].link & 0xFFU; }
-  unsigned classOf(std::uint32_t array) const { return (slots_[array].link >> 8) & 3U; }
+  unsigned classOf(std::uint32_t array) const { return (slots_[array].link >> 8) & 7U; }
   void setHeader(std::uint32_t array, unsigned mask, unsigned cls) { slots_[array] = OcTreeNode{kUnknownLogOdds, mask | (cls << 8)}; }
   /// Slot of a new array of class `cls` (header included), from the free list or the end.
   std::uint32_t allocate(unsigned cls);
