@@ -21,6 +21,9 @@ const std::string kNavHeader = "time_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n"
 // gives the live map, with the navigation it recorded.
 TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
   const fs::path recording = out_ / "dive.mcap";
+  // The capture is simulated before `live` starts: under a sanitizer it takes longer than
+  // --idle-timeout, and `live` would end before the first byte.
+  const std::string& capture = tankCapture();
   const Names args = liveWithNavStreamArgs({"--record", recording.string()});
   Child child(args, root_, -1);
   const auto [sonar_port, nav_port] = boundPorts(child);
@@ -36,7 +39,6 @@ TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
     }
   });
   std::this_thread::sleep_for(150ms);  // fixes before the first beam
-  const std::string& capture = tankCapture();
   for (std::size_t at = 0; at < capture.size(); at += capture.size() / 8) {  // 8 bursts over ~1.6 s
     sendUdp(sonar_port, capture.substr(at, capture.size() / 8));
     std::this_thread::sleep_for(200ms);
@@ -57,6 +59,9 @@ TEST_F(CliLiveRecord, TheRecordingMapsToTheLiveMap) {
 // The navigation stream stops for 3 s mid-dive (10 Hz fixes: lost after 2 s) and comes back: the
 // loss is said when it happens, once, and the return; the run goes on and ends well.
 TEST_F(CliLiveRecord, ANavigationLostMidDiveIsSaidWhenItHappens) {
+  // The capture is simulated before `live` starts: under a sanitizer it takes longer than
+  // --idle-timeout, and `live` would end before the first byte.
+  const std::string& capture = tankCapture();
   const Names args = liveWithNavStreamArgs({});
   Child child(args, root_, -1);
   const auto [sonar_port, nav_port] = boundPorts(child);
@@ -74,7 +79,6 @@ TEST_F(CliLiveRecord, ANavigationLostMidDiveIsSaidWhenItHappens) {
       std::this_thread::sleep_for(100ms);
     }
   });
-  const std::string& capture = tankCapture();
   for (int burst = 0; burst < 32; ++burst) {  // the head goes on throughout (~6.4 s)
     sendUdp(sonar_port, capture.substr((burst % 8) * (capture.size() / 8), capture.size() / 8));
     std::this_thread::sleep_for(200ms);
@@ -157,12 +161,15 @@ TEST_F(CliLiveRecord, AReplayedLogRunsAtItsOwnPace) {
 // Navigation that never gives a fix (rows that do not parse, as MAVLink sent to a CSV reader gave):
 // no beam is placed, and the run says so and fails instead of writing an empty map.
 TEST_F(CliLiveRecord, BeamsThatNeverMeetTheNavigationFailTheRun) {
+  // The capture is simulated before `live` starts: under a sanitizer it takes longer than
+  // --idle-timeout, and `live` would end before the first byte.
+  const std::string& capture = tankCapture();
   const Names args = liveWithNavStreamArgs();
   Child child(args, root_, -1);
   const auto [sonar_port, nav_port] = boundPorts(child);
   ASSERT_TRUE(sonar_port > 0 && nav_port > 0);
   sendUdp(nav_port, "not,a,navigation,row\nstill not\n");
-  sendUdp(sonar_port, tankCapture());
+  sendUdp(sonar_port, capture);
   const ProgramRun run = child.wait();
   EXPECT_EQ(run.exit_code, 1) << run.err;
   EXPECT_NE(run.err.find("none of the 800 beams lies within the navigation's time span (0 fixes received"),

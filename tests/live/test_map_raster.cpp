@@ -154,6 +154,15 @@ OcTree16 harbourMap(double res) {
   return map;
 }
 
+// A loose bound: the picture thread must keep up with a map redrawn every few seconds. Under
+// AddressSanitizer the same work takes 2 to 3 times as long (its documentation's typical slowdown),
+// which on a slow shared host crossed 1 s (1.01 s at 5 cm).
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr double kPictureBudgetS = 3.0;
+#else
+constexpr double kPictureBudgetS = 1.0;
+#endif
+
 // The cost the raster thread pays for a picture of a 50 m map: copying the map (what
 // OnlineMapper::shownSnapshot does), rasterising and encoding. Printed, and bounded loosely (a
 // shared two-core machine): docs in the report.
@@ -183,7 +192,7 @@ TEST(MapRaster, CostOfAFiftyMetreMap) {
                 res, map.counts().leaves, raster.image.cols, raster.image.rows, raster.voxels_per_pixel, 1000 * copy_s,
                 1000 * raster_s, 1000 * png_s, png_bytes, two_bits);
     EXPECT_GT(raster.occupied_px, 0U);
-    EXPECT_LT(copy_s + raster_s + png_s, 1.0);
+    EXPECT_LT(copy_s + raster_s + png_s, kPictureBudgetS);
   }
 }
 
